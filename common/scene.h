@@ -1,0 +1,128 @@
+// Scene definition: everything a scene file (JSON with comments) says, parsed and validated once
+// into plain definition structs. Contract: docs/interface.md ("Scene file").
+//
+// Units are SI throughout: m, kg, s, N, Pa; 2D with unit thickness. Forces are N per metre of
+// thickness. Materials and joint sets are referred to by index into the sorted-by-name vectors
+// below (the JSON objects are ordered by key, so the indices are deterministic).
+//
+// parse_scene() checks structure, types and physical ranges (everything that needs no geometry
+// kernel). The geometric checks that need exact predicates (self-intersecting polygons, holes
+// outside their body, overlapping bodies) live in preprocess/scene_geometry.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace nmm {
+
+struct Vec2 {
+  double x = 0;  ///< m (or N for forces, m/s² for gravity)
+  double y = 0;
+};
+inline bool operator==(const Vec2& a, const Vec2& b) { return a.x == b.x && a.y == b.y; }
+
+/// A closed polygon as its vertices, any orientation, first vertex not repeated at the end. m.
+using Ring = std::vector<Vec2>;
+
+enum class PlaneKind { strain, stress };
+
+struct MaterialDef {
+  std::string name;
+  double density = 0;  ///< kg/m³, > 0
+  double young = 0;    ///< Pa, > 0
+  double poisson = 0;  ///< –, in [0, 0.5)
+};
+
+enum class NormalModel { constant, bandis_barton };
+struct NormalLawDef {
+  NormalModel model = NormalModel::constant;
+  double kn = 0;   ///< N/m per contact point (constant model)
+  double kni = 0;  ///< Pa/m, initial normal stiffness (Bandis–Barton)
+  double vm = 0;   ///< m, maximum closure (Bandis–Barton)
+};
+
+enum class ShearModel { constant, hyperbolic };
+struct ShearLawDef {
+  ShearModel model = ShearModel::constant;
+  double ks = 0;   ///< N/m per contact point (constant model)
+  double ksi = 0;  ///< Pa/m, initial shear stiffness (hyperbolic)
+  double rf = 0;   ///< –, failure ratio in (0, 1] (hyperbolic)
+};
+
+struct JointSetDef {
+  std::string name;
+  double friction_deg = 0;      ///< degrees, in [0, 90)
+  double cohesion = 0;          ///< Pa, >= 0
+  double tensile_strength = 0;  ///< Pa, >= 0
+  NormalLawDef normal;
+  ShearLawDef shear;
+};
+
+struct BodyDef {
+  int material = -1;        ///< index into SceneDef::materials
+  Ring outer;               ///< outer boundary, m
+  std::vector<Ring> holes;  ///< holes strictly inside `outer`, m
+};
+
+struct JointDef {
+  int set = -1;              ///< index into SceneDef::joint_sets
+  std::vector<Vec2> points;  ///< polyline, >= 2 points, no zero-length segment, m
+};
+
+struct LoadDef {
+  Vec2 point;  ///< m, where the force acts
+  Vec2 force;  ///< N per unit thickness
+};
+
+struct SolverDef {
+  double time_step = 1e-3;                ///< s, > 0
+  std::int64_t steps = 1000;              ///< number of time steps, >= 0
+  bool dynamic = true;                    ///< false: static analysis (v0 = 0 every step)
+  double max_displacement_ratio = 0.001;  ///< –, g2 in Shi's step control, in (0, 1)
+  std::int64_t output_every = 10;         ///< steps between outputs, >= 1
+};
+
+struct SceneDef {
+  std::string name;                     ///< free text, "" if absent
+  bool has_gravity = false;             ///< "gravity" present
+  Vec2 gravity;                         ///< m/s²
+  PlaneKind plane = PlaneKind::strain;  ///< plane strain (default) or plane stress
+  std::vector<MaterialDef> materials;   ///< sorted by name
+  std::vector<JointSetDef> joint_sets;  ///< sorted by name
+  std::vector<BodyDef> bodies;
+  std::vector<JointDef> joints;
+  int interface_set = -1;  ///< joint set for touching bodies, -1 if absent
+  double mesh_size = 0;    ///< m, side of the equilateral mathematical triangles
+  std::vector<Vec2> fixed_points;    ///< m
+  std::vector<LoadDef> loads;
+  std::vector<Vec2> measure_points;  ///< m
+  SolverDef solver;
+};
+
+/// Limits that keep a scene within what the tools can represent and finish.
+constexpr double kMaxCoordinate = 1e7;         ///< m, |x| and |y| of any point
+constexpr double kMaxMeshTriangles = 5e6;      ///< triangles over the bodies' bounding box
+
+/// Parses scene text (JSON, // and /* */ comments allowed) and validates it.
+/// Throws InputError(file, JSON path, message) on the first problem found.
+SceneDef parse_scene(const std::string& text, const std::string& file);
+
+/// Parses JSON text with comments allowed; InputError with "line L, column C" on a syntax error.
+nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+
+/// Validates an already parsed JSON document as a scene (used after merge patches).
+SceneDef scene_from_json(const nlohmann::json& doc, const std::string& file);
+
+/// Reads a whole file into a string; InputError if it cannot be read.
+std::string read_text_file(const std::string& path);
+
+/// Signed area of a ring (shoelace), m². Positive for counter-clockwise.
+double ring_signed_area(const Ring& ring);
+
+/// Area of a body: outer minus holes, m².
+double body_area(const BodyDef& body);
+
+}  // namespace nmm
