@@ -1,1 +1,578 @@
-// (being written)
+// Cover cutting with an exact arrangement (CGAL Arrangement_2, EPECK kernel, segment traits).
+//
+// Method (physics.md §1, docs/preprocess.md):
+// 1. Mathematical mesh: equilateral triangles of side h on a lattice anchored at the origin,
+//    node (i, j) at x = (i + ½·(j mod 2))·h, y = j·h·√3/2, kept where a triangle's bounding box
+//    meets a body's bounding box. Node coordinates are doubles, computed once.
+// 2. One sweep inserts every curve: each mesh edge once, each joint segment, each body boundary
+//    segment. Curves carry tags (Arr_consolidated_curve_data_traits_2) so every arrangement edge
+//    knows all its origins: mesh edge (with the triangles on its two sides), joint, body boundary
+//    (with the side the body lies on). Overlapping curves (a joint along a mesh edge, touching
+//    bodies, collinear joints) merge into one edge carrying all their tags.
+// 3. Labelling. Every face lies in one triangle and in at most one body. A face's triangle is
+//    read off any of its halfedges on a mesh edge; faces without one (enclosed by joints) share
+//    the triangle of the faces they connect to across non-mesh edges (union–find). Likewise for
+//    the body across non-boundary edges: a halfedge on a boundary segment says "inside body b"
+//    when the body lies on its left (CGAL keeps each halfedge's face on its left), else
+//    "outside". Two different answers in one component mean overlapping bodies (bad input).
+// 4. Faces inside a body are the manifold elements (ME). A face with holes (a body hole or a
+//    joint network wholly inside one triangle) gets a zero-width bridge from each hole's top
+//    vertex straight up to the nearest boundary of the face, inserted exactly into the
+//    arrangement, so each ME boundary is one weakly simple loop.
+// 5. Physical covers: for node n, the pieces of star(n) ∩ body minus joints are the components
+//    of the MEs in the six triangles around n, joined across the spokes of n wherever a spoke
+//    piece is a mesh edge only (no joint, no boundary on it). A joint ending inside the star
+//    leaves the pieces on its two faces joined around its tip, so it does not split the cover.
+//    Blocks: components of all MEs joined across every mesh-only edge.
+// 6. Coordinates go to double once, at output (CGAL::to_double of the exact point), so the same
+//    scene always gives the same bytes. Sliver elements (a joint passing 1e-9·h beside a node)
+//    are kept as they are: dropping or merging them would lose area or change the topology.
+#include "cover_cutter.h"
+
+#include <CGAL/Arr_consolidated_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "error.h"
+#include "nmm_version.h"
+
+namespace nmm::pre {
+
+namespace {
+
+// What an arrangement curve came from. `id` is a mesh edge, joint or boundary segment index.
+struct CurveTag {
+  std::uint8_t kind = 0;  // one EdgeOrigin flag
+  std::int32_t id = -1;
+  bool operator==(const CurveTag& o) const { return kind == o.kind && id == o.id; }
+};
+
+using Kernel     = CGAL::Epeck;
+using SegTraits  = CGAL::Arr_segment_traits_2<Kernel>;
+using Traits     = CGAL::Arr_consolidated_curve_data_traits_2<SegTraits, CurveTag>;
+using Point      = Traits::Point_2;
+using Segment    = Kernel::Segment_2;
+using Curve      = Traits::Curve_2;
+using Dcel       = CGAL::Arr_face_extended_dcel<Traits, std::int32_t>;
+using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
+using Halfedge_handle = Arrangement::Halfedge_const_handle;
+using Face_handle     = Arrangement::Face_const_handle;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool lex_less(const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
+// Union–find with path halving; indices are small integers.
+struct UnionFind {
+  std::vector<std::int32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::int32_t find(std::int32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  void unite(std::int32_t a, std::int32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smallest index is the root
+  }
+};
+
+// A mesh edge between lattice nodes a and b (a lexicographically before b), with the triangles
+// to the left and right of the direction a → b (-1 outside the kept mesh).
+struct MeshEdge {
+  std::int32_t a, b;
+  std::int32_t left = -1, right = -1;
+};
+
+// A body boundary segment; the body lies left of its left-to-right direction when `body_left`.
+struct BoundarySeg {
+  std::int32_t body;
+  bool body_left;
+};
+
+struct Lattice {
+  double h = 0, dy = 0;
+  std::int64_t i0 = 0, j0 = 0, ni = 0, nj = 0;  // node (i, j) for i in [i0, i0+ni), j likewise
+  Vec2 node(std::int64_t i, std::int64_t j) const {
+    const double shift = ((j % 2) + 2) % 2 == 1 ? 0.5 : 0.0;
+    return {(static_cast<double>(i) + shift) * h, static_cast<double>(j) * dy};
+  }
+  std::int32_t index(std::int64_t i, std::int64_t j) const {
+    return static_cast<std::int32_t>((j - j0) * ni + (i - i0));
+  }
+};
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+
+Box ring_box(const Ring& r) {
+  Box b{r[0].x, r[0].y, r[0].x, r[0].y};
+  for (const Vec2& p : r) {
+    b.x0 = std::min(b.x0, p.x);
+    b.y0 = std::min(b.y0, p.y);
+    b.x1 = std::max(b.x1, p.x);
+    b.y1 = std::max(b.y1, p.y);
+  }
+  return b;
+}
+
+// The mathematical mesh before cutting: lattice nodes, candidate triangles, their edges.
+struct RawMesh {
+  Lattice lat;
+  std::vector<Vec2> node_xy;                    // full lattice
+  std::vector<std::array<std::int32_t, 3>> tri;  // candidate triangles, CCW
+  std::vector<MeshEdge> edges;
+};
+
+RawMesh make_raw_mesh(const SceneDef& scene) {
+  RawMesh m;
+  Lattice& L = m.lat;
+  L.h = scene.mesh_size;
+  L.dy = scene.mesh_size * std::sqrt(3.0) / 2.0;
+  std::vector<Box> boxes;
+  for (const BodyDef& b : scene.bodies) boxes.push_back(ring_box(b.outer));
+  Box all = boxes[0];
+  for (const Box& b : boxes) all = {std::min(all.x0, b.x0), std::min(all.y0, b.y0),
+                                    std::max(all.x1, b.x1), std::max(all.y1, b.y1)};
+  L.j0 = static_cast<std::int64_t>(std::floor(all.y0 / L.dy)) - 1;
+  const std::int64_t j1 = static_cast<std::int64_t>(std::ceil(all.y1 / L.dy)) + 1;
+  L.i0 = static_cast<std::int64_t>(std::floor(all.x0 / L.h)) - 1;
+  const std::int64_t i1 = static_cast<std::int64_t>(std::ceil(all.x1 / L.h)) + 1;
+  L.ni = i1 - L.i0 + 1;
+  L.nj = j1 - L.j0 + 1;
+  m.node_xy.resize(static_cast<std::size_t>(L.ni * L.nj));
+  for (std::int64_t j = L.j0; j <= j1; ++j)
+    for (std::int64_t i = L.i0; i <= i1; ++i) m.node_xy[L.index(i, j)] = L.node(i, j);
+
+  auto keep = [&](const std::array<std::int32_t, 3>& t) {
+    Box tb{m.node_xy[t[0]].x, m.node_xy[t[0]].y, m.node_xy[t[0]].x, m.node_xy[t[0]].y};
+    for (int k = 1; k < 3; ++k) {
+      const Vec2& p = m.node_xy[t[k]];
+      tb = {std::min(tb.x0, p.x), std::min(tb.y0, p.y), std::max(tb.x1, p.x), std::max(tb.y1, p.y)};
+    }
+    for (const Box& b : boxes)
+      if (tb.overlaps(b)) return true;
+    return false;
+  };
+  // Between rows j and j+1 the shifted row is the odd one; see the file comment for the lattice.
+  for (std::int64_t j = L.j0; j < j1; ++j) {
+    const bool odd = ((j % 2) + 2) % 2 == 1;
+    for (std::int64_t i = L.i0; i < i1; ++i) {
+      std::array<std::int32_t, 3> up, down;
+      if (!odd) {
+        up = {L.index(i, j), L.index(i + 1, j), L.index(i, j + 1)};
+        down = {L.index(i + 1, j), L.index(i + 1, j + 1), L.index(i, j + 1)};
+      } else {
+        up = {L.index(i, j), L.index(i + 1, j), L.index(i + 1, j + 1)};
+        down = {L.index(i, j), L.index(i + 1, j + 1), L.index(i, j + 1)};
+      }
+      if (keep(up)) m.tri.push_back(up);
+      if (keep(down)) m.tri.push_back(down);
+    }
+  }
+  // Edges: one per pair of nodes, with the triangle on each side of the a → b direction.
+  struct HalfRef {
+    std::int64_t key;
+    std::int32_t tri;
+    bool tri_left;
+  };
+  std::vector<HalfRef> refs;
+  refs.reserve(m.tri.size() * 3);
+  const std::int64_t stride = L.ni * L.nj;
+  for (std::size_t t = 0; t < m.tri.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      std::int32_t p = m.tri[t][k], q = m.tri[t][(k + 1) % 3];
+      // The triangle is left of p → q (counter-clockwise); store the edge as a → b, a before b.
+      const bool left = lex_less(m.node_xy[p], m.node_xy[q]);
+      if (!left) std::swap(p, q);
+      refs.push_back({static_cast<std::int64_t>(p) * stride + q, static_cast<std::int32_t>(t), left});
+    }
+  std::sort(refs.begin(), refs.end(),
+            [](const HalfRef& x, const HalfRef& y) { return x.key < y.key; });
+  for (std::size_t r = 0; r < refs.size();) {
+    MeshEdge e{static_cast<std::int32_t>(refs[r].key / stride),
+               static_cast<std::int32_t>(refs[r].key % stride)};
+    std::size_t s = r;
+    for (; s < refs.size() && refs[s].key == refs[r].key; ++s)
+      (refs[s].tri_left ? e.left : e.right) = refs[s].tri;
+    m.edges.push_back(e);
+    r = s;
+  }
+  return m;
+}
+
+Point to_point(const Vec2& p) { return Point(p.x, p.y); }
+
+Vec2 to_vec(const Point& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
+
+// Per-face labels found by union–find over the arrangement's faces.
+struct FaceLabels {
+  std::vector<Face_handle> faces;   // by face index (face->data())
+  std::vector<std::int32_t> tri;    // triangle or -1
+  std::vector<std::int32_t> body;   // body or -1
+};
+
+class Cutter {
+ public:
+  Cutter(const SceneDef& scene, const std::string& file) : scene_(scene), file_(file) {}
+
+  Mesh run(CutTimings* timings);
+
+ private:
+  void insert_curves();
+  void number_faces();
+  void label_faces();
+  void bridge_holes();
+  Mesh extract();
+
+  const SceneDef& scene_;
+  const std::string& file_;
+  RawMesh raw_;
+  std::vector<BoundarySeg> boundary_;
+  Arrangement arr_;
+  FaceLabels lab_;
+};
+
+void Cutter::insert_curves() {
+  std::vector<Curve> curves;
+  curves.reserve(raw_.edges.size() + 16);
+  for (std::size_t e = 0; e < raw_.edges.size(); ++e) {
+    const MeshEdge& me = raw_.edges[e];
+    curves.emplace_back(Segment(to_point(raw_.node_xy[me.a]), to_point(raw_.node_xy[me.b])),
+                        CurveTag{kEdgeMesh, static_cast<std::int32_t>(e)});
+  }
+  for (std::size_t j = 0; j < scene_.joints.size(); ++j) {
+    const auto& pts = scene_.joints[j].points;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+      curves.emplace_back(Segment(to_point(pts[k]), to_point(pts[k + 1])),
+                          CurveTag{kEdgeJoint, static_cast<std::int32_t>(j)});
+  }
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const BodyDef& body = scene_.bodies[b];
+    for (std::size_t r = 0; r <= body.holes.size(); ++r) {
+      const Ring& ring = r == 0 ? body.outer : body.holes[r - 1];
+      // The body lies left of a ring traversed counter-clockwise for the outer boundary and
+      // clockwise for a hole.
+      const bool ccw = ring_signed_area(ring) > 0;
+      const bool body_left_of_ring = (r == 0) == ccw;
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const Vec2& p = ring[k];
+        const Vec2& q = ring[(k + 1) % ring.size()];
+        const bool l2r = lex_less(p, q);
+        boundary_.push_back({static_cast<std::int32_t>(b), l2r == body_left_of_ring});
+        curves.emplace_back(Segment(to_point(p), to_point(q)),
+                            CurveTag{kEdgeBoundary, static_cast<std::int32_t>(boundary_.size() - 1)});
+      }
+    }
+  }
+  CGAL::insert(arr_, curves.begin(), curves.end());
+}
+
+void Cutter::number_faces() {
+  lab_.faces.clear();
+  std::int32_t n = 0;
+  for (auto f = arr_.faces_begin(); f != arr_.faces_end(); ++f) {
+    f->set_data(n++);
+    lab_.faces.push_back(f);
+  }
+}
+
+// Calls fn(halfedge) for every halfedge on the boundary of face f (outer and inner CCBs).
+template <typename Fn>
+void for_each_boundary_halfedge(Face_handle f, Fn fn) {
+  for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) {
+    auto c = *ccb, start = c;
+    do fn(Halfedge_handle(c)); while (++c != start);
+  }
+  for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) {
+    auto c = *ccb, start = c;
+    do fn(Halfedge_handle(c)); while (++c != start);
+  }
+}
+
+std::uint8_t edge_kinds(Halfedge_handle h) {
+  std::uint8_t k = 0;
+  for (const CurveTag& t : h->curve().data()) k |= t.kind;
+  return k;
+}
+
+void Cutter::label_faces() {
+  const std::size_t nf = lab_.faces.size();
+  // Union faces across edges that do not change the label (non-mesh edges for the triangle,
+  // non-boundary edges for the body).
+  UnionFind tri_uf(nf), body_uf(nf);
+  for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e) {
+    const std::uint8_t kinds = edge_kinds(e);
+    const std::int32_t f1 = e->face()->data(), f2 = e->twin()->face()->data();
+    if (!(kinds & kEdgeMesh)) tri_uf.unite(f1, f2);
+    if (!(kinds & kEdgeBoundary)) body_uf.unite(f1, f2);
+  }
+  // Labels per component root, read off informative halfedges.
+  constexpr std::int32_t kUnset = -2;
+  std::vector<std::int32_t> tri_root(nf, kUnset), body_root(nf, kUnset), body_witness(nf, -1);
+  for (auto h = arr_.halfedges_begin(); h != arr_.halfedges_end(); ++h) {
+    const std::int32_t f = h->face()->data();
+    const bool l2r = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+    for (const CurveTag& t : h->curve().data()) {
+      if (t.kind == kEdgeMesh) {
+        const MeshEdge& me = raw_.edges[t.id];
+        tri_root[tri_uf.find(f)] = l2r ? me.left : me.right;
+      }
+    }
+    if (!(edge_kinds(h) & kEdgeBoundary)) continue;
+    // Inside body b if some boundary segment on this edge has body b on the halfedge's left.
+    std::int32_t claim = -1, witness = -1;
+    for (const CurveTag& t : h->curve().data()) {
+      if (t.kind != kEdgeBoundary) continue;
+      const BoundarySeg& s = boundary_[t.id];
+      if (witness < 0) witness = s.body;
+      if (l2r == s.body_left) {
+        if (claim >= 0 && claim != s.body) {
+          throw InputError(file_, "/bodies/" + std::to_string(std::max(claim, s.body)),
+                           "overlaps body " + std::to_string(std::min(claim, s.body)));
+        }
+        claim = s.body;
+        witness = s.body;
+      }
+    }
+    const std::int32_t root = body_uf.find(f);
+    if (body_root[root] == kUnset) {
+      body_root[root] = claim;
+      body_witness[root] = witness;
+    } else if (body_root[root] != claim) {
+      // One connected region said to be inside two bodies, or inside and outside one: bodies
+      // overlap (the geometry checks already ensured each polygon is simple).
+      const std::int32_t a = body_witness[root], b = witness;
+      const Vec2 p = to_vec(h->source()->point());
+      std::ostringstream msg;
+      msg << "overlaps body " << std::min(a, b) << " (near x = " << p.x << ", y = " << p.y
+          << "); bodies may touch but not overlap";
+      throw InputError(file_, "/bodies/" + std::to_string(std::max(a, b)), msg.str());
+    }
+  }
+  lab_.tri.assign(nf, -1);
+  lab_.body.assign(nf, -1);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::int32_t t = tri_root[tri_uf.find(static_cast<std::int32_t>(f))];
+    const std::int32_t b = body_root[body_uf.find(static_cast<std::int32_t>(f))];
+    lab_.tri[f] = t == kUnset ? -1 : t;
+    lab_.body[f] = b == kUnset ? -1 : b;
+    if (lab_.body[f] >= 0 && lab_.tri[f] < 0)
+      throw std::logic_error("cover cutter: a face inside a body lies outside the mesh");
+  }
+}
+
+void Cutter::bridge_holes() {
+  // Bridges for all holes are found first (handles stay valid), then inserted. Each goes from a
+  // hole's top vertex straight up to the face boundary above it, which lies strictly higher, so
+  // the bridges form a forest rooted at the outer boundary: no face is split.
+  std::vector<Curve> bridges;
+  for (std::size_t f = 0; f < lab_.faces.size(); ++f) {
+    const Face_handle face = lab_.faces[f];
+    if (lab_.body[f] < 0 || face->number_of_inner_ccbs() == 0) continue;
+    std::vector<Halfedge_handle> all;
+    for_each_boundary_halfedge(face, [&](Halfedge_handle h) { all.push_back(h); });
+    for (auto ccb = face->inner_ccbs_begin(); ccb != face->inner_ccbs_end(); ++ccb) {
+      // Top vertex: greatest y, then greatest x.
+      auto c = *ccb, start = c;
+      Point top = c->source()->point();
+      do {
+        const Point& p = c->source()->point();
+        if (p.y() > top.y() || (p.y() == top.y() && p.x() > top.x())) top = p;
+      } while (++c != start);
+      bool found = false;
+      Kernel::FT best_y;
+      for (Halfedge_handle h : all) {
+        const Point& a = h->source()->point();
+        const Point& b = h->target()->point();
+        Kernel::FT y;
+        if (a.x() == b.x()) {
+          if (a.x() != top.x()) continue;
+          y = a.y() < b.y() ? a.y() : b.y();
+        } else {
+          if ((a.x() > top.x() && b.x() > top.x()) || (a.x() < top.x() && b.x() < top.x())) continue;
+          y = a.y() + (b.y() - a.y()) * (top.x() - a.x()) / (b.x() - a.x());
+        }
+        if (y > top.y() && (!found || y < best_y)) {
+          best_y = y;
+          found = true;
+        }
+      }
+      if (!found) throw std::logic_error("cover cutter: a hole has no boundary above it");
+      bridges.emplace_back(Segment(top, Point(top.x(), best_y)), CurveTag{kEdgeBridge, 0});
+    }
+  }
+  for (const Curve& c : bridges) CGAL::insert(arr_, c);
+}
+
+Mesh Cutter::extract() {
+  Mesh mesh;
+  mesh.mesh_size = scene_.mesh_size;
+  mesh.dofs_per_cover = 2;
+  const std::size_t nf = lab_.faces.size();
+
+  // Manifold elements: faces inside a body, ordered by triangle (stable in face order).
+  std::vector<std::int32_t> me_faces;
+  for (std::size_t f = 0; f < nf; ++f)
+    if (lab_.body[f] >= 0) me_faces.push_back(static_cast<std::int32_t>(f));
+  std::stable_sort(me_faces.begin(), me_faces.end(),
+                   [&](std::int32_t a, std::int32_t b) { return lab_.tri[a] < lab_.tri[b]; });
+  std::vector<std::int32_t> face_me(nf, -1);
+  for (std::size_t e = 0; e < me_faces.size(); ++e)
+    face_me[me_faces[e]] = static_cast<std::int32_t>(e);
+  const std::size_t ne = me_faces.size();
+
+  // Kept triangles and nodes, renumbered in lattice order.
+  std::vector<std::int32_t> tri_new(raw_.tri.size(), -1), node_new(raw_.node_xy.size(), -1);
+  for (std::int32_t f : me_faces) tri_new[lab_.tri[f]] = 0;
+  std::int32_t nt = 0;
+  for (std::size_t t = 0; t < raw_.tri.size(); ++t) {
+    if (tri_new[t] < 0) continue;
+    tri_new[t] = nt++;
+    for (std::int32_t n : raw_.tri[t]) node_new[n] = 0;
+  }
+  std::int32_t nn = 0;
+  for (std::size_t n = 0; n < raw_.node_xy.size(); ++n) {
+    if (node_new[n] < 0) continue;
+    node_new[n] = nn++;
+    mesh.node_xy.push_back(raw_.node_xy[n].x);
+    mesh.node_xy.push_back(raw_.node_xy[n].y);
+  }
+  for (std::size_t t = 0; t < raw_.tri.size(); ++t)
+    if (tri_new[t] >= 0)
+      for (std::int32_t n : raw_.tri[t]) mesh.triangle_nodes.push_back(node_new[n]);
+
+  // Element loops: the outer CCB of each face (holes were bridged into it).
+  mesh.element_loop_offset.push_back(0);
+  for (std::int32_t f : me_faces) {
+    const Face_handle face = lab_.faces[f];
+    if (face->number_of_inner_ccbs() != 0)
+      throw std::logic_error("cover cutter: an element still has a hole after bridging");
+    mesh.element_triangle.push_back(tri_new[lab_.tri[f]]);
+    mesh.element_body.push_back(lab_.body[f]);
+    auto c = *face->outer_ccbs_begin(), start = c;
+    do {
+      const Vec2 p = to_vec(c->source()->point());
+      mesh.loop_xy.push_back(p.x);
+      mesh.loop_xy.push_back(p.y);
+      std::uint8_t kinds = 0;
+      std::int32_t joint = -1;
+      for (const CurveTag& t : c->curve().data()) {
+        kinds |= t.kind;
+        if (t.kind == kEdgeJoint && (joint < 0 || t.id < joint)) joint = t.id;
+      }
+      mesh.loop_edge_origin.push_back(kinds);
+      mesh.loop_edge_joint.push_back(joint);
+      if (kinds & (kEdgeJoint | kEdgeBoundary)) {
+        const std::int32_t v = static_cast<std::int32_t>(mesh.loop_edge_origin.size() - 1);
+        mesh.contact_edge.push_back(v);
+        mesh.contact_edge_element.push_back(face_me[f]);
+        mesh.contact_edge_opposite.push_back(face_me[c->twin()->face()->data()]);
+      }
+    } while (++c != start);
+    mesh.element_loop_offset.push_back(static_cast<std::int32_t>(mesh.loop_edge_origin.size()));
+  }
+
+  // Physical covers and blocks: union–find over (element, triangle corner) slots and elements,
+  // joined across mesh-only edges (see the file comment, step 5).
+  UnionFind slot_uf(3 * ne), block_uf(ne);
+  for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e) {
+    if (edge_kinds(e) != kEdgeMesh) continue;
+    const std::int32_t m1 = face_me[e->face()->data()], m2 = face_me[e->twin()->face()->data()];
+    if (m1 < 0 || m2 < 0) continue;
+    block_uf.unite(m1, m2);
+    const MeshEdge& me = raw_.edges[e->curve().data().begin()->id];
+    const auto& t1 = raw_.tri[lab_.tri[me_faces[m1]]];
+    const auto& t2 = raw_.tri[lab_.tri[me_faces[m2]]];
+    for (std::int32_t node : {me.a, me.b}) {
+      const int k1 = static_cast<int>(std::find(t1.begin(), t1.end(), node) - t1.begin());
+      const int k2 = static_cast<int>(std::find(t2.begin(), t2.end(), node) - t2.begin());
+      slot_uf.unite(3 * m1 + k1, 3 * m2 + k2);
+    }
+  }
+  // Covers numbered by node, then by their first element.
+  std::vector<std::int32_t> roots;
+  for (std::size_t s = 0; s < 3 * ne; ++s)
+    if (slot_uf.find(static_cast<std::int32_t>(s)) == static_cast<std::int32_t>(s))
+      roots.push_back(static_cast<std::int32_t>(s));
+  auto slot_node = [&](std::int32_t s) {
+    return node_new[raw_.tri[lab_.tri[me_faces[s / 3]]][s % 3]];
+  };
+  std::stable_sort(roots.begin(), roots.end(), [&](std::int32_t a, std::int32_t b) {
+    return slot_node(a) < slot_node(b);
+  });
+  std::vector<std::int32_t> root_cover(3 * ne, -1);
+  for (std::size_t c = 0; c < roots.size(); ++c) {
+    root_cover[roots[c]] = static_cast<std::int32_t>(c);
+    mesh.cover_node.push_back(slot_node(roots[c]));
+    mesh.cover_body.push_back(mesh.element_body[roots[c] / 3]);
+  }
+  mesh.element_covers.resize(3 * ne);
+  for (std::size_t s = 0; s < 3 * ne; ++s)
+    mesh.element_covers[s] = root_cover[slot_uf.find(static_cast<std::int32_t>(s))];
+
+  std::vector<std::int32_t> block_of_root(ne, -1);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::int32_t r = block_uf.find(static_cast<std::int32_t>(e));
+    if (block_of_root[r] < 0) {
+      block_of_root[r] = static_cast<std::int32_t>(mesh.block_body.size());
+      mesh.block_body.push_back(mesh.element_body[e]);
+    }
+    mesh.element_block.push_back(block_of_root[r]);
+  }
+  return mesh;
+}
+
+Mesh Cutter::run(CutTimings* timings) {
+  CutTimings t;
+  auto t0 = std::chrono::steady_clock::now();
+  raw_ = make_raw_mesh(scene_);
+  t.mesh_generation = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  insert_curves();
+  t.arrangement = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  number_faces();
+  label_faces();
+  const std::size_t faces_before = lab_.faces.size();
+  bridge_holes();
+  // Bridges never split a face, so the labels carry over unchanged.
+  if (arr_.number_of_faces() != faces_before)
+    throw std::logic_error("cover cutter: a hole bridge split a face");
+  t.labelling = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  Mesh mesh = extract();
+  t.covers = seconds_since(t0);
+  if (timings) *timings = t;
+  return mesh;
+}
+
+}  // namespace
+
+Mesh build_mesh(const SceneDef& scene, const std::string& file, CutTimings* timings) {
+  if (scene.bodies.empty()) throw InputError(file, "/bodies", "no bodies");
+  Cutter cutter(scene, file);
+  Mesh mesh = cutter.run(timings);
+  mesh.tool_version = NMM_VERSION;
+  return mesh;
+}
+
+}  // namespace nmm::pre
