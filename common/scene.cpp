@@ -1,1 +1,701 @@
-// (being written)
+// Scene files: JSON with comments -> SceneDef, validated once.
+//
+// Every problem is reported as InputError(file, JSON pointer, message) for the first problem
+// found, where the pointer (RFC 6901, e.g. /joints/3/points/1) names the value at fault and the
+// message says what is wrong and what was expected. The checks run in a fixed order (unknown
+// keys of an object first, so that a typo is reported as such rather than as the missing key it
+// hides), so the same bad file always gives the same message.
+//
+// Numbers: nlohmann refuses a literal that overflows a double (1e400) while parsing, with no
+// position; parse_json_text() finds it again with a SAX pass and reports its path, line and
+// column. Documents built in memory (merge patches) can still hold inf or NaN, so every number is
+// also checked for being finite when it is read.
+//
+// The reading is done through `Reader`, a JSON value together with its file and path: each check
+// of a field is one call, and each call knows where to point when it fails.
+#include "scene.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <initializer_list>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <utility>
+
+#include "error.h"
+
+namespace nmm {
+
+using nlohmann::json;
+
+namespace {
+
+// ---- formatting --------------------------------------------------------------------------------
+
+/// Shortest text that reads back as the same double: "0.001", "1e+10", "0.49999999", "inf".
+std::string format_number(double v) {
+  char buf[64];
+  const auto result = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, result.ptr);
+}
+
+/// printf-style "%.<digits>g", for rough figures such as an estimated triangle count.
+std::string format_rough(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+/// "a string ("abc")", "an array", "null": what a value is, for "expected X, got Y" messages.
+std::string describe(const json& v) {
+  switch (v.type()) {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::object:
+      return "an object";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::string: {
+      const std::string& s = v.get_ref<const std::string&>();
+      // Quote short strings: `got a string ("10")` shows at once that the quotes are the mistake.
+      return s.size() <= 40 ? "a string (\"" + s + "\")" : "a string";
+    }
+    case json::value_t::boolean:
+      return "a boolean";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float:
+      return "a number";
+    default:
+      return "an unsupported value";
+  }
+}
+
+/// RFC 6901 escaping of one path component: '~' -> "~0", '/' -> "~1".
+std::string escape_pointer(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// ---- value ranges ------------------------------------------------------------------------------
+
+/// An interval of accepted values; each bound open, closed or absent (infinite).
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity();
+  bool lo_closed = false;
+  double hi = std::numeric_limits<double>::infinity();
+  bool hi_closed = false;
+
+  bool contains(double v) const {
+    return (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi);
+  }
+  /// "> 0", ">= 0", "in [0, 0.5)".
+  std::string text() const {
+    const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+    if (has_lo && !has_hi) return (lo_closed ? ">= " : "> ") + format_number(lo);
+    if (has_hi && !has_lo) return (hi_closed ? "<= " : "< ") + format_number(hi);
+    return std::string("in ") + (lo_closed ? "[" : "(") + format_number(lo) + ", " +
+           format_number(hi) + (hi_closed ? "]" : ")");
+  }
+};
+
+const Range kAnyFinite{};
+const Range kPositive{0, false};
+const Range kNonNegative{0, true};
+Range interval(double lo, bool lo_closed, double hi, bool hi_closed) {
+  return Range{lo, lo_closed, hi, hi_closed};
+}
+
+// ---- Reader: one JSON value with the file and path that name it --------------------------------
+
+class Reader {
+ public:
+  Reader(const json& value, const std::string& file, std::string path)
+      : value_(&value), file_(&file), path_(std::move(path)) {}
+
+  const json& value() const { return *value_; }
+  const std::string& path() const { return path_; }
+
+  /// Throws the InputError for this value.
+  [[noreturn]] void fail(const std::string& message) const {
+    throw InputError(*file_, path_, message);
+  }
+
+  // -- structure --
+
+  const Reader& expect_object() const {
+    if (!value_->is_object()) fail("expected an object, got " + describe(*value_));
+    return *this;
+  }
+  const Reader& expect_array() const {
+    if (!value_->is_array()) fail("expected an array, got " + describe(*value_));
+    return *this;
+  }
+
+  bool has(const std::string& key) const { return value_->contains(key); }
+
+  /// The member `key` of this object; "missing required key" if absent.
+  Reader operator[](const std::string& key) const {
+    expect_object();
+    const auto it = value_->find(key);
+    if (it == value_->end()) fail("missing required key \"" + key + "\"");
+    return Reader(*it, *file_, path_ + "/" + escape_pointer(key));
+  }
+
+  /// Element `i` of this array.
+  Reader operator[](std::size_t i) const {
+    return Reader((*value_)[i], *file_, path_ + "/" + std::to_string(i));
+  }
+
+  std::size_t size() const { return value_->size(); }
+
+  /// Members of this object as (name, reader) pairs, in the object's (sorted) order.
+  std::vector<std::pair<std::string, Reader>> members() const {
+    expect_object();
+    std::vector<std::pair<std::string, Reader>> out;
+    for (auto it = value_->begin(); it != value_->end(); ++it)
+      out.emplace_back(it.key(),
+                       Reader(it.value(), *file_, path_ + "/" + escape_pointer(it.key())));
+    return out;
+  }
+
+  /// Rejects any member not in `allowed`, so that a misspelt optional key is not silently
+  /// ignored. `context` qualifies the list, e.g. ` for model "constant"`.
+  void check_keys(std::initializer_list<const char*> allowed,
+                  const std::string& context = "") const {
+    expect_object();
+    for (auto it = value_->begin(); it != value_->end(); ++it) {
+      const bool known =
+          std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return it.key() == a; });
+      if (known) continue;
+      std::vector<std::string> names(allowed.begin(), allowed.end());
+      std::sort(names.begin(), names.end());
+      Reader(it.value(), *file_, path_ + "/" + escape_pointer(it.key()))
+          .fail("unknown key \"" + it.key() + "\" (allowed" + context + ": " + join(names) + ")");
+    }
+  }
+
+  // -- scalars (this value) --
+
+  double as_number(const Range& range = kAnyFinite) const {
+    if (!value_->is_number()) fail("expected a number, got " + describe(*value_));
+    const double v = value_->get<double>();
+    // nlohmann reads an out-of-range literal such as 1e400 as inf.
+    if (!std::isfinite(v)) fail("must be a finite number (got " + format_number(v) + ")");
+    if (!range.contains(v)) fail("must be " + range.text() + " (got " + format_number(v) + ")");
+    return v;
+  }
+
+  /// A whole number >= `min`; 10.0 is accepted, 10.5 is not.
+  std::int64_t as_integer(std::int64_t min) const {
+    if (!value_->is_number()) fail("expected an integer, got " + describe(*value_));
+    std::int64_t v = 0;
+    if (value_->is_number_integer() && !value_->is_number_unsigned()) {
+      v = value_->get<std::int64_t>();
+    } else if (value_->is_number_unsigned()) {
+      const std::uint64_t u = value_->get<std::uint64_t>();
+      if (u > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        fail("integer too large (got " + std::to_string(u) + ")");
+      v = static_cast<std::int64_t>(u);
+    } else {
+      const double d = value_->get<double>();
+      if (!std::isfinite(d)) fail("must be a finite number (got " + format_number(d) + ")");
+      if (d != std::floor(d)) fail("must be a whole number (got " + format_number(d) + ")");
+      if (std::fabs(d) >= 9.2e18) fail("integer too large (got " + format_number(d) + ")");
+      v = static_cast<std::int64_t>(d);
+    }
+    if (v < min) fail("must be >= " + std::to_string(min) + " (got " + std::to_string(v) + ")");
+    return v;
+  }
+
+  bool as_bool() const {
+    if (!value_->is_boolean()) fail("expected true or false, got " + describe(*value_));
+    return value_->get<bool>();
+  }
+
+  std::string as_string() const {
+    if (!value_->is_string()) fail("expected a string, got " + describe(*value_));
+    return value_->get<std::string>();
+  }
+
+  /// A string that must be one of `known`; returns its index. `what` names it in the message.
+  std::size_t as_choice(const std::vector<std::string>& known, const std::string& what) const {
+    const std::string s = as_string();
+    const auto it = std::find(known.begin(), known.end(), s);
+    if (it == known.end()) fail("unknown " + what + " \"" + s + "\" (known: " + join(known) + ")");
+    return static_cast<std::size_t>(it - known.begin());
+  }
+
+  // -- geometry (this value) --
+
+  /// [a, b]: exactly two finite numbers.
+  Vec2 as_pair(const char* expected) const {
+    if (!value_->is_array() || value_->size() != 2) {
+      const std::size_t n = value_->size();
+      const std::string got =
+          value_->is_array() ? "an array of " + std::to_string(n) + (n == 1 ? " value" : " values")
+                             : describe(*value_);
+      fail(std::string("expected ") + expected + ", got " + got);
+    }
+    return Vec2{(*this)[0].as_number(), (*this)[1].as_number()};
+  }
+
+  /// A point [x, y] in m, within kMaxCoordinate of the origin in each axis.
+  Vec2 as_point() const {
+    const Vec2 p = as_pair("a point [x, y]");
+    const Range within = interval(-kMaxCoordinate, true, kMaxCoordinate, true);
+    (*this)[0].as_number(within);
+    (*this)[1].as_number(within);
+    return p;
+  }
+
+  /// An array of at least `min_count` points with no point equal to the one before it (the
+  /// segment between them would have zero length). `closed`: the last point is also checked
+  /// against the first, since a ring closes on its own.
+  std::vector<Vec2> as_point_list(std::size_t min_count, bool closed, const char* what) const {
+    expect_array();
+    if (size() < min_count)
+      fail(std::string(what) + " needs at least " + std::to_string(min_count) + " points, got " +
+           std::to_string(size()));
+    std::vector<Vec2> points;
+    for (std::size_t i = 0; i < size(); ++i) points.push_back((*this)[i].as_point());
+    for (std::size_t i = 1; i < points.size(); ++i)
+      if (points[i] == points[i - 1])
+        (*this)[i].fail("zero-length segment: point " + std::to_string(i) + " repeats point " +
+                        std::to_string(i - 1));
+    if (closed && points.back() == points.front())
+      (*this)[points.size() - 1].fail(
+          "zero-length segment: the last point repeats the first; leave the closing point out "
+          "(polygons close on their own)");
+    return points;
+  }
+
+  Ring as_ring() const;
+
+  // -- shortcuts for members of this object --
+
+  double number(const std::string& key, const Range& range = kAnyFinite) const {
+    return (*this)[key].as_number(range);
+  }
+  double optional_number(const std::string& key, double fallback,
+                         const Range& range = kAnyFinite) const {
+    return has(key) ? number(key, range) : fallback;
+  }
+  std::int64_t optional_integer(const std::string& key, std::int64_t fallback,
+                                std::int64_t min) const {
+    return has(key) ? (*this)[key].as_integer(min) : fallback;
+  }
+  std::optional<Reader> optional(const std::string& key) const {
+    if (!has(key)) return std::nullopt;
+    return (*this)[key];
+  }
+
+ private:
+  const json* value_;
+  const std::string* file_;
+  std::string path_;
+};
+
+/// True when every point of the ring lies on one line, up to round-off relative to the ring's
+/// size: such a "polygon" has no inside. (An exact test is in scene_geometry; this one catches
+/// the common case early with a clear message.)
+bool all_collinear(const Ring& ring) {
+  const Vec2 a = ring.front();
+  Vec2 b = a;
+  double far2 = 0;
+  for (const Vec2& p : ring) {
+    const double d2 = (p.x - a.x) * (p.x - a.x) + (p.y - a.y) * (p.y - a.y);
+    if (d2 > far2) {
+      far2 = d2;
+      b = p;
+    }
+  }
+  if (far2 == 0) return true;
+  // Distance of c from line ab is |cross| / |ab|; compare it with 1e-12 |ab|.
+  for (const Vec2& c : ring) {
+    const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    if (std::fabs(cross) > 1e-12 * far2) return false;
+  }
+  return true;
+}
+
+Ring Reader::as_ring() const {
+  Ring ring = as_point_list(3, /*closed=*/true, "a polygon");
+  if (all_collinear(ring)) fail("zero-area polygon: all its points lie on one line");
+  if (ring_signed_area(ring) == 0) fail("zero-area polygon: its signed area is 0");
+  return ring;
+}
+
+// ---- the scene's parts -------------------------------------------------------------------------
+
+/// Index of `name` among the definitions (sorted by name); fails at `at` if it is not there.
+template <typename Def>
+int find_by_name(const std::vector<Def>& defs, const Reader& at, const std::string& what,
+                 const std::string& defined_in) {
+  const std::string name = at.as_string();
+  for (std::size_t i = 0; i < defs.size(); ++i)
+    if (defs[i].name == name) return static_cast<int>(i);
+  if (defs.empty())
+    at.fail("unknown " + what + " \"" + name + "\" (no " + defined_in + " are defined)");
+  std::vector<std::string> names;
+  for (const Def& d : defs) names.push_back(d.name);
+  at.fail("unknown " + what + " \"" + name + "\" (known: " + join(names) + ")");
+}
+
+MaterialDef read_material(const std::string& name, const Reader& r) {
+  r.check_keys({"density", "young", "poisson"});
+  MaterialDef m;
+  m.name = name;
+  m.density = r.number("density", kPositive);
+  m.young = r.number("young", kPositive);
+  // 0.5 is incompressible: the plane-strain elasticity matrix blows up.
+  m.poisson = r.number("poisson", interval(0, true, 0.5, false));
+  return m;
+}
+
+NormalLawDef read_normal_law(const Reader& r) {
+  r.expect_object();
+  NormalLawDef law;
+  const std::size_t model = r["model"].as_choice({"constant", "bandis_barton"}, "normal model");
+  if (model == 0) {
+    r.check_keys({"model", "kn"}, " for model \"constant\"");
+    law.model = NormalModel::constant;
+    law.kn = r.number("kn", kPositive);
+  } else {
+    r.check_keys({"model", "kni", "vm"}, " for model \"bandis_barton\"");
+    law.model = NormalModel::bandis_barton;
+    law.kni = r.number("kni", kPositive);
+    law.vm = r.number("vm", kPositive);
+  }
+  return law;
+}
+
+ShearLawDef read_shear_law(const Reader& r) {
+  r.expect_object();
+  ShearLawDef law;
+  const std::size_t model = r["model"].as_choice({"constant", "hyperbolic"}, "shear model");
+  if (model == 0) {
+    r.check_keys({"model", "ks"}, " for model \"constant\"");
+    law.model = ShearModel::constant;
+    law.ks = r.number("ks", kPositive);
+  } else {
+    r.check_keys({"model", "ksi", "rf"}, " for model \"hyperbolic\"");
+    law.model = ShearModel::hyperbolic;
+    law.ksi = r.number("ksi", kPositive);
+    law.rf = r.number("rf", interval(0, false, 1, true));
+  }
+  return law;
+}
+
+JointSetDef read_joint_set(const std::string& name, const Reader& r) {
+  r.check_keys({"friction_deg", "cohesion", "tensile_strength", "normal", "shear"});
+  JointSetDef s;
+  s.name = name;
+  s.friction_deg = r.number("friction_deg", interval(0, true, 90, false));  // tan 90° is infinite
+  s.cohesion = r.optional_number("cohesion", 0, kNonNegative);
+  s.tensile_strength = r.optional_number("tensile_strength", 0, kNonNegative);
+  s.normal = read_normal_law(r["normal"]);
+  s.shear = read_shear_law(r["shear"]);
+  return s;
+}
+
+BodyDef read_body(const Reader& r, const std::vector<MaterialDef>& materials) {
+  r.check_keys({"material", "outer", "holes"});
+  BodyDef b;
+  b.material = find_by_name(materials, r["material"], "material", "materials");
+  b.outer = r["outer"].as_ring();
+  if (const auto holes = r.optional("holes")) {
+    holes->expect_array();
+    for (std::size_t i = 0; i < holes->size(); ++i) b.holes.push_back((*holes)[i].as_ring());
+  }
+  return b;
+}
+
+JointDef read_joint(const Reader& r, const std::vector<JointSetDef>& sets) {
+  r.check_keys({"set", "points"});
+  JointDef j;
+  j.set = find_by_name(sets, r["set"], "joint set", "joint_sets");
+  j.points = r["points"].as_point_list(2, /*closed=*/false, "a joint");
+  return j;
+}
+
+/// An array of points (fixed_points, measure_points).
+std::vector<Vec2> read_points(const Reader& r) {
+  r.expect_array();
+  std::vector<Vec2> points;
+  for (std::size_t i = 0; i < r.size(); ++i) points.push_back(r[i].as_point());
+  return points;
+}
+
+SolverDef read_solver(const Reader& r) {
+  r.check_keys({"time_step", "steps", "dynamic", "max_displacement_ratio", "output_every"});
+  SolverDef s;  // defaults from scene.h
+  s.time_step = r.optional_number("time_step", s.time_step, kPositive);
+  s.steps = r.optional_integer("steps", s.steps, 0);
+  if (r.has("dynamic")) s.dynamic = r["dynamic"].as_bool();
+  s.max_displacement_ratio = r.optional_number("max_displacement_ratio", s.max_displacement_ratio,
+                                               interval(0, false, 1, false));
+  s.output_every = r.optional_integer("output_every", s.output_every, 1);
+  return s;
+}
+
+/// The mesh size must not make more triangles than the tools can handle: estimated as the
+/// bodies' bounding box area over the area of one equilateral triangle of side h.
+void check_mesh_size(const Reader& at, double h, const std::vector<BodyDef>& bodies) {
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (const BodyDef& b : bodies)
+    for (const Vec2& p : b.outer) {
+      x0 = std::min(x0, p.x);
+      x1 = std::max(x1, p.x);
+      y0 = std::min(y0, p.y);
+      y1 = std::max(y1, p.y);
+    }
+  const double triangle_area = std::sqrt(3.0) / 4.0;  // per h²
+  const double box = (x1 - x0) * (y1 - y0);
+  const double triangles = box / triangle_area / h / h;  // inf if h is tiny; still > limit
+  if (triangles <= kMaxMeshTriangles) return;
+  const double smallest = std::sqrt(box / (triangle_area * kMaxMeshTriangles));
+  const std::string count =
+      std::isfinite(triangles) ? "about " + format_rough(triangles, 2) : "more than 1e+308";
+  at.fail("mesh size " + format_number(h) + " m would make " + count +
+          " triangles over the bodies' bounding box (limit " + format_rough(kMaxMeshTriangles, 6) +
+          "); use a larger size (at least " + format_rough(smallest, 3) + " m)");
+}
+
+// ---- locating JSON syntax errors --------------------------------------------------------------
+
+/// "line L, column C" (both 1-based, columns in bytes) of byte index `at` of `text`.
+std::string line_column(const std::string& text, std::size_t at) {
+  at = std::min(at, text.size());
+  std::size_t line = 1, line_start = 0;
+  for (std::size_t i = 0; i < at; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
+}
+
+/// SAX handler that builds nothing and records the first error: its byte position, the token
+/// read last, nlohmann's message and the JSON path of the value being read.
+class ErrorLocator : public nlohmann::json_sax<json> {
+ public:
+  bool failed = false;
+  int id = 0;                ///< nlohmann's error id (101: syntax, 406: number overflow, ...)
+  std::size_t position = 0;  ///< bytes read when the error was found
+  std::string token, message, path;
+
+  bool null() override { return begin_value(); }
+  bool boolean(bool) override { return begin_value(); }
+  bool number_integer(number_integer_t) override { return begin_value(); }
+  bool number_unsigned(number_unsigned_t) override { return begin_value(); }
+  bool number_float(number_float_t, const string_t&) override { return begin_value(); }
+  bool string(string_t&) override { return begin_value(); }
+  bool binary(binary_t&) override { return begin_value(); }
+  bool start_object(std::size_t) override {
+    begin_value();
+    frames_.push_back(Frame{false, 0, ""});
+    return true;
+  }
+  bool key(string_t& k) override {
+    frames_.back().key = k;
+    return true;
+  }
+  bool end_object() override { return end_container(); }
+  bool start_array(std::size_t) override {
+    begin_value();
+    frames_.push_back(Frame{true, 0, ""});
+    return true;
+  }
+  bool end_array() override { return end_container(); }
+
+  bool parse_error(std::size_t pos, const std::string& last_token,
+                   const json::exception& ex) override {
+    failed = true;
+    id = ex.id;
+    position = pos;
+    token = last_token;
+    message = ex.what();
+    // Drop "[json.exception.parse_error.101] " and "parse error at line 1, column 2: ": the
+    // position is reported on its own.
+    const std::size_t bracket = message.find("] ");
+    if (bracket != std::string::npos) message.erase(0, bracket + 2);
+    const std::size_t colon = message.find(": ");
+    if (message.rfind("parse error", 0) == 0 && colon != std::string::npos)
+      message.erase(0, colon + 2);
+    // The failing value is the next element of the innermost array (not yet counted) or the
+    // value of the innermost object's last key; outer arrays are on their last element.
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      const bool innermost = i + 1 == frames_.size();
+      path += "/" +
+              (f.array ? std::to_string(innermost ? f.count : f.count - 1) : escape_pointer(f.key));
+    }
+    return false;
+  }
+
+ private:
+  struct Frame {
+    bool array;         ///< array or object
+    std::size_t count;  ///< array: elements begun so far
+    std::string key;    ///< object: the last key read
+  };
+  std::vector<Frame> frames_;
+
+  bool begin_value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
+    return true;
+  }
+  bool end_container() {
+    frames_.pop_back();
+    return true;
+  }
+};
+
+}  // namespace
+
+// ---- public functions --------------------------------------------------------------------------
+
+json parse_json_text(const std::string& text, const std::string& file) {
+  try {
+    return json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const json::exception&) {
+    // Parse again only to find where: a number overflow (406) carries no position at all.
+    ErrorLocator locator;
+    json::sax_parse(text, &locator, json::input_format_t::json, /*strict=*/true,
+                    /*ignore_comments=*/true);
+    if (!locator.failed) throw;  // cannot happen: both passes run the same parser
+    if (locator.id == 406) {
+      // The position is just past the number; point at its first character instead.
+      const std::size_t start = locator.position - std::min(locator.position, locator.token.size());
+      throw InputError(file, locator.path,
+                       "number " + locator.token + " is too large for a double (at " +
+                           line_column(text, start) + ")");
+    }
+    // The position counts the bytes read, so the offending byte is the one before it (at the end
+    // of the input it is one past the text).
+    const std::size_t at = locator.position == 0 ? 0 : locator.position - 1;
+    throw InputError(file, line_column(text, at), "invalid JSON: " + locator.message);
+  }
+}
+
+SceneDef parse_scene(const std::string& text, const std::string& file) {
+  return scene_from_json(parse_json_text(text, file), file);
+}
+
+SceneDef scene_from_json(const json& doc, const std::string& file) {
+  const Reader root(doc, file, "");
+  root.check_keys({"name", "gravity", "plane", "materials", "joint_sets", "bodies", "joints",
+                   "interface_set", "mesh", "fixed_points", "loads", "measure_points", "solver"});
+  SceneDef scene;
+
+  if (root.has("name")) scene.name = root["name"].as_string();
+  if (root.has("gravity")) {
+    scene.has_gravity = true;
+    scene.gravity = root["gravity"].as_pair("[gx, gy]");
+  }
+  if (root.has("plane"))
+    scene.plane = root["plane"].as_choice({"strain", "stress"}, "plane") == 0 ? PlaneKind::strain
+                                                                              : PlaneKind::stress;
+
+  const Reader materials = root["materials"];
+  for (const auto& [name, r] : materials.members())
+    scene.materials.push_back(read_material(name, r));
+  if (scene.materials.empty()) materials.fail("at least one material is required");
+
+  if (const auto sets = root.optional("joint_sets"))
+    for (const auto& [name, r] : sets->members())
+      scene.joint_sets.push_back(read_joint_set(name, r));
+
+  const Reader bodies = root["bodies"];
+  bodies.expect_array();
+  if (bodies.size() == 0) bodies.fail("at least one body is required");
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    scene.bodies.push_back(read_body(bodies[i], scene.materials));
+
+  if (const auto joints = root.optional("joints")) {
+    joints->expect_array();
+    for (std::size_t i = 0; i < joints->size(); ++i)
+      scene.joints.push_back(read_joint((*joints)[i], scene.joint_sets));
+  }
+
+  if (const auto iface = root.optional("interface_set"))
+    scene.interface_set = find_by_name(scene.joint_sets, *iface, "joint set", "joint_sets");
+
+  const Reader mesh = root["mesh"];
+  mesh.check_keys({"size"});
+  scene.mesh_size = mesh.number("size", kPositive);
+  check_mesh_size(mesh["size"], scene.mesh_size, scene.bodies);
+
+  if (const auto fixed = root.optional("fixed_points")) scene.fixed_points = read_points(*fixed);
+
+  if (const auto loads = root.optional("loads")) {
+    loads->expect_array();
+    for (std::size_t i = 0; i < loads->size(); ++i) {
+      const Reader load = (*loads)[i];
+      load.check_keys({"point", "force"});
+      scene.loads.push_back(LoadDef{load["point"].as_point(), load["force"].as_pair("[fx, fy]")});
+    }
+  }
+
+  if (const auto measure = root.optional("measure_points"))
+    scene.measure_points = read_points(*measure);
+
+  if (const auto solver = root.optional("solver")) scene.solver = read_solver(*solver);
+  return scene;
+}
+
+std::string read_text_file(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw InputError(path, "", std::string("cannot read file: ") + std::strerror(errno));
+  std::string text;
+  char buf[1 << 16];
+  std::size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+  // A directory opens fine on Linux and fails on the first read (EISDIR).
+  const int error = std::ferror(f) ? errno : 0;
+  std::fclose(f);
+  if (error != 0)
+    throw InputError(path, "", std::string("cannot read file: ") + std::strerror(error));
+  return text;
+}
+
+double ring_signed_area(const Ring& ring) {
+  // Shoelace relative to the first vertex: round-off proportional to the ring's own size rather
+  // than to its distance from the origin.
+  double twice = 0;
+  for (std::size_t i = 1; i + 1 < ring.size(); ++i) {
+    const double ax = ring[i].x - ring[0].x, ay = ring[i].y - ring[0].y;
+    const double bx = ring[i + 1].x - ring[0].x, by = ring[i + 1].y - ring[0].y;
+    twice += ax * by - ay * bx;
+  }
+  return 0.5 * twice;
+}
+
+double body_area(const BodyDef& body) {
+  double area = std::fabs(ring_signed_area(body.outer));
+  for (const Ring& hole : body.holes) area -= std::fabs(ring_signed_area(hole));
+  return area;
+}
+
+}  // namespace nmm
