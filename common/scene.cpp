@@ -136,8 +136,9 @@ class Reader {
   const std::string& path() const { return path_; }
 
   /// Throws the InputError for this value.
+  /// The document itself (JSON pointer "") is named "top level" so the line always says where.
   [[noreturn]] void fail(const std::string& message) const {
-    throw InputError(*file_, path_, message);
+    throw InputError(*file_, path_.empty() ? "top level" : path_, message);
   }
 
   // -- structure --

@@ -225,7 +225,7 @@ const BadCase kBadCases[] = {
     {"// a comment\n/* and\n another */\n{ \"name\": \"x\" ", "line 4, column 15",
      "unexpected end of input", true},
     {"", "line 1, column 1", "invalid JSON", true},
-    {"[1, 2]", "", "expected an object, got an array", true},
+    {"[1, 2]", "top level", "expected an object, got an array", true},
     {R"({"materials": {"rock": {"density": null, "young": 1, "poisson": 0}}})",
      "/materials/rock/density", "expected a number, got null", true},
     // 1e400 does not fit a double: nlohmann refuses it while parsing, with no position; the
@@ -286,11 +286,11 @@ const BadCase kBadCases[] = {
      "/bodies/0/holes", "expected an array, got an object"},
     // Required keys and non-empty collections.
     {R"({"bodies": [{"material": "rock"}]})", "/bodies/0", "missing required key \"outer\""},
-    {R"({"mesh": null})", "", "missing required key \"mesh\""},
+    {R"({"mesh": null})", "top level", "missing required key \"mesh\""},
     {R"({"joint_sets": {"bedding": {"friction_deg": null}}})", "/joint_sets/bedding",
      "missing required key \"friction_deg\""},
     {R"({"loads": [{"point": [1,1]}]})", "/loads/0", "missing required key \"force\""},
-    {R"({"materials": null})", "", "missing required key \"materials\""},
+    {R"({"materials": null})", "top level", "missing required key \"materials\""},
     {R"({"bodies": []})", "/bodies", "at least one body is required"},
     {R"({"materials": {"rock": null, "soil": null}})", "/materials",
      "at least one material is required"},
