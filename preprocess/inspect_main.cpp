@@ -5,13 +5,12 @@
 // Everything is read and checked before any file is written, so bad input never leaves some
 // outputs written and others not. Exit status 0, or 2 with one line on stderr for bad input of
 // any kind (docs/interface.md).
+#include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "error.h"
 #include "mesh.h"
@@ -31,14 +30,15 @@ int run(int argc, char** argv) {
   std::string mesh_path, svg_path, vtk_path;
   bool json = false, full = false;
   long long cover = -1;
-  app.add_option("mesh", mesh_path, "Mesh file (.nmm) written by nmm-preprocess")->required();
+  app.add_option("mesh", mesh_path, "Mesh file (.nmm) written by nmm-preprocess")
+      ->required()
+      ->type_name("FILE");
   CLI::Option* json_opt =
       app.add_flag("--json", json, "Print one JSON object on stdout instead of the summary");
   app.add_flag("--full", full,
                "With --json: add node_xy, triangle_nodes, physical_cover_node and elements")
       ->needs(json_opt);
-  app.add_option("--svg", svg_path, "Write a picture of the mesh to FILE (SVG)")
-      ->type_name("FILE");
+  app.add_option("--svg", svg_path, "Write a picture of the mesh to FILE (SVG)")->type_name("FILE");
   app.add_option("--vtk", vtk_path,
                  "Write the manifold elements for ParaView to FILE: XML (.vtu) if FILE ends in "
                  ".vtu, legacy VTK otherwise")
@@ -74,9 +74,10 @@ int run(int argc, char** argv) {
       for (const auto& e : cover_json["elements"]) in_cover[e.get<std::size_t>()] = 1;
       grid.add_cell_array("in_cover_" + std::to_string(cover), 1, std::move(in_cover));
     }
-    vtk_text = nmm::is_vtu_path(vtk_path) ? nmm::vtu_text(grid)
-                   : nmm::legacy_vtk_text(grid, "nmm mesh " + (scene.name.empty() ? mesh_path
-                                                                                   : scene.name));
+    vtk_text = nmm::is_vtu_path(vtk_path)
+                   ? nmm::vtu_text(grid)
+                   : nmm::legacy_vtk_text(
+                         grid, "nmm mesh " + (scene.name.empty() ? mesh_path : scene.name));
   }
   if (!svg_path.empty()) nmm::write_file_atomically(svg_path, svg_text);
   if (!vtk_path.empty()) nmm::write_file_atomically(vtk_path, vtk_text);
@@ -88,7 +89,8 @@ int run(int argc, char** argv) {
     nlohmann::json report = nmm::mesh_report_json(mesh, &scene, full);
     if (has_cover) report["cover"] = cover_json;
     // --full is large: one compact line; the short report is indented for people.
-    std::cout << (full ? report.dump(-1, ' ', false, kReplace) : report.dump(2, ' ', false, kReplace))
+    std::cout << (full ? report.dump(-1, ' ', false, kReplace)
+                       : report.dump(2, ' ', false, kReplace))
               << '\n';
   } else {
     std::cout << nmm::mesh_summary_text(mesh, &scene);
