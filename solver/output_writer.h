@@ -1,0 +1,59 @@
+// Solver output in OUTDIR (docs/interface.md): history.csv, summary.json, frames.pvd with
+// frames/*.vtu. Every file appears under its final name only when complete (written to a
+// temporary name, then renamed), including when a run stops early.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mesh.h"
+
+namespace nmm::solve {
+
+/// One measure point at one output step.
+struct MeasureSample {
+  double x, y;    ///< m, current position
+  double ux, uy;  ///< m, displacement since the start
+};
+
+/// What a frame shows: the element loops in their current position.
+struct FrameFields {
+  const std::vector<double>* loop_xy;      ///< [2·v] m, current loop vertex positions
+  const std::vector<double>* loop_u;       ///< [2·v] m, displacement since the start
+  const std::vector<double>* stress;       ///< [3·me] Pa, σxx, σyy, σxy per element
+  const std::vector<double>* extra_cell = nullptr;  ///< optional per-element scalar, see name
+  std::string extra_cell_name;                       ///< name of extra_cell in the .vtu
+};
+
+class OutputWriter {
+ public:
+  /// Creates out_dir and out_dir/frames if needed; InputError(out_dir, "", why) if it cannot.
+  explicit OutputWriter(const std::string& out_dir);
+
+  /// Appends the rows of one output step (one per measure point) to history.csv (in memory until
+  /// flush_history()).
+  void add_history(std::int64_t step, double time, const std::vector<MeasureSample>& samples);
+
+  /// Writes frames/frame_<step>.vtu (ME polygons, point data "displacement" (3 components),
+  /// cell data "stress" (σxx, σyy, σxy as 3 components), "block", "body") and rewrites
+  /// frames.pvd listing every frame so far with its time.
+  void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields);
+
+  /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far.
+  void flush_history();
+
+  /// Writes summary.json (pretty-printed).
+  void write_summary(const nlohmann::json& summary);
+
+  const std::string& dir() const { return dir_; }
+
+ private:
+  std::string dir_;
+  std::string history_;  // CSV rows so far
+  std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
+};
+
+}  // namespace nmm::solve
