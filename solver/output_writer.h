@@ -25,7 +25,9 @@ struct FrameFields {
   const std::vector<double>* loop_u;       ///< [2·v] m, displacement since the start
   const std::vector<double>* stress;       ///< [3·me] Pa, σxx, σyy, σxy per element
   const std::vector<double>* extra_cell = nullptr;  ///< optional per-element scalar, see name
-  std::string extra_cell_name;                       ///< name of extra_cell in the .vtu
+  /// Name of extra_cell in the .vtu. The `{}` lets `FrameFields{&xy, &u, &stress}` leave both
+  /// extra members out without -Wmissing-field-initializers (GCC warns for a member without one).
+  std::string extra_cell_name{};
 };
 
 class OutputWriter {

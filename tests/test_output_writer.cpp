@@ -1,0 +1,289 @@
+// Tests of the solver's output files (solver/output_writer.h) on a hand-made two-element mesh:
+// the exact text of history.csv and frames.pvd, the arrays of the .vtu frames, summary.json, that
+// no temporary file is left behind, and that ParaView's readers' stand-in (meshio) reads the
+// frames back with the values written.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "error.h"
+#include "mesh.h"
+#include "output_writer.h"
+
+namespace nmm::solve {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Element 0: the unit square (4 loop vertices); element 1: a triangle to its right (3 vertices),
+// in another block and body so the identifiers are told apart.
+Mesh two_element_mesh() {
+  Mesh m;
+  m.mesh_size = 1;
+  m.node_xy = {0, 0, 1, 0, 0, 1, 1, 1, 2, 0};
+  m.triangle_nodes = {0, 1, 2, 1, 4, 3};
+  m.cover_node = {0, 1, 2, 1, 3, 4};
+  m.cover_body = {0, 0, 0, 1, 1, 1};
+  m.element_triangle = {0, 1};
+  m.element_body = {0, 1};
+  m.element_block = {0, 1};
+  m.element_covers = {0, 1, 2, 3, 4, 5};
+  m.element_loop_offset = {0, 4, 7};
+  m.loop_xy = {0, 0, 1, 0, 1, 1, 0, 1, /**/ 1, 0, 2, 0, 1, 1};
+  m.loop_edge_origin.assign(7, kEdgeBoundary);
+  m.loop_edge_joint.assign(7, -1);
+  m.block_body = {0, 1};
+  return m;
+}
+
+// The fields of output number `k`: displacement grows with k, so each frame is distinct.
+struct Fields {
+  std::vector<double> xy, u, stress, extra;
+  FrameFields view(bool with_extra) const {
+    FrameFields f{&xy, &u, &stress};
+    if (with_extra) {
+      f.extra_cell = &extra;
+      f.extra_cell_name = "contact_state";
+    }
+    return f;
+  }
+};
+Fields fields_at(const Mesh& m, int k) {
+  Fields f;
+  for (std::size_t v = 0; v < m.loop_vertex_count(); ++v) {
+    // The same expressions as in the meshio check below, so the doubles compare exactly.
+    const double ux = 0.001 * k * static_cast<double>(v + 1);
+    const double uy = -0.002 * k * static_cast<double>(v + 1);
+    f.u.insert(f.u.end(), {ux, uy});
+    f.xy.insert(f.xy.end(), {m.loop_xy[2 * v] + ux, m.loop_xy[2 * v + 1] + uy});
+  }
+  f.stress = {1e6 * k, -2e6 * k, 0.5e6 * k, 3e6 * k, 4e6 * k, -5e6 * k};
+  f.extra = {0, 1};
+  return f;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "nmm-test-output-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// Every file under `dir` (relative paths), to check what a run leaves behind.
+std::vector<std::string> all_files(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) out.push_back(fs::relative(entry.path(), dir).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Writes what a short run writes: frames at steps 10 and 20, two history rows per step, a summary.
+void write_run(const fs::path& out, const Mesh& mesh) {
+  OutputWriter w(out.string());
+  const Fields f1 = fields_at(mesh, 1), f2 = fields_at(mesh, 2);
+  w.add_history(10, 0.01, {{1, 2, 0.1, 0.2}, {3, 4, 0.1 + 0.2, -1e-300}});
+  w.write_frame(10, 0.01, mesh, f1.view(false));
+  w.flush_history();
+  w.add_history(20, 0.02, {{1.5, 2.5, 0.5, 0.5}, {3, 4, 0, 0}});
+  w.write_frame(20, 0.02, mesh, f2.view(true));
+  w.flush_history();
+  w.write_summary({{"status", "ok"}, {"steps_completed", 20}, {"effects", {"elasticity"}}});
+}
+
+TEST(OutputWriter, WritesEveryFileWholeAndNoTemporaries) {
+  TempDir dir;
+  const fs::path out = dir.path() / "run" / "nested";  // created, parents included
+  const Mesh mesh = two_element_mesh();
+  write_run(out, mesh);
+
+  EXPECT_EQ(all_files(out),
+            (std::vector<std::string>{"frames.pvd", "frames/frame_000010.vtu",
+                                      "frames/frame_000020.vtu", "history.csv", "summary.json"}));
+
+  EXPECT_EQ(read_file(out / "history.csv"),
+            "step,time,point,x,y,ux,uy\n"
+            "10,0.01,0,1,2,0.1,0.2\n"
+            "10,0.01,1,3,4,0.30000000000000004,-1e-300\n"
+            "20,0.02,0,1.5,2.5,0.5,0.5\n"
+            "20,0.02,1,3,4,0,0\n");
+
+  EXPECT_EQ(read_file(out / "frames.pvd"),
+            "<?xml version=\"1.0\"?>\n"
+            "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+            "  <Collection>\n"
+            "    <DataSet timestep=\"0.01\" group=\"\" part=\"0\" "
+            "file=\"frames/frame_000010.vtu\"/>\n"
+            "    <DataSet timestep=\"0.02\" group=\"\" part=\"0\" "
+            "file=\"frames/frame_000020.vtu\"/>\n"
+            "  </Collection>\n"
+            "</VTKFile>\n");
+
+  const std::string summary = read_file(out / "summary.json");
+  EXPECT_EQ(json::parse(summary),
+            (json{{"status", "ok"}, {"steps_completed", 20}, {"effects", {"elasticity"}}}));
+  EXPECT_TRUE(contains(summary, "{\n  \"effects\": [\n    \"elasticity\"\n  ],\n")) << summary;
+}
+
+TEST(OutputWriter, FrameHoldsCurrentPositionsAndTheArrays) {
+  TempDir dir;
+  const Mesh mesh = two_element_mesh();
+  write_run(dir.path(), mesh);
+
+  const std::string first = read_file(dir.path() / "frames/frame_000010.vtu");
+  EXPECT_TRUE(contains(first, "NumberOfPoints=\"7\" NumberOfCells=\"2\"")) << first;
+  EXPECT_TRUE(contains(first, "Name=\"displacement\" NumberOfComponents=\"3\"")) << first;
+  EXPECT_TRUE(contains(first, "Name=\"stress\" NumberOfComponents=\"3\"")) << first;
+  EXPECT_TRUE(contains(first, "Name=\"block\"")) << first;
+  EXPECT_TRUE(contains(first, "Name=\"body\"")) << first;
+  EXPECT_FALSE(contains(first, "contact_state")) << "no extra array was given";
+  // Vertex 1 of element 0 is (1, 0) moved by (0.002, -0.004).
+  EXPECT_TRUE(contains(first, "1.002 -0.004 0")) << first;
+  EXPECT_TRUE(contains(first, "1e+06 -2e+06 5e+05 3e+06 4e+06 -5e+06")) << first;
+
+  const std::string second = read_file(dir.path() / "frames/frame_000020.vtu");
+  EXPECT_TRUE(contains(second, "Name=\"contact_state\" NumberOfComponents=\"1\"")) << second;
+  EXPECT_TRUE(contains(second, "1.004 -0.008 0")) << second;
+}
+
+TEST(OutputWriter, SameStepAgainReplacesItsFrame) {
+  TempDir dir;
+  const Mesh mesh = two_element_mesh();
+  OutputWriter w(dir.path().string());
+  const Fields f = fields_at(mesh, 1);
+  w.write_frame(5, 0.5, mesh, f.view(false));
+  w.write_frame(5, 0.25, mesh, f.view(false));
+  const std::string pvd = read_file(dir.path() / "frames.pvd");
+  EXPECT_TRUE(contains(pvd,
+                       "timestep=\"0.25\" group=\"\" part=\"0\" "
+                       "file=\"frames/frame_000005.vtu\""))
+      << pvd;
+  EXPECT_FALSE(contains(pvd, "timestep=\"0.5\"")) << pvd;
+  // An empty history still has its header.
+  w.flush_history();
+  EXPECT_EQ(read_file(dir.path() / "history.csv"), "step,time,point,x,y,ux,uy\n");
+}
+
+TEST(OutputWriter, WrongFieldSizesAreCallerBugs) {
+  TempDir dir;
+  const Mesh mesh = two_element_mesh();
+  OutputWriter w(dir.path().string());
+  Fields f = fields_at(mesh, 1);
+  f.stress.pop_back();
+  EXPECT_THROW(w.write_frame(1, 0.1, mesh, f.view(false)), std::logic_error);
+  f = fields_at(mesh, 1);
+  f.extra.push_back(2);
+  EXPECT_THROW(w.write_frame(1, 0.1, mesh, f.view(true)), std::logic_error);
+  EXPECT_FALSE(fs::exists(dir.path() / "frames/frame_000001.vtu"));
+  EXPECT_FALSE(fs::exists(dir.path() / "frames.pvd"));
+}
+
+TEST(OutputWriter, UnusableOutputFolderIsAnInputError) {
+  TempDir dir;
+  const fs::path file = dir.path() / "a_file";
+  std::ofstream(file) << "x";
+  try {
+    OutputWriter w(file.string());
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), file.string());
+  }
+  try {
+    OutputWriter w((file / "below").string());
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), (file / "below").string());
+  }
+}
+
+// A Python with meshio: `python3` first; else the system one (a python3 found first on PATH, a
+// pyenv one say, may not see the distribution's python3-meshio package).
+std::string python_with_meshio() {
+  for (const char* python : {"python3", "/usr/bin/python3"}) {
+    const std::string probe = std::string(python) + " -c 'import meshio' >/dev/null 2>&1";
+    if (std::system(probe.c_str()) == 0) return python;
+  }
+  return "";
+}
+
+// The check meshio makes, with the expected values computed as in fields_at().
+const char* const kMeshioCheck = R"(
+import os, sys
+import xml.etree.ElementTree as ET
+import meshio
+import numpy as np
+
+out = sys.argv[1]
+root = ET.parse(os.path.join(out, "frames.pvd")).getroot()
+assert root.get("type") == "Collection", root.get("type")
+sets = root.find("Collection").findall("DataSet")
+assert [float(d.get("timestep")) for d in sets] == [0.01, 0.02], sets
+loop_xy = np.array([[0, 0], [1, 0], [1, 1], [0, 1], [1, 0], [2, 0], [1, 1]], dtype=float)
+for k, d in zip([1, 2], sets):
+    m = meshio.read(os.path.join(out, d.get("file")))
+    assert len(m.points) == 7, len(m.points)
+    assert sum(len(block.data) for block in m.cells) == 2, m.cells
+    u = m.point_data["displacement"]
+    assert u.shape == (7, 3), u.shape
+    n = np.arange(1, 8, dtype=float)
+    ux = np.array([0.001 * k * v for v in n])
+    uy = np.array([-0.002 * k * v for v in n])
+    assert np.array_equal(u[:, 0], ux), u
+    assert np.array_equal(u[:, 1], uy), u
+    assert np.array_equal(u[:, 2], np.zeros(7)), u
+    assert np.array_equal(m.points[:, 0], loop_xy[:, 0] + ux), m.points
+    assert np.array_equal(m.points[:, 1], loop_xy[:, 1] + uy), m.points
+    stress = np.concatenate([np.reshape(s, (-1, 3)) for s in m.cell_data["stress"]])
+    expected = np.array([[1e6 * k, -2e6 * k, 0.5e6 * k], [3e6 * k, 4e6 * k, -5e6 * k]])
+    assert np.array_equal(stress, expected), stress
+print("meshio check ok")
+)";
+
+TEST(OutputWriter, MeshioReadsTheFramesBack) {
+  const std::string python = python_with_meshio();
+  if (python.empty()) GTEST_SKIP() << "no python3 with meshio";
+  TempDir dir;
+  write_run(dir.path() / "out", two_element_mesh());
+  const fs::path script = dir.path() / "check.py";
+  std::ofstream(script) << kMeshioCheck;
+  const std::string command =
+      python + " '" + script.string() + "' '" + (dir.path() / "out").string() + "'";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+}  // namespace
+}  // namespace nmm::solve
