@@ -1,0 +1,426 @@
+// NMM time stepping with Shi's implicit scheme (Shi 1988, 1991; physics.md §2).
+//
+// Unknowns: the displacement increment d = (u, v) of every physical cover during the step
+// (constant cover functions). In an element, u(x) = Σ_k w_k(x)·d_k over its triangle's three
+// covers, with w_k the linear weights of the triangle in its configuration at the start of the
+// step (each element's triangle has the covers' own node positions, so a cover moves its
+// elements as one piece and covers on two faces of a joint move apart).
+//
+// Each step solves
+//     (K + 2/Δt²·M) d = F_ext − F_int + 2/Δt·M·v0        (dynamic; Newmark γ = β = ½)
+//     K d = F_ext − F_int                                 (static: no inertia, v0 = 0)
+// and then v1 = 2d/Δt − v0, v0(next) = k_dyn·v1 (k_dyn = solver.dynamic_factor).
+//   K_e     = A_e Bᵀ D B                    (elasticity.cpp)
+//   M_e     = ρ ∫ Nᵀ N dA                   consistent mass: ρ ∫ w_k w_l dA per direction
+//   F_int,e = A_e Bᵀ σ_e                    stress carried from earlier steps (initial stress)
+//   F_grav  = ρ g ∫ w_k dA                  only with gravity
+//   F_load  = w_k(p)·f                      point load f at p, only with loads
+//   fixed point p (started at P): penalty spring k_f, K += k_f NᵀN, F −= k_f Nᵀ (p − P)
+// All integrals are exact simplex integrals over the element polygon (element_integration.cpp).
+// After the solve: σ_e += D B d_e, and every loop vertex, cover node and tracked point moves by
+// the displacement field (geometry update: large displacement over many small steps). The stress
+// is not rotated with the element: rotations per step are small (Shi's DDA does the same).
+//
+// Fixed-point stiffness: solver.fixed_point_stiffness, or by default 100·E_max·(1 m) N/m per unit
+// thickness. Under a reaction R, a fixed point gives way by R/k_f: with E = 10 GPa that is 1 µm
+// for 1 MN. Stiffer springs make the matrix worse conditioned for no gain in the result.
+//
+// Only the effects a scene calls for are computed: no mass without inertia (static), no gravity
+// term without gravity, nothing for loads or fixed points that are not there.
+#include "time_stepper.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "error.h"
+#include "nmm_version.h"
+
+namespace nmm::solve {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Crossing-number test; slits and bridges are walked both ways and cancel.
+bool in_loop(const double* xy, std::size_t n, double x, double y) {
+  bool inside = false;
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
+    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) inside = !inside;
+  }
+  return inside;
+}
+
+double dist_to_loop(const double* xy, std::size_t n, double x, double y) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const double ax = xy[2 * j], ay = xy[2 * j + 1], bx = xy[2 * i], by = xy[2 * i + 1];
+    const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((x - ax) * dx + (y - ay) * dy) / l2 : 0;
+    t = std::clamp(t, 0.0, 1.0);
+    best = std::min(best, std::hypot(ax + t * dx - x, ay + t * dy - y));
+  }
+  return best;
+}
+
+std::string fmt_point(double x, double y) {
+  std::ostringstream os;
+  os << "(" << x << ", " << y << ")";
+  return os.str();
+}
+
+}  // namespace
+
+TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
+    : mesh_(mesh), scene_(scene), scene_name_(scene_name) {
+  if (mesh.dofs_per_cover != 2)
+    throw InputError(scene_name, "", "this solver supports constant cover functions only "
+                                     "(2 unknowns per physical cover), the mesh has " +
+                                         std::to_string(mesh.dofs_per_cover));
+  const std::size_t ne = mesh.element_count(), nc = mesh.cover_count();
+  double e_max = 0;
+  for (const MaterialDef& m : scene.materials) {
+    material_d_.push_back(elasticity_matrix(m, scene.plane));
+    e_max = std::max(e_max, m.young);
+  }
+  fixed_k_ = scene.solver.fixed_point_stiffness > 0 ? scene.solver.fixed_point_stiffness
+                                                    : 100.0 * e_max;
+  elem_mat_.resize(ne);
+  groups_.resize(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::int32_t body = mesh.element_body[e];
+    if (body < 0 || static_cast<std::size_t>(body) >= scene.bodies.size())
+      throw InputError(scene_name, "/bodies", "the mesh has more bodies than its scene");
+    elem_mat_[e] = scene.bodies[body].material;
+    for (int k = 0; k < 3; ++k) {
+      groups_[e][2 * k] = 2 * mesh.element_covers[3 * e + k];
+      groups_[e][2 * k + 1] = 2 * mesh.element_covers[3 * e + k] + 1;
+    }
+  }
+  cover_xy_.resize(2 * nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    cover_xy_[2 * c] = mesh.node_xy[2 * mesh.cover_node[c]];
+    cover_xy_[2 * c + 1] = mesh.node_xy[2 * mesh.cover_node[c] + 1];
+  }
+  cover_u_.assign(2 * nc, 0.0);
+  velocity_.assign(2 * nc, 0.0);
+  stress_.assign(3 * ne, 0.0);
+  loop_xy_ = mesh.loop_xy;
+  loop_u_.assign(loop_xy_.size(), 0.0);
+  frame_.resize(ne);
+
+  // Points: the element that contains each one, else the nearest within 1e-6·h (a point on a
+  // boundary), else bad input.
+  auto locate = [&](const Vec2& p, const std::string& path) {
+    std::int32_t best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 0; e < ne; ++e) {
+      const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
+      const double* xy = mesh.loop_xy.data() + 2 * b;
+      if (in_loop(xy, n, p.x, p.y)) return TrackedPoint{static_cast<std::int32_t>(e), p.x, p.y, p.x, p.y};
+      const double d = dist_to_loop(xy, n, p.x, p.y);
+      if (d < best_d) {
+        best_d = d;
+        best = static_cast<std::int32_t>(e);
+      }
+    }
+    if (best < 0 || best_d > 1e-6 * mesh.mesh_size)
+      throw InputError(scene_name, path, "point " + fmt_point(p.x, p.y) + " lies outside every body");
+    return TrackedPoint{best, p.x, p.y, p.x, p.y};
+  };
+  for (std::size_t i = 0; i < scene.fixed_points.size(); ++i)
+    fixed_.push_back(locate(scene.fixed_points[i], "/fixed_points/" + std::to_string(i)));
+  for (std::size_t i = 0; i < scene.loads.size(); ++i)
+    loads_.push_back(locate(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point"));
+  for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
+    measure_.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
+
+  // Fixed points and loads couple only the covers of their element: the element pattern holds.
+  system_.build_pattern(unknowns(), groups_);
+  rhs_.resize(unknowns());
+}
+
+std::vector<std::string> TimeStepper::effects() const {
+  std::vector<std::string> e;
+  if (mesh_.element_count() > 0) e.push_back("elasticity");
+  if (scene_.solver.dynamic) e.push_back("inertia");
+  if (scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0)) e.push_back("gravity");
+  if (!loads_.empty()) e.push_back("point_loads");
+  if (!fixed_.empty()) e.push_back("fixed_points");
+  return e;
+}
+
+void TimeStepper::check_static_support() const {
+  // Without inertia, each block needs two fixed points or it is free to move as a rigid body
+  // (one point still lets it turn), and the stiffness matrix is singular.
+  std::vector<int> held(mesh_.block_count(), 0);
+  for (const TrackedPoint& p : fixed_) ++held[mesh_.element_block[p.element]];
+  for (std::size_t b = 0; b < held.size(); ++b) {
+    if (held[b] >= 2) continue;
+    std::size_t e = 0;
+    while (mesh_.element_block[e] != static_cast<std::int32_t>(b)) ++e;
+    const std::int32_t c = mesh_.element_covers[3 * e];
+    std::ostringstream os;
+    os << "static run: block " << b << " (body " << mesh_.block_body[b] << ") is held by "
+       << held[b] << " fixed point" << (held[b] == 1 ? "" : "s")
+       << ", so its covers (e.g. cover " << c << " at node "
+       << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
+       << ") are unconstrained: give each block two fixed points or run dynamic";
+    throw RunError(os.str());
+  }
+}
+
+void TimeStepper::assemble(double dt) {
+  const bool dynamic = scene_.solver.dynamic;
+  const bool gravity = scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0);
+  const double mass_k = dynamic ? 2.0 / (dt * dt) : 0.0, mass_f = dynamic ? 2.0 / dt : 0.0;
+  system_.set_zero();
+  rhs_.setZero();
+  Mat6 k;
+  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+    const auto& g = groups_[e];
+    ElementFrame& f = frame_[e];
+    const int c0 = g[0] / 2, c1 = g[2] / 2, c2 = g[4] / 2;
+    f.ox = cover_xy_[2 * c0];
+    f.oy = cover_xy_[2 * c0 + 1];
+    const double p[6] = {0, 0, cover_xy_[2 * c1] - f.ox, cover_xy_[2 * c1 + 1] - f.oy,
+                         cover_xy_[2 * c2] - f.ox, cover_xy_[2 * c2 + 1] - f.oy};
+    f.w = triangle_weights(p);
+    if (!(f.w.twice_area > 0))
+      throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
+                     std::to_string(time_) + " s (displacements too large for the time step)");
+    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
+    const PolygonMoments m = polygon_moments(loop_xy_.data() + 2 * b, n, f.ox, f.oy);
+    const Mat36 B = strain_matrix(f.w);
+    const Mat3& D = material_d_[elem_mat_[e]];
+    k.noalias() = m.a * (B.transpose() * D * B);
+    const Vec3 sigma(stress_[3 * e], stress_[3 * e + 1], stress_[3 * e + 2]);
+    Vec6 fe = -m.a * (B.transpose() * sigma);
+    const double rho = scene_.materials[elem_mat_[e]].density;
+    if (dynamic || gravity) {
+      double iw[3];
+      for (int i = 0; i < 3; ++i) iw[i] = integral_w(f.w, m, i);
+      if (gravity)
+        for (int i = 0; i < 3; ++i) {
+          fe[2 * i] += rho * scene_.gravity.x * iw[i];
+          fe[2 * i + 1] += rho * scene_.gravity.y * iw[i];
+        }
+      if (dynamic)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const double mij = rho * integral_ww(f.w, m, i, j);
+            k(2 * i, 2 * j) += mass_k * mij;
+            k(2 * i + 1, 2 * j + 1) += mass_k * mij;
+            fe[2 * i] += mass_f * mij * velocity_[g[2 * j]];
+            fe[2 * i + 1] += mass_f * mij * velocity_[g[2 * j + 1]];
+          }
+    }
+    system_.add_group(e, k.data());
+    for (int i = 0; i < 6; ++i) rhs_[g[i]] += fe[i];
+  }
+  // Fixed points: penalty springs back to where they started.
+  for (const TrackedPoint& p : fixed_) {
+    const ElementFrame& f = frame_[p.element];
+    double w[3];
+    for (int i = 0; i < 3; ++i) w[i] = f.w.at(i, p.x - f.ox, p.y - f.oy);
+    k.setZero();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        k(2 * i, 2 * j) = fixed_k_ * w[i] * w[j];
+        k(2 * i + 1, 2 * j + 1) = fixed_k_ * w[i] * w[j];
+      }
+    system_.add_group(p.element, k.data());
+    const auto& g = groups_[p.element];
+    for (int i = 0; i < 3; ++i) {
+      rhs_[g[2 * i]] -= fixed_k_ * w[i] * (p.x - p.x0);
+      rhs_[g[2 * i + 1]] -= fixed_k_ * w[i] * (p.y - p.y0);
+    }
+  }
+  for (std::size_t l = 0; l < loads_.size(); ++l) {
+    const TrackedPoint& p = loads_[l];
+    const ElementFrame& f = frame_[p.element];
+    const auto& g = groups_[p.element];
+    for (int i = 0; i < 3; ++i) {
+      const double w = f.w.at(i, p.x - f.ox, p.y - f.oy);
+      rhs_[g[2 * i]] += w * scene_.loads[l].force.x;
+      rhs_[g[2 * i + 1]] += w * scene_.loads[l].force.y;
+    }
+  }
+}
+
+void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
+  const std::size_t ne = mesh_.element_count();
+  double max_d = 0;
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto& g = groups_[e];
+    const ElementFrame& f = frame_[e];
+    Vec6 de;
+    for (int i = 0; i < 6; ++i) de[i] = d[g[i]];
+    const Vec3 ds = material_d_[elem_mat_[e]] * (strain_matrix(f.w) * de);
+    for (int i = 0; i < 3; ++i) stress_[3 * e + i] += ds[i];
+    for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
+      const double x = loop_xy_[2 * v] - f.ox, y = loop_xy_[2 * v + 1] - f.oy;
+      double ux = 0, uy = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double w = f.w.at(k, x, y);
+        ux += w * de[2 * k];
+        uy += w * de[2 * k + 1];
+      }
+      loop_xy_[2 * v] += ux;
+      loop_xy_[2 * v + 1] += uy;
+      loop_u_[2 * v] += ux;
+      loop_u_[2 * v + 1] += uy;
+    }
+  }
+  auto move = [&](std::vector<TrackedPoint>& pts) {
+    for (TrackedPoint& p : pts) {
+      const ElementFrame& f = frame_[p.element];
+      const auto& g = groups_[p.element];
+      double ux = 0, uy = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double w = f.w.at(k, p.x - f.ox, p.y - f.oy);
+        ux += w * d[g[2 * k]];
+        uy += w * d[g[2 * k + 1]];
+      }
+      p.x += ux;
+      p.y += uy;
+    }
+  };
+  move(fixed_);
+  move(loads_);
+  move(measure_);
+  const bool dynamic = scene_.solver.dynamic;
+  for (Eigen::Index i = 0; i < d.size(); ++i) {
+    cover_xy_[i] += d[i];
+    cover_u_[i] += d[i];
+    max_d = std::max(max_d, std::abs(d[i]));
+    velocity_[i] = dynamic ? scene_.solver.dynamic_factor * (2.0 * d[i] / dt - velocity_[i]) : 0.0;
+  }
+  max_step_displacement_ = std::max(max_step_displacement_, max_d);
+}
+
+void TimeStepper::step(double dt) {
+  if (!scene_.solver.dynamic) check_static_support();
+  auto t0 = Clock::now();
+  assemble(dt);
+  timings_.assembly += since(t0);
+
+  t0 = Clock::now();
+  const bool ok = system_.factorize();
+  timings_.factorisation += since(t0);
+  if (!ok) {
+    const int u = system_.failed_unknown();
+    std::ostringstream os;
+    os << "the system matrix is not positive definite";
+    if (u >= 0) {
+      const int c = u / 2;
+      os << " at cover " << c << " (node "
+         << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
+         << "): it is not held; add fixed points or run dynamic";
+    }
+    throw RunError(os.str());
+  }
+  t0 = Clock::now();
+  const Eigen::VectorXd d = system_.solve(rhs_);
+  timings_.solves += since(t0);
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+    if (!std::isfinite(d[i]))
+      throw RunError("the displacement of cover " + std::to_string(i / 2) +
+                     " is not a finite number at t = " + std::to_string(time_) + " s");
+  t0 = Clock::now();
+  update(d, dt);
+  timings_.assembly += since(t0);
+  time_ += dt;
+}
+
+void TimeStepper::impose_displacement(const Eigen::VectorXd& d) {
+  assemble(1.0);  // the element frames of the current configuration
+  update(d, 1.0);
+}
+
+const Eigen::VectorXd& TimeStepper::assemble_rhs(double dt) {
+  assemble(dt);
+  return rhs_;
+}
+
+std::array<double, 2> TimeStepper::displacement_at(const TrackedPoint& p) const {
+  return {p.x - p.x0, p.y - p.y0};
+}
+
+std::vector<MeasureSample> TimeStepper::sample_measure_points() const {
+  std::vector<MeasureSample> s;
+  for (const TrackedPoint& p : measure_) s.push_back({p.x, p.y, p.x - p.x0, p.y - p.y0});
+  return s;
+}
+
+nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
+  const auto wall0 = Clock::now();
+  const SolverDef& sv = scene_.solver;
+  auto output = [&](std::int64_t s) {
+    const auto t0 = Clock::now();
+    out.add_history(s, time_, sample_measure_points());
+    FrameFields fields;
+    fields.loop_xy = &loop_xy_;
+    fields.loop_u = &loop_u_;
+    fields.stress = &stress_;
+    out.write_frame(s, time_, mesh_, fields);
+    timings_.output += since(t0);
+  };
+  output(0);
+  std::string status = "ok";
+  std::int64_t done = 0;
+  for (std::int64_t s = 1; s <= sv.steps; ++s) {
+    try {
+      step(sv.time_step);
+    } catch (const RunError& e) {
+      status = e.what();
+      break;
+    }
+    done = s;
+    if (s % sv.output_every == 0 || s == sv.steps) output(s);
+    if (progress && (s % 10 == 0 || s == sv.steps)) {
+      std::fprintf(stderr, "\rstep %lld/%lld  t = %.6g s", static_cast<long long>(s),
+                   static_cast<long long>(sv.steps), time_);
+      std::fflush(stderr);
+    }
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  if (status != "ok" && done % sv.output_every != 0) output(done);  // the last good state
+  const auto t0 = Clock::now();
+  out.flush_history();
+  timings_.output += since(t0);
+
+  nlohmann::json summary;
+  summary["status"] = status;
+  summary["steps_completed"] = done;
+  summary["simulated_time"] = time_;
+  summary["wall_seconds"] = since(wall0);
+  summary["effects"] = effects();
+  summary["open_close_iterations"] = 0;
+  summary["time_step_cuts"] = 0;
+  summary["max_penetration"] = 0.0;
+  summary["timings"] = {{"contact_detection", timings_.contact_detection},
+                        {"assembly", timings_.assembly},
+                        {"factorisation", timings_.factorisation},
+                        {"solves", timings_.solves},
+                        {"output", timings_.output}};
+  summary["unknowns"] = unknowns();
+  summary["physical_covers"] = mesh_.cover_count();
+  summary["manifold_elements"] = mesh_.element_count();
+  summary["symbolic_analyses"] = system_.analyses();
+  summary["time_step"] = sv.time_step;
+  summary["max_step_displacement"] = max_step_displacement_;
+  summary["fixed_point_stiffness"] = fixed_k_;
+  summary["tool_version"] = NMM_VERSION;
+  out.write_summary(summary);
+  return summary;
+}
+
+}  // namespace nmm::solve

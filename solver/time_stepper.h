@@ -1,0 +1,101 @@
+// NMM time stepping (Shi's implicit scheme) on a loaded mesh: see time_stepper.cpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "element_integration.h"
+#include "elasticity.h"
+#include "mesh.h"
+#include "output_writer.h"
+#include "scene.h"
+#include "system_matrix.h"
+
+namespace nmm::solve {
+
+/// A point carried by the deforming body (fixed point, load point, measure point).
+struct TrackedPoint {
+  std::int32_t element = -1;  ///< element it lies in
+  double x0 = 0, y0 = 0;      ///< m, where it started
+  double x = 0, y = 0;        ///< m, where it is now
+};
+
+/// Seconds spent per part of the run.
+struct StepTimings {
+  double contact_detection = 0;
+  double assembly = 0;
+  double factorisation = 0;
+  double solves = 0;
+  double output = 0;
+};
+
+class TimeStepper {
+ public:
+  /// Prepares a run: locates the scene's points in the elements (InputError naming the scene
+  /// path, e.g. /fixed_points/2, for a point outside every body), builds the sparsity pattern.
+  /// `scene_name` names the scene in such errors.
+  TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
+
+  /// Runs all steps, writing history, frames and the summary into `out`. Returns the summary
+  /// (also written). `progress`: a progress line on stderr.
+  nlohmann::json run(OutputWriter& out, bool progress);
+
+  // ---- state, for tests ------------------------------------------------------------------
+  /// One step of length dt. Throws RunError when it cannot be taken.
+  void step(double dt);
+  const std::vector<double>& cover_displacement() const { return cover_u_; }  ///< [2·pc] m
+  const std::vector<double>& velocity() const { return velocity_; }           ///< [2·pc] m/s
+  const std::vector<double>& stress() const { return stress_; }  ///< [3·me] Pa σxx σyy τxy
+  const std::vector<double>& loop_xy() const { return loop_xy_; }              ///< [2·v] m
+  const std::vector<TrackedPoint>& measure_points() const { return measure_; }
+  /// Displacement of a point (x, y) of element e in its current configuration, m.
+  std::array<double, 2> displacement_at(const TrackedPoint& p) const;
+  double time() const { return time_; }
+  /// Test hooks for the patch test: impose cover displacements d (as a step would, stresses and
+  /// geometry follow), and the right-hand side −F_int (+ loads, gravity) of the next step.
+  void impose_displacement(const Eigen::VectorXd& d);
+  const Eigen::VectorXd& assemble_rhs(double dt);
+  const StepTimings& timings() const { return timings_; }
+  /// The physical effects this run computes (summary.json "effects").
+  std::vector<std::string> effects() const;
+  int unknowns() const { return 2 * static_cast<int>(mesh_.cover_count()); }
+  std::size_t symbolic_analyses() const { return system_.analyses(); }
+
+ private:
+  struct ElementFrame {  // the element's triangle in the configuration at the start of a step
+    double ox, oy;       // m, origin: corner 0
+    TriangleWeights w;
+  };
+  void assemble(double dt);
+  void update(const Eigen::VectorXd& d, double dt);
+  std::vector<MeasureSample> sample_measure_points() const;
+  void check_static_support() const;
+
+  const Mesh& mesh_;
+  const SceneDef& scene_;
+  std::string scene_name_;
+  std::vector<Mat3> material_d_;        // [material] elasticity matrix, Pa
+  std::vector<std::int32_t> elem_mat_;  // [me] material index
+  std::vector<std::array<int, 6>> groups_;  // [me] unknowns of the element's covers
+  double fixed_k_ = 0;                  // N/m, penalty stiffness of a fixed point
+
+  std::vector<double> cover_xy_;   // [2·pc] m, current position of each cover's node
+  std::vector<double> cover_u_;    // [2·pc] m, displacement since the start
+  std::vector<double> velocity_;   // [2·pc] m/s, v0 of the next step
+  std::vector<double> stress_;     // [3·me] Pa
+  std::vector<double> loop_xy_;    // [2·v] m, current loop vertices
+  std::vector<double> loop_u_;     // [2·v] m, displacement since the start
+  std::vector<TrackedPoint> fixed_, loads_, measure_;
+  std::vector<ElementFrame> frame_;  // [me]
+  Eigen::VectorXd rhs_;
+  SystemMatrix system_;
+  StepTimings timings_;
+  double time_ = 0;
+  double max_step_displacement_ = 0;  // m, largest cover displacement in one step
+};
+
+}  // namespace nmm::solve
