@@ -336,7 +336,7 @@ void TimeStepper::step(double dt) {
                      " is not a finite number at t = " + std::to_string(time_) + " s");
   t0 = Clock::now();
   update(d, dt);
-  timings_.assembly += since(t0);
+  timings_.geometry_update += since(t0);
   time_ += dt;
 }
 
@@ -410,6 +410,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
                         {"assembly", timings_.assembly},
                         {"factorisation", timings_.factorisation},
                         {"solves", timings_.solves},
+                        {"geometry_update", timings_.geometry_update},
                         {"output", timings_.output}};
   summary["unknowns"] = unknowns();
   summary["physical_covers"] = mesh_.cover_count();

@@ -30,6 +30,7 @@ struct StepTimings {
   double assembly = 0;
   double factorisation = 0;
   double solves = 0;
+  double geometry_update = 0;  ///< stresses, loop vertices, covers and points moved after a solve
   double output = 0;
 };
 
@@ -64,6 +65,9 @@ class TimeStepper {
   std::vector<std::string> effects() const;
   int unknowns() const { return 2 * static_cast<int>(mesh_.cover_count()); }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
+  /// The system of the last step (for benchmarks comparing against a bare factorisation).
+  const SystemMatrix& system() const { return system_; }
+  const Eigen::VectorXd& rhs() const { return rhs_; }
 
  private:
   struct ElementFrame {  // the element's triangle in the configuration at the start of a step
