@@ -5,13 +5,23 @@
 namespace nmm::solve {
 
 void SystemMatrix::build_pattern(int n, const std::vector<std::array<int, 6>>& groups) {
+  std::vector<int> offsets{0}, dofs;
+  for (const auto& g : groups) {
+    dofs.insert(dofs.end(), g.begin(), g.end());
+    offsets.push_back(static_cast<int>(dofs.size()));
+  }
+  build_pattern(n, offsets, dofs);
+}
+
+void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs) {
   // Lower-triangle (row ≥ column) entries of every group, then compressed columns.
   std::vector<std::vector<int>> rows(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) rows[i].push_back(i);  // every diagonal, even of a lone unknown
-  for (const auto& g : groups)
-    for (int a : g)
-      for (int b : g)
-        if (a > b) rows[b].push_back(a);
+  const std::size_t ng = offsets.size() - 1;
+  for (std::size_t g = 0; g < ng; ++g)
+    for (int i = offsets[g]; i < offsets[g + 1]; ++i)
+      for (int j = offsets[g]; j < offsets[g + 1]; ++j)
+        if (dofs[i] > dofs[j]) rows[dofs[j]].push_back(dofs[i]);
   std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0);
   std::vector<int> inner;
   for (int c = 0; c < n; ++c) {
@@ -33,13 +43,18 @@ void SystemMatrix::build_pattern(int n, const std::vector<std::array<int, 6>>& g
     const int* e = k_.innerIndexPtr() + outer[col + 1];
     return static_cast<std::int32_t>(std::lower_bound(b, e, row) - k_.innerIndexPtr());
   };
-  slots_.assign(36 * groups.size(), -1);
-  for (std::size_t g = 0; g < groups.size(); ++g)
-    for (int j = 0; j < 6; ++j)
-      for (int i = 0; i < 6; ++i) {
-        const int r = groups[g][i], c = groups[g][j];
-        if (r >= c) slots_[36 * g + 6 * j + i] = find(r, c);
-      }
+  // Slots: entry (i, j) of a group's block lands at (dof i, dof j) when that is in the lower
+  // triangle; its mirror (j, i) then does not, so each global entry gets each local entry once.
+  // An unknown repeated in a group maps all its copies to the same entries, which sums them.
+  slot_offset_.assign(1, 0);
+  slots_.clear();
+  for (std::size_t g = 0; g < ng; ++g) {
+    const int m = offsets[g + 1] - offsets[g];
+    const int* d = dofs.data() + offsets[g];
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) slots_.push_back(d[i] >= d[j] ? find(d[i], d[j]) : -1);
+    slot_offset_.push_back(static_cast<std::int32_t>(slots_.size()));
+  }
   diag_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) diag_[i] = find(i, i);
   analysed_ = false;
@@ -51,9 +66,10 @@ void SystemMatrix::build_pattern(int n, const std::vector<std::array<int, 6>>& g
 void SystemMatrix::set_zero() { std::fill(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), 0.0); }
 
 void SystemMatrix::add_group(std::size_t g, const double* k) {
-  const std::int32_t* s = slots_.data() + 36 * g;
+  const std::int32_t* s = slots_.data() + slot_offset_[g];
+  const int count = slot_offset_[g + 1] - slot_offset_[g];
   double* v = k_.valuePtr();
-  for (int e = 0; e < 36; ++e)
+  for (int e = 0; e < count; ++e)
     if (s[e] >= 0) v[s[e]] += k[e];
 }
 

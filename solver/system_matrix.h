@@ -22,14 +22,23 @@ class SystemMatrix {
   using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
   /// Builds the pattern of the n×n matrix (n = unknowns) coupling, for each group, all the
-  /// unknowns in it (one group of 6 per element: its three covers × two directions).
+  /// unknowns in it: one group of 6 per element (its three covers × two directions), one of 12
+  /// per contact (the covers of both elements; an unknown may appear twice in a group).
+  /// Group g holds dofs[offsets[g] .. offsets[g+1]).
+  void build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
+  /// The same with element groups only.
   void build_pattern(int n, const std::vector<std::array<int, 6>>& groups);
 
   /// Sets every value to zero, keeping the pattern.
   void set_zero();
 
-  /// Adds the symmetric 6×6 block `k` (column-major) of group g.
+  /// Adds the symmetric m×m block `k` (column-major, m = size of group g) of group g.
   void add_group(std::size_t g, const double* k);
+
+  /// Saves the current values; restore() brings them back (the part of the matrix that does not
+  /// change during the open–close iteration of a step).
+  void save() { saved_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros()); }
+  void restore() { std::copy(saved_.begin(), saved_.end(), k_.valuePtr()); }
 
   /// Adds `value` to the diagonal entry of unknown i.
   void add_diagonal(int i, double value);
@@ -52,7 +61,9 @@ class SystemMatrix {
     int failed_column() const;
   };
   Sparse k_;
-  std::vector<std::int32_t> slots_;  // [36·group] value index of entry (i, j), -1 above diagonal
+  std::vector<std::int32_t> slot_offset_;  // [group+1] CSR into slots_
+  std::vector<std::int32_t> slots_;  // [m² per group] value index of entry (i, j), -1 above diagonal
+  std::vector<double> saved_;
   std::vector<std::int32_t> diag_;   // [n] value index of each diagonal entry
   Llt llt_;
   bool analysed_ = false;

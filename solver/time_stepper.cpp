@@ -33,6 +33,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -79,7 +80,7 @@ std::string fmt_point(double x, double y) {
 }  // namespace
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
-    : mesh_(mesh), scene_(scene), scene_name_(scene_name) {
+    : mesh_(mesh), scene_(scene), scene_name_(scene_name), contacts_(mesh, scene, scene_name) {
   if (mesh.dofs_per_cover != 2)
     throw InputError(scene_name, "", "this solver supports constant cover functions only "
                                      "(2 unknowns per physical cover), the mesh has " +
@@ -142,7 +143,18 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
     measure_.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
 
-  // Fixed points and loads couple only the covers of their element: the element pattern holds.
+  // w0: half the model size, the scale of Shi's displacement ratio and contact tolerances.
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (std::size_t i = 0; i < loop_xy_.size(); i += 2) {
+    x0 = std::min(x0, loop_xy_[i]);
+    x1 = std::max(x1, loop_xy_[i]);
+    y0 = std::min(y0, loop_xy_[i + 1]);
+    y1 = std::max(y1, loop_xy_[i + 1]);
+  }
+  w0_ = 0.5 * std::max(x1 - x0, y1 - y0);
+
+  // Fixed points and loads couple only the covers of their element: the element pattern holds
+  // until contacts couple pairs of elements (update_pattern).
   system_.build_pattern(unknowns(), groups_);
   rhs_.resize(unknowns());
 }
@@ -154,6 +166,7 @@ std::vector<std::string> TimeStepper::effects() const {
   if (scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0)) e.push_back("gravity");
   if (!loads_.empty()) e.push_back("point_loads");
   if (!fixed_.empty()) e.push_back("fixed_points");
+  for (const std::string& c : contacts_.effects()) e.push_back(c);
   return e;
 }
 
@@ -177,13 +190,7 @@ void TimeStepper::check_static_support() const {
   }
 }
 
-void TimeStepper::assemble(double dt) {
-  const bool dynamic = scene_.solver.dynamic;
-  const bool gravity = scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0);
-  const double mass_k = dynamic ? 2.0 / (dt * dt) : 0.0, mass_f = dynamic ? 2.0 / dt : 0.0;
-  system_.set_zero();
-  rhs_.setZero();
-  Mat6 k;
+void TimeStepper::compute_frames() {
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
     const auto& g = groups_[e];
     ElementFrame& f = frame_[e];
@@ -196,6 +203,47 @@ void TimeStepper::assemble(double dt) {
     if (!(f.w.twice_area > 0))
       throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
                      std::to_string(time_) + " s (displacements too large for the time step)");
+  }
+}
+
+void TimeStepper::update_pattern() {
+  // Elements, then one coupling group per pair of elements in contact. The pattern only grows:
+  // pairs that part keep their (zero) entries, so the pattern — and with it CHOLMOD's symbolic
+  // analysis — changes only when a pair of elements meets for the first time.
+  const int first = static_cast<int>(groups_.size());
+  const auto now = contacts_.element_pairs();
+  if (std::includes(pattern_pairs_.begin(), pattern_pairs_.end(), now.begin(), now.end())) {
+    contacts_.assign_groups(pattern_pairs_, first);
+    return;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  std::set_union(pattern_pairs_.begin(), pattern_pairs_.end(), now.begin(), now.end(),
+                 std::back_inserter(pairs));
+  std::vector<int> offsets{0}, dofs;
+  for (const auto& g : groups_) {
+    dofs.insert(dofs.end(), g.begin(), g.end());
+    offsets.push_back(static_cast<int>(dofs.size()));
+  }
+  for (const auto& [a, b] : pairs) {
+    dofs.insert(dofs.end(), groups_[a].begin(), groups_[a].end());
+    dofs.insert(dofs.end(), groups_[b].begin(), groups_[b].end());
+    offsets.push_back(static_cast<int>(dofs.size()));
+  }
+  system_.build_pattern(unknowns(), offsets, dofs);
+  pattern_pairs_ = std::move(pairs);
+  contacts_.assign_groups(pattern_pairs_, first);
+}
+
+void TimeStepper::assemble(double dt) {
+  const bool dynamic = scene_.solver.dynamic;
+  const bool gravity = scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0);
+  const double mass_k = dynamic ? 2.0 / (dt * dt) : 0.0, mass_f = dynamic ? 2.0 / dt : 0.0;
+  system_.set_zero();
+  rhs_.setZero();
+  Mat6 k;
+  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+    const auto& g = groups_[e];
+    const ElementFrame& f = frame_[e];
     const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(loop_xy_.data() + 2 * b, n, f.ox, f.oy);
     const Mat36 B = strain_matrix(f.w);
@@ -306,46 +354,107 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   max_step_displacement_ = std::max(max_step_displacement_, max_d);
 }
 
-void TimeStepper::step(double dt) {
-  if (!scene_.solver.dynamic) check_static_support();
+std::string TimeStepper::attempt(double dt) {
+  const bool contact = contacts_.active();
+  if (!scene_.solver.dynamic && !contact) check_static_support();
   auto t0 = Clock::now();
+  compute_frames();
+  timings_.assembly += since(t0);
+  if (contact) {
+    // Search distance: 2.5 × the displacement a step may make (Shi: g2·w0 per step, cut at 2×).
+    contacts_.begin_step(loop_xy_, frame_, 2.5 * scene_.solver.max_displacement_ratio * w0_);
+    update_pattern();
+  }
+  timings_.contact_detection = contacts_.detection_seconds();
+  t0 = Clock::now();
   assemble(dt);
+  if (contact) {
+    system_.save();
+    rhs_base_ = rhs_;
+  }
   timings_.assembly += since(t0);
 
-  t0 = Clock::now();
-  const bool ok = system_.factorize();
-  timings_.factorisation += since(t0);
-  if (!ok) {
-    const int u = system_.failed_unknown();
-    std::ostringstream os;
-    os << "the system matrix is not positive definite";
-    if (u >= 0) {
-      const int c = u / 2;
-      os << " at cover " << c << " (node "
-         << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
-         << "): it is not held; add fixed points or run dynamic";
+  Eigen::VectorXd d;
+  for (int it = 1;; ++it) {
+    if (contact && it > 1) {
+      t0 = Clock::now();
+      system_.restore();
+      rhs_ = rhs_base_;
+      timings_.assembly += since(t0);
     }
-    throw RunError(os.str());
+    if (contact) {
+      t0 = Clock::now();
+      contacts_.add_to_system(system_, rhs_);
+      timings_.assembly += since(t0);
+    }
+    t0 = Clock::now();
+    const bool ok = system_.factorize();
+    timings_.factorisation += since(t0);
+    if (!ok) {
+      const int u = system_.failed_unknown();
+      std::ostringstream os;
+      os << "the system matrix is not positive definite";
+      if (u >= 0) {
+        const int c = u / 2;
+        os << " at cover " << c << " (node "
+           << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
+           << "): it is not held; add fixed points or run dynamic";
+      }
+      throw RunError(os.str());
+    }
+    t0 = Clock::now();
+    d = system_.solve(rhs_);
+    timings_.solves += since(t0);
+    for (Eigen::Index i = 0; i < d.size(); ++i)
+      if (!std::isfinite(d[i]))
+        throw RunError("the displacement of cover " + std::to_string(i / 2) +
+                       " is not a finite number at t = " + std::to_string(time_) + " s");
+    if (!contact) break;
+    ++iterations_;
+    if (contacts_.judge(d, it, w0_) == 0) break;
+    if (it == kMaxIterations)
+      return "the open-close iteration did not converge in " + std::to_string(kMaxIterations) +
+             " iterations";
   }
-  t0 = Clock::now();
-  const Eigen::VectorXd d = system_.solve(rhs_);
-  timings_.solves += since(t0);
-  for (Eigen::Index i = 0; i < d.size(); ++i)
-    if (!std::isfinite(d[i]))
-      throw RunError("the displacement of cover " + std::to_string(i / 2) +
-                     " is not a finite number at t = " + std::to_string(time_) + " s");
+  if (contact) {
+    // Shi's step control: a step may move no cover more than 2·g2·w0 (contacts farther than the
+    // search distance would be missed), nor leave a penetration deeper than g2·w0.
+    const double limit = scene_.solver.max_displacement_ratio * w0_;
+    const double dmax = d.cwiseAbs().maxCoeff();
+    if (dmax > 2 * limit) {
+      std::ostringstream os;
+      os << "a displacement of " << dmax << " m in one step exceeds 2 × max_displacement_ratio × w0 = "
+         << 2 * limit << " m";
+      return os.str();
+    }
+    if (contacts_.max_penetration() > limit) {
+      std::ostringstream os;
+      os << "a penetration of " << contacts_.max_penetration()
+         << " m exceeds max_displacement_ratio × w0 = " << limit << " m";
+      return os.str();
+    }
+    contacts_.end_step();
+    max_penetration_ = std::max(max_penetration_, contacts_.max_penetration());
+  }
   t0 = Clock::now();
   update(d, dt);
   timings_.geometry_update += since(t0);
   time_ += dt;
+  return "";
+}
+
+void TimeStepper::step(double dt) {
+  const std::string why = attempt(dt);
+  if (!why.empty()) throw RunError(why);
 }
 
 void TimeStepper::impose_displacement(const Eigen::VectorXd& d) {
-  assemble(1.0);  // the element frames of the current configuration
+  compute_frames();  // the element frames of the current configuration
   update(d, 1.0);
 }
 
 const Eigen::VectorXd& TimeStepper::assemble_rhs(double dt) {
+  compute_frames();
   assemble(dt);
   return rhs_;
 }
@@ -374,20 +483,42 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
     timings_.output += since(t0);
   };
   output(0);
+  // The run covers steps × time_step of simulated time. Without contact every step has the full
+  // length. With contact, Shi's step control: a step that fails (iteration not converged,
+  // displacement or penetration too large) is redone with Δt × 0.3; after a success Δt grows by
+  // at most × 1.3 back towards time_step. Below time_step × 1e-3 the run stops (exit status 3).
   std::string status = "ok";
   std::int64_t done = 0;
-  for (std::int64_t s = 1; s <= sv.steps; ++s) {
+  const double t_end = static_cast<double>(sv.steps) * sv.time_step;
+  const double dt_floor = 1e-3 * sv.time_step;
+  double dt = sv.time_step;
+  while (time_ < t_end - 1e-9 * sv.time_step) {
+    const double h = std::min(dt, t_end - time_);
+    std::string why;
     try {
-      step(sv.time_step);
+      why = attempt(h);
     } catch (const RunError& e) {
       status = e.what();
       break;
     }
-    done = s;
-    if (s % sv.output_every == 0 || s == sv.steps) output(s);
-    if (progress && (s % 10 == 0 || s == sv.steps)) {
-      std::fprintf(stderr, "\rstep %lld/%lld  t = %.6g s", static_cast<long long>(s),
-                   static_cast<long long>(sv.steps), time_);
+    if (!why.empty()) {
+      ++cuts_;
+      dt = 0.3 * h;
+      if (dt < dt_floor) {
+        std::ostringstream os;
+        os << "time step cut below its floor (" << dt_floor << " s) at t = " << time_
+           << " s: " << why;
+        status = os.str();
+        break;
+      }
+      continue;
+    }
+    ++done;
+    dt = std::min(1.3 * dt, sv.time_step);
+    if (done % sv.output_every == 0 || time_ >= t_end - 1e-9 * sv.time_step) output(done);
+    if (progress && (done % 10 == 0)) {
+      std::fprintf(stderr, "\rstep %lld  t = %.6g / %.6g s  cuts %zu", static_cast<long long>(done),
+                   time_, t_end, cuts_);
       std::fflush(stderr);
     }
   }
@@ -403,9 +534,12 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["simulated_time"] = time_;
   summary["wall_seconds"] = since(wall0);
   summary["effects"] = effects();
-  summary["open_close_iterations"] = 0;
-  summary["time_step_cuts"] = 0;
-  summary["max_penetration"] = 0.0;
+  summary["open_close_iterations"] = iterations_;
+  summary["time_step_cuts"] = cuts_;
+  summary["max_penetration"] = max_penetration_;
+  summary["contacts"] = {{"at_end", contacts_.contacts().size()},
+                         {"closed_at_end", contacts_.closed_count()},
+                         {"pairs_tested", contacts_.detection_stats().pairs_tested}};
   summary["timings"] = {{"contact_detection", timings_.contact_detection},
                         {"assembly", timings_.assembly},
                         {"factorisation", timings_.factorisation},

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "element_integration.h"
+#include "contact.h"
 #include "elasticity.h"
 #include "mesh.h"
 #include "output_writer.h"
@@ -48,6 +49,10 @@ class TimeStepper {
   // ---- state, for tests ------------------------------------------------------------------
   /// One step of length dt. Throws RunError when it cannot be taken.
   void step(double dt);
+  /// Tries one step of length dt; on success the state moves on and "" is returned, otherwise
+  /// the state is left as it was and the reason is returned (the caller cuts dt and retries).
+  /// Throws RunError for what no smaller step can cure.
+  std::string attempt(double dt);
   const std::vector<double>& cover_displacement() const { return cover_u_; }  ///< [2·pc] m
   const std::vector<double>& velocity() const { return velocity_; }           ///< [2·pc] m/s
   const std::vector<double>& stress() const { return stress_; }  ///< [3·me] Pa σxx σyy τxy
@@ -65,16 +70,19 @@ class TimeStepper {
   std::vector<std::string> effects() const;
   int unknowns() const { return 2 * static_cast<int>(mesh_.cover_count()); }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
+  const ContactSet& contacts() const { return contacts_; }
+  std::size_t open_close_iterations() const { return iterations_; }
+  std::size_t time_step_cuts() const { return cuts_; }
+  double max_penetration() const { return max_penetration_; }
+  double model_half_size() const { return w0_; }
   /// The system of the last step (for benchmarks comparing against a bare factorisation).
   const SystemMatrix& system() const { return system_; }
   const Eigen::VectorXd& rhs() const { return rhs_; }
 
  private:
-  struct ElementFrame {  // the element's triangle in the configuration at the start of a step
-    double ox, oy;       // m, origin: corner 0
-    TriangleWeights w;
-  };
+  void compute_frames();
   void assemble(double dt);
+  void update_pattern();
   void update(const Eigen::VectorXd& d, double dt);
   std::vector<MeasureSample> sample_measure_points() const;
   void check_static_support() const;
@@ -100,6 +108,15 @@ class TimeStepper {
   StepTimings timings_;
   double time_ = 0;
   double max_step_displacement_ = 0;  // m, largest cover displacement in one step
+  // Contact and step control.
+  ContactSet contacts_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> pattern_pairs_;  // element pairs in pattern
+  Eigen::VectorXd rhs_base_;     // right-hand side without contacts
+  double w0_ = 0;                // m, half the model size
+  std::size_t iterations_ = 0;   // open–close iterations (solves), all steps
+  std::size_t cuts_ = 0;         // time-step cuts
+  double max_penetration_ = 0;   // m, largest penetration after any accepted step
+  static constexpr int kMaxIterations = 10;
 };
 
 }  // namespace nmm::solve

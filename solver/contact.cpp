@@ -1,0 +1,276 @@
+// Contact springs and the open–close iteration (Shi's DDA, physics.md §3).
+//
+// A contact is a vertex P of element A facing an edge Q2 → Q3 of element B (contact_detection).
+// With the edge's unit tangent t, outward normal n and P's projection P0 = Q2 + ω(Q3 − Q2), the
+// gap and the shear displacement are linear in the step's cover displacements d:
+//     gap   = g0 + cnᵀd,   cn = [ w_A,k(P)·n  for A's covers ;  −w_B,k(P0)·n  for B's ]
+//     shear = s0 + csᵀd,   cs = the same with t,   s0 = (P − P_ref)·t
+// (to first order this is Shi's triangle-area formula dn = Δ(P1,P2,P3)/l with the edge's own
+// motion taken at P0). P_ref = Q2 + ω_ref(Q3 − Q2) is the point of the edge P was held to when
+// the contact locked, carried from step to step.
+//
+// Springs (energy ½k·x²): normal K += kn·cn cnᵀ, F −= kn·g0·cn; locked adds the shear spring
+// K += ks·cs csᵀ, F −= ks·s0·cs; sliding drops it and applies friction F −= σ·tanφ·N·cs against
+// the slip direction σ, with N = −kn·gap the normal force of the previous solve (explicit within
+// the iteration, which repeats until N has settled to 0.1 %).
+//
+// States after each solve (T = tensile strength, c = cohesion, L = the contact's tributary
+// length: half of each candidate edge at P; both are lost once the contact slides or opens):
+//   open    → locked   when gap < −ε
+//   closed  → open     when N < −T·L − kn·ε   (tension beyond the strength)
+//   locked  → sliding  when |ks·shear| > N·tanφ + c·L   (Mohr–Coulomb)
+//   sliding → locked   when the slip of the step reverses against σ
+// ε = 1e-10·w0 at first; from the fifth iteration on it grows tenfold per iteration, so contacts
+// sitting at zero gap or zero slip cannot flip for ever.
+//
+// Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
+// the scene's interface_set, else the default interface: kn = 50·E_max·(1 m) (Shi's default),
+// ks = kn/2.5, frictionless, no cohesion or tension.
+#include "contact.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "error.h"
+
+namespace nmm::solve {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
+    : mesh_(mesh) {
+  active_ = !scene.joints.empty() || mesh.block_count() > 1;
+  if (!active_) return;
+  topo_ = build_contact_topology(mesh);
+  for (const JointSetDef& js : scene.joint_sets) {
+    const std::string at = "/joint_sets/" + js.name;
+    if (js.normal.model != NormalModel::constant)
+      throw InputError(scene_name, at + "/normal/model",
+                       "this nmm-solve implements the constant normal model only");
+    if (js.shear.model != ShearModel::constant)
+      throw InputError(scene_name, at + "/shear/model",
+                       "this nmm-solve implements the constant shear model only");
+    laws_.push_back({js.normal.kn, js.shear.ks, std::tan(js.friction_deg * kPi / 180.0),
+                     js.cohesion, js.tensile_strength});
+  }
+  for (const JointDef& j : scene.joints) joint_law_.push_back(j.set);
+  interface_used_ = mesh.block_count() > 1;
+  if (scene.interface_set >= 0) {
+    interface_law_ = scene.interface_set;
+  } else {
+    double e_max = 0;
+    for (const MaterialDef& m : scene.materials) e_max = std::max(e_max, m.young);
+    const double kn = 50.0 * e_max;
+    laws_.push_back({kn, kn / 2.5, 0.0, 0.0, 0.0});
+    interface_law_ = static_cast<int>(laws_.size()) - 1;
+  }
+}
+
+void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<ElementFrame>& frames,
+                            double d0) {
+  const auto t0 = std::chrono::steady_clock::now();
+  closed_block_.assign(topo_.next.size(), -1);
+  for (const Contact& c : committed_)
+    if (c.state != ContactState::open) closed_block_[c.at.vertex] = topo_.block_of[c.at.elem_b];
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, closed_block_, &stats_);
+  detection_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // Transfer: a vertex keeps its state while it stays against the same element (on the same
+  // edge, or having slid onto a neighbouring edge of that element).
+  std::map<std::int32_t, const Contact*> before;
+  for (const Contact& c : committed_) before[c.at.vertex] = &c;
+  std::vector<Contact> now;
+  now.reserve(found.size());
+  for (const ContactCandidate& f : found) {
+    Contact c;
+    c.at = f;
+    std::int32_t joint = mesh_.loop_edge_joint[f.edge];
+    if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
+    if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
+    c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
+    const auto it = before.find(f.vertex);
+    if (it != before.end() && it->second->at.elem_b == f.elem_b) {
+      const Contact& o = *it->second;
+      c.state = o.state;
+      c.broken = o.broken;
+      c.slip_sign = o.slip_sign;
+      c.normal_force = o.normal_force;
+      c.friction_normal = o.normal_force;
+      // A locked contact keeps its point on the same edge; one that slid, or moved to another
+      // edge, is held from where it is now.
+      c.omega_ref = (o.state == ContactState::locked && o.at.edge == f.edge) ? o.omega_ref : f.omega;
+    } else {
+      c.omega_ref = f.omega;
+    }
+    c.start_state = c.state;
+    now.push_back(c);
+  }
+  contacts_ = std::move(now);
+
+  // Linearise each contact in the current configuration.
+  for (Contact& c : contacts_) {
+    const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo_.next[q2];
+    const double px = xy[2 * p], py = xy[2 * p + 1];
+    const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
+    const double l = std::hypot(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
+    const double p0x = xy[2 * q2] + c.at.omega * dx, p0y = xy[2 * q2 + 1] + c.at.omega * dy;
+    const ElementFrame& fa = frames[c.at.elem_a];
+    const ElementFrame& fb = frames[c.at.elem_b];
+    for (int k = 0; k < 3; ++k) {
+      const double wa = fa.w.at(k, px - fa.ox, py - fa.oy);
+      const double wb = fb.w.at(k, p0x - fb.ox, p0y - fb.oy);
+      const int ca = mesh_.element_covers[3 * c.at.elem_a + k];
+      const int cb = mesh_.element_covers[3 * c.at.elem_b + k];
+      c.dofs[2 * k] = 2 * ca;
+      c.dofs[2 * k + 1] = 2 * ca + 1;
+      c.dofs[6 + 2 * k] = 2 * cb;
+      c.dofs[6 + 2 * k + 1] = 2 * cb + 1;
+      c.cn[2 * k] = wa * nx;
+      c.cn[2 * k + 1] = wa * ny;
+      c.cn[6 + 2 * k] = -wb * nx;
+      c.cn[6 + 2 * k + 1] = -wb * ny;
+      c.cs[2 * k] = wa * tx;
+      c.cs[2 * k + 1] = wa * ty;
+      c.cs[6 + 2 * k] = -wb * tx;
+      c.cs[6 + 2 * k + 1] = -wb * ty;
+    }
+    c.gap0 = c.at.gap;
+    c.gap = c.at.gap;
+    const double rx = xy[2 * q2] + c.omega_ref * dx, ry = xy[2 * q2 + 1] + c.omega_ref * dy;
+    c.shear0 = c.state == ContactState::locked ? (px - rx) * tx + (py - ry) * ty : 0.0;
+    // Tributary length: half of each candidate edge meeting at P.
+    c.length = 0;
+    for (std::int32_t s : {topo_.prev[p], p}) {
+      if (!topo_.edge_candidate[s]) continue;
+      const std::int32_t f = topo_.next[s];
+      c.length += 0.5 * std::hypot(xy[2 * f] - xy[2 * s], xy[2 * f + 1] - xy[2 * s + 1]);
+    }
+  }
+}
+
+std::vector<std::string> ContactSet::effects() const {
+  if (!active_) return {};
+  std::vector<int> used = joint_law_;
+  if (interface_used_) used.push_back(interface_law_);
+  bool friction = false, cohesion = false, tension = false;
+  for (int l : used) {
+    friction |= laws_[l].tan_phi > 0;
+    cohesion |= laws_[l].cohesion > 0;
+    tension |= laws_[l].tensile > 0;
+  }
+  std::vector<std::string> e{"contact"};
+  if (friction) e.push_back("friction");
+  if (cohesion) e.push_back("cohesion");
+  if (tension) e.push_back("tension");
+  return e;
+}
+
+std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::element_pairs() const {
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  for (const Contact& c : contacts_) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+                               int first_group) {
+  for (Contact& c : contacts_) {
+    const auto it = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(c.at.elem_a, c.at.elem_b));
+    c.group = first_group + static_cast<int>(it - pairs.begin());
+  }
+}
+
+void ContactSet::add_to_system(SystemMatrix& k, Eigen::VectorXd& rhs) const {
+  Eigen::Matrix<double, 12, 12> block;
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::open) continue;
+    const ContactLaw& law = laws_[c.law];
+    const Eigen::Map<const Eigen::Matrix<double, 12, 1>> cn(c.cn.data()), cs(c.cs.data());
+    block.noalias() = law.kn * cn * cn.transpose();
+    Eigen::Matrix<double, 12, 1> f = -law.kn * c.gap0 * cn;
+    if (c.state == ContactState::locked) {
+      block.noalias() += law.ks * cs * cs.transpose();
+      f -= law.ks * c.shear0 * cs;
+    } else {
+      f -= c.slip_sign * law.tan_phi * std::max(c.friction_normal, 0.0) * cs;
+    }
+    k.add_group(static_cast<std::size_t>(c.group), block.data());
+    for (int i = 0; i < 12; ++i) rhs[c.dofs[i]] += f[i];
+  }
+}
+
+int ContactSet::judge(const Eigen::VectorXd& d, int iteration, double w0) {
+  const double eps = 1e-10 * w0 * std::pow(10.0, std::max(0, iteration - 4));
+  int changed = 0;
+  for (Contact& c : contacts_) {
+    const ContactLaw& law = laws_[c.law];
+    double dg = 0, ds = 0;
+    for (int i = 0; i < 12; ++i) {
+      dg += c.cn[i] * d[c.dofs[i]];
+      ds += c.cs[i] * d[c.dofs[i]];
+    }
+    c.gap = c.gap0 + dg;
+    c.shear = c.shear0 + ds;
+    const double n = -law.kn * c.gap;
+    const double tension_cap = c.broken ? 0.0 : law.tensile * c.length;
+    const double cohesion = c.broken ? 0.0 : law.cohesion * c.length;
+    switch (c.state) {
+      case ContactState::open:
+        c.normal_force = 0;
+        if (c.gap < -eps) {
+          c.state = ContactState::locked;
+          c.omega_ref = c.at.omega;
+          c.friction_normal = n;
+          ++changed;
+        }
+        break;
+      case ContactState::locked:
+      case ContactState::sliding:
+        c.normal_force = std::max(n, 0.0);
+        if (n < -tension_cap - law.kn * eps) {
+          c.state = ContactState::open;
+          c.broken = true;
+          ++changed;
+        } else if (c.state == ContactState::locked) {
+          if (std::abs(law.ks * c.shear) > n * law.tan_phi + cohesion) {
+            c.state = ContactState::sliding;
+            c.slip_sign = c.shear > 0 ? 1 : -1;
+            c.friction_normal = n;
+            c.broken = true;
+            ++changed;
+          }
+        } else if (ds * c.slip_sign < -eps) {
+          c.state = ContactState::locked;  // the slip reversed: it sticks where it is
+          c.omega_ref = c.at.omega;
+          c.shear0 = 0;
+          ++changed;
+        } else if (std::abs(n - c.friction_normal) > 1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) &&
+                   std::abs(n - c.friction_normal) > law.kn * eps) {
+          c.friction_normal = n;  // friction must use the normal force it ends with
+          ++changed;
+        }
+        break;
+    }
+  }
+  return changed;
+}
+
+double ContactSet::max_penetration() const {
+  double p = 0;
+  for (const Contact& c : contacts_) p = std::max(p, -c.gap);
+  return p;
+}
+
+std::size_t ContactSet::closed_count() const {
+  std::size_t n = 0;
+  for (const Contact& c : contacts_) n += c.state != ContactState::open ? 1 : 0;
+  return n;
+}
+
+}  // namespace nmm::solve

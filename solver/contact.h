@@ -1,0 +1,112 @@
+// Contacts: penalty springs, Mohr–Coulomb friction, the open–close states, and their transfer
+// from step to step. See contact.cpp for the equations.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "contact_detection.h"
+#include "element_integration.h"
+#include "mesh.h"
+#include "scene.h"
+#include "system_matrix.h"
+
+namespace nmm::solve {
+
+/// The element's triangle in the configuration at the start of a step.
+struct ElementFrame {
+  double ox = 0, oy = 0;  ///< m, origin: the node of its first cover
+  TriangleWeights w;      ///< weights relative to (ox, oy)
+};
+
+/// The contact law of one joint set (or of the default interface), constant springs.
+struct ContactLaw {
+  double kn = 0;        ///< N/m, normal spring per contact point
+  double ks = 0;        ///< N/m, shear spring per contact point
+  double tan_phi = 0;   ///< –, friction coefficient
+  double cohesion = 0;  ///< Pa
+  double tensile = 0;   ///< Pa, tensile strength
+};
+
+enum class ContactState : std::uint8_t { open, locked, sliding };
+
+struct Contact {
+  ContactCandidate at;  ///< vertex P, edge, elements, ω, gap at the start of the step
+  int law = 0;          ///< index into ContactSet::laws()
+  double length = 0;    ///< m, tributary joint length of the contact point
+  ContactState state = ContactState::open;
+  ContactState start_state = ContactState::open;  ///< state at the start of the step
+  bool broken = false;       ///< cohesion and tensile strength lost (it slid or opened)
+  double omega_ref = 0;      ///< –, point of the edge P is held to while locked
+  int slip_sign = 0;         ///< direction of sliding along the edge (±1)
+  double normal_force = 0;   ///< N, compression > 0, from the last solve
+  double friction_normal = 0;  ///< N, the normal force the friction of the last solve used
+  double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
+  double shear = 0;          ///< m, shear displacement from the reference after the last solve
+  // Linearisation for this step: gap = gap0 + cnᵀd, shear = shear0 + csᵀd over 12 unknowns.
+  std::array<int, 12> dofs{};
+  std::array<double, 12> cn{}, cs{};
+  double gap0 = 0, shear0 = 0;
+  int group = -1;  ///< coupling group of its element pair in the system matrix
+};
+
+/// All contacts of a run.
+class ContactSet {
+ public:
+  ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
+
+  bool active() const { return active_; }
+  /// "contact", and "friction", "cohesion", "tension" when a law in use has them.
+  std::vector<std::string> effects() const;
+  const std::vector<ContactLaw>& laws() const { return laws_; }
+  const std::vector<Contact>& contacts() const { return contacts_; }
+
+  /// Detects contacts in the current configuration (search distance d0, m), carries over the
+  /// states of the previous step and linearises each contact with the element frames.
+  void begin_step(const std::vector<double>& loop_xy, const std::vector<ElementFrame>& frames,
+                  double d0);
+
+  /// Element pairs coupled by the current contacts, sorted and unique.
+  std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs() const;
+  /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted,
+  /// a superset of element_pairs()).
+  void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
+
+  /// Adds the springs and friction of the current states to the system.
+  void add_to_system(SystemMatrix& k, Eigen::VectorXd& rhs) const;
+
+  /// Judges every contact against the solution d of open–close iteration `iteration` (1, 2,
+  /// ...) in a model of half-size w0 (m); returns the number whose state changed (or whose
+  /// friction used a normal force that has since changed by more than 0.1 %).
+  int judge(const Eigen::VectorXd& d, int iteration, double w0);
+
+  /// Accepts the step: its contacts and states are what the next step starts from. A step that
+  /// is not accepted (cut and redone) leaves them as they were.
+  void end_step() { committed_ = contacts_; }
+
+  /// Largest penetration of the contacts after the last solve, m.
+  double max_penetration() const;
+  std::size_t closed_count() const;
+  double detection_seconds() const { return detection_seconds_; }
+  const DetectionStats& detection_stats() const { return stats_; }
+
+ private:
+  const Mesh& mesh_;
+  ContactTopology topo_;
+  std::vector<ContactLaw> laws_;
+  std::vector<int> joint_law_;  // [joint] law index
+  int interface_law_ = 0;
+  bool interface_used_ = false;  // separate blocks can meet along their boundaries
+  bool active_ = false;
+  std::vector<Contact> contacts_;   // this step's, being iterated
+  std::vector<Contact> committed_;  // as the last accepted step left them
+  std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
+  DetectionStats stats_;
+  double detection_seconds_ = 0;
+};
+
+}  // namespace nmm::solve

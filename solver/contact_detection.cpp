@@ -1,0 +1,243 @@
+// Contact detection (classic NMM / DDA, physics.md §3).
+//
+// Broad phase: a uniform grid of cell size max(h, 2·d0). Every candidate edge is entered in the
+// cells its box (grown by d0) overlaps; every candidate vertex meets the edges of its own cell.
+// Element edges are at most one mesh size long however large the blocks are, so each cell holds
+// a bounded number of edges and the cost grows about linearly with the number of edges.
+//
+// Narrow phase, for vertex P of element A and edge Q2 → Q3 of element B (loops are CCW, so the
+// edge's outward normal is n = (t_y, −t_x) with t = (Q3 − Q2)/l):
+//   - A ≠ B, and (P, B) not continuous (P coincides with a vertex of B seeing the same covers
+//     with the same weights: the two can never separate, e.g. along a free surface inside one
+//     block, or next to a crack tip whose covers are not split);
+//   - ω = (P − Q2)·t / l in [0, 1]: P lies beside the edge;
+//   - gap g = (P − Q2)·n ≤ d0, and g ≥ −ε (ε = 1e-9·h: bodies start apart or touching) unless
+//     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
+//     (a vertex inside another element without having come in through a contact is near that
+//     edge from the wrong side, e.g. a corner of a block near the far side of the same block);
+//     a negative gap must also mean that P lies inside element B: past a corner of B, P can be
+//     behind the line of an edge without being inside B at all;
+//   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
+// Each vertex keeps one edge (the angle rule of DDA, here for angle–edge and angle–angle
+// alike): the smallest |g|, then the edge most opposite to P's own normal (the entrance edge),
+// then the lower index. Edge–edge contact is the two vertex–edge contacts of its end points.
+// Where two vertices coincide and each picks the other's element (matching vertices on the two
+// faces of a joint), only the contact of the lower vertex index is kept, so one point of a joint
+// is one contact.
+#include "contact_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+namespace nmm::solve {
+
+bool ContactTopology::is_continuous(std::int32_t vertex, std::int32_t element) const {
+  return std::binary_search(continuous.begin(), continuous.end(), std::make_pair(vertex, element));
+}
+
+namespace {
+
+// Crossing-number test of (x, y) in element e's loop (slits and bridges cancel).
+bool inside_element(const ContactTopology& t, const std::vector<double>& xy, std::int32_t first,
+                    double x, double y) {
+  bool in = false;
+  std::int32_t j = t.prev[first], i = first;
+  do {
+    const double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
+    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) in = !in;
+    j = i;
+    i = t.next[i];
+  } while (i != first);
+  return in;
+}
+
+// Weights of the element's three covers at (x, y), from the mesh's node positions.
+void cover_weights(const Mesh& m, std::size_t e, double x, double y, double w[3]) {
+  const std::int32_t t = m.element_triangle[e];
+  double p[6];
+  for (int k = 0; k < 3; ++k) {
+    const std::int32_t n = m.triangle_nodes[3 * t + k];
+    p[2 * k] = m.node_xy[2 * n];
+    p[2 * k + 1] = m.node_xy[2 * n + 1];
+  }
+  const double det = (p[2] - p[0]) * (p[5] - p[1]) - (p[4] - p[0]) * (p[3] - p[1]);
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    w[k] = ((p[2 * i] - x) * (p[2 * j + 1] - y) - (p[2 * j] - x) * (p[2 * i + 1] - y)) / det;
+  }
+}
+
+}  // namespace
+
+ContactTopology build_contact_topology(const Mesh& mesh) {
+  ContactTopology t;
+  t.mesh_size = mesh.mesh_size;
+  const std::size_t nv = mesh.loop_vertex_count();
+  t.next.resize(nv);
+  t.prev.resize(nv);
+  t.element_of.resize(nv);
+  t.edge_candidate.assign(nv, 0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const std::int32_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
+    for (std::int32_t i = 0; i < n; ++i) {
+      t.next[b + i] = b + (i + 1) % n;
+      t.prev[b + i] = b + (i + n - 1) % n;
+      t.element_of[b + i] = static_cast<std::int32_t>(e);
+    }
+  }
+  for (std::int32_t v : mesh.contact_edge) t.edge_candidate[v] = 1;
+  t.edges = mesh.contact_edge;
+  t.block_of = mesh.element_block;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (t.edge_candidate[v] || t.edge_candidate[t.prev[v]])
+      t.vertices.push_back(static_cast<std::int32_t>(v));
+
+  // Continuity: candidate vertices at the same place (the mesh file rounds each exact point to
+  // the same double) whose elements see the same covers with the same weights there.
+  std::map<std::pair<double, double>, std::vector<std::int32_t>> at;
+  for (std::int32_t v : t.vertices) at[{mesh.loop_xy[2 * v], mesh.loop_xy[2 * v + 1]}].push_back(v);
+  for (const auto& [xy, vs] : at) {
+    if (vs.size() < 2) continue;
+    for (std::int32_t p : vs)
+      for (std::int32_t q : vs) {
+        const std::int32_t ea = t.element_of[p], eb = t.element_of[q];
+        if (ea == eb) continue;
+        double wa[3], wb[3];
+        cover_weights(mesh, ea, xy.first, xy.second, wa);
+        cover_weights(mesh, eb, xy.first, xy.second, wb);
+        // Cover → weight, dropping covers with no weight at this point.
+        std::map<std::int32_t, double> ca, cb;
+        for (int k = 0; k < 3; ++k) {
+          if (std::abs(wa[k]) > 1e-9) ca[mesh.element_covers[3 * ea + k]] += wa[k];
+          if (std::abs(wb[k]) > 1e-9) cb[mesh.element_covers[3 * eb + k]] += wb[k];
+        }
+        bool same = ca.size() == cb.size();
+        for (auto ia = ca.begin(), ib = cb.begin(); same && ia != ca.end(); ++ia, ++ib)
+          same = ia->first == ib->first && std::abs(ia->second - ib->second) < 1e-9;
+        if (same) t.continuous.emplace_back(p, eb);
+      }
+  }
+  std::sort(t.continuous.begin(), t.continuous.end());
+  t.continuous.erase(std::unique(t.continuous.begin(), t.continuous.end()), t.continuous.end());
+  return t;
+}
+
+std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
+                                              const std::vector<double>& xy, double d0,
+                                              const std::vector<std::int32_t>& closed_block,
+                                              DetectionStats* stats) {
+  std::vector<ContactCandidate> out;
+  if (topo.edges.empty()) return out;
+  const double cell = std::max(topo.mesh_size, 2 * d0);
+  const double p_max = 0.3 * topo.mesh_size;
+
+  // Grid: (cell key, edge) pairs sorted by key; a vertex looks up its own cell.
+  double x0 = xy[0], y0 = xy[1];
+  for (std::size_t i = 0; i < xy.size(); i += 2) {
+    x0 = std::min(x0, xy[i]);
+    y0 = std::min(y0, xy[i + 1]);
+  }
+  auto cell_of = [&](double x, double y) {
+    return std::make_pair(static_cast<std::int64_t>(std::floor((x - x0) / cell)),
+                          static_cast<std::int64_t>(std::floor((y - y0) / cell)));
+  };
+  auto key = [](std::int64_t i, std::int64_t j) { return (i << 32) ^ (j & 0xffffffff); };
+  std::vector<std::pair<std::int64_t, std::int32_t>> entries;
+  entries.reserve(topo.edges.size() * 2);
+  for (std::int32_t e : topo.edges) {
+    const std::int32_t f = topo.next[e];
+    const auto [i0, j0] = cell_of(std::min(xy[2 * e], xy[2 * f]) - d0, std::min(xy[2 * e + 1], xy[2 * f + 1]) - d0);
+    const auto [i1, j1] = cell_of(std::max(xy[2 * e], xy[2 * f]) + d0, std::max(xy[2 * e + 1], xy[2 * f + 1]) + d0);
+    for (std::int64_t i = i0; i <= i1; ++i)
+      for (std::int64_t j = j0; j <= j1; ++j) entries.emplace_back(key(i, j), e);
+  }
+  std::sort(entries.begin(), entries.end());
+
+  std::size_t tested = 0;
+  std::unordered_map<std::int32_t, std::size_t> by_vertex;
+  for (std::int32_t p : topo.vertices) {
+    const double px = xy[2 * p], py = xy[2 * p + 1];
+    const std::int32_t ea = topo.element_of[p];
+    // P's own outward normal: the mean of its candidate edges' normals.
+    double nx = 0, ny = 0;
+    for (std::int32_t s : {topo.prev[p], p}) {
+      if (!topo.edge_candidate[s]) continue;
+      const std::int32_t f = topo.next[s];
+      const double dx = xy[2 * f] - xy[2 * s], dy = xy[2 * f + 1] - xy[2 * s + 1];
+      const double l = std::hypot(dx, dy);
+      if (l > 0) {
+        nx += dy / l;
+        ny -= dx / l;
+      }
+    }
+    const double nl = std::hypot(nx, ny);
+    if (nl < 1e-9) continue;  // the tip of a slit: both faces are this element's own
+    nx /= nl;
+    ny /= nl;
+    const auto [ci, cj] = cell_of(px, py);
+    const std::int64_t k = key(ci, cj);
+    auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
+    bool found = false;
+    ContactCandidate best{};
+    double best_abs = 0, best_face = 0;
+    for (; it != entries.end() && it->first == k; ++it) {
+      const std::int32_t q2 = it->second, q3 = topo.next[q2];
+      const std::int32_t eb = topo.element_of[q2];
+      if (eb == ea || topo.is_continuous(p, eb)) continue;
+      ++tested;
+      const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
+      const double l = std::hypot(dx, dy);
+      if (!(l > 1e-12 * topo.mesh_size)) continue;
+      const double tx = dx / l, ty = dy / l, ex = ty, ey = -tx;
+      const double rx = px - xy[2 * q2], ry = py - xy[2 * q2 + 1];
+      const double omega = (rx * tx + ry * ty) / l;
+      if (omega < -1e-9 || omega > 1 + 1e-9) continue;
+      const double g = rx * ex + ry * ey;
+      const bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
+      const double eps = 1e-9 * topo.mesh_size;
+      if (g > d0 || g < (was_closed ? -p_max : -eps)) continue;
+      if (g < -eps && !inside_element(topo, xy, q2, px, py)) continue;
+      const double face = nx * ex + ny * ey;  // −1: exactly opposite
+      if (face > -0.2) continue;
+      const double ag = std::abs(g);
+      const double tol = 1e-9 * topo.mesh_size;
+      const bool better = !found || ag < best_abs - tol ||
+                          (ag <= best_abs + tol && (face < best_face - 1e-12 ||
+                                                    (face <= best_face + 1e-12 && q2 < best.edge)));
+      if (better) {
+        best = {p, q2, ea, eb, std::clamp(omega, 0.0, 1.0), g};
+        best_abs = ag;
+        best_face = face;
+        found = true;
+      }
+    }
+    if (found) {
+      by_vertex[p] = out.size();
+      out.push_back(best);
+    }
+  }
+  // One contact per point of a joint: drop the mirror of a contact between coincident vertices.
+  std::vector<char> drop(out.size(), 0);
+  const double tol = 1e-6 * topo.mesh_size;
+  for (std::size_t c = 0; c < out.size(); ++c) {
+    const ContactCandidate& a = out[c];
+    for (std::int32_t q : {a.edge, topo.next[a.edge]}) {
+      if (std::hypot(xy[2 * q] - xy[2 * a.vertex], xy[2 * q + 1] - xy[2 * a.vertex + 1]) > tol) continue;
+      const auto m = by_vertex.find(q);
+      if (m == by_vertex.end() || out[m->second].elem_b != a.elem_a) continue;
+      drop[a.vertex < q ? m->second : c] = 1;
+    }
+  }
+  std::vector<ContactCandidate> kept;
+  for (std::size_t c = 0; c < out.size(); ++c)
+    if (!drop[c]) kept.push_back(out[c]);
+  if (stats) {
+    stats->pairs_tested += tested;
+    stats->contacts += kept.size();
+  }
+  return kept;
+}
+
+}  // namespace nmm::solve

@@ -1,0 +1,57 @@
+// Contact detection between manifold-element boundary edges that lie on joints or body
+// boundaries (the mesh's contact-candidate edges): see contact_detection.cpp for the rules.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh.h"
+
+namespace nmm::solve {
+
+/// What does not change during a run: which loop vertices and edges can touch, and which
+/// (vertex, element) pairs move together and so can never be in contact.
+struct ContactTopology {
+  std::vector<std::int32_t> next;        ///< [v] next loop vertex of v in its element
+  std::vector<std::int32_t> prev;        ///< [v] previous loop vertex of v in its element
+  std::vector<std::int32_t> element_of;  ///< [v] element whose loop holds v
+  std::vector<std::int32_t> block_of;    ///< [element] block
+  std::vector<std::uint8_t> edge_candidate;  ///< [v] 1 if edge v → next[v] can touch
+  std::vector<std::int32_t> edges;     ///< candidate edges, by their first vertex
+  std::vector<std::int32_t> vertices;  ///< loop vertices with at least one candidate edge
+  /// Sorted (vertex, element) pairs that are continuous: the vertex coincides with a vertex of
+  /// that element and both see the same covers with the same weights there.
+  std::vector<std::pair<std::int32_t, std::int32_t>> continuous;
+  double mesh_size = 0;  ///< m
+  bool is_continuous(std::int32_t vertex, std::int32_t element) const;
+};
+
+ContactTopology build_contact_topology(const Mesh& mesh);
+
+/// A vertex P (of element A) facing an edge Q2 → Q3 (of element B) within the search distance.
+struct ContactCandidate {
+  std::int32_t vertex;   ///< global loop vertex P
+  std::int32_t edge;     ///< first vertex Q2 of the edge (Q3 = next[Q2])
+  std::int32_t elem_a;   ///< element of P
+  std::int32_t elem_b;   ///< element of the edge
+  double omega;          ///< –, P projects to Q2 + ω (Q3 − Q2), ω in [0, 1]
+  double gap;            ///< m, (P − Q2)·n with n the edge's outward normal; < 0: penetration
+};
+
+struct DetectionStats {
+  std::size_t pairs_tested = 0;  ///< vertex–edge pairs that reached the narrow phase
+  std::size_t contacts = 0;      ///< candidates kept
+};
+
+/// Finds, for every candidate vertex, the one edge it faces within distance d0 (m), by a uniform
+/// grid over the edges (cost about linear in the number of edges) and the narrow-phase rules.
+/// `closed_block[v]` is the block vertex v was in closed contact with after the last step (-1
+/// if none): only such a vertex may already be inside that block's elements; any other must be
+/// outside (a vertex inside its own or another block without having come in through a contact
+/// is not in contact: it is near an edge from the wrong side).
+std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
+                                              const std::vector<double>& loop_xy, double d0,
+                                              const std::vector<std::int32_t>& closed_block,
+                                              DetectionStats* stats = nullptr);
+
+}  // namespace nmm::solve
