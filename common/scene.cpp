@@ -449,13 +449,14 @@ std::vector<Vec2> read_points(const Reader& r) {
 }
 
 SolverDef read_solver(const Reader& r) {
-  r.check_keys({"time_step", "steps", "dynamic", "dynamic_factor", "max_displacement_ratio",
-                "output_every", "fixed_point_stiffness"});
+  r.check_keys({"time_step", "steps", "dynamic", "dynamic_factor", "newmark_beta",
+                "max_displacement_ratio", "output_every", "fixed_point_stiffness"});
   SolverDef s;  // defaults from scene.h
   s.time_step = r.optional_number("time_step", s.time_step, kPositive);
   s.steps = r.optional_integer("steps", s.steps, 0);
   if (r.has("dynamic")) s.dynamic = r["dynamic"].as_bool();
   s.dynamic_factor = r.optional_number("dynamic_factor", s.dynamic_factor, interval(0, true, 1, true));
+  s.newmark_beta = r.optional_number("newmark_beta", s.newmark_beta, interval(0.5, true, 1, true));
   s.fixed_point_stiffness =
       r.optional_number("fixed_point_stiffness", s.fixed_point_stiffness, kNonNegative);
   s.max_displacement_ratio = r.optional_number("max_displacement_ratio", s.max_displacement_ratio,

@@ -82,6 +82,7 @@ struct SolverDef {
   std::int64_t steps = 1000;              ///< number of time steps, >= 0
   bool dynamic = true;                    ///< false: static analysis (no inertia, v0 = 0)
   double dynamic_factor = 1.0;            ///< –, in [0, 1]: v0 of the next step = factor · v1
+  double newmark_beta = 0.6;              ///< –, in [0.5, 1]: 0.5 is Shi's scheme exactly
   double fixed_point_stiffness = 0;       ///< N/m per unit thickness; 0: 100 × largest E·1 m
   double max_displacement_ratio = 0.001;  ///< –, g2 in Shi's step control, in (0, 1)
   std::int64_t output_every = 10;         ///< steps between outputs, >= 1

@@ -2,26 +2,35 @@
 //
 // A contact is a vertex P of element A facing an edge Q2 → Q3 of element B (contact_detection).
 // With the edge's unit tangent t, outward normal n and P's projection P0 = Q2 + ω(Q3 − Q2), the
-// gap and the shear displacement are linear in the step's cover displacements d:
-//     gap   = g0 + cnᵀd,   cn = [ w_A,k(P)·n  for A's covers ;  −w_B,k(P0)·n  for B's ]
-//     shear = s0 + csᵀd,   cs = the same with t,   s0 = (P − P_ref)·t
+// gap and the relative tangential motion of the step are linear in the cover displacements d:
+//     gap  = g0 + cnᵀd,   cn = [ w_A,k(P)·n  for A's covers ;  −w_B,k(P0)·n  for B's ]
+//     slip = csᵀd,        cs = the same with t
 // (to first order this is Shi's triangle-area formula dn = Δ(P1,P2,P3)/l with the edge's own
-// motion taken at P0). P_ref = Q2 + ω_ref(Q3 − Q2) is the point of the edge P was held to when
-// the contact locked, carried from step to step.
+// motion taken at P0).
 //
-// Springs (energy ½k·x²): normal K += kn·cn cnᵀ, F −= kn·g0·cn; locked adds the shear spring
-// K += ks·cs csᵀ, F −= ks·s0·cs; sliding drops it and applies friction F −= σ·tanφ·N·cs against
-// the slip direction σ, with N = −kn·gap the normal force of the previous solve (explicit within
-// the iteration, which repeats until N has settled to 0.1 %).
+// Springs (energy ½k·x²): normal K += kn·cn cnᵀ, F −= kn·g0·cn. Shear: the spring carries an
+// elastic shear s_el from step to step (elastoplastic, "return mapping" friction): the trial
+// shear of a step is s = s_el + slip. Locked: K += ks·cs csᵀ, F −= ks·s_el·cs. Sliding: no
+// spring, friction F −= σ·(tanφ·N)·cs against the slip direction σ, N = −kn·gap of the previous
+// solve (explicit within the iteration, which repeats until N has settled to 0.1 %; those
+// repeats change only the right-hand side, so they reuse the factorisation). A step
+// that ends sliding leaves s_el = σ·tanφ·N/ks, the spring loaded at the friction limit, so the
+// shear force stays continuous when the contact sticks again (a spring restarting from zero
+// would drop the force from tanφ·N to 0 in one step and shake the blocks).
 //
 // States after each solve (T = tensile strength, c = cohesion, L = the contact's tributary
 // length: half of each candidate edge at P; both are lost once the contact slides or opens):
-//   open    → locked   when gap < −ε
+//   open    → locked   when gap < −ε (a fresh spring)
 //   closed  → open     when N < −T·L − kn·ε   (tension beyond the strength)
-//   locked  → sliding  when |ks·shear| > N·tanφ + c·L   (Mohr–Coulomb)
-//   sliding → locked   when the slip of the step reverses against σ
-// ε = 1e-10·w0 at first; from the fifth iteration on it grows tenfold per iteration, so contacts
-// sitting at zero gap or zero slip cannot flip for ever.
+//   locked  → sliding  when |ks·s| > N·tanφ + c·L   (Mohr–Coulomb), σ = sign(s)
+//   sliding → locked   when σ·ks·s < N·tanφ: the trial spring force falls below the limit (the
+//                      slip reversed)
+// ε = 1e-10·w0. A contact may change state once in one step; changing again (back) leaves it
+// in the least constraining state for the rest of the step — open if it was flipping between
+// open and closed, sliding (friction at its limit) if between stick and slip — so contacts
+// sitting at zero gap or zero slip cannot flip for ever, and a frozen contact never holds more
+// than Coulomb allows (frozen locked, a contact at zero normal force could pin a whole block; a
+// tolerance growing instead would turn into huge forces: with kn = 5e11 N/m, 1 µm is 500 kN).
 //
 // Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
 // the scene's interface_set, else the default interface: kn = 50·E_max·(1 m) (Shi's default),
@@ -71,17 +80,17 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
 }
 
 void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<ElementFrame>& frames,
-                            double d0) {
+                            double d0, double shallow) {
   const auto t0 = std::chrono::steady_clock::now();
   closed_block_.assign(topo_.next.size(), -1);
   for (const Contact& c : committed_)
     if (c.state != ContactState::open) closed_block_[c.at.vertex] = topo_.block_of[c.at.elem_b];
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, closed_block_, &stats_);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  // Transfer: a vertex keeps its state while it stays against the same element (on the same
-  // edge, or having slid onto a neighbouring edge of that element).
+  // Transfer: a vertex keeps its state while it stays against the same block (on the same edge,
+  // or having slid onto another edge of that block, e.g. the next element's along a joint).
   std::map<std::int32_t, const Contact*> before;
   for (const Contact& c : committed_) before[c.at.vertex] = &c;
   std::vector<Contact> now;
@@ -94,18 +103,14 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
     if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
     c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
     const auto it = before.find(f.vertex);
-    if (it != before.end() && it->second->at.elem_b == f.elem_b) {
+    if (it != before.end() && topo_.block_of[it->second->at.elem_b] == topo_.block_of[f.elem_b]) {
       const Contact& o = *it->second;
       c.state = o.state;
       c.broken = o.broken;
       c.slip_sign = o.slip_sign;
       c.normal_force = o.normal_force;
       c.friction_normal = o.normal_force;
-      // A locked contact keeps its point on the same edge; one that slid, or moved to another
-      // edge, is held from where it is now.
-      c.omega_ref = (o.state == ContactState::locked && o.at.edge == f.edge) ? o.omega_ref : f.omega;
-    } else {
-      c.omega_ref = f.omega;
+      c.shear_el = o.shear_el;
     }
     c.start_state = c.state;
     now.push_back(c);
@@ -141,8 +146,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
     }
     c.gap0 = c.at.gap;
     c.gap = c.at.gap;
-    const double rx = xy[2 * q2] + c.omega_ref * dx, ry = xy[2 * q2 + 1] + c.omega_ref * dy;
-    c.shear0 = c.state == ContactState::locked ? (px - rx) * tx + (py - ry) * ty : 0.0;
+    c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
     // Tributary length: half of each candidate edge meeting at P.
     c.length = 0;
     for (std::int32_t s : {topo_.prev[p], p}) {
@@ -186,7 +190,7 @@ void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::in
   }
 }
 
-void ContactSet::add_to_system(SystemMatrix& k, Eigen::VectorXd& rhs) const {
+void ContactSet::add_to_system(SystemMatrix* k, Eigen::VectorXd& rhs) const {
   Eigen::Matrix<double, 12, 12> block;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::open) continue;
@@ -200,15 +204,17 @@ void ContactSet::add_to_system(SystemMatrix& k, Eigen::VectorXd& rhs) const {
     } else {
       f -= c.slip_sign * law.tan_phi * std::max(c.friction_normal, 0.0) * cs;
     }
-    k.add_group(static_cast<std::size_t>(c.group), block.data());
+    if (k) k->add_group(static_cast<std::size_t>(c.group), block.data());
     for (int i = 0; i < 12; ++i) rhs[c.dofs[i]] += f[i];
   }
 }
 
-int ContactSet::judge(const Eigen::VectorXd& d, int iteration, double w0) {
-  const double eps = 1e-10 * w0 * std::pow(10.0, std::max(0, iteration - 4));
-  int changed = 0;
+ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, double w0) {
+  const double eps = 1e-10 * w0;
+  int changed = 0, forces = 0;
   for (Contact& c : contacts_) {
+    if (iteration == 1) c.flips = 0;
+    const ContactState before = c.state;
     const ContactLaw& law = laws_[c.law];
     double dg = 0, ds = 0;
     for (int i = 0; i < 12; ++i) {
@@ -224,9 +230,10 @@ int ContactSet::judge(const Eigen::VectorXd& d, int iteration, double w0) {
       case ContactState::open:
         c.normal_force = 0;
         if (c.gap < -eps) {
-          c.state = ContactState::locked;
-          c.omega_ref = c.at.omega;
+          c.shear0 = 0;  // a fresh spring: its trial shear is the slip of this step
           c.friction_normal = n;
+          c.shear = ds;
+          c.state = ContactState::locked;
           ++changed;
         }
         break;
@@ -245,20 +252,43 @@ int ContactSet::judge(const Eigen::VectorXd& d, int iteration, double w0) {
             c.broken = true;
             ++changed;
           }
-        } else if (ds * c.slip_sign < -eps) {
-          c.state = ContactState::locked;  // the slip reversed: it sticks where it is
-          c.omega_ref = c.at.omega;
-          c.shear0 = 0;
+        } else if (c.slip_sign * law.ks * c.shear < n * law.tan_phi - law.ks * eps) {
+          c.state = ContactState::locked;  // the slip reversed: it sticks, the spring loaded
           ++changed;
-        } else if (std::abs(n - c.friction_normal) > 1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) &&
-                   std::abs(n - c.friction_normal) > law.kn * eps) {
+        } else if (std::abs(n - c.friction_normal) >
+                   1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) + 1e-12 * law.kn * w0) {
           c.friction_normal = n;  // friction must use the normal force it ends with
-          ++changed;
+          ++forces;
         }
         break;
     }
+    if (c.state != before && ++c.flips > 1) {
+      // Second change in this step: settle in the least constraining state (see the file comment).
+      const bool opening_or_closing = before == ContactState::open || c.state == ContactState::open;
+      if (opening_or_closing) {
+        c.state = ContactState::open;
+      } else {
+        c.state = ContactState::sliding;
+        if (before == ContactState::locked) c.slip_sign = c.shear > 0 ? 1 : -1;
+        c.friction_normal = std::max(n, 0.0);
+      }
+      if (c.state == before) --changed;
+    }
   }
-  return changed;
+  return {changed, forces};
+}
+
+void ContactSet::end_step() {
+  for (Contact& c : contacts_) {
+    const ContactLaw& law = laws_[c.law];
+    if (c.state == ContactState::open)
+      c.shear_el = 0;
+    else if (c.state == ContactState::locked)
+      c.shear_el = c.shear;
+    else
+      c.shear_el = c.slip_sign * law.tan_phi * c.normal_force / law.ks;
+  }
+  committed_ = contacts_;
 }
 
 double ContactSet::max_penetration() const {

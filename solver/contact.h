@@ -41,17 +41,18 @@ struct Contact {
   ContactState state = ContactState::open;
   ContactState start_state = ContactState::open;  ///< state at the start of the step
   bool broken = false;       ///< cohesion and tensile strength lost (it slid or opened)
-  double omega_ref = 0;      ///< –, point of the edge P is held to while locked
+  double shear_el = 0;       ///< m, elastic shear of the shear spring at the start of the step
   int slip_sign = 0;         ///< direction of sliding along the edge (±1)
   double normal_force = 0;   ///< N, compression > 0, from the last solve
   double friction_normal = 0;  ///< N, the normal force the friction of the last solve used
   double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
-  double shear = 0;          ///< m, shear displacement from the reference after the last solve
+  double shear = 0;          ///< m, trial elastic shear after the last solve (shear_el + slip)
   // Linearisation for this step: gap = gap0 + cnᵀd, shear = shear0 + csᵀd over 12 unknowns.
   std::array<int, 12> dofs{};
   std::array<double, 12> cn{}, cs{};
   double gap0 = 0, shear0 = 0;
   int group = -1;  ///< coupling group of its element pair in the system matrix
+  int flips = 0;   ///< state changes in this step's open–close iteration
 };
 
 /// All contacts of a run.
@@ -65,10 +66,11 @@ class ContactSet {
   const std::vector<ContactLaw>& laws() const { return laws_; }
   const std::vector<Contact>& contacts() const { return contacts_; }
 
-  /// Detects contacts in the current configuration (search distance d0, m), carries over the
-  /// states of the previous step and linearises each contact with the element frames.
+  /// Detects contacts in the current configuration (search distance d0, new contacts at most
+  /// `shallow` deep, m), carries over the states of the previous step and linearises each
+  /// contact with the element frames.
   void begin_step(const std::vector<double>& loop_xy, const std::vector<ElementFrame>& frames,
-                  double d0);
+                  double d0, double shallow);
 
   /// Element pairs coupled by the current contacts, sorted and unique.
   std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs() const;
@@ -76,17 +78,25 @@ class ContactSet {
   /// a superset of element_pairs()).
   void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
 
-  /// Adds the springs and friction of the current states to the system.
-  void add_to_system(SystemMatrix& k, Eigen::VectorXd& rhs) const;
+  /// Adds the springs and friction of the current states to the system; with k == nullptr only
+  /// their forces (the matrix is unchanged when only friction forces changed).
+  void add_to_system(SystemMatrix* k, Eigen::VectorXd& rhs) const;
 
+  /// What a judgement changed: states (the matrix changes) and friction forces (only the
+  /// right-hand side changes: a sliding contact's normal force moved by more than 0.1 %).
+  struct Changes {
+    int states = 0;
+    int forces = 0;
+  };
   /// Judges every contact against the solution d of open–close iteration `iteration` (1, 2,
-  /// ...) in a model of half-size w0 (m); returns the number whose state changed (or whose
-  /// friction used a normal force that has since changed by more than 0.1 %).
-  int judge(const Eigen::VectorXd& d, int iteration, double w0);
+  /// ...) of a step of length dt (s) in a model of half-size w0 (m).
+  Changes judge(const Eigen::VectorXd& d, int iteration, double w0);
 
-  /// Accepts the step: its contacts and states are what the next step starts from. A step that
-  /// is not accepted (cut and redone) leaves them as they were.
-  void end_step() { committed_ = contacts_; }
+
+  /// Accepts the step: its contacts and states are what the next step starts from (a sliding
+  /// contact's spring is left loaded at the friction limit). A step that is not accepted (cut and
+  /// redone) leaves them as they were.
+  void end_step();
 
   /// Largest penetration of the contacts after the last solve, m.
   double max_penetration() const;

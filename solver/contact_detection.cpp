@@ -11,19 +11,20 @@
 //     with the same weights: the two can never separate, e.g. along a free surface inside one
 //     block, or next to a crack tip whose covers are not split);
 //   - ω = (P − Q2)·t / l in [0, 1]: P lies beside the edge;
-//   - gap g = (P − Q2)·n ≤ d0, and g ≥ −ε (ε = 1e-9·h: bodies start apart or touching) unless
+//   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (a depth a contact can reach, ½·g2·w0) unless
 //     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
-//     (a vertex inside another element without having come in through a contact is near that
-//     edge from the wrong side, e.g. a corner of a block near the far side of the same block);
-//     a negative gap must also mean that P lies inside element B: past a corner of B, P can be
-//     behind the line of an edge without being inside B at all;
+//     (a vertex deep inside another element without having come in through a contact is near
+//     that edge from the wrong side, e.g. a corner of a block near the far side of the same
+//     block); a negative gap must also mean that P lies inside element B: past a corner of B, P
+//     can be behind the line of an edge without being inside B at all;
 //   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
 // Each vertex keeps one edge (the angle rule of DDA, here for angle–edge and angle–angle
 // alike): the smallest |g|, then the edge most opposite to P's own normal (the entrance edge),
 // then the lower index. Edge–edge contact is the two vertex–edge contacts of its end points.
-// Where two vertices coincide and each picks the other's element (matching vertices on the two
-// faces of a joint), only the contact of the lower vertex index is kept, so one point of a joint
-// is one contact.
+// Where two vertices meet, within 0.01·h, and each picks an edge of the other's element ending
+// at the other (angle–angle: matching vertices on the two faces of a joint, a block corner
+// passing over a vertex of the surface it slides on), one point is one contact: the one that
+// was closed is kept, else the one of the lower vertex index.
 #include "contact_detection.h"
 
 #include <algorithm>
@@ -126,6 +127,7 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
 
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& xy, double d0,
+                                              double shallow,
                                               const std::vector<std::int32_t>& closed_block,
                                               DetectionStats* stats) {
   std::vector<ContactCandidate> out;
@@ -197,7 +199,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double g = rx * ex + ry * ey;
       const bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
       const double eps = 1e-9 * topo.mesh_size;
-      if (g > d0 || g < (was_closed ? -p_max : -eps)) continue;
+      if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
       if (g < -eps && !inside_element(topo, xy, q2, px, py)) continue;
       const double face = nx * ex + ny * ey;  // −1: exactly opposite
       if (face > -0.2) continue;
@@ -220,14 +222,23 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   }
   // One contact per point of a joint: drop the mirror of a contact between coincident vertices.
   std::vector<char> drop(out.size(), 0);
-  const double tol = 1e-6 * topo.mesh_size;
+  const double tol = 1e-2 * topo.mesh_size;
+  auto near = [&](std::int32_t u, std::int32_t v) {
+    return std::hypot(xy[2 * u] - xy[2 * v], xy[2 * u + 1] - xy[2 * v + 1]) <= tol;
+  };
   for (std::size_t c = 0; c < out.size(); ++c) {
     const ContactCandidate& a = out[c];
     for (std::int32_t q : {a.edge, topo.next[a.edge]}) {
-      if (std::hypot(xy[2 * q] - xy[2 * a.vertex], xy[2 * q + 1] - xy[2 * a.vertex + 1]) > tol) continue;
+      if (!near(q, a.vertex)) continue;
       const auto m = by_vertex.find(q);
-      if (m == by_vertex.end() || out[m->second].elem_b != a.elem_a) continue;
-      drop[a.vertex < q ? m->second : c] = 1;
+      if (m == by_vertex.end() || drop[m->second] || drop[c]) continue;
+      const ContactCandidate& b = out[m->second];
+      if (topo.block_of[b.elem_b] != topo.block_of[a.elem_a]) continue;
+      if (!near(b.edge, a.vertex) && !near(topo.next[b.edge], a.vertex)) continue;
+      const bool a_closed = !closed_block.empty() && closed_block[a.vertex] >= 0;
+      const bool q_closed = !closed_block.empty() && closed_block[q] >= 0;
+      const bool keep_a = a_closed != q_closed ? a_closed : a.vertex < q;
+      drop[keep_a ? m->second : c] = 1;
     }
   }
   std::vector<ContactCandidate> kept;

@@ -46,11 +46,12 @@ struct DetectionStats {
 /// Finds, for every candidate vertex, the one edge it faces within distance d0 (m), by a uniform
 /// grid over the edges (cost about linear in the number of edges) and the narrow-phase rules.
 /// `closed_block[v]` is the block vertex v was in closed contact with after the last step (-1
-/// if none): only such a vertex may already be inside that block's elements; any other must be
-/// outside (a vertex inside its own or another block without having come in through a contact
-/// is not in contact: it is near an edge from the wrong side).
+/// if none): such a vertex may be inside that block's elements by up to 0.3·h; any other by up
+/// to `shallow` (m) at most, a depth only a contact can explain (a vertex deeper inside without
+/// having come in through a contact is near that edge from the wrong side).
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& loop_xy, double d0,
+                                              double shallow,
                                               const std::vector<std::int32_t>& closed_block,
                                               DetectionStats* stats = nullptr);
 

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,9 @@ class TimeStepper {
   // ---- state, for tests ------------------------------------------------------------------
   /// One step of length dt. Throws RunError when it cannot be taken.
   void step(double dt);
+  /// Steps until simulated time t_end (s) with step control, calling on_step(n) after the n-th
+  /// accepted step. Returns "ok" or the reason the run cannot go on.
+  std::string run_until(double t_end, const std::function<void(std::int64_t)>& on_step);
   /// Tries one step of length dt; on success the state moves on and "" is returned, otherwise
   /// the state is left as it was and the reason is returned (the caller cuts dt and retries).
   /// Throws RunError for what no smaller step can cure.
@@ -98,6 +102,8 @@ class TimeStepper {
   std::vector<double> cover_xy_;   // [2·pc] m, current position of each cover's node
   std::vector<double> cover_u_;    // [2·pc] m, displacement since the start
   std::vector<double> velocity_;   // [2·pc] m/s, v0 of the next step
+  std::vector<double> accel_;      // [2·pc] m/s², a0 of the next step
+  bool accel_known_ = false;       // a0 comes from a step (else the next step takes β = ½)
   std::vector<double> stress_;     // [3·me] Pa
   std::vector<double> loop_xy_;    // [2·v] m, current loop vertices
   std::vector<double> loop_u_;     // [2·v] m, displacement since the start
@@ -115,8 +121,9 @@ class TimeStepper {
   double w0_ = 0;                // m, half the model size
   std::size_t iterations_ = 0;   // open–close iterations (solves), all steps
   std::size_t cuts_ = 0;         // time-step cuts
+  double dt_ = 1e300;            // s, the step length step control has arrived at
   double max_penetration_ = 0;   // m, largest penetration after any accepted step
-  static constexpr int kMaxIterations = 10;
+  static constexpr int kMaxIterations = 16;  // factorisations per step's open–close iteration
 };
 
 }  // namespace nmm::solve
