@@ -25,12 +25,12 @@
 //   locked  → sliding  when |ks·s| > N·tanφ + c·L   (Mohr–Coulomb), σ = sign(s)
 //   sliding → locked   when σ·ks·s < N·tanφ: the trial spring force falls below the limit (the
 //                      slip reversed)
-// ε = 1e-10·w0. A contact may change state once in one step; changing again (back) leaves it
-// in the least constraining state for the rest of the step — open if it was flipping between
-// open and closed, sliding (friction at its limit) if between stick and slip — so contacts
-// sitting at zero gap or zero slip cannot flip for ever, and a frozen contact never holds more
-// than Coulomb allows (frozen locked, a contact at zero normal force could pin a whole block; a
-// tolerance growing instead would turn into huge forces: with kn = 5e11 N/m, 1 µm is 500 kN).
+// ε = 1e-10·w0. A contact may change state once in one step; a second change leaves it closed
+// and sliding for the rest of the step: its normal spring stays (frozen open, it would sink in,
+// then close next step with a large starting penetration, overshoot and open again — a pump),
+// and its tangential force is friction at most (frozen locked at zero normal force it could pin
+// a whole block). So contacts sitting at zero gap or zero slip cannot flip for ever; a
+// tolerance growing instead would turn into huge forces: with kn = 5e11 N/m, 1 µm is 500 kN.
 //
 // Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
 // the scene's interface_set, else the default interface: kn = 50·E_max·(1 m) (Shi's default),
@@ -234,6 +234,7 @@ ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, d
           c.friction_normal = n;
           c.shear = ds;
           c.state = ContactState::locked;
+          ++events.closed;
           ++changed;
         }
         break;
@@ -243,17 +244,20 @@ ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, d
         if (n < -tension_cap - law.kn * eps) {
           c.state = ContactState::open;
           c.broken = true;
+          ++events.opened;
           ++changed;
         } else if (c.state == ContactState::locked) {
           if (std::abs(law.ks * c.shear) > n * law.tan_phi + cohesion) {
             c.state = ContactState::sliding;
             c.slip_sign = c.shear > 0 ? 1 : -1;
+            ++events.slid;
             c.friction_normal = n;
             c.broken = true;
             ++changed;
           }
         } else if (c.slip_sign * law.ks * c.shear < n * law.tan_phi - law.ks * eps) {
           c.state = ContactState::locked;  // the slip reversed: it sticks, the spring loaded
+          ++events.stuck;
           ++changed;
         } else if (std::abs(n - c.friction_normal) >
                    1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) + 1e-12 * law.kn * w0) {
@@ -263,15 +267,11 @@ ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, d
         break;
     }
     if (c.state != before && ++c.flips > 1) {
-      // Second change in this step: settle in the least constraining state (see the file comment).
-      const bool opening_or_closing = before == ContactState::open || c.state == ContactState::open;
-      if (opening_or_closing) {
-        c.state = ContactState::open;
-      } else {
-        c.state = ContactState::sliding;
-        if (before == ContactState::locked) c.slip_sign = c.shear > 0 ? 1 : -1;
-        c.friction_normal = std::max(n, 0.0);
-      }
+      // Second change in this step: settle closed and sliding (see the file comment).
+      c.state = ContactState::sliding;
+      if (before != ContactState::sliding) c.slip_sign = c.shear > 0 ? 1 : -1;
+      c.friction_normal = std::max(n, 0.0);
+      ++events.frozen_sliding;
       if (c.state == before) --changed;
     }
   }

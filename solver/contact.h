@@ -98,6 +98,12 @@ class ContactSet {
   /// redone) leaves them as they were.
   void end_step();
 
+  /// State changes of the last judge() calls since reset (diagnostics).
+  struct Events {
+    int closed = 0, opened = 0, slid = 0, stuck = 0, frozen_open = 0, frozen_sliding = 0;
+  };
+  Events events;
+
   /// Largest penetration of the contacts after the last solve, m.
   double max_penetration() const;
   std::size_t closed_count() const;

@@ -18,6 +18,13 @@
 //     block); a negative gap must also mean that P lies inside element B: past a corner of B, P
 //     can be behind the line of an edge without being inside B at all;
 //   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
+//   - single pass along flat stretches: a vertex that is not a corner of its block's boundary
+//     (a 180° vertex: where mesh lines cut a straight boundary or joint) touches only if its
+//     outward normal points down (n_y < 0, or n_y = 0 and n_x < 0). Two faces pressed together
+//     then carry one set of contacts, not two that fight each other (with deformable blocks some
+//     of a doubled set always end up in tension and the states chatter); the faces of a joint
+//     have opposite normals, so exactly one of them is that side everywhere. Corners always
+//     touch.
 // Each vertex keeps one edge (the angle rule of DDA, here for angle–edge and angle–angle
 // alike): the smallest |g|, then the edge most opposite to P's own normal (the entrance edge),
 // then the lower index. Edge–edge contact is the two vertex–edge contacts of its end points.
@@ -30,6 +37,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <unordered_map>
 
 namespace nmm::solve {
@@ -91,6 +99,41 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
   for (std::int32_t v : mesh.contact_edge) t.edge_candidate[v] = 1;
   t.edges = mesh.contact_edge;
   t.block_of = mesh.element_block;
+  // Corners: at each point of a block's boundary, the candidate edges of that block meeting
+  // there; a point with exactly two, turning by less than 10°, is flat, all others are corners.
+  t.corner.assign(nv, 1);
+  {
+    std::map<std::tuple<double, double, std::int32_t>, std::vector<std::int32_t>> at_point;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (t.edge_candidate[v] || t.edge_candidate[t.prev[v]])
+        at_point[{mesh.loop_xy[2 * v], mesh.loop_xy[2 * v + 1], t.block_of[t.element_of[v]]}]
+            .push_back(static_cast<std::int32_t>(v));
+    for (const auto& [key, vs] : at_point) {
+      std::vector<std::pair<double, double>> out_dirs;  // unit directions of edges leaving the point
+      for (std::int32_t v : vs) {
+        const double x = mesh.loop_xy[2 * v], y = mesh.loop_xy[2 * v + 1];
+        for (std::int32_t w : {t.next[v], t.prev[v]}) {
+          const std::int32_t s0 = w == t.next[v] ? v : w;  // first vertex of the edge v–w
+          if (!t.edge_candidate[s0]) continue;
+          const double dx = mesh.loop_xy[2 * w] - x, dy = mesh.loop_xy[2 * w + 1] - y;
+          const double l = std::hypot(dx, dy);
+          if (l > 0) out_dirs.emplace_back(dx / l, dy / l);
+        }
+      }
+      // The same boundary edge seen from both ends' elements is one direction: dedupe.
+      std::vector<std::pair<double, double>> dirs;
+      for (const auto& d : out_dirs) {
+        bool seen = false;
+        for (const auto& e : dirs) seen |= d.first * e.first + d.second * e.second > 1 - 1e-9;
+        if (!seen) dirs.push_back(d);
+      }
+      const bool flat = dirs.size() == 2 &&
+                        dirs[0].first * dirs[1].first + dirs[0].second * dirs[1].second <
+                            -std::cos(10.0 * 3.14159265358979323846 / 180.0);
+      if (flat)
+        for (std::int32_t v : vs) t.corner[v] = 0;
+    }
+  }
   for (std::size_t v = 0; v < nv; ++v)
     if (t.edge_candidate[v] || t.edge_candidate[t.prev[v]])
       t.vertices.push_back(static_cast<std::int32_t>(v));
@@ -178,6 +221,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     if (nl < 1e-9) continue;  // the tip of a slit: both faces are this element's own
     nx /= nl;
     ny /= nl;
+    if (!topo.corner[p] && (ny > 0 || (ny == 0 && nx > 0))) continue;  // single pass
     const auto [ci, cj] = cell_of(px, py);
     const std::int64_t k = key(ci, cj);
     auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
