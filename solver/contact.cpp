@@ -13,7 +13,8 @@
 // shear of a step is s = s_el + slip. Locked: K += ks·cs csᵀ, F −= ks·s_el·cs. Sliding: no
 // spring, friction F −= σ·(tanφ·N)·cs against the slip direction σ, N = −kn·gap of the previous
 // solve (explicit within the iteration, which repeats until N has settled to 0.1 %; those
-// repeats change only the right-hand side, so they reuse the factorisation). A step
+// repeats change only the right-hand side, so they reuse the factorisation, and are
+// under-relaxed after the fourth). A step
 // that ends sliding leaves s_el = σ·tanφ·N/ks, the spring loaded at the friction limit, so the
 // shear force stays continuous when the contact sticks again (a spring restarting from zero
 // would drop the force from tanφ·N to 0 in one step and shake the blocks).
@@ -80,11 +81,12 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
 }
 
 void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<ElementFrame>& frames,
-                            double d0, double shallow) {
+                            double d0, double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
   closed_block_.assign(topo_.next.size(), -1);
   for (const Contact& c : committed_)
     if (c.state != ContactState::open) closed_block_[c.at.vertex] = topo_.block_of[c.at.elem_b];
+  eps_ = 1e-10 * w0;
   const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -112,6 +114,10 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
       c.friction_normal = o.normal_force;
       c.shear_el = o.shear_el;
     }
+    // A closed contact whose gap is now positive has separated (or has moved onto an edge it
+    // does not touch): it starts the step open. Kept closed, its spring would pull the faces
+    // together with kn·gap — glue — and, closing the gap within the solve, never show tension.
+    if (c.state != ContactState::open && f.gap > eps_) c.state = ContactState::open;
     c.start_state = c.state;
     now.push_back(c);
   }
@@ -261,7 +267,10 @@ ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, d
           ++changed;
         } else if (std::abs(n - c.friction_normal) >
                    1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) + 1e-12 * law.kn * w0) {
-          c.friction_normal = n;  // friction must use the normal force it ends with
+          // Friction must use the normal force it ends with. A fixed-point iteration on it can
+          // oscillate where contacts press on each other; from the fifth iteration on it is
+          // under-relaxed (half way), which damps that.
+          c.friction_normal = iteration <= 4 ? n : 0.5 * (c.friction_normal + n);
           ++forces;
         }
         break;

@@ -67,10 +67,10 @@ class ContactSet {
   const std::vector<Contact>& contacts() const { return contacts_; }
 
   /// Detects contacts in the current configuration (search distance d0, new contacts at most
-  /// `shallow` deep, m), carries over the states of the previous step and linearises each
+  /// `shallow` deep, m; model half-size w0), carries over the states of the previous step and linearises each
   /// contact with the element frames.
   void begin_step(const std::vector<double>& loop_xy, const std::vector<ElementFrame>& frames,
-                  double d0, double shallow);
+                  double d0, double shallow, double w0);
 
   /// Element pairs coupled by the current contacts, sorted and unique.
   std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs() const;
@@ -121,6 +121,7 @@ class ContactSet {
   std::vector<Contact> contacts_;   // this step's, being iterated
   std::vector<Contact> committed_;  // as the last accepted step left them
   std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
+  double eps_ = 0;                          // m, gap tolerance (1e-10·w0)
   DetectionStats stats_;
   double detection_seconds_ = 0;
 };

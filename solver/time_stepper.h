@@ -121,6 +121,7 @@ class TimeStepper {
   double w0_ = 0;                // m, half the model size
   std::size_t iterations_ = 0;   // open–close iterations (solves), all steps
   std::size_t cuts_ = 0;         // time-step cuts
+  std::size_t friction_unsettled_ = 0;  // steps taken with friction forces still moving
   double dt_ = 1e300;            // s, the step length step control has arrived at
   double max_penetration_ = 0;   // m, largest penetration after any accepted step
   static constexpr int kMaxIterations = 16;  // factorisations per step's open–close iteration
