@@ -11,7 +11,7 @@
 //     with the same weights: the two can never separate, e.g. along a free surface inside one
 //     block, or next to a crack tip whose covers are not split);
 //   - ω = (P − Q2)·t / l in [0, 1]: P lies beside the edge;
-//   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (a depth a contact can reach, ½·g2·w0) unless
+//   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (1e-3·h: a vertex missed for a step) unless
 //     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
 //     (a vertex deep inside another element without having come in through a contact is near
 //     that edge from the wrong side, e.g. a corner of a block near the far side of the same
@@ -20,7 +20,9 @@
 //   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
 //   - single pass along flat stretches: a vertex that is not a corner of its block's boundary
 //     (a 180° vertex: where mesh lines cut a straight boundary or joint) touches only if its
-//     outward normal points down (n_y < 0, or n_y = 0 and n_x < 0). Two faces pressed together
+//     outward normal points down (n_y < 0, or n_y = 0 and n_x < 0), or if it pokes into the
+//     other side between that side's vertices deeper than 1e-4·h (far deeper than a contact
+//     spring lets a face sink, so faces pressed together still carry one set of contacts). Two faces pressed together
 //     then carry one set of contacts, not two that fight each other (with deformable blocks some
 //     of a doubled set always end up in tension and the states chatter); the faces of a joint
 //     have opposite normals, so exactly one of them is that side everywhere. Corners always
@@ -221,7 +223,9 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     if (nl < 1e-9) continue;  // the tip of a slit: both faces are this element's own
     nx /= nl;
     ny /= nl;
-    if (!topo.corner[p] && (ny > 0 || (ny == 0 && nx > 0))) continue;  // single pass
+    // Single pass: an upward-facing flat vertex only touches where it pokes clearly into the
+    // other side (between that side's vertices; it must still be held).
+    const bool master_side = !topo.corner[p] && (ny > 0 || (ny == 0 && nx > 0));
     const auto [ci, cj] = cell_of(px, py);
     const std::int64_t k = key(ci, cj);
     auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
@@ -243,6 +247,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double g = rx * ex + ry * ey;
       const bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
       const double eps = 1e-9 * topo.mesh_size;
+      if (master_side && g >= -1e-4 * topo.mesh_size) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
       if (g < -eps && !inside_element(topo, xy, q2, px, py)) continue;
       const double face = nx * ex + ny * ey;  // −1: exactly opposite

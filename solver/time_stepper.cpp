@@ -384,7 +384,7 @@ std::string TimeStepper::attempt(double dt) {
   if (contact) {
     // Search distance: 2.5 × the displacement a step may make (Shi: g2·w0 per step, cut at 2×).
     const double g2w0 = scene_.solver.max_displacement_ratio * w0_;
-    contacts_.begin_step(loop_xy_, frame_, 2.5 * g2w0, 0.5 * g2w0, w0_);
+    contacts_.begin_step(loop_xy_, frame_, 2.5 * g2w0, 1e-3 * mesh_.mesh_size, w0_);
     update_pattern();
   }
   timings_.contact_detection = contacts_.detection_seconds();
