@@ -427,7 +427,8 @@ std::string TimeStepper::attempt(double dt) {
           const int c = u / 2;
           os << " at cover " << c << " (node "
              << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
-             << "): it is not held; add fixed points or run dynamic";
+             << "): it is unconstrained (held by no fixed point or closed contact); add fixed "
+                "points or run dynamic";
         }
         throw RunError(os.str());
       }
