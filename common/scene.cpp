@@ -57,8 +57,9 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
-/// "a string ("abc")", "an array", "null": what a value is, for "expected X, got Y" messages.
-std::string describe(const json& v) {
+}  // namespace
+
+std::string describe_json_value(const json& v) {
   switch (v.type()) {
     case json::value_t::null:
       return "null";
@@ -81,6 +82,8 @@ std::string describe(const json& v) {
       return "an unsupported value";
   }
 }
+
+namespace {
 
 /// RFC 6901 escaping of one path component: '~' -> "~0", '/' -> "~1".
 std::string escape_pointer(const std::string& key) {
@@ -144,11 +147,11 @@ class Reader {
   // -- structure --
 
   const Reader& expect_object() const {
-    if (!value_->is_object()) fail("expected an object, got " + describe(*value_));
+    if (!value_->is_object()) fail("expected an object, got " + describe_json_value(*value_));
     return *this;
   }
   const Reader& expect_array() const {
-    if (!value_->is_array()) fail("expected an array, got " + describe(*value_));
+    if (!value_->is_array()) fail("expected an array, got " + describe_json_value(*value_));
     return *this;
   }
 
@@ -198,7 +201,7 @@ class Reader {
   // -- scalars (this value) --
 
   double as_number(const Range& range = kAnyFinite) const {
-    if (!value_->is_number()) fail("expected a number, got " + describe(*value_));
+    if (!value_->is_number()) fail("expected a number, got " + describe_json_value(*value_));
     const double v = value_->get<double>();
     // nlohmann reads an out-of-range literal such as 1e400 as inf.
     if (!std::isfinite(v)) fail("must be a finite number (got " + format_number(v) + ")");
@@ -208,7 +211,7 @@ class Reader {
 
   /// A whole number >= `min`; 10.0 is accepted, 10.5 is not.
   std::int64_t as_integer(std::int64_t min) const {
-    if (!value_->is_number()) fail("expected an integer, got " + describe(*value_));
+    if (!value_->is_number()) fail("expected an integer, got " + describe_json_value(*value_));
     std::int64_t v = 0;
     if (value_->is_number_integer() && !value_->is_number_unsigned()) {
       v = value_->get<std::int64_t>();
@@ -229,12 +232,12 @@ class Reader {
   }
 
   bool as_bool() const {
-    if (!value_->is_boolean()) fail("expected true or false, got " + describe(*value_));
+    if (!value_->is_boolean()) fail("expected true or false, got " + describe_json_value(*value_));
     return value_->get<bool>();
   }
 
   std::string as_string() const {
-    if (!value_->is_string()) fail("expected a string, got " + describe(*value_));
+    if (!value_->is_string()) fail("expected a string, got " + describe_json_value(*value_));
     return value_->get<std::string>();
   }
 
@@ -254,7 +257,7 @@ class Reader {
       const std::size_t n = value_->size();
       const std::string got =
           value_->is_array() ? "an array of " + std::to_string(n) + (n == 1 ? " value" : " values")
-                             : describe(*value_);
+                             : describe_json_value(*value_);
       fail(std::string("expected ") + expected + ", got " + got);
     }
     return Vec2{(*this)[0].as_number(), (*this)[1].as_number()};

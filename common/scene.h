@@ -119,6 +119,10 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
 /// Validates an already parsed JSON document as a scene (used after merge patches).
 SceneDef scene_from_json(const nlohmann::json& doc, const std::string& file);
 
+/// What a JSON value is, for "expected X, got Y" messages: "an object", "a number",
+/// "a string ("10")" (short strings quoted: the quotes are often the mistake), ...
+std::string describe_json_value(const nlohmann::json& v);
+
 /// Reads a whole file into a string; InputError if it cannot be read.
 std::string read_text_file(const std::string& path);
 

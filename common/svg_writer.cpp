@@ -1,5 +1,7 @@
 #include "svg_writer.h"
 
+#include "xml_text.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,31 +16,6 @@ namespace nmm {
 
 namespace {
 
-// XML 1.0 forbids most control characters even when escaped; user text (scene names) may hold
-// them, so they become spaces.
-std::string xml_text(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += u < 0x20 ? ' ' : c;
-    }
-  }
-  return out;
-}
 
 // Code points, not bytes: used to guess how wide a text line is.
 std::size_t utf8_length(const std::string& s) {
@@ -198,7 +175,7 @@ std::string SvgWriter::str(double margin_fraction, double pixel_width) const {
       case Kind::text:
         out += "<text x=\"" + num(s.pts[0].x) + "\" y=\"" + num(-s.pts[0].y) + "\" font-size=\"" +
                num(s.size) + "\" font-family=\"sans-serif\" fill=\"" + s.style.fill + "\">" +
-               xml_text(s.text) + "</text>\n";
+               xml_escape(s.text) + "</text>\n";
         break;
     }
   }

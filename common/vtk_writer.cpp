@@ -3,6 +3,8 @@
 // every VTK since 4.x, ParaView and meshio read.
 #include "vtk_writer.h"
 
+#include "xml_text.h"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -38,31 +40,6 @@ void append_int(std::string& out, long long v) {
   out.append(buf, res.ptr);
 }
 
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 // Legacy files are whitespace-separated tokens: a name must be one non-empty token.
 std::string legacy_name(const std::string& s) {

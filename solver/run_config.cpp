@@ -58,23 +58,6 @@ void check_geometry_unchanged(const json& base, const json& doc, const std::stri
   }
 }
 
-/// "a number", "a string", ...: what a value on the path is, for messages.
-std::string kind_of(const json& v) {
-  switch (v.type()) {
-    case json::value_t::null:
-      return "null";
-    case json::value_t::object:
-      return "an object";
-    case json::value_t::array:
-      return "an array";
-    case json::value_t::string:
-      return "a string";
-    case json::value_t::boolean:
-      return "a boolean";
-    default:
-      return "a number";
-  }
-}
 
 /// The error for one `--set` whose whole text is `set_text`.
 [[noreturn]] void fail_set(const std::string& set_text, const std::string& what) {
@@ -175,7 +158,7 @@ void apply_set(json& doc, const std::string& text) {
       }
       at = &(*at)[index];
     } else {
-      fail_set(text, pointer_of(keys, i) + " is " + kind_of(*at) + ", which has no member \"" +
+      fail_set(text, pointer_of(keys, i) + " is " + describe_json_value(*at) + ", which has no member \"" +
                          key + "\"");
     }
   }
@@ -197,7 +180,7 @@ RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
     if (!patch.is_object())
       throw InputError(
           config_path, "top level",
-          "expected an object (a JSON merge patch, RFC 7386, on the scene), got " + kind_of(patch));
+          "expected an object (a JSON merge patch, RFC 7386, on the scene), got " + describe_json_value(patch));
     doc.merge_patch(patch);
     check_geometry_unchanged(base, doc, config_path);
   }
