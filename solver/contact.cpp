@@ -83,11 +83,12 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
 void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<ElementFrame>& frames,
                             double d0, double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
+  near_pairs_.clear();
   closed_block_.assign(topo_.next.size(), -1);
   for (const Contact& c : committed_)
     if (c.state != ContactState::open) closed_block_[c.at.vertex] = topo_.block_of[c.at.elem_b];
   eps_ = 1e-10 * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_, &near_pairs_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -181,7 +182,7 @@ std::vector<std::string> ContactSet::effects() const {
 }
 
 std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::element_pairs() const {
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs = near_pairs_;
   for (const Contact& c : contacts_) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

@@ -72,7 +72,8 @@ class ContactSet {
   void begin_step(const std::vector<double>& loop_xy, const std::vector<ElementFrame>& frames,
                   double d0, double shallow, double w0);
 
-  /// Element pairs coupled by the current contacts, sorted and unique.
+  /// Element pairs coupled by the current contacts and those near enough to touch soon
+  /// (within the search distance), sorted and unique: the pairs the pattern should hold.
   std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs() const;
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted,
   /// a superset of element_pairs()).
@@ -121,6 +122,7 @@ class ContactSet {
   std::vector<Contact> contacts_;   // this step's, being iterated
   std::vector<Contact> committed_;  // as the last accepted step left them
   std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
+  ElementPairs near_pairs_;                 // element pairs within the search distance
   double eps_ = 0;                          // m, gap tolerance (1e-10·w0)
   DetectionStats stats_;
   double detection_seconds_ = 0;

@@ -174,7 +174,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& xy, double d0,
                                               double shallow,
                                               const std::vector<std::int32_t>& closed_block,
-                                              DetectionStats* stats) {
+                                              DetectionStats* stats, ElementPairs* near_pairs) {
   std::vector<ContactCandidate> out;
   if (topo.edges.empty()) return out;
   const double cell = std::max(topo.mesh_size, 2 * d0);
@@ -245,6 +245,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double omega = (rx * tx + ry * ty) / l;
       if (omega < -1e-9 || omega > 1 + 1e-9) continue;
       const double g = rx * ex + ry * ey;
+      if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
       const bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
       const double eps = 1e-9 * topo.mesh_size;
       if (master_side && g >= -1e-4 * topo.mesh_size) continue;
@@ -289,6 +290,10 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const bool keep_a = a_closed != q_closed ? a_closed : a.vertex < q;
       drop[keep_a ? m->second : c] = 1;
     }
+  }
+  if (near_pairs) {
+    std::sort(near_pairs->begin(), near_pairs->end());
+    near_pairs->erase(std::unique(near_pairs->begin(), near_pairs->end()), near_pairs->end());
   }
   std::vector<ContactCandidate> kept;
   for (std::size_t c = 0; c < out.size(); ++c)

@@ -44,6 +44,10 @@ struct DetectionStats {
   std::size_t contacts = 0;      ///< candidates kept
 };
 
+/// Element pairs (a, b) with a vertex of a and an edge of b within the search distance, facing
+/// or not: the pairs that may come into contact soon (for the sparsity pattern). Sorted, unique.
+using ElementPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
+
 /// Finds, for every candidate vertex, the one edge it faces within distance d0 (m), by a uniform
 /// grid over the edges (cost about linear in the number of edges) and the narrow-phase rules.
 /// `closed_block[v]` is the block vertex v was in closed contact with after the last step (-1
@@ -54,6 +58,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& loop_xy, double d0,
                                               double shallow,
                                               const std::vector<std::int32_t>& closed_block,
-                                              DetectionStats* stats = nullptr);
+                                              DetectionStats* stats = nullptr,
+                                              ElementPairs* near = nullptr);
 
 }  // namespace nmm::solve
