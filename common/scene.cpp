@@ -385,6 +385,29 @@ NormalLawDef read_normal_law(const Reader& r) {
     r.check_keys({"model", "kn"}, " for model \"constant\"");
     law.model = NormalModel::constant;
     law.kn = r.number("kn", kPositive);
+  } else if (r.has("jrc") || r.has("jcs") || r.has("ucs")) {
+    // Barton–Bandis empirical relations (Barton, Bandis & Bakhtar 1985; physics.md §4), with
+    // JCS and σc in MPa and lengths in mm inside the formulas:
+    //   a_j = (JRC/5)(0.2·σc/JCS − 0.1)           initial aperture, mm
+    //   Kni = −7.15 + 1.75·JRC + 0.02·JCS/a_j      MPa/mm = GPa/m
+    //   Vm  = −0.2960 − 0.0056·JRC + 2.2410·(JCS/a_j)^−0.2450   mm (first load cycle)
+    r.check_keys({"model", "jrc", "jcs", "ucs"}, " for model \"bandis_barton\" from JRC, JCS, UCS");
+    law.model = NormalModel::bandis_barton;
+    law.jrc = r.number("jrc", interval(0, false, 20, true));
+    law.jcs = r.number("jcs", kPositive);
+    law.ucs = r.number("ucs", kPositive);
+    const double jcs_mpa = law.jcs / 1e6, ucs_mpa = law.ucs / 1e6;
+    const double aj = (law.jrc / 5.0) * (0.2 * ucs_mpa / jcs_mpa - 0.1);  // mm
+    if (!(aj > 0))
+      r.fail("JRC, JCS and UCS give a non-positive initial aperture (needs UCS > 0.5·JCS)");
+    const double kni_gpa = -7.15 + 1.75 * law.jrc + 0.02 * jcs_mpa / aj;
+    const double vm_mm = -0.2960 - 0.0056 * law.jrc + 2.2410 * std::pow(jcs_mpa / aj, -0.2450);
+    if (!(kni_gpa > 0) || !(vm_mm > 0))
+      r.fail("JRC, JCS and UCS lie outside the range of the Barton–Bandis relations (Kni = " +
+             std::to_string(kni_gpa) + " GPa/m, Vm = " + std::to_string(vm_mm) + " mm)");
+    law.aperture = aj * 1e-3;
+    law.kni = kni_gpa * 1e9;
+    law.vm = vm_mm * 1e-3;
   } else {
     r.check_keys({"model", "kni", "vm"}, " for model \"bandis_barton\"");
     law.model = NormalModel::bandis_barton;

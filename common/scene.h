@@ -42,6 +42,11 @@ struct NormalLawDef {
   double kn = 0;   ///< N/m per contact point (constant model)
   double kni = 0;  ///< Pa/m, initial normal stiffness (Bandis–Barton)
   double vm = 0;   ///< m, maximum closure (Bandis–Barton)
+  // Given instead of kni and vm, these derive them (Barton–Bandis empirical relations):
+  double jrc = 0;       ///< –, joint roughness coefficient (0 if not given)
+  double jcs = 0;       ///< Pa, joint wall compressive strength
+  double ucs = 0;       ///< Pa, uniaxial compressive strength of the intact rock (σc)
+  double aperture = 0;  ///< m, initial aperture a_j derived from them
 };
 
 enum class ShearModel { constant, hyperbolic };

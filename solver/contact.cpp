@@ -33,6 +33,11 @@
 // a whole block). So contacts sitting at zero gap or zero slip cannot flip for ever; a
 // tolerance growing instead would turn into huge forces: with kn = 5e11 N/m, 1 µm is 500 kN.
 //
+// Joint laws (Bandis–Barton closure, hyperbolic shear) replace the constant springs through
+// joint_law.h: each spring is linearised at its last iterate (Newton; the force is exactly on
+// the constitutive curve, the matrix gets the tangent), and the iteration goes on until no
+// spring force has moved by more than 0.1 % against that linearisation.
+//
 // Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
 // the scene's interface_set, else the default interface: kn = 20·E_max·(1 m), ks = kn/2.5,
 // frictionless, no cohesion or tension. (Shi's default is 50·E; within his recommended 10–100·E,
@@ -58,16 +63,21 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   active_ = !scene.joints.empty() || mesh.block_count() > 1;
   if (!active_) return;
   topo_ = build_contact_topology(mesh);
+  (void)scene_name;
   for (const JointSetDef& js : scene.joint_sets) {
-    const std::string at = "/joint_sets/" + js.name;
-    if (js.normal.model != NormalModel::constant)
-      throw InputError(scene_name, at + "/normal/model",
-                       "this nmm-solve implements the constant normal model only");
-    if (js.shear.model != ShearModel::constant)
-      throw InputError(scene_name, at + "/shear/model",
-                       "this nmm-solve implements the constant shear model only");
-    laws_.push_back({js.normal.kn, js.shear.ks, std::tan(js.friction_deg * kPi / 180.0),
-                     js.cohesion, js.tensile_strength});
+    ContactLaw law;
+    law.normal = js.normal.model;
+    law.kn = js.normal.kn;
+    law.kni = js.normal.kni;
+    law.vm = js.normal.vm;
+    law.shear = js.shear.model;
+    law.ks = js.shear.ks;
+    law.ksi = js.shear.ksi;
+    law.rf = js.shear.rf;
+    law.tan_phi = std::tan(js.friction_deg * kPi / 180.0);
+    law.cohesion = js.cohesion;
+    law.tensile = js.tensile_strength;
+    laws_.push_back(law);
   }
   for (const JointDef& j : scene.joints) joint_law_.push_back(j.set);
   interface_used_ = mesh.block_count() > 1;
@@ -76,10 +86,16 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   } else {
     double e_max = 0;
     for (const MaterialDef& m : scene.materials) e_max = std::max(e_max, m.young);
-    const double kn = 20.0 * e_max;
-    laws_.push_back({kn, kn / 2.5, 0.0, 0.0, 0.0});
+    ContactLaw law;
+    law.kn = 20.0 * e_max;
+    law.ks = law.kn / 2.5;
+    laws_.push_back(law);
     interface_law_ = static_cast<int>(laws_.size()) - 1;
   }
+  std::vector<int> used = joint_law_;
+  if (interface_used_) used.push_back(interface_law_);
+  for (int l : used)
+    nonlinear_ |= laws_[l].normal != NormalModel::constant || laws_[l].shear != ShearModel::constant;
 }
 
 void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<ElementFrame>& frames,
@@ -156,13 +172,20 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
     c.gap0 = c.at.gap;
     c.gap = c.at.gap;
     c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
-    // Tributary length: half of each candidate edge meeting at P.
+    // Tributary length: half of each candidate edge at P that faces the contacted edge (a
+    // corner's other side is not on this joint).
     c.length = 0;
     for (std::int32_t s : {topo_.prev[p], p}) {
       if (!topo_.edge_candidate[s]) continue;
       const std::int32_t f = topo_.next[s];
-      c.length += 0.5 * std::hypot(xy[2 * f] - xy[2 * s], xy[2 * f + 1] - xy[2 * s + 1]);
+      const double ex = xy[2 * f] - xy[2 * s], ey = xy[2 * f + 1] - xy[2 * s + 1];
+      const double el = std::hypot(ex, ey);
+      if (el > 0 && (ey / el) * nx + (-ex / el) * ny < -0.7) c.length += 0.5 * el;
     }
+    if (c.length == 0) c.length = 1e-3 * topo_.mesh_size;  // a bare corner: a point
+    // Newton starts from the state the step starts in.
+    c.closure_k = std::max(0.0, -c.gap0);
+    c.shear_k = c.shear0;
   }
 }
 
@@ -170,16 +193,20 @@ std::vector<std::string> ContactSet::effects() const {
   if (!active_) return {};
   std::vector<int> used = joint_law_;
   if (interface_used_) used.push_back(interface_law_);
-  bool friction = false, cohesion = false, tension = false;
+  bool friction = false, cohesion = false, tension = false, bb = false, hyp = false;
   for (int l : used) {
     friction |= laws_[l].tan_phi > 0;
     cohesion |= laws_[l].cohesion > 0;
     tension |= laws_[l].tensile > 0;
+    bb |= laws_[l].normal == NormalModel::bandis_barton;
+    hyp |= laws_[l].shear == ShearModel::hyperbolic;
   }
   std::vector<std::string> e{"contact"};
   if (friction) e.push_back("friction");
   if (cohesion) e.push_back("cohesion");
   if (tension) e.push_back("tension");
+  if (bb) e.push_back("bandis_barton");
+  if (hyp) e.push_back("hyperbolic");
   return e;
 }
 
@@ -200,18 +227,28 @@ void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::in
 }
 
 void ContactSet::add_to_system(SystemMatrix* k, Eigen::VectorXd& rhs) const {
+  // Each spring is linearised at its last iterate: force F_k and tangent k_t there. With
+  // gap = g0 + cnᵀd and closure δ = −gap, N(δ) ≈ N_k + k_t(δ − δ_k) gives
+  //   K += k_t·cn cnᵀ,  F += (N_k − k_t·δ_k − k_t·g0)·cn;
+  // the shear force T(s) ≈ T_k + k_t(s − s_k), s = s_el + csᵀd, gives
+  //   K += k_t·cs csᵀ,  F −= (T_k − k_t·s_k + k_t·s_el)·cs.
+  // For constant springs both reduce to the plain penalty terms.
   Eigen::Matrix<double, 12, 12> block;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::open) continue;
     const ContactLaw& law = laws_[c.law];
     const Eigen::Map<const Eigen::Matrix<double, 12, 1>> cn(c.cn.data()), cs(c.cs.data());
-    block.noalias() = law.kn * cn * cn.transpose();
-    Eigen::Matrix<double, 12, 1> f = -law.kn * c.gap0 * cn;
+    const SpringState nsp = normal_spring(law, c.closure_k, c.length);
+    block.noalias() = nsp.stiffness * cn * cn.transpose();
+    Eigen::Matrix<double, 12, 1> f =
+        (nsp.force - nsp.stiffness * c.closure_k - nsp.stiffness * c.gap0) * cn;
     if (c.state == ContactState::locked) {
-      block.noalias() += law.ks * cs * cs.transpose();
-      f -= law.ks * c.shear0 * cs;
+      const double strength = shear_strength(law, nsp.force, c.length, c.broken);
+      const SpringState ssp = shear_spring(law, c.shear_k, strength, c.length);
+      block.noalias() += ssp.stiffness * cs * cs.transpose();
+      f -= (ssp.force - ssp.stiffness * c.shear_k + ssp.stiffness * c.shear0) * cs;
     } else {
-      f -= c.slip_sign * law.tan_phi * std::max(c.friction_normal, 0.0) * cs;
+      f -= c.slip_sign * shear_strength(law, c.friction_normal, c.length, true) * cs;
     }
     if (k) k->add_group(static_cast<std::size_t>(c.group), block.data());
     for (int i = 0; i < 12; ++i) rhs[c.dofs[i]] += f[i];
@@ -220,7 +257,7 @@ void ContactSet::add_to_system(SystemMatrix* k, Eigen::VectorXd& rhs) const {
 
 ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, double w0) {
   const double eps = 1e-10 * w0;
-  int changed = 0, forces = 0;
+  int changed = 0, forces = 0, stiffness = 0;
   for (Contact& c : contacts_) {
     if (iteration == 1) c.flips = 0;
     const ContactState before = c.state;
@@ -232,51 +269,90 @@ ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, d
     }
     c.gap = c.gap0 + dg;
     c.shear = c.shear0 + ds;
-    const double n = -law.kn * c.gap;
+    // Normal force on the constitutive curve (compression > 0; tension with the initial
+    // stiffness, for the opening check).
+    const double k0 = initial_normal_stiffness(law, c.length);
+    const SpringState nsp = normal_spring(law, std::max(0.0, -c.gap), c.length);
+    const double n = c.gap < 0 ? nsp.force : -k0 * c.gap;
+    c.capped = nsp.capped;
     const double tension_cap = c.broken ? 0.0 : law.tensile * c.length;
-    const double cohesion = c.broken ? 0.0 : law.cohesion * c.length;
+    const double strength = shear_strength(law, n, c.length, c.broken);
+    // Newton: has the closure the normal spring was linearised at moved the force by > 0.1 %?
+    if (c.state != ContactState::open && law.normal != NormalModel::constant) {
+      const SpringState at_k = normal_spring(law, c.closure_k, c.length);
+      const double linear = at_k.force + at_k.stiffness * (std::max(0.0, -c.gap) - c.closure_k);
+      if (std::abs(nsp.force - linear) > 1e-3 * std::max(std::abs(nsp.force), 1e-9 * k0 * w0)) {
+        if (std::abs(nsp.stiffness - at_k.stiffness) > 0.2 * at_k.stiffness) ++stiffness;
+        ++forces;
+      }
+      c.closure_k = std::max(0.0, -c.gap);
+    }
+    c.kn_now = c.state == ContactState::open ? 0 : nsp.stiffness;
     switch (c.state) {
       case ContactState::open:
         c.normal_force = 0;
+        c.shear_force = 0;
+        c.ks_now = 0;
         if (c.gap < -eps) {
           c.shear0 = 0;  // a fresh spring: its trial shear is the slip of this step
           c.friction_normal = n;
           c.shear = ds;
+          c.closure_k = -c.gap;
+          c.shear_k = ds;
           c.state = ContactState::locked;
           ++events.closed;
           ++changed;
         }
         break;
       case ContactState::locked:
-      case ContactState::sliding:
+      case ContactState::sliding: {
         c.normal_force = std::max(n, 0.0);
-        if (n < -tension_cap - law.kn * eps) {
+        const SpringState ssp = shear_spring(law, c.shear, strength, c.length);
+        if (n < -tension_cap - k0 * eps) {
           c.state = ContactState::open;
           c.broken = true;
           ++events.opened;
           ++changed;
         } else if (c.state == ContactState::locked) {
-          if (std::abs(law.ks * c.shear) > n * law.tan_phi + cohesion) {
+          c.shear_force = ssp.force;
+          c.ks_now = ssp.stiffness;
+          // Mohr–Coulomb; a hyperbola with Rf = 1 only approaches the strength: 99.9 % is slip.
+          const double limit = law.shear == ShearModel::constant ? strength : 0.999 * strength;
+          if (std::abs(ssp.force) > limit) {
             c.state = ContactState::sliding;
             c.slip_sign = c.shear > 0 ? 1 : -1;
             ++events.slid;
             c.friction_normal = n;
             c.broken = true;
             ++changed;
+          } else if (law.shear != ShearModel::constant) {
+            const SpringState at_k = shear_spring(law, c.shear_k, strength, c.length);
+            const double linear = at_k.force + at_k.stiffness * (c.shear - c.shear_k);
+            if (std::abs(ssp.force - linear) > 1e-3 * std::max(std::abs(ssp.force), 1e-9 * k0 * w0)) {
+              if (std::abs(ssp.stiffness - at_k.stiffness) > 0.2 * at_k.stiffness) ++stiffness;
+              ++forces;
+            }
+            c.shear_k = c.shear;
           }
-        } else if (c.slip_sign * law.ks * c.shear < n * law.tan_phi - law.ks * eps) {
-          c.state = ContactState::locked;  // the slip reversed: it sticks, the spring loaded
-          ++events.stuck;
-          ++changed;
-        } else if (std::abs(n - c.friction_normal) >
-                   1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) + 1e-12 * law.kn * w0) {
-          // Friction must use the normal force it ends with. A fixed-point iteration on it can
-          // oscillate where contacts press on each other; from the fifth iteration on it is
-          // under-relaxed (half way), which damps that.
-          c.friction_normal = iteration <= 4 ? n : 0.5 * (c.friction_normal + n);
-          ++forces;
+        } else {
+          c.ks_now = 0;
+          c.shear_force = c.slip_sign * shear_strength(law, c.friction_normal, c.length, true);
+          if (c.slip_sign * ssp.force < strength - initial_shear_stiffness(law, c.length) * eps) {
+            c.state = ContactState::locked;  // the slip reversed: it sticks, the spring loaded
+            c.shear_k = c.shear;
+            ++events.stuck;
+            ++changed;
+          } else if (std::abs(n - c.friction_normal) >
+                     1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) + 1e-12 * k0 * w0) {
+            // Friction must use the normal force it ends with. A fixed-point iteration on it can
+            // oscillate where contacts press on each other; from the fifth iteration on it is
+            // under-relaxed (half way), which damps that.
+            c.friction_normal = iteration <= 4 ? n : 0.5 * (c.friction_normal + n);
+            ++forces;
+          }
         }
         break;
+      }
     }
     if (c.state != before && ++c.flips > 1) {
       // Second change in this step: settle closed and sliding (see the file comment).
@@ -287,18 +363,21 @@ ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, d
       if (c.state == before) --changed;
     }
   }
-  return {changed, forces};
+  return {changed, forces, stiffness};
 }
 
 void ContactSet::end_step() {
   for (Contact& c : contacts_) {
     const ContactLaw& law = laws_[c.law];
-    if (c.state == ContactState::open)
+    if (c.state == ContactState::open) {
       c.shear_el = 0;
-    else if (c.state == ContactState::locked)
+    } else if (c.state == ContactState::locked) {
       c.shear_el = c.shear;
-    else
-      c.shear_el = c.slip_sign * law.tan_phi * c.normal_force / law.ks;
+    } else {
+      // Sliding: the spring stays loaded at the friction limit.
+      const double strength = shear_strength(law, c.normal_force, c.length, true);
+      c.shear_el = c.slip_sign * shear_at_force(law, strength, strength, c.length);
+    }
   }
   committed_ = contacts_;
 }
@@ -307,6 +386,12 @@ double ContactSet::max_penetration() const {
   double p = 0;
   for (const Contact& c : contacts_) p = std::max(p, -c.gap);
   return p;
+}
+
+std::size_t ContactSet::capped_count() const {
+  std::size_t n = 0;
+  for (const Contact& c : contacts_) n += c.capped && c.state != ContactState::open ? 1 : 0;
+  return n;
 }
 
 std::size_t ContactSet::closed_count() const {

@@ -11,6 +11,7 @@
 
 #include "contact_detection.h"
 #include "element_integration.h"
+#include "joint_law.h"
 #include "mesh.h"
 #include "scene.h"
 #include "system_matrix.h"
@@ -21,15 +22,6 @@ namespace nmm::solve {
 struct ElementFrame {
   double ox = 0, oy = 0;  ///< m, origin: the node of its first cover
   TriangleWeights w;      ///< weights relative to (ox, oy)
-};
-
-/// The contact law of one joint set (or of the default interface), constant springs.
-struct ContactLaw {
-  double kn = 0;        ///< N/m, normal spring per contact point
-  double ks = 0;        ///< N/m, shear spring per contact point
-  double tan_phi = 0;   ///< –, friction coefficient
-  double cohesion = 0;  ///< Pa
-  double tensile = 0;   ///< Pa, tensile strength
 };
 
 enum class ContactState : std::uint8_t { open, locked, sliding };
@@ -46,6 +38,12 @@ struct Contact {
   double normal_force = 0;   ///< N, compression > 0, from the last solve
   double friction_normal = 0;  ///< N, the normal force the friction of the last solve used
   double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
+  double closure_k = 0;      ///< m, closure the normal spring is linearised at (Newton)
+  double shear_k = 0;        ///< m, trial shear the shear spring is linearised at
+  double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
+  double ks_now = 0;         ///< N/m, tangent shear stiffness at the last solve (0 sliding)
+  double shear_force = 0;    ///< N, shear force at the last solve
+  bool capped = false;       ///< closure held below Vm at the last solve
   double shear = 0;          ///< m, trial elastic shear after the last solve (shear_el + slip)
   // Linearisation for this step: gap = gap0 + cnᵀd, shear = shear0 + csᵀd over 12 unknowns.
   std::array<int, 12> dofs{};
@@ -86,8 +84,9 @@ class ContactSet {
   /// What a judgement changed: states (the matrix changes) and friction forces (only the
   /// right-hand side changes: a sliding contact's normal force moved by more than 0.1 %).
   struct Changes {
-    int states = 0;
-    int forces = 0;
+    int states = 0;     ///< contacts whose state changed
+    int forces = 0;     ///< contacts whose forces moved (right-hand side only)
+    int stiffness = 0;  ///< nonlinear springs whose tangent moved by more than 20 % (refactor)
   };
   /// Judges every contact against the solution d of open–close iteration `iteration` (1, 2,
   /// ...) of a step of length dt (s) in a model of half-size w0 (m).
@@ -108,6 +107,10 @@ class ContactSet {
   /// Largest penetration of the contacts after the last solve, m.
   double max_penetration() const;
   std::size_t closed_count() const;
+  /// Contacts whose closure is held below Vm after the last solve.
+  std::size_t capped_count() const;
+  /// True if some law is nonlinear (Bandis–Barton or hyperbolic).
+  bool nonlinear() const { return nonlinear_; }
   double detection_seconds() const { return detection_seconds_; }
   const DetectionStats& detection_stats() const { return stats_; }
 
@@ -118,6 +121,7 @@ class ContactSet {
   std::vector<int> joint_law_;  // [joint] law index
   int interface_law_ = 0;
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
+  bool nonlinear_ = false;       // a law in use is not a constant spring
   bool active_ = false;
   std::vector<Contact> contacts_;   // this step's, being iterated
   std::vector<Contact> committed_;  // as the last accepted step left them

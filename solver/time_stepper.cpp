@@ -444,13 +444,13 @@ std::string TimeStepper::attempt(double dt) {
     ++iterations_;
     const ContactSet::Changes ch = contacts_.judge(d, it, w0_);
     if (ch.states == 0 && ch.forces == 0) break;
-    if (ch.states == 0 && it >= 3 * kMaxIterations) {
+    if (ch.states == 0 && ch.stiffness == 0 && it >= 3 * kMaxIterations) {
       // Every state has settled; only friction forces still move (by more than 0.1 %). Take the
       // step rather than cut it: a smaller step would not settle them better.
       ++friction_unsettled_;
       break;
     }
-    refactor = ch.states > 0;
+    refactor = ch.states > 0 || ch.stiffness > 0;
     if (factorisations >= kMaxIterations || it >= 4 * kMaxIterations)
       return "the open-close iteration did not converge in " + std::to_string(it) +
              " iterations (" + std::to_string(factorisations) + " with contact state changes)";
@@ -475,6 +475,7 @@ std::string TimeStepper::attempt(double dt) {
     }
     contacts_.end_step();
     max_penetration_ = std::max(max_penetration_, contacts_.max_penetration());
+    max_capped_ = std::max(max_capped_, contacts_.capped_count());
   }
   t0 = Clock::now();
   update(d, dt);
@@ -585,6 +586,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["time_step_cuts"] = cuts_;
   summary["steps_with_unsettled_friction"] = friction_unsettled_;
   summary["max_penetration"] = max_penetration_;
+  summary["max_contacts_at_closure_cap"] = max_capped_;
   summary["contacts"] = {{"at_end", contacts_.contacts().size()},
                          {"closed_at_end", contacts_.closed_count()},
                          {"pairs_tested", contacts_.detection_stats().pairs_tested}};

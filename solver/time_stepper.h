@@ -124,6 +124,7 @@ class TimeStepper {
   std::size_t friction_unsettled_ = 0;  // steps taken with friction forces still moving
   double dt_ = 1e300;            // s, the step length step control has arrived at
   double max_penetration_ = 0;   // m, largest penetration after any accepted step
+  std::size_t max_capped_ = 0;   // most contacts held below Vm after one step
   static constexpr int kMaxIterations = 16;  // factorisations per step's open–close iteration
 };
 

@@ -1,0 +1,98 @@
+// Joint laws on contact springs (seed paper; physics.md §4).
+//
+// A contact point stands for a tributary length L of joint (contact.cpp: half of each of the
+// contact vertex's candidate edges that face the contacted edge). Its spring force is the joint
+// stress times L, so the *force* follows the constitutive curve exactly (a secant relation),
+// while the matrix gets the tangent stiffness (Newton's method in the open–close iteration).
+//
+// Normal, Bandis–Barton closure (Bandis, Lumsden & Barton 1983), closure δ ≥ 0:
+//     σn = Kni·δ / (1 − δ/Vm)                 ⇔  δ = σn·Vm / (Kni·Vm + σn)
+//     kn = dσn/dδ · L = Kni·L / (1 − δ/Vm)²    (rises steeply as δ → Vm)
+//   Guard: δ is held at 0.99·Vm; beyond, the force grows linearly with the tangent there, so it
+//   stays finite and monotonic (the contact is reported as capped). In tension (δ < 0) the
+//   spring uses Kni·L, and opens beyond the tensile strength as with a constant spring.
+//   Unloading retraces the loading curve: closure is nonlinear elastic here (real joints show
+//   hysteresis between load cycles, which the first-cycle law does not describe).
+// Shear, hyperbolic (Kulhawy 1975; Duncan–Chang form), elastic shear u ≥ 0, strength
+// τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact:
+//     τ = u / (1/Ksi + Rf·u/τf)              ⇔  u = τ / (Ksi·(1 − Rf·τ/τf))
+//     ks = dτ/du · L = Ksi·L·(1 − Rf·τ/τf)²   (falls as u grows)
+//   The contact slips (Mohr–Coulomb) when the force reaches T_f, which the curve does at
+//   u = τf/(Ksi(1 − Rf)) (for Rf = 1 only asymptotically: slip then comes from the limit check
+//   at 99.9 % of T_f). Guards: ks ≥ 1e-3·Ksi·L; with no strength (τf = 0) there is no shear
+//   force and no division: the contact slides. Unloading (u shrinking) follows the same curve.
+// Constant: force = k·x, stiffness k (N/m per contact point, Shi's penalty).
+#include "joint_law.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace nmm::solve {
+
+SpringState normal_spring(const ContactLaw& law, double closure, double length) {
+  SpringState s;
+  if (law.normal == NormalModel::constant) {
+    s.force = law.kn * closure;
+    s.stiffness = law.kn;
+    return s;
+  }
+  const double k0 = law.kni * length;
+  if (closure <= 0) {  // tension: the initial stiffness
+    s.force = k0 * closure;
+    s.stiffness = k0;
+    return s;
+  }
+  const double cap = 0.99 * law.vm;
+  const double d = std::min(closure, cap);
+  const double r = 1.0 - d / law.vm;
+  s.force = k0 * d / r;
+  s.stiffness = k0 / (r * r);
+  if (closure > cap) {
+    s.force += s.stiffness * (closure - cap);
+    s.capped = true;
+  }
+  return s;
+}
+
+double initial_normal_stiffness(const ContactLaw& law, double length) {
+  return law.normal == NormalModel::constant ? law.kn : law.kni * length;
+}
+
+double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken) {
+  return std::max(0.0, law.tan_phi * std::max(normal_force, 0.0) + (broken ? 0.0 : law.cohesion * length));
+}
+
+double initial_shear_stiffness(const ContactLaw& law, double length) {
+  return law.shear == ShearModel::constant ? law.ks : law.ksi * length;
+}
+
+SpringState shear_spring(const ContactLaw& law, double shear, double strength, double length) {
+  SpringState s;
+  if (law.shear == ShearModel::constant) {
+    s.force = law.ks * shear;
+    s.stiffness = law.ks;
+    return s;
+  }
+  const double k0 = law.ksi * length;
+  if (!(strength > 0)) {  // no strength: no shear force (the contact slides)
+    s.stiffness = 1e-3 * k0;
+    return s;
+  }
+  const double u = std::abs(shear);
+  const double t = u / (1.0 / k0 + law.rf * u / strength);  // force, N
+  const double ratio = std::min(law.rf * t / strength, 1.0);
+  s.force = shear < 0 ? -t : t;
+  s.stiffness = std::max(k0 * (1.0 - ratio) * (1.0 - ratio), 1e-3 * k0);
+  return s;
+}
+
+double shear_at_force(const ContactLaw& law, double force, double strength, double length) {
+  const double f = std::abs(force);
+  if (law.shear == ShearModel::constant) return f / law.ks;
+  const double k0 = law.ksi * length;
+  if (!(strength > 0)) return 0;
+  const double t = std::min(f, 0.999 * strength / std::max(law.rf, 1e-12));
+  return t / (k0 * (1.0 - law.rf * t / strength));
+}
+
+}  // namespace nmm::solve

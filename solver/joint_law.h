@@ -1,0 +1,51 @@
+// Rock-joint constitutive laws for contact springs (the seed paper's modified contact model):
+// Bandis–Barton closure for the normal direction, the hyperbolic law for shear, or constant
+// penalty springs. See joint_law.cpp for the equations and the mapping onto contact points.
+#pragma once
+
+#include "scene.h"
+
+namespace nmm::solve {
+
+/// One joint set's contact law (or the default interface's).
+struct ContactLaw {
+  NormalModel normal = NormalModel::constant;
+  ShearModel shear = ShearModel::constant;
+  double kn = 0;        ///< N/m per contact point (constant normal)
+  double kni = 0;       ///< Pa/m, initial normal stiffness (Bandis–Barton)
+  double vm = 0;        ///< m, maximum closure (Bandis–Barton)
+  double ks = 0;        ///< N/m per contact point (constant shear)
+  double ksi = 0;       ///< Pa/m, initial shear stiffness (hyperbolic)
+  double rf = 1;        ///< –, failure ratio (hyperbolic)
+  double tan_phi = 0;   ///< –, friction coefficient
+  double cohesion = 0;  ///< Pa
+  double tensile = 0;   ///< Pa, tensile strength
+};
+
+/// Force and tangent stiffness of a contact spring at one state.
+struct SpringState {
+  double force = 0;      ///< N, compression (normal) or shear force, along the displacement
+  double stiffness = 0;  ///< N/m, tangent dForce/dDisplacement
+  bool capped = false;   ///< the closure was held below Vm (Bandis–Barton)
+};
+
+/// Normal spring at closure δ ≥ 0 (m) for a contact of tributary length L (m).
+SpringState normal_spring(const ContactLaw& law, double closure, double length);
+
+/// Normal stiffness used in tension and for judging opening (N/m): kn, or Kni·L.
+double initial_normal_stiffness(const ContactLaw& law, double length);
+
+/// Shear strength of a contact, N: tanφ·N + c·L (c only while not broken).
+double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken);
+
+/// Shear spring at signed elastic shear s (m), with strength `strength` (N, ≥ 0) and length L.
+SpringState shear_spring(const ContactLaw& law, double shear, double strength, double length);
+
+/// Initial shear stiffness (N/m): ks, or Ksi·L.
+double initial_shear_stiffness(const ContactLaw& law, double length);
+
+/// Elastic shear (m, ≥ 0) at which the shear spring carries `force` (N) below its strength:
+/// the inverse of shear_spring (used to leave a sliding contact's spring loaded at the limit).
+double shear_at_force(const ContactLaw& law, double force, double strength, double length);
+
+}  // namespace nmm::solve
