@@ -94,8 +94,11 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   }
   std::vector<int> used = joint_law_;
   if (interface_used_) used.push_back(interface_law_);
-  for (int l : used)
+  for (int l : used) {
     nonlinear_ |= laws_[l].normal != NormalModel::constant || laws_[l].shear != ShearModel::constant;
+    if (laws_[l].normal == NormalModel::bandis_barton)
+      topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
+  }
 }
 
 void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<ElementFrame>& frames,

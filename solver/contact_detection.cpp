@@ -10,7 +10,7 @@
 //   - A ≠ B, and (P, B) not continuous (P coincides with a vertex of B seeing the same covers
 //     with the same weights: the two can never separate, e.g. along a free surface inside one
 //     block, or next to a crack tip whose covers are not split);
-//   - ω = (P − Q2)·t / l in [0, 1]: P lies beside the edge;
+//   - ω = (P − Q2)·t / l in [0, 1] (within 1e-3): P lies beside the edge;
 //   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (1e-3·h: a vertex missed for a step) unless
 //     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
 //     (a vertex deep inside another element without having come in through a contact is near
@@ -21,8 +21,9 @@
 //   - single pass along flat stretches: a vertex that is not a corner of its block's boundary
 //     (a 180° vertex: where mesh lines cut a straight boundary or joint) touches only if its
 //     outward normal points down (n_y < 0, or n_y = 0 and n_x < 0), or if it pokes into the
-//     other side between that side's vertices deeper than 1e-4·h (far deeper than a contact
-//     spring lets a face sink, so faces pressed together still carry one set of contacts). Two faces pressed together
+//     other side between that side's vertices deeper than max(1e-4·h, 2·Vm) (beyond what a
+//     contact spring or a joint's closure lets a face sink, so faces pressed together still
+//     carry one set of contacts, whose tributary lengths add up to the joint's length). Two faces pressed together
 //     then carry one set of contacts, not two that fight each other (with deformable blocks some
 //     of a doubled set always end up in tension and the states chatter); the faces of a joint
 //     have opposite normals, so exactly one of them is that side everywhere. Corners always
@@ -85,6 +86,7 @@ void cover_weights(const Mesh& m, std::size_t e, double x, double y, double w[3]
 ContactTopology build_contact_topology(const Mesh& mesh) {
   ContactTopology t;
   t.mesh_size = mesh.mesh_size;
+  t.master_depth = 1e-4 * mesh.mesh_size;
   const std::size_t nv = mesh.loop_vertex_count();
   t.next.resize(nv);
   t.prev.resize(nv);
@@ -243,12 +245,15 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double tx = dx / l, ty = dy / l, ex = ty, ey = -tx;
       const double rx = px - xy[2 * q2], ry = py - xy[2 * q2 + 1];
       const double omega = (rx * tx + ry * ty) / l;
-      if (omega < -1e-9 || omega > 1 + 1e-9) continue;
+      // A little past the ends: a vertex right above a vertex of the other face projects onto
+      // both neighbouring edges at ω ≈ 0 or 1 and lies inside only one of their elements;
+      // round-off must not push it off that one (the point is clamped onto the edge).
+      if (omega < -1e-3 || omega > 1 + 1e-3) continue;
       const double g = rx * ex + ry * ey;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
       const bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
       const double eps = 1e-9 * topo.mesh_size;
-      if (master_side && g >= -1e-4 * topo.mesh_size) continue;
+      if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
       if (g < -eps && !inside_element(topo, xy, q2, px, py)) continue;
       const double face = nx * ex + ny * ey;  // −1: exactly opposite

@@ -24,6 +24,9 @@ struct ContactTopology {
   /// that element and both see the same covers with the same weights there.
   std::vector<std::pair<std::int32_t, std::int32_t>> continuous;
   double mesh_size = 0;  ///< m
+  /// m, how deep a vertex on the other side of a flat stretch must poke in before it too is held
+  /// (beyond any closure a joint law allows: max(1e-4·h, 2·Vm))
+  double master_depth = 0;
   bool is_continuous(std::int32_t vertex, std::int32_t element) const;
 };
 

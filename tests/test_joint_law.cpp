@@ -1,0 +1,182 @@
+// The seed paper's contact model against its closed forms (issue 5): the Bandis–Barton closure
+// and the hyperbolic shear law, first as curves, then through the whole solver for one joint in
+// normal compression and in direct shear.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "cover_cutter.h"
+#include "joint_law.h"
+#include "scene.h"
+#include "time_stepper.h"
+
+namespace nmm::solve {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+ContactLaw bb_law() {
+  ContactLaw law;
+  law.normal = NormalModel::bandis_barton;
+  law.kni = 15.35e9;  // JRC 10, JCS 100 MPa, σc 150 MPa (physics.md §4)
+  law.vm = 0.227e-3;
+  law.shear = ShearModel::hyperbolic;
+  law.ksi = 1e10;
+  law.rf = 0.9;
+  law.tan_phi = std::tan(30 * kPi / 180);
+  return law;
+}
+
+double closure_of(double sigma, const ContactLaw& l) { return sigma * l.vm / (l.kni * l.vm + sigma); }
+
+TEST(JointLaw, BandisBartonCurveAndTangent) {
+  const ContactLaw law = bb_law();
+  const double L = 0.25;
+  for (double sigma : {1e6, 5e6, 10e6}) {
+    const double d = closure_of(sigma, law);
+    const SpringState s = normal_spring(law, d, L);
+    EXPECT_NEAR(s.force / L, sigma, 1e-9 * sigma);
+    const double h = 1e-9 * law.vm;
+    const double fd = (normal_spring(law, d + h, L).force - normal_spring(law, d - h, L).force) / (2 * h);
+    EXPECT_NEAR(s.stiffness, fd, 1e-5 * fd);
+    EXPECT_FALSE(s.capped);
+  }
+  // Stiffness rises with closure; the closure is capped below Vm with a finite, growing force.
+  EXPECT_LT(normal_spring(law, 0.1e-3, L).stiffness, normal_spring(law, 0.2e-3, L).stiffness);
+  const SpringState beyond = normal_spring(law, 2 * law.vm, L);
+  EXPECT_TRUE(beyond.capped);
+  EXPECT_TRUE(std::isfinite(beyond.force));
+  EXPECT_GT(beyond.force, normal_spring(law, 0.99 * law.vm, L).force);
+}
+
+TEST(JointLaw, HyperbolicShearCurveTangentAndGuards) {
+  const ContactLaw law = bb_law();
+  const double L = 0.25, strength = 5e6 * law.tan_phi * L;  // N, at σn = 5 MPa
+  const double tf = strength / L;
+  double prev_k = 1e300;
+  for (double frac : {0.3, 0.6, 0.9}) {
+    const double tau = frac * tf;
+    const double us = tau / (law.ksi * (1 - law.rf * tau / tf));
+    const SpringState s = shear_spring(law, us, strength, L);
+    EXPECT_NEAR(s.force / L, tau, 1e-9 * tau);
+    EXPECT_NEAR(shear_spring(law, -us, strength, L).force, -s.force, 1e-9 * s.force);
+    const double h = 1e-9 * us;
+    const double fd = (shear_spring(law, us + h, strength, L).force - shear_spring(law, us - h, strength, L).force) / (2 * h);
+    EXPECT_NEAR(s.stiffness, fd, 1e-5 * fd);
+    EXPECT_LT(s.stiffness, prev_k) << "shear stiffness falls as the shear grows";
+    prev_k = s.stiffness;
+    EXPECT_NEAR(shear_at_force(law, s.force, strength, L), us, 1e-9 * us);
+  }
+  const SpringState none = shear_spring(law, 1e-3, 0.0, L);  // no strength: no force, no NaN
+  EXPECT_EQ(none.force, 0.0);
+  EXPECT_GT(none.stiffness, 0.0);
+  EXPECT_GE(shear_spring(law, 1.0, strength, L).stiffness, 1e-3 * law.ksi * L) << "stiffness floor";
+}
+
+TEST(JointLaw, BartonBandisEmpiricalRelationsFromJrcJcsUcs) {
+  const std::string text = R"({
+    "materials": { "rock": { "density": 2650, "young": 1e10, "poisson": 0.25 } },
+    "joint_sets": { "j": { "friction_deg": 30,
+        "normal": { "model": "bandis_barton", "jrc": 10, "jcs": 100e6, "ucs": 150e6 },
+        "shear": { "model": "hyperbolic", "ksi": 1e10, "rf": 0.9 } } },
+    "bodies": [ { "material": "rock", "outer": [[0,0],[1,0],[1,1],[0,1]] } ],
+    "mesh": { "size": 0.5 } })";
+  const SceneDef s = parse_scene(text, "jrc.json");
+  const NormalLawDef& n = s.joint_sets[0].normal;
+  EXPECT_EQ(n.model, NormalModel::bandis_barton);
+  EXPECT_NEAR(n.aperture, 0.40e-3, 1e-6);
+  EXPECT_NEAR(n.kni, 15.35e9, 0.01e9);  // GPa/m in physics.md's worked example
+  EXPECT_NEAR(n.vm, 0.2277e-3, 0.0005e-3);
+}
+
+// Two 2 m × 1 m bodies, one on the other; the base held along its bottom, the joint between
+// them y = 1. Normal load: point loads along the top face; shear load: point loads along the
+// joint 2 cm above it (as a shear box loads the whole face, with no overturning moment). Quasi-static (dynamic factor
+// 0) until it settles. Returns the joint's closure and slip measured through the solver: the
+// displacement jump between points 0.1 mm above and below the joint at its middle.
+struct JointResult {
+  double closure, slip;
+  std::string status;
+};
+
+JointResult load_joint(double sigma_n, double tau, double seconds) {
+  SceneDef s;
+  // Rock far stiffer than the joint (500 GPa): the closed forms are about the joint alone, and
+  // the point loads' own local deformation must not reach the measuring points.
+  s.materials.push_back({"rock", 2650, 5e11, 0.25});
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = 30;
+  js.normal.model = NormalModel::bandis_barton;
+  js.normal.kni = 15.35e9;
+  js.normal.vm = 0.227e-3;
+  js.shear.model = ShearModel::hyperbolic;
+  js.shear.ksi = 1e10;
+  js.shear.rf = 0.9;
+  s.joint_sets.push_back(js);
+  s.interface_set = 0;
+  s.mesh_size = 0.25;
+  s.plane = PlaneKind::stress;
+  BodyDef base, top;
+  base.material = top.material = 0;
+  base.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  top.outer = {{0, 1}, {2, 1}, {2, 2}, {0, 2}};
+  s.bodies = {base, top};
+  for (double x = 0.05; x < 2; x += 0.1) s.fixed_points.push_back({x, 0.02});
+  const int n = 20;  // normal load: n segments of the 2 m top face, end points half
+  for (int i = 0; i <= n; ++i) {
+    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+    s.loads.push_back({{2.0 * i / n, 2.0}, {0, -sigma_n * 2.0 / n * w}});
+  }
+  if (tau != 0)  // along the joint, 2 cm above it: the whole face is sheared, no overturning
+    for (int i = 0; i < 10; ++i) s.loads.push_back({{0.1 + 0.2 * i, 1.02}, {tau * 2.0 / 10, 0}});
+  s.measure_points = {{1.0, 1.0001}, {1.0, 0.9999}};
+  s.solver.time_step = 1e-3;
+  s.solver.dynamic_factor = 0;  // quasi-static: settles to equilibrium
+  s.solver.max_displacement_ratio = 0.01;
+  const Mesh m = pre::build_mesh(s, "joint");
+  TimeStepper st(m, s, "joint");
+  JointResult r;
+  r.status = st.run_until(seconds, [](std::int64_t) {});
+  const auto a = st.displacement_at(st.measure_points()[0]);
+  const auto b = st.displacement_at(st.measure_points()[1]);
+  r.closure = b[1] - a[1];
+  r.slip = a[0] - b[0];
+  return r;
+}
+
+TEST(JointLaw, SingleJointNormalClosureThroughTheSolver) {
+  const ContactLaw law = bb_law();
+  for (double sigma : {1e6, 5e6, 10e6}) {
+    const JointResult r = load_joint(sigma, 0, 0.3);
+    ASSERT_EQ(r.status, "ok");
+    const double want = closure_of(sigma, law);
+    std::printf("normal %4.0f MPa: closure %.4e m, Bandis-Barton %.4e m (%+.2f %%)\n", sigma / 1e6,
+                r.closure, want, 100 * (r.closure - want) / want);
+    EXPECT_NEAR(r.closure, want, 0.02 * want);
+  }
+}
+
+TEST(JointLaw, SingleJointDirectShearThroughTheSolver) {
+  const ContactLaw law = bb_law();
+  const double sigma = 5e6, tf = sigma * law.tan_phi;
+  for (double frac : {0.3, 0.6, 0.9}) {
+    const double tau = frac * tf;
+    const JointResult r = load_joint(sigma, tau, 0.4);
+    ASSERT_EQ(r.status, "ok");
+    const double want = tau / (law.ksi * (1 - law.rf * tau / tf));
+    std::printf("shear %2.0f %% of strength: slip %.4e m, hyperbola %.4e m (%+.2f %%)\n", 100 * frac,
+                r.slip, want, 100 * (r.slip - want) / want);
+    EXPECT_NEAR(r.slip, want, 0.03 * want);
+  }
+  // Beyond the strength the joint slides: far more than the elastic slip at 90 %, and growing.
+  const JointResult a = load_joint(sigma, 1.1 * tf, 0.2), b = load_joint(sigma, 1.1 * tf, 0.3);
+  const double elastic90 = 0.9 * tf / (law.ksi * (1 - law.rf * 0.9));
+  std::printf("shear 110 %%: slip %.3e m at 0.2 s, %.3e m at 0.3 s\n", a.slip, b.slip);
+  EXPECT_GT(a.slip, 3 * elastic90);
+  EXPECT_GT(b.slip, a.slip + 2 * elastic90) << "and it keeps sliding";
+}
+
+}  // namespace
+}  // namespace nmm::solve
