@@ -381,8 +381,11 @@ NormalLawDef read_normal_law(const Reader& r) {
   r.expect_object();
   NormalLawDef law;
   const std::size_t model = r["model"].as_choice({"constant", "bandis_barton"}, "normal model");
+  // A joint set may hold the parameters of both models, so that a run can switch models with
+  // --set joint_sets.NAME.normal.model=... on the same mesh; the model picks which are needed.
+  r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs"}, "");
+  if (r.has("kn")) law.kn = r.number("kn", kPositive);
   if (model == 0) {
-    r.check_keys({"model", "kn"}, " for model \"constant\"");
     law.model = NormalModel::constant;
     law.kn = r.number("kn", kPositive);
   } else if (r.has("jrc") || r.has("jcs") || r.has("ucs")) {
@@ -391,7 +394,8 @@ NormalLawDef read_normal_law(const Reader& r) {
     //   a_j = (JRC/5)(0.2·σc/JCS − 0.1)           initial aperture, mm
     //   Kni = −7.15 + 1.75·JRC + 0.02·JCS/a_j      MPa/mm = GPa/m
     //   Vm  = −0.2960 − 0.0056·JRC + 2.2410·(JCS/a_j)^−0.2450   mm (first load cycle)
-    r.check_keys({"model", "jrc", "jcs", "ucs"}, " for model \"bandis_barton\" from JRC, JCS, UCS");
+    if (r.has("kni") || r.has("vm"))
+      r.fail("give either kni and vm, or jrc, jcs and ucs, not both");
     law.model = NormalModel::bandis_barton;
     law.jrc = r.number("jrc", interval(0, false, 20, true));
     law.jcs = r.number("jcs", kPositive);
@@ -409,7 +413,6 @@ NormalLawDef read_normal_law(const Reader& r) {
     law.kni = kni_gpa * 1e9;
     law.vm = vm_mm * 1e-3;
   } else {
-    r.check_keys({"model", "kni", "vm"}, " for model \"bandis_barton\"");
     law.model = NormalModel::bandis_barton;
     law.kni = r.number("kni", kPositive);
     law.vm = r.number("vm", kPositive);
@@ -421,12 +424,12 @@ ShearLawDef read_shear_law(const Reader& r) {
   r.expect_object();
   ShearLawDef law;
   const std::size_t model = r["model"].as_choice({"constant", "hyperbolic"}, "shear model");
+  r.check_keys({"model", "ks", "ksi", "rf"}, "");  // both models' parameters may be given
+  if (r.has("ks")) law.ks = r.number("ks", kPositive);
   if (model == 0) {
-    r.check_keys({"model", "ks"}, " for model \"constant\"");
     law.model = ShearModel::constant;
     law.ks = r.number("ks", kPositive);
   } else {
-    r.check_keys({"model", "ksi", "rf"}, " for model \"hyperbolic\"");
     law.model = ShearModel::hyperbolic;
     law.ksi = r.number("ksi", kPositive);
     law.rf = r.number("rf", interval(0, false, 1, true));

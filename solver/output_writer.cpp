@@ -162,8 +162,35 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   write_file_atomically(join_path(dir_, "frames.pvd"), pvd);
 }
 
+void OutputWriter::add_contacts(std::int64_t step, double time,
+                                const std::vector<ContactSample>& contacts) {
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const ContactSample& c = contacts[i];
+    contacts_ += std::to_string(step);
+    for (double v : {time}) {
+      contacts_ += ',';
+      append_double(contacts_, v);
+    }
+    contacts_ += ',' + std::to_string(i);
+    for (double v : {c.x, c.y}) {
+      contacts_ += ',';
+      append_double(contacts_, v);
+    }
+    contacts_ += ',' + std::to_string(c.state) + ',' + std::to_string(c.law);
+    for (double v : {c.closure, c.shear, c.normal_force, c.shear_force, c.kn, c.ks, c.length}) {
+      contacts_ += ',';
+      append_double(contacts_, v);
+    }
+    contacts_ += '\n';
+  }
+}
+
 void OutputWriter::flush_history() {
   write_file_atomically(join_path(dir_, "history.csv"), "step,time,point,x,y,ux,uy\n" + history_);
+  if (!contacts_.empty())
+    write_file_atomically(join_path(dir_, "contacts.csv"),
+                          "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
+                          "kn,ks,length\n" + contacts_);
 }
 
 void OutputWriter::write_summary(const nlohmann::json& summary) {

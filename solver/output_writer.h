@@ -19,6 +19,19 @@ struct MeasureSample {
   double ux, uy;  ///< m, displacement since the start
 };
 
+/// One contact at one output step (contacts.csv).
+struct ContactSample {
+  double x, y;             ///< m, the contact vertex
+  int state;               ///< 0 open, 1 locked, 2 sliding
+  int law;                 ///< joint set index (or the default interface's, last)
+  double closure;          ///< m, −gap (> 0: the faces overlap by this much)
+  double shear;            ///< m, elastic shear of the shear spring
+  double normal_force;     ///< N, compression
+  double shear_force;      ///< N
+  double kn, ks;           ///< N/m, tangent stiffnesses (0 where the spring is off)
+  double length;           ///< m, tributary joint length
+};
+
 /// What a frame shows: the element loops in their current position.
 struct FrameFields {
   const std::vector<double>* loop_xy;      ///< [2·v] m, current loop vertex positions
@@ -44,7 +57,12 @@ class OutputWriter {
   /// frames.pvd listing every frame so far with its time.
   void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields);
 
-  /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far.
+  /// Appends one output step's contacts to contacts.csv (in memory until flush_history()).
+  void add_contacts(std::int64_t step, double time, const std::vector<ContactSample>& contacts);
+
+  /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, and
+  /// contacts.csv ("step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,
+  /// length") if any contact rows were added.
   void flush_history();
 
   /// Writes summary.json (pretty-printed).
@@ -54,7 +72,8 @@ class OutputWriter {
 
  private:
   std::string dir_;
-  std::string history_;  // CSV rows so far
+  std::string history_;   // CSV rows so far
+  std::string contacts_;  // contacts.csv rows so far
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
 };
 

@@ -556,6 +556,16 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
     fields.loop_u = &loop_u_;
     fields.stress = &stress_;
     out.write_frame(s, time_, mesh_, fields);
+    if (contacts_.active()) {
+      std::vector<ContactSample> rows;
+      for (const Contact& c : contacts_.contacts()) {
+        if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
+        rows.push_back({loop_xy_[2 * c.at.vertex], loop_xy_[2 * c.at.vertex + 1],
+                        static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
+                        c.shear_force, c.kn_now, c.ks_now, c.length});
+      }
+      out.add_contacts(s, time_, rows);
+    }
     timings_.output += since(t0);
   };
   output(0);

@@ -250,11 +250,11 @@ const BadCase kBadCases[] = {
      "/bodies/0/hole", "unknown key \"hole\" (allowed: holes, material, outer)"},
     {R"({"loads": [{"point": [1,1], "force": [0,1], "moment": 3}]})", "/loads/0/moment",
      "unknown key \"moment\""},
-    // Keys allowed depend on the model.
-    {R"({"joint_sets": {"bedding": {"normal": {"kni": 1e10}}}})", "/joint_sets/bedding/normal/kni",
-     "unknown key \"kni\" (allowed for model \"constant\": kn, model)"},
-    {R"({"joint_sets": {"fault": {"shear": {"ks": 1e10}}}})", "/joint_sets/fault/shear/ks",
-     "unknown key \"ks\" (allowed for model \"hyperbolic\": ksi, model, rf)"},
+    // Both models' parameters may stand side by side (runs switch models); typos still fail.
+    {R"({"joint_sets": {"bedding": {"normal": {"kn_i": 1e10}}}})", "/joint_sets/bedding/normal/kn_i",
+     "unknown key \"kn_i\" (allowed: jcs, jrc, kn, kni, model, ucs, vm)"},
+    {R"({"joint_sets": {"fault": {"shear": {"rff": 0.9}}}})", "/joint_sets/fault/shear/rff",
+     "unknown key \"rff\" (allowed: ks, ksi, model, rf)"},
     {R"({"joint_sets": {"bedding": {"normal": {"model": "linear"}}}})",
      "/joint_sets/bedding/normal/model",
      "unknown normal model \"linear\" (known: constant, bandis_barton)"},
