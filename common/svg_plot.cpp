@@ -1,0 +1,113 @@
+#include "svg_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "svg_writer.h"
+#include "vtk_writer.h"  // write_file_atomically
+
+namespace nmm {
+
+namespace {
+
+constexpr double kW = 100, kH = 62;  // plot area in drawing units
+
+std::string fmt(double v) {
+  char buf[32];
+  if (std::abs(v) < 1e-12) v = 0;  // a tick at round-off from zero is labelled 0, not -0
+  if (v != 0 && (std::abs(v) >= 1e4 || std::abs(v) < 1e-2))
+    std::snprintf(buf, sizeof buf, "%.0e", v);
+  else
+    std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// Ticks at 1-2-5 steps covering [lo, hi] (in the axis' own, possibly log10, units).
+std::vector<double> ticks(double lo, double hi, bool log) {
+  std::vector<double> t;
+  if (log) {
+    for (double e = std::floor(lo); e <= std::ceil(hi) + 1e-9; e += 1) t.push_back(e);
+    return t;
+  }
+  const double span = hi - lo, raw = span / 6;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (raw <= m * mag) {
+      step = m * mag;
+      break;
+    }
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step) t.push_back(v);
+  return t;
+}
+
+}  // namespace
+
+std::string svg_plot(const PlotSpec& spec) {
+  auto tx = [&](double v) { return spec.log_x ? std::log10(v) : v; };
+  auto ty = [&](double v) { return spec.log_y ? std::log10(v) : v; };
+  auto ok = [](bool log, double v) { return std::isfinite(v) && (!log || v > 0); };
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const PlotSeries& s : spec.series)
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!ok(spec.log_x, s.x[i]) || !ok(spec.log_y, s.y[i])) continue;
+      x0 = std::min(x0, tx(s.x[i]));
+      x1 = std::max(x1, tx(s.x[i]));
+      y0 = std::min(y0, ty(s.y[i]));
+      y1 = std::max(y1, ty(s.y[i]));
+    }
+  if (!(x0 <= x1)) x0 = 0, x1 = 1;
+  if (!(y0 <= y1)) y0 = 0, y1 = 1;
+  if (x1 - x0 < 1e-300) x0 -= 0.5, x1 += 0.5;
+  if (y1 - y0 < 1e-300) y0 -= 0.5, y1 += 0.5;
+  if (!spec.log_y && y0 > 0 && y0 < 0.3 * y1) y0 = 0;  // start at zero when it is near
+  if (!spec.log_x && x0 > 0 && x0 < 0.3 * x1) x0 = 0;
+  const double px = 0.04 * (x1 - x0), py = 0.06 * (y1 - y0);
+  x0 -= spec.log_x ? 0 : (x0 == 0 ? 0 : px), x1 += px;
+  y0 -= spec.log_y ? 0 : (y0 == 0 ? 0 : py), y1 += py;
+  auto X = [&](double v) { return kW * (tx(v) - x0) / (x1 - x0); };
+  auto Y = [&](double v) { return kH * (ty(v) - y0) / (y1 - y0); };
+
+  SvgWriter w;
+  const SvgStyle axis{"none", "#222222", 0.25, 0, 1}, grid{"none", "#dddddd", 0.12, 0, 1};
+  for (double t : ticks(x0, x1, spec.log_x)) {
+    const double x = kW * (t - x0) / (x1 - x0);
+    if (x < -1e-9 || x > kW + 1e-9) continue;
+    w.polyline({{x, 0}, {x, kH}}, grid);
+    w.text({x - 2, -4}, fmt(spec.log_x ? std::pow(10.0, t) : t), 2.4, "#222222");
+  }
+  for (double t : ticks(y0, y1, spec.log_y)) {
+    const double y = kH * (t - y0) / (y1 - y0);
+    if (y < -1e-9 || y > kH + 1e-9) continue;
+    w.polyline({{0, y}, {kW, y}}, grid);
+    w.text({-11, y - 0.8}, fmt(spec.log_y ? std::pow(10.0, t) : t), 2.4, "#222222");
+  }
+  w.polyline({{0, kH}, {0, 0}, {kW, 0}}, axis);
+  w.text({kW / 2 - spec.xlabel.size() * 0.6, -9}, spec.xlabel, 2.8, "#222222");
+  w.text({-11, kH + 8}, spec.ylabel, 2.8, "#222222");
+  w.text({0, kH + 13}, spec.title, 3.4, "#000000");
+  double lx = 0;  // legend: one row between the title and the plot area
+  for (const PlotSeries& s : spec.series) {
+    std::vector<Vec2> pts;
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
+      if (ok(spec.log_x, s.x[i]) && ok(spec.log_y, s.y[i])) pts.push_back({X(s.x[i]), Y(s.y[i])});
+    const SvgStyle st{"none", s.colour, 0.4, 0, 1}, dot{s.colour, "none", 0, 0, 1};
+    if (s.line && pts.size() > 1) w.polyline(pts, st);
+    if (s.markers)
+      for (const Vec2& p : pts) w.circle(p, 0.8, dot);
+    const double ly = kH + 3.5;
+    if (s.line) w.polyline({{lx, ly + 0.8}, {lx + 5, ly + 0.8}}, st);
+    if (s.markers) w.circle({lx + 2.5, ly + 0.8}, 0.8, dot);
+    w.text({lx + 6.5, ly}, s.name, 2.4, "#222222");
+    lx += 10 + 1.25 * static_cast<double>(s.name.size());
+  }
+  return w.str(0.04, 900);
+}
+
+void write_svg_plot(const PlotSpec& spec, const std::string& path) {
+  write_file_atomically(path, svg_plot(spec));
+}
+
+}  // namespace nmm

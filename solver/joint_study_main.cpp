@@ -1,0 +1,262 @@
+// nmm-joint-study OUTDIR [--data DIR] [--quick]
+//
+// The seed paper's validation, rerun with this solver (docs/joint-studies.md is made from it):
+//  (a) data/single_joint.json: one joint loaded normally (σn from 0.5 to 10 MPa) and in direct
+//      shear at σn = 5 MPa (10 % to 95 % of the strength), against the closed forms;
+//  (b) the same joint under a shear load ramped past its strength, constant springs against the
+//      joint laws: slip against load, and the load at which sliding sets in;
+//  (c) data/tunnel.json, constant springs against the joint laws: the spread of the contacts'
+//      normal and shear stiffness.
+// Writes CSV, Markdown tables and SVG plots into OUTDIR. Exit status 2 on bad input.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cover_cutter.h"
+#include "error.h"
+#include "scene.h"
+#include "svg_plot.h"
+#include "time_stepper.h"
+#include "vtk_writer.h"
+
+namespace {
+
+using nmm::SceneDef;
+constexpr double kPi = 3.14159265358979323846;
+
+// Runs the single-joint scene with normal stress sigma (Pa) on the top face and shear stress tau
+// (Pa) applied along the joint 2 cm above it; returns {closure, slip} (m) at the joint's middle.
+std::pair<double, double> joint_response(SceneDef s, const nmm::Mesh& m, double sigma, double tau,
+                                         double seconds, std::string* status) {
+  s.loads.clear();
+  const int n = 20;
+  for (int i = 0; i <= n; ++i) {
+    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+    s.loads.push_back({{2.0 * i / n, 2.0}, {0, -sigma * 2.0 / n * w}});
+  }
+  if (tau != 0)
+    for (int i = 0; i < 10; ++i) s.loads.push_back({{0.1 + 0.2 * i, 1.02}, {tau * 2.0 / 10, 0}});
+  nmm::solve::TimeStepper st(m, s, "single joint");
+  *status = st.run_until(seconds, [](std::int64_t) {});
+  const auto a = st.displacement_at(st.measure_points()[0]);
+  const auto b = st.displacement_at(st.measure_points()[1]);
+  return {b[1] - a[1], a[0] - b[0]};
+}
+
+void use_constant(SceneDef& s) {
+  for (auto& js : s.joint_sets) {
+    js.normal.model = nmm::NormalModel::constant;
+    js.shear.model = nmm::ShearModel::constant;
+  }
+}
+
+void use_joint_laws(SceneDef& s) {
+  for (auto& js : s.joint_sets) {
+    js.normal.model = nmm::NormalModel::bandis_barton;
+    js.shear.model = nmm::ShearModel::hyperbolic;
+  }
+}
+
+std::string pct(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%+.2f %%", 100 * v);
+  return b;
+}
+
+std::string num(double v, const char* f = "%.4g") {
+  char b[32];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+SceneDef with_laws_parsed(const std::string& path) {
+  // Parse once with the joint laws selected, so kni/vm are derived from JRC, JCS, UCS.
+  nlohmann::json doc = nmm::parse_json_text(nmm::read_text_file(path), path);
+  for (auto& [name, js] : doc["joint_sets"].items()) {
+    js["normal"]["model"] = "bandis_barton";
+    js["shear"]["model"] = "hyperbolic";
+  }
+  return nmm::scene_from_json(doc, path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"nmm-joint-study: the seed paper's validation studies, rerun"};
+  std::string out, data = "data";
+  bool quick = false;
+  app.add_option("outdir", out, "folder for CSV, Markdown and SVG")->required();
+  app.add_option("--data", data, "folder holding single_joint.json and tunnel.json");
+  app.add_flag("--quick", quick, "fewer points and steps (for tests)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "nmm-joint-study: command line: " << e.what() << "\n";
+    return nmm::kExitBadInput;
+  }
+  try {
+    nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
+    std::remove((out + "/.probe").c_str());
+    std::ostringstream md;
+
+    // ---- (a) the constitutive curves through the solver ------------------------------------
+    const SceneDef joint = with_laws_parsed(data + "/single_joint.json");
+    const nmm::Mesh jm = nmm::pre::build_mesh(joint, data + "/single_joint.json");
+    const auto& law = joint.joint_sets[0];
+    const double kni = law.normal.kni, vm = law.normal.vm, ksi = law.shear.ksi, rf = law.shear.rf;
+    const double tanphi = std::tan(law.friction_deg * kPi / 180), sn = 5e6, tf = sn * tanphi;
+    std::vector<double> sig = quick ? std::vector<double>{1e6, 5e6}
+                                    : std::vector<double>{0.5e6, 1e6, 2e6, 3e6, 5e6, 7e6, 10e6};
+    std::vector<double> frac = quick ? std::vector<double>{0.3, 0.9}
+                                     : std::vector<double>{0.1, 0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
+    std::ostringstream csv;  // written atomically at the end
+    csv << "test,load_pa,solver_m,closed_form_m,error\n";
+    md << "### (a) One joint through the solver against the closed forms\n\n"
+       << "Kni = " << num(kni / 1e9) << " GPa/m, Vm = " << num(vm * 1e3) << " mm (from JRC "
+       << law.normal.jrc << ", JCS " << law.normal.jcs / 1e6 << " MPa, σc " << law.normal.ucs / 1e6
+       << " MPa); Ksi = " << num(ksi / 1e9) << " GPa/m, Rf = " << rf << ", φ = " << law.friction_deg
+       << "°.\n\n| test | load | solver | closed form | error |\n|---|---:|---:|---:|---:|\n";
+    nmm::PlotSeries ns_s{"solver", {}, {}, "#d62728", false, true}, ns_c{"Bandis–Barton", {}, {}, "#1f77b4"};
+    for (double s : sig) {
+      std::string st;
+      const double d = joint_response(joint, jm, s, 0, 0.3, &st).first;
+      const double want = s * vm / (kni * vm + s);
+      csv << "normal," << s << "," << d << "," << want << "," << (d - want) / want << "\n";
+      md << "| normal | σn " << num(s / 1e6) << " MPa | δn " << num(d * 1e3) << " mm | "
+         << num(want * 1e3) << " mm | " << pct((d - want) / want) << " |\n";
+      ns_s.x.push_back(d * 1e3);
+      ns_s.y.push_back(s / 1e6);
+    }
+    const double s_top = 1.2 * sig.back();  // the curve over the loaded range
+    const double d_top = s_top * vm / (kni * vm + s_top);
+    for (int i = 0; i <= 60; ++i) {
+      const double d = d_top * i / 60;
+      ns_c.x.push_back(d * 1e3);
+      ns_c.y.push_back(kni * d / (1 - d / vm) / 1e6);
+    }
+    nmm::write_svg_plot({"Normal closure of one joint: solver against Bandis–Barton", "closure δn, mm",
+                         "σn, MPa", false, false, {ns_c, ns_s}},
+                        out + "/joint_normal.svg");
+    nmm::PlotSeries ss_s{"solver", {}, {}, "#d62728", false, true}, ss_c{"hyperbola", {}, {}, "#1f77b4"};
+    for (double f : frac) {
+      std::string st;
+      const double u = joint_response(joint, jm, sn, f * tf, 0.4, &st).second;
+      const double want = f * tf / (ksi * (1 - rf * f));
+      csv << "shear," << f * tf << "," << u << "," << want << "," << (u - want) / want << "\n";
+      md << "| shear, σn 5 MPa | τ " << num(100 * f, "%.0f") << " % of τf | us " << num(u * 1e3)
+         << " mm | " << num(want * 1e3) << " mm | " << pct((u - want) / want) << " |\n";
+      ss_s.x.push_back(u * 1e3);
+      ss_s.y.push_back(f * tf / 1e6);
+    }
+    for (int i = 0; i <= 60; ++i) {
+      const double t = 0.97 * tf * i / 60;
+      ss_c.x.push_back(t / (ksi * (1 - rf * t / tf)) * 1e3);
+      ss_c.y.push_back(t / 1e6);
+    }
+    nmm::write_svg_plot({"Direct shear of one joint at σn = 5 MPa: solver against the hyperbola",
+                         "shear displacement us, mm", "τ, MPa", false, false, {ss_c, ss_s}},
+                        out + "/joint_shear.svg");
+
+    // ---- (b) shear ramp past the strength: constant springs against the joint laws --------
+    md << "\n### (b) Shear load ramped past the strength (σn = 5 MPa)\n\n"
+       << "| τ/τf | slip, constant springs | slip, joint laws |\n|---:|---:|---:|\n";
+    SceneDef constant = joint;
+    use_constant(constant);
+    std::vector<double> ramp = quick ? std::vector<double>{0.5, 1.05}
+                                     : std::vector<double>{0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.98, 1.02, 1.05, 1.1};
+    nmm::PlotSeries rc{"constant springs", {}, {}, "#1f77b4", true, true},
+        rl{"joint laws", {}, {}, "#d62728", true, true};
+    std::ostringstream rcsv;  // written atomically at the end
+    rcsv << "tau_over_tf,slip_constant_m,slip_joint_laws_m\n";
+    for (double f : ramp) {
+      std::string s1, s2;
+      const double uc = joint_response(constant, jm, sn, f * tf, 0.3, &s1).second;
+      const double ul = joint_response(joint, jm, sn, f * tf, 0.3, &s2).second;
+      rcsv << f << "," << uc << "," << ul << "\n";
+      md << "| " << f << " | " << num(uc * 1e3) << " mm | " << num(ul * 1e3) << " mm |\n";
+      rc.x.push_back(f), rc.y.push_back(std::max(uc, 1e-9) * 1e3);
+      rl.x.push_back(f), rl.y.push_back(std::max(ul, 1e-9) * 1e3);
+    }
+    nmm::write_svg_plot({"Slip after 0.3 s under a shear load, σn = 5 MPa", "τ / τf",
+                         "slip, mm (log)", false, true, {rc, rl}},
+                        out + "/shear_ramp.svg");
+
+    // ---- (c) a jointed tunnel: the spread of contact stiffness -----------------------------
+    md << "\n### (c) Tunnel in jointed rock: contact stiffness, constant against joint laws\n\n";
+    SceneDef tun = with_laws_parsed(data + "/tunnel.json");
+    tun.solver.steps = quick ? 10 : 100;
+    const nmm::Mesh tm = nmm::pre::build_mesh(tun, data + "/tunnel.json");
+    std::ostringstream kcsv;  // written atomically at the end
+    kcsv << "model,contact,closure_m,kn_n_per_m,ks_n_per_m\n";
+    md << "| model | closed contacts | kn per contact, N/m (min – max) | kn per metre of joint, Pa/m "
+          "(min – median – max) | ks per metre, Pa/m (min – max) |\n|---|---:|---:|---:|---:|\n";
+    nmm::PlotSeries scatter{"contacts (joint laws)", {}, {}, "#d62728", false, true};
+    const double kni_t = tun.joint_sets[0].normal.kni, vm_t = tun.joint_sets[0].normal.vm;
+    for (int variant = 0; variant < 2; ++variant) {
+      SceneDef s = tun;
+      if (variant == 0) use_constant(s); else use_joint_laws(s);
+      nmm::solve::TimeStepper st(tm, s, "tunnel");
+      const std::string status =
+          st.run_until(static_cast<double>(s.solver.steps) * s.solver.time_step, [](std::int64_t) {});
+      std::vector<double> kn_point, kn_m, ks_m;
+      std::size_t i = 0;
+      for (const auto& c : st.contacts().contacts()) {
+        if (c.state == nmm::solve::ContactState::open) continue;
+        kcsv << (variant ? "joint_laws" : "constant") << "," << i++ << "," << -c.gap << ","
+             << c.kn_now << "," << c.ks_now << "\n";
+        kn_point.push_back(c.kn_now);
+        const double L = std::max(c.length, 1e-12);
+        kn_m.push_back(c.kn_now / L);
+        if (c.ks_now > 0) ks_m.push_back(c.ks_now / L);
+        if (variant == 1 && c.law < static_cast<int>(s.joint_sets.size())) {
+          scatter.x.push_back(-c.gap * 1e3);
+          scatter.y.push_back(c.kn_now / L / 1e9);
+        }
+      }
+      for (auto* v : {&kn_point, &kn_m, &ks_m}) std::sort(v->begin(), v->end());
+      if (kn_point.empty()) continue;
+      md << "| " << (variant ? "joint laws" : "constant springs") << " (" << status.substr(0, 2)
+         << ") | " << kn_point.size() << " | " << num(kn_point.front()) << " – "
+         << num(kn_point.back()) << " | "
+         << (variant ? num(kn_m.front()) + " – " + num(kn_m[kn_m.size() / 2]) + " – " + num(kn_m.back())
+                     : std::string("(one spring per point)"))
+         << " | "
+         << (variant && !ks_m.empty() ? num(ks_m.front()) + " – " + num(ks_m.back()) : std::string("–"))
+         << " |\n";
+    }
+    nmm::PlotSeries curve{"Kni/(1 − δ/Vm)²", {}, {}, "#1f77b4"};
+    double dmax = 0;
+    for (double d : scatter.x) dmax = std::max(dmax, d * 1e-3);
+    for (int k = 0; k <= 50; ++k) {
+      const double d = std::min(1.05 * dmax, 0.95 * vm_t) * k / 50;
+      curve.x.push_back(d * 1e3);
+      curve.y.push_back(kni_t / ((1 - d / vm_t) * (1 - d / vm_t)) / 1e9);
+    }
+    md << "\n(Constant springs have one kn per contact point whatever the closure. With the joint "
+          "laws each contact's normal stiffness per metre of joint follows its own closure, "
+          "Kni/(1 − δ/Vm)², and its shear stiffness its own shear.)\n";
+    nmm::write_svg_plot({"Tunnel, joint laws: normal stiffness of each closed contact against its closure",
+                         "closure δ, mm", "kn per metre of joint, GPa/m", false, false, {curve, scatter}},
+                        out + "/tunnel_stiffness.svg");
+    nmm::write_file_atomically(out + "/joint_curves.csv", csv.str());
+    nmm::write_file_atomically(out + "/shear_ramp.csv", rcsv.str());
+    nmm::write_file_atomically(out + "/tunnel_stiffness.csv", kcsv.str());
+    nmm::write_file_atomically(out + "/joint_studies_tables.md", md.str());
+    std::cout << md.str();
+  } catch (const nmm::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return nmm::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "nmm-joint-study: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
