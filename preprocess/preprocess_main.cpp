@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cover_cutter.h"
+#include "command_line.h"
 #include "error.h"
 #include "mesh_file.h"
 #include "nmm_version.h"
@@ -25,16 +26,8 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "print nothing on success");
   app.add_flag("--timings", timings, "print where the time went, on stderr");
   app.set_version_flag("--version", std::string("nmm-preprocess ") + NMM_VERSION);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "nmm-preprocess: command line: " << e.what() << " (see --help)\n";
-    return nmm::kExitBadInput;
-  }
+  if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-preprocess"); status >= 0)
+    return status;
 
   try {
     const auto t0 = std::chrono::steady_clock::now();

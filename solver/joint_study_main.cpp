@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "command_line.h"
 #include "cover_cutter.h"
 #include "error.h"
 #include "scene.h"
@@ -94,14 +95,8 @@ int main(int argc, char** argv) {
   app.add_option("outdir", out, "folder for CSV, Markdown and SVG")->required();
   app.add_option("--data", data, "folder holding single_joint.json and tunnel.json");
   app.add_flag("--quick", quick, "fewer points and steps (for tests)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "nmm-joint-study: command line: " << e.what() << "\n";
-    return nmm::kExitBadInput;
-  }
+  if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-joint-study"); status >= 0)
+    return status;
   try {
     nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
     std::remove((out + "/.probe").c_str());

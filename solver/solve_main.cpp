@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "command_line.h"
 #include "error.h"
 #include "mesh_file.h"
 #include "nmm_version.h"
@@ -29,16 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--set", sets, "PATH=VALUE: set one scene field (VALUE is JSON), repeatable");
   app.add_flag("-q,--quiet", quiet, "no progress line");
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "nmm-solve: command line: " << e.what() << " (see --help)\n";
-    return nmm::kExitBadInput;
-  }
+  if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-solve"); status >= 0)
+    return status;
   try {
     const nmm::Mesh mesh = nmm::read_mesh_file(mesh_path);
     const nmm::solve::RunScene run = nmm::solve::make_run_scene(mesh, mesh_path, config_path, sets);
