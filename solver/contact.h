@@ -98,9 +98,10 @@ class ContactSet {
   /// redone) leaves them as they were.
   void end_step();
 
-  /// State changes of the last judge() calls since reset (diagnostics).
+  /// State changes judged so far, in every iteration (diagnostics, summary.json "contacts").
   struct Events {
-    int closed = 0, opened = 0, slid = 0, stuck = 0, frozen_open = 0, frozen_sliding = 0;
+    long closed = 0, opened = 0, slid = 0, stuck = 0;
+    long frozen_sliding = 0;  ///< contacts settled after changing twice in one step
   };
   Events events;
 

@@ -597,9 +597,17 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["steps_with_unsettled_friction"] = friction_unsettled_;
   summary["max_penetration"] = max_penetration_;
   summary["max_contacts_at_closure_cap"] = max_capped_;
+  const ContactSet::Events& ev = contacts_.events;
   summary["contacts"] = {{"at_end", contacts_.contacts().size()},
                          {"closed_at_end", contacts_.closed_count()},
-                         {"pairs_tested", contacts_.detection_stats().pairs_tested}};
+                         {"pairs_tested", contacts_.detection_stats().pairs_tested},
+                         // State changes in all iterations (attempts that were cut included):
+                         // many "settled" ones mean contacts chattering at zero gap or slip.
+                         {"closings", ev.closed},
+                         {"openings", ev.opened},
+                         {"slips", ev.slid},
+                         {"sticks", ev.stuck},
+                         {"settled", ev.frozen_sliding}};
   summary["timings"] = {{"contact_detection", timings_.contact_detection},
                         {"assembly", timings_.assembly},
                         {"factorisation", timings_.factorisation},

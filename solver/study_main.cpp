@@ -1,0 +1,439 @@
+// nmm-study OUTDIR [--quick] [--data DIR]
+//
+// Accuracy against run time (docs/accuracy.md is made from it): reference problems with known
+// answers, each run across settings, every run timed.
+//  cantilever        L = 10, H = 1, tip load, static, against Timoshenko; mesh size.
+//  sliding_block     2 m × 1 m block on a held 12 m base, gravity tilted 30°, φ = 20°, 1 s,
+//                    against ½g(sin α − cos α tan φ)t²; time step, and penalty kn (as a multiple
+//                    of E·1 m).
+//  bandis_barton     data/single_joint.json at σn = 5 MPa against σn·Vm/(Kni·Vm + σn); mesh
+//                    size, settling time, time step.
+//  hyperbolic_shear  the same joint sheared at 60 % of its strength against the hyperbola;
+//                    mesh size.
+// Writes OUTDIR/accuracy_time.csv (case,setting,value,error,wall_seconds: one row per completed
+// run), OUTDIR/accuracy_time.svg (error against wall time, log–log) and OUTDIR/accuracy_tables.md
+// (a table per case, the runs that did not complete, and whether the costliest setting of each
+// sweep beat the cheapest). wall_seconds covers building the mesh from the scene (cover cutting)
+// and the run; parsing the scene file is left out. Exit status 2 on bad input.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cover_cutter.h"
+#include "error.h"
+#include "scene.h"
+#include "svg_plot.h"
+#include "time_stepper.h"
+#include "vtk_writer.h"
+
+namespace {
+
+using nmm::SceneDef;
+using Clock = std::chrono::steady_clock;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kG = 9.81;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string num(double v, const char* f = "%.4g") {
+  char b[48];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// What one run gives: the computed value (or why it has none) and what it cost.
+struct Outcome {
+  bool ok = false;
+  std::string reason;      // why not, when !ok
+  double computed = 0;     // the quantity compared with the closed form
+  double mesh_seconds = 0;  // cover cutting
+  double run_seconds = 0;   // TimeStepper construction and stepping
+  int unknowns = 0;
+  std::int64_t steps = 0;
+  std::size_t cuts = 0, iterations = 0;
+};
+
+// One row of the study: a case, the setting varied and its value, and the outcome.
+struct Row {
+  std::string case_name, sweep, setting;  // sweep: the curve it belongs to (setting it varies)
+  double value = 0;
+  std::string value_text;                 // as shown in the tables
+  double exact = 0;
+  Outcome out;
+  double error() const { return std::abs(out.computed - exact) / std::abs(exact); }
+  double wall() const { return out.mesh_seconds + out.run_seconds; }
+};
+
+// Builds the mesh and runs `body` on a fresh TimeStepper, timing both; RunError and a non-"ok"
+// status become a failed outcome (InputError is bad input and goes up).
+Outcome timed_run(const SceneDef& s, const std::string& name,
+                  const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
+  Outcome o;
+  const auto t0 = Clock::now();
+  const nmm::Mesh m = nmm::pre::build_mesh(s, name);
+  o.mesh_seconds = seconds_since(t0);
+  const auto t1 = Clock::now();
+  try {
+    nmm::solve::TimeStepper st(m, s, name);
+    o.unknowns = st.unknowns();
+    const std::string status = body(st, o);
+    o.cuts = st.time_step_cuts();
+    o.iterations = st.open_close_iterations();
+    o.ok = status == "ok" && std::isfinite(o.computed);
+    o.reason = status != "ok" ? status : (o.ok ? "" : "result is not a finite number");
+  } catch (const nmm::RunError& e) {
+    o.ok = false;
+    o.reason = e.what();
+  }
+  o.run_seconds = seconds_since(t1);
+  return o;
+}
+
+std::string run_steps(nmm::solve::TimeStepper& st, double t_end, Outcome& o) {
+  return st.run_until(t_end, [&o](std::int64_t n) { o.steps = n; });
+}
+
+// ---- cantilever ----------------------------------------------------------------------------
+// L = 10, H = 1, E = 10 GPa, ν = 0.25, plane stress, clamped by fixed points every h/2 along
+// x = 0, P = 1e5 N down at (L, H/2), one static step (tests/test_solver_physics.cpp).
+Row cantilever(double h) {
+  const double L = 10, H = 1, P = 1e5;
+  SceneDef s;
+  s.materials.push_back({"rock", 2500, 1e10, 0.25});
+  nmm::BodyDef b;
+  b.material = 0;
+  b.outer = {{0, 0}, {L, 0}, {L, H}, {0, H}};
+  s.bodies.push_back(b);
+  s.mesh_size = h;
+  s.plane = nmm::PlaneKind::stress;
+  const int n = static_cast<int>(std::ceil(H / (0.5 * h)));
+  for (int i = 0; i <= n; ++i) s.fixed_points.push_back({0, H * i / n});
+  s.loads.push_back({{L, H / 2}, {0, -P}});
+  s.measure_points.push_back({L, H / 2});
+  s.solver.dynamic = false;
+  const double E = 1e10, nu = 0.25, I = H * H * H / 12, G = E / (2 * (1 + nu));
+  Row r;
+  r.case_name = "cantilever";
+  r.sweep = r.setting = "mesh_size";
+  r.value = h;
+  r.value_text = "h = " + num(h) + " m";
+  r.exact = P * L * L * L / (3 * E * I) + P * L / (5.0 / 6.0 * G * H);
+  r.out = timed_run(s, "cantilever", [](nmm::solve::TimeStepper& st, Outcome& o) {
+    st.step(1.0);
+    o.steps = 1;
+    o.computed = -st.displacement_at(st.measure_points()[0])[1];
+    return std::string("ok");
+  });
+  return r;
+}
+
+// ---- sliding block -------------------------------------------------------------------------
+// Flat 12 m × 1 m base held by fixed points every 0.25 m along y = 0.1, a 2 m × 1 m block on it,
+// gravity tilted by 30°, φ = 20°, h = 0.5, ks = kn/2.5, 1 s (tests/test_contact.cpp).
+Row sliding_block(const std::string& setting, double dt, double kn_over_e) {
+  const double E = 1e10, alpha = 30 * kPi / 180, phi = 20 * kPi / 180, t = 1.0;
+  SceneDef s;
+  s.materials.push_back({"rock", 2650, E, 0.25});
+  nmm::JointSetDef js;
+  js.name = "interface";
+  js.friction_deg = 20;
+  js.normal.kn = kn_over_e * E;
+  js.shear.ks = kn_over_e * E / 2.5;
+  s.joint_sets.push_back(js);
+  s.interface_set = 0;
+  s.mesh_size = 0.5;
+  s.has_gravity = true;
+  s.gravity = {kG * std::sin(alpha), -kG * std::cos(alpha)};
+  s.solver.time_step = dt;
+  auto box = [](double x0, double y0, double x1, double y1) {
+    nmm::BodyDef b;
+    b.material = 0;
+    b.outer = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    return b;
+  };
+  s.bodies = {box(0, 0, 12, 1), box(1, 1, 3, 2)};
+  for (double x = 0.1; x <= 11.9 + 1e-9; x += 0.25) s.fixed_points.push_back({x, 0.1});
+  s.measure_points = {{2, 1.5}};
+  Row r;
+  r.case_name = "sliding_block";
+  r.sweep = r.setting = setting;
+  if (setting == "time_step") {
+    r.value = dt;
+    r.value_text = "Δt = " + num(dt) + " s (kn = " + num(kn_over_e) + "·E)";
+  } else {
+    r.value = kn_over_e;
+    r.value_text = "kn = " + num(kn_over_e) + "·E (Δt = " + num(dt) + " s)";
+  }
+  r.exact = 0.5 * kG * (std::sin(alpha) - std::cos(alpha) * std::tan(phi)) * t * t;
+  r.out = timed_run(s, "sliding block", [t](nmm::solve::TimeStepper& st, Outcome& o) {
+    const std::string status = run_steps(st, t, o);
+    o.computed = st.displacement_at(st.measure_points()[0])[0];
+    return status;
+  });
+  return r;
+}
+
+// ---- single joint (data/single_joint.json) --------------------------------------------------
+SceneDef single_joint_scene(const std::string& path) {
+  // Parsed with the joint laws selected, so Kni and Vm are derived from JRC, JCS and σc.
+  nlohmann::json doc = nmm::parse_json_text(nmm::read_text_file(path), path);
+  if (!doc.is_object() || !doc.contains("joint_sets") || !doc["joint_sets"].is_object() ||
+      doc["joint_sets"].size() != 1)
+    throw nmm::InputError(path, "/joint_sets", "the single-joint study needs exactly one joint set");
+  for (auto& [name, js] : doc["joint_sets"].items()) {
+    js["normal"]["model"] = "bandis_barton";
+    js["shear"]["model"] = "hyperbolic";
+  }
+  SceneDef s = nmm::scene_from_json(doc, path);
+  if (s.measure_points.size() != 2)
+    throw nmm::InputError(path, "/measure_points",
+                          "the single-joint study needs two points, just above and below the joint");
+  return s;
+}
+
+// The joint at σn on the top face (20 point loads) and τ along it 2 cm above (10 point loads),
+// as nmm-joint-study and tests/test_joint_law.cpp load it; closure or slip at the joint's middle.
+Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool want_slip) {
+  s.loads.clear();
+  const int n = 20;
+  for (int i = 0; i <= n; ++i) {
+    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+    s.loads.push_back({{2.0 * i / n, 2.0}, {0, -sigma * 2.0 / n * w}});
+  }
+  if (tau != 0)
+    for (int i = 0; i < 10; ++i) s.loads.push_back({{0.1 + 0.2 * i, 1.02}, {tau * 2.0 / 10, 0}});
+  return timed_run(s, "single joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
+    const std::string status = run_steps(st, seconds, o);
+    const auto a = st.displacement_at(st.measure_points()[0]);
+    const auto b = st.displacement_at(st.measure_points()[1]);
+    o.computed = want_slip ? a[0] - b[0] : b[1] - a[1];
+    return status;
+  });
+}
+
+Row bandis_barton(const SceneDef& joint, const std::string& setting, double h, double dt,
+                  double seconds) {
+  const auto& law = joint.joint_sets[0].normal;
+  const double sigma = 5e6;
+  SceneDef s = joint;
+  s.mesh_size = h;
+  s.solver.time_step = dt;
+  Row r;
+  r.case_name = "bandis_barton";
+  r.sweep = r.setting = setting;
+  const std::string rest = "h = " + num(h) + " m, Δt = " + num(dt) + " s, " + num(seconds) + " s";
+  if (setting == "mesh_size") r.value = h;
+  if (setting == "time_step") r.value = dt;
+  if (setting == "settling_time") r.value = seconds;
+  r.value_text = setting + " " + num(r.value) + " (" + rest + ")";
+  r.exact = sigma * law.vm / (law.kni * law.vm + sigma);
+  r.out = joint_run(s, sigma, 0, seconds, false);
+  return r;
+}
+
+Row hyperbolic_shear(const SceneDef& joint, double h, double seconds) {
+  const auto& js = joint.joint_sets[0];
+  const double sigma = 5e6, tf = sigma * std::tan(js.friction_deg * kPi / 180), tau = 0.6 * tf;
+  SceneDef s = joint;
+  s.mesh_size = h;
+  Row r;
+  r.case_name = "hyperbolic_shear";
+  r.sweep = r.setting = "mesh_size";
+  r.value = h;
+  r.value_text = "h = " + num(h) + " m (Δt = " + num(s.solver.time_step) + " s, " + num(seconds) + " s)";
+  r.exact = tau / (js.shear.ksi * (1 - js.shear.rf * tau / tf));
+  r.out = joint_run(s, sigma, tau, seconds, true);
+  return r;
+}
+
+// ---- outputs -------------------------------------------------------------------------------
+std::string csv_text(const std::vector<Row>& rows) {
+  std::ostringstream os;
+  os << "case,setting,value,error,wall_seconds\n";
+  for (const Row& r : rows)
+    if (r.out.ok)
+      os << r.case_name << "," << r.setting << "," << num(r.value, "%.6g") << ","
+         << num(r.error(), "%.6e") << "," << num(r.wall(), "%.4f") << "\n";
+  return os.str();
+}
+
+std::string unit_of(const std::string& case_name) {
+  return case_name == "cantilever" ? "tip deflection, mm"
+         : case_name == "sliding_block" ? "slide, m"
+         : case_name == "bandis_barton" ? "closure, mm"
+                                        : "slip, mm";
+}
+
+double shown(const std::string& case_name, double v) {
+  return case_name == "sliding_block" ? v : 1e3 * v;  // m for the slide, mm otherwise
+}
+
+std::string tables_text(const std::vector<Row>& rows, bool quick) {
+  std::ostringstream md;
+  md << "<!-- made by nmm-study" << (quick ? " --quick" : "") << " -->\n";
+  std::vector<std::string> cases;
+  for (const Row& r : rows)
+    if (std::find(cases.begin(), cases.end(), r.case_name) == cases.end()) cases.push_back(r.case_name);
+  for (const std::string& c : cases) {
+    const Row* first = nullptr;
+    for (const Row& r : rows)
+      if (r.case_name == c) {
+        first = &r;
+        break;
+      }
+    md << "\n### " << c << "\n\nexact: " << num(shown(c, first->exact), "%.6g") << " ("
+       << unit_of(c) << ")\n\n"
+       << "| setting | run | " << unit_of(c)
+       << " | error | wall s (mesh + run) | unknowns | steps | cuts | solves |\n"
+       << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows) {
+      if (r.case_name != c) continue;
+      md << "| " << r.setting << " | " << r.value_text << " | ";
+      if (r.out.ok)
+        md << num(shown(c, r.out.computed), "%.6g") << " | " << num(100 * r.error(), "%.3f") << " %";
+      else
+        md << "did not complete | –";
+      md << " | " << num(r.wall(), "%.3f") << " (" << num(r.out.mesh_seconds, "%.3f") << " + "
+         << num(r.out.run_seconds, "%.3f") << ") | " << r.out.unknowns << " | " << r.out.steps
+         << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
+    }
+    // Per sweep: does the costliest run beat the cheapest?
+    std::vector<std::string> sweeps;
+    for (const Row& r : rows)
+      if (r.case_name == c && std::find(sweeps.begin(), sweeps.end(), r.sweep) == sweeps.end())
+        sweeps.push_back(r.sweep);
+    md << "\n";
+    for (const std::string& sw : sweeps) {
+      const Row *cheap = nullptr, *dear = nullptr;
+      for (const Row& r : rows) {
+        if (r.case_name != c || r.sweep != sw || !r.out.ok) continue;
+        if (!cheap || r.wall() < cheap->wall()) cheap = &r;
+        if (!dear || r.wall() > dear->wall()) dear = &r;
+      }
+      if (!cheap || cheap == dear) continue;
+      const bool better = dear->error() < cheap->error();
+      md << "- " << sw << ": costliest run (" << dear->value_text << ", " << num(dear->wall(), "%.3f")
+         << " s) " << (better ? "**is** more accurate" : "is **not** more accurate")
+         << " than the cheapest (" << cheap->value_text << ", " << num(cheap->wall(), "%.3f")
+         << " s): " << num(100 * dear->error(), "%.3f") << " % against "
+         << num(100 * cheap->error(), "%.3f") << " %.\n";
+    }
+  }
+  std::ostringstream failed;
+  for (const Row& r : rows)
+    if (!r.out.ok)
+      failed << "| " << r.case_name << " | " << r.value_text << " | " << num(r.wall(), "%.3f")
+             << " | " << r.out.reason << " |\n";
+  md << "\n### Runs that did not complete (not in the CSV or the picture)\n\n";
+  if (failed.str().empty())
+    md << "None.\n";
+  else
+    md << "| case | run | wall s | reason |\n|---|---|---:|---|\n" << failed.str();
+  return md.str();
+}
+
+void write_plot(const std::vector<Row>& rows, const std::string& path) {
+  // One curve per case and swept setting, its points joined in the order the settings were run
+  // (cheapest first).
+  const std::vector<std::pair<std::pair<std::string, std::string>, std::string>> curves = {
+      {{"cantilever", "mesh_size"}, "cantilever, h ↓"},
+      {{"sliding_block", "time_step"}, "slide, Δt ↓"},
+      {{"sliding_block", "penalty"}, "slide, kn ↑"},
+      {{"bandis_barton", "mesh_size"}, "closure, h ↓"},
+      {{"bandis_barton", "settling_time"}, "closure, t ↑"},
+      {{"bandis_barton", "time_step"}, "closure, Δt ↓"},
+      {{"hyperbolic_shear", "mesh_size"}, "shear, h ↓"},
+  };
+  const std::vector<std::string> colours = {"#1f77b4", "#d62728", "#ff7f0e", "#2ca02c",
+                                            "#9467bd", "#8c564b", "#17becf"};
+  nmm::PlotSpec spec{"Relative error against wall time (arrows: the setting's direction along each curve)",
+                     "wall time, s (log)", "relative error (log)", true, true, {}};
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    nmm::PlotSeries ser{curves[i].second, {}, {}, colours[i % colours.size()], true, true};
+    for (const Row& r : rows)
+      if (r.out.ok && r.case_name == curves[i].first.first && r.sweep == curves[i].first.second) {
+        ser.x.push_back(r.wall());
+        ser.y.push_back(r.error());
+      }
+    if (!ser.x.empty()) spec.series.push_back(ser);
+  }
+  nmm::write_svg_plot(spec, path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"nmm-study: accuracy against run time on reference problems with known answers"};
+  std::string out, data = "data";
+  bool quick = false;
+  app.add_option("outdir", out, "folder for accuracy_time.csv, accuracy_time.svg, accuracy_tables.md")
+      ->required();
+  app.add_option("--data", data, "folder holding single_joint.json");
+  app.add_flag("--quick", quick, "fewer settings (under a minute, for tests)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    std::cerr << "nmm-study: command line: " << what << "\n";
+    return nmm::kExitBadInput;
+  }
+  try {
+    nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
+    std::remove((out + "/.probe").c_str());
+    const SceneDef joint = single_joint_scene(data + "/single_joint.json");
+
+    std::vector<Row> rows;
+    auto add = [&rows](Row r) {
+      std::fprintf(stderr, "%-16s %-14s %-52s %s  %.3f s\n", r.case_name.c_str(), r.setting.c_str(),
+                   r.value_text.c_str(),
+                   r.out.ok ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason.c_str(),
+                   r.wall());
+      rows.push_back(std::move(r));
+    };
+
+    for (double h : quick ? std::vector<double>{0.5, 0.25, 0.125}
+                          : std::vector<double>{0.5, 0.25, 0.125, 0.0625})
+      add(cantilever(h));
+
+    for (double dt : quick ? std::vector<double>{4e-3, 2e-3} : std::vector<double>{4e-3, 2e-3, 1e-3})
+      add(sliding_block("time_step", dt, 20));
+    for (double k : quick ? std::vector<double>{} : std::vector<double>{10, 20, 50})
+      add(sliding_block("penalty", 1e-3, k));
+
+    const double dt0 = joint.solver.time_step;
+    for (double h : {0.5, 0.25}) add(bandis_barton(joint, "mesh_size", h, dt0, 0.3));
+    for (double t : quick ? std::vector<double>{0.02, 0.1} : std::vector<double>{0.01, 0.02, 0.05, 0.1, 0.3})
+      add(bandis_barton(joint, "settling_time", 0.25, dt0, t));
+    for (double dt : quick ? std::vector<double>{} : std::vector<double>{4e-3, 2e-3, 1e-3})
+      add(bandis_barton(joint, "time_step", 0.25, dt, 0.3));
+
+    for (double h : quick ? std::vector<double>{0.5, 0.25} : std::vector<double>{0.5, 0.25, 0.125})
+      add(hyperbolic_shear(joint, h, 0.4));
+
+    nmm::write_file_atomically(out + "/accuracy_time.csv", csv_text(rows));
+    write_plot(rows, out + "/accuracy_time.svg");
+    const std::string md = tables_text(rows, quick);
+    nmm::write_file_atomically(out + "/accuracy_tables.md", md);
+    std::cout << md;
+  } catch (const nmm::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return nmm::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "nmm-study: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
