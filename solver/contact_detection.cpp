@@ -15,8 +15,10 @@
 //     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
 //     (a vertex deep inside another element without having come in through a contact is near
 //     that edge from the wrong side, e.g. a corner of a block near the far side of the same
-//     block); a negative gap must also mean that P lies inside element B: past a corner of B, P
-//     can be behind the line of an edge without being inside B at all;
+//     block); a negative gap must also mean that P lies inside element B or an element of B's
+//     block sharing a mesh node with it (a vertex sinking through an edge at a mesh node enters
+//     the triangle below the node, which does not own the edge): past a corner of the block, P
+//     can be behind the line of an edge without being inside it at all;
 //   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
 //   - single pass along flat stretches: a vertex that is not a corner of its block's boundary
 //     (a 180° vertex: where mesh lines cut a straight boundary or joint) touches only if its
@@ -65,6 +67,14 @@ bool inside_element(const ContactTopology& t, const std::vector<double>& xy, std
   return in;
 }
 
+// P inside element e or an element of its block sharing a mesh node with it.
+bool inside_near(const ContactTopology& t, const std::vector<double>& xy, std::int32_t e, double x,
+                 double y) {
+  for (std::int32_t k = t.near_offset[e]; k < t.near_offset[e + 1]; ++k)
+    if (inside_element(t, xy, t.first_vertex[t.near_elements[k]], x, y)) return true;
+  return false;
+}
+
 // Weights of the element's three covers at (x, y), from the mesh's node positions.
 void cover_weights(const Mesh& m, std::size_t e, double x, double y, double w[3]) {
   const std::int32_t t = m.element_triangle[e];
@@ -103,6 +113,25 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
   for (std::int32_t v : mesh.contact_edge) t.edge_candidate[v] = 1;
   t.edges = mesh.contact_edge;
   t.block_of = mesh.element_block;
+  {
+    const std::size_t ne = mesh.element_count();
+    t.first_vertex.assign(mesh.element_loop_offset.begin(), mesh.element_loop_offset.end() - 1);
+    std::vector<std::vector<std::int32_t>> at_node(mesh.node_count());
+    for (std::size_t e = 0; e < ne; ++e)
+      for (int k = 0; k < 3; ++k)
+        at_node[mesh.triangle_nodes[3 * mesh.element_triangle[e] + k]].push_back(static_cast<std::int32_t>(e));
+    t.near_offset.assign(1, 0);
+    for (std::size_t e = 0; e < ne; ++e) {
+      std::vector<std::int32_t> near;
+      for (int k = 0; k < 3; ++k)
+        for (std::int32_t f : at_node[mesh.triangle_nodes[3 * mesh.element_triangle[e] + k]])
+          if (mesh.element_block[f] == mesh.element_block[e]) near.push_back(f);
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+      t.near_elements.insert(t.near_elements.end(), near.begin(), near.end());
+      t.near_offset.push_back(static_cast<std::int32_t>(t.near_elements.size()));
+    }
+  }
   // Corners: at each point of a block's boundary, the candidate edges of that block meeting
   // there; a point with exactly two, turning by less than 10°, is flat, all others are corners.
   t.corner.assign(nv, 1);
@@ -192,7 +221,11 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     return std::make_pair(static_cast<std::int64_t>(std::floor((x - x0) / cell)),
                           static_cast<std::int64_t>(std::floor((y - y0) / cell)));
   };
-  auto key = [](std::int64_t i, std::int64_t j) { return (i << 32) ^ (j & 0xffffffff); };
+  // Cell (i, j) → one 64-bit key; unsigned arithmetic (shifting a negative index is undefined).
+  auto key = [](std::int64_t i, std::int64_t j) {
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^
+                                     (static_cast<std::uint64_t>(j) & 0xffffffffu));
+  };
   std::vector<std::pair<std::int64_t, std::int32_t>> entries;
   entries.reserve(topo.edges.size() * 2);
   for (std::int32_t e : topo.edges) {
@@ -255,7 +288,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double eps = 1e-9 * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
-      if (g < -eps && !inside_element(topo, xy, q2, px, py)) continue;
+      if (g < -eps && !inside_near(topo, xy, eb, px, py)) continue;
       const double face = nx * ex + ny * ey;  // −1: exactly opposite
       if (face > -0.2) continue;
       const double ag = std::abs(g);

@@ -17,6 +17,10 @@ struct ContactTopology {
   std::vector<std::int32_t> element_of;  ///< [v] element whose loop holds v
   std::vector<std::int32_t> block_of;    ///< [element] block
   std::vector<std::uint8_t> corner;      ///< [v] 1 if v is a corner of its block's boundary
+  std::vector<std::int32_t> first_vertex;  ///< [element] first loop vertex
+  /// CSR: the elements of the same block sharing a mesh node with each element (itself
+  /// included): where a vertex that sinks through an edge of that element can end up.
+  std::vector<std::int32_t> near_offset, near_elements;
   std::vector<std::uint8_t> edge_candidate;  ///< [v] 1 if edge v → next[v] can touch
   std::vector<std::int32_t> edges;     ///< candidate edges, by their first vertex
   std::vector<std::int32_t> vertices;  ///< loop vertices with at least one candidate edge

@@ -554,21 +554,18 @@ TEST(HardCases, DISABLED_JointsBesideMeshNodesRest) {
   }
 }
 
-// DEFECT (issue 6): contact is lost where the face a vertex presses on belongs to elements that
-// do not contain the vertex once it has sunk in a little, and the block above falls through
-// with status "ok" (the energy check cannot see it: free fall is energy-conserving).
+// Found by this suite and fixed: contact was lost where the face a vertex presses on belongs to
+// elements that do not contain the vertex once it has sunk in a little, and the block above fell
+// through with status "ok" (free fall conserves energy, so only the displacement check sees it).
 // - A joint exactly along a row of mesh edges (y = 6·h·√3/2) through a body on the base: every
-//   vertex on the joint is a mesh node, i.e. a corner of the element below. 50 contacts at
-//   t = 0, none on the joint after the first step (the 34 left are the lower block on the
-//   base, carrying its 15.55 kN); the upper block falls 0.195 m in 0.2 s (½·g·t² = 0.196 m).
+//   vertex on the joint is a mesh node, i.e. a corner of the element below; the upper block fell
+//   0.195 m in 0.2 s (½·g·t² = 0.196 m).
 // - Two bodies touching along y = 6·h·√3/2 + 1e-9·h (the lower body's top elements are slivers
-//   2.5e-10 m thick): 18 contacts at t = 0, 0 from the second step on; the upper block falls
-//   0.195 m in 0.2 s.
-// Likely cause: solver/contact_detection.cpp accepts a negative gap only if the vertex lies
-// inside the element owning the edge (inside_element); a penetration of ~2.5 µm after one
-// step is outside a 2.5e-10 m sliver, and directly below a corner of a downward-pointing
-// triangle. Touching along the row itself (off 0) and 1e-3·h above it rest correctly.
-TEST(HardCases, DISABLED_JointAlongMeshEdgesHoldsTheBlockAbove) {
+//   2.5e-10 m thick): the same fall.
+// Cause: a negative gap was accepted only inside the element owning the edge; a vertex sinking
+// at a mesh node enters the triangle below the node. Now any element of that block sharing a
+// mesh node with it counts (solver/contact_detection.cpp, inside_near).
+TEST(HardCases, JointAlongMeshEdgesHoldsTheBlockAbove) {
   const double h = 0.25, row6 = 6 * h * std::sqrt(3.0) / 2;
   for (int variant = 0; variant < 2; ++variant) {
     SceneDef s = contact_scene(h, 20);
