@@ -15,10 +15,11 @@
 //     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
 //     (a vertex deep inside another element without having come in through a contact is near
 //     that edge from the wrong side, e.g. a corner of a block near the far side of the same
-//     block); a negative gap must also mean that P lies inside element B or an element of B's
-//     block sharing a mesh node with it (a vertex sinking through an edge at a mesh node enters
-//     the triangle below the node, which does not own the edge): past a corner of the block, P
-//     can be behind the line of an edge without being inside it at all;
+//     block); a negative gap must also mean that P lies inside element B — or, near an end of
+//     the edge and at most 0.05·h deep, inside an element of B's block sharing a mesh node with
+//     it (a vertex sinking through an edge at a mesh node enters the triangle below the node,
+//     which does not own the edge): past a corner of the block, P can be behind the line of an
+//     edge without being inside it at all;
 //   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
 //   - single pass along flat stretches: a vertex that is not a corner of its block's boundary
 //     (a 180° vertex: where mesh lines cut a straight boundary or joint) touches only if its
@@ -288,7 +289,12 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double eps = 1e-9 * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
-      if (g < -eps && !inside_near(topo, xy, eb, px, py)) continue;
+      if (g < -eps && !inside_element(topo, xy, topo.first_vertex[eb], px, py)) {
+        // Sunk at a mesh node, next to an end of the edge: the element below the node may hold
+        // it instead. Only there, and only shallow; elsewhere a vertex outside B is not in contact.
+        const bool near_end = omega < 0.25 || omega > 0.75;
+        if (!near_end || g < -0.05 * topo.mesh_size || !inside_near(topo, xy, eb, px, py)) continue;
+      }
       const double face = nx * ex + ny * ey;  // −1: exactly opposite
       if (face > -0.2) continue;
       const double ag = std::abs(g);
