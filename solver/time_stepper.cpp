@@ -266,14 +266,13 @@ void TimeStepper::assemble(double dt) {
     const Vec3 sigma(stress_[3 * e], stress_[3 * e + 1], stress_[3 * e + 2]);
     Vec6 fe = -m.a * (B.transpose() * sigma);
     const double rho = scene_.materials[elem_mat_[e]].density;
-    if (dynamic || gravity) {
-      double iw[3];
-      for (int i = 0; i < 3; ++i) iw[i] = integral_w(f.w, m, i);
-      if (gravity)
-        for (int i = 0; i < 3; ++i) {
-          fe[2 * i] += rho * scene_.gravity.x * iw[i];
-          fe[2 * i + 1] += rho * scene_.gravity.y * iw[i];
-        }
+    if (gravity)
+      for (int i = 0; i < 3; ++i) {
+        const double iw = integral_w(f.w, m, i);
+        fe[2 * i] += rho * scene_.gravity.x * iw;
+        fe[2 * i + 1] += rho * scene_.gravity.y * iw;
+      }
+    {
       if (dynamic)
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) {
