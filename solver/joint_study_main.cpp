@@ -21,6 +21,7 @@
 #include "command_line.h"
 #include "cover_cutter.h"
 #include "error.h"
+#include "joint_specimen.h"
 #include "scene.h"
 #include "svg_plot.h"
 #include "time_stepper.h"
@@ -31,23 +32,13 @@ namespace {
 using nmm::SceneDef;
 constexpr double kPi = 3.14159265358979323846;
 
-// Runs the single-joint scene with normal stress sigma (Pa) on the top face and shear stress tau
-// (Pa) applied along the joint 2 cm above it; returns {closure, slip} (m) at the joint's middle.
+// Closure and slip (m) of the single-joint scene under σn and τ (Pa) after `seconds`.
 std::pair<double, double> joint_response(SceneDef s, const nmm::Mesh& m, double sigma, double tau,
                                          double seconds, std::string* status) {
-  s.loads.clear();
-  const int n = 20;
-  for (int i = 0; i <= n; ++i) {
-    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
-    s.loads.push_back({{2.0 * i / n, 2.0}, {0, -sigma * 2.0 / n * w}});
-  }
-  if (tau != 0)
-    for (int i = 0; i < 10; ++i) s.loads.push_back({{0.1 + 0.2 * i, 1.02}, {tau * 2.0 / 10, 0}});
-  nmm::solve::TimeStepper st(m, s, "single joint");
-  *status = st.run_until(seconds, [](std::int64_t) {});
-  const auto a = st.displacement_at(st.measure_points()[0]);
-  const auto b = st.displacement_at(st.measure_points()[1]);
-  return {b[1] - a[1], a[0] - b[0]};
+  nmm::solve::load_joint_specimen(s, sigma, tau);
+  const nmm::solve::JointSpecimenResult r = nmm::solve::run_joint_specimen(m, s, seconds);
+  *status = r.status;
+  return {r.closure, r.slip};
 }
 
 void use_constant(SceneDef& s) {

@@ -32,6 +32,7 @@
 #include "command_line.h"
 #include "cover_cutter.h"
 #include "error.h"
+#include "joint_specimen.h"
 #include "scene.h"
 #include "svg_plot.h"
 #include "time_stepper.h"
@@ -218,17 +219,10 @@ SceneDef single_joint_scene(const std::string& path) {
   return s;
 }
 
-// The joint at σn on the top face (20 point loads) and τ along it 2 cm above (10 point loads),
-// as nmm-joint-study and tests/test_joint_law.cpp load it; closure or slip at the joint's middle.
+// The single-joint specimen loaded as everywhere else (joint_specimen.h); closure or slip at the
+// joint's middle.
 Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool want_slip) {
-  s.loads.clear();
-  const int n = 20;
-  for (int i = 0; i <= n; ++i) {
-    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
-    s.loads.push_back({{2.0 * i / n, 2.0}, {0, -sigma * 2.0 / n * w}});
-  }
-  if (tau != 0)
-    for (int i = 0; i < 10; ++i) s.loads.push_back({{0.1 + 0.2 * i, 1.02}, {tau * 2.0 / 10, 0}});
+  nmm::solve::load_joint_specimen(s, sigma, tau);
   return timed_run(s, "single joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, seconds, o);
     const auto a = st.displacement_at(st.measure_points()[0]);

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "cover_cutter.h"
+#include "scene_builders.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
@@ -32,19 +33,9 @@ SceneDef contact_scene(double h, double friction_deg) {
   return s;
 }
 
-BodyDef box(double x0, double y0, double x1, double y1) {
-  BodyDef b;
-  b.material = 0;
-  b.outer = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  return b;
-}
+using test::box;
 
-// Fixed points every 0.25 m along y = y0 from x0 to x1: a base held like a rigid foundation.
-std::vector<Vec2> held_along(double x0, double x1, double y0) {
-  std::vector<Vec2> p;
-  for (double x = x0; x <= x1 + 1e-9; x += 0.25) p.push_back({x, y0});
-  return p;
-}
+using test::held_along;
 
 // Runs to time t; returns the status.
 std::string run_to(TimeStepper& st, double t) {

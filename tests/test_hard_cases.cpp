@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "cover_cutter.h"
+#include "scene_builders.h"
 #include "element_integration.h"
 #include "time_stepper.h"
 
@@ -64,19 +65,9 @@ SceneDef contact_scene(double h, double kn_factor) {
   return s;
 }
 
-BodyDef box(double x0, double y0, double x1, double y1) {
-  BodyDef b;
-  b.material = 0;
-  b.outer = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  return b;
-}
+using test::box;
 
-// Fixed points every 0.25 m along y = y0 from x0 to x1: a base held like a rigid foundation.
-std::vector<Vec2> held_along(double x0, double x1, double y0) {
-  std::vector<Vec2> p;
-  for (double x = x0; x <= x1 + 1e-9; x += 0.25) p.push_back({x, y0});
-  return p;
-}
+using test::held_along;
 
 bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });

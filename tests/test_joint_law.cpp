@@ -8,6 +8,7 @@
 
 #include "cover_cutter.h"
 #include "joint_law.h"
+#include "joint_specimen.h"
 #include "scene.h"
 #include "time_stepper.h"
 
@@ -124,25 +125,17 @@ JointResult load_joint(double sigma_n, double tau, double seconds) {
   top.outer = {{0, 1}, {2, 1}, {2, 2}, {0, 2}};
   s.bodies = {base, top};
   for (double x = 0.05; x < 2; x += 0.1) s.fixed_points.push_back({x, 0.02});
-  const int n = 20;  // normal load: n segments of the 2 m top face, end points half
-  for (int i = 0; i <= n; ++i) {
-    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
-    s.loads.push_back({{2.0 * i / n, 2.0}, {0, -sigma_n * 2.0 / n * w}});
-  }
-  if (tau != 0)  // along the joint, 2 cm above it: the whole face is sheared, no overturning
-    for (int i = 0; i < 10; ++i) s.loads.push_back({{0.1 + 0.2 * i, 1.02}, {tau * 2.0 / 10, 0}});
+  load_joint_specimen(s, sigma_n, tau);
   s.measure_points = {{1.0, 1.0001}, {1.0, 0.9999}};
   s.solver.time_step = 1e-3;
   s.solver.dynamic_factor = 0;  // quasi-static: settles to equilibrium
   s.solver.max_displacement_ratio = 0.01;
   const Mesh m = pre::build_mesh(s, "joint");
-  TimeStepper st(m, s, "joint");
+  const JointSpecimenResult sr = run_joint_specimen(m, s, seconds);
   JointResult r;
-  r.status = st.run_until(seconds, [](std::int64_t) {});
-  const auto a = st.displacement_at(st.measure_points()[0]);
-  const auto b = st.displacement_at(st.measure_points()[1]);
-  r.closure = b[1] - a[1];
-  r.slip = a[0] - b[0];
+  r.status = sr.status;
+  r.closure = sr.closure;
+  r.slip = sr.slip;
   return r;
 }
 
