@@ -479,7 +479,8 @@ std::vector<Vec2> read_points(const Reader& r) {
 
 SolverDef read_solver(const Reader& r) {
   r.check_keys({"time_step", "steps", "dynamic", "dynamic_factor", "newmark_beta",
-                "max_displacement_ratio", "output_every", "fixed_point_stiffness"});
+                "max_displacement_ratio", "output_every", "fixed_point_stiffness",
+                "sliver_cover_weight"});
   SolverDef s;  // defaults from scene.h
   s.time_step = r.optional_number("time_step", s.time_step, kPositive);
   s.steps = r.optional_integer("steps", s.steps, 0);
@@ -491,6 +492,9 @@ SolverDef read_solver(const Reader& r) {
   s.max_displacement_ratio = r.optional_number("max_displacement_ratio", s.max_displacement_ratio,
                                                interval(0, false, 1, false));
   s.output_every = r.optional_integer("output_every", s.output_every, 1);
+  // Below 1/3 every element keeps at least one cover above it (its three weights sum to 1).
+  s.sliver_cover_weight = r.optional_number("sliver_cover_weight", s.sliver_cover_weight,
+                                            interval(0, true, 0.3, false));
   return s;
 }
 

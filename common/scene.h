@@ -91,6 +91,10 @@ struct SolverDef {
   double fixed_point_stiffness = 0;       ///< N/m per unit thickness; 0: 100 × largest E·1 m
   double max_displacement_ratio = 0.001;  ///< –, g2 in Shi's step control, in (0, 1)
   std::int64_t output_every = 10;         ///< steps between outputs, >= 1
+  /// –, in [0, 0.3): a physical cover whose weight stays below this everywhere on its support (a
+  /// sliver left where a joint passes next to the edge of its star) shares the unknowns of the
+  /// neighbour cover it overlaps most; 0 never ties (solver/cover_unknowns.cpp)
+  double sliver_cover_weight = 1e-3;
 };
 
 struct SceneDef {

@@ -159,10 +159,12 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
       const double wb = fb.w.at(k, p0x - fb.ox, p0y - fb.oy);
       const int ca = mesh_.element_covers[3 * c.at.elem_a + k];
       const int cb = mesh_.element_covers[3 * c.at.elem_b + k];
-      c.dofs[2 * k] = 2 * ca;
-      c.dofs[2 * k + 1] = 2 * ca + 1;
-      c.dofs[6 + 2 * k] = 2 * cb;
-      c.dofs[6 + 2 * k + 1] = 2 * cb + 1;
+      const int ua = unknown_.empty() ? 2 * ca : unknown_[ca];
+      const int ub = unknown_.empty() ? 2 * cb : unknown_[cb];
+      c.dofs[2 * k] = ua;
+      c.dofs[2 * k + 1] = ua + 1;
+      c.dofs[6 + 2 * k] = ub;
+      c.dofs[6 + 2 * k + 1] = ub + 1;
       c.cn[2 * k] = wa * nx;
       c.cn[2 * k + 1] = wa * ny;
       c.cn[6 + 2 * k] = -wb * nx;

@@ -59,6 +59,8 @@ class ContactSet {
   ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
 
   bool active() const { return active_; }
+  /// The x unknown of each physical cover (y is the next); without a call, cover c has 2c.
+  void use_unknowns(const std::vector<std::int32_t>& unknown) { unknown_ = unknown; }
   /// "contact", and "friction", "cohesion", "tension" when a law in use has them.
   std::vector<std::string> effects() const;
   const std::vector<ContactLaw>& laws() const { return laws_; }
@@ -117,6 +119,7 @@ class ContactSet {
 
  private:
   const Mesh& mesh_;
+  std::vector<std::int32_t> unknown_;  // [pc] x unknown of each cover (empty: 2·pc)
   ContactTopology topo_;
   std::vector<ContactLaw> laws_;
   std::vector<int> joint_law_;  // [joint] law index

@@ -1,7 +1,8 @@
 // NMM time stepping with Shi's implicit scheme (Shi 1988, 1991; physics.md §2).
 //
 // Unknowns: the displacement increment d = (u, v) of every physical cover during the step
-// (constant cover functions). In an element, u(x) = Σ_k w_k(x)·d_k over its triangle's three
+// (constant cover functions); a sliver cover shares the unknowns of a neighbour
+// (cover_unknowns.cpp). In an element, u(x) = Σ_k w_k(x)·d_k over its triangle's three
 // covers, with w_k the linear weights of the triangle in its configuration at the start of the
 // step (each element's triangle has the covers' own node positions, so a cover moves its
 // elements as one piece and covers on two faces of a joint move apart).
@@ -101,6 +102,8 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   }
   fixed_k_ = scene.solver.fixed_point_stiffness > 0 ? scene.solver.fixed_point_stiffness
                                                     : 100.0 * e_max;
+  covers_ = assign_cover_unknowns(mesh, scene.solver.sliver_cover_weight);
+  contacts_.use_unknowns(covers_.unknown);
   elem_mat_.resize(ne);
   groups_.resize(ne);
   for (std::size_t e = 0; e < ne; ++e) {
@@ -109,8 +112,8 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
       throw InputError(scene_name, "/bodies", "the mesh has more bodies than its scene");
     elem_mat_[e] = scene.bodies[body].material;
     for (int k = 0; k < 3; ++k) {
-      groups_[e][2 * k] = 2 * mesh.element_covers[3 * e + k];
-      groups_[e][2 * k + 1] = 2 * mesh.element_covers[3 * e + k] + 1;
+      groups_[e][2 * k] = covers_.unknown[mesh.element_covers[3 * e + k]];
+      groups_[e][2 * k + 1] = covers_.unknown[mesh.element_covers[3 * e + k]] + 1;
     }
   }
   cover_xy_.resize(2 * nc);
@@ -201,9 +204,10 @@ void TimeStepper::check_static_support() const {
 
 void TimeStepper::compute_frames() {
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    const auto& g = groups_[e];
+    // Each cover's own node, also for a tied cover (its weight function is its own).
+    const std::int32_t* ec = &mesh_.element_covers[3 * e];
     ElementFrame& f = frame_[e];
-    const int c0 = g[0] / 2, c1 = g[2] / 2, c2 = g[4] / 2;
+    const int c0 = ec[0], c1 = ec[1], c2 = ec[2];
     f.ox = cover_xy_[2 * c0];
     f.oy = cover_xy_[2 * c0 + 1];
     const double p[6] = {0, 0, cover_xy_[2 * c1] - f.ox, cover_xy_[2 * c1 + 1] - f.oy,
@@ -257,6 +261,7 @@ void TimeStepper::assemble(double dt) {
   Mat6 k;
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
     const auto& g = groups_[e];
+    const std::int32_t* ec = &mesh_.element_covers[3 * e];
     const ElementFrame& f = frame_[e];
     const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(loop_xy_.data() + 2 * b, n, f.ox, f.oy);
@@ -279,8 +284,9 @@ void TimeStepper::assemble(double dt) {
             const double mij = rho * integral_ww(f.w, m, i, j);
             k(2 * i, 2 * j) += mass_k * mij;
             k(2 * i + 1, 2 * j + 1) += mass_k * mij;
-            fe[2 * i] += mij * (mass_v * velocity_[g[2 * j]] + mass_a * accel_[g[2 * j]]);
-            fe[2 * i + 1] += mij * (mass_v * velocity_[g[2 * j + 1]] + mass_a * accel_[g[2 * j + 1]]);
+            const int cj = 2 * ec[j];
+            fe[2 * i] += mij * (mass_v * velocity_[cj] + mass_a * accel_[cj]);
+            fe[2 * i + 1] += mij * (mass_v * velocity_[cj + 1] + mass_a * accel_[cj + 1]);
           }
     }
     system_.add_group(e, k.data());
@@ -358,14 +364,16 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   move(loads_);
   move(measure_);
   const bool dynamic = scene_.solver.dynamic;
-  for (Eigen::Index i = 0; i < d.size(); ++i) {
-    cover_xy_[i] += d[i];
-    cover_u_[i] += d[i];
-    max_d = std::max(max_d, std::abs(d[i]));
+  for (Eigen::Index i = 0; i < d.size(); ++i) max_d = std::max(max_d, std::abs(d[i]));
+  // Per cover; a tied cover takes its master's increment (and so keeps its master's velocity).
+  for (std::size_t i = 0; i < cover_u_.size(); ++i) {
+    const double di = d[covers_.unknown[i / 2] + static_cast<int>(i % 2)];
+    cover_xy_[i] += di;
+    cover_u_[i] += di;
     if (dynamic) {
       const double beta = accel_known_ ? scene_.solver.newmark_beta : 0.5;
       const double k = scene_.solver.dynamic_factor;
-      const double a1 = (d[i] - dt * velocity_[i] - (0.5 - beta) * dt * dt * accel_[i]) / (beta * dt * dt);
+      const double a1 = (di - dt * velocity_[i] - (0.5 - beta) * dt * dt * accel_[i]) / (beta * dt * dt);
       velocity_[i] = k * (velocity_[i] + dt * a1);
       accel_[i] = k * a1;
     }
@@ -423,7 +431,7 @@ std::string TimeStepper::attempt(double dt) {
         std::ostringstream os;
         os << "the system matrix is not positive definite";
         if (u >= 0) {
-          const int c = u / 2;
+          const int c = covers_.cover_of_unknown[u / 2];
           os << " at cover " << c << " (node "
              << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
              << "): it is unconstrained (held by no fixed point or closed contact); add fixed "
@@ -437,7 +445,7 @@ std::string TimeStepper::attempt(double dt) {
     timings_.solves += since(t0);
     for (Eigen::Index i = 0; i < d.size(); ++i)
       if (!std::isfinite(d[i]))
-        throw RunError("the displacement of cover " + std::to_string(i / 2) +
+        throw RunError("the displacement of cover " + std::to_string(covers_.cover_of_unknown[i / 2]) +
                        " is not a finite number at t = " + std::to_string(time_) + " s");
     if (!contact) break;
     ++iterations_;
@@ -615,6 +623,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
                         {"output", timings_.output}};
   summary["unknowns"] = unknowns();
   summary["physical_covers"] = mesh_.cover_count();
+  summary["tied_sliver_covers"] = covers_.tied;
   summary["manifold_elements"] = mesh_.element_count();
   summary["symbolic_analyses"] = system_.analyses();
   summary["time_step"] = sv.time_step;

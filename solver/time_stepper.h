@@ -11,6 +11,7 @@
 
 #include "element_integration.h"
 #include "contact.h"
+#include "cover_unknowns.h"
 #include "elasticity.h"
 #include "mesh.h"
 #include "output_writer.h"
@@ -72,7 +73,9 @@ class TimeStepper {
   const StepTimings& timings() const { return timings_; }
   /// The physical effects this run computes (summary.json "effects").
   std::vector<std::string> effects() const;
-  int unknowns() const { return 2 * static_cast<int>(mesh_.cover_count()); }
+  /// Two per independent cover: sliver covers share a neighbour's (cover_unknowns.cpp).
+  int unknowns() const { return covers_.unknowns(); }
+  const CoverUnknowns& cover_unknowns() const { return covers_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
   std::size_t open_close_iterations() const { return iterations_; }
@@ -96,12 +99,13 @@ class TimeStepper {
   std::string scene_name_;
   std::vector<Mat3> material_d_;        // [material] elasticity matrix, Pa
   std::vector<std::int32_t> elem_mat_;  // [me] material index
+  CoverUnknowns covers_;                // which unknowns each cover moves with
   std::vector<std::array<int, 6>> groups_;  // [me] unknowns of the element's covers
   double fixed_k_ = 0;                  // N/m, penalty stiffness of a fixed point
 
   std::vector<double> cover_xy_;   // [2·pc] m, current position of each cover's node
   std::vector<double> cover_u_;    // [2·pc] m, displacement since the start
-  std::vector<double> velocity_;   // [2·pc] m/s, v0 of the next step
+  std::vector<double> velocity_;   // [2·pc] m/s, v0 of the next step (a tied cover: its master's)
   std::vector<double> accel_;      // [2·pc] m/s², a0 of the next step
   bool accel_known_ = false;       // a0 comes from a step (else the next step takes β = ½)
   std::vector<double> stress_;     // [3·me] Pa

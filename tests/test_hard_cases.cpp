@@ -15,10 +15,11 @@
 // - resting bodies are at rest: the largest cover speed (and, with slivers, the largest speed
 //   of a material point) at the end is small, and measure points stay where they were put.
 //
-// Two tests are DISABLED_ because they expose defects (their comments give the numbers):
-// joints a hair's breadth (1e-9·h, 1e-6·h) beside mesh nodes stop the run or leave a sliver
-// cover chattering; and a block above a joint lying exactly along mesh edges, or above a face
-// 1e-9·h beside a row of nodes, loses its contacts and falls through with status "ok".
+// One test is DISABLED_ because it exposes a defect (its comment gives the numbers): two blocks
+// side by side on a base, split by a joint passing within 0.01·h of mesh nodes, keep a friction
+// chatter of ±2e-8 m at their shared bottom corner. Found by this suite and fixed: sliver covers
+// (joints 1e-9·h beside mesh nodes) that stopped the run, and blocks that fell through a joint
+// along mesh edges.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -457,13 +458,15 @@ double max_vertex_displacement(const Mesh& m, const TimeStepper& st) {
 struct NodeJointRun {
   std::string status;
   double time = 0, cover_speed = 0, point_speed = 0, moved = 0, measured = 0;
-  std::size_t slivers = 0;
+  double drift_speed = 0;  // m/s, largest mean speed of a loop vertex over 0.1–0.2 s
+  std::size_t slivers = 0, tied = 0;
 };
 
 // Runs the scene to 0.2 s, checks what must hold whatever the outcome (finite, no energy from
 // nowhere, bounded penetration, no vertex flung away) and returns what the strict test judges.
-NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on) {
-  const SceneDef s = node_joint_scene(c, wedge_on);
+NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on, double sliver_weight = 1e-3) {
+  SceneDef s = node_joint_scene(c, wedge_on);
+  s.solver.sliver_cover_weight = sliver_weight;
   const Mesh m = pre::build_mesh(s, c.name);
   NodeJointRun r;
   double smallest = 1e300;
@@ -474,28 +477,37 @@ NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on) {
   }
   TimeStepper st(m, s, c.name);
   Monitor mon(m, s);
-  r.status = run_to(st, mon, 0.2);
+  r.tied = st.cover_unknowns().tied;
+  r.status = run_to(st, mon, 0.1);
+  const std::vector<double> half_way = st.loop_xy();
+  if (r.status == "ok") r.status = run_to(st, mon, 0.2);
+  for (std::size_t i = 0; i < half_way.size(); i += 2)
+    r.drift_speed = std::max(r.drift_speed, std::hypot(st.loop_xy()[i] - half_way[i],
+                                                       st.loop_xy()[i + 1] - half_way[i + 1]) /
+                                                (st.time() - 0.1));
   r.time = st.time();
   r.cover_speed = max_speed(st);
   r.point_speed = max_point_speed(m, st);
   r.moved = max_vertex_displacement(m, st);
   for (const TrackedPoint& p : st.measure_points()) r.measured = std::max(r.measured, norm(st.displacement_at(p)));
-  std::printf("%s%s: %zu elements (%zu below 1e-6 h^2, smallest %.2e m^2), %zu blocks; status %s; "
-              "t = %.5f s; speeds: cover %.3e, material point %.3e m/s; largest vertex "
-              "displacement %.3e m, measure points %.3e m; penetration %.3e m; %zu cuts\n",
+  std::printf("%s%s: %zu elements (%zu below 1e-6 h^2, smallest %.2e m^2), %zu blocks, %zu "
+              "covers tied; status %s; t = %.5f s; speeds: cover %.3e, material point %.3e m/s, "
+              "mean over 0.1-0.2 s %.3e m/s; largest vertex displacement %.3e m, measure points "
+              "%.3e m; penetration %.3e m; %zu cuts\n",
               c.name, wedge_on ? " + 2-degree wedge" : "", m.element_count(), r.slivers, smallest,
-              m.block_count(), r.status.c_str(), r.time, r.cover_speed, r.point_speed, r.moved,
-              r.measured, st.max_penetration(), st.time_step_cuts());
+              m.block_count(), r.tied, r.status.c_str(), r.time, r.cover_speed, r.point_speed,
+              r.drift_speed, r.moved, r.measured, st.max_penetration(), st.time_step_cuts());
   print_energy("energy", mon);
   EXPECT_FALSE(r.status.empty()) << c.name;
   EXPECT_GT(r.slivers, 0u) << c.name << ": the scene must make sliver elements";
+  if (r.status != "ok") return r;  // the caller judges a stop
   expect_sound(st, mon, 0.05, c.name);  // the wedge is 5.6 cm high
   EXPECT_LT(r.moved, 1e-3) << c.name << ": a vertex was flung away, m";
   return r;
 }
 
 TEST(HardCases, SliverElementsAndAThinWedgeRest) {
-  // The case the solver copes with: a slit 1e-6·h beside mesh nodes, and the 2° wedge.
+  // A slit 1e-6·h beside mesh nodes (its sliver covers tied), and the 2° wedge on the base.
   const NodeJointRun r = run_node_joint({"vertical slit 1e-6 h beside nodes", Beside::vertical_slit, 1e-6}, true);
   EXPECT_EQ(r.status, "ok");
   EXPECT_LT(r.measured, 1e-4) << "the bodies rest where they were put, m";
@@ -512,37 +524,100 @@ const NodeJointCase kHardNodeJoints[] = {
     {"vertical joint 1e-6 h beside nodes, through", Beside::vertical_through, 1e-6},
 };
 
-TEST(HardCases, JointsBesideMeshNodesNeverBreakDown) {
-  // What holds today for every variant: the run ends "ok" or stops cleanly with a reason, the
-  // state stays finite, no energy appears, nothing penetrates or is flung away. Whether the
-  // bodies also rest for the full 0.2 s is DISABLED_JointsBesideMeshNodesRest below.
-  for (const NodeJointCase& c : kHardNodeJoints) run_node_joint(c, false);
+// Found by this suite and fixed: joints a hair's breadth beside mesh nodes leave physical covers
+// whose weight never exceeds ~offset/h (17 sliver elements down to 1.8e-20 m² here). Before
+// those covers shared a neighbour's unknowns (solver/cover_unknowns.cpp), with h = 0.25 m,
+// kn = 20·E, Δt = 1e-3 s:
+// - horizontal joint 1e-9·h above a node row: stopped at t = 0.00025 s, "time step cut below
+//   its floor": a near-null cover moved 0.43 m in one step (387 m at 1e-12·h, 0.043 m at
+//   1e-8·h: as 1/offset);
+// - horizontal joint 1e-6·h: stopped at t = 0.00064 s, a cover at 1.6e3 m/s;
+// - vertical slit or joint 1e-9·h beside nodes: stopped at t = 0.002–0.005 s, "the system matrix
+//   is not positive definite" in a dynamic run (covers of 5.4e-20 m² elements lost in rounding);
+// - vertical joint 1e-6·h: ran, but a sliver cover chattered at 7.7e-2 m/s for ever.
+// Now all rest: material points at 1e-13 m/s (the through joints: see the DISABLED_ test below).
+TEST(HardCases, JointsBesideMeshNodesRest) {
+  for (const NodeJointCase& c : kHardNodeJoints) {
+    const NodeJointRun r = run_node_joint(c, false);
+    EXPECT_EQ(r.status, "ok") << c.name;
+    EXPECT_GT(r.tied, 0u) << c.name << ": sliver covers must be tied";
+    EXPECT_LT(r.measured, 1e-4) << c.name << ": the bodies rest where they were put, m";
+    EXPECT_LT(r.moved, 1e-4) << c.name << ": m";
+    // Resting on average: chatter (below) goes back and forth, a creeping body does not.
+    EXPECT_LT(r.drift_speed, 1e-6) << c.name << ": mean speed over 0.1-0.2 s, m/s";
+    if (c.kind != Beside::vertical_through) {
+      EXPECT_LT(r.cover_speed, kRestSpeed) << c.name << ": at rest, m/s";
+      EXPECT_LT(r.point_speed, kRestSpeed) << c.name << ": at rest, m/s";
+    } else {
+      EXPECT_LT(r.point_speed, 10 * kRestSpeed) << c.name << ": chatter grew, m/s";
+    }
+  }
 }
 
-// DEFECT (issue 6), measured on this machine (h = 0.25 m, kn = 20·E, Δt = 1e-3 s, 0.2 s):
-// - horizontal joint 1e-9·h above a node row: stops at t = 0.00025 s, "time step cut below its
-//   floor (1e-06 s) ...: a displacement of 0.43 m in one step exceeds 2 × max_displacement_ratio
-//   × w0 = 0.005 m". The displacement grows as 1/offset (387 m at 1e-12·h, 0.043 m at 1e-8·h;
-//   from 1e-5·h on the run is fine): a cover whose support is a sliver, with next to no mass
-//   or stiffness, is driven by contact forces.
-// - horizontal joint 1e-6·h above a node row: stops at t = 0.00064 s, same reason (5.9 mm in one
-//   step); just before, a cover at node (0.875, 1.5155) moves at 1.6e3 m/s.
-// - vertical slit and vertical joint 1e-9·h beside nodes: stop at t = 0.002–0.005 s, "the system
-//   matrix is not positive definite at cover ... (node (2.25, 1.73205) or (2.25, 1.29904)): it is
-//   unconstrained" — in a dynamic run, where the mass term keeps the matrix positive definite in
-//   exact arithmetic: the covers of sliver elements (down to 5.4e-20 m²) carry next to no mass
-//   or stiffness against kn = 2e11 N/m, and the factorisation loses them.
-// - vertical joint 1e-6·h beside nodes down to the base: runs 0.2 s and the rock rests (material
-//   points 2.7e-5 m/s, vertices within 3.6 µm), but the sliver cover at node (2.25, 1.299) still
-//   moves at 7.7e-2 m/s at 0.2 s (and at 1 s): it chatters, 5 open–close iterations per step.
-TEST(HardCases, DISABLED_JointsBesideMeshNodesRest) {
+TEST(HardCases, UntiedSliverCoversStopTheRun) {
+  // The same scene with tying switched off (solver.sliver_cover_weight = 0) still fails as
+  // described above: the tie is what cures it. If this starts passing, the solver has become
+  // robust to near-null covers by other means; revisit cover_unknowns.cpp.
+  const NodeJointRun r = run_node_joint(kHardNodeJoints[0], false, 0.0);
+  EXPECT_EQ(r.tied, 0u);
+  EXPECT_NE(r.status, "ok") << "t = " << r.time << " s";
+}
+
+// DEFECT: the vertical joint through the upper body (two 1 m blocks side by side on the base)
+// within 0.01·h of mesh nodes (also at 1e-6·h and 1e-9·h; not at 0.1·h or 0.4·h) leaves a
+// period-2 friction chatter at the blocks' shared bottom corner (2 + offset, 1): the two corner
+// vertices take turns flipping stick → slip → stick inside one step, each settles sliding (the
+// rule that keeps open–close from cycling for ever), and friction at the strength pushes the
+// covers back every step. Measured at t = 0.2, 0.4 and 0.8 s alike: cover speed 4.4e-5 m/s,
+// material points 2.7e-5 m/s, i.e. ±2e-8 m per step; the mean speed over 0.1 s is below 1e-6
+// m/s and nothing creeps (vertices within 3.6 µm of where they started). Settling such contacts
+// locked instead (with the spring returned to the strength at the end of the step) halved the
+// chatter but slowed a block sliding down an incline by 10.8 % (Contact.BlockSlides*): not done.
+TEST(HardCases, DISABLED_BlocksSideBySideBesideMeshNodesAreStill) {
   for (const NodeJointCase& c : kHardNodeJoints) {
-    const NodeJointRun r = run_node_joint(c, true);
-    EXPECT_EQ(r.status, "ok") << c.name;
-    EXPECT_LT(r.measured, 1e-4) << c.name << ": the bodies rest where they were put, m";
+    if (c.kind != Beside::vertical_through) continue;
+    const NodeJointRun r = run_node_joint(c, false);
     EXPECT_LT(r.cover_speed, kRestSpeed) << c.name << ": at rest, m/s";
     EXPECT_LT(r.point_speed, kRestSpeed) << c.name << ": at rest, m/s";
   }
+}
+
+TEST(HardCases, SliverCoversShareANeighboursUnknowns) {
+  // The horizontal joint 1e-9·h above row 6: the covers of row 7's nodes below the joint are
+  // strips 2.2e-10 m thick, weight ≤ 1e-9.
+  const SceneDef s = node_joint_scene(kHardNodeJoints[0], false);
+  const Mesh m = pre::build_mesh(s, "sliver covers");
+  const CoverUnknowns u = assign_cover_unknowns(m, 1e-3);
+  ASSERT_GT(u.tied, 0u);
+  EXPECT_EQ(u.unknowns(), 2 * static_cast<int>(m.cover_count() - u.tied));
+  std::size_t tied = 0;
+  for (std::size_t c = 0; c < m.cover_count(); ++c) {
+    const std::int32_t master = u.master[c];
+    EXPECT_EQ(u.unknown[c], u.unknown[master]);
+    EXPECT_EQ(u.cover_of_unknown[u.unknown[c] / 2], master);
+    if (master == static_cast<std::int32_t>(c)) {
+      EXPECT_GE(u.max_weight[c], 1e-3) << "cover " << c;
+      continue;
+    }
+    ++tied;
+    EXPECT_LT(u.max_weight[c], 1e-8) << "cover " << c << ": only the strips are slivers";
+    EXPECT_GE(u.max_weight[master], 1e-3) << "cover " << c << ": its master is no sliver";
+    EXPECT_EQ(u.master[master], master) << "no chains";
+    // The master shares an element with it (same side of the joint, same block).
+    bool shares = false;
+    for (std::size_t e = 0; e < m.element_count() && !shares; ++e) {
+      const std::int32_t* ec = &m.element_covers[3 * e];
+      const bool has_c = ec[0] == static_cast<std::int32_t>(c) || ec[1] == static_cast<std::int32_t>(c) ||
+                         ec[2] == static_cast<std::int32_t>(c);
+      shares = has_c && (ec[0] == master || ec[1] == master || ec[2] == master);
+    }
+    EXPECT_TRUE(shares) << "cover " << c;
+  }
+  EXPECT_EQ(tied, u.tied);
+  // Without slivers nothing is tied and cover c owns unknowns 2c, 2c + 1.
+  const CoverUnknowns none = assign_cover_unknowns(m, 0.0);
+  EXPECT_EQ(none.tied, 0u);
+  for (std::size_t c = 0; c < m.cover_count(); ++c) EXPECT_EQ(none.unknown[c], 2 * static_cast<int>(c));
 }
 
 // Found by this suite and fixed: contact was lost where the face a vertex presses on belongs to

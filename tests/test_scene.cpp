@@ -94,6 +94,7 @@ TEST(Scene, InterfaceExampleParsesIntoEveryField) {
   EXPECT_TRUE(s.solver.dynamic);
   EXPECT_EQ(s.solver.max_displacement_ratio, 0.001);
   EXPECT_EQ(s.solver.output_every, 10);
+  EXPECT_EQ(s.solver.sliver_cover_weight, 1e-3);  // the default
 
   EXPECT_DOUBLE_EQ(body_area(s.bodies[0]), 50.0 - 2.0);
 }
@@ -363,6 +364,9 @@ const BadCase kBadCases[] = {
     {R"({"solver": {"output_every": 0}})", "/solver/output_every", "must be >= 1 (got 0)"},
     {R"({"solver": {"max_displacement_ratio": 1}})", "/solver/max_displacement_ratio",
      "must be in (0, 1) (got 1)"},
+    // At 1/3 an element could have all three covers tied (its weights sum to 1).
+    {R"({"solver": {"sliver_cover_weight": 0.34}})", "/solver/sliver_cover_weight",
+     "must be in [0, 0.3) (got 0.34)"},
     // Keys with '/' or '~' are escaped in the path (RFC 6901).
     {R"({"joint_sets": {"a/b~c": {"friction_deg": -1, "normal": {"model": "constant", "kn": 1},
                                   "shear": {"model": "constant", "ks": 1}}}})",
