@@ -197,6 +197,18 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
         if (same) t.continuous.emplace_back(p, eb);
       }
   }
+  {
+    std::vector<std::vector<std::int32_t>> mirror(nv);
+    for (const auto& [xy, vs] : at)
+      for (std::int32_t p : vs)
+        for (std::int32_t q : vs)
+          if (t.block_of[t.element_of[p]] != t.block_of[t.element_of[q]]) mirror[p].push_back(q);
+    t.mirror_offset.assign(1, 0);
+    for (const auto& m : mirror) {
+      t.mirrors.insert(t.mirrors.end(), m.begin(), m.end());
+      t.mirror_offset.push_back(static_cast<std::int32_t>(t.mirrors.size()));
+    }
+  }
   std::sort(t.continuous.begin(), t.continuous.end());
   t.continuous.erase(std::unique(t.continuous.begin(), t.continuous.end()), t.continuous.end());
   return t;
@@ -285,7 +297,18 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (omega < -1e-3 || omega > 1 + 1e-3) continue;
       const double g = rx * ex + ry * ey;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
-      const bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
+      bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
+      // One contact is kept per joint point (the mirror rule below). When the kept one is lost —
+      // its vertex slid a fraction of a µm off the other face, as a corner can with Poisson
+      // expansion — the other face's vertex there takes over: its depth is that contact's
+      // closure, not a new contact's (which must be shallow).
+      for (std::int32_t i = topo.mirror_offset[p]; !was_closed && !closed_block.empty() &&
+                                                   i < topo.mirror_offset[p + 1]; ++i) {
+        const std::int32_t m = topo.mirrors[i];
+        was_closed = topo.block_of[topo.element_of[m]] == topo.block_of[eb] &&
+                     closed_block[m] == topo.block_of[ea] &&
+                     std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= 1e-2 * topo.mesh_size;
+      }
       const double eps = 1e-9 * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;

@@ -27,6 +27,9 @@ struct ContactTopology {
   /// Sorted (vertex, element) pairs that are continuous: the vertex coincides with a vertex of
   /// that element and both see the same covers with the same weights there.
   std::vector<std::pair<std::int32_t, std::int32_t>> continuous;
+  /// CSR over loop vertices: the candidate vertices of other blocks that start at the same point
+  /// (the two faces of a joint at one of its points, which make one contact between them).
+  std::vector<std::int32_t> mirror_offset, mirrors;
   double mesh_size = 0;  ///< m
   /// m, how deep a vertex on the other side of a flat stretch must poke in before it too is held
   /// (beyond any closure a joint law allows: max(1e-4·h, 2·Vm))
