@@ -86,9 +86,7 @@ std::string svg_plot(const PlotSpec& spec) {
   }
   w.polyline({{0, kH}, {0, 0}, {kW, 0}}, axis);
   w.text({kW / 2 - spec.xlabel.size() * 0.6, -9}, spec.xlabel, 2.8, "#222222");
-  w.text({-11, kH + 8}, spec.ylabel, 2.8, "#222222");
-  w.text({0, kH + 13}, spec.title, 3.4, "#000000");
-  double lx = 0;  // legend: one row between the title and the plot area
+  double lx = 0, ly = kH + 3.5;  // legend: rows between the plot area and the title
   for (const PlotSeries& s : spec.series) {
     std::vector<Vec2> pts;
     for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
@@ -97,12 +95,18 @@ std::string svg_plot(const PlotSpec& spec) {
     if (s.line && pts.size() > 1) w.polyline(pts, st);
     if (s.markers)
       for (const Vec2& p : pts) w.circle(p, 0.8, dot);
-    const double ly = kH + 3.5;
+    const double width = 10 + 1.25 * static_cast<double>(s.name.size());
+    if (lx > 0 && lx + width > kW) {  // a new row above
+      lx = 0;
+      ly += 4;
+    }
     if (s.line) w.polyline({{lx, ly + 0.8}, {lx + 5, ly + 0.8}}, st);
     if (s.markers) w.circle({lx + 2.5, ly + 0.8}, 0.8, dot);
     w.text({lx + 6.5, ly}, s.name, 2.4, "#222222");
-    lx += 10 + 1.25 * static_cast<double>(s.name.size());
+    lx += width;
   }
+  w.text({-11, ly + 4.5}, spec.ylabel, 2.8, "#222222");
+  w.text({0, ly + 9.5}, spec.title, 3.4, "#000000");
   return w.str(0.04, 900);
 }
 
