@@ -274,6 +274,18 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     // Single pass: an upward-facing flat vertex only touches where it pokes clearly into the
     // other side (between that side's vertices; it must still be held).
     const bool master_side = !topo.corner[p] && (ny > 0 || (ny == 0 && nx > 0));
+    // One contact is kept per joint point (the mirror rule below). When the kept one is lost —
+    // its vertex slid a fraction of a µm off the other face, as a corner can with Poisson
+    // expansion — the other face's vertex there takes over: its depth is that contact's closure,
+    // not a new contact's (which must be shallow). mirror_closed: the block of a coincident
+    // vertex closed against P's block, or −1.
+    std::int32_t mirror_closed = -1;
+    for (std::int32_t i = topo.mirror_offset[p]; !closed_block.empty() && i < topo.mirror_offset[p + 1]; ++i) {
+      const std::int32_t m = topo.mirrors[i];
+      if (closed_block[m] == topo.block_of[ea] &&
+          std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= 1e-2 * topo.mesh_size)
+        mirror_closed = topo.block_of[topo.element_of[m]];
+    }
     const auto [ci, cj] = cell_of(px, py);
     const std::int64_t k = key(ci, cj);
     auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
@@ -297,18 +309,8 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (omega < -1e-3 || omega > 1 + 1e-3) continue;
       const double g = rx * ex + ry * ey;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
-      bool was_closed = !closed_block.empty() && closed_block[p] == topo.block_of[eb];
-      // One contact is kept per joint point (the mirror rule below). When the kept one is lost —
-      // its vertex slid a fraction of a µm off the other face, as a corner can with Poisson
-      // expansion — the other face's vertex there takes over: its depth is that contact's
-      // closure, not a new contact's (which must be shallow).
-      for (std::int32_t i = topo.mirror_offset[p]; !was_closed && !closed_block.empty() &&
-                                                   i < topo.mirror_offset[p + 1]; ++i) {
-        const std::int32_t m = topo.mirrors[i];
-        was_closed = topo.block_of[topo.element_of[m]] == topo.block_of[eb] &&
-                     closed_block[m] == topo.block_of[ea] &&
-                     std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= 1e-2 * topo.mesh_size;
-      }
+      const bool was_closed = !closed_block.empty() && (closed_block[p] == topo.block_of[eb] ||
+                                                        mirror_closed == topo.block_of[eb]);
       const double eps = 1e-9 * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;

@@ -364,6 +364,8 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   move(loads_);
   move(measure_);
   const bool dynamic = scene_.solver.dynamic;
+  const double beta = accel_known_ ? scene_.solver.newmark_beta : 0.5;
+  const double k = scene_.solver.dynamic_factor;
   for (Eigen::Index i = 0; i < d.size(); ++i) max_d = std::max(max_d, std::abs(d[i]));
   // Per cover; a tied cover takes its master's increment (and so keeps its master's velocity).
   for (std::size_t i = 0; i < cover_u_.size(); ++i) {
@@ -371,8 +373,6 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
     cover_xy_[i] += di;
     cover_u_[i] += di;
     if (dynamic) {
-      const double beta = accel_known_ ? scene_.solver.newmark_beta : 0.5;
-      const double k = scene_.solver.dynamic_factor;
       const double a1 = (di - dt * velocity_[i] - (0.5 - beta) * dt * dt * accel_[i]) / (beta * dt * dt);
       velocity_[i] = k * (velocity_[i] + dt * a1);
       accel_[i] = k * a1;
