@@ -28,6 +28,8 @@
 #include <utility>
 
 #include "error.h"
+#include "lattice.h"
+#include "number_format.h"
 
 namespace nmm {
 
@@ -36,20 +38,6 @@ using nlohmann::json;
 namespace {
 
 // ---- formatting --------------------------------------------------------------------------------
-
-/// Shortest text that reads back as the same double: "0.001", "1e+10", "0.49999999", "inf".
-std::string format_number(double v) {
-  char buf[64];
-  const auto result = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, result.ptr);
-}
-
-/// printf-style "%.<digits>g", for rough figures such as an estimated triangle count.
-std::string format_rough(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -498,29 +486,6 @@ SolverDef read_solver(const Reader& r) {
   return s;
 }
 
-/// The mesh size must not make more triangles than the tools can handle: estimated as the
-/// bodies' bounding box area over the area of one equilateral triangle of side h.
-void check_mesh_size(const Reader& at, double h, const std::vector<BodyDef>& bodies) {
-  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
-  for (const BodyDef& b : bodies)
-    for (const Vec2& p : b.outer) {
-      x0 = std::min(x0, p.x);
-      x1 = std::max(x1, p.x);
-      y0 = std::min(y0, p.y);
-      y1 = std::max(y1, p.y);
-    }
-  const double triangle_area = std::sqrt(3.0) / 4.0;  // per h²
-  const double box = (x1 - x0) * (y1 - y0);
-  const double triangles = box / triangle_area / h / h;  // inf if h is tiny; still > limit
-  if (triangles <= kMaxMeshTriangles) return;
-  const double smallest = std::sqrt(box / (triangle_area * kMaxMeshTriangles));
-  const std::string count =
-      std::isfinite(triangles) ? "about " + format_rough(triangles, 2) : "more than 1e+308";
-  at.fail("mesh size " + format_number(h) + " m would make " + count +
-          " triangles over the bodies' bounding box (limit " + format_rough(kMaxMeshTriangles, 6) +
-          "); use a larger size (at least " + format_rough(smallest, 3) + " m)");
-}
-
 // ---- locating JSON syntax errors --------------------------------------------------------------
 
 /// "line L, column C" (both 1-based, columns in bytes) of byte index `at` of `text`.
@@ -685,7 +650,10 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   const Reader mesh = root["mesh"];
   mesh.check_keys({"size"});
   scene.mesh_size = mesh.number("size", kPositive);
-  check_mesh_size(mesh["size"], scene.mesh_size, scene.bodies);
+  // Every number derived from the mesh size (triangle and node counts, node coordinates) is
+  // checked here, where the message can name /mesh/size (common/lattice.h).
+  const std::string lattice = lattice_problem(scene.bodies, scene.mesh_size);
+  if (!lattice.empty()) mesh["size"].fail(lattice);
 
   if (const auto fixed = root.optional("fixed_points")) scene.fixed_points = read_points(*fixed);
 

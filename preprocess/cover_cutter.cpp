@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "error.h"
+#include "lattice.h"
 #include "nmm_version.h"
 
 namespace nmm::pre {
@@ -103,18 +104,6 @@ struct BoundarySeg {
   bool body_left;
 };
 
-struct Lattice {
-  double h = 0, dy = 0;
-  std::int64_t i0 = 0, j0 = 0, ni = 0, nj = 0;  // node (i, j) for i in [i0, i0+ni), j likewise
-  Vec2 node(std::int64_t i, std::int64_t j) const {
-    const double shift = ((j % 2) + 2) % 2 == 1 ? 0.5 : 0.0;
-    return {(static_cast<double>(i) + shift) * h, static_cast<double>(j) * dy};
-  }
-  std::int32_t index(std::int64_t i, std::int64_t j) const {
-    return static_cast<std::int32_t>((j - j0) * ni + (i - i0));
-  }
-};
-
 struct Box {
   double x0, y0, x1, y1;
   bool overlaps(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
@@ -141,20 +130,11 @@ struct RawMesh {
 
 RawMesh make_raw_mesh(const SceneDef& scene) {
   RawMesh m;
-  Lattice& L = m.lat;
-  L.h = scene.mesh_size;
-  L.dy = scene.mesh_size * std::sqrt(3.0) / 2.0;
+  m.lat = make_lattice(scene.bodies, scene.mesh_size);  // ranges checked by parse_scene()
+  const Lattice& L = m.lat;
   std::vector<Box> boxes;
   for (const BodyDef& b : scene.bodies) boxes.push_back(ring_box(b.outer));
-  Box all = boxes[0];
-  for (const Box& b : boxes) all = {std::min(all.x0, b.x0), std::min(all.y0, b.y0),
-                                    std::max(all.x1, b.x1), std::max(all.y1, b.y1)};
-  L.j0 = static_cast<std::int64_t>(std::floor(all.y0 / L.dy)) - 1;
-  const std::int64_t j1 = static_cast<std::int64_t>(std::ceil(all.y1 / L.dy)) + 1;
-  L.i0 = static_cast<std::int64_t>(std::floor(all.x0 / L.h)) - 1;
-  const std::int64_t i1 = static_cast<std::int64_t>(std::ceil(all.x1 / L.h)) + 1;
-  L.ni = i1 - L.i0 + 1;
-  L.nj = j1 - L.j0 + 1;
+  const std::int64_t i1 = L.i0 + L.ni - 1, j1 = L.j0 + L.nj - 1;
   m.node_xy.resize(static_cast<std::size_t>(L.ni * L.nj));
   for (std::int64_t j = L.j0; j <= j1; ++j)
     for (std::int64_t i = L.i0; i <= i1; ++i) m.node_xy[L.index(i, j)] = L.node(i, j);
