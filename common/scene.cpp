@@ -115,6 +115,8 @@ const Range kNonNegative{0, true};
 Range interval(double lo, bool lo_closed, double hi, bool hi_closed) {
   return Range{lo, lo_closed, hi, hi_closed};
 }
+const Range kStiffness = interval(0, false, kMaxSpringStiffness, true);
+const Range kStrength = interval(0, false, kMaxStrength, true);
 
 // ---- Reader: one JSON value with the file and path that name it --------------------------------
 
@@ -251,13 +253,18 @@ class Reader {
     return Vec2{(*this)[0].as_number(), (*this)[1].as_number()};
   }
 
-  /// A point [x, y] in m, within kMaxCoordinate of the origin in each axis.
-  Vec2 as_point() const {
-    const Vec2 p = as_pair("a point [x, y]");
-    const Range within = interval(-kMaxCoordinate, true, kMaxCoordinate, true);
+  /// [a, b] with each component within ±bound.
+  Vec2 as_bounded_pair(const char* expected, double bound) const {
+    const Vec2 v = as_pair(expected);
+    const Range within = interval(-bound, true, bound, true);
     (*this)[0].as_number(within);
     (*this)[1].as_number(within);
-    return p;
+    return v;
+  }
+
+  /// A point [x, y] in m, within kMaxCoordinate of the origin in each axis.
+  Vec2 as_point() const {
+    return as_bounded_pair("a point [x, y]", kMaxCoordinate);
   }
 
   /// An array of at least `min_count` points with no point equal to the one before it (the
@@ -358,8 +365,8 @@ MaterialDef read_material(const std::string& name, const Reader& r) {
   r.check_keys({"density", "young", "poisson"});
   MaterialDef m;
   m.name = name;
-  m.density = r.number("density", kPositive);
-  m.young = r.number("young", kPositive);
+  m.density = r.number("density", interval(0, false, kMaxDensity, true));
+  m.young = r.number("young", interval(0, false, kMaxModulus, true));
   // 0.5 is incompressible: the plane-strain elasticity matrix blows up.
   m.poisson = r.number("poisson", interval(0, true, 0.5, false));
   return m;
@@ -372,10 +379,10 @@ NormalLawDef read_normal_law(const Reader& r) {
   // A joint set may hold the parameters of both models, so that a run can switch models with
   // --set joint_sets.NAME.normal.model=... on the same mesh; the model picks which are needed.
   r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs"}, "");
-  if (r.has("kn")) law.kn = r.number("kn", kPositive);
+  if (r.has("kn")) law.kn = r.number("kn", kStiffness);
   if (model == 0) {
     law.model = NormalModel::constant;
-    law.kn = r.number("kn", kPositive);
+    law.kn = r.number("kn", kStiffness);
   } else if (r.has("jrc") || r.has("jcs") || r.has("ucs")) {
     // Barton–Bandis empirical relations (Barton, Bandis & Bakhtar 1985; physics.md §4), with
     // JCS and σc in MPa and lengths in mm inside the formulas:
@@ -386,8 +393,8 @@ NormalLawDef read_normal_law(const Reader& r) {
       r.fail("give either kni and vm, or jrc, jcs and ucs, not both");
     law.model = NormalModel::bandis_barton;
     law.jrc = r.number("jrc", interval(0, false, 20, true));
-    law.jcs = r.number("jcs", kPositive);
-    law.ucs = r.number("ucs", kPositive);
+    law.jcs = r.number("jcs", kStrength);
+    law.ucs = r.number("ucs", kStrength);
     const double jcs_mpa = law.jcs / 1e6, ucs_mpa = law.ucs / 1e6;
     const double aj = (law.jrc / 5.0) * (0.2 * ucs_mpa / jcs_mpa - 0.1);  // mm
     if (!(aj > 0))
@@ -402,8 +409,8 @@ NormalLawDef read_normal_law(const Reader& r) {
     law.vm = vm_mm * 1e-3;
   } else {
     law.model = NormalModel::bandis_barton;
-    law.kni = r.number("kni", kPositive);
-    law.vm = r.number("vm", kPositive);
+    law.kni = r.number("kni", kStiffness);
+    law.vm = r.number("vm", interval(0, false, kMaxClosure, true));
   }
   return law;
 }
@@ -413,13 +420,13 @@ ShearLawDef read_shear_law(const Reader& r) {
   ShearLawDef law;
   const std::size_t model = r["model"].as_choice({"constant", "hyperbolic"}, "shear model");
   r.check_keys({"model", "ks", "ksi", "rf"}, "");  // both models' parameters may be given
-  if (r.has("ks")) law.ks = r.number("ks", kPositive);
+  if (r.has("ks")) law.ks = r.number("ks", kStiffness);
   if (model == 0) {
     law.model = ShearModel::constant;
-    law.ks = r.number("ks", kPositive);
+    law.ks = r.number("ks", kStiffness);
   } else {
     law.model = ShearModel::hyperbolic;
-    law.ksi = r.number("ksi", kPositive);
+    law.ksi = r.number("ksi", kStiffness);
     law.rf = r.number("rf", interval(0, false, 1, true));
   }
   return law;
@@ -430,8 +437,8 @@ JointSetDef read_joint_set(const std::string& name, const Reader& r) {
   JointSetDef s;
   s.name = name;
   s.friction_deg = r.number("friction_deg", interval(0, true, 90, false));  // tan 90° is infinite
-  s.cohesion = r.optional_number("cohesion", 0, kNonNegative);
-  s.tensile_strength = r.optional_number("tensile_strength", 0, kNonNegative);
+  s.cohesion = r.optional_number("cohesion", 0, interval(0, true, kMaxStrength, true));
+  s.tensile_strength = r.optional_number("tensile_strength", 0, interval(0, true, kMaxStrength, true));
   s.normal = read_normal_law(r["normal"]);
   s.shear = read_shear_law(r["shear"]);
   return s;
@@ -470,13 +477,13 @@ SolverDef read_solver(const Reader& r) {
                 "max_displacement_ratio", "output_every", "fixed_point_stiffness",
                 "sliver_cover_weight"});
   SolverDef s;  // defaults from scene.h
-  s.time_step = r.optional_number("time_step", s.time_step, kPositive);
+  s.time_step = r.optional_number("time_step", s.time_step, interval(kMinTimeStep, true, kMaxTimeStep, true));
   s.steps = r.optional_integer("steps", s.steps, 0);
   if (r.has("dynamic")) s.dynamic = r["dynamic"].as_bool();
   s.dynamic_factor = r.optional_number("dynamic_factor", s.dynamic_factor, interval(0, true, 1, true));
   s.newmark_beta = r.optional_number("newmark_beta", s.newmark_beta, interval(0.5, true, 1, true));
   s.fixed_point_stiffness =
-      r.optional_number("fixed_point_stiffness", s.fixed_point_stiffness, kNonNegative);
+      r.optional_number("fixed_point_stiffness", s.fixed_point_stiffness, interval(0, true, kMaxSpringStiffness, true));
   s.max_displacement_ratio = r.optional_number("max_displacement_ratio", s.max_displacement_ratio,
                                                interval(0, false, 1, false));
   s.output_every = r.optional_integer("output_every", s.output_every, 1);
@@ -617,7 +624,7 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   if (root.has("name")) scene.name = root["name"].as_string();
   if (root.has("gravity")) {
     scene.has_gravity = true;
-    scene.gravity = root["gravity"].as_pair("[gx, gy]");
+    scene.gravity = root["gravity"].as_bounded_pair("[gx, gy]", kMaxAcceleration);
   }
   if (root.has("plane"))
     scene.plane = root["plane"].as_choice({"strain", "stress"}, "plane") == 0 ? PlaneKind::strain
@@ -662,7 +669,7 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
     for (std::size_t i = 0; i < loads->size(); ++i) {
       const Reader load = (*loads)[i];
       load.check_keys({"point", "force"});
-      scene.loads.push_back(LoadDef{load["point"].as_point(), load["force"].as_pair("[fx, fy]")});
+      scene.loads.push_back(LoadDef{load["point"].as_point(), load["force"].as_bounded_pair("[fx, fy]", kMaxForce)});
     }
   }
 
