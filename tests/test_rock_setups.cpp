@@ -14,6 +14,8 @@
 #include "time_stepper.h"
 #include "time_table.h"
 
+#include <fstream>
+
 namespace nmm::solve {
 namespace {
 
@@ -250,6 +252,78 @@ TEST(RockSetups, RestartFromStateInMemoryIsBitwiseExact) {
   EXPECT_EQ(second.state_hash(), straight.state_hash());
   EXPECT_NE(first.state_hash(), straight.state_hash());
   EXPECT_EQ(second.step_count(), 30);
+}
+
+// Internal pressure on a hole face (Lamé): a quarter of a thick cylinder, inner radius a = 1,
+// outer b = 3, rollers on the symmetry lines, pressure p on the inner face (normal = −p pushes
+// into the body). Plane strain, outer face free:
+//   u_r(r) = p a² / (E (b² − a²)) · [(1 + ν)(1 − 2ν) r + (1 + ν) b² / r]
+TEST(RockSetups, PressureOnAHoleFaceMatchesLame) {
+  const double a = 1, b = 3, p = 5e6, E = 1e10, nu = 0.25;
+  const int n = 64;
+  SceneDef s = rock_scene(0.1);
+  BodyDef ring;
+  ring.material = 0;
+  std::vector<Vec2> inner;
+  for (int i = 0; i <= n; ++i) {
+    const double t = 0.5 * kPi * i / n;
+    ring.outer.push_back({b * std::cos(t), b * std::sin(t)});
+  }
+  ring.outer.back() = {0, b};
+  ring.outer.front() = {b, 0};
+  for (int i = n; i >= 0; --i) {
+    const double t = 0.5 * kPi * i / n;
+    inner.push_back({a * std::cos(t), a * std::sin(t)});
+  }
+  inner.front() = {0, a};
+  inner.back() = {a, 0};
+  for (const Vec2& q : inner) ring.outer.push_back(q);
+  s.bodies = {ring};
+  s.supports = {support({{0, a}, {0, b}}, true, false), support({{a, 0}, {b, 0}}, false, true)};
+  s.solver.support_stiffness = 1e4 * E / 0.1;
+  s.tractions = {traction(inner, -p, 0)};
+  s.solver.dynamic = false;
+  const Mesh m = pre::build_mesh(s, "lame");
+  TimeStepper st(m, s, "lame");
+  st.step(1.0);
+  const double want = p * a * a / (E * (b * b - a * a)) * ((1 + nu) * (1 - 2 * nu) * a + (1 + nu) * b * b / a);
+  double err = 0;
+  int count = 0;
+  for (std::size_t v = 0; v < m.loop_vertex_count(); ++v) {
+    const double x = m.loop_xy[2 * v], y = m.loop_xy[2 * v + 1], r = std::hypot(x, y);
+    if (std::abs(r - a) > 1e-9 || x < 1e-6 || y < 1e-6) continue;
+    const double ur = (st.state().loop_u[2 * v] * x + st.state().loop_u[2 * v + 1] * y) / r;
+    err = std::max(err, std::abs(ur - want));
+    ++count;
+  }
+  std::printf("Lamé: inner wall u_r %.6e m expected, largest error %.2f %% over %d vertices\n", want,
+              100 * err / want, count);
+  ASSERT_GT(count, 10);
+  EXPECT_LT(err, 0.01 * want);  // outward: a sign error would be off by 200 %
+}
+
+TEST(RockSetups, TimeTableFromCsvInterpolatesLinearly) {
+  const std::string path = ::testing::TempDir() + "/nmm_table.csv";
+  std::ofstream(path) << "time,factor\n# ramp then hold\n0,0\n2;4\n\n3,1\n";
+  const std::string scene =
+      R"({"materials": {"r": {"density": 1, "young": 1, "poisson": 0}}, "mesh": {"size": 1},
+          "bodies": [{"material": "r", "outer": [[0,0],[1,0],[1,1]]}],
+          "base_acceleration": {"x": ")" + path + R"("}})";
+  const SceneDef s = parse_scene(scene, "table.json");
+  ASSERT_EQ(s.base_acceleration_x.time.size(), 3u);
+  EXPECT_DOUBLE_EQ(table_value(s.base_acceleration_x, -1, 0), 0);
+  EXPECT_DOUBLE_EQ(table_value(s.base_acceleration_x, 1, 0), 2);
+  EXPECT_DOUBLE_EQ(table_value(s.base_acceleration_x, 2.5, 0), 2.5);
+  EXPECT_DOUBLE_EQ(table_value(s.base_acceleration_x, 9, 0), 1);
+  EXPECT_DOUBLE_EQ(table_value(TimeTable{}, 9), 1);
+  std::ofstream(path) << "0,0\n1,x\n";
+  try {
+    parse_scene(scene, "table.json");
+    FAIL() << "a bad row must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/base_acceleration/x"), std::string::npos) << e.what();
+  }
 }
 
 // Newmark's sliding block (physics.md §5): a block resting on a plane inclined at α (gravity
