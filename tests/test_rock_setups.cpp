@@ -128,7 +128,7 @@ struct KirschErrors {
   std::size_t elements = 0;
 };
 
-KirschErrors kirsch_case(double h, double k0, double b_over_a) {
+SceneDef kirsch_scene(double h, double k0, double b_over_a) {
   const double a = 1, b = b_over_a * a, p = 10e6, px = k0 * p, py = p;
   const int n_arc = 48;  // polygon sides per quarter circle
   SceneDef s = rock_scene(h);
@@ -166,6 +166,12 @@ KirschErrors kirsch_case(double h, double k0, double b_over_a) {
   s.solver.support_stiffness = 1e4 * 1e10 / h;
   s.solver.dynamic = false;
   s.excavate = {1};
+  return s;
+}
+
+KirschErrors kirsch_case(double h, double k0, double b_over_a) {
+  const double a = 1, p = 10e6, px = k0 * p, py = p;
+  const SceneDef s = kirsch_scene(h, k0, b_over_a);
   const Mesh m = pre::build_mesh(s, "kirsch");
   TimeStepper st(m, s, "kirsch");
   st.step(1.0);
@@ -236,6 +242,32 @@ void kirsch_convergence(double k0) {
 
 TEST(RockSetups, ExcavatedOpeningMatchesKirschHydrostatic) { kirsch_convergence(1.0); }
 TEST(RockSetups, ExcavatedOpeningMatchesKirschK0Half) { kirsch_convergence(0.5); }
+
+TEST(RockSetups, GradualExcavationReleasesItsTractionInEqualParts) {
+  // Static, linear: with excavation_steps = 4 each of the first four steps adds a quarter of the
+  // release, and nothing moves after.
+  SceneDef s = kirsch_scene(0.4, 0.5, 8);
+  const Mesh m = pre::build_mesh(s, "gradual");
+  TimeStepper once(m, s, "gradual");
+  once.step(1.0);
+  s.solver.excavation_steps = 4;
+  TimeStepper gradual(m, s, "gradual");
+  auto wall_u = [&](const TimeStepper& st) {  // largest displacement of any cover, m
+    double d = 0;
+    for (double u : st.cover_displacement()) d = std::max(d, std::abs(u));
+    return d;
+  };
+  const double full = wall_u(once);
+  std::vector<double> seen;
+  for (int i = 0; i < 6; ++i) {
+    gradual.step(1.0);
+    seen.push_back(wall_u(gradual));
+  }
+  std::printf("gradual release: %.4f %.4f %.4f %.4f %.4f %.4f of the release at once\n", seen[0] / full,
+              seen[1] / full, seen[2] / full, seen[3] / full, seen[4] / full, seen[5] / full);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(seen[i] / full, 0.25 * (i + 1), 1e-3);
+  EXPECT_NEAR(seen[5] / full, 1.0, 1e-3);
+}
 
 TEST(RockSetups, RestartFromStateInMemoryIsBitwiseExact) {
   SceneDef s = insitu_box(0.6);

@@ -26,6 +26,10 @@ echo "straight $h1"; echo "restart  $h2"; echo "half     $h0"
 [ "$h1" = "$h2" ] || { echo "restarted state differs from the straight run"; fail=1; }
 [ "$h0" != "$h2" ] || { echo "the state did not move in the second half"; fail=1; }
 [ "$(field "$dir/second/summary.json" step)" = $((2 * n)) ] || { echo "step numbers do not continue"; fail=1; }
+# The checkpoint must catch contacts sliding (state 2 in contacts.csv), or the test proves less.
+sliding=$(awk -F, -v s=$n 'NR > 1 && $1 == s && $6 == 2' "$dir/first/contacts.csv" | wc -l)
+echo "contacts sliding at the checkpoint (step $n): $sliding"
+[ "$sliding" -gt 0 ] || { echo "no contact slides at the checkpoint"; fail=1; }
 cmp -s "$dir/straight/checkpoint.nmmstate" "$dir/second/checkpoint.nmmstate" ||
   echo "note: checkpoint files differ (diagnostic counters only, if the hashes agree)"
 
