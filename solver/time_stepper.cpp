@@ -768,6 +768,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["time_step"] = sv.time_step;
   summary["max_step_displacement"] = s_.max_step_displacement;
   summary["fixed_point_stiffness"] = fixed_k_;
+  if (!scene_.supports.empty()) summary["support_stiffness"] = support_k_;
   summary["tool_version"] = NMM_VERSION;
   out.write_summary(summary);
   return summary;
