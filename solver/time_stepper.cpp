@@ -22,9 +22,14 @@
 //   K_e     = A_e Bᵀ D B                    (elasticity.cpp)
 //   M_e     = ρ ∫ Nᵀ N dA                   consistent mass: ρ ∫ w_k w_l dA per direction
 //   F_int,e = A_e Bᵀ σ_e                    stress carried from earlier steps (initial stress)
-//   F_grav  = ρ g ∫ w_k dA                  only with gravity
+//   F_grav  = ρ (g − a_base(t)) ∫ w_k dA    only with gravity or a base acceleration (time table)
 //   F_load  = w_k(p)·f                      point load f at p, only with loads
 //   fixed point p (started at P): penalty spring k_f, K += k_f NᵀN, F −= k_f Nᵀ (p − P)
+//   supports, tractions, in-situ traction on faces between bodies: boundary_conditions.h
+//   (edge integrals, exact by two-point Gauss); in-situ stress in σ before step 1:
+//   insitu_stress.h; excavated bodies: excavation.h (their covers pinned, K += k_pin I).
+// Everything carried from step to step is in RunState s_ (run_state.h) and the contact history:
+// a checkpoint of both continues a run bitwise exactly (--restart).
 // All integrals are exact simplex integrals over the element polygon (element_integration.cpp).
 // After the solve: σ_e += D B d_e, and every loop vertex, cover node and tracked point moves by
 // the displacement field (geometry update: large displacement over many small steps). The stress
