@@ -117,6 +117,9 @@ Range interval(double lo, bool lo_closed, double hi, bool hi_closed) {
 }
 const Range kStiffness = interval(0, false, kMaxSpringStiffness, true);
 const Range kStrength = interval(0, false, kMaxStrength, true);
+const Range kStress = interval(-kMaxStrength, true, kMaxStrength, true);  // Pa, either sign
+const Range kStressGradient = interval(-1e6, true, 1e6, true);  // Pa/m (rock: about 2.7e4)
+const Range kCoordinate = interval(-kMaxCoordinate, true, kMaxCoordinate, true);
 
 // ---- Reader: one JSON value with the file and path that name it --------------------------------
 
@@ -475,7 +478,8 @@ std::vector<Vec2> read_points(const Reader& r) {
 SolverDef read_solver(const Reader& r) {
   r.check_keys({"time_step", "steps", "dynamic", "dynamic_factor", "newmark_beta",
                 "max_displacement_ratio", "output_every", "fixed_point_stiffness",
-                "sliver_cover_weight"});
+                "sliver_cover_weight", "checkpoint_every", "support_stiffness",
+                "excavation_steps"});
   SolverDef s;  // defaults from scene.h
   s.time_step = r.optional_number("time_step", s.time_step, interval(kMinTimeStep, true, kMaxTimeStep, true));
   s.steps = r.optional_integer("steps", s.steps, 0);
@@ -490,7 +494,144 @@ SolverDef read_solver(const Reader& r) {
   // Below 1/3 every element keeps at least one cover above it (its three weights sum to 1).
   s.sliver_cover_weight = r.optional_number("sliver_cover_weight", s.sliver_cover_weight,
                                             interval(0, true, 0.3, false));
+  s.checkpoint_every = r.optional_integer("checkpoint_every", s.checkpoint_every, 0);
+  s.support_stiffness = r.optional_number("support_stiffness", s.support_stiffness,
+                                          interval(0, true, kMaxSpringStiffness, true));
+  s.excavation_steps = r.optional_integer("excavation_steps", s.excavation_steps, 1);
   return s;
+}
+
+// ---- rock-engineering set-ups (docs/interface.md "Rock-engineering set-ups and restart") ------
+
+/// A time table: inline rows [[t, value], ...] or the name of a CSV file with rows "t,value"
+/// (blank lines, lines starting with '#' and one header line of words are skipped). Times must
+/// increase strictly.
+TimeTable read_time_table(const Reader& r) {
+  TimeTable t;
+  if (r.value().is_string()) {
+    const std::string path = r.as_string();
+    std::string text;
+    try {
+      text = read_text_file(path);
+    } catch (const InputError& e) {
+      r.fail("cannot read the time table file \"" + path + "\": " + e.message());
+    }
+    std::size_t line_no = 0, start = 0;
+    while (start <= text.size()) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string::npos) end = text.size();
+      std::string line = text.substr(start, end - start);
+      start = end + 1;
+      ++line_no;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      const std::size_t first = line.find_first_not_of(" \t");
+      if (first == std::string::npos || line[first] == '#') continue;
+      double tv[2];
+      const char* p = line.c_str();
+      bool ok = true;
+      for (int k = 0; k < 2 && ok; ++k) {
+        while (*p == ' ' || *p == '\t' || (k == 1 && *p == ',') || (k == 1 && *p == ';')) ++p;
+        char* q = nullptr;
+        tv[k] = std::strtod(p, &q);
+        ok = q != p && std::isfinite(tv[k]);
+        p = q;
+      }
+      if (!ok) {
+        if (t.time.empty() && line_no == 1) continue;  // a header line
+        r.fail("time table file \"" + path + "\" line " + std::to_string(line_no) +
+               ": expected two numbers \"t,value\"");
+      }
+      if (!t.time.empty() && !(tv[0] > t.time.back()))
+        r.fail("time table file \"" + path + "\" line " + std::to_string(line_no) +
+               ": times must increase strictly");
+      t.time.push_back(tv[0]);
+      t.value.push_back(tv[1]);
+    }
+    if (t.time.empty()) r.fail("time table file \"" + path + "\" holds no rows");
+    return t;
+  }
+  r.expect_array();
+  if (r.size() == 0) r.fail("a time table needs at least one row [t, value]");
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Vec2 row = r[i].as_pair("a row [t, value]");
+    if (!t.time.empty() && !(row.x > t.time.back())) r[i][0].fail("times must increase strictly");
+    t.time.push_back(row.x);
+    t.value.push_back(row.y);
+  }
+  return t;
+}
+
+std::vector<SupportDef> read_supports(const Reader& r) {
+  r.expect_array();
+  std::vector<SupportDef> out;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Reader s = r[i];
+    s.check_keys({"points", "fix"});
+    SupportDef d;
+    d.points = s["points"].as_point_list(2, false, "a support");
+    const std::size_t fix = s["fix"].as_choice({"x", "y", "xy"}, "fix direction");
+    d.fix_x = fix != 1;
+    d.fix_y = fix != 0;
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+std::vector<TractionDef> read_tractions(const Reader& r) {
+  r.expect_array();
+  std::vector<TractionDef> out;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Reader s = r[i];
+    s.check_keys({"points", "normal", "shear", "from_insitu", "table"});
+    TractionDef d;
+    d.points = s["points"].as_point_list(2, false, "a traction");
+    if (s.has("from_insitu")) d.from_insitu = s["from_insitu"].as_bool();
+    if (d.from_insitu && (s.has("normal") || s.has("shear")))
+      s["from_insitu"].fail("give either normal/shear or from_insitu, not both");
+    if (!d.from_insitu && !s.has("normal") && !s.has("shear"))
+      s.fail("a traction needs \"normal\" and/or \"shear\" (Pa), or \"from_insitu\": true");
+    d.normal = s.optional_number("normal", 0, kStress);
+    d.shear = s.optional_number("shear", 0, kStress);
+    if (const auto t = s.optional("table")) d.table = read_time_table(*t);
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+/// insitu_stress: {sxx, syy, sxy, y_ref, gradient: [gxx, gyy, gxy]} or the overburden shortcut
+/// {k0, y_ref, density (default: the first material's), syy (at y_ref, default 0), g (default
+/// |gravity|, else 9.81)}: σyy = syy − ρ·g·(y_ref − y), σxx = k0·σyy, σxy = 0.
+InsituStressDef read_insitu(const Reader& r, const SceneDef& scene) {
+  InsituStressDef d;
+  d.present = true;
+  if (r.has("k0")) {
+    r.check_keys({"k0", "y_ref", "density", "syy", "g"}, " with \"k0\"");
+    const double k0 = r.number("k0", interval(0, true, 10, true));  // K0 of rock: 0.3 to 3
+    d.y_ref = r["y_ref"].as_number(kCoordinate);
+    const double rho = r.optional_number("density", scene.materials.front().density,
+                                         interval(0, false, kMaxDensity, true));
+    const double g_default =
+        scene.has_gravity ? std::hypot(scene.gravity.x, scene.gravity.y) : 9.81;
+    const double g = r.optional_number("g", g_default, interval(0, true, kMaxAcceleration, true));
+    d.syy = r.optional_number("syy", 0, kStress);
+    d.sxx = k0 * d.syy;
+    d.gyy = -rho * g;
+    d.gxx = k0 * d.gyy;
+    return d;
+  }
+  r.check_keys({"sxx", "syy", "sxy", "y_ref", "gradient"});
+  d.sxx = r.optional_number("sxx", 0, kStress);
+  d.syy = r.optional_number("syy", 0, kStress);
+  d.sxy = r.optional_number("sxy", 0, kStress);
+  d.y_ref = r.optional_number("y_ref", 0, kCoordinate);
+  if (const auto g = r.optional("gradient")) {
+    g->expect_array();
+    if (g->size() != 3) g->fail("expected [gxx, gyy, gxy] (Pa per m of depth)");
+    d.gxx = (*g)[0].as_number(kStressGradient);
+    d.gyy = (*g)[1].as_number(kStressGradient);
+    d.gxy = (*g)[2].as_number(kStressGradient);
+  }
+  return d;
 }
 
 // ---- locating JSON syntax errors --------------------------------------------------------------
@@ -618,7 +759,8 @@ SceneDef parse_scene(const std::string& text, const std::string& file) {
 SceneDef scene_from_json(const json& doc, const std::string& file) {
   const Reader root(doc, file, "");
   root.check_keys({"name", "gravity", "plane", "materials", "joint_sets", "bodies", "joints",
-                   "interface_set", "mesh", "fixed_points", "loads", "measure_points", "solver"});
+                   "interface_set", "mesh", "fixed_points", "loads", "measure_points", "solver",
+                   "supports", "tractions", "insitu_stress", "excavate", "base_acceleration"});
   SceneDef scene;
 
   if (root.has("name")) scene.name = root["name"].as_string();
@@ -668,8 +810,11 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
     loads->expect_array();
     for (std::size_t i = 0; i < loads->size(); ++i) {
       const Reader load = (*loads)[i];
-      load.check_keys({"point", "force"});
-      scene.loads.push_back(LoadDef{load["point"].as_point(), load["force"].as_bounded_pair("[fx, fy]", kMaxForce)});
+      load.check_keys({"point", "force", "table"});
+      scene.loads.push_back(
+          LoadDef{load["point"].as_point(), load["force"].as_bounded_pair("[fx, fy]", kMaxForce)});
+      scene.load_tables.emplace_back();
+      if (const auto t = load.optional("table")) scene.load_tables.back() = read_time_table(*t);
     }
   }
 
@@ -677,6 +822,25 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
     scene.measure_points = read_points(*measure);
 
   if (const auto solver = root.optional("solver")) scene.solver = read_solver(*solver);
+
+  if (const auto r = root.optional("supports")) scene.supports = read_supports(*r);
+  if (const auto r = root.optional("tractions")) scene.tractions = read_tractions(*r);
+  if (const auto r = root.optional("insitu_stress")) scene.insitu_stress = read_insitu(*r, scene);
+  if (const auto r = root.optional("excavate")) {
+    r->expect_array();
+    for (std::size_t i = 0; i < r->size(); ++i) {
+      const std::int64_t b = (*r)[i].as_integer(0);
+      if (b >= static_cast<std::int64_t>(scene.bodies.size()))
+        (*r)[i].fail("no body " + std::to_string(b) + " (the scene has " +
+                     std::to_string(scene.bodies.size()) + ")");
+      scene.excavate.push_back(static_cast<int>(b));
+    }
+  }
+  if (const auto r = root.optional("base_acceleration")) {
+    r->check_keys({"x", "y"});
+    if (const auto t = r->optional("x")) scene.base_acceleration_x = read_time_table(*t);
+    if (const auto t = r->optional("y")) scene.base_acceleration_y = read_time_table(*t);
+  }
   return scene;
 }
 

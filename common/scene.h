@@ -27,6 +27,14 @@ inline bool operator==(const Vec2& a, const Vec2& b) { return a.x == b.x && a.y 
 /// A closed polygon as its vertices, any orientation, first vertex not repeated at the end. m.
 using Ring = std::vector<Vec2>;
 
+/// A time history: a value that follows a table of (time, value) rows, linearly interpolated and
+/// held at its first / last value outside the table (common/time_table.h evaluates it).
+struct TimeTable {
+  std::vector<double> time;   ///< s, strictly increasing
+  std::vector<double> value;  ///< – (a factor) or m/s² (base acceleration), one per time
+  bool empty() const { return time.empty(); }
+};
+
 enum class PlaneKind { strain, stress };
 
 struct MaterialDef {
@@ -82,6 +90,31 @@ struct LoadDef {
   Vec2 force;  ///< N per unit thickness
 };
 
+/// Supports along the body boundary under a polyline: the covers of the ME edges lying on it are
+/// held by penalty springs in x, y or both (solver/boundary_conditions.h).
+struct SupportDef {
+  std::vector<Vec2> points;  ///< polyline, >= 2 points, m
+  bool fix_x = false;        ///< held in x
+  bool fix_y = false;        ///< held in y
+};
+
+/// Traction on the body boundary under a polyline (solver/boundary_conditions.h).
+struct TractionDef {
+  std::vector<Vec2> points;  ///< polyline, >= 2 points, m
+  double normal = 0;         ///< Pa, along the outward normal (< 0 pushes into the body)
+  double shear = 0;          ///< Pa, along the polyline's direction
+  bool from_insitu = false;  ///< the traction is σ_insitu(x)·n instead (matches the in-situ stress)
+  TimeTable table;           ///< factor on the traction over time; empty: 1
+};
+
+/// Initial stress σ(x, y) = σ0 + (y_ref − y)·gradient, Pa, tension positive.
+struct InsituStressDef {
+  bool present = false;
+  double sxx = 0, syy = 0, sxy = 0;     ///< Pa, σ0 at y = y_ref
+  double y_ref = 0;                     ///< m
+  double gxx = 0, gyy = 0, gxy = 0;     ///< Pa per m of depth below y_ref
+};
+
 struct SolverDef {
   double time_step = 1e-3;                ///< s, > 0
   std::int64_t steps = 1000;              ///< number of time steps, >= 0
@@ -95,6 +128,12 @@ struct SolverDef {
   /// sliver left where a joint passes next to the edge of its star) shares the unknowns of the
   /// neighbour cover it overlaps most; 0 never ties (solver/cover_unknowns.cpp)
   double sliver_cover_weight = 1e-3;
+  /// steps between checkpoints written during the run (0: only after the last step)
+  std::int64_t checkpoint_every = 0;
+  /// N/m² (N/m per m of boundary, unit thickness); 0: 100 × largest E / mesh size
+  double support_stiffness = 0;
+  /// steps over which the in-situ traction on a face freed by excavation is released (1: at once)
+  std::int64_t excavation_steps = 1;
 };
 
 struct SceneDef {
@@ -110,7 +149,14 @@ struct SceneDef {
   double mesh_size = 0;    ///< m, side of the equilateral mathematical triangles
   std::vector<Vec2> fixed_points;    ///< m
   std::vector<LoadDef> loads;
+  std::vector<TimeTable> load_tables;  ///< [load] factor on its force over time (empty: 1); may be shorter than loads
   std::vector<Vec2> measure_points;  ///< m
+  std::vector<SupportDef> supports;
+  std::vector<TractionDef> tractions;
+  InsituStressDef insitu_stress;
+  std::vector<int> excavate;         ///< bodies removed at the start of this run
+  TimeTable base_acceleration_x;     ///< m/s², ground acceleration in x over time; empty: none
+  TimeTable base_acceleration_y;     ///< m/s², in y
   SolverDef solver;
 };
 

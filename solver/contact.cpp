@@ -120,6 +120,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
   std::vector<Contact> now;
   now.reserve(found.size());
   for (const ContactCandidate& f : found) {
+    if (!removed_.empty() && (removed_[f.elem_a] || removed_[f.elem_b])) continue;  // excavated
     Contact c;
     c.at = f;
     std::int32_t joint = mesh_.loop_edge_joint[f.edge];

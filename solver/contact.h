@@ -65,6 +65,15 @@ class ContactSet {
   std::vector<std::string> effects() const;
   const std::vector<ContactLaw>& laws() const { return laws_; }
   const std::vector<Contact>& contacts() const { return contacts_; }
+  /// The contacts as the last accepted step left them (saved by contact_history.h).
+  const std::vector<Contact>& committed() const { return committed_; }
+  /// A restart: the next step starts from these contacts and states.
+  void restore_committed(std::vector<Contact> c) {
+    committed_ = c;
+    contacts_ = std::move(c);
+  }
+  /// [me] 1 for elements of excavated bodies: no contact is detected on them.
+  void set_removed_elements(std::vector<std::uint8_t> removed) { removed_ = std::move(removed); }
 
   /// Detects contacts in the current configuration (search distance d0, new contacts at most
   /// `shallow` deep, m; model half-size w0), carries over the states of the previous step and linearises each
@@ -129,6 +138,7 @@ class ContactSet {
   bool active_ = false;
   std::vector<Contact> contacts_;   // this step's, being iterated
   std::vector<Contact> committed_;  // as the last accepted step left them
+  std::vector<std::uint8_t> removed_;  // [me] excavated elements (empty: none)
   std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
   ElementPairs near_pairs_;                 // element pairs within the search distance
   double eps_ = 0;                          // m, gap tolerance (1e-10·w0)

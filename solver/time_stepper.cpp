@@ -22,9 +22,14 @@
 //   K_e     = A_e Bᵀ D B                    (elasticity.cpp)
 //   M_e     = ρ ∫ Nᵀ N dA                   consistent mass: ρ ∫ w_k w_l dA per direction
 //   F_int,e = A_e Bᵀ σ_e                    stress carried from earlier steps (initial stress)
-//   F_grav  = ρ g ∫ w_k dA                  only with gravity
+//   F_grav  = ρ (g − a_base(t)) ∫ w_k dA    only with gravity or a base acceleration (time table)
 //   F_load  = w_k(p)·f                      point load f at p, only with loads
 //   fixed point p (started at P): penalty spring k_f, K += k_f NᵀN, F −= k_f Nᵀ (p − P)
+//   supports, tractions, in-situ traction on faces between bodies: boundary_conditions.h
+//   (edge integrals, exact by two-point Gauss); in-situ stress in σ before step 1:
+//   insitu_stress.h; excavated bodies: excavation.h (their covers pinned, K += k_pin I).
+// Everything carried from step to step is in RunState s_ (run_state.h) and the contact history:
+// a checkpoint of both continues a run bitwise exactly (--restart).
 // All integrals are exact simplex integrals over the element polygon (element_integration.cpp).
 // After the solve: σ_e += D B d_e, and every loop vertex, cover node and tracked point moves by
 // the displacement field (geometry update: large displacement over many small steps). The stress
@@ -46,7 +51,11 @@
 #include <limits>
 #include <sstream>
 
+#include "contact_history.h"
 #include "error.h"
+#include "excavation.h"
+#include "insitu_stress.h"
+#include "time_table.h"
 #include "nmm_version.h"
 
 namespace nmm::solve {
@@ -102,6 +111,9 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   }
   fixed_k_ = scene.solver.fixed_point_stiffness > 0 ? scene.solver.fixed_point_stiffness
                                                     : 100.0 * e_max;
+  support_k_ = scene.solver.support_stiffness > 0 ? scene.solver.support_stiffness
+                                                  : 100.0 * e_max / mesh.mesh_size;
+  pin_k_ = std::max(e_max, 1.0);
   covers_ = assign_cover_unknowns(mesh, scene.solver.sliver_cover_weight);
   contacts_.use_unknowns(covers_.unknown);
   elem_mat_.resize(ne);
@@ -116,18 +128,30 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
       groups_[e][2 * k + 1] = covers_.unknown[mesh.element_covers[3 * e + k]] + 1;
     }
   }
-  cover_xy_.resize(2 * nc);
+  s_.cover_xy.resize(2 * nc);
   for (std::size_t c = 0; c < nc; ++c) {
-    cover_xy_[2 * c] = mesh.node_xy[2 * mesh.cover_node[c]];
-    cover_xy_[2 * c + 1] = mesh.node_xy[2 * mesh.cover_node[c] + 1];
+    s_.cover_xy[2 * c] = mesh.node_xy[2 * mesh.cover_node[c]];
+    s_.cover_xy[2 * c + 1] = mesh.node_xy[2 * mesh.cover_node[c] + 1];
   }
-  cover_u_.assign(2 * nc, 0.0);
-  velocity_.assign(2 * nc, 0.0);
-  accel_.assign(2 * nc, 0.0);
-  stress_.assign(3 * ne, 0.0);
-  loop_xy_ = mesh.loop_xy;
-  loop_u_.assign(loop_xy_.size(), 0.0);
+  s_.cover_u.assign(2 * nc, 0.0);
+  s_.velocity.assign(2 * nc, 0.0);
+  s_.accel.assign(2 * nc, 0.0);
+  s_.stress.assign(3 * ne, 0.0);
+  s_.loop_xy = mesh.loop_xy;
+  s_.loop_u.assign(s_.loop_xy.size(), 0.0);
   frame_.resize(ne);
+  s_.body_removed.assign(scene.bodies.size(), 0);
+  s_.body_removed_at.assign(scene.bodies.size(), -1);
+  if (scene.insitu_stress.present) {
+    apply_insitu_stress(scene.insitu_stress, mesh, s_.stress);
+    interface_edges_ = interface_edges(mesh, scene);
+  }
+  for (std::size_t i = 0; i < scene.supports.size(); ++i)
+    support_edges_.push_back(edges_under(mesh, scene.supports[i].points, scene_name,
+                                         "/supports/" + std::to_string(i) + "/points"));
+  for (std::size_t i = 0; i < scene.tractions.size(); ++i)
+    traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, scene_name,
+                                          "/tractions/" + std::to_string(i) + "/points"));
 
   // Points: the element that contains each one, else the nearest within 1e-6·h (a point on a
   // boundary), else bad input.
@@ -149,19 +173,19 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
     return TrackedPoint{best, p.x, p.y, p.x, p.y};
   };
   for (std::size_t i = 0; i < scene.fixed_points.size(); ++i)
-    fixed_.push_back(locate(scene.fixed_points[i], "/fixed_points/" + std::to_string(i)));
+    s_.fixed.push_back(locate(scene.fixed_points[i], "/fixed_points/" + std::to_string(i)));
   for (std::size_t i = 0; i < scene.loads.size(); ++i)
-    loads_.push_back(locate(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point"));
+    s_.loads.push_back(locate(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point"));
   for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
-    measure_.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
+    s_.measure.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
 
   // w0: half the model size, the scale of Shi's displacement ratio and contact tolerances.
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (std::size_t i = 0; i < loop_xy_.size(); i += 2) {
-    x0 = std::min(x0, loop_xy_[i]);
-    x1 = std::max(x1, loop_xy_[i]);
-    y0 = std::min(y0, loop_xy_[i + 1]);
-    y1 = std::max(y1, loop_xy_[i + 1]);
+  for (std::size_t i = 0; i < s_.loop_xy.size(); i += 2) {
+    x0 = std::min(x0, s_.loop_xy[i]);
+    x1 = std::max(x1, s_.loop_xy[i]);
+    y0 = std::min(y0, s_.loop_xy[i + 1]);
+    y1 = std::max(y1, s_.loop_xy[i + 1]);
   }
   w0_ = 0.5 * std::max(x1 - x0, y1 - y0);
 
@@ -169,6 +193,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   // until contacts couple pairs of elements (update_pattern).
   system_.build_pattern(unknowns(), groups_);
   rhs_.resize(unknowns());
+  excavate(scene.excavate);
 }
 
 std::vector<std::string> TimeStepper::effects() const {
@@ -176,8 +201,15 @@ std::vector<std::string> TimeStepper::effects() const {
   if (mesh_.element_count() > 0) e.push_back("elasticity");
   if (scene_.solver.dynamic) e.push_back("inertia");
   if (scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0)) e.push_back("gravity");
-  if (!loads_.empty()) e.push_back("point_loads");
-  if (!fixed_.empty()) e.push_back("fixed_points");
+  if (!s_.loads.empty()) e.push_back("point_loads");
+  if (!s_.fixed.empty()) e.push_back("fixed_points");
+  if (!scene_.supports.empty()) e.push_back("supports");
+  if (!scene_.tractions.empty()) e.push_back("tractions");
+  if (scene_.insitu_stress.present) e.push_back("insitu_stress");
+  if (!scene_.base_acceleration_x.empty() || !scene_.base_acceleration_y.empty())
+    e.push_back("base_acceleration");
+  if (std::any_of(s_.body_removed.begin(), s_.body_removed.end(), [](std::uint8_t r) { return r != 0; }))
+    e.push_back("excavation");
   for (const std::string& c : contacts_.effects()) e.push_back(c);
   return e;
 }
@@ -186,9 +218,12 @@ void TimeStepper::check_static_support() const {
   // Without inertia, each block needs two fixed points or it is free to move as a rigid body
   // (one point still lets it turn), and the stiffness matrix is singular.
   std::vector<int> held(mesh_.block_count(), 0);
-  for (const TrackedPoint& p : fixed_) ++held[mesh_.element_block[p.element]];
+  for (const TrackedPoint& p : s_.fixed) ++held[mesh_.element_block[p.element]];
+  // A support along an edge holds what two points would (the system says so if it does not).
+  for (const auto& edges : support_edges_)
+    for (const BoundaryEdge& be : edges) held[mesh_.element_block[be.element]] += 2;
   for (std::size_t b = 0; b < held.size(); ++b) {
-    if (held[b] >= 2) continue;
+    if (held[b] >= 2 || s_.body_removed[mesh_.block_body[b]]) continue;
     std::size_t e = 0;
     while (mesh_.element_block[e] != static_cast<std::int32_t>(b)) ++e;
     const std::int32_t c = mesh_.element_covers[3 * e];
@@ -208,14 +243,14 @@ void TimeStepper::compute_frames() {
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
     ElementFrame& f = frame_[e];
     const int c0 = ec[0], c1 = ec[1], c2 = ec[2];
-    f.ox = cover_xy_[2 * c0];
-    f.oy = cover_xy_[2 * c0 + 1];
-    const double p[6] = {0, 0, cover_xy_[2 * c1] - f.ox, cover_xy_[2 * c1 + 1] - f.oy,
-                         cover_xy_[2 * c2] - f.ox, cover_xy_[2 * c2 + 1] - f.oy};
+    f.ox = s_.cover_xy[2 * c0];
+    f.oy = s_.cover_xy[2 * c0 + 1];
+    const double p[6] = {0, 0, s_.cover_xy[2 * c1] - f.ox, s_.cover_xy[2 * c1 + 1] - f.oy,
+                         s_.cover_xy[2 * c2] - f.ox, s_.cover_xy[2 * c2 + 1] - f.oy};
     f.w = triangle_weights(p);
     if (!(f.w.twice_area > 0))
       throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
-                     std::to_string(time_) + " s (displacements too large for the time step)");
+                     std::to_string(s_.time) + " s (displacements too large for the time step)");
   }
 }
 
@@ -225,13 +260,20 @@ void TimeStepper::update_pattern() {
   // analysis — changes only when a pair of elements meets for the first time.
   const int first = static_cast<int>(groups_.size());
   const auto now = contacts_.element_pairs();
-  if (std::includes(pattern_pairs_.begin(), pattern_pairs_.end(), now.begin(), now.end())) {
-    contacts_.assign_groups(pattern_pairs_, first);
+  if (std::includes(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end())) {
+    contacts_.assign_groups(s_.pattern_pairs, first);
     return;
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  std::set_union(pattern_pairs_.begin(), pattern_pairs_.end(), now.begin(), now.end(),
+  std::set_union(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end(),
                  std::back_inserter(pairs));
+  s_.pattern_pairs = std::move(pairs);
+  build_pattern_with_pairs();
+  contacts_.assign_groups(s_.pattern_pairs, first);
+}
+
+void TimeStepper::build_pattern_with_pairs() {
+  const auto& pairs = s_.pattern_pairs;
   std::vector<int> offsets{0}, dofs;
   for (const auto& g : groups_) {
     dofs.insert(dofs.end(), g.begin(), g.end());
@@ -243,16 +285,21 @@ void TimeStepper::update_pattern() {
     offsets.push_back(static_cast<int>(dofs.size()));
   }
   system_.build_pattern(unknowns(), offsets, dofs);
-  pattern_pairs_ = std::move(pairs);
-  contacts_.assign_groups(pattern_pairs_, first);
 }
 
 void TimeStepper::assemble(double dt) {
   const bool dynamic = scene_.solver.dynamic;
-  const bool gravity = scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0);
+  // Body force per unit mass: gravity, and −a_base(t) for a shaken base (the model moves
+  // relative to its base, which the supports and fixed points hold).
+  const double t_end = s_.time + dt;
+  const double bx = (scene_.has_gravity ? scene_.gravity.x : 0.0) -
+                    table_value(scene_.base_acceleration_x, t_end, 0.0);
+  const double by = (scene_.has_gravity ? scene_.gravity.y : 0.0) -
+                    table_value(scene_.base_acceleration_y, t_end, 0.0);
+  const bool gravity = bx != 0 || by != 0;
   // Until one step has given the acceleration, a0 is unknown: that step takes β = ½, for which
   // a0 drops out, so constant acceleration is exact from the first step on.
-  const double beta = accel_known_ ? scene_.solver.newmark_beta : 0.5;
+  const double beta = s_.accel_known ? scene_.solver.newmark_beta : 0.5;
   const double mass_k = dynamic ? 1.0 / (beta * dt * dt) : 0.0;  // on d
   const double mass_v = dynamic ? 1.0 / (beta * dt) : 0.0;        // on v0
   const double mass_a = dynamic ? 1.0 / (2 * beta) - 1.0 : 0.0;   // on a0
@@ -261,21 +308,26 @@ void TimeStepper::assemble(double dt) {
   Mat6 k;
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
     const auto& g = groups_[e];
+    if (removed_elem_[e]) {  // excavated: its covers' unknowns are held at zero
+      k = pin_k_ * Mat6::Identity();
+      system_.add_group(e, k.data());
+      continue;
+    }
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
     const ElementFrame& f = frame_[e];
     const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
-    const PolygonMoments m = polygon_moments(loop_xy_.data() + 2 * b, n, f.ox, f.oy);
+    const PolygonMoments m = polygon_moments(s_.loop_xy.data() + 2 * b, n, f.ox, f.oy);
     const Mat36 B = strain_matrix(f.w);
     const Mat3& D = material_d_[elem_mat_[e]];
     k.noalias() = m.a * (B.transpose() * D * B);
-    const Vec3 sigma(stress_[3 * e], stress_[3 * e + 1], stress_[3 * e + 2]);
+    const Vec3 sigma(s_.stress[3 * e], s_.stress[3 * e + 1], s_.stress[3 * e + 2]);
     Vec6 fe = -m.a * (B.transpose() * sigma);
     const double rho = scene_.materials[elem_mat_[e]].density;
     if (gravity)
       for (int i = 0; i < 3; ++i) {
         const double iw = integral_w(f.w, m, i);
-        fe[2 * i] += rho * scene_.gravity.x * iw;
-        fe[2 * i + 1] += rho * scene_.gravity.y * iw;
+        fe[2 * i] += rho * bx * iw;
+        fe[2 * i + 1] += rho * by * iw;
       }
     {
       if (dynamic)
@@ -285,15 +337,15 @@ void TimeStepper::assemble(double dt) {
             k(2 * i, 2 * j) += mass_k * mij;
             k(2 * i + 1, 2 * j + 1) += mass_k * mij;
             const int cj = 2 * ec[j];
-            fe[2 * i] += mij * (mass_v * velocity_[cj] + mass_a * accel_[cj]);
-            fe[2 * i + 1] += mij * (mass_v * velocity_[cj + 1] + mass_a * accel_[cj + 1]);
+            fe[2 * i] += mij * (mass_v * s_.velocity[cj] + mass_a * s_.accel[cj]);
+            fe[2 * i + 1] += mij * (mass_v * s_.velocity[cj + 1] + mass_a * s_.accel[cj + 1]);
           }
     }
     system_.add_group(e, k.data());
     for (int i = 0; i < 6; ++i) rhs_[g[i]] += fe[i];
   }
   // Fixed points: penalty springs back to where they started.
-  for (const TrackedPoint& p : fixed_) {
+  for (const TrackedPoint& p : s_.fixed) {
     const ElementFrame& f = frame_[p.element];
     double w[3];
     for (int i = 0; i < 3; ++i) w[i] = f.w.at(i, p.x - f.ox, p.y - f.oy);
@@ -310,15 +362,90 @@ void TimeStepper::assemble(double dt) {
       rhs_[g[2 * i + 1]] -= fixed_k_ * w[i] * (p.y - p.y0);
     }
   }
-  for (std::size_t l = 0; l < loads_.size(); ++l) {
-    const TrackedPoint& p = loads_[l];
+  for (std::size_t l = 0; l < s_.loads.size(); ++l) {
+    const TrackedPoint& p = s_.loads[l];
     const ElementFrame& f = frame_[p.element];
     const auto& g = groups_[p.element];
+    const double factor =
+        l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], t_end) : 1.0;
     for (int i = 0; i < 3; ++i) {
       const double w = f.w.at(i, p.x - f.ox, p.y - f.oy);
-      rhs_[g[2 * i]] += w * scene_.loads[l].force.x;
-      rhs_[g[2 * i + 1]] += w * scene_.loads[l].force.y;
+      rhs_[g[2 * i]] += w * factor * scene_.loads[l].force.x;
+      rhs_[g[2 * i + 1]] += w * factor * scene_.loads[l].force.y;
     }
+  }
+  assemble_boundary(t_end);
+}
+
+void TimeStepper::assemble_boundary(double t_end) {
+  // Supports, tractions and the in-situ traction of faces between bodies (boundary_conditions.h).
+  Mat6 k;
+  auto frame_of = [&](std::int32_t e) { return EdgeFrame{frame_[e].ox, frame_[e].oy, &frame_[e].w}; };
+  auto add_force = [&](std::int32_t e, const std::array<double, 6>& f, double factor) {
+    const auto& g = groups_[e];
+    for (int i = 0; i < 6; ++i) rhs_[g[i]] += factor * f[i];
+  };
+  const double* xy = s_.loop_xy.data();
+  for (std::size_t i = 0; i < support_edges_.size(); ++i) {
+    const SupportDef& sd = scene_.supports[i];
+    for (const BoundaryEdge& be : support_edges_[i]) {
+      if (removed_elem_[be.element]) continue;
+      k.setZero();
+      double f[6] = {0, 0, 0, 0, 0, 0};
+      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next,
+                   s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, sd.fix_x,
+                   sd.fix_y, support_k_, k.data(), f);
+      system_.add_group(be.element, k.data());
+      add_force(be.element, {f[0], f[1], f[2], f[3], f[4], f[5]}, 1.0);
+    }
+  }
+  const InsituStressDef& insitu = scene_.insitu_stress;
+  // The in-situ field at a point's position in the mesh as cut (x − u); σ·n with n current.
+  auto insitu_traction = [&](const double* ua, const double* ub, const double* a, const double* b) {
+    return [=, &insitu](double x, double y, double nx, double ny, double* t) {
+      const double len2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+      const double xi = len2 > 0 ? ((x - a[0]) * (b[0] - a[0]) + (y - a[1]) * (b[1] - a[1])) / len2 : 0;
+      const double y0 = y - ((1 - xi) * ua[1] + xi * ub[1]);
+      const auto sg = insitu_stress_at(insitu, x, y0);
+      t[0] = sg[0] * nx + sg[2] * ny;
+      t[1] = sg[2] * nx + sg[1] * ny;
+    };
+  };
+  for (std::size_t i = 0; i < traction_edges_.size(); ++i) {
+    const TractionDef& td = scene_.tractions[i];
+    const double factor = table_value(td.table, t_end);
+    for (const BoundaryEdge& be : traction_edges_[i]) {
+      if (removed_elem_[be.element]) continue;
+      const double* a = xy + 2 * be.vertex;
+      const double* b = xy + 2 * be.next;
+      std::array<double, 6> f;
+      if (td.from_insitu) {
+        f = edge_traction_forces(frame_of(be.element), a, b,
+                                 insitu_traction(s_.loop_u.data() + 2 * be.vertex,
+                                                 s_.loop_u.data() + 2 * be.next, a, b));
+      } else {
+        const double sn = td.normal, ss = td.shear, sx = be.sx, sy = be.sy;
+        f = edge_traction_forces(frame_of(be.element), a, b,
+                                 [=](double, double, double nx, double ny, double* t) {
+                                   t[0] = sn * nx + ss * sx;
+                                   t[1] = sn * ny + ss * sy;
+                                 });
+      }
+      add_force(be.element, f, factor);
+    }
+  }
+  for (const InterfaceEdge& ie : interface_edges_) {
+    const BoundaryEdge& be = ie.edge;
+    if (removed_elem_[be.element]) continue;
+    const double factor = interface_traction_factor(s_, ie.other_body, scene_.solver.excavation_steps);
+    if (factor == 0) continue;
+    const double* a = xy + 2 * be.vertex;
+    const double* b = xy + 2 * be.next;
+    add_force(be.element,
+              edge_traction_forces(frame_of(be.element), a, b,
+                                   insitu_traction(s_.loop_u.data() + 2 * be.vertex,
+                                                   s_.loop_u.data() + 2 * be.next, a, b)),
+              factor);
   }
 }
 
@@ -331,19 +458,19 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
     Vec6 de;
     for (int i = 0; i < 6; ++i) de[i] = d[g[i]];
     const Vec3 ds = material_d_[elem_mat_[e]] * (strain_matrix(f.w) * de);
-    for (int i = 0; i < 3; ++i) stress_[3 * e + i] += ds[i];
+    for (int i = 0; i < 3; ++i) s_.stress[3 * e + i] += ds[i];
     for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
-      const double x = loop_xy_[2 * v] - f.ox, y = loop_xy_[2 * v + 1] - f.oy;
+      const double x = s_.loop_xy[2 * v] - f.ox, y = s_.loop_xy[2 * v + 1] - f.oy;
       double ux = 0, uy = 0;
       for (int k = 0; k < 3; ++k) {
         const double w = f.w.at(k, x, y);
         ux += w * de[2 * k];
         uy += w * de[2 * k + 1];
       }
-      loop_xy_[2 * v] += ux;
-      loop_xy_[2 * v + 1] += uy;
-      loop_u_[2 * v] += ux;
-      loop_u_[2 * v + 1] += uy;
+      s_.loop_xy[2 * v] += ux;
+      s_.loop_xy[2 * v + 1] += uy;
+      s_.loop_u[2 * v] += ux;
+      s_.loop_u[2 * v + 1] += uy;
     }
   }
   auto move = [&](std::vector<TrackedPoint>& pts) {
@@ -360,26 +487,26 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
       p.y += uy;
     }
   };
-  move(fixed_);
-  move(loads_);
-  move(measure_);
+  move(s_.fixed);
+  move(s_.loads);
+  move(s_.measure);
   const bool dynamic = scene_.solver.dynamic;
-  const double beta = accel_known_ ? scene_.solver.newmark_beta : 0.5;
+  const double beta = s_.accel_known ? scene_.solver.newmark_beta : 0.5;
   const double k = scene_.solver.dynamic_factor;
   for (Eigen::Index i = 0; i < d.size(); ++i) max_d = std::max(max_d, std::abs(d[i]));
   // Per cover; a tied cover takes its master's increment (and so keeps its master's velocity).
-  for (std::size_t i = 0; i < cover_u_.size(); ++i) {
+  for (std::size_t i = 0; i < s_.cover_u.size(); ++i) {
     const double di = d[covers_.unknown[i / 2] + static_cast<int>(i % 2)];
-    cover_xy_[i] += di;
-    cover_u_[i] += di;
+    s_.cover_xy[i] += di;
+    s_.cover_u[i] += di;
     if (dynamic) {
-      const double a1 = (di - dt * velocity_[i] - (0.5 - beta) * dt * dt * accel_[i]) / (beta * dt * dt);
-      velocity_[i] = k * (velocity_[i] + dt * a1);
-      accel_[i] = k * a1;
+      const double a1 = (di - dt * s_.velocity[i] - (0.5 - beta) * dt * dt * s_.accel[i]) / (beta * dt * dt);
+      s_.velocity[i] = k * (s_.velocity[i] + dt * a1);
+      s_.accel[i] = k * a1;
     }
   }
-  max_step_displacement_ = std::max(max_step_displacement_, max_d);
-  accel_known_ = dynamic;
+  s_.max_step_displacement = std::max(s_.max_step_displacement, max_d);
+  s_.accel_known = dynamic;
 }
 
 std::string TimeStepper::attempt(double dt) {
@@ -391,7 +518,7 @@ std::string TimeStepper::attempt(double dt) {
   if (contact) {
     // Search distance: 2.5 × the displacement a step may make (Shi: g2·w0 per step, cut at 2×).
     const double g2w0 = scene_.solver.max_displacement_ratio * w0_;
-    contacts_.begin_step(loop_xy_, frame_, 2.5 * g2w0, 1e-3 * mesh_.mesh_size, w0_);
+    contacts_.begin_step(s_.loop_xy, frame_, 2.5 * g2w0, 1e-3 * mesh_.mesh_size, w0_);
     update_pattern();
   }
   timings_.contact_detection = contacts_.detection_seconds();
@@ -446,15 +573,15 @@ std::string TimeStepper::attempt(double dt) {
     for (Eigen::Index i = 0; i < d.size(); ++i)
       if (!std::isfinite(d[i]))
         throw RunError("the displacement of cover " + std::to_string(covers_.cover_of_unknown[i / 2]) +
-                       " is not a finite number at t = " + std::to_string(time_) + " s");
+                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
     if (!contact) break;
-    ++iterations_;
+    ++s_.iterations;
     const ContactSet::Changes ch = contacts_.judge(d, it, w0_);
     if (ch.states == 0 && ch.forces == 0) break;
     if (ch.states == 0 && ch.stiffness == 0 && it >= 3 * kMaxIterations) {
       // Every state has settled; only friction forces still move (by more than 0.1 %). Take the
       // step rather than cut it: a smaller step would not settle them better.
-      ++friction_unsettled_;
+      ++s_.friction_unsettled;
       break;
     }
     refactor = ch.states > 0 || ch.stiffness > 0;
@@ -481,13 +608,14 @@ std::string TimeStepper::attempt(double dt) {
       return os.str();
     }
     contacts_.end_step();
-    max_penetration_ = std::max(max_penetration_, contacts_.max_penetration());
-    max_capped_ = std::max(max_capped_, contacts_.capped_count());
+    s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());
+    s_.max_capped = std::max(s_.max_capped, contacts_.capped_count());
   }
   t0 = Clock::now();
   update(d, dt);
   timings_.geometry_update += since(t0);
-  time_ += dt;
+  s_.time += dt;
+  ++s_.step;
   return "";
 }
 
@@ -513,7 +641,7 @@ std::array<double, 2> TimeStepper::displacement_at(const TrackedPoint& p) const 
 
 std::vector<MeasureSample> TimeStepper::sample_measure_points() const {
   std::vector<MeasureSample> s;
-  for (const TrackedPoint& p : measure_) s.push_back({p.x, p.y, p.x - p.x0, p.y - p.y0});
+  for (const TrackedPoint& p : s_.measure) s.push_back({p.x, p.y, p.x - p.x0, p.y - p.y0});
   return s;
 }
 
@@ -524,10 +652,13 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
   // time_step × 1e-3 the run stops (exit status 3).
   const SolverDef& sv = scene_.solver;
   const double dt_floor = 1e-3 * sv.time_step;
-  double dt = std::min(dt_, sv.time_step);
+  double dt = std::min(s_.dt, sv.time_step);
   std::int64_t done = 0;
-  while (time_ < t_end - 1e-9 * sv.time_step) {
-    const double h = std::min(dt, t_end - time_);
+  while (s_.time < t_end - 1e-9 * sv.time_step) {
+    // The last step is cut to end at t_end, unless it is within round-off of a full step: then
+    // a run of 2N steps and N + N from a checkpoint take the same steps, bitwise.
+    const double left = t_end - s_.time;
+    const double h = left < dt * (1 - 1e-9) ? left : dt;
     std::string why;
     try {
       why = attempt(h);
@@ -535,18 +666,18 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
       return e.what();
     }
     if (!why.empty()) {
-      ++cuts_;
+      ++s_.cuts;
       dt = 0.3 * h;
       if (dt < dt_floor) {
         std::ostringstream os;
-        os << "time step cut below its floor (" << dt_floor << " s) at t = " << time_
+        os << "time step cut below its floor (" << dt_floor << " s) at t = " << s_.time
            << " s: " << why;
         return os.str();
       }
       continue;
     }
     dt = std::min(1.3 * dt, sv.time_step);
-    dt_ = dt;
+    s_.dt = dt;
     on_step(++done);
   }
   return "ok";
@@ -555,55 +686,68 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
 nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   const auto wall0 = Clock::now();
   const SolverDef& sv = scene_.solver;
-  auto output = [&](std::int64_t s) {
+  const std::int64_t step0 = s_.step;  // steps before this run (a restart continues from them)
+  const std::string checkpoint = out.dir() + "/checkpoint.nmmstate";
+  auto output = [&](std::int64_t n) {
+    const std::int64_t s = step0 + n;
     const auto t0 = Clock::now();
-    out.add_history(s, time_, sample_measure_points());
+    out.add_history(s, s_.time, sample_measure_points());
     FrameFields fields;
-    fields.loop_xy = &loop_xy_;
-    fields.loop_u = &loop_u_;
-    fields.stress = &stress_;
-    out.write_frame(s, time_, mesh_, fields);
+    fields.loop_xy = &s_.loop_xy;
+    fields.loop_u = &s_.loop_u;
+    fields.stress = &s_.stress;
+    out.write_frame(s, s_.time, mesh_, fields);
     if (contacts_.active()) {
       std::vector<ContactSample> rows;
       for (const Contact& c : contacts_.contacts()) {
         if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
-        rows.push_back({loop_xy_[2 * c.at.vertex], loop_xy_[2 * c.at.vertex + 1],
+        rows.push_back({s_.loop_xy[2 * c.at.vertex], s_.loop_xy[2 * c.at.vertex + 1],
                         static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
                         c.shear_force, c.kn_now, c.ks_now, c.length});
       }
-      out.add_contacts(s, time_, rows);
+      out.add_contacts(s, s_.time, rows);
     }
     timings_.output += since(t0);
   };
   output(0);
   std::int64_t done = 0;
-  const double t_end = static_cast<double>(sv.steps) * sv.time_step;
+  const double t_start = s_.time;
+  const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
   const std::string status = run_until(t_end, [&](std::int64_t n) {
     done = n;
-    if (n % sv.output_every == 0 || time_ >= t_end - 1e-9 * sv.time_step) output(n);
+    if (n % sv.output_every == 0 || s_.time >= t_end - 1e-9 * sv.time_step) output(n);
+    if (sv.checkpoint_every > 0 && n % sv.checkpoint_every == 0) {
+      const auto t0 = Clock::now();
+      write_checkpoint(checkpoint);
+      timings_.output += since(t0);
+    }
     if (progress && n % 10 == 0) {
       std::fprintf(stderr, "\rstep %lld  t = %.6g / %.6g s  cuts %zu", static_cast<long long>(n),
-                   time_, t_end, cuts_);
+                   s_.time, t_end, s_.cuts);
       std::fflush(stderr);
     }
   });
   if (progress) std::fprintf(stderr, "\n");
   if (status != "ok" && done % sv.output_every != 0) output(done);  // the last good state
   const auto t0 = Clock::now();
+  write_checkpoint(checkpoint);  // after the last completed step, also when it stopped early
   out.flush_history();
   timings_.output += since(t0);
 
   nlohmann::json summary;
   summary["status"] = status;
   summary["steps_completed"] = done;
-  summary["simulated_time"] = time_;
+  summary["first_step"] = step0;  // steps before this run (a restart from a checkpoint)
+  summary["step"] = s_.step;      // steps since step 0 of the first run
+  summary["state_hash"] = state_hash();
+  summary["simulated_time"] = s_.time;
   summary["wall_seconds"] = since(wall0);
   summary["effects"] = effects();
-  summary["open_close_iterations"] = iterations_;
-  summary["time_step_cuts"] = cuts_;
-  summary["steps_with_unsettled_friction"] = friction_unsettled_;
-  summary["max_penetration"] = max_penetration_;
-  summary["max_contacts_at_closure_cap"] = max_capped_;
+  summary["open_close_iterations"] = s_.iterations;
+  summary["time_step_cuts"] = s_.cuts;
+  summary["steps_with_unsettled_friction"] = s_.friction_unsettled;
+  summary["max_penetration"] = s_.max_penetration;
+  summary["max_contacts_at_closure_cap"] = s_.max_capped;
   const ContactSet::Events& ev = contacts_.events;
   summary["contacts"] = {{"at_end", contacts_.contacts().size()},
                          {"closed_at_end", contacts_.closed_count()},
@@ -627,11 +771,79 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["manifold_elements"] = mesh_.element_count();
   summary["symbolic_analyses"] = system_.analyses();
   summary["time_step"] = sv.time_step;
-  summary["max_step_displacement"] = max_step_displacement_;
+  summary["max_step_displacement"] = s_.max_step_displacement;
   summary["fixed_point_stiffness"] = fixed_k_;
+  if (!scene_.supports.empty()) summary["support_stiffness"] = support_k_;
   summary["tool_version"] = NMM_VERSION;
   out.write_summary(summary);
   return summary;
+}
+
+}  // namespace nmm::solve
+
+namespace nmm::solve {
+
+std::string TimeStepper::contact_history() const { return save_contact_history(contacts_); }
+
+std::string TimeStepper::state_hash() const {
+  return nmm::solve::state_hash(s_, contact_history(), mesh_);
+}
+
+void TimeStepper::write_checkpoint(const std::string& path) const {
+  write_state_file(path, s_, contact_history(), mesh_);
+}
+
+void TimeStepper::restart_from(const std::string& path) {
+  std::string history;
+  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history);
+  restore(st, history, path);
+}
+
+void TimeStepper::restore(const RunState& st, const std::string& history, const std::string& name) {
+  if (st.body_removed.size() != scene_.bodies.size())
+    throw InputError(name, "section BODIES", "the checkpoint has " +
+                                                 std::to_string(st.body_removed.size()) +
+                                                 " bodies, the scene " +
+                                                 std::to_string(scene_.bodies.size()));
+  // Tracked points: the checkpoint's where the scene still names the same points; points the
+  // run's scene adds or changes start where the scene puts them, in the current configuration.
+  auto same = [](const std::vector<TrackedPoint>& a, const std::vector<TrackedPoint>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a[i].x0 != b[i].x0 || a[i].y0 != b[i].y0) return false;
+    return true;
+  };
+  RunState next = st;
+  if (!same(next.fixed, s_.fixed)) next.fixed = s_.fixed;
+  if (!same(next.loads, s_.loads)) next.loads = s_.loads;
+  if (!same(next.measure, s_.measure)) next.measure = s_.measure;
+  s_ = std::move(next);
+  load_contact_history(contacts_, history, mesh_, name);
+  // The same pattern as the run that wrote the checkpoint: the same symbolic analysis, the same
+  // round-off.
+  if (!s_.pattern_pairs.empty()) {
+    build_pattern_with_pairs();
+    contacts_.assign_groups(s_.pattern_pairs, static_cast<int>(groups_.size()));
+  }
+  apply_removed();
+  excavate(scene_.excavate);
+}
+
+void TimeStepper::excavate(const std::vector<int>& bodies) {
+  excavate_bodies(bodies, mesh_, s_);
+  apply_removed();
+}
+
+void TimeStepper::apply_removed() {
+  removed_elem_ = removed_elements(mesh_, s_);
+  const bool any = std::any_of(removed_elem_.begin(), removed_elem_.end(),
+                               [](std::uint8_t r) { return r != 0; });
+  contacts_.set_removed_elements(any ? removed_elem_ : std::vector<std::uint8_t>{});
+  if (!any) return;
+  // Removed covers keep no velocity: they stand still, held at zero.
+  for (std::size_t c = 0; c < mesh_.cover_count(); ++c)
+    if (s_.body_removed[mesh_.cover_body[c]])
+      for (int i = 0; i < 2; ++i) s_.velocity[2 * c + i] = s_.accel[2 * c + i] = 0;
 }
 
 }  // namespace nmm::solve

@@ -14,18 +14,14 @@
 #include "cover_unknowns.h"
 #include "elasticity.h"
 #include "mesh.h"
+#include "boundary_conditions.h"
 #include "output_writer.h"
+#include "run_state.h"
 #include "scene.h"
 #include "system_matrix.h"
 
 namespace nmm::solve {
 
-/// A point carried by the deforming body (fixed point, load point, measure point).
-struct TrackedPoint {
-  std::int32_t element = -1;  ///< element it lies in
-  double x0 = 0, y0 = 0;      ///< m, where it started
-  double x = 0, y = 0;        ///< m, where it is now
-};
 
 /// Seconds spent per part of the run.
 struct StepTimings {
@@ -58,14 +54,14 @@ class TimeStepper {
   /// the state is left as it was and the reason is returned (the caller cuts dt and retries).
   /// Throws RunError for what no smaller step can cure.
   std::string attempt(double dt);
-  const std::vector<double>& cover_displacement() const { return cover_u_; }  ///< [2·pc] m
-  const std::vector<double>& velocity() const { return velocity_; }           ///< [2·pc] m/s
-  const std::vector<double>& stress() const { return stress_; }  ///< [3·me] Pa σxx σyy τxy
-  const std::vector<double>& loop_xy() const { return loop_xy_; }              ///< [2·v] m
-  const std::vector<TrackedPoint>& measure_points() const { return measure_; }
+  const std::vector<double>& cover_displacement() const { return s_.cover_u; }  ///< [2·pc] m
+  const std::vector<double>& velocity() const { return s_.velocity; }           ///< [2·pc] m/s
+  const std::vector<double>& stress() const { return s_.stress; }  ///< [3·me] Pa σxx σyy τxy
+  const std::vector<double>& loop_xy() const { return s_.loop_xy; }              ///< [2·v] m
+  const std::vector<TrackedPoint>& measure_points() const { return s_.measure; }
   /// Displacement of a point (x, y) of element e in its current configuration, m.
   std::array<double, 2> displacement_at(const TrackedPoint& p) const;
-  double time() const { return time_; }
+  double time() const { return s_.time; }
   /// Test hooks for the patch test: impose cover displacements d (as a step would, stresses and
   /// geometry follow), and the right-hand side −F_int (+ loads, gravity) of the next step.
   void impose_displacement(const Eigen::VectorXd& d);
@@ -78,13 +74,33 @@ class TimeStepper {
   const CoverUnknowns& cover_unknowns() const { return covers_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
-  std::size_t open_close_iterations() const { return iterations_; }
-  std::size_t time_step_cuts() const { return cuts_; }
-  double max_penetration() const { return max_penetration_; }
+  std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }
+  std::size_t time_step_cuts() const { return static_cast<std::size_t>(s_.cuts); }
+  double max_penetration() const { return s_.max_penetration; }
   double model_half_size() const { return w0_; }
   /// The system of the last step (for benchmarks comparing against a bare factorisation).
   const SystemMatrix& system() const { return system_; }
   const Eigen::VectorXd& rhs() const { return rhs_; }
+
+  // ---- run state, checkpoints and stages (run_state.h) -----------------------------------
+  /// The whole state a next step starts from (the contact history aside: contact_history()).
+  const RunState& state() const { return s_; }
+  /// Bytes of the contact history (contact_history.h).
+  std::string contact_history() const;
+  /// SHA-256 (hex) of the physical state and contact history: equal hashes, equal states.
+  std::string state_hash() const;
+  /// Writes the state to `path` atomically (checkpoint.nmmstate); safe to call between steps,
+  /// e.g. from an interrupt handler's deferred path.
+  void write_checkpoint(const std::string& path) const;
+  /// Continues from a checkpoint (InputError naming `path` if it is damaged or of another mesh),
+  /// then applies the scene's `excavate`. Call before run().
+  void restart_from(const std::string& path);
+  /// Continues from a state in memory (tests).
+  void restore(const RunState& state, const std::string& contact_history, const std::string& name);
+  /// Removes bodies (excavation) at the current step: excavation.h.
+  void excavate(const std::vector<int>& bodies);
+  /// Steps the run has completed since step 0 of its first stage.
+  std::int64_t step_count() const { return s_.step; }
 
  private:
   void compute_frames();
@@ -93,6 +109,9 @@ class TimeStepper {
   void update(const Eigen::VectorXd& d, double dt);
   std::vector<MeasureSample> sample_measure_points() const;
   void check_static_support() const;
+  void build_pattern_with_pairs();
+  void apply_removed();
+  void assemble_boundary(double t_end);
 
   const Mesh& mesh_;
   const SceneDef& scene_;
@@ -102,33 +121,22 @@ class TimeStepper {
   CoverUnknowns covers_;                // which unknowns each cover moves with
   std::vector<std::array<int, 6>> groups_;  // [me] unknowns of the element's covers
   double fixed_k_ = 0;                  // N/m, penalty stiffness of a fixed point
+  double support_k_ = 0;                // N/m², penalty stiffness of a support per unit length
+  double pin_k_ = 0;                    // N/m, holds the unknowns of excavated covers at zero
+  RunState s_;                          // everything a step carries to the next
+  std::vector<std::vector<BoundaryEdge>> support_edges_;   // [support] edges under it
+  std::vector<std::vector<BoundaryEdge>> traction_edges_;  // [traction] edges under it
+  std::vector<InterfaceEdge> interface_edges_;  // faces between bodies (in-situ traction)
+  std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
-  std::vector<double> cover_xy_;   // [2·pc] m, current position of each cover's node
-  std::vector<double> cover_u_;    // [2·pc] m, displacement since the start
-  std::vector<double> velocity_;   // [2·pc] m/s, v0 of the next step (a tied cover: its master's)
-  std::vector<double> accel_;      // [2·pc] m/s², a0 of the next step
-  bool accel_known_ = false;       // a0 comes from a step (else the next step takes β = ½)
-  std::vector<double> stress_;     // [3·me] Pa
-  std::vector<double> loop_xy_;    // [2·v] m, current loop vertices
-  std::vector<double> loop_u_;     // [2·v] m, displacement since the start
-  std::vector<TrackedPoint> fixed_, loads_, measure_;
   std::vector<ElementFrame> frame_;  // [me]
   Eigen::VectorXd rhs_;
   SystemMatrix system_;
   StepTimings timings_;
-  double time_ = 0;
-  double max_step_displacement_ = 0;  // m, largest cover displacement in one step
   // Contact and step control.
   ContactSet contacts_;
-  std::vector<std::pair<std::int32_t, std::int32_t>> pattern_pairs_;  // element pairs in pattern
   Eigen::VectorXd rhs_base_;     // right-hand side without contacts
   double w0_ = 0;                // m, half the model size
-  std::size_t iterations_ = 0;   // open–close iterations (solves), all steps
-  std::size_t cuts_ = 0;         // time-step cuts
-  std::size_t friction_unsettled_ = 0;  // steps taken with friction forces still moving
-  double dt_ = 1e300;            // s, the step length step control has arrived at
-  double max_penetration_ = 0;   // m, largest penetration after any accepted step
-  std::size_t max_capped_ = 0;   // most contacts held below Vm after one step
   static constexpr int kMaxIterations = 16;  // factorisations per step's open–close iteration
 };
 

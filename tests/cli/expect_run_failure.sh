@@ -17,6 +17,7 @@ grep -qF -- "$pattern" "$err" || { echo "stderr lacks: $pattern"; fail=1; }
 grep -q '"status": "ok"' "$out/summary.json" 2>/dev/null && { echo "summary says ok"; fail=1; }
 grep -qF -- "$pattern" "$out/summary.json" 2>/dev/null || { echo "summary lacks the reason"; fail=1; }
 [ -s "$out/history.csv" ] || { echo "no history.csv"; fail=1; }
+[ -s "$out/checkpoint.nmmstate" ] || { echo "no checkpoint.nmmstate (the contract: written also on exit 3)"; fail=1; }
 ls "$out"/*.tmp.* >/dev/null 2>&1 && { echo "temporary files left"; fail=1; }
 echo "stderr: $(cat "$err")"
 rm -f "$err"

@@ -1,0 +1,197 @@
+// The checkpoint container (checkpoint_file.h): header, section table, CRC-32 per section.
+#include "checkpoint_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <set>
+#include <system_error>
+
+#include "error.h"
+
+namespace nmm {
+
+namespace {
+
+constexpr char kMagic[8] = {'N', 'M', 'M', 'S', 'T', 'A', 'T', 'E'};
+constexpr std::uint32_t kEndianMarker = 0x01020304u;
+constexpr std::size_t kHeaderSize = 32, kEntrySize = 32, kHeaderCrcOffset = 20;
+
+void put_u32(std::string& s, std::size_t at, std::uint32_t v) { std::memcpy(&s[at], &v, 4); }
+void put_u64(std::string& s, std::size_t at, std::uint64_t v) { std::memcpy(&s[at], &v, 8); }
+std::uint32_t get_u32(const std::string& s, std::size_t at) {
+  std::uint32_t v;
+  std::memcpy(&v, s.data() + at, 4);
+  return v;
+}
+std::uint64_t get_u64(const std::string& s, std::size_t at) {
+  std::uint64_t v;
+  std::memcpy(&v, s.data() + at, 8);
+  return v;
+}
+
+std::uint32_t crc32_update(std::uint32_t crc, const char* data, std::size_t n) {
+  uLong c = crc;
+  while (n > 0) {
+    const std::size_t chunk = std::min<std::size_t>(n, std::size_t{1} << 30);
+    c = ::crc32(c, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(chunk));
+    data += chunk;
+    n -= chunk;
+  }
+  return static_cast<std::uint32_t>(c);
+}
+std::uint32_t crc32_of(const char* data, std::size_t n) {
+  return crc32_update(static_cast<std::uint32_t>(::crc32(0L, Z_NULL, 0)), data, n);
+}
+std::uint32_t header_crc(const std::string& b, std::size_t table_end) {
+  static const char zeros[4] = {0, 0, 0, 0};
+  std::uint32_t c = crc32_of(b.data(), kHeaderCrcOffset);
+  c = crc32_update(c, zeros, 4);
+  return crc32_update(c, b.data() + kHeaderCrcOffset + 4, table_end - kHeaderCrcOffset - 4);
+}
+
+bool tag_ok(const char* raw, std::string& tag) {
+  tag.clear();
+  int len = 0;
+  while (len < 8 && raw[len] != '\0') {
+    const unsigned char c = static_cast<unsigned char>(raw[len]);
+    if (c < 0x21 || c > 0x7e) return false;
+    tag += static_cast<char>(c);
+    ++len;
+  }
+  if (len == 0) return false;
+  for (int i = len; i < 8; ++i)
+    if (raw[i] != '\0') return false;
+  return true;
+}
+
+std::string at_byte(std::uint64_t n) { return "byte " + std::to_string(n); }
+
+}  // namespace
+
+std::string checkpoint_to_bytes(const CheckpointSections& sections) {
+  const std::size_t table_end = kHeaderSize + kEntrySize * sections.size();
+  std::size_t total = table_end;
+  for (const auto& s : sections) total += s.second.size();
+  std::string out(total, '\0');
+  std::memcpy(&out[0], kMagic, 8);
+  put_u32(out, 8, kCheckpointFormatVersion);
+  put_u32(out, 12, kEndianMarker);
+  put_u32(out, 16, static_cast<std::uint32_t>(sections.size()));
+  put_u64(out, 24, total);
+  std::size_t pos = table_end;
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    const auto& [tag, data] = sections[i];
+    const std::size_t e = kHeaderSize + kEntrySize * i;
+    std::memcpy(&out[e], tag.data(), std::min<std::size_t>(tag.size(), 8));
+    put_u64(out, e + 8, pos);
+    put_u64(out, e + 16, data.size());
+    put_u32(out, e + 24, crc32_of(data.data(), data.size()));
+    if (!data.empty()) std::memcpy(&out[pos], data.data(), data.size());
+    pos += data.size();
+  }
+  put_u32(out, kHeaderCrcOffset, header_crc(out, table_end));
+  return out;
+}
+
+CheckpointSections checkpoint_from_bytes(const std::string& b, const std::string& name) {
+  auto bad = [&](const std::string& where, const std::string& what) -> void {
+    throw InputError(name, where, what);
+  };
+  if (b.size() < kHeaderSize)
+    bad(at_byte(b.size()), "not a checkpoint: the file is " + std::to_string(b.size()) +
+                               " bytes, shorter than the 32-byte header");
+  if (std::memcmp(b.data(), kMagic, 8) != 0)
+    bad(at_byte(0), "not a checkpoint (.nmmstate) file: wrong magic");
+  if (get_u32(b, 12) != kEndianMarker) bad(at_byte(12), "wrong byte order marker");
+  if (get_u32(b, 8) != kCheckpointFormatVersion)
+    bad(at_byte(8), "checkpoint format version " + std::to_string(get_u32(b, 8)) +
+                        ", this nmm-solve reads version " +
+                        std::to_string(kCheckpointFormatVersion));
+  const std::uint64_t total = get_u64(b, 24);
+  if (total != b.size())
+    bad(at_byte(24), "the header says the file has " + std::to_string(total) + " bytes, it has " +
+                         std::to_string(b.size()) + " (truncated or damaged)");
+  const std::uint64_t count = get_u32(b, 16);
+  if (count > (b.size() - kHeaderSize) / kEntrySize)
+    bad(at_byte(16), "section count " + std::to_string(count) + " does not fit in the file");
+  const std::size_t table_end = kHeaderSize + kEntrySize * static_cast<std::size_t>(count);
+  if (header_crc(b, table_end) != get_u32(b, kHeaderCrcOffset))
+    bad(at_byte(kHeaderCrcOffset), "header CRC-32 mismatch (the header or section table is damaged)");
+  CheckpointSections out;
+  std::set<std::string> seen;
+  std::uint64_t pos = table_end;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t e = kHeaderSize + kEntrySize * i;
+    std::string tag;
+    if (!tag_ok(b.data() + e, tag)) bad(at_byte(e), "section " + std::to_string(i) + ": bad tag");
+    if (!seen.insert(tag).second) bad(at_byte(e), "section " + tag + " appears twice");
+    const std::uint64_t off = get_u64(b, e + 8), size = get_u64(b, e + 16);
+    if (off != pos || size > b.size() - off)
+      bad(at_byte(e + 8), "section " + tag + ": offset " + std::to_string(off) + " size " +
+                              std::to_string(size) + " out of place or past the end");
+    if (get_u32(b, e + 28) != 0) bad(at_byte(e + 28), "section " + tag + ": reserved field not zero");
+    if (crc32_of(b.data() + off, static_cast<std::size_t>(size)) != get_u32(b, e + 24))
+      bad("section " + tag, "CRC-32 mismatch (the data is damaged)");
+    out.emplace_back(tag, b.substr(static_cast<std::size_t>(off), static_cast<std::size_t>(size)));
+    pos = off + size;
+  }
+  if (pos != b.size()) bad(at_byte(pos), "bytes after the last section");
+  return out;
+}
+
+void write_checkpoint_file(const CheckpointSections& sections, const std::string& path) {
+  const std::string bytes = checkpoint_to_bytes(sections);
+  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  auto fail = [&](int err) {
+    if (fd >= 0) ::close(fd);
+    ::unlink(tmp.c_str());
+    throw InputError(path, "", "cannot write: " + std::system_category().message(err));
+  };
+  if (fd < 0) fail(errno);
+  const char* p = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t w = ::write(fd, p, std::min<std::size_t>(left, std::size_t{1} << 30));
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      fail(errno);
+    }
+    if (w == 0) fail(EIO);
+    p += w;
+    left -= static_cast<std::size_t>(w);
+  }
+  if (::fsync(fd) != 0) fail(errno);
+  const int closed = ::close(fd);
+  fd = -1;
+  if (closed != 0) fail(errno);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno);
+}
+
+CheckpointSections read_checkpoint_file(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path, "", "cannot read: " + std::system_category().message(errno));
+  std::string bytes;
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t r = ::read(fd, buf, sizeof buf);
+    if (r < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      throw InputError(path, "", "cannot read: " + std::system_category().message(err));
+    }
+    if (r == 0) break;
+    bytes.append(buf, static_cast<std::size_t>(r));
+  }
+  ::close(fd);
+  return checkpoint_from_bytes(bytes, path);
+}
+
+}  // namespace nmm

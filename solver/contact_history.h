@@ -1,0 +1,21 @@
+// The contact history in a checkpoint: the contacts and their states as the last accepted step
+// left them (ContactSet::committed()). The one place that knows the Contact struct's layout on
+// disk: a change of Contact needs only these two functions adapted (and the layout number
+// raised, so that older checkpoints are refused rather than misread).
+#pragma once
+
+#include <string>
+
+#include "contact.h"
+
+namespace nmm::solve {
+
+/// Bytes of the CONTACT section.
+std::string save_contact_history(const ContactSet& contacts);
+
+/// Restores the contacts from a CONTACT section, checking every index against the mesh and
+/// the laws; InputError(name, "section CONTACT byte N", what) on damaged data.
+void load_contact_history(ContactSet& contacts, const std::string& bytes, const Mesh& mesh,
+                          const std::string& name);
+
+}  // namespace nmm::solve

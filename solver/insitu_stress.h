@@ -1,0 +1,36 @@
+// In-situ stress (scene key "insitu_stress"), put into every element before step 1:
+//
+//   σ(x, y) = σ0 + (y_ref − y)·gradient      (σxx, σyy, σxy; Pa, tension positive)
+//
+// or the overburden shortcut {k0, y_ref, density, syy, g}: σyy = syy − ρ·g·(y_ref − y),
+// σxx = k0·σyy, σxy = 0 (common/scene.cpp turns it into σ0 and the gradient).
+//
+// Each element takes the field at its centroid. Its stress is constant (constant strain
+// elements) and B is constant, so ∫ Bᵀσ dA over the element equals A·Bᵀσ(centroid) exactly for
+// the linear field: the internal forces are those of the exact field. Boundary tractions
+// t = σ·n on every face (tractions with "from_insitu": true) and, for a gradient, gravity with
+// ρ·g = −∂σyy/∂y balance them cover by cover (integration by parts is exact for linear w and
+// linear σ), so such a model does not move at t = 0.
+//
+// Faces where two bodies touch carry t = σ_insitu·n on both sides as a locked-in interface
+// traction (contacts start with no force; UDEC likewise initialises its contact stresses from
+// the in-situ field), so touching bodies start in equilibrium too. Excavation releases it
+// (excavation.h). Joints inside a body get no such initial force: their springs take up the
+// in-situ stress during the first (consolidation) steps, closing by σ·l/kn.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "mesh.h"
+#include "scene.h"
+
+namespace nmm::solve {
+
+/// σxx, σyy, σxy at (x, y), Pa.
+std::array<double, 3> insitu_stress_at(const InsituStressDef& s, double x, double y);
+
+/// Sets stress[3·e ..] of every element to the field at its centroid (in the mesh as cut).
+void apply_insitu_stress(const InsituStressDef& s, const Mesh& mesh, std::vector<double>& stress);
+
+}  // namespace nmm::solve

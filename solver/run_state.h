@@ -1,0 +1,73 @@
+// The run state: everything a run carries from one step to the next, as a plain struct, so that
+// it can be written to a checkpoint and a run continued from it bitwise exactly
+// (docs/interface.md "Rock-engineering set-ups and restart"; file layout: docs/checkpoint-format.md).
+//
+// Rule: anything the next step reads and an earlier step wrote lives here (or in the contact
+// history, saved by contact_history.h). What a TimeStepper derives from the mesh and the scene
+// (element groups, material matrices, element frames) does not.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "checkpoint_file.h"
+#include "mesh.h"
+
+namespace nmm::solve {
+
+/// A point carried by the deforming body (fixed point, load point, measure point).
+struct TrackedPoint {
+  std::int32_t element = -1;  ///< element it lies in
+  double x0 = 0, y0 = 0;      ///< m, where it started
+  double x = 0, y = 0;        ///< m, where it is now
+};
+
+struct RunState {
+  std::int64_t step = 0;  ///< steps completed since step 0 of the first run
+  double time = 0;        ///< s, simulated time
+  double dt = 1e300;      ///< s, the step length step control has arrived at
+  std::vector<double> cover_xy;  ///< [2·pc] m, current position of each cover's node
+  std::vector<double> cover_u;   ///< [2·pc] m, displacement since the start
+  std::vector<double> velocity;  ///< [2·pc] m/s, v0 of the next step
+  std::vector<double> accel;     ///< [2·pc] m/s², a0 of the next step
+  bool accel_known = false;      ///< a0 comes from a step (else the next step takes β = ½)
+  std::vector<double> stress;    ///< [3·me] Pa, σxx σyy τxy (tension positive)
+  std::vector<double> loop_xy;   ///< [2·v] m, current loop vertices
+  std::vector<double> loop_u;    ///< [2·v] m, displacement since the start
+  std::vector<TrackedPoint> fixed, loads, measure;
+  /// element pairs the system matrix pattern holds (it only grows; kept so that a restarted run
+  /// factorises the same pattern, hence the same round-off, as the straight run)
+  std::vector<std::pair<std::int32_t, std::int32_t>> pattern_pairs;
+  std::vector<std::uint8_t> body_removed;      ///< [body] 1: excavated
+  std::vector<std::int64_t> body_removed_at;   ///< [body] step at which it was excavated, or -1
+  // Diagnostics over all runs (summary.json), not physics:
+  std::uint64_t iterations = 0;          ///< open–close iterations (solves)
+  std::uint64_t cuts = 0;                ///< time-step cuts
+  std::uint64_t friction_unsettled = 0;  ///< steps taken with friction forces still moving
+  std::uint64_t max_capped = 0;          ///< most contacts held below Vm after one step
+  double max_penetration = 0;            ///< m
+  double max_step_displacement = 0;      ///< m
+};
+
+/// The checkpoint sections of a state, its contact history (contact_history.h) and the mesh it
+/// belongs to (identified by counts and the SHA-256 of its embedded scene).
+CheckpointSections state_to_sections(const RunState& s, const std::string& contact_history,
+                                     const Mesh& mesh);
+
+/// Reads a state back, checking every size and index against `mesh`; a checkpoint of another
+/// mesh, or damaged data, is an InputError naming `name` and the section.
+RunState state_from_sections(const CheckpointSections& sections, const Mesh& mesh,
+                             const std::string& name, std::string& contact_history);
+
+/// SHA-256 (hex) of the physical state: every section except the diagnostics. Two runs whose
+/// hashes are equal are bitwise in the same state.
+std::string state_hash(const RunState& s, const std::string& contact_history, const Mesh& mesh);
+
+/// Writes OUTDIR/checkpoint.nmmstate or any path, atomically (checkpoint_file.h).
+void write_state_file(const std::string& path, const RunState& s,
+                      const std::string& contact_history, const Mesh& mesh);
+
+}  // namespace nmm::solve
