@@ -411,6 +411,26 @@ void TimeStepper::assemble_boundary(double t_end) {
       t[1] = sg[2] * nx + sg[1] * ny;
     };
   };
+  // Supports start carrying the in-situ stress's reaction (σ_insitu·n in their held
+  // directions) as a locked-in force, so that a model in in-situ equilibrium on rollers does not
+  // first have to move by σ/k_s to load its springs; the springs carry only what changes.
+  if (insitu.present)
+    for (std::size_t i = 0; i < support_edges_.size(); ++i) {
+      const SupportDef& sd = scene_.supports[i];
+      for (const BoundaryEdge& be : support_edges_[i]) {
+        if (removed_elem_[be.element]) continue;
+        const double* a = xy + 2 * be.vertex;
+        const double* b = xy + 2 * be.next;
+        std::array<double, 6> f = edge_traction_forces(
+            frame_of(be.element), a, b,
+            insitu_traction(s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, a, b));
+        for (int c = 0; c < 3; ++c) {
+          if (!sd.fix_x) f[2 * c] = 0;
+          if (!sd.fix_y) f[2 * c + 1] = 0;
+        }
+        add_force(be.element, f, 1.0);
+      }
+    }
   for (std::size_t i = 0; i < traction_edges_.size(); ++i) {
     const TractionDef& td = scene_.tractions[i];
     const double factor = table_value(td.table, t_end);

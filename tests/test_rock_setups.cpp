@@ -113,6 +113,28 @@ TEST(RockSetups, InsituStressWithMatchingTractionsStaysStill) {
   EXPECT_GT(d, 1e-7);
 }
 
+TEST(RockSetups, InsituStressOnRollersStaysStill) {
+  // The same field without shear (rollers take none) on rollers along the left side and the
+  // base, the field's traction on the top and the right side: the supports start carrying the
+  // in-situ reaction, so nothing moves (without that the rollers would first give way by
+  // σ/k_s ≈ 2e-6 m).
+  SceneDef s = insitu_box(0.45);
+  s.insitu_stress.sxy = 0;
+  s.tractions[0].points = {{0, 8}, {10, 8}, {10, 0}};
+  s.supports = {support({{0, 0}, {0, 8}}, true, false), support({{0, 0}, {10, 0}}, false, true)};
+  const Mesh m = pre::build_mesh(s, "rollers");
+  TimeStepper st(m, s, "rollers");
+  double worst = 0;
+  for (int i = 0; i < 20; ++i) {
+    const std::vector<double> before = st.cover_displacement();
+    st.step(1e-3);
+    for (std::size_t k = 0; k < before.size(); ++k)
+      worst = std::max(worst, std::abs(st.cover_displacement()[k] - before[k]));
+  }
+  std::printf("in-situ box on rollers: largest cover displacement in one step %.3e m\n", worst);
+  EXPECT_LT(worst, 1e-9);
+}
+
 // Kirsch (physics.md §5, Brady & Brown): an opening of radius a excavated under far-field
 // compression p_x, p_y (compression positive). Stresses (compression positive), θ from x:
 //   σr = P(1 − a²/r²) + Q(1 − 4a²/r² + 3a⁴/r⁴)cos2θ
