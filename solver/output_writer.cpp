@@ -79,6 +79,19 @@ std::string frame_file_name(std::int64_t step) {
 OutputWriter::OutputWriter(const std::string& out_dir) : dir_(out_dir) {
   make_folder(dir_, dir_);
   make_folder(join_path(dir_, "frames"), dir_);
+  // A folder used before would mix the old run's frames with this one's (frames.pvd listing
+  // some, ParaView's file-series reader all): remove what an earlier run wrote — only the files
+  // nmm-solve itself names, nothing else in the folder.
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(join_path(dir_, "frames"), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".vtu")
+      fs::remove(entry.path(), ec);
+  }
+  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "summary.json",
+                           "result.svg", "result.png", "history.svg", "run_history.svg",
+                           "index.html", "checkpoint.nmmstate"})
+    fs::remove(join_path(dir_, name), ec);
 }
 
 void OutputWriter::add_history(std::int64_t step, double time,

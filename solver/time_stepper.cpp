@@ -527,6 +527,8 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
   double dt = std::min(dt_, sv.time_step);
   std::int64_t done = 0;
   while (time_ < t_end - 1e-9 * sv.time_step) {
+    // Between steps only, so an interrupted run stops in a consistent state.
+    if (stop_check_ && stop_check_()) return "interrupted";
     const double h = std::min(dt, t_end - time_);
     std::string why;
     try {
@@ -581,6 +583,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   const std::string status = run_until(t_end, [&](std::int64_t n) {
     done = n;
     if (n % sv.output_every == 0 || time_ >= t_end - 1e-9 * sv.time_step) output(n);
+    if (progress_) progress_(n, time_);
     if (progress && n % 10 == 0) {
       std::fprintf(stderr, "\rstep %lld  t = %.6g / %.6g s  cuts %zu", static_cast<long long>(n),
                    time_, t_end, cuts_);
@@ -630,6 +633,9 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["max_step_displacement"] = max_step_displacement_;
   summary["fixed_point_stiffness"] = fixed_k_;
   summary["tool_version"] = NMM_VERSION;
+  // CHECKPOINT (issue 12): the checkpoint writer is wired here at merge — it writes
+  // out.dir() + "/checkpoint.nmmstate" from the run's state, for every status ("ok",
+  // "interrupted", a stopped run), before summary.json so a summary implies a checkpoint.
   out.write_summary(summary);
   return summary;
 }

@@ -48,6 +48,11 @@ class TimeStepper {
   /// (also written). `progress`: a progress line on stderr.
   nlohmann::json run(OutputWriter& out, bool progress);
 
+  /// Asked before every step: true stops the run with status "interrupted" (interrupt.h).
+  void set_stop_check(std::function<bool()> f) { stop_check_ = std::move(f); }
+  /// Called after every accepted step with (step, simulated time in s) (progress.h).
+  void set_progress(std::function<void(std::int64_t, double)> f) { progress_ = std::move(f); }
+
   // ---- state, for tests ------------------------------------------------------------------
   /// One step of length dt. Throws RunError when it cannot be taken.
   void step(double dt);
@@ -129,6 +134,8 @@ class TimeStepper {
   double dt_ = 1e300;            // s, the step length step control has arrived at
   double max_penetration_ = 0;   // m, largest penetration after any accepted step
   std::size_t max_capped_ = 0;   // most contacts held below Vm after one step
+  std::function<bool()> stop_check_;                     // interrupt.h
+  std::function<void(std::int64_t, double)> progress_;  // progress.h
   static constexpr int kMaxIterations = 16;  // factorisations per step's open–close iteration
 };
 
