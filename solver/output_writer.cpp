@@ -30,6 +30,7 @@
 
 #include "error.h"
 #include "vtk_writer.h"
+#include "vtu_compressed.h"
 
 namespace nmm::solve {
 
@@ -76,7 +77,8 @@ std::string frame_file_name(std::int64_t step) {
 
 }  // namespace
 
-OutputWriter::OutputWriter(const std::string& out_dir) : dir_(out_dir) {
+OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
+    : dir_(out_dir), format_(format) {
   make_folder(dir_, dir_);
   make_folder(join_path(dir_, "frames"), dir_);
   // A folder used before would mix the old run's frames with this one's (frames.pvd listing
@@ -151,7 +153,10 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
         *fields.extra_cell);
 
   const std::string file = frame_file_name(step);
-  write_vtu(grid, join_path(dir_, file));
+  if (format_ == FrameFormat::text)
+    write_vtu(grid, join_path(dir_, file));
+  else
+    write_vtu_compressed(grid, join_path(dir_, file));
 
   bool replaced = false;
   for (auto& frame : frames_)

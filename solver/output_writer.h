@@ -43,10 +43,15 @@ struct FrameFields {
   std::string extra_cell_name{};
 };
 
+/// How frames are written: binary zlib-compressed appended data (vtu_compressed.h, the default:
+/// a tenth of the size or less) or ASCII text (nmm-solve --text-frames).
+enum class FrameFormat { compressed, text };
+
 class OutputWriter {
  public:
   /// Creates out_dir and out_dir/frames if needed; InputError(out_dir, "", why) if it cannot.
-  explicit OutputWriter(const std::string& out_dir);
+  /// Removes what an earlier run wrote there (frames, history, summary, pictures).
+  explicit OutputWriter(const std::string& out_dir, FrameFormat format = FrameFormat::compressed);
 
   /// Appends the rows of one output step (one per measure point) to history.csv (in memory until
   /// flush_history()).
@@ -72,6 +77,7 @@ class OutputWriter {
 
  private:
   std::string dir_;
+  FrameFormat format_;
   std::string history_;   // CSV rows so far
   std::string contacts_;  // contacts.csv rows so far
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name

@@ -1,5 +1,5 @@
 // nmm-solve MESH.nmm -o OUTDIR [--config VARIANT.json] [--set PATH=VALUE]... [--quiet]
-//           [--pictures [--picture-field displacement|sxx|syy|sxy]]
+//           [--pictures [--picture-field displacement|sxx|syy|sxy]] [--text-frames]
 //
 // Loads a mesh file (every check of the reader), applies the run's variants to the embedded
 // scene (run_config.h) and runs the time stepping (time_stepper.h), with a progress line
@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
   std::string mesh_path, out_dir, config_path, field_name = "displacement";
   std::vector<std::string> sets;
-  bool quiet = false, pictures = false;
+  bool quiet = false, pictures = false, text_frames = false;
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
   app.add_option("--config", config_path, "JSON merge patch applied to the embedded scene");
@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "no progress line");
   app.add_flag("--pictures", pictures,
                "draw the last state (result.svg) and write history.svg, run_history.svg, index.html");
+  app.add_flag("--text-frames", text_frames,
+               "write frames as ASCII .vtu (default: binary, zlib-compressed)");
   app.add_option("--picture-field", field_name,
                  "what colours result.svg: displacement, sxx, syy or sxy");
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
@@ -54,7 +56,8 @@ int main(int argc, char** argv) {
     const nmm::Mesh mesh = nmm::read_mesh_file(mesh_path);
     const nmm::solve::RunScene run = nmm::solve::make_run_scene(mesh, mesh_path, config_path, sets);
     nmm::solve::TimeStepper stepper(mesh, run.scene, mesh_path + " (embedded scene)");
-    nmm::solve::OutputWriter out(out_dir);
+    nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
+                                                       : nmm::solve::FrameFormat::compressed);
 
     nmm::solve::install_interrupt_handlers();
     stepper.set_stop_check(nmm::solve::interrupt_requested);
