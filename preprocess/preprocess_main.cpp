@@ -22,8 +22,8 @@
 namespace {
 
 // Sizes past which the preprocessor talks (docs/preprocess.md, "Large meshes"): stages are
-// reported from kStagesFrom triangles on, and a warning is printed from kWarnFrom, where a cut
-// takes minutes and the mesh file hundreds of MB (measured: ~1 µs·triangle⁻¹… see the doc).
+// reported from kStagesFrom triangles on (a few seconds of cutting), and a warning is printed
+// from kWarnFrom, where a cut takes minutes and the mesh file tens of MB (measured there).
 constexpr double kStagesFrom = 2e4;
 constexpr double kWarnFrom = 5e5;
 
