@@ -182,28 +182,35 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
 
 void OutputWriter::add_contacts(std::int64_t step, double time,
                                 const std::vector<ContactSample>& contacts) {
+  // Sampling: every contacts_every_-th output step is kept; a skipped one is held back so the
+  // last state always ends the file (flush_history appends it).
+  const bool keep = contact_calls_++ % contacts_every_ == 0;
+  std::string& rows = keep ? contacts_ : pending_contacts_;
+  pending_contacts_.clear();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const ContactSample& c = contacts[i];
-    contacts_ += std::to_string(step);
+    rows += std::to_string(step);
     for (double v : {time}) {
-      contacts_ += ',';
-      append_double(contacts_, v);
+      rows += ',';
+      append_double(rows, v);
     }
-    contacts_ += ',' + std::to_string(i);
+    rows += ',' + std::to_string(i);
     for (double v : {c.x, c.y}) {
-      contacts_ += ',';
-      append_double(contacts_, v);
+      rows += ',';
+      append_double(rows, v);
     }
-    contacts_ += ',' + std::to_string(c.state) + ',' + std::to_string(c.law);
+    rows += ',' + std::to_string(c.state) + ',' + std::to_string(c.law);
     for (double v : {c.closure, c.shear, c.normal_force, c.shear_force, c.kn, c.ks, c.length}) {
-      contacts_ += ',';
-      append_double(contacts_, v);
+      rows += ',';
+      append_double(rows, v);
     }
-    contacts_ += '\n';
+    rows += '\n';
   }
 }
 
 void OutputWriter::flush_history() {
+  contacts_ += pending_contacts_;
+  pending_contacts_.clear();
   write_file_atomically(join_path(dir_, "history.csv"), "step,time,point,x,y,ux,uy\n" + history_);
   if (!contacts_.empty())
     write_file_atomically(join_path(dir_, "contacts.csv"),

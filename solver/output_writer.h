@@ -62,6 +62,10 @@ class OutputWriter {
   /// frames.pvd listing every frame so far with its time.
   void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields);
 
+  /// Keep the contacts of every n-th output step only (n >= 1; the last one is always kept):
+  /// contacts.csv is the largest text output of a long run (nmm-solve --contacts-every).
+  void set_contacts_every(int n) { contacts_every_ = n < 1 ? 1 : n; }
+
   /// Appends one output step's contacts to contacts.csv (in memory until flush_history()).
   void add_contacts(std::int64_t step, double time, const std::vector<ContactSample>& contacts);
 
@@ -80,6 +84,9 @@ class OutputWriter {
   FrameFormat format_;
   std::string history_;   // CSV rows so far
   std::string contacts_;  // contacts.csv rows so far
+  std::string pending_contacts_;  // the last skipped output step's rows (sampling)
+  int contacts_every_ = 1;
+  std::int64_t contact_calls_ = 0;
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
 };
 

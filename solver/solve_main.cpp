@@ -1,5 +1,5 @@
 // nmm-solve MESH.nmm -o OUTDIR [--config VARIANT.json] [--set PATH=VALUE]... [--quiet]
-//           [--pictures [--picture-field displacement|sxx|syy|sxy]] [--text-frames]
+//           [--pictures [--picture-field displacement|sxx|syy|sxy]] [--text-frames] [--contacts-every N]
 //
 // Loads a mesh file (every check of the reader), applies the run's variants to the embedded
 // scene (run_config.h) and runs the time stepping (time_stepper.h), with a progress line
@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   std::string mesh_path, out_dir, config_path, field_name = "displacement";
   std::vector<std::string> sets;
   bool quiet = false, pictures = false, text_frames = false;
+  int contacts_every = 1;
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
   app.add_option("--config", config_path, "JSON merge patch applied to the embedded scene");
@@ -41,6 +42,9 @@ int main(int argc, char** argv) {
                "draw the last state (result.svg) and write history.svg, run_history.svg, index.html");
   app.add_flag("--text-frames", text_frames,
                "write frames as ASCII .vtu (default: binary, zlib-compressed)");
+  app.add_option("--contacts-every", contacts_every,
+                 "contacts.csv keeps every N-th output step (and the last); default 1")
+      ->check(CLI::PositiveNumber);
   app.add_option("--picture-field", field_name,
                  "what colours result.svg: displacement, sxx, syy or sxy");
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
@@ -58,6 +62,7 @@ int main(int argc, char** argv) {
     nmm::solve::TimeStepper stepper(mesh, run.scene, mesh_path + " (embedded scene)");
     nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
                                                        : nmm::solve::FrameFormat::compressed);
+    out.set_contacts_every(contacts_every);
 
     nmm::solve::install_interrupt_handlers();
     stepper.set_stop_check(nmm::solve::interrupt_requested);
