@@ -66,10 +66,16 @@ void ProgressLine::update(std::int64_t step, double time) {
 
 void ProgressLine::finish(std::int64_t step, double time, const std::string& status) {
   if (mode_ == Mode::off) return;
+  // A run that did not end "ok" is reported by the caller in exactly one line (the exit-status
+  // contract): only end a terminal's in-place line here.
+  if (status != "ok") {
+    if (mode_ == Mode::terminal && printed_) std::fprintf(out_, "\n");
+    std::fflush(out_);
+    return;
+  }
   const std::string text = line(step, time, seconds_since_start());
   if (mode_ == Mode::terminal) std::fprintf(out_, "\r%s\033[K\n", text.c_str());
   else std::fprintf(out_, "%s\n", text.c_str());
-  if (status != "ok") std::fprintf(out_, "nmm-solve: %s\n", status.c_str());
   std::fflush(out_);
 }
 
