@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -15,16 +16,29 @@
 #include "mesh_file.h"
 #include "nmm_version.h"
 #include "scene.h"
+#include "scene_checks.h"
 #include "scene_geometry.h"
+
+namespace {
+
+// Sizes past which the preprocessor talks (docs/preprocess.md, "Large meshes"): stages are
+// reported from kStagesFrom triangles on (a few seconds of cutting), and a warning is printed
+// from kWarnFrom, where a cut takes minutes and the mesh file tens of MB (measured there).
+constexpr double kStagesFrom = 2e4;
+constexpr double kWarnFrom = 5e5;
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"nmm-preprocess: cut the covers of a scene and write the binary mesh file"};
   std::string scene_path, out_path;
-  bool quiet = false, timings = false;
+  bool quiet = false, timings = false, strict_joints = false;
   app.add_option("scene", scene_path, "scene file (JSON, comments allowed)")->required();
   app.add_option("-o,--output", out_path, "mesh file to write (.nmm)")->required();
   app.add_flag("-q,--quiet", quiet, "print nothing on success");
   app.add_flag("--timings", timings, "print where the time went, on stderr");
+  app.add_flag("--strict-joints", strict_joints,
+               "a joint touching no body is an error (by default a warning names it)");
   app.set_version_flag("--version", std::string("nmm-preprocess ") + NMM_VERSION);
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-preprocess"); status >= 0)
     return status;
@@ -34,8 +48,34 @@ int main(int argc, char** argv) {
     const std::string text = nmm::read_text_file(scene_path);
     const nmm::SceneDef scene = nmm::parse_scene(text, scene_path);
     nmm::pre::check_scene_geometry(scene, scene_path);
+    for (const std::string& w : nmm::check_scene_usability(scene, scene_path, !strict_joints))
+      std::cerr << w << "\n";
+    // Triangles of side h covering the bodies' bounding area: the cost driver of the cut.
+    double area = 0;
+    for (const nmm::BodyDef& b : scene.bodies) {
+      double a = 0;
+      for (std::size_t i = 0; i < b.outer.size(); ++i) {
+        const nmm::Vec2 p = b.outer[i], q = b.outer[(i + 1) % b.outer.size()];
+        a += p.x * q.y - q.x * p.y;
+      }
+      area += 0.5 * std::abs(a);
+    }
+    const double triangles = area / (0.4330127 * scene.mesh_size * scene.mesh_size);
+    if (triangles >= kWarnFrom)
+      std::fprintf(stderr,
+                   "%s: /mesh/size: warning: about %.3g triangles at mesh size %g m: the cut takes "
+                   "minutes and the mesh file is large (docs/preprocess.md, Large meshes)\n",
+                   scene_path.c_str(), triangles, scene.mesh_size);
+    const bool stages = triangles >= kStagesFrom;
+    if (stages)
+      std::fprintf(stderr, "nmm-preprocess: cutting covers (about %.3g triangles)...\n", triangles);
     nmm::pre::CutTimings cut;
     nmm::Mesh mesh = nmm::pre::build_mesh(scene, scene_path, &cut);
+    if (stages)
+      std::fprintf(stderr,
+                   "nmm-preprocess: cut in %.1f s (arrangement %.1f s, covers %.1f s); writing %s...\n",
+                   cut.mesh_generation + cut.arrangement + cut.labelling + cut.covers,
+                   cut.arrangement, cut.covers, out_path.c_str());
     mesh.scene_file = scene_path;
     mesh.scene_text = text;
     mesh.scene_sha256 = nmm::sha256(text);

@@ -10,6 +10,8 @@
 // Writes CSV, Markdown tables and SVG plots into OUTDIR. Exit status 2 on bad input.
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -89,6 +91,10 @@ int main(int argc, char** argv) {
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-joint-study"); status >= 0)
     return status;
   try {
+    {  // the output folder is made here; if that fails, the probe below names the problem
+      std::error_code ec;
+      std::filesystem::create_directories(out, ec);
+    }
     nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
     std::remove((out + "/.probe").c_str());
     std::ostringstream md;

@@ -30,6 +30,7 @@
 
 #include "error.h"
 #include "vtk_writer.h"
+#include "vtu_compressed.h"
 
 namespace nmm::solve {
 
@@ -76,9 +77,23 @@ std::string frame_file_name(std::int64_t step) {
 
 }  // namespace
 
-OutputWriter::OutputWriter(const std::string& out_dir) : dir_(out_dir) {
+OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
+    : dir_(out_dir), format_(format) {
   make_folder(dir_, dir_);
   make_folder(join_path(dir_, "frames"), dir_);
+  // A folder used before would mix the old run's frames with this one's (frames.pvd listing
+  // some, ParaView's file-series reader all): remove what an earlier run wrote — only the files
+  // nmm-solve itself names, nothing else in the folder.
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(join_path(dir_, "frames"), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".vtu")
+      fs::remove(entry.path(), ec);
+  }
+  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "summary.json",
+                           "result.svg", "result.png", "history.svg", "run_history.svg",
+                           "index.html", "checkpoint.nmmstate"})
+    fs::remove(join_path(dir_, name), ec);
 }
 
 void OutputWriter::add_history(std::int64_t step, double time,
@@ -138,7 +153,10 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
         *fields.extra_cell);
 
   const std::string file = frame_file_name(step);
-  write_vtu(grid, join_path(dir_, file));
+  if (format_ == FrameFormat::text)
+    write_vtu(grid, join_path(dir_, file));
+  else
+    write_vtu_compressed(grid, join_path(dir_, file));
 
   bool replaced = false;
   for (auto& frame : frames_)
@@ -164,28 +182,35 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
 
 void OutputWriter::add_contacts(std::int64_t step, double time,
                                 const std::vector<ContactSample>& contacts) {
+  // Sampling: every contacts_every_-th output step is kept; a skipped one is held back so the
+  // last state always ends the file (flush_history appends it).
+  const bool keep = contact_calls_++ % contacts_every_ == 0;
+  std::string& rows = keep ? contacts_ : pending_contacts_;
+  pending_contacts_.clear();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const ContactSample& c = contacts[i];
-    contacts_ += std::to_string(step);
+    rows += std::to_string(step);
     for (double v : {time}) {
-      contacts_ += ',';
-      append_double(contacts_, v);
+      rows += ',';
+      append_double(rows, v);
     }
-    contacts_ += ',' + std::to_string(i);
+    rows += ',' + std::to_string(i);
     for (double v : {c.x, c.y}) {
-      contacts_ += ',';
-      append_double(contacts_, v);
+      rows += ',';
+      append_double(rows, v);
     }
-    contacts_ += ',' + std::to_string(c.state) + ',' + std::to_string(c.law);
+    rows += ',' + std::to_string(c.state) + ',' + std::to_string(c.law);
     for (double v : {c.closure, c.shear, c.normal_force, c.shear_force, c.kn, c.ks, c.length}) {
-      contacts_ += ',';
-      append_double(contacts_, v);
+      rows += ',';
+      append_double(rows, v);
     }
-    contacts_ += '\n';
+    rows += '\n';
   }
 }
 
 void OutputWriter::flush_history() {
+  contacts_ += pending_contacts_;
+  pending_contacts_.clear();
   write_file_atomically(join_path(dir_, "history.csv"), "step,time,point,x,y,ux,uy\n" + history_);
   if (!contacts_.empty())
     write_file_atomically(join_path(dir_, "contacts.csv"),

@@ -43,10 +43,15 @@ struct FrameFields {
   std::string extra_cell_name{};
 };
 
+/// How frames are written: binary zlib-compressed appended data (vtu_compressed.h, the default:
+/// a tenth of the size or less) or ASCII text (nmm-solve --text-frames).
+enum class FrameFormat { compressed, text };
+
 class OutputWriter {
  public:
   /// Creates out_dir and out_dir/frames if needed; InputError(out_dir, "", why) if it cannot.
-  explicit OutputWriter(const std::string& out_dir);
+  /// Removes what an earlier run wrote there (frames, history, summary, pictures).
+  explicit OutputWriter(const std::string& out_dir, FrameFormat format = FrameFormat::compressed);
 
   /// Appends the rows of one output step (one per measure point) to history.csv (in memory until
   /// flush_history()).
@@ -56,6 +61,10 @@ class OutputWriter {
   /// cell data "stress" (σxx, σyy, σxy as 3 components), "block", "body") and rewrites
   /// frames.pvd listing every frame so far with its time.
   void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields);
+
+  /// Keep the contacts of every n-th output step only (n >= 1; the last one is always kept):
+  /// contacts.csv is the largest text output of a long run (nmm-solve --contacts-every).
+  void set_contacts_every(int n) { contacts_every_ = n < 1 ? 1 : n; }
 
   /// Appends one output step's contacts to contacts.csv (in memory until flush_history()).
   void add_contacts(std::int64_t step, double time, const std::vector<ContactSample>& contacts);
@@ -72,8 +81,12 @@ class OutputWriter {
 
  private:
   std::string dir_;
+  FrameFormat format_;
   std::string history_;   // CSV rows so far
   std::string contacts_;  // contacts.csv rows so far
+  std::string pending_contacts_;  // the last skipped output step's rows (sampling)
+  int contacts_every_ = 1;
+  std::int64_t contact_calls_ = 0;
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
 };
 

@@ -5,12 +5,15 @@
 // same mesh): solver.steps more steps, step numbers and times going on from the checkpoint's,
 // with the run's variants (friction, joint laws, loads, supports, time step, `excavate`); a
 // damaged checkpoint or one of another mesh is bad input (exit status 2).
+//           [--pictures [--picture-field displacement|sxx|syy|sxy]] [--text-frames] [--contacts-every N]
 //
 // Loads a mesh file (every check of the reader), applies the run's variants to the embedded
-// scene (run_config.h) and runs the time stepping (time_stepper.h). Exit status: 0 done, 2 bad
-// input (one line on stderr), 3 the run could not go on (summary.json says why).
+// scene (run_config.h) and runs the time stepping (time_stepper.h), with a progress line
+// (progress.h) and SIGINT/SIGTERM ending the run after the current step (interrupt.h). With
+// --pictures it draws the last state (result.svg, result_picture.h) and writes the run report
+// (history.svg, run_history.svg, index.html: run_report.h). Exit status: 0 done, 2 bad input
+// (one line on stderr), 3 the run could not go on (summary.json says why), 130 interrupted.
 #include <CLI/CLI.hpp>
-#include <unistd.h>
 
 #include <cstdio>
 #include <iostream>
@@ -19,17 +22,23 @@
 
 #include "command_line.h"
 #include "error.h"
+#include "interrupt.h"
 #include "mesh_file.h"
 #include "nmm_version.h"
 #include "output_writer.h"
+#include "progress.h"
+#include "result_picture.h"
 #include "run_config.h"
+#include "run_report.h"
 #include "time_stepper.h"
+#include "vtk_writer.h"  // write_file_atomically
 
 int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
-  std::string mesh_path, out_dir, config_path, restart_path;
+  std::string mesh_path, out_dir, config_path, restart_path, field_name = "displacement";
   std::vector<std::string> sets;
-  bool quiet = false;
+  bool quiet = false, pictures = false, text_frames = false;
+  int contacts_every = 1;
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
   app.add_option("--config", config_path, "JSON merge patch applied to the embedded scene");
@@ -37,20 +46,85 @@ int main(int argc, char** argv) {
   app.add_option("--restart", restart_path,
                  "continue from a checkpoint (checkpoint.nmmstate) written by an earlier run");
   app.add_flag("-q,--quiet", quiet, "no progress line");
+  app.add_flag("--pictures", pictures,
+               "draw the last state (result.svg) and write history.svg, run_history.svg, index.html");
+  app.add_flag("--text-frames", text_frames,
+               "write frames as ASCII .vtu (default: binary, zlib-compressed)");
+  app.add_option("--contacts-every", contacts_every,
+                 "contacts.csv keeps every N-th output step (and the last); default 1")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--picture-field", field_name,
+                 "what colours result.svg: displacement, sxx, syy or sxy");
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-solve"); status >= 0)
     return status;
+  nmm::solve::PictureField field;
+  if (!nmm::solve::parse_picture_field(field_name, field)) {
+    std::cerr << "nmm-solve: --picture-field: '" << field_name
+              << "' is not one of displacement, sxx, syy, sxy\n";
+    return nmm::kExitBadInput;
+  }
   try {
     const nmm::Mesh mesh = nmm::read_mesh_file(mesh_path);
     const nmm::solve::RunScene run = nmm::solve::make_run_scene(mesh, mesh_path, config_path, sets);
     nmm::solve::TimeStepper stepper(mesh, run.scene, mesh_path + " (embedded scene)");
     if (!restart_path.empty()) stepper.restart_from(restart_path);
-    nmm::solve::OutputWriter out(out_dir);
-    const bool progress = !quiet && isatty(fileno(stderr));
-    const nlohmann::json summary = stepper.run(out, progress);
-    if (summary["status"] != "ok") {
+    nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
+                                                       : nmm::solve::FrameFormat::compressed);
+    out.set_contacts_every(contacts_every);
+
+    nmm::solve::install_interrupt_handlers();
+    stepper.set_stop_check(nmm::solve::interrupt_requested);
+    const nmm::SolverDef& sv = run.scene.solver;
+    const double t_start = stepper.time();  // 0, or the checkpoint's time
+    const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
+    nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
+    std::vector<nmm::solve::StepRecord> effort;
+    std::size_t iterations = 0, cuts = 0;
+    double t_prev = t_start;
+    stepper.set_progress([&](std::int64_t n, double t) {
+      effort.push_back({n, t, t - t_prev,
+                        static_cast<std::int64_t>(stepper.open_close_iterations() - iterations),
+                        static_cast<std::int64_t>(stepper.time_step_cuts() - cuts),
+                        static_cast<std::int64_t>(stepper.contacts().closed_count())});
+      iterations = stepper.open_close_iterations();
+      cuts = stepper.time_step_cuts();
+      t_prev = t;
+      progress.update(n, t);
+    });
+    const nlohmann::json summary = stepper.run(out, false);
+    const std::string status = summary["status"].get<std::string>();
+    progress.finish(summary["steps_completed"].get<std::int64_t>(), stepper.time(), status);
+    nmm::solve::write_run_history(out_dir, effort);
+
+    if (pictures) {
+      nmm::solve::PictureState state;
+      state.time = stepper.time();
+      state.status = status;
+      state.loop_xy = &stepper.loop_xy();
+      state.stress = &stepper.stress();
+      for (const nmm::solve::Contact& c : stepper.contacts().contacts())
+        if (c.state != nmm::solve::ContactState::open)
+          state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex],
+                                    stepper.loop_xy()[2 * c.at.vertex + 1],
+                                    static_cast<int>(c.state)});
+      for (const nmm::solve::TrackedPoint& p : stepper.measure_points())
+        state.measure_points.push_back({p.x, p.y});
+      nmm::write_file_atomically(out_dir + "/result.svg",
+                                 nmm::solve::result_svg(mesh, run.scene, state, field));
+      const nmm::solve::ReportFiles files = nmm::solve::make_run_report(out_dir);
+      if (!quiet)
+        std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
+                  << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";
+    }
+    if (status == "interrupted") {
+      std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
+                << " steps at t = " << stepper.time() << " s; history.csv and summary.json written\n";
+      return nmm::solve::kExitInterrupted;
+    }
+    if (status != "ok") {
       std::cerr << "nmm-solve: stopped after " << summary["steps_completed"].get<long long>()
-                << " steps: " << summary["status"].get<std::string>() << "\n";
+                << " steps: " << status << "\n";
       return nmm::kExitRunFailed;
     }
   } catch (const nmm::InputError& e) {

@@ -22,6 +22,8 @@
 // kept (see timed_run). --quick runs a subset of the settings. Exit status 2 on bad input.
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -474,6 +476,10 @@ int main(int argc, char** argv) {
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-study"); status >= 0)
     return status;
   try {
+    {  // the output folder is made here; if that fails, the probe below names the problem
+      std::error_code ec;
+      std::filesystem::create_directories(out, ec);
+    }
     nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
     std::remove((out + "/.probe").c_str());
     const SceneDef joint = single_joint_scene(data + "/single_joint.json");

@@ -675,6 +675,8 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
   double dt = std::min(s_.dt, sv.time_step);
   std::int64_t done = 0;
   while (s_.time < t_end - 1e-9 * sv.time_step) {
+    // Between steps only, so an interrupted run stops in a consistent state.
+    if (stop_check_ && stop_check_()) return "interrupted";
     // The last step is cut to end at t_end, unless it is within round-off of a full step: then
     // a run of 2N steps and N + N from a checkpoint take the same steps, bitwise.
     const double left = t_end - s_.time;
@@ -741,6 +743,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
       write_checkpoint(checkpoint);
       timings_.output += since(t0);
     }
+    if (progress_) progress_(n, s_.time);
     if (progress && n % 10 == 0) {
       std::fprintf(stderr, "\rstep %lld  t = %.6g / %.6g s  cuts %zu", static_cast<long long>(n),
                    s_.time, t_end, s_.cuts);

@@ -44,6 +44,11 @@ class TimeStepper {
   /// (also written). `progress`: a progress line on stderr.
   nlohmann::json run(OutputWriter& out, bool progress);
 
+  /// Asked before every step: true stops the run with status "interrupted" (interrupt.h).
+  void set_stop_check(std::function<bool()> f) { stop_check_ = std::move(f); }
+  /// Called after every accepted step with (step, simulated time in s) (progress.h).
+  void set_progress(std::function<void(std::int64_t, double)> f) { progress_ = std::move(f); }
+
   // ---- state, for tests ------------------------------------------------------------------
   /// One step of length dt. Throws RunError when it cannot be taken.
   void step(double dt);
@@ -137,6 +142,8 @@ class TimeStepper {
   ContactSet contacts_;
   Eigen::VectorXd rhs_base_;     // right-hand side without contacts
   double w0_ = 0;                // m, half the model size
+  std::function<bool()> stop_check_;                     // interrupt.h
+  std::function<void(std::int64_t, double)> progress_;  // progress.h
   static constexpr int kMaxIterations = 16;  // factorisations per step's open–close iteration
 };
 

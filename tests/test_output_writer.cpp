@@ -3,6 +3,9 @@
 // no temporary file is left behind, and that ParaView's readers' stand-in (meshio) reads the
 // frames back with the values written.
 #include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstring>
 #include <stdlib.h>
 
 #include <algorithm>
@@ -113,8 +116,8 @@ std::vector<std::string> all_files(const fs::path& dir) {
 }
 
 // Writes what a short run writes: frames at steps 10 and 20, two history rows per step, a summary.
-void write_run(const fs::path& out, const Mesh& mesh) {
-  OutputWriter w(out.string());
+void write_run(const fs::path& out, const Mesh& mesh, FrameFormat format = FrameFormat::text) {
+  OutputWriter w(out.string(), format);  // text by default, so the tests can read the numbers
   const Fields f1 = fields_at(mesh, 1), f2 = fields_at(mesh, 2);
   w.add_history(10, 0.01, {{1, 2, 0.1, 0.2}, {3, 4, 0.1 + 0.2, -1e-300}});
   w.write_frame(10, 0.01, mesh, f1.view(false));
@@ -276,13 +279,65 @@ print("meshio check ok")
 TEST(OutputWriter, MeshioReadsTheFramesBack) {
   const std::string python = python_with_meshio();
   if (python.empty()) GTEST_SKIP() << "no python3 with meshio";
+  for (FrameFormat format : {FrameFormat::text, FrameFormat::compressed}) {
+    TempDir dir;
+    write_run(dir.path() / "out", two_element_mesh(), format);
+    const fs::path script = dir.path() / "check.py";
+    std::ofstream(script) << kMeshioCheck;
+    const std::string command =
+        python + " '" + script.string() + "' '" + (dir.path() / "out").string() + "'";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  }
+}
+
+
+// The default frame is binary and zlib-compressed (vtu_compressed.h): decode the appended data
+// of "Points" and "stress" as ParaView would and compare with the values written.
+TEST(OutputWriter, CompressedFrameDecodesToTheValuesWritten) {
   TempDir dir;
-  write_run(dir.path() / "out", two_element_mesh());
-  const fs::path script = dir.path() / "check.py";
-  std::ofstream(script) << kMeshioCheck;
-  const std::string command =
-      python + " '" + script.string() + "' '" + (dir.path() / "out").string() + "'";
-  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  const Mesh mesh = two_element_mesh();
+  {
+    OutputWriter w(dir.path().string());
+    const Fields f = fields_at(mesh, 1);
+    w.write_frame(10, 0.01, mesh, f.view(false));
+  }
+  const std::string vtu = read_file(dir.path() / "frames/frame_000010.vtu");
+  ASSERT_TRUE(contains(vtu, "compressor=\"vtkZLibDataCompressor\"")) << vtu.substr(0, 300);
+  const std::size_t underscore = vtu.find('_', vtu.find("<AppendedData encoding=\"raw\">"));
+  ASSERT_NE(underscore, std::string::npos);
+  auto decode = [&](const std::string& name) {
+    const std::size_t at = vtu.find("Name=\"" + name + "\"");
+    const std::size_t off = vtu.find("offset=\"", at) + 8;
+    std::size_t pos = underscore + 1 + std::stoull(vtu.substr(off, vtu.find('"', off) - off));
+    auto u64 = [&](std::size_t i) {
+      std::uint64_t v;
+      std::memcpy(&v, vtu.data() + pos + 8 * i, 8);
+      return v;
+    };
+    const std::uint64_t nblocks = u64(0);
+    std::vector<double> out;
+    std::size_t data = pos + 8 * (3 + nblocks);
+    for (std::uint64_t b = 0; b < nblocks; ++b) {
+      std::vector<unsigned char> raw(u64(1));
+      uLongf len = raw.size();
+      EXPECT_EQ(uncompress(raw.data(), &len, reinterpret_cast<const Bytef*>(vtu.data() + data),
+                           u64(3 + b)), Z_OK);
+      data += u64(3 + b);
+      for (std::size_t i = 0; i + 8 <= len; i += 8) {
+        double v;
+        std::memcpy(&v, raw.data() + i, 8);
+        out.push_back(v);
+      }
+    }
+    return out;
+  };
+  const std::vector<double> points = decode("Points");
+  ASSERT_EQ(points.size(), 21u);  // 7 points × 3
+  // Vertex 1 of element 0 is (1, 0) moved by (0.002, -0.004).
+  EXPECT_DOUBLE_EQ(points[3], 1.002);
+  EXPECT_DOUBLE_EQ(points[4], -0.004);
+  const std::vector<double> stress = decode("stress");
+  EXPECT_EQ(stress, (std::vector<double>{1e6, -2e6, 5e5, 3e6, 4e6, -5e6}));
 }
 
 }  // namespace

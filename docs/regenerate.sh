@@ -1,0 +1,9 @@
+#!/bin/sh
+# Regenerates every committed figure and table under docs/figures (docs/guide.md): the seed
+# paper's validation rerun (docs/joint-studies.md) and accuracy against run time
+# (docs/accuracy.md). Takes minutes; run from the repository root after building.
+set -e
+cd "$(dirname "$0")/.."
+build/bin/nmm-joint-study docs/figures --data data
+build/bin/nmm-study docs/figures --data data
+echo "docs/figures regenerated; copy changed tables into docs/joint-studies.md and docs/accuracy.md"

@@ -1,0 +1,178 @@
+// result.svg: see result_picture.h.
+#include "result_picture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <stdexcept>
+
+#include "svg_writer.h"
+
+namespace nmm::solve {
+namespace {
+
+// A perceptually ordered colour map (viridis, 5 stops, linear between them).
+std::string colour_at(double f) {
+  static const double stops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140},
+                                     {94, 201, 98}, {253, 231, 37}};
+  f = std::clamp(std::isfinite(f) ? f : 0.0, 0.0, 1.0) * 4;
+  const int i = std::min(3, static_cast<int>(f));
+  const double t = f - i;
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x",
+                static_cast<int>(std::lround(stops[i][0] + t * (stops[i + 1][0] - stops[i][0]))),
+                static_cast<int>(std::lround(stops[i][1] + t * (stops[i + 1][1] - stops[i][1]))),
+                static_cast<int>(std::lround(stops[i][2] + t * (stops[i + 1][2] - stops[i][2]))));
+  return buf;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return buf;
+}
+
+}  // namespace
+
+bool parse_picture_field(const std::string& name, PictureField& field) {
+  if (name == "displacement") field = PictureField::displacement;
+  else if (name == "sxx") field = PictureField::stress_xx;
+  else if (name == "syy") field = PictureField::stress_yy;
+  else if (name == "sxy") field = PictureField::stress_xy;
+  else return false;
+  return true;
+}
+
+double weighted_quantile(const std::vector<double>& values, const std::vector<double>& weights,
+                         double q) {
+  if (values.empty()) return 0;
+  std::vector<std::size_t> order(values.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  double sum = 0;
+  for (std::size_t i : order) {
+    sum += weights[i];
+    if (sum >= q * total) return values[i];
+  }
+  return values[order.back()];
+}
+
+std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureState& state,
+                       PictureField field) {
+  const std::vector<double>& xy = *state.loop_xy;
+  const std::vector<double>& sigma = *state.stress;
+  const std::size_t ne = mesh.element_count();
+  if (xy.size() != mesh.loop_xy.size() || sigma.size() != 3 * ne)
+    throw std::logic_error("result_svg: state arrays do not match the mesh");
+
+  // Per-element value (mm or MPa) and area weight.
+  std::vector<double> value(ne), area(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    area[e] = std::abs(element_area(mesh, e));
+    const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
+    if (field == PictureField::displacement) {
+      double s = 0;
+      for (int v = b; v < end; ++v)
+        s += std::hypot(xy[2 * v] - mesh.loop_xy[2 * v], xy[2 * v + 1] - mesh.loop_xy[2 * v + 1]);
+      value[e] = 1e3 * s / std::max(1, end - b);
+    } else {
+      const int c = field == PictureField::stress_xx ? 0 : field == PictureField::stress_yy ? 1 : 2;
+      value[e] = 1e-6 * sigma[3 * e + c];
+    }
+  }
+  double lo = field == PictureField::displacement ? 0.0 : weighted_quantile(value, area, 0.01);
+  double hi = weighted_quantile(value, area, 0.99);
+  if (!(hi > lo)) hi = lo + (lo == 0 ? 1e-9 : std::abs(lo) * 1e-6);
+  double clamped_area = 0, total_area = 0;
+  for (std::size_t e = 0; e < ne; ++e) {
+    total_area += area[e];
+    if (value[e] < lo || value[e] > hi) clamped_area += area[e];
+  }
+
+  SvgWriter svg;
+  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+  for (std::size_t v = 0; v < xy.size() / 2; ++v) {
+    xmin = std::min(xmin, xy[2 * v]), xmax = std::max(xmax, xy[2 * v]);
+    ymin = std::min(ymin, xy[2 * v + 1]), ymax = std::max(ymax, xy[2 * v + 1]);
+  }
+  const double size = std::max(xmax - xmin, ymax - ymin);
+  const double font = 0.022 * size, line = 0.0012 * size;
+
+  // Elements: no outline of their own, so the colour field reads as a field, not a mesh.
+  std::vector<Vec2> pts;
+  for (std::size_t e = 0; e < ne; ++e) {
+    pts.clear();
+    for (int v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
+      pts.push_back({xy[2 * v], xy[2 * v + 1]});
+    const std::string c = colour_at((value[e] - lo) / (hi - lo));
+    svg.polygon(pts, {c, c, 0.3 * line, 0, 1});
+  }
+  // Joints dark red, body boundaries black, both where they are now.
+  std::vector<std::pair<Vec2, Vec2>> joints, bounds;
+  for (std::size_t e = 0; e < ne; ++e) {
+    const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
+    for (int v = b; v < end; ++v) {
+      const int w = v + 1 < end ? v + 1 : b;
+      const std::pair<Vec2, Vec2> seg{{xy[2 * v], xy[2 * v + 1]}, {xy[2 * w], xy[2 * w + 1]}};
+      if (mesh.loop_edge_origin[v] & kEdgeJoint) joints.push_back(seg);
+      else if (mesh.loop_edge_origin[v] & kEdgeBoundary) bounds.push_back(seg);
+    }
+  }
+  svg.segments(bounds, {"none", "#000000", 1.5 * line, 0, 1});
+  svg.segments(joints, {"none", "#8b0000", 1.2 * line, 0, 1});
+  // Contacts: sticking blue, sliding orange (open contacts carry no force and are not drawn).
+  std::size_t sticking = 0, sliding = 0;
+  for (const PictureContact& c : state.contacts) {
+    const bool slides = c.state == 2;
+    (slides ? sliding : sticking)++;
+    svg.circle({c.x, c.y}, 2.5 * line, {slides ? "#ff7f0e" : "#1f77b4", "none", 0, 0, 1});
+  }
+  // Fixed points: black triangles; measure points: magenta rings with their index.
+  for (const Vec2& p : scene.fixed_points) {
+    const double r = 0.012 * size;
+    svg.polygon({{p.x, p.y}, {p.x - r, p.y - 1.6 * r}, {p.x + r, p.y - 1.6 * r}},
+                {"#000000", "none", 0, 0, 1});
+  }
+  for (std::size_t i = 0; i < state.measure_points.size(); ++i) {
+    const Vec2& p = state.measure_points[i];
+    svg.circle(p, 0.01 * size, {"none", "#ff00ff", 2.5 * line, 0, 1});
+    svg.text({p.x + 0.013 * size, p.y + 0.008 * size}, "m" + std::to_string(i), font, "#ff00ff");
+  }
+
+  // Colour bar to the right of the model, labelled with units.
+  const double bx = xmax + 0.05 * size, bw = 0.03 * size, by = ymin, bh = std::max(ymax - ymin, 0.3 * size) * 0.8;
+  const int bands = 40;
+  for (int i = 0; i < bands; ++i)
+    svg.rect({bx, by + bh * i / bands}, bw, bh / bands + 1e-9 * size,
+             {colour_at((i + 0.5) / bands), "none", 0, 0, 1});
+  for (int i = 0; i <= 4; ++i)
+    svg.text({bx + 1.3 * bw, by + bh * i / 4 - 0.3 * font}, number(lo + (hi - lo) * i / 4), font,
+             "#000000");
+  const std::string unit_title =
+      field == PictureField::displacement ? "|u| (mm)"
+      : field == PictureField::stress_xx  ? "σxx (MPa, tension +)"
+      : field == PictureField::stress_yy  ? "σyy (MPa, tension +)"
+                                          : "τxy (MPa)";
+  svg.text({bx, by + bh + 0.8 * font}, unit_title, font, "#000000");
+  char note[160];
+  std::snprintf(note, sizeof note, "bar: area-weighted %s; %.2g%% of area beyond it",
+                field == PictureField::displacement ? "0–99th pct" : "1st–99th pct",
+                total_area > 0 ? 100 * clamped_area / total_area : 0.0);
+  svg.text({bx, by - 1.5 * font}, note, 0.7 * font, "#444444");
+
+  // Title and legend above the model.
+  char title[256];
+  std::snprintf(title, sizeof title, "%s  t = %.4g s  (%s)  deformation true scale",
+                scene.name.empty() ? "scene" : scene.name.c_str(), state.time,
+                state.status.empty() ? "ok" : state.status.c_str());
+  svg.text({xmin, ymax + 2.6 * font}, title, 1.2 * font, "#000000");
+  std::string legend = "joints dark red, boundaries black, contacts: " + std::to_string(sticking) +
+                       " sticking (blue), " + std::to_string(sliding) +
+                       " sliding (orange); ▲ fixed, ○ measure points";
+  svg.text({xmin, ymax + 1.0 * font}, legend, 0.8 * font, "#333333");
+  return svg.str(0.03, 1400);
+}
+
+}  // namespace nmm::solve

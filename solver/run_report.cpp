@@ -1,0 +1,189 @@
+// Report of a run folder: see run_report.h.
+#include "run_report.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "error.h"
+#include "svg_plot.h"
+#include "vtk_writer.h"  // write_file_atomically
+#include "xml_text.h"
+
+namespace nmm::solve {
+namespace fs = std::filesystem;
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot read (is this a finished nmm-solve output folder?)");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Rows of a CSV of numbers with a header line; columns by name.
+struct Table {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  int column(const std::string& n) const {
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return static_cast<int>(i);
+    return -1;
+  }
+};
+
+Table read_csv(const std::string& path) {
+  std::istringstream in(read_text(path));
+  Table t;
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(path, "byte 0", "empty file, expected a header");
+  std::stringstream h(line);
+  for (std::string n; std::getline(h, n, ',');) t.names.push_back(n);
+  std::size_t line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty()) continue;
+    std::vector<double> row;
+    std::stringstream r(line);
+    for (std::string cell; std::getline(r, cell, ',');) {
+      char* end = nullptr;
+      row.push_back(std::strtod(cell.c_str(), &end));
+      if (end == cell.c_str())
+        throw InputError(path, "line " + std::to_string(line_no), "not a number: '" + cell + "'");
+    }
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+bool have_rsvg() { return std::system("command -v rsvg-convert >/dev/null 2>&1") == 0; }
+
+void to_png(const std::string& dir, const std::string& svg, ReportFiles& files) {
+  const std::string png = svg.substr(0, svg.size() - 4) + ".png";
+  const std::string cmd = "rsvg-convert -b white -o '" + (fs::path(dir) / png).string() + "' '" +
+                          (fs::path(dir) / svg).string() + "' 2>/dev/null";
+  if (std::system(cmd.c_str()) == 0) files.written.push_back(png);
+}
+
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+
+}  // namespace
+
+void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows) {
+  std::string s = "step,time,dt,iterations,cuts,closed_contacts\n";
+  char buf[160];
+  for (const StepRecord& r : rows) {
+    std::snprintf(buf, sizeof buf, "%lld,%.17g,%.17g,%lld,%lld,%lld\n",
+                  static_cast<long long>(r.step), r.time, r.dt,
+                  static_cast<long long>(r.iterations), static_cast<long long>(r.cuts),
+                  static_cast<long long>(r.closed_contacts));
+    s += buf;
+  }
+  write_file_atomically((fs::path(dir) / "run_history.csv").string(), s);
+}
+
+ReportFiles make_run_report(const std::string& dir) {
+  ReportFiles files;
+  const std::string summary_path = (fs::path(dir) / "summary.json").string();
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(read_text(summary_path));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
+  }
+
+  // Measure points' histories, mm.
+  const std::string history_path = (fs::path(dir) / "history.csv").string();
+  const Table h = read_csv(history_path);
+  const int ct = h.column("time"), cp = h.column("point"), cux = h.column("ux"), cuy = h.column("uy");
+  if (ct < 0 || cp < 0 || cux < 0 || cuy < 0)
+    throw InputError(history_path, "line 1", "header lacks time, point, ux or uy");
+  std::map<int, std::pair<PlotSeries, PlotSeries>> points;
+  for (const auto& r : h.rows) {
+    if (r.size() < h.names.size()) continue;
+    auto& [sx, sy] = points[static_cast<int>(r[cp])];
+    sx.x.push_back(r[ct]), sx.y.push_back(1e3 * r[cux]);
+    sy.x.push_back(r[ct]), sy.y.push_back(1e3 * r[cuy]);
+  }
+  if (!points.empty()) {
+    PlotSpec spec{"measure points: displacement against time", "time (s)", "displacement (mm)",
+                  false, false, {}};
+    for (auto& [i, s] : points) {
+      const std::string colour = kColours[i % 6];
+      s.first.name = "m" + std::to_string(i) + " ux";
+      s.first.colour = colour;
+      s.second.name = "m" + std::to_string(i) + " uy";
+      s.second.colour = colour;
+      s.second.markers = true;
+      spec.series.push_back(s.first);
+      spec.series.push_back(s.second);
+    }
+    write_svg_plot(spec, (fs::path(dir) / "history.svg").string());
+    files.written.push_back("history.svg");
+  }
+
+  // Solver effort per step.
+  const std::string rh_path = (fs::path(dir) / "run_history.csv").string();
+  if (fs::exists(rh_path)) {
+    const Table r = read_csv(rh_path);
+    const int t = r.column("time"), it = r.column("iterations"), dt = r.column("dt");
+    if (t >= 0 && it >= 0 && dt >= 0 && !r.rows.empty()) {
+      PlotSeries iters{"open–close iterations per step", {}, {}, "#1f77b4", true, false};
+      PlotSeries steps{"step length (ms)", {}, {}, "#d62728", true, false};
+      for (const auto& row : r.rows) {
+        if (row.size() < r.names.size()) continue;
+        iters.x.push_back(row[t]), iters.y.push_back(row[it]);
+        steps.x.push_back(row[t]), steps.y.push_back(1e3 * row[dt]);
+      }
+      write_svg_plot({"solver effort per step", "time (s)", "iterations / step length (ms)", false,
+                      false, {iters, steps}},
+                     (fs::path(dir) / "run_history.svg").string());
+      files.written.push_back("run_history.svg");
+    }
+  }
+
+  const bool has_result = fs::exists(fs::path(dir) / "result.svg");
+  if (have_rsvg()) {
+    files.png = true;
+    std::vector<std::string> svgs = files.written;
+    if (has_result) svgs.push_back("result.svg");
+    for (const std::string& s : svgs) to_png(dir, s, files);
+  }
+
+  // index.html: pictures first (users look at pictures before numbers), then the summary.
+  std::string html =
+      "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>nmm run report</title>\n"
+      "<style>body{font-family:sans-serif;margin:1.5em;background:#fff;color:#111}"
+      "img{max-width:100%;border:1px solid #ccc;margin:.5em 0}"
+      "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;text-align:left}"
+      ".bad{color:#b00;font-weight:bold}.ok{color:#070;font-weight:bold}</style></head><body>\n";
+  const std::string status = summary.value("status", std::string("unknown"));
+  html += "<h1>nmm run report</h1>\n<p>status: <span class=\"" +
+          std::string(status == "ok" ? "ok" : "bad") + "\">" + xml_escape(status) +
+          "</span>, simulated time " + summary.value("simulated_time", nlohmann::json(0)).dump() +
+          " s in " + summary.value("steps_completed", nlohmann::json(0)).dump() + " steps, wall " +
+          summary.value("wall_seconds", nlohmann::json(0)).dump() + " s</p>\n";
+  if (has_result) html += "<h2>Result</h2>\n<img src=\"result.svg\" alt=\"result picture\">\n";
+  if (fs::exists(fs::path(dir) / "history.svg"))
+    html += "<h2>Measure points</h2>\n<img src=\"history.svg\" alt=\"measure point history\">\n";
+  if (fs::exists(fs::path(dir) / "run_history.svg"))
+    html += "<h2>Solver effort</h2>\n<img src=\"run_history.svg\" alt=\"solver effort\">\n";
+  html += "<h2>Summary</h2>\n<table>\n";
+  for (auto it = summary.begin(); it != summary.end(); ++it)
+    html += "<tr><th>" + xml_escape(it.key()) + "</th><td>" + xml_escape(it.value().dump()) +
+            "</td></tr>\n";
+  html += "</table>\n<p>Files: history.csv, summary.json, frames.pvd (open in ParaView)";
+  if (fs::exists(fs::path(dir) / "contacts.csv")) html += ", contacts.csv";
+  html += ".</p>\n</body></html>\n";
+  write_file_atomically((fs::path(dir) / "index.html").string(), html);
+  files.written.push_back("index.html");
+  return files;
+}
+
+}  // namespace nmm::solve

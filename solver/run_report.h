@@ -1,0 +1,40 @@
+// The report of a finished (or stopped) run, made from the files in its folder, so that
+// `nmm-report OUTDIR` can remake it at any time and nmm-solve --pictures makes it at the end:
+//   history.svg      measure points' displacements ux, uy (mm) against time (from history.csv)
+//   run_history.svg  open–close iterations per step and step length against time
+//                    (from run_history.csv)
+//   index.html       the pictures (result.svg when nmm-solve drew it) and summary.json's
+//                    status, times and counts, readable in any browser
+//   *.png            the SVGs converted by rsvg-convert (Debian librsvg2-bin) when it is on PATH
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace nmm::solve {
+
+/// One accepted step's solver effort (run_history.csv).
+struct StepRecord {
+  std::int64_t step;     ///< accepted step number, from 1
+  double time;           ///< s, simulated time after the step
+  double dt;             ///< s, the step's length
+  std::int64_t iterations;  ///< open–close iterations (solves) the step took, cut attempts included
+  std::int64_t cuts;     ///< time-step cuts before the step was accepted
+  std::int64_t closed_contacts;  ///< contacts closed after the step
+};
+
+/// Writes OUTDIR/run_history.csv ("step,time,dt,iterations,cuts,closed_contacts").
+void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows);
+
+/// What make_run_report wrote (file names relative to the folder).
+struct ReportFiles {
+  std::vector<std::string> written;
+  bool png = false;  ///< rsvg-convert was found and made PNGs
+};
+
+/// Reads the run folder and writes the report files listed above. InputError naming the file
+/// when summary.json or history.csv is missing or unreadable.
+ReportFiles make_run_report(const std::string& dir);
+
+}  // namespace nmm::solve

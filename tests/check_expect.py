@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Checks a finished run against the outcome its scene promises.
+
+Usage: check_expect.py SCENE.json OUTDIR [--quick]
+
+With --quick the "// expect-quick: ..." lines are checked instead (the scene's "// quick:" run).
+
+The scene's header holds lines of the form (each a comment line of the scene file)
+    // expect: summary.KEY == "text"            string equality of summary.json's KEY
+    // expect: summary.KEY >= NUMBER            also <=, >, <, == for numbers
+    // expect: history travel P at end within X +- TOL   |u| of measure point P at the last row, m
+    // expect: history ux P at end within X +- TOL       (also uy) a component at the last row, m
+    // expect: history uy P at end < NUMBER              (also >, <=, >=)
+    // expect: history uy P minus uy Q at end within X +- TOL   a difference of two points, m
+and every one of them must hold. A scene without an `expect:` line fails: every example states
+what it shows. One line per check is printed; the exit status is 1 when any fails.
+"""
+import csv
+import json
+import math
+import re
+import sys
+
+
+def main():
+    scene, outdir = sys.argv[1], sys.argv[2]
+    tag = "expect-quick" if "--quick" in sys.argv[3:] else "expect"
+    expects = [m.group(1).strip() for line in open(scene, encoding="utf-8")
+               for m in [re.match(r"\s*//\s*" + tag + r":\s*(.*)$", line)] if m]
+    if not expects:
+        print(f"{scene}: no '// {tag}:' line in the header")
+        return 1
+    summary = json.load(open(f"{outdir}/summary.json", encoding="utf-8"))
+    rows = list(csv.DictReader(open(f"{outdir}/history.csv", encoding="utf-8")))
+    ops = {"==": lambda a, b: a == b, ">=": lambda a, b: a >= b, "<=": lambda a, b: a <= b,
+           ">": lambda a, b: a > b, "<": lambda a, b: a < b}
+    failed = 0
+    for e in expects:
+        m = re.match(r"summary\.(\w+)\s*(==|>=|<=|>|<)\s*(.+)$", e)
+        h = re.match(r"history\s+(travel|ux|uy)\s+(\d+)(?:\s+minus\s+(ux|uy)\s+(\d+))?\s+at end\s+(?:within\s+(\S+)\s*\+-\s*(\S+)|"
+                     r"(==|>=|<=|>|<)\s*(\S+))$", e)
+        if m:
+            key, op, want = m.groups()
+            want = json.loads(want)
+            got = summary.get(key)
+            ok = got is not None and ops[op](got, want)
+        elif h:
+            what, point, what2, point2, x, tol, op, bound = h.groups()
+
+            def last_value(quantity, p):
+                last = [r for r in rows if int(r["point"]) == int(p)]
+                if not last:
+                    return None
+                ux, uy = float(last[-1]["ux"]), float(last[-1]["uy"])
+                return {"travel": math.hypot(ux, uy), "ux": ux, "uy": uy}[quantity]
+
+            got = last_value(what, point)
+            if got is not None and what2 is not None:
+                other = last_value(what2, point2)
+                got = None if other is None else got - other
+            if got is None:
+                print(f"FAIL {e}: no history rows for the point")
+                failed += 1
+                continue
+            ok = abs(got - float(x)) <= float(tol) if x is not None else ops[op](got, float(bound))
+        else:
+            print(f"FAIL {e}: cannot read this expectation")
+            failed += 1
+            continue
+        print(f"{'ok  ' if ok else 'FAIL'} {e}  (got {got})")
+        failed += not ok
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
