@@ -1,0 +1,42 @@
+// Stable or failing: the verdict on one strength-reduction trial, from the run's history.csv and
+// summary.json (docs/interface.md).
+//
+// For every measure point p, with positions x_p(t) from history.csv and d_p(t) = |x_p(t) − x_p(t0)|
+// its displacement since the trial's first output row:
+//   v_late = |x_p(t_end) − x_p(t_3/4)| / (t_end − t_3/4)   (mean speed over the last quarter)
+//   v_mid  = |x_p(t_3/4) − x_p(t_1/2)| / (t_3/4 − t_1/2)   (over the quarter before)
+// (t_1/2, t_3/4: the output rows nearest half and three quarters of the trial.) The trial is
+//   failing  when the run stopped (exit 3: diverged, step cut below its floor — blocks flying off),
+//            or some point moved more than max_displacement (0 = no limit),
+//            or some point still moves faster than velocity_floor and is not slowing down
+//            (v_late ≥ v_mid): a block sliding at the reduced strength accelerates
+//            (v_late/v_mid ≈ 1.4 for a constant acceleration), one creeping at constant speed
+//            has ratio 1;
+//   stable   otherwise: every point stops or decelerates (a transient after the strength drop
+//            that the contacts arrest).
+// The floor sets the resolution: a block with acceleration a over a trial of duration T is seen
+// moving once a·7T/8 > velocity_floor; with the default 1 mm/s and T = 0.5 s that is 2.3 mm/s²,
+// i.e. F within 0.05 % for a block on a 30° plane (a = g·sin α·(1 − F_s/F)).
+#pragma once
+
+#include <string>
+
+namespace nmm::studies {
+
+struct VerdictCriterion {
+  double velocity_floor = 1e-3;  ///< m/s, speeds below it count as stopped
+  double max_displacement = 0;   ///< m, any displacement beyond it is failure; 0 = no limit
+};
+
+struct TrialVerdict {
+  bool failing = false;
+  std::string reason;           ///< one line: the rule that decided and the numbers
+  double max_displacement = 0;  ///< m, largest d_p(t_end) over the points
+  double end_velocity = 0;      ///< m/s, largest v_late over the points
+};
+
+/// Judges the run in `out_dir` that ended with `exit_status` (0 or 3). Throws RunError when the
+/// output cannot be read or history.csv has no measure points / fewer than 4 output rows per point.
+TrialVerdict judge_trial(const std::string& out_dir, int exit_status, const VerdictCriterion& c);
+
+}  // namespace nmm::studies
