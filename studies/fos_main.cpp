@@ -184,7 +184,9 @@ int main(int argc, char** argv) {
                       {"max_displacement", criterion.max_displacement},
                       {"rule", "failing: run stopped, or a measure point moved beyond "
                                "max_displacement, or moves faster than velocity_floor over the "
-                               "last quarter without slowing down"}};
+                               "last quarter and faster than decay_ratio times its speed over "
+                               "the quarter before"},
+                      {"decay_ratio", criterion.decay_ratio}};
     nlohmann::json js = nlohmann::json::array();
     for (const SetStrength& s : strengths)
       js.push_back({{"name", s.name}, {"tan_phi", s.tan_phi}, {"cohesion", s.cohesion},

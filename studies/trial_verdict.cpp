@@ -101,10 +101,10 @@ TrialVerdict judge_trial(const std::string& out_dir, int exit_status, const Verd
       v.failing = true;
       decided = "point " + std::to_string(p) + " moved " + fmt(d) + " m > limit " +
                 fmt(c.max_displacement) + " m";
-    } else if (v_late > c.velocity_floor && v_late >= v_mid) {
+    } else if (v_late > c.velocity_floor && v_late > c.decay_ratio * v_mid) {
       v.failing = true;
       decided = "point " + std::to_string(p) + " still moving: " + fmt(v_late) + " m/s (before: " +
-                fmt(v_mid) + " m/s) > floor " + fmt(c.velocity_floor) + " m/s";
+                fmt(v_mid) + " m/s) > floor " + fmt(c.velocity_floor) + " m/s, not slowing to " + fmt(c.decay_ratio) + "×";
     }
   }
   if (v.failing && v.reason.empty()) v.reason = decided;

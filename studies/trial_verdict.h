@@ -8,12 +8,12 @@
 // (t_1/2, t_3/4: the output rows nearest half and three quarters of the trial.) The trial is
 //   failing  when the run stopped (exit 3: diverged, step cut below its floor — blocks flying off),
 //            or some point moved more than max_displacement (0 = no limit),
-//            or some point still moves faster than velocity_floor and is not slowing down
-//            (v_late ≥ v_mid): a block sliding at the reduced strength accelerates
-//            (v_late/v_mid ≈ 1.4 for a constant acceleration), one creeping at constant speed
-//            has ratio 1;
-//   stable   otherwise: every point stops or decelerates (a transient after the strength drop
-//            that the contacts arrest).
+//            or some point still moves faster than velocity_floor and is not clearly slowing
+//            down (v_late > decay_ratio·v_mid, default ratio 0.5): a block sliding at the reduced
+//            strength accelerates (v_late/v_mid ≈ 1.4 for a constant acceleration), one
+//            creeping at constant speed has ratio 1, one that snags and goes on slowly too;
+//   stable   otherwise: every point stops, or its speed at least halves from one quarter of the
+//            trial to the next (a transient after the strength drop that the contacts arrest).
 // The floor sets the resolution: a block with acceleration a over a trial of duration T is seen
 // moving once a·7T/8 > velocity_floor; with the default 1 mm/s and T = 0.5 s that is 2.3 mm/s²,
 // i.e. F within 0.05 % for a block on a 30° plane (a = g·sin α·(1 − F_s/F)).
@@ -26,6 +26,7 @@ namespace nmm::studies {
 struct VerdictCriterion {
   double velocity_floor = 1e-3;  ///< m/s, speeds below it count as stopped
   double max_displacement = 0;   ///< m, any displacement beyond it is failure; 0 = no limit
+  double decay_ratio = 0.5;      ///< –, v_late/v_mid at or below which a moving point is arresting
 };
 
 struct TrialVerdict {
