@@ -131,6 +131,23 @@ TEST(FosBlockOnPlane, MatchesTanPhiOverTanAlpha) {
   }
 }
 
+// The seed's joint laws (Bandis–Barton closure, hyperbolic shear): the reduced τf is the slip
+// limit of the hyperbola too, so F is the same tan φ / tan α.
+TEST(FosBlockOnPlane, JointLawsGiveTanPhiOverTanAlpha) {
+  const ReferenceSlide ref = block_on_plane(30, 35);
+  const fs::path dir = work_dir("block_joint_laws");
+  const std::string mesh = mesh_of(ref.scene, dir);
+  const nlohmann::json j = fos_json(mesh, dir / "fos",
+                                    "--tol 0.01 --workers 2 --set joint_sets.plane.normal.model=bandis_barton "
+                                    "--set joint_sets.plane.shear.model=hyperbolic");
+  ASSERT_FALSE(j["fos"].is_null()) << j.dump();
+  const double f = j["fos"].get<double>();
+  std::printf("block on plane, joint laws: F = %.4f, closed form %.4f, error %.2f %%\n", f, ref.fos,
+              100 * (f / ref.fos - 1));
+  EXPECT_NEAR(f, ref.fos, (0.01 + 0.01) * ref.fos);
+  EXPECT_EQ(j["sets"][0]["shear_model"], "hyperbolic");
+}
+
 // Hoek & Bray's planar slide with a vertical tension crack, dry: within 3 %. Without cohesion
 // (F = tan φ / tan ψ_p, but through the wedge's own weight and plane length).
 TEST(FosPlanarSlide, MatchesHoekBrayDry) {
