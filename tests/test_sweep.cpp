@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "sweep.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -123,4 +125,34 @@ TEST(Sweep, BadSweepFileIsExitTwo) {
     EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 1) << f << ": " << all;
     EXPECT_NE(all.find(f), std::string::npos) << all;
   }
+}
+
+// Expansion: list × product × preprocess product; a run with preprocess settings gets its own
+// mesh made by nmm-preprocess --set, the others share the base mesh.
+TEST(Sweep, ExpandsListTimesProductAndPreprocessesPerSeed) {
+  const fs::path dir = fs::path(NMM_TEST_WORK) / "expand";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "scene.json") << "{}";
+  std::ofstream(dir / "s.json") << R"({
+    "scene": "scene.json", "set": ["solver.steps=5"],
+    "variants": [ {"name": "a"}, {"name": "b", "set": ["x.y=1"], "preprocess_set": ["joint_sets.j.generate.density=2"]} ],
+    "product": {"p": [1, 2], "q": ["u", "v"]},
+    "preprocess_product": {"joint_sets.j.generate.seed": [7, 8]} })";
+  const nmm::studies::Sweep s = nmm::studies::read_sweep((dir / "s.json").string());
+  ASSERT_EQ(s.runs.size(), 2u * 4u * 2u);
+  EXPECT_EQ(s.parameters, (std::vector<std::string>{"variant", "p", "q", "preprocess:joint_sets.j.generate.seed"}));
+  const auto jobs = nmm::studies::sweep_jobs(s, "/root", "/base.nmm", "solve", "pre");
+  ASSERT_EQ(jobs.size(), s.runs.size());
+  // The last run: variant b, p = 2, q = v, seed 8.
+  const auto& last = jobs.back();
+  ASSERT_EQ(last.commands.size(), 2u);
+  const std::vector<std::string> pre = {"pre", (dir / "scene.json").string(), "-o", "/root/runs/r0016/mesh.nmm",
+                                        "--set", "joint_sets.j.generate.density=2",
+                                        "--set", "joint_sets.j.generate.seed=8"};
+  EXPECT_EQ(last.commands[0], pre);
+  const std::vector<std::string> solve = {"solve", "/root/runs/r0016/mesh.nmm", "-o", "/root/runs/r0016/out",
+                                          "--quiet", "--set", "solver.steps=5", "--set", "x.y=1",
+                                          "--set", "p=2", "--set", "q=v"};
+  EXPECT_EQ(last.commands[1], solve);
 }
