@@ -196,6 +196,40 @@ TEST(FosEngines, SnakemakeGivesTheSameFactorAsThreads) {
   EXPECT_TRUE(fs::exists(dir / "snake" / "round-1" / "snakemake.log"));
 }
 
+// --restart STATE reaches every trial's nmm-solve command line (the restart itself is
+// nmm-solve's, docs/interface.md). The solver here is a wrapper that records its arguments and
+// runs the real nmm-solve without --restart (this nmm-solve may not have it yet).
+TEST(FosCli, RestartIsPassedToEveryTrial) {
+  const ReferenceSlide ref = block_on_plane(30, 35);
+  const fs::path dir = work_dir("restart");
+  const std::string mesh = mesh_of(ref.scene, dir);
+  std::ofstream(dir / "state.nmmstate") << "checkpoint";
+  const fs::path wrapper = dir / "solve_wrapper.sh";
+  std::ofstream(wrapper) << "#!/usr/bin/env bash\n"
+                            "echo \"$@\" >> " << (dir / "calls.txt").string() << "\n"
+                            "args=(); skip=0\n"
+                            "for a in \"$@\"; do\n"
+                            "  if [ $skip = 1 ]; then skip=0; continue; fi\n"
+                            "  if [ \"$a\" = --restart ]; then skip=1; continue; fi\n"
+                            "  args+=(\"$a\")\n"
+                            "done\n"
+                            "exec " << NMM_SOLVE << " \"${args[@]}\"\n";
+  fs::permissions(wrapper, fs::perms::owner_all);
+  const nlohmann::json j = fos_json(mesh, dir / "fos",
+                                    "--tol 0.05 --restart " + (dir / "state.nmmstate").string() +
+                                        " --solver " + wrapper.string());
+  ASSERT_FALSE(j["fos"].is_null());
+  EXPECT_EQ(j["restart"], (dir / "state.nmmstate").string());
+  std::ifstream in(dir / "calls.txt");
+  std::string line;
+  int calls = 0;
+  while (std::getline(in, line)) {
+    ++calls;
+    EXPECT_NE(line.find("--restart " + fs::absolute(dir / "state.nmmstate").string()), std::string::npos) << line;
+  }
+  EXPECT_EQ(calls, static_cast<int>(j["trials"].size()));
+}
+
 TEST(FosCli, BadInputIsExitTwoWithOneLine) {
   const ReferenceSlide ref = block_on_plane(30, 35);
   const fs::path dir = work_dir("bad");
