@@ -1,4 +1,4 @@
-// nmm-fos MESH.nmm -o OUT [--restart STATE] [--sets a,b] [--config V.json] [--set P=V]...
+// nmm-fos MESH.nmm -o OUT [--restart STATE] [--sets a,b] [--config V.json] [--set P=V]... [--watch W]
 //         [--tol 0.01] [--workers N] [--engine threads|snakemake] [--profile DIR]
 //
 // Factor of safety by strength reduction (strength_reduction.h): every trial is one nmm-solve run
@@ -62,7 +62,7 @@ std::string factor_id(double f) {
 int main(int argc, char** argv) {
   CLI::App app{"nmm-fos: factor of safety by strength reduction (trials are nmm-solve runs)"};
   std::string mesh_path, out_dir, restart, config_path, sets_word, engine_word = "threads";
-  std::string profile, snakefile, solver;
+  std::string profile, snakefile, solver, watch_word = "auto";
   std::vector<std::string> sets;
   SearchOptions search;
   VerdictCriterion criterion;
@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   app.add_option("--start", search.start, "first trial factor")->capture_default_str();
   app.add_option("--max-factor", search.max_factor, "give up when stable up to this factor")->capture_default_str();
   app.add_option("--velocity-floor", criterion.velocity_floor, "m/s: slower counts as stopped")->capture_default_str();
+  app.add_option("--watch", watch_word, "what the verdict watches: auto (measure points if any, else blocks), points, blocks, both")->capture_default_str();
   app.add_option("--max-displacement", criterion.max_displacement, "m: beyond it a trial fails (0 = no limit)")->capture_default_str();
   app.set_version_flag("--version", std::string("nmm-fos ") + NMM_VERSION);
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-fos"); status >= 0)
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
       throw nmm::InputError("", "--start", "need 0 < start < max-factor");
     if (!(criterion.velocity_floor > 0) || !(criterion.max_displacement >= 0))
       throw nmm::InputError("", "--velocity-floor", "need a positive floor and a non-negative limit");
+    criterion.watch = parse_watch(watch_word);
     EngineOptions engine;
     engine.engine = parse_engine(engine_word);
     engine.workers = workers;
@@ -182,8 +184,9 @@ int main(int argc, char** argv) {
     j["restart"] = restart.empty() ? nlohmann::json(nullptr) : nlohmann::json(restart);
     j["criterion"] = {{"velocity_floor", criterion.velocity_floor},
                       {"max_displacement", criterion.max_displacement},
-                      {"rule", "failing: run stopped, or a measure point moved beyond "
-                               "max_displacement, or moves faster than velocity_floor over the "
+                      {"watch", watch_word},
+                      {"rule", "failing: run stopped, or a watched measure point or block moved "
+                               "beyond max_displacement, or moves faster than velocity_floor over the "
                                "last quarter and faster than decay_ratio times its speed over "
                                "the quarter before"},
                       {"decay_ratio", criterion.decay_ratio}};

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "error.h"
+#include "frame_reader.h"
 #include "svg_writer.h"
 #include "vtk_writer.h"
 
@@ -17,28 +18,6 @@ namespace nmm::studies {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw RunError(p.string() + ": cannot read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// The numbers of the <DataArray ... Name="name" ...> element.
-std::vector<double> data_array(const std::string& xml, const std::string& name, const std::string& file) {
-  const std::string key = "Name=\"" + name + "\"";
-  const std::size_t at = xml.find(key);
-  if (at == std::string::npos) throw RunError(file + ": no DataArray " + name);
-  const std::size_t open = xml.find('>', at);
-  const std::size_t close = xml.find("</DataArray>", open);
-  std::istringstream in(xml.substr(open + 1, close - open - 1));
-  std::vector<double> v;
-  double x;
-  while (in >> x) v.push_back(x);
-  return v;
-}
 
 // Blue → cyan → yellow → red.
 std::string colour(double s) {
@@ -54,17 +33,11 @@ std::string colour(double s) {
 
 void write_mechanism_svg(const std::string& run_dir, const std::string& title,
                          const std::string& svg_path) {
-  const std::string pvd = slurp(fs::path(run_dir) / "frames.pvd");
-  const std::size_t at = pvd.rfind("file=\"");
-  if (at == std::string::npos) throw RunError(run_dir + "/frames.pvd: no frame");
-  const std::size_t end = pvd.find('"', at + 6);
-  const fs::path vtu = fs::path(run_dir) / pvd.substr(at + 6, end - at - 6);
-  const std::string xml = slurp(vtu);
-  const std::vector<double> pts = data_array(xml, "Points", vtu.string());
-  const std::vector<double> u = data_array(xml, "displacement", vtu.string());
-  const std::vector<double> conn = data_array(xml, "connectivity", vtu.string());
-  const std::vector<double> offs = data_array(xml, "offsets", vtu.string());
-  if (u.size() != pts.size()) throw RunError(vtu.string() + ": displacement and points differ");
+  const Frame frame = read_frame(list_frames(run_dir).back().second);
+  const std::vector<double>& pts = frame.points;
+  const std::vector<double>& u = frame.displacement;
+  const std::vector<int>& conn = frame.connectivity;
+  const std::vector<int>& offs = frame.offsets;
 
   double umax = 0;
   for (std::size_t i = 0; i + 2 < u.size(); i += 3) umax = std::max(umax, std::hypot(u[i], u[i + 1]));
@@ -79,7 +52,7 @@ void write_mechanism_svg(const std::string& run_dir, const std::string& title,
 
   SvgWriter svg;
   std::size_t begin = 0;
-  for (double o : offs) {
+  for (int o : offs) {
     const auto stop = static_cast<std::size_t>(o);
     std::vector<Vec2> poly;
     double um = 0;

@@ -1,8 +1,11 @@
-// Stable or failing: the verdict on one strength-reduction trial, from the run's history.csv and
-// summary.json (docs/interface.md).
+// Stable or failing: the verdict on one strength-reduction trial, from the run's history.csv,
+// frames and summary.json (docs/interface.md).
 //
-// For every measure point p, with positions x_p(t) from history.csv and d_p(t) = |x_p(t) − x_p(t0)|
-// its displacement since the trial's first output row:
+// What is watched: the measure points (history.csv), or the blocks (each block's mean
+// displacement over its manifold-element vertices, from the frames at the trial's start, half,
+// three quarters and end), or both; by default the measure points when the scene has some, else
+// the blocks. For every watched item p, with positions x_p(t) and d_p(t) = |x_p(t) − x_p(t0)| its
+// displacement since the trial's first output:
 //   v_late = |x_p(t_end) − x_p(t_3/4)| / (t_end − t_3/4)   (mean speed over the last quarter)
 //   v_mid  = |x_p(t_3/4) − x_p(t_1/2)| / (t_3/4 − t_1/2)   (over the quarter before)
 // (t_1/2, t_3/4: the output rows nearest half and three quarters of the trial.) The trial is
@@ -23,7 +26,10 @@
 
 namespace nmm::studies {
 
+enum class Watch { automatic, points, blocks, both };
+
 struct VerdictCriterion {
+  Watch watch = Watch::automatic;
   double velocity_floor = 1e-3;  ///< m/s, speeds below it count as stopped
   double max_displacement = 0;   ///< m, any displacement beyond it is failure; 0 = no limit
   double decay_ratio = 0.5;      ///< –, v_late/v_mid at or below which a moving point is arresting
@@ -36,8 +42,11 @@ struct TrialVerdict {
   double end_velocity = 0;      ///< m/s, largest v_late over the points
 };
 
+/// Parses "auto", "points", "blocks", "both" (InputError naming --watch otherwise).
+Watch parse_watch(const std::string& word);
+
 /// Judges the run in `out_dir` that ended with `exit_status` (0 or 3). Throws RunError when the
-/// output cannot be read or history.csv has no measure points / fewer than 4 output rows per point.
+/// output cannot be read, or what is watched is missing or has fewer than 4 outputs.
 TrialVerdict judge_trial(const std::string& out_dir, int exit_status, const VerdictCriterion& c);
 
 }  // namespace nmm::studies

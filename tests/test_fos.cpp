@@ -148,6 +148,25 @@ TEST(FosBlockOnPlane, JointLawsGiveTanPhiOverTanAlpha) {
   EXPECT_EQ(j["sets"][0]["shear_model"], "hyperbolic");
 }
 
+// Watching the blocks (mean displacement from the frames) instead of the measure point: a scene
+// needs no measure points, and the sliding block gives the same F.
+TEST(FosBlockOnPlane, WatchingBlocksGivesTheSameFactor) {
+  ReferenceSlide ref = block_on_plane(30, 35);
+  ref.scene.erase("measure_points");
+  const fs::path dir = work_dir("block_watch_blocks");
+  const std::string mesh = mesh_of(ref.scene, dir);
+  const nlohmann::json j = fos_json(mesh, dir / "fos", "--tol 0.01 --workers 2");
+  ASSERT_FALSE(j["fos"].is_null()) << j.dump();
+  const double f = j["fos"].get<double>();
+  std::printf("block on plane, blocks watched: F = %.4f, closed form %.4f, error %.2f %%\n", f, ref.fos,
+              100 * (f / ref.fos - 1));
+  EXPECT_NEAR(f, ref.fos, (0.01 + 0.01) * ref.fos);
+  bool block_named = false;
+  for (const auto& t : j["trials"])
+    block_named |= t["reason"].get<std::string>().find("block 1") != std::string::npos;
+  EXPECT_TRUE(block_named) << "the sliding block (1) decides the failing trials";
+}
+
 // Hoek & Bray's planar slide with a vertical tension crack, dry: within 3 %. Without cohesion
 // (F = tan φ / tan ψ_p, but through the wedge's own weight and plane length).
 TEST(FosPlanarSlide, MatchesHoekBrayDry) {
@@ -234,7 +253,7 @@ TEST(FosCli, BadInputIsExitTwoWithOneLine) {
   const ReferenceSlide ref = block_on_plane(30, 35);
   const fs::path dir = work_dir("bad");
   const std::string mesh = mesh_of(ref.scene, dir);
-  for (const char* extra_c : {"--sets nosuch", "--tol 0", "--engine slurmish", "--set mesh.size=1",
+  for (const char* extra_c : {"--watch sideways", "--sets nosuch", "--tol 0", "--engine slurmish", "--set mesh.size=1",
                                    "--restart no_such.nmmstate", "--frobnicate"}) {
     const std::string extra = extra_c;
     const fs::path err = dir / "err.txt";
