@@ -1,0 +1,103 @@
+// Reference slides with a known factor of safety (formulas in the header).
+#include "fos_reference.h"
+
+#include <cmath>
+#include <vector>
+
+namespace nmm::studies {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kG = 9.81;          // m/s²
+constexpr double kDensity = 2500;    // kg/m³
+double rad(double d) { return d * kPi / 180; }
+
+// The common scene: material, joint set "plane", solver settings for a short trial.
+nlohmann::json base_scene(const std::string& name, double dip, double phi_deg, double cohesion,
+                          double duration) {
+  nlohmann::json s;
+  s["name"] = name;
+  s["gravity"] = {kG * std::sin(dip), -kG * std::cos(dip)};
+  s["plane"] = "strain";
+  s["materials"] = {{"rock", {{"density", kDensity}, {"young", 1e10}, {"poisson", 0.25}}}};
+  s["joint_sets"] = {{"plane",
+                      {{"friction_deg", phi_deg},
+                       {"cohesion", cohesion},
+                       {"tensile_strength", 0},
+                       {"normal", {{"model", "constant"}, {"kn", 1e11}, {"kni", 2e10}, {"vm", 2e-4}}},
+                       {"shear", {{"model", "constant"}, {"ks", 4e10}, {"ksi", 1e10}, {"rf", 0.9}}}}}};
+  s["interface_set"] = "plane";
+  s["mesh"] = {{"size", 0.5}};
+  const double dt = 2e-3;
+  s["solver"] = {{"time_step", dt},
+                 {"steps", static_cast<int>(std::lround(duration / dt))},
+                 {"dynamic", true},
+                 {"max_displacement_ratio", 0.001},
+                 {"output_every", 10}};
+  return s;
+}
+
+nlohmann::json ring(const std::vector<std::pair<double, double>>& pts) {
+  nlohmann::json r = nlohmann::json::array();
+  for (const auto& [x, y] : pts) r.push_back({x, y});
+  return r;
+}
+}  // namespace
+
+ReferenceSlide block_on_plane(double alpha_deg, double phi_deg, double duration) {
+  ReferenceSlide r;
+  const double a = rad(alpha_deg);
+  r.scene = base_scene("block-on-plane", a, phi_deg, 0, duration);
+  // The block slides towards +x: 2.5 m of base ahead of it.
+  r.scene["bodies"] = {{{"material", "rock"}, {"outer", ring({{0, 0}, {7, 0}, {7, 1.1}, {0, 1.1}})}},
+                       {{"material", "rock"},
+                        {"outer", ring({{1.5, 1.1}, {4.5, 1.1}, {4.5, 1.6}, {1.5, 1.6}})}}};
+  r.scene["fixed_points"] = {{0.3, 0.3}, {6.7, 0.3}, {3.5, 0.3}};
+  r.scene["measure_points"] = {{3, 1.35}};
+  r.weight = kDensity * kG * 3 * 0.5;
+  r.plane_length = 3;
+  r.fos = std::tan(rad(phi_deg)) / std::tan(a);
+  return r;
+}
+
+ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, double crack_x,
+                            double phi_deg, double cohesion, double duration) {
+  ReferenceSlide r;
+  const double pf = rad(face_deg), pp = rad(plane_deg);
+  // The wedge in the real frame: toe, crack base, crack top, crest.
+  const std::vector<std::pair<double, double>> real = {
+      {0, 0}, {crack_x, crack_x * std::tan(pp)}, {crack_x, height}, {height / std::tan(pf), height}};
+  double area = 0;
+  for (std::size_t i = 0; i < real.size(); ++i) {
+    const auto& p = real[i];
+    const auto& q = real[(i + 1) % real.size()];
+    area += 0.5 * (p.first * q.second - q.first * p.second);
+  }
+  r.weight = kDensity * kG * area;
+  r.plane_length = crack_x / std::cos(pp);
+  r.fos = (cohesion * r.plane_length + r.weight * std::cos(pp) * std::tan(rad(phi_deg))) /
+          (r.weight * std::sin(pp));
+  // Plane frame, mirrored so that the wedge slides towards +x: turn by −ψ_p about the toe,
+  // mirror x, put the toe at (x0, y0) with 4 m of base ahead of it. y0 = 1.1 keeps the plane off
+  // the mesh lattice's node rows.
+  const double y0 = 1.1, x0 = 1 + r.plane_length;
+  std::vector<std::pair<double, double>> wedge;
+  for (const auto& [x, y] : real)
+    wedge.push_back({x0 - (x * std::cos(pp) + y * std::sin(pp)), y0 - x * std::sin(pp) + y * std::cos(pp)});
+  wedge[0].second = wedge[1].second = y0;  // exactly on the plane
+  const double right = x0 + 4;
+  r.scene = base_scene("planar-slide", pp, phi_deg, cohesion, duration);
+  r.scene["bodies"] = {{{"material", "rock"}, {"outer", ring({{0, 0}, {right, 0}, {right, y0}, {0, y0}})}},
+                       {{"material", "rock"}, {"outer", ring(wedge)}}};
+  r.scene["fixed_points"] = {{0.3, 0.3}, {right - 0.3, 0.3}, {0.5 * right, 0.3}};
+  // Measure point: the wedge's centroid-ish point, the mean of its corners.
+  double mx = 0, my = 0;
+  for (const auto& [x, y] : wedge) {
+    mx += x / wedge.size();
+    my += y / wedge.size();
+  }
+  r.scene["measure_points"] = {{mx, my}};
+  return r;
+}
+
+}  // namespace nmm::studies

@@ -1,0 +1,37 @@
+// Reference problems with a closed-form factor of safety (docs/physics.md §5), as scene
+// documents, shared by the tests, the benchmark and the examples.
+//
+// Block on a plane: a block resting on a plane dipping α, joint friction φ, no cohesion:
+//   F = tan φ / tan α.
+// Planar slide with a vertical tension crack (Hoek & Bray, Rock Slope Engineering; dry): a slope
+// of height H and face angle ψ_f, a failure plane dipping ψ_p through the toe, a vertical crack
+// from the top surface down to the plane at distance x_c from the toe. With plane length A (per
+// unit width) and wedge weight W:
+//   F = (c·A + W cos ψ_p tan φ) / (W sin ψ_p).
+// Both are modelled in the frame of the plane: the plane is horizontal (no slivers where a
+// dipping surface would cross the mesh lattice at a shallow angle) and gravity is turned by the
+// dip, g = (−g sin ψ, −g cos ψ): the same mechanics. The block or wedge is a body of its own
+// resting on a base body; their touching edge is the contact interface (joint set "plane"). The
+// rock behind the dry, open tension crack exerts no force and is left out.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+namespace nmm::studies {
+
+struct ReferenceSlide {
+  nlohmann::json scene;  ///< scene document (a measure point on the sliding body)
+  double fos = 0;        ///< closed-form factor of safety
+  double weight = 0;     ///< N per m, W
+  double plane_length = 0;  ///< m, A
+};
+
+/// A 3 m × 0.5 m block on a plane dipping alpha_deg, friction phi_deg; trial of `duration` s.
+ReferenceSlide block_on_plane(double alpha_deg, double phi_deg, double duration = 0.4);
+
+/// Hoek & Bray planar slide: height H, face ψ_f, plane ψ_p, crack at x_c from the toe (must lie
+/// behind the crest: x_c > H cot ψ_f), friction φ, cohesion c (Pa).
+ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, double crack_x,
+                            double phi_deg, double cohesion, double duration = 0.4);
+
+}  // namespace nmm::studies
