@@ -73,6 +73,7 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   s.has_gravity = o.gravity;
   s.gravity = {0, o.gravity ? -9.81 : 0.0};
   s.solver.dynamic = o.dynamic;
+  s.solver.static_mode = nmm::StaticMode::equilibrium;  // "inertia off": no mass term at all
   s.solver.time_step = 1e-3;
   for (int i = 0; i < o.fixed_points; ++i)
     s.fixed_points.push_back({0.1 + (side - 0.2) * i / std::max(o.fixed_points - 1, 1), 0.1});

@@ -478,12 +478,16 @@ std::vector<Vec2> read_points(const Reader& r) {
 SolverDef read_solver(const Reader& r) {
   r.check_keys({"time_step", "steps", "dynamic", "dynamic_factor", "newmark_beta",
                 "max_displacement_ratio", "output_every", "fixed_point_stiffness",
-                "sliver_cover_weight", "checkpoint_every", "support_stiffness",
+                "sliver_cover_weight", "checkpoint_every", "support_stiffness", "static_mode",
                 "excavation_steps"});
   SolverDef s;  // defaults from scene.h
   s.time_step = r.optional_number("time_step", s.time_step, interval(kMinTimeStep, true, kMaxTimeStep, true));
   s.steps = r.optional_integer("steps", s.steps, 0);
   if (r.has("dynamic")) s.dynamic = r["dynamic"].as_bool();
+  if (r.has("static_mode"))
+    s.static_mode = r["static_mode"].as_choice({"dda", "equilibrium"}, "static_mode") == 0
+                        ? StaticMode::dda
+                        : StaticMode::equilibrium;
   s.dynamic_factor = r.optional_number("dynamic_factor", s.dynamic_factor, interval(0, true, 1, true));
   s.newmark_beta = r.optional_number("newmark_beta", s.newmark_beta, interval(0.5, true, 1, true));
   s.fixed_point_stiffness =

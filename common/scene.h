@@ -36,6 +36,10 @@ struct TimeTable {
 };
 
 enum class PlaneKind { strain, stress };
+/// What `"dynamic": false` solves: DDA's static analysis (each step from rest, the inertia term
+/// kept in the step's matrix, so blocks held only by contacts are well posed and settle) or the
+/// pure equilibrium K d = F of a body held by fixed points (docs/solver.md, "Static analysis").
+enum class StaticMode { dda, equilibrium };
 
 struct MaterialDef {
   std::string name;
@@ -118,7 +122,8 @@ struct InsituStressDef {
 struct SolverDef {
   double time_step = 1e-3;                ///< s, > 0
   std::int64_t steps = 1000;              ///< number of time steps, >= 0
-  bool dynamic = true;                    ///< false: static analysis (no inertia, v0 = 0)
+  bool dynamic = true;                    ///< false: static analysis (every step from rest)
+  StaticMode static_mode = StaticMode::dda;  ///< what a static run solves (see StaticMode)
   double dynamic_factor = 1.0;            ///< –, in [0, 1]: v0 of the next step = factor · v1
   double newmark_beta = 0.6;              ///< –, in [0.5, 1]: 0.5 is Shi's scheme exactly
   double fixed_point_stiffness = 0;       ///< N/m per unit thickness; 0: 100 × largest E·1 m

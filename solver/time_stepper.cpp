@@ -9,7 +9,8 @@
 //
 // Each step solves (Newmark, γ = 1, β = solver.newmark_beta)
 //     (K + M/(βΔt²)) d = F_ext − F_int + M·[v0/(βΔt) + (1/(2β) − 1)·a0]     (dynamic)
-//     K d = F_ext − F_int                                                    (static)
+//     (K + 2M/Δt²) d = F_ext − F_int                           (static, static_mode "dda")
+//     K d = F_ext − F_int                              (static, static_mode "equilibrium")
 // then a1 = (d − Δt·v0 − (½ − β)Δt²·a0)/(βΔt²), v1 = v0 + Δt·a1, and the next step starts from
 // v0 = k·v1, a0 = k·a1 (k = solver.dynamic_factor; static runs keep v = a = 0).
 // β = ½ is Shi's DDA scheme exactly: (K + 2/Δt² M) d = F + 2/Δt M v0, v1 = 2d/Δt − v0. It is
@@ -39,7 +40,14 @@
 // thickness. Under a reaction R, a fixed point gives way by R/k_f: with E = 10 GPa that is 1 µm
 // for 1 MN. Stiffer springs make the matrix worse conditioned for no gain in the result.
 //
-// Only the effects a scene calls for are computed: no mass without inertia (static), no gravity
+// Static analysis is DDA's (Shi 1988): every step starts from rest (v0 = a0 = 0) but keeps the
+// inertia term 2M/Δt² (β = ½) in its matrix. A block held only by contacts is then well posed
+// (its rigid-body modes have mass), and an out-of-balance force F moves it by at most ½(F/m)Δt²
+// per step, so a block system settles over steps onto its equilibrium instead of the step being
+// singular. The pure equilibrium solve K d = F (a continuum held by fixed points, reached in
+// one step) is static_mode "equilibrium"; it needs every block held by two fixed points.
+//
+// Only the effects a scene calls for are computed: no mass in an equilibrium solve, no gravity
 // term without gravity, nothing for loads or fixed points that are not there.
 #include "time_stepper.h"
 
@@ -200,6 +208,7 @@ std::vector<std::string> TimeStepper::effects() const {
   std::vector<std::string> e;
   if (mesh_.element_count() > 0) e.push_back("elasticity");
   if (scene_.solver.dynamic) e.push_back("inertia");
+  else if (step_inertia()) e.push_back("static_inertia");  // DDA static: mass term, v0 = 0
   if (scene_.has_gravity && (scene_.gravity.x != 0 || scene_.gravity.y != 0)) e.push_back("gravity");
   if (!s_.loads.empty()) e.push_back("point_loads");
   if (!s_.fixed.empty()) e.push_back("fixed_points");
@@ -232,7 +241,8 @@ void TimeStepper::check_static_support() const {
        << held[b] << " fixed point" << (held[b] == 1 ? "" : "s")
        << ", so its covers (e.g. cover " << c << " at node "
        << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
-       << ") are unconstrained: give each block two fixed points or run dynamic";
+       << ") are unconstrained: give each block two fixed points, or use DDA's static analysis "
+          "(solver.static_mode \"dda\", the default) or a dynamic run";
     throw RunError(os.str());
   }
 }
@@ -288,7 +298,7 @@ void TimeStepper::build_pattern_with_pairs() {
 }
 
 void TimeStepper::assemble(double dt) {
-  const bool dynamic = scene_.solver.dynamic;
+  const bool dynamic = step_inertia();  // the matrix has the inertia term
   // Body force per unit mass: gravity, and −a_base(t) for a shaken base (the model moves
   // relative to its base, which the supports and fixed points hold).
   const double t_end = s_.time + dt;
@@ -299,7 +309,8 @@ void TimeStepper::assemble(double dt) {
   const bool gravity = bx != 0 || by != 0;
   // Until one step has given the acceleration, a0 is unknown: that step takes β = ½, for which
   // a0 drops out, so constant acceleration is exact from the first step on.
-  const double beta = s_.accel_known ? scene_.solver.newmark_beta : 0.5;
+  // A static step starts from rest: β = ½ (Shi's 2M/Δt²), a0 and v0 drop out.
+  const double beta = s_.accel_known && scene_.solver.dynamic ? scene_.solver.newmark_beta : 0.5;
   const double mass_k = dynamic ? 1.0 / (beta * dt * dt) : 0.0;  // on d
   const double mass_v = dynamic ? 1.0 / (beta * dt) : 0.0;        // on v0
   const double mass_a = dynamic ? 1.0 / (2 * beta) - 1.0 : 0.0;   // on a0
@@ -531,7 +542,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
 
 std::string TimeStepper::attempt(double dt) {
   const bool contact = contacts_.active();
-  if (!scene_.solver.dynamic && !contact) check_static_support();
+  if (!step_inertia() && !contact) check_static_support();
   auto t0 = Clock::now();
   compute_frames();
   timings_.assembly += since(t0);
@@ -614,8 +625,9 @@ std::string TimeStepper::attempt(double dt) {
     // search distance would be missed), nor leave a penetration deeper than g2·w0.
     const double limit = scene_.solver.max_displacement_ratio * w0_;
     const double dmax = d.cwiseAbs().maxCoeff();
-    // A static increment does not shrink with Δt (no inertia): the limit applies to dynamic runs.
-    if (scene_.solver.dynamic && dmax > 2 * limit) {
+    // An equilibrium increment does not shrink with Δt (no inertia): the limit applies to runs
+    // with the inertia term (dynamic and DDA static).
+    if (step_inertia() && dmax > 2 * limit) {
       std::ostringstream os;
       os << "a displacement of " << dmax << " m in one step exceeds 2 × max_displacement_ratio × w0 = "
          << 2 * limit << " m";
@@ -766,6 +778,9 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["simulated_time"] = s_.time;
   summary["wall_seconds"] = since(wall0);
   summary["effects"] = effects();
+  summary["analysis"] = scene_.solver.dynamic                                ? "dynamic"
+                        : scene_.solver.static_mode == StaticMode::dda ? "static_dda"
+                                                                       : "static_equilibrium";
   summary["open_close_iterations"] = s_.iterations;
   summary["time_step_cuts"] = s_.cuts;
   summary["steps_with_unsettled_friction"] = s_.friction_unsettled;

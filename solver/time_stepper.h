@@ -114,6 +114,10 @@ class TimeStepper {
   void update(const Eigen::VectorXd& d, double dt);
   std::vector<MeasureSample> sample_measure_points() const;
   void check_static_support() const;
+  /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
+  bool step_inertia() const {
+    return scene_.solver.dynamic || scene_.solver.static_mode == StaticMode::dda;
+  }
   void build_pattern_with_pairs();
   void apply_removed();
   void assemble_boundary(double t_end);

@@ -125,7 +125,9 @@ int main(int argc, char** argv) {
         Job job;
         job.id = factor_id(f);
         std::vector<std::string> cmd = {solve, fs::absolute(mesh_path).string(), "-o",
-                                        (root / "runs" / job.id / "out").string(), "--quiet"};
+                                        (root / "runs" / job.id / "out").string(), "--quiet",
+                                        // frame_reader.h reads the ASCII frames (block watch)
+                                        "--text-frames"};
         if (!restart.empty()) {
           cmd.push_back("--restart");
           cmd.push_back(fs::absolute(restart).string());
