@@ -111,7 +111,6 @@ struct Range {
 
 const Range kAnyFinite{};
 const Range kPositive{0, false};
-const Range kNonNegative{0, true};
 Range interval(double lo, bool lo_closed, double hi, bool hi_closed) {
   return Range{lo, lo_closed, hi, hi_closed};
 }
