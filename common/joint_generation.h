@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene.h"
+#include "vec2.h"
 
 namespace nmm {
 

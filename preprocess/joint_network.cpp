@@ -358,4 +358,36 @@ JointNetwork generate_joint_network(const std::vector<GeneratedSetInput>& sets, 
   return net;
 }
 
+nlohmann::json explicit_scene(const nlohmann::json& doc, const SceneDef& scene,
+                              JointNetwork* network) {
+  std::vector<GeneratedSetInput> inputs;
+  for (std::size_t i = 0; i < scene.joint_sets.size(); ++i)
+    if (scene.joint_sets[i].generated)
+      inputs.push_back({static_cast<int>(i), scene.joint_sets[i].generate});
+  if (inputs.empty()) {
+    if (network) *network = JointNetwork{};
+    return doc;
+  }
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const BodyDef& b : scene.bodies)
+    for (const Vec2& p : b.outer) {
+      x0 = std::min(x0, p.x); y0 = std::min(y0, p.y);
+      x1 = std::max(x1, p.x); y1 = std::max(y1, p.y);
+    }
+  const Ring box = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  JointNetwork net = generate_joint_network(inputs, box);
+  nlohmann::json out = doc;
+  nlohmann::json& joints = out["joints"];
+  if (joints.is_null()) joints = nlohmann::json::array();
+  for (const JointDef& j : net.joints) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const Vec2& p : j.points) points.push_back({p.x, p.y});
+    joints.push_back({{"set", scene.joint_sets[j.set].name}, {"points", points}});
+  }
+  for (const GeneratedSetInput& in : inputs)
+    out["joint_sets"][scene.joint_sets[in.set].name].erase("generate");
+  if (network) *network = std::move(net);
+  return out;
+}
+
 }  // namespace nmm::pre

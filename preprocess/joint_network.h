@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "joint_generation.h"
 #include "scene.h"
 
@@ -71,6 +73,14 @@ struct JointNetwork {
 /// at). `box` is the bodies' bounding box; each trace is clipped to the set's region (default the
 /// box) and to the box.
 JointNetwork generate_joint_network(const std::vector<GeneratedSetInput>& sets, const Ring& box);
+
+/// The explicit scene of a scene document with generated joint sets: every set's `generate`
+/// block is run (sets in name order, so earlier sets are those with smaller names), the joints
+/// are appended to /joints as two-point joints and the `generate` blocks are removed, so that the
+/// result is an ordinary scene that nmm-solve and nmm-inspect re-parse with the same geometry.
+/// `scene` is the parsed `doc`; `network` (optional) receives the joints and statistics.
+nlohmann::json explicit_scene(const nlohmann::json& doc, const SceneDef& scene,
+                              JointNetwork* network = nullptr);
 
 /// Clips segment a–b to a simple polygon: the pieces inside, in order along a–b.
 std::vector<std::pair<Vec2, Vec2>> clip_segment_to_polygon(Vec2 a, Vec2 b, const Ring& poly);

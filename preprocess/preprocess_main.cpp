@@ -9,7 +9,11 @@
 #include <iostream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cover_cutter.h"
+#include "joint_network.h"
+#include "vtk_writer.h"
 #include "command_line.h"
 #include "error.h"
 #include "mesh_file.h"
@@ -20,9 +24,12 @@
 int main(int argc, char** argv) {
   CLI::App app{"nmm-preprocess: cut the covers of a scene and write the binary mesh file"};
   std::string scene_path, out_path;
+  std::string export_path;
   bool quiet = false, timings = false;
   app.add_option("scene", scene_path, "scene file (JSON, comments allowed)")->required();
   app.add_option("-o,--output", out_path, "mesh file to write (.nmm)")->required();
+  app.add_option("--export-scene", export_path,
+                 "also write the explicit scene (generated joints listed) to this file");
   app.add_flag("-q,--quiet", quiet, "print nothing on success");
   app.add_flag("--timings", timings, "print where the time went, on stderr");
   app.set_version_flag("--version", std::string("nmm-preprocess ") + NMM_VERSION);
@@ -31,8 +38,21 @@ int main(int argc, char** argv) {
 
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    const std::string text = nmm::read_text_file(scene_path);
-    const nmm::SceneDef scene = nmm::parse_scene(text, scene_path);
+    std::string text = nmm::read_text_file(scene_path);
+    nmm::SceneDef scene = nmm::parse_scene(text, scene_path);
+    // Generated joint sets (docs/joint-networks.md): the mesh embeds the explicit scene, with
+    // the generated joints listed and the generate blocks removed, so that nmm-solve and
+    // nmm-inspect re-parse exactly the geometry that was cut.
+    bool has_generated = false;
+    for (const auto& set : scene.joint_sets) has_generated = has_generated || set.generated;
+    if (has_generated || !export_path.empty()) {
+      const nlohmann::json doc = nmm::parse_json_text(text, scene_path);
+      const nlohmann::json expanded = nmm::pre::explicit_scene(doc, scene);
+      if (has_generated) {
+        text = expanded.dump(1) + "\n";
+        scene = nmm::scene_from_json(expanded, scene_path + " (generated joints)");
+      }
+    }
     nmm::pre::check_scene_geometry(scene, scene_path);
     nmm::pre::CutTimings cut;
     nmm::Mesh mesh = nmm::pre::build_mesh(scene, scene_path, &cut);
@@ -41,6 +61,7 @@ int main(int argc, char** argv) {
     mesh.scene_sha256 = nmm::sha256(text);
     const auto t1 = std::chrono::steady_clock::now();
     nmm::write_mesh_file(mesh, out_path);
+    if (!export_path.empty()) nmm::write_file_atomically(export_path, text);
     const double write_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     const double total_s =
