@@ -8,11 +8,13 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "cover_cutter.h"
 #include "joint_network.h"
+#include "json_set.h"
 #include "vtk_writer.h"
 #include "command_line.h"
 #include "error.h"
@@ -25,11 +27,15 @@ int main(int argc, char** argv) {
   CLI::App app{"nmm-preprocess: cut the covers of a scene and write the binary mesh file"};
   std::string scene_path, out_path;
   std::string export_path;
+  std::vector<std::string> sets;
   bool quiet = false, timings = false;
   app.add_option("scene", scene_path, "scene file (JSON, comments allowed)")->required();
   app.add_option("-o,--output", out_path, "mesh file to write (.nmm)")->required();
   app.add_option("--export-scene", export_path,
                  "also write the explicit scene (generated joints listed) to this file");
+  app.add_option("--set", sets,
+                 "PATH=VALUE on the scene before preprocessing, e.g. "
+                 "joint_sets.NAME.generate.seed=7 (another realisation; geometry is rebuilt)");
   app.add_flag("-q,--quiet", quiet, "print nothing on success");
   app.add_flag("--timings", timings, "print where the time went, on stderr");
   app.set_version_flag("--version", std::string("nmm-preprocess ") + NMM_VERSION);
@@ -38,7 +44,15 @@ int main(int argc, char** argv) {
 
   try {
     const auto t0 = std::chrono::steady_clock::now();
+    const std::string scene_file = scene_path;
     std::string text = nmm::read_text_file(scene_path);
+    if (!sets.empty()) {
+      // --set edits the scene before anything is built (json_set.h); the mesh embeds the result.
+      nlohmann::json doc = nmm::parse_json_text(text, scene_path);
+      for (const std::string& set : sets) nmm::apply_set(doc, set);
+      text = doc.dump(1) + "\n";
+      scene_path += " with --set";
+    }
     nmm::SceneDef scene = nmm::parse_scene(text, scene_path);
     // Generated joint sets (docs/joint-networks.md): the mesh embeds the explicit scene, with
     // the generated joints listed and the generate blocks removed, so that nmm-solve and
@@ -56,7 +70,7 @@ int main(int argc, char** argv) {
     nmm::pre::check_scene_geometry(scene, scene_path);
     nmm::pre::CutTimings cut;
     nmm::Mesh mesh = nmm::pre::build_mesh(scene, scene_path, &cut);
-    mesh.scene_file = scene_path;
+    mesh.scene_file = scene_file;
     mesh.scene_text = text;
     mesh.scene_sha256 = nmm::sha256(text);
     const auto t1 = std::chrono::steady_clock::now();
