@@ -16,16 +16,11 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "joint_generation.h"
+#include "vec2.h"
+
 namespace nmm {
 
-struct Vec2 {
-  double x = 0;  ///< m (or N for forces, m/s² for gravity)
-  double y = 0;
-};
-inline bool operator==(const Vec2& a, const Vec2& b) { return a.x == b.x && a.y == b.y; }
-
-/// A closed polygon as its vertices, any orientation, first vertex not repeated at the end. m.
-using Ring = std::vector<Vec2>;
 
 /// A time history: a value that follows a table of (time, value) rows, linearly interpolated and
 /// held at its first / last value outside the table (common/time_table.h evaluates it).
@@ -76,6 +71,8 @@ struct JointSetDef {
   double tensile_strength = 0;  ///< Pa, >= 0
   NormalLawDef normal;
   ShearLawDef shear;
+  bool generated = false;       ///< a `generate` block is present (issue 14)
+  JointGenerationDef generate;  ///< its definition (common/joint_generation.h)
 };
 
 struct BodyDef {
@@ -180,6 +177,7 @@ constexpr double kMaxAcceleration = 1e5;       ///< m/s², each gravity componen
 constexpr double kMaxForce = 1e15;             ///< N per unit thickness, each load component
 constexpr double kMinTimeStep = 1e-12;         ///< s
 constexpr double kMaxTimeStep = 1e6;           ///< s
+constexpr double kMaxGeneratedJoints = 1e6;    ///< expected joints of one generated set
 
 /// Parses scene text (JSON, // and /* */ comments allowed) and validates it.
 /// Throws InputError(file, JSON path, message) on the first problem found.

@@ -9,8 +9,14 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cover_cutter.h"
+#include "joint_network.h"
+#include "json_set.h"
+#include "vtk_writer.h"
 #include "command_line.h"
 #include "error.h"
 #include "mesh_file.h"
@@ -32,9 +38,16 @@ constexpr double kWarnFrom = 5e5;
 int main(int argc, char** argv) {
   CLI::App app{"nmm-preprocess: cut the covers of a scene and write the binary mesh file"};
   std::string scene_path, out_path;
+  std::string export_path;
+  std::vector<std::string> sets;
   bool quiet = false, timings = false, strict_joints = false;
   app.add_option("scene", scene_path, "scene file (JSON, comments allowed)")->required();
   app.add_option("-o,--output", out_path, "mesh file to write (.nmm)")->required();
+  app.add_option("--export-scene", export_path,
+                 "also write the explicit scene (generated joints listed) to this file");
+  app.add_option("--set", sets,
+                 "PATH=VALUE on the scene before preprocessing, e.g. "
+                 "joint_sets.NAME.generate.seed=7 (another realisation; geometry is rebuilt)");
   app.add_flag("-q,--quiet", quiet, "print nothing on success");
   app.add_flag("--timings", timings, "print where the time went, on stderr");
   app.add_flag("--strict-joints", strict_joints,
@@ -45,8 +58,29 @@ int main(int argc, char** argv) {
 
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    const std::string text = nmm::read_text_file(scene_path);
-    const nmm::SceneDef scene = nmm::parse_scene(text, scene_path);
+    const std::string scene_file = scene_path;
+    std::string text = nmm::read_text_file(scene_path);
+    if (!sets.empty()) {
+      // --set edits the scene before anything is built (json_set.h); the mesh embeds the result.
+      nlohmann::json doc = nmm::parse_json_text(text, scene_path);
+      for (const std::string& set : sets) nmm::apply_set(doc, set);
+      text = doc.dump(1) + "\n";
+      scene_path += " with --set";
+    }
+    nmm::SceneDef scene = nmm::parse_scene(text, scene_path);
+    // Generated joint sets (docs/joint-networks.md): the mesh embeds the explicit scene, with
+    // the generated joints listed and the generate blocks removed, so that nmm-solve and
+    // nmm-inspect re-parse exactly the geometry that was cut.
+    bool has_generated = false;
+    for (const auto& set : scene.joint_sets) has_generated = has_generated || set.generated;
+    if (has_generated || !export_path.empty()) {
+      const nlohmann::json doc = nmm::parse_json_text(text, scene_path);
+      const nlohmann::json expanded = nmm::pre::explicit_scene(doc, scene);
+      if (has_generated) {
+        text = expanded.dump(1) + "\n";
+        scene = nmm::scene_from_json(expanded, scene_path + " (generated joints)");
+      }
+    }
     nmm::pre::check_scene_geometry(scene, scene_path);
     for (const std::string& w : nmm::check_scene_usability(scene, scene_path, !strict_joints))
       std::cerr << w << "\n";
@@ -76,11 +110,12 @@ int main(int argc, char** argv) {
                    "nmm-preprocess: cut in %.1f s (arrangement %.1f s, covers %.1f s); writing %s...\n",
                    cut.mesh_generation + cut.arrangement + cut.labelling + cut.covers,
                    cut.arrangement, cut.covers, out_path.c_str());
-    mesh.scene_file = scene_path;
+    mesh.scene_file = scene_file;
     mesh.scene_text = text;
     mesh.scene_sha256 = nmm::sha256(text);
     const auto t1 = std::chrono::steady_clock::now();
     nmm::write_mesh_file(mesh, out_path);
+    if (!export_path.empty()) nmm::write_file_atomically(export_path, text);
     const double write_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     const double total_s =
