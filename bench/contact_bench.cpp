@@ -16,41 +16,13 @@
 #include <vector>
 
 #include "cover_cutter.h"
+#include "scene_builders.h"  // the brick wall, the same scene the static-analysis test uses
 #include "time_stepper.h"
 
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-nmm::SceneDef brick_wall(int n) {
-  nmm::SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
-  nmm::JointSetDef js;
-  js.name = "mortar";
-  js.friction_deg = 35;
-  js.normal.kn = 2e11;
-  js.shear.ks = 8e10;
-  s.joint_sets.push_back(js);
-  s.interface_set = 0;
-  s.mesh_size = 0.5;
-  s.has_gravity = true;
-  s.gravity = {0, -9.81};
-  auto box = [](double x0, double y0, double x1, double y1) {
-    nmm::BodyDef b;
-    b.material = 0;
-    b.outer = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-    return b;
-  };
-  s.bodies.push_back(box(-1, -1, n + 1.5, 0));
-  for (double x = -0.9; x < n + 1.4; x += 0.5) s.fixed_points.push_back({x, -0.9});
-  for (int row = 0; row < n; ++row) {
-    const double shift = (row % 2) ? 0.5 : 0.0;
-    for (int i = 0; i < n; ++i)
-      s.bodies.push_back(box(i + shift, 0.5 * row, i + shift + 1, 0.5 * row + 0.5));
-  }
-  s.solver.time_step = 1e-3;
-  return s;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,7 +44,7 @@ int main(int argc, char** argv) {
   csv << header;
   std::fputs(header, stdout);
   for (int n : sizes) {
-    const nmm::SceneDef s = brick_wall(n);
+    const nmm::SceneDef s = nmm::test::brick_wall(n, true);
     const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
     nmm::solve::TimeStepper st(m, s, "bench");
     std::string status = st.run_until(5e-3, [](std::int64_t) {});
