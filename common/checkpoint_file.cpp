@@ -12,6 +12,7 @@
 #include <set>
 #include <system_error>
 
+#include "crc32.h"
 #include "error.h"
 
 namespace nmm {
@@ -35,25 +36,6 @@ std::uint64_t get_u64(const std::string& s, std::size_t at) {
   return v;
 }
 
-std::uint32_t crc32_update(std::uint32_t crc, const char* data, std::size_t n) {
-  uLong c = crc;
-  while (n > 0) {
-    const std::size_t chunk = std::min<std::size_t>(n, std::size_t{1} << 30);
-    c = ::crc32(c, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(chunk));
-    data += chunk;
-    n -= chunk;
-  }
-  return static_cast<std::uint32_t>(c);
-}
-std::uint32_t crc32_of(const char* data, std::size_t n) {
-  return crc32_update(static_cast<std::uint32_t>(::crc32(0L, Z_NULL, 0)), data, n);
-}
-std::uint32_t header_crc(const std::string& b, std::size_t table_end) {
-  static const char zeros[4] = {0, 0, 0, 0};
-  std::uint32_t c = crc32_of(b.data(), kHeaderCrcOffset);
-  c = crc32_update(c, zeros, 4);
-  return crc32_update(c, b.data() + kHeaderCrcOffset + 4, table_end - kHeaderCrcOffset - 4);
-}
 
 bool tag_ok(const char* raw, std::string& tag) {
   tag.clear();
@@ -95,7 +77,7 @@ std::string checkpoint_to_bytes(const CheckpointSections& sections) {
     if (!data.empty()) std::memcpy(&out[pos], data.data(), data.size());
     pos += data.size();
   }
-  put_u32(out, kHeaderCrcOffset, header_crc(out, table_end));
+  put_u32(out, kHeaderCrcOffset, header_crc(out, table_end, kHeaderCrcOffset));
   return out;
 }
 
@@ -121,7 +103,7 @@ CheckpointSections checkpoint_from_bytes(const std::string& b, const std::string
   if (count > (b.size() - kHeaderSize) / kEntrySize)
     bad(at_byte(16), "section count " + std::to_string(count) + " does not fit in the file");
   const std::size_t table_end = kHeaderSize + kEntrySize * static_cast<std::size_t>(count);
-  if (header_crc(b, table_end) != get_u32(b, kHeaderCrcOffset))
+  if (header_crc(b, table_end, kHeaderCrcOffset) != get_u32(b, kHeaderCrcOffset))
     bad(at_byte(kHeaderCrcOffset), "header CRC-32 mismatch (the header or section table is damaged)");
   CheckpointSections out;
   std::set<std::string> seen;

@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "crc32.h"
 #include "error.h"
 
 namespace nmm {
@@ -138,29 +139,6 @@ std::uint64_t align8(std::uint64_t n) {
   return (n + 7) & ~std::uint64_t{7};
 }
 
-// zlib's crc32() takes a 32-bit length; feed it in chunks so sections over 4 GiB are correct.
-std::uint32_t crc32_update(std::uint32_t crc, const char* data, std::size_t n) {
-  uLong c = crc;
-  while (n > 0) {
-    const std::size_t chunk = std::min<std::size_t>(n, std::size_t{1} << 30);
-    c = ::crc32(c, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(chunk));
-    data += chunk;
-    n -= chunk;
-  }
-  return static_cast<std::uint32_t>(c);
-}
-
-std::uint32_t crc32_of(const char* data, std::size_t n) {
-  return crc32_update(static_cast<std::uint32_t>(::crc32(0L, Z_NULL, 0)), data, n);
-}
-
-// CRC-32 of the header and section table with the header CRC field itself counted as zero.
-std::uint32_t header_crc(const std::string& bytes, std::size_t table_end) {
-  static const char zeros[4] = {0, 0, 0, 0};
-  std::uint32_t c = crc32_of(bytes.data(), kHeaderCrcOffset);
-  c = crc32_update(c, zeros, 4);
-  return crc32_update(c, bytes.data() + kHeaderCrcOffset + 4, table_end - kHeaderCrcOffset - 4);
-}
 
 std::string byte_at(std::uint64_t offset) {
   return "byte " + std::to_string(offset);
@@ -247,7 +225,7 @@ std::string build_container(const std::vector<OutSection>& sections) {
     put_u32(out, e + 32, crc32_of(s.data, s.size));
     if (s.size > 0) std::memcpy(&out[static_cast<std::size_t>(offsets[i])], s.data, s.size);
   }
-  put_u32(out, kHeaderCrcOffset, header_crc(out, table_end));
+  put_u32(out, kHeaderCrcOffset, header_crc(out, table_end, kHeaderCrcOffset));
   return out;
 }
 
@@ -299,7 +277,8 @@ std::map<std::string, InSection> parse_container(const std::string& bytes,
                      "the section table of " + std::to_string(count) + " entries ends at byte " +
                          std::to_string(table_end) + ", but the file has only " +
                          std::to_string(file_size) + " bytes (truncated?)");
-  if (header_crc(bytes, static_cast<std::size_t>(table_end)) != get_u32(bytes, kHeaderCrcOffset))
+  if (header_crc(bytes, static_cast<std::size_t>(table_end), kHeaderCrcOffset) !=
+      get_u32(bytes, kHeaderCrcOffset))
     throw InputError(name, byte_at(kHeaderCrcOffset), "header checksum mismatch (file corrupted)");
 
   std::map<std::string, InSection> by_tag;
