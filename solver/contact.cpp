@@ -1,4 +1,4 @@
-// Contact springs and the open–close iteration (Shi's DDA, physics.md §3).
+// Contact springs, friction and states (Shi's DDA contacts, solved as a convex problem; physics.md §3).
 //
 // A contact is a vertex P of element A facing an edge Q2 → Q3 of element B (contact_detection).
 // With the edge's unit tangent t, outward normal n and P's projection P0 = Q2 + ω(Q3 − Q2), the
@@ -8,35 +8,25 @@
 // (to first order this is Shi's triangle-area formula dn = Δ(P1,P2,P3)/l with the edge's own
 // motion taken at P0).
 //
-// Springs (energy ½k·x²): normal K += kn·cn cnᵀ, F −= kn·g0·cn. Shear: the spring carries an
-// elastic shear s_el from step to step (elastoplastic, "return mapping" friction): the trial
-// shear of a step is s = s_el + slip. Locked: K += ks·cs csᵀ, F −= ks·s_el·cs. Sliding: no
-// spring, friction F −= σ·(tanφ·N)·cs against the slip direction σ, N = −kn·gap of the previous
-// solve (explicit within the iteration, which repeats until N has settled to 0.1 %; those
-// repeats change only the right-hand side, so they reuse the factorisation, and are
-// under-relaxed after the fourth). A step
-// that ends sliding leaves s_el = σ·tanφ·N/ks, the spring loaded at the friction limit, so the
-// shear force stays continuous when the contact sticks again (a spring restarting from zero
-// would drop the force from tanφ·N to 0 in one step and shake the blocks).
-//
-// States after each solve (T = tensile strength, c = cohesion, L = the contact's tributary
-// length: half of each candidate edge at P; both are lost once the contact slides or opens):
-//   open    → locked   when gap < −ε (a fresh spring)
-//   closed  → open     when N < −T·L − kn·ε   (tension beyond the strength)
-//   locked  → sliding  when |ks·s| > N·tanφ + c·L   (Mohr–Coulomb), σ = sign(s)
-//   sliding → locked   when σ·ks·s < N·tanφ: the trial spring force falls below the limit (the
-//                      slip reversed)
-// ε = 1e-10·w0. A contact may change state once in one step; a second change leaves it closed
-// and sliding for the rest of the step: its normal spring stays (frozen open, it would sink in,
-// then close next step with a large starting penetration, overshoot and open again — a pump),
-// and its tangential force is friction at most (frozen locked at zero normal force it could pin
-// a whole block). So contacts sitting at zero gap or zero slip cannot flip for ever; a
-// tolerance growing instead would turn into huge forces: with kn = 5e11 N/m, 1 µm is 500 kN.
+// Springs, each a convex energy of the step's increment (the step is solved as one convex
+// minimisation: contact_solve.cpp):
+//   normal  N(δ) on the closure δ = −gap (constant kn·δ, or Bandis–Barton), 0 when open; a bond
+//           (tensile strength T, unbroken, closed at the start of the step) continues it into
+//           tension with the initial stiffness until N < −T·L, when it breaks for good;
+//   shear   elastoplastic: the spring carries an elastic shear s_el from step to step; the trial
+//           shear is s = s_el + slip and the force T(s) = ks·s (or the hyperbola) capped at the
+//           strength S = tanφ·N + c·L (c only while unbroken; 0 when open). A step that ends
+//           sliding leaves s_el at the cap (return mapping), so the force stays continuous when
+//           the contact sticks again.
+// Forces enter the residual r = b − A d + Σ N·cn − Σ T·cs, tangents the Newton matrix
+// (forces_at, add_tangents, tangent_times); the line search evaluates N and T along a direction
+// (set_direction, directional_force). S needs N: a fixed point around the convex solve
+// (update_strengths). States (open, locked, sliding) are read off the solution at the end of
+// the step (settle_states): open when N = 0 and no bond, sliding when the trial force reaches S.
+// Cohesion and the bond are lost once a contact slides or opens.
 //
 // Joint laws (Bandis–Barton closure, hyperbolic shear) replace the constant springs through
-// joint_law.h: each spring is linearised at its last iterate (Newton; the force is exactly on
-// the constitutive curve, the matrix gets the tangent), and the iteration goes on until no
-// spring force has moved by more than 0.1 % against that linearisation.
+// joint_law.h: the force is exactly on the constitutive curve, the matrix gets the tangent.
 //
 // Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
 // the scene's interface_set, else the default interface: kn = 20·E_max·(1 m), ks = kn/2.5,
@@ -109,6 +99,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
   for (const Contact& c : committed_)
     if (c.state != ContactState::open) closed_block_[c.at.vertex] = topo_.block_of[c.at.elem_b];
   eps_ = 1e-10 * w0;
+  skin_ = 1e-12 * w0;
   const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_, &near_pairs_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -140,7 +131,9 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
     // A closed contact whose gap is now positive has separated (or has moved onto an edge it
     // does not touch): it starts the step open. Kept closed, its spring would pull the faces
     // together with kn·gap — glue — and, closing the gap within the solve, never show tension.
-    if (c.state != ContactState::open && f.gap > eps_) c.state = ContactState::open;
+    // A bond (unbroken, with tensile strength) holds its faces in tension: it stays closed.
+    const bool bond = !c.broken && laws_[c.law].tensile > 0;
+    if (c.state != ContactState::open && f.gap > eps_ && !bond) c.state = ContactState::open;
     c.start_state = c.state;
     now.push_back(c);
   }
@@ -189,9 +182,6 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
       if (el > 0 && (ey / el) * nx + (-ex / el) * ny < -0.7) c.length += 0.5 * el;
     }
     if (c.length == 0) c.length = 1e-3 * topo_.mesh_size;  // a bare corner: a point
-    // Newton starts from the state the step starts in.
-    c.closure_k = std::max(0.0, -c.gap0);
-    c.shear_k = c.shear0;
   }
 }
 
@@ -232,41 +222,72 @@ void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::in
   }
 }
 
-void ContactSet::add_to_system(SystemMatrix* k, Eigen::VectorXd& rhs) const {
-  // Each spring is linearised at its last iterate: force F_k and tangent k_t there. With
-  // gap = g0 + cnᵀd and closure δ = −gap, N(δ) ≈ N_k + k_t(δ − δ_k) gives
-  //   K += k_t·cn cnᵀ,  F += (N_k − k_t·δ_k − k_t·g0)·cn;
-  // the shear force T(s) ≈ T_k + k_t(s − s_k), s = s_el + csᵀd, gives
-  //   K += k_t·cs csᵀ,  F −= (T_k − k_t·s_k + k_t·s_el)·cs.
-  // For constant springs both reduce to the plain penalty terms.
-  Eigen::Matrix<double, 12, 12> block;
-  for (const Contact& c : contacts_) {
-    if (c.state == ContactState::open) continue;
+namespace {
+// A spring's force and tangent at one point of the line search.
+struct Spring {
+  double force = 0;      // N (normal: compression > 0; shear: along the shear)
+  double stiffness = 0;  // N/m, tangent
+  bool capped = false;
+};
+
+// Normal force at gap g (m): the closure law in compression; in tension only a bond holds (with
+// the initial stiffness). The closure the law sees is smoothed over a skin of ±τ around touching,
+//     δ_e = 0 (δ ≤ −τ),  (δ + τ)²/(4τ) (|δ| < τ),  δ (δ ≥ τ),
+// so force and tangent are continuous: a contact that touches with no force (the sides of
+// bricks in a wall) sits inside the skin, and round-off in its gap moves its tangent a little
+// instead of switching it between 0 and kn, which would change the Newton matrix every
+// iteration. τ = 1e-12·w0 (a few pm): the force at touching is kn·τ/4, far below any load.
+Spring normal_at(const ContactLaw& law, const Contact& c, double g, double skin) {
+  const double closure = -g;
+  if (c.bonded && closure < skin) {
+    const double k0 = initial_normal_stiffness(law, c.length);
+    return {k0 * closure, k0, false};
+  }
+  if (closure >= skin) {
+    const SpringState s = normal_spring(law, closure, c.length);
+    return {s.force, s.stiffness, s.capped};
+  }
+  if (closure <= -skin) return {};
+  const double e = (closure + skin) * (closure + skin) / (4 * skin);
+  const SpringState s = normal_spring(law, e, c.length);
+  return {s.force, s.stiffness * (closure + skin) / (2 * skin), false};
+}
+
+// The trial shear force of the spring at elastic shear s, before the strength caps it.
+double trial_shear(const ContactLaw& law, const Contact& c, double s) {
+  if (law.shear == ShearModel::constant) return law.ks * s;
+  return shear_spring(law, s, c.strength, c.length).force;
+}
+
+// Shear force at elastic shear s (m): the spring, capped at the strength S (elastoplastic: the
+// energy is ½ks·s² inside the cap and S·|s| − S²/(2ks) beyond, convex and C¹).
+Spring shear_at(const ContactLaw& law, const Contact& c, double s) {
+  if (!(c.strength > 0)) return {};
+  const SpringState sp = shear_spring(law, s, c.strength, c.length);
+  if (std::abs(sp.force) >= c.strength) return {s > 0 ? c.strength : -c.strength, 0.0, false};
+  return {sp.force, sp.stiffness, false};
+}
+
+// Sliding: the trial force reaches the strength (a hyperbola with Rf = 1 only approaches it:
+// 99.9 % counts as slip).
+bool slides(const ContactLaw& law, const Contact& c) {
+  const double limit = law.shear == ShearModel::constant ? c.strength : 0.999 * c.strength;
+  return std::abs(trial_shear(law, c, c.shear)) >= limit;
+}
+}  // namespace
+
+void ContactSet::start_strengths() {
+  for (Contact& c : contacts_) {
     const ContactLaw& law = laws_[c.law];
-    const Eigen::Map<const Eigen::Matrix<double, 12, 1>> cn(c.cn.data()), cs(c.cs.data());
-    const SpringState nsp = normal_spring(law, c.closure_k, c.length);
-    block.noalias() = nsp.stiffness * cn * cn.transpose();
-    Eigen::Matrix<double, 12, 1> f =
-        (nsp.force - nsp.stiffness * c.closure_k - nsp.stiffness * c.gap0) * cn;
-    if (c.state == ContactState::locked) {
-      const double strength = shear_strength(law, nsp.force, c.length, c.broken);
-      const SpringState ssp = shear_spring(law, c.shear_k, strength, c.length);
-      block.noalias() += ssp.stiffness * cs * cs.transpose();
-      f -= (ssp.force - ssp.stiffness * c.shear_k + ssp.stiffness * c.shear0) * cs;
-    } else {
-      f -= c.slip_sign * shear_strength(law, c.friction_normal, c.length, true) * cs;
-    }
-    if (k) k->add_group(static_cast<std::size_t>(c.group), block.data());
-    for (int i = 0; i < 12; ++i) rhs[c.dofs[i]] += f[i];
+    const bool closed = c.start_state != ContactState::open;
+    c.bonded = closed && !c.broken && law.tensile > 0;
+    c.friction_normal = closed ? std::max(c.normal_force, 0.0) : 0.0;
+    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken) : 0.0;
   }
 }
 
-ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, double w0) {
-  const double eps = 1e-10 * w0;
-  int changed = 0, forces = 0, stiffness = 0;
+void ContactSet::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   for (Contact& c : contacts_) {
-    if (iteration == 1) c.flips = 0;
-    const ContactState before = c.state;
     const ContactLaw& law = laws_[c.law];
     double dg = 0, ds = 0;
     for (int i = 0; i < 12; ++i) {
@@ -275,101 +296,132 @@ ContactSet::Changes ContactSet::judge(const Eigen::VectorXd& d, int iteration, d
     }
     c.gap = c.gap0 + dg;
     c.shear = c.shear0 + ds;
-    // Normal force on the constitutive curve (compression > 0; tension with the initial
-    // stiffness, for the opening check).
-    const double k0 = initial_normal_stiffness(law, c.length);
-    const SpringState nsp = normal_spring(law, std::max(0.0, -c.gap), c.length);
-    const double n = c.gap < 0 ? nsp.force : -k0 * c.gap;
-    c.capped = nsp.capped;
-    const double tension_cap = c.broken ? 0.0 : law.tensile * c.length;
-    const double strength = shear_strength(law, n, c.length, c.broken);
-    // Newton: has the closure the normal spring was linearised at moved the force by > 0.1 %?
-    if (c.state != ContactState::open && law.normal != NormalModel::constant) {
-      const SpringState at_k = normal_spring(law, c.closure_k, c.length);
-      const double linear = at_k.force + at_k.stiffness * (std::max(0.0, -c.gap) - c.closure_k);
-      if (std::abs(nsp.force - linear) > 1e-3 * std::max(std::abs(nsp.force), 1e-9 * k0 * w0)) {
-        if (std::abs(nsp.stiffness - at_k.stiffness) > 0.2 * at_k.stiffness) ++stiffness;
-        ++forces;
-      }
-      c.closure_k = std::max(0.0, -c.gap);
-    }
-    c.kn_now = c.state == ContactState::open ? 0 : nsp.stiffness;
-    switch (c.state) {
-      case ContactState::open:
-        c.normal_force = 0;
-        c.shear_force = 0;
-        c.ks_now = 0;
-        if (c.gap < -eps) {
-          c.shear0 = 0;  // a fresh spring: its trial shear is the slip of this step
-          c.friction_normal = n;
-          c.shear = ds;
-          c.closure_k = -c.gap;
-          c.shear_k = ds;
-          c.state = ContactState::locked;
-          ++events.closed;
-          ++changed;
-        }
-        break;
-      case ContactState::locked:
-      case ContactState::sliding: {
-        c.normal_force = std::max(n, 0.0);
-        const SpringState ssp = shear_spring(law, c.shear, strength, c.length);
-        if (n < -tension_cap - k0 * eps) {
-          c.state = ContactState::open;
-          c.broken = true;
-          ++events.opened;
-          ++changed;
-        } else if (c.state == ContactState::locked) {
-          c.shear_force = ssp.force;
-          c.ks_now = ssp.stiffness;
-          // Mohr–Coulomb; a hyperbola with Rf = 1 only approaches the strength: 99.9 % is slip.
-          const double limit = law.shear == ShearModel::constant ? strength : 0.999 * strength;
-          if (std::abs(ssp.force) > limit) {
-            c.state = ContactState::sliding;
-            c.slip_sign = c.shear > 0 ? 1 : -1;
-            ++events.slid;
-            c.friction_normal = n;
-            c.broken = true;
-            ++changed;
-          } else if (law.shear != ShearModel::constant) {
-            const SpringState at_k = shear_spring(law, c.shear_k, strength, c.length);
-            const double linear = at_k.force + at_k.stiffness * (c.shear - c.shear_k);
-            if (std::abs(ssp.force - linear) > 1e-3 * std::max(std::abs(ssp.force), 1e-9 * k0 * w0)) {
-              if (std::abs(ssp.stiffness - at_k.stiffness) > 0.2 * at_k.stiffness) ++stiffness;
-              ++forces;
-            }
-            c.shear_k = c.shear;
-          }
-        } else {
-          c.ks_now = 0;
-          c.shear_force = c.slip_sign * shear_strength(law, c.friction_normal, c.length, true);
-          if (c.slip_sign * ssp.force < strength - initial_shear_stiffness(law, c.length) * eps) {
-            c.state = ContactState::locked;  // the slip reversed: it sticks, the spring loaded
-            c.shear_k = c.shear;
-            ++events.stuck;
-            ++changed;
-          } else if (std::abs(n - c.friction_normal) >
-                     1e-3 * std::max(std::abs(n), std::abs(c.friction_normal)) + 1e-12 * k0 * w0) {
-            // Friction must use the normal force it ends with. A fixed-point iteration on it can
-            // oscillate where contacts press on each other; from the fifth iteration on it is
-            // under-relaxed (half way), which damps that.
-            c.friction_normal = iteration <= 4 ? n : 0.5 * (c.friction_normal + n);
-            ++forces;
-          }
-        }
-        break;
-      }
-    }
-    if (c.state != before && ++c.flips > 1) {
-      // Second change in this step: settle closed and sliding (see the file comment).
-      c.state = ContactState::sliding;
-      if (before != ContactState::sliding) c.slip_sign = c.shear > 0 ? 1 : -1;
-      c.friction_normal = std::max(n, 0.0);
-      ++events.frozen_sliding;
-      if (c.state == before) --changed;
-    }
+    const Spring n = normal_at(law, c, c.gap, skin_);
+    const Spring t = shear_at(law, c, c.shear);
+    c.normal_force = n.force;
+    c.kn_now = n.stiffness;
+    c.capped = n.capped;
+    c.shear_force = t.force;
+    c.ks_now = t.stiffness;
+    if (n.force == 0 && t.force == 0) continue;
+    for (int i = 0; i < 12; ++i) r[c.dofs[i]] += n.force * c.cn[i] - t.force * c.cs[i];
   }
-  return {changed, forces, stiffness};
+}
+
+void ContactSet::add_tangents(SystemMatrix& k) const {
+  Eigen::Matrix<double, 12, 12> block;
+  for (const Contact& c : contacts_) {
+    if (c.kn_now == 0 && c.ks_now == 0) continue;
+    const Eigen::Map<const Eigen::Matrix<double, 12, 1>> cn(c.cn.data()), cs(c.cs.data());
+    block.noalias() = c.kn_now * cn * cn.transpose();
+    if (c.ks_now != 0) block.noalias() += c.ks_now * cs * cs.transpose();
+    k.add_group(static_cast<std::size_t>(c.group), block.data());
+  }
+}
+
+void ContactSet::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  for (const Contact& c : contacts_) {
+    if (c.kn_now == 0 && c.ks_now == 0) continue;
+    double a = 0, b = 0;
+    for (int i = 0; i < 12; ++i) {
+      a += c.cn[i] * v[c.dofs[i]];
+      b += c.cs[i] * v[c.dofs[i]];
+    }
+    a *= c.kn_now;
+    b *= c.ks_now;
+    for (int i = 0; i < 12; ++i) y[c.dofs[i]] += a * c.cn[i] + b * c.cs[i];
+  }
+}
+
+void ContactSet::set_direction(const Eigen::VectorXd& delta) {
+  for (Contact& c : contacts_) {
+    double dg = 0, ds = 0;
+    for (int i = 0; i < 12; ++i) {
+      dg += c.cn[i] * delta[c.dofs[i]];
+      ds += c.cs[i] * delta[c.dofs[i]];
+    }
+    c.rate_gap = dg;
+    c.rate_shear = ds;
+  }
+}
+
+double ContactSet::directional_force(double alpha) const {
+  double sum = 0;
+  for (const Contact& c : contacts_) {
+    const ContactLaw& law = laws_[c.law];
+    if (c.rate_gap != 0) sum += normal_at(law, c, c.gap + alpha * c.rate_gap, skin_).force * c.rate_gap;
+    if (c.rate_shear != 0 && c.strength > 0)
+      sum -= shear_at(law, c, c.shear + alpha * c.rate_shear).force * c.rate_shear;
+  }
+  return sum;
+}
+
+double ContactSet::force_scale() const {
+  double f = 0;
+  for (const Contact& c : contacts_) f = std::max({f, std::abs(c.normal_force), std::abs(c.shear_force)});
+  return f;
+}
+
+int ContactSet::update_strengths(double force_floor) {
+  int changed = 0;
+  for (Contact& c : contacts_) {
+    const ContactLaw& law = laws_[c.law];
+    // A bond breaks for good beyond its tensile strength; cohesion is lost once a contact
+    // slides. Both only ever switch one way, so they settle within a step.
+    if (c.bonded && c.normal_force < -law.tensile * c.length) {
+      c.bonded = false;
+      c.broken = true;
+      ++events.broken;
+      ++changed;
+    }
+    const bool closed = c.normal_force > 0 || c.bonded;
+    if (closed && !c.broken && c.strength > 0 && slides(law, c) && (law.cohesion > 0 || law.tensile > 0)) {
+      c.broken = true;
+      c.bonded = false;
+      ++events.broken;
+      ++changed;
+    }
+    // The friction fixed point: the strength follows the normal force of the solution. A change
+    // matters only where the shear force is at or near the limit (or on a hyperbola, whose
+    // whole curve scales with the strength). (Keeping the strength of the normal force a
+    // contact carried into the step instead — one convex problem per step — was measured: a
+    // sliding block then ends 0.17–0.31 % off Coulomb's answer, because its normal forces shift
+    // between its corners as it slides.)
+    const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
+    double s = closed ? shear_strength(law, n, c.length, c.broken) : 0.0;
+    if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
+    const double moved = std::abs(s - c.strength);
+    if (moved > 1e-3 * std::max(s, c.strength) && moved > force_floor) {
+      const bool matters = law.shear != ShearModel::constant ||
+                           std::abs(trial_shear(law, c, c.shear)) >= 0.99 * std::min(s, c.strength);
+      if (matters) ++changed;
+    }
+    c.friction_normal = n;
+    c.strength = s;
+  }
+  return changed;
+}
+
+void ContactSet::settle_states() {
+  for (Contact& c : contacts_) {
+    const ContactLaw& law = laws_[c.law];
+    const bool closed = c.normal_force > 0 || c.bonded;
+    ContactState now = ContactState::open;
+    if (closed) now = slides(law, c) ? ContactState::sliding : ContactState::locked;
+    if (now == ContactState::sliding) c.slip_sign = c.shear > 0 ? 1 : -1;
+    if (now == ContactState::open) {
+      c.normal_force = 0;
+      c.shear_force = 0;
+      c.kn_now = c.ks_now = 0;
+      if (c.start_state != ContactState::open) c.broken = true;  // cohesion lost once it opens
+    }
+    const ContactState before = c.start_state;
+    if (before == ContactState::open && now != ContactState::open) ++events.closed;
+    if (before != ContactState::open && now == ContactState::open) ++events.opened;
+    if (before != ContactState::sliding && now == ContactState::sliding) ++events.slid;
+    if (before == ContactState::sliding && now == ContactState::locked) ++events.stuck;
+    c.state = now;
+  }
 }
 
 void ContactSet::end_step() {
@@ -380,9 +432,8 @@ void ContactSet::end_step() {
     } else if (c.state == ContactState::locked) {
       c.shear_el = c.shear;
     } else {
-      // Sliding: the spring stays loaded at the friction limit.
-      const double strength = shear_strength(law, c.normal_force, c.length, true);
-      c.shear_el = c.slip_sign * shear_at_force(law, strength, strength, c.length);
+      // Sliding: the spring stays loaded at the friction limit (return mapping).
+      c.shear_el = c.slip_sign * shear_at_force(law, c.strength, c.strength, c.length);
     }
   }
   committed_ = contacts_;

@@ -36,10 +36,10 @@ struct Contact {
   double shear_el = 0;       ///< m, elastic shear of the shear spring at the start of the step
   int slip_sign = 0;         ///< direction of sliding along the edge (±1)
   double normal_force = 0;   ///< N, compression > 0, from the last solve
-  double friction_normal = 0;  ///< N, the normal force the friction of the last solve used
+  double friction_normal = 0;  ///< N, normal force the shear strength of the inner solve uses
   double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
-  double closure_k = 0;      ///< m, closure the normal spring is linearised at (Newton)
-  double shear_k = 0;        ///< m, trial shear the shear spring is linearised at
+  double strength = 0;       ///< N, shear strength of the inner solve (tanφ·N + c·L, 0 if open)
+  bool bonded = false;       ///< normal spring holds tension (unbroken, tensile strength, closed)
   double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
   double ks_now = 0;         ///< N/m, tangent shear stiffness at the last solve (0 sliding)
   double shear_force = 0;    ///< N, shear force at the last solve
@@ -50,7 +50,7 @@ struct Contact {
   std::array<double, 12> cn{}, cs{};
   double gap0 = 0, shear0 = 0;
   int group = -1;  ///< coupling group of its element pair in the system matrix
-  int flips = 0;   ///< state changes in this step's open–close iteration
+  double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
 };
 
 /// All contacts of a run.
@@ -88,31 +88,41 @@ class ContactSet {
   /// a superset of element_pairs()).
   void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
 
-  /// Adds the springs and friction of the current states to the system; with k == nullptr only
-  /// their forces (the matrix is unchanged when only friction forces changed).
-  void add_to_system(SystemMatrix* k, Eigen::VectorXd& rhs) const;
-
-  /// What a judgement changed: states (the matrix changes) and friction forces (only the
-  /// right-hand side changes: a sliding contact's normal force moved by more than 0.1 %).
-  struct Changes {
-    int states = 0;     ///< contacts whose state changed
-    int forces = 0;     ///< contacts whose forces moved (right-hand side only)
-    int stiffness = 0;  ///< nonlinear springs whose tangent moved by more than 20 % (refactor)
-  };
-  /// Judges every contact against the solution d of open–close iteration `iteration` (1, 2,
-  /// ...) of a step of length dt (s) in a model of half-size w0 (m).
-  Changes judge(const Eigen::VectorXd& d, int iteration, double w0);
-
+  // --- The step's contact problem as a convex minimisation (contact.cpp, contact_solve.cpp) ---
+  /// Sets each contact's shear strength for the step's first inner solve from what it carries
+  /// (warm start): the normal force of the last accepted step where it was closed.
+  void start_strengths();
+  /// Evaluates every contact at the increment d: gap, shear, the forces on the constitutive
+  /// curves and their tangents; adds the contact forces Σ N·cn − Σ T·cs to r (the residual).
+  void forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r);
+  /// Adds the tangent springs of the last forces_at() to the matrix.
+  void add_tangents(SystemMatrix& k) const;
+  /// y += (Σ kn·cn cnᵀ + ks·cs csᵀ)·v with the tangents of the last forces_at().
+  void tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
+  /// Line search along δ from the point of the last forces_at(): stores each contact's rates
+  /// Δg = cnᵀδ, Δs = csᵀδ.
+  void set_direction(const Eigen::VectorXd& delta);
+  /// Σ N(g + αΔg)·Δg − Σ T(s + αΔs)·Δs, the contacts' part of −dΠ/dα (non-increasing in α).
+  double directional_force(double alpha) const;
+  /// Largest |N| and |T| of the last forces_at(), N (a scale for the residual tolerance).
+  double force_scale() const;
+  /// After an inner solve: bonds beyond their tensile strength or cohesion break (for good), and
+  /// shear strengths follow the normal forces (the friction fixed point). Returns the number of
+  /// contacts whose strength changed where it matters (at or near the limit) by more than 0.1 %
+  /// and more than `force_floor` (N).
+  int update_strengths(double force_floor);
+  /// The states the step ends in (open, locked, sliding) and the events they make.
+  void settle_states();
 
   /// Accepts the step: its contacts and states are what the next step starts from (a sliding
   /// contact's spring is left loaded at the friction limit). A step that is not accepted (cut and
   /// redone) leaves them as they were.
   void end_step();
 
-  /// State changes judged so far, in every iteration (diagnostics, summary.json "contacts").
+  /// State changes of accepted and cut attempts (diagnostics, summary.json "contacts").
   struct Events {
     long closed = 0, opened = 0, slid = 0, stuck = 0;
-    long frozen_sliding = 0;  ///< contacts settled after changing twice in one step
+    long broken = 0;  ///< bonds broken (tensile strength or cohesion exceeded)
   };
   Events events;
 
@@ -142,6 +152,7 @@ class ContactSet {
   std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
   ElementPairs near_pairs_;                 // element pairs within the search distance
   double eps_ = 0;                          // m, gap tolerance (1e-10·w0)
+  double skin_ = 0;                         // m, smoothing of the normal spring at touching (1e-12·w0)
   DetectionStats stats_;
   double detection_seconds_ = 0;
 };

@@ -6,6 +6,8 @@
 //   PATTERN u64 n, n × (i32, i32) element pairs, sorted
 //   BODIES  [body] u8 removed, [body] i64 removed_at
 //   CONTACT the contact history (contact_history.cpp)
+//   (FACTOR, optional, last: the matrix of the contact solve's factorisation, system_matrix.cpp;
+//    not part of the state hash — it only makes a restart precondition as the straight run did)
 //   DIAG    counters for summary.json (not hashed)
 // Every vector carries its length, which must match the mesh; every index is range-checked.
 #include "run_state.h"
@@ -121,12 +123,15 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
 }
 
 RunState state_from_sections(const CheckpointSections& sections, const Mesh& mesh,
-                             const std::string& name, std::string& contact_history) {
+                             const std::string& name, std::string& contact_history,
+                             std::string* factor_source) {
   static const char* const kTags[] = {"META",  "COVXY",  "COVU",   "VEL",     "ACC",
                                       "STRESS", "LOOPXY", "LOOPU", "POINTS",  "PATTERN",
                                       "BODIES", "CONTACT", "DIAG"};
   constexpr std::size_t kCount = sizeof kTags / sizeof kTags[0];
-  if (sections.size() != kCount)
+  // An optional last section FACTOR: the matrix of the solver's factorisation (not physics).
+  const bool factor = sections.size() == kCount + 1 && sections.back().first == "FACTOR";
+  if (sections.size() != kCount && !factor)
     throw InputError(name, "section table", "expected " + std::to_string(kCount) +
                                                 " sections, found " + std::to_string(sections.size()));
   for (std::size_t i = 0; i < kCount; ++i)
@@ -206,6 +211,7 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
     r.expect_end();
   }
   contact_history = sections[11].second;
+  if (factor_source) *factor_source = factor ? sections.back().second : std::string();
   {
     ByteReader r(sections[12].second, name, "DIAG");
     s.iterations = r.get<std::uint64_t>();
@@ -231,8 +237,11 @@ std::string state_hash(const RunState& s, const std::string& contact_history, co
 }
 
 void write_state_file(const std::string& path, const RunState& s,
-                      const std::string& contact_history, const Mesh& mesh) {
-  write_checkpoint_file(state_to_sections(s, contact_history, mesh), path);
+                      const std::string& contact_history, const Mesh& mesh,
+                      const std::string& factor_source) {
+  CheckpointSections sections = state_to_sections(s, contact_history, mesh);
+  if (!factor_source.empty()) sections.emplace_back("FACTOR", factor_source);
+  write_checkpoint_file(sections, path);
 }
 
 }  // namespace nmm::solve

@@ -59,8 +59,10 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
 
 /// Reads a state back, checking every size and index against `mesh`; a checkpoint of another
 /// mesh, or damaged data, is an InputError naming `name` and the section.
+/// `factor_source` receives the optional FACTOR section (system_matrix.h factor_source()).
 RunState state_from_sections(const CheckpointSections& sections, const Mesh& mesh,
-                             const std::string& name, std::string& contact_history);
+                             const std::string& name, std::string& contact_history,
+                             std::string* factor_source = nullptr);
 
 /// SHA-256 (hex) of the physical state: every section except the diagnostics. Two runs whose
 /// hashes are equal are bitwise in the same state.
@@ -68,6 +70,7 @@ std::string state_hash(const RunState& s, const std::string& contact_history, co
 
 /// Writes OUTDIR/checkpoint.nmmstate or any path, atomically (checkpoint_file.h).
 void write_state_file(const std::string& path, const RunState& s,
-                      const std::string& contact_history, const Mesh& mesh);
+                      const std::string& contact_history, const Mesh& mesh,
+                      const std::string& factor_source = {});
 
 }  // namespace nmm::solve

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   std::string mesh_path, out_dir, config_path, restart_path, field_name = "displacement";
   std::vector<std::string> sets;
   bool quiet = false, pictures = false, text_frames = false;
+  int threads = 0;
   int contacts_every = 1;
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
@@ -53,6 +54,9 @@ int main(int argc, char** argv) {
   app.add_option("--contacts-every", contacts_every,
                  "contacts.csv keeps every N-th output step (and the last); default 1")
       ->check(CLI::PositiveNumber);
+  app.add_option("--threads", threads,
+                 "threads of the factorisation (0: one below 150k unknowns, all cores above)")
+      ->check(CLI::Range(0, 256));
   app.add_option("--picture-field", field_name,
                  "what colours result.svg: displacement, sxx, syy or sxy");
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
@@ -68,6 +72,7 @@ int main(int argc, char** argv) {
     const nmm::Mesh mesh = nmm::read_mesh_file(mesh_path);
     const nmm::solve::RunScene run = nmm::solve::make_run_scene(mesh, mesh_path, config_path, sets);
     nmm::solve::TimeStepper stepper(mesh, run.scene, mesh_path + " (embedded scene)");
+    stepper.set_threads(threads);
     if (!restart_path.empty()) stepper.restart_from(restart_path);
     nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
                                                        : nmm::solve::FrameFormat::compressed);

@@ -1,6 +1,8 @@
 #include "system_matrix.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 
 namespace nmm::solve {
 
@@ -88,14 +90,87 @@ bool SystemMatrix::factorize() {
     llt_.analyzePattern(k_);
     analysed_ = true;
     ++analyses_;
+    const cholmod_common& c = llt_.cholmod();
+    factor_nonzeros_ = c.lnz;
+    factor_flops_ = c.fl;
+    const int method = c.selected >= 0 && c.selected < CHOLMOD_MAXMETHODS ? c.method[c.selected].ordering : -1;
+    ordering_ = method == CHOLMOD_AMD      ? "amd"
+                : method == CHOLMOD_METIS  ? "metis"
+                : method == CHOLMOD_NESDIS ? "nesdis"
+                : method == CHOLMOD_COLAMD ? "colamd"
+                : method == CHOLMOD_NATURAL ? "natural"
+                                           : "other";
   }
   llt_.factorize(k_);
   failed_unknown_ = -1;
-  if (llt_.info() != Eigen::Success) {
+  has_factor_ = llt_.info() == Eigen::Success;
+  if (has_factor_) factored_ = k_;
+  if (!has_factor_) {
     failed_unknown_ = llt_.failed_column();
     return false;
   }
   return true;
+}
+
+std::string SystemMatrix::factor_source() const {
+  if (!has_factor_) return {};
+  const std::int64_t n = factored_.rows(), nnz = factored_.nonZeros();
+  std::string out;
+  auto put = [&](const void* p, std::size_t bytes) { out.append(static_cast<const char*>(p), bytes); };
+  put(&n, sizeof n);
+  put(&nnz, sizeof nnz);
+  put(factored_.outerIndexPtr(), sizeof(int) * static_cast<std::size_t>(n + 1));
+  put(factored_.innerIndexPtr(), sizeof(int) * static_cast<std::size_t>(nnz));
+  put(factored_.valuePtr(), sizeof(double) * static_cast<std::size_t>(nnz));
+  return out;
+}
+
+bool SystemMatrix::factor_from_source(const std::string& bytes) {
+  std::int64_t n = 0, nnz = 0;
+  if (bytes.size() < 2 * sizeof n) return false;
+  std::memcpy(&n, bytes.data(), sizeof n);
+  std::memcpy(&nnz, bytes.data() + sizeof n, sizeof nnz);
+  if (n != k_.rows() || nnz < n || nnz > n * n) return false;
+  const std::size_t need = 2 * sizeof n + sizeof(int) * static_cast<std::size_t>(n + 1 + nnz) +
+                           sizeof(double) * static_cast<std::size_t>(nnz);
+  if (bytes.size() != need) return false;
+  Sparse m(n, n);
+  m.resizeNonZeros(nnz);
+  const char* p = bytes.data() + 2 * sizeof n;
+  std::memcpy(m.outerIndexPtr(), p, sizeof(int) * static_cast<std::size_t>(n + 1));
+  p += sizeof(int) * static_cast<std::size_t>(n + 1);
+  std::memcpy(m.innerIndexPtr(), p, sizeof(int) * static_cast<std::size_t>(nnz));
+  p += sizeof(int) * static_cast<std::size_t>(nnz);
+  std::memcpy(m.valuePtr(), p, sizeof(double) * static_cast<std::size_t>(nnz));
+  // Structure checks: columns in order, rows sorted, in the lower triangle, diagonal first.
+  const int* o = m.outerIndexPtr();
+  const int* in = m.innerIndexPtr();
+  if (o[0] != 0 || o[n] != nnz) return false;
+  for (std::int64_t c = 0; c < n; ++c) {
+    if (o[c + 1] <= o[c] || in[o[c]] != c) return false;
+    for (int k = o[c] + 1; k < o[c + 1]; ++k)
+      if (in[k] <= in[k - 1] || in[k] >= n) return false;
+  }
+  for (std::int64_t k = 0; k < nnz; ++k)
+    if (!std::isfinite(m.valuePtr()[k])) return false;
+  // The same analysis and numbers as the run that wrote it; the next factorize() of this run's
+  // own matrix analyses its pattern again (deterministically: the same ordering).
+  llt_.analyzePattern(m);
+  ++analyses_;
+  const cholmod_common& c = llt_.cholmod();
+  factor_nonzeros_ = c.lnz;
+  factor_flops_ = c.fl;
+  llt_.factorize(m);
+  analysed_ = false;
+  has_factor_ = llt_.info() == Eigen::Success;
+  if (has_factor_) factored_ = std::move(m);
+  return has_factor_;
+}
+
+void SystemMatrix::saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  const Eigen::Map<const Sparse> a(k_.rows(), k_.cols(), k_.nonZeros(), k_.outerIndexPtr(),
+                                   k_.innerIndexPtr(), saved_.data());
+  y.noalias() = a.selfadjointView<Eigen::Lower>() * v;
 }
 
 Eigen::VectorXd SystemMatrix::solve(const Eigen::VectorXd& b) { return llt_.solve(b); }

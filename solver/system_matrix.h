@@ -47,8 +47,32 @@ class SystemMatrix {
   /// the matrix is not positive definite; failed_unknown() then names the unknown where it broke.
   bool factorize();
 
-  /// Solves K·x = b with the last factorisation.
+  /// Solves K·x = b with the last factorisation (of whatever values it was made from: also
+  /// after the values or the pattern changed, when it serves as a preconditioner).
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
+  /// A successful factorisation of this size exists.
+  bool has_factor() const { return has_factor_; }
+  /// Forgets the factorisation (the next solve must factorise first).
+  void drop_factor() { has_factor_ = false; }
+
+  /// The matrix the current factorisation was made from (pattern and values) as bytes, empty
+  /// without one: a checkpoint keeps it so that a restarted run preconditions with the same
+  /// factorisation as the straight run (bitwise equal results).
+  std::string factor_source() const;
+  /// Factorises the matrix of factor_source() bytes (from a checkpoint); false if the bytes do not
+  /// describe a positive definite matrix of this size.
+  bool factor_from_source(const std::string& bytes);
+
+  /// y = A·v with the saved values A (save()), the part that does not change within a step.
+  void saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
+
+  /// Of the last symbolic analysis: nonzeros of the factor and flops of one factorisation.
+  double factor_nonzeros() const { return factor_nonzeros_; }
+  double factor_flops() const { return factor_flops_; }
+  /// Nonzeros of the stored lower triangle of the matrix.
+  std::size_t nonzeros() const { return static_cast<std::size_t>(k_.nonZeros()); }
+  /// CHOLMOD's fill-reducing ordering of the last analysis ("amd", "metis", "nesdis", ...).
+  std::string ordering() const { return ordering_; }
 
   int failed_unknown() const { return failed_unknown_; }
   int size() const { return static_cast<int>(k_.rows()); }
@@ -64,10 +88,14 @@ class SystemMatrix {
   std::vector<std::int32_t> slot_offset_;  // [group+1] CSR into slots_
   std::vector<std::int32_t> slots_;  // [m² per group] value index of entry (i, j), -1 above diagonal
   std::vector<double> saved_;
+  Sparse factored_;  // the matrix of the current factorisation
   std::vector<std::int32_t> diag_;   // [n] value index of each diagonal entry
   Llt llt_;
   bool analysed_ = false;
+  bool has_factor_ = false;
   std::size_t analyses_ = 0;
+  double factor_nonzeros_ = 0, factor_flops_ = 0;
+  std::string ordering_;
   int failed_unknown_ = -1;
 };
 

@@ -60,6 +60,8 @@
 #include <sstream>
 
 #include "contact_history.h"
+#include "contact_solve.h"
+#include "solver_threads.h"
 #include "error.h"
 #include "excavation.h"
 #include "insitu_stress.h"
@@ -201,7 +203,12 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   // until contacts couple pairs of elements (update_pattern).
   system_.build_pattern(unknowns(), groups_);
   rhs_.resize(unknowns());
+  set_threads(0);
   excavate(scene.excavate);
+}
+
+void TimeStepper::set_threads(int threads) {
+  threads_ = set_solver_threads(threads > 0 ? threads : default_solver_threads(unknowns()));
 }
 
 std::vector<std::string> TimeStepper::effects() const {
@@ -561,65 +568,50 @@ std::string TimeStepper::attempt(double dt) {
   }
   timings_.assembly += since(t0);
 
-  // Open–close iteration: solve, judge, repeat until no contact changes. A change of state
-  // changes the matrix (refactorise); a change of friction force alone only the right-hand side
-  // (solve again with the same factorisation).
+  // Without contact: one factorisation and solve. With contact: the step's convex contact
+  // problem (contact_solve.cpp), Newton iterations on a reused factorisation.
   Eigen::VectorXd d;
-  bool refactor = true;
-  int factorisations = 0;
-  for (int it = 1;; ++it) {
-    if (contact && it > 1) {
-      t0 = Clock::now();
-      if (refactor) system_.restore();
-      rhs_ = rhs_base_;
-      contacts_.add_to_system(refactor ? &system_ : nullptr, rhs_);
-      timings_.assembly += since(t0);
-    } else if (contact) {
-      t0 = Clock::now();
-      contacts_.add_to_system(&system_, rhs_);
-      timings_.assembly += since(t0);
+  auto not_positive_definite = [&]() {
+    const int u = system_.failed_unknown();
+    std::ostringstream os;
+    os << "the system matrix is not positive definite";
+    if (u >= 0) {
+      const int c = covers_.cover_of_unknown[u / 2];
+      os << " at cover " << c << " (node "
+         << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
+         << "): it is unconstrained (held by no fixed point or closed contact); add fixed "
+            "points or run dynamic";
     }
-    if (refactor) {
-      t0 = Clock::now();
-      const bool ok = system_.factorize();
-      ++factorisations;
-      timings_.factorisation += since(t0);
-      if (!ok) {
-        const int u = system_.failed_unknown();
-        std::ostringstream os;
-        os << "the system matrix is not positive definite";
-        if (u >= 0) {
-          const int c = covers_.cover_of_unknown[u / 2];
-          os << " at cover " << c << " (node "
-             << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
-             << "): it is unconstrained (held by no fixed point or closed contact); add fixed "
-                "points or run dynamic";
-        }
-        throw RunError(os.str());
-      }
-    }
+    return os.str();
+  };
+  if (!contact) {
+    t0 = Clock::now();
+    const bool ok = system_.factorize();
+    ++timings_.factorisations;
+    timings_.factorisation += since(t0);
+    if (!ok) throw RunError(not_positive_definite());
     t0 = Clock::now();
     d = system_.solve(rhs_);
+    ++timings_.solves_count;
     timings_.solves += since(t0);
-    for (Eigen::Index i = 0; i < d.size(); ++i)
-      if (!std::isfinite(d[i]))
-        throw RunError("the displacement of cover " + std::to_string(covers_.cover_of_unknown[i / 2]) +
-                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
-    if (!contact) break;
-    ++s_.iterations;
-    const ContactSet::Changes ch = contacts_.judge(d, it, w0_);
-    if (ch.states == 0 && ch.forces == 0) break;
-    if (ch.states == 0 && ch.stiffness == 0 && it >= 3 * kMaxIterations) {
-      // Every state has settled; only friction forces still move (by more than 0.1 %). Take the
-      // step rather than cut it: a smaller step would not settle them better.
-      ++s_.friction_unsettled;
-      break;
-    }
-    refactor = ch.states > 0 || ch.stiffness > 0;
-    if (factorisations >= kMaxIterations || it >= 4 * kMaxIterations)
-      return "the open-close iteration did not converge in " + std::to_string(it) +
-             " iterations (" + std::to_string(factorisations) + " with contact state changes)";
+  } else {
+    const ContactSolveStats before = solve_stats_;
+    const std::string why = solve_contact_step(system_, contacts_, rhs_base_, d, solve_stats_);
+    timings_.factorisations += solve_stats_.factorisations - before.factorisations;
+    timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
+    timings_.solves_count += solve_stats_.cg_iterations - before.cg_iterations +
+                             (solve_stats_.factorisations - before.factorisations);
+    timings_.solves += solve_stats_.cg_seconds - before.cg_seconds +
+                       solve_stats_.line_search_seconds - before.line_search_seconds;
+    s_.iterations += static_cast<std::uint64_t>(solve_stats_.newton - before.newton);
+    s_.friction_unsettled += static_cast<std::uint64_t>(solve_stats_.unsettled - before.unsettled);
+    if (why == "not positive definite") throw RunError(not_positive_definite());
+    if (!why.empty()) return why;
   }
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+    if (!std::isfinite(d[i]))
+      throw RunError("the displacement of cover " + std::to_string(covers_.cover_of_unknown[i / 2]) +
+                     " is not a finite number at t = " + std::to_string(s_.time) + " s");
   if (contact) {
     // Shi's step control: a step may move no cover more than 2·g2·w0 (contacts farther than the
     // search distance would be missed), nor leave a penetration deeper than g2·w0.
@@ -796,7 +788,18 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
                          {"openings", ev.opened},
                          {"slips", ev.slid},
                          {"sticks", ev.stuck},
-                         {"settled", ev.frozen_sliding}};
+                         {"bonds_broken", ev.broken}};
+  summary["contact_solve"] = {{"newton_iterations", solve_stats_.newton},
+                              {"cg_iterations", solve_stats_.cg_iterations},
+                              {"cg_runs_over_budget", solve_stats_.cg_aborted},
+                              {"factorisations", solve_stats_.factorisations},
+                              {"friction_rounds", solve_stats_.strength_rounds}};
+  summary["matrix"] = {{"unknowns", unknowns()},
+                       {"nonzeros_lower", system_.nonzeros()},
+                       {"factor_nonzeros", system_.factor_nonzeros()},
+                       {"factor_flops", system_.factor_flops()},
+                       {"ordering", system_.ordering()},
+                       {"factorisations", timings_.factorisations}};
   summary["timings"] = {{"contact_detection", timings_.contact_detection},
                         {"assembly", timings_.assembly},
                         {"factorisation", timings_.factorisation},
@@ -804,6 +807,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
                         {"geometry_update", timings_.geometry_update},
                         {"output", timings_.output}};
   summary["unknowns"] = unknowns();
+  summary["threads"] = threads_;
   summary["physical_covers"] = mesh_.cover_count();
   summary["tied_sliver_covers"] = covers_.tied;
   summary["manifold_elements"] = mesh_.element_count();
@@ -828,13 +832,18 @@ std::string TimeStepper::state_hash() const {
 }
 
 void TimeStepper::write_checkpoint(const std::string& path) const {
-  write_state_file(path, s_, contact_history(), mesh_);
+  // With contact the factorisation lives on from step to step (a preconditioner): the checkpoint
+  // keeps its matrix so that a restart continues bitwise as the straight run.
+  write_state_file(path, s_, contact_history(), mesh_,
+                   contacts_.active() ? system_.factor_source() : std::string());
 }
 
 void TimeStepper::restart_from(const std::string& path) {
-  std::string history;
-  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history);
+  std::string history, factor;
+  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history, &factor);
   restore(st, history, path);
+  if (!factor.empty() && contacts_.active() && !system_.factor_from_source(factor))
+    throw InputError(path, "section FACTOR", "not the matrix of a factorisation of this run's size");
 }
 
 void TimeStepper::restore(const RunState& st, const std::string& history, const std::string& name) {

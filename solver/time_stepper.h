@@ -11,6 +11,7 @@
 
 #include "element_integration.h"
 #include "contact.h"
+#include "contact_solve.h"
 #include "cover_unknowns.h"
 #include "elasticity.h"
 #include "mesh.h"
@@ -31,6 +32,8 @@ struct StepTimings {
   double solves = 0;
   double geometry_update = 0;  ///< stresses, loop vertices, covers and points moved after a solve
   double output = 0;
+  long factorisations = 0;     ///< numeric factorisations of the system matrix
+  long solves_count = 0;       ///< triangular solve pairs (direct solves and preconditioner applications)
 };
 
 class TimeStepper {
@@ -48,6 +51,9 @@ class TimeStepper {
   void set_stop_check(std::function<bool()> f) { stop_check_ = std::move(f); }
   /// Called after every accepted step with (step, simulated time in s) (progress.h).
   void set_progress(std::function<void(std::int64_t, double)> f) { progress_ = std::move(f); }
+  /// Threads of the factorisation's dense kernels (solver_threads.h); 0: the default for the
+  /// problem size (one thread below 150k unknowns).
+  void set_threads(int threads);
 
   // ---- state, for tests ------------------------------------------------------------------
   /// One step of length dt. Throws RunError when it cannot be taken.
@@ -148,7 +154,8 @@ class TimeStepper {
   double w0_ = 0;                // m, half the model size
   std::function<bool()> stop_check_;                     // interrupt.h
   std::function<void(std::int64_t, double)> progress_;  // progress.h
-  static constexpr int kMaxIterations = 16;  // factorisations per step's open–close iteration
+  ContactSolveStats solve_stats_;
+  int threads_ = 1;  // what the contact solves cost (contact_solve.h)
 };
 
 }  // namespace nmm::solve

@@ -1,0 +1,218 @@
+// The step's contact problem (docs/contact.md "The step's contact problem").
+//
+// With each contact's shear strength S fixed, a step of Shi's implicit scheme is the minimiser
+// of a convex, continuously differentiable energy of the step's increment d:
+//     Π(d) = ½ dᵀA d − bᵀd + Σ_c Ψn(g_c) + Σ_c Ψs(s_c),   g_c = g0 + cnᵀd,  s_c = s_el + csᵀd
+// A: stiffness, inertia 2M/Δt² (or M/(βΔt²)), fixed points, supports (symmetric positive
+// definite in dynamic and DDA-static runs); b: loads, initial stress, inertia terms.
+// Ψn(g) = ∫ N dδ over the closure δ = −g > 0 (constant spring ½kn·δ²; Bandis–Barton, whose N
+// rises with δ): convex. A bond (tensile strength, unbroken) continues the spring into tension.
+// Ψs(s) = the elastoplastic spring: ½ks·s² while |ks·s| < S, S·|s| − S²/(2ks) beyond (the
+// hyperbolic law: the integral of its capped, non-decreasing force): convex.
+// Its gradient is the residual's negative: r(d) = b − A d + Σ N_c·cn_c − Σ T_c·cs_c.
+//
+// Newton: H δ = r with H = A + Σ kn_t·cn cnᵀ + Σ ks_t·cs csᵀ (tangents at d; a sliding
+// contact's ks_t = 0), then d ← d + α δ with α the root of the directional derivative
+//     ψ(α) = r(d + αδ)ᵀδ = (b − A d)ᵀδ − α δᵀAδ + Σ N_c(α)·Δg_c − Σ T_c(α)·Δs_c,
+// which is non-increasing in α because Π is convex (an exact line search: a regula falsi on a
+// monotone, piecewise smooth function). Every accepted α lowers Π, so contact states cannot
+// cycle; a convex piecewise-quadratic Π is minimised in finitely many Newton steps once the
+// active set is right, and the loop stops on the residual, ‖r‖ ≤ 1e-10·(‖b‖ + the largest
+// contact force) — not on "no contact changed state": a contact touching at zero gap may show
+// either state at round-off level without moving the residual, so it cannot keep a step
+// iterating. Any symmetric positive definite H gives a descent direction, so H may also be
+// shaped (a contact within ε of touching gets its spring's tangent) without losing this.
+//
+// Linear solves: H differs from the matrix P of the last factorisation by the springs that
+// switched and, from one step to the next, by the small change of A with the geometry. Conjugate
+// gradients preconditioned by P converge in at most r + 1 iterations when H − P has rank r, so a
+// few switched contacts cost a few factor solves instead of a factorisation, and a settled
+// system needs no factorisation at all. Each CG run gets a budget in work units (from the
+// factor's flops and nonzeros, not from clocks, so a run is the same on every machine): when it
+// is spent, H is factorised (P ← H) and the direction solved directly.
+//
+// Friction strength S = tanφ·N + c·L needs the normal force: a fixed point on N around the
+// convex solve (start: the N the contact ended the last step with), repeated while a strength at
+// or near its limit moves by more than 0.1 %. Cohesion and tensile bonds break for good when
+// exceeded, so they change at most once per contact and step.
+#include "contact_solve.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+namespace nmm::solve {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+constexpr int kMaxNewton = 60;        // Newton iterations per inner solve
+constexpr int kMaxStrengthRounds = 12;  // friction fixed point rounds per step
+constexpr double kResidualTolerance = 1e-10;
+// A strength change below this fraction of the largest contact force is settled: on contacts
+// that barely touch (N ≈ 0) a 0.1 % change is nothing the blocks feel.
+constexpr double kStrengthFloor = 1e-6;
+
+// CG iterations worth one factorisation: a factorisation runs dense kernels (BLAS 3), about
+// this many times faster per flop than the factor solves and sparse products of an iteration
+// (measured on the brick walls, bench/contact_bench.cpp).
+constexpr double kFactorFlopAdvantage = 1.0;
+
+int cg_budget(const SystemMatrix& k, std::size_t contacts) {
+  const double per_iteration = 4.0 * k.factor_nonzeros() + 4.0 * static_cast<double>(k.nonzeros()) +
+                               100.0 * static_cast<double>(contacts);
+  const double budget = k.factor_flops() / (kFactorFlopAdvantage * per_iteration);
+  return static_cast<int>(std::clamp(budget, 3.0, 200.0));
+}
+
+// y = H v.
+void hessian_times(const SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& v,
+                   Eigen::VectorXd& y) {
+  k.saved_times(v, y);
+  contacts.tangent_times(v, y);
+}
+
+// Preconditioned CG for H x = r to ‖H x − r‖ ≤ target; false when the budget is spent or H
+// shows a non-positive curvature (then the caller factorises H).
+bool pcg(SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& r, double target,
+         int budget, Eigen::VectorXd& x, ContactSolveStats& stats) {
+  x.setZero(r.size());
+  Eigen::VectorXd res = r, z = k.solve(res), p = z, hp(r.size());
+  double rz = res.dot(z);
+  for (int it = 1; it <= budget; ++it) {
+    ++stats.cg_iterations;
+    hessian_times(k, contacts, p, hp);
+    const double php = p.dot(hp);
+    if (!(php > 0)) return false;
+    const double a = rz / php;
+    x.noalias() += a * p;
+    res.noalias() -= a * hp;
+    if (res.norm() <= target) return true;
+    z = k.solve(res);
+    const double rz_new = res.dot(z);
+    p = z + (rz_new / rz) * p;
+    rz = rz_new;
+  }
+  ++stats.cg_aborted;
+  return false;
+}
+
+// Root of the non-increasing ψ on α ≥ 0 (ψ(0) > 0), by bracketing and the Illinois variant of
+// regula falsi. α = 1 (the Newton step) is taken when ψ(1) is within `tol` of 0.
+template <class F>
+double line_search(const F& psi, double psi0, double tol) {
+  double a = 0, fa = psi0, b = 1, fb = psi(1.0);
+  if (std::abs(fb) <= tol) return 1.0;
+  while (fb > 0) {  // the step is too short (a spring that turned out open): go further
+    if (b >= 1024) return b;
+    a = b;
+    fa = fb;
+    b *= 2;
+    fb = psi(b);
+  }
+  int side = 0;
+  double c = b;
+  for (int i = 0; i < 100; ++i) {
+    c = (a * fb - b * fa) / (fb - fa);
+    const double fc = psi(c);
+    if (std::abs(fc) <= tol || b - a <= 1e-14 * b) return c;
+    if (fc > 0) {
+      a = c;
+      fa = fc;
+      if (side == 1) fb *= 0.5;
+      side = 1;
+    } else {
+      b = c;
+      fb = fc;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    }
+  }
+  return c;
+}
+}  // namespace
+
+std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
+                               Eigen::VectorXd& d, ContactSolveStats& stats) {
+  // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction round on stderr.
+  static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
+  const Eigen::Index n = b.size();
+  d.setZero(n);
+  Eigen::VectorXd ra = b;  // b − A d, kept up to date without a product per iteration
+  Eigen::VectorXd r(n), delta(n), adelta(n);
+  const double b_norm = b.norm();
+  contacts.start_strengths();
+  for (int round = 0;; ++round) {
+    if (round > 0) ++stats.strength_rounds;
+    for (int it = 0;; ++it) {
+      r = ra;
+      contacts.forces_at(d, r);
+      const double tol = kResidualTolerance * (b_norm + contacts.force_scale()) +
+                         std::numeric_limits<double>::min();
+      const double r_norm = r.norm();
+      if (r_norm <= tol) break;
+      if (it >= kMaxNewton)
+        return "the contact solve did not converge in " + std::to_string(kMaxNewton) +
+               " Newton iterations (residual " + std::to_string(r_norm / tol) + " × its tolerance)";
+      ++stats.newton;
+      // Direction: CG on the reused factorisation, or a new factorisation of H.
+      bool solved = false;
+      if (system.has_factor()) {
+        const auto t0 = Clock::now();
+        solved = pcg(system, contacts, r, std::max(1e-6 * r_norm, 0.3 * tol),
+                     cg_budget(system, contacts.contacts().size()), delta, stats);
+        stats.cg_seconds += since(t0);
+      }
+      if (!solved) {
+        const auto t0 = Clock::now();
+        system.restore();
+        contacts.add_tangents(system);
+        const bool ok = system.factorize();
+        ++stats.factorisations;
+        stats.factorisation_seconds += since(t0);
+        if (!ok) return "not positive definite";
+        delta = system.solve(r);
+      }
+      if (!delta.allFinite()) return "the contact solve produced a displacement that is not finite";
+      // Exact line search on ψ(α) = r(d + αδ)ᵀδ.
+      const auto t1 = Clock::now();
+      system.saved_times(delta, adelta);
+      const double ra_delta = ra.dot(delta), q = delta.dot(adelta);
+      contacts.set_direction(delta);
+      const auto psi = [&](double alpha) {
+        return ra_delta - alpha * q + contacts.directional_force(alpha);
+      };
+      const double psi0 = psi(0.0);
+      if (!(psi0 > 0)) {
+        // Not a descent direction: only round-off at a converged point does this.
+        system.drop_factor();
+        if (r_norm <= 1e3 * tol) break;
+        continue;
+      }
+      const double alpha = line_search(psi, psi0, 1e-8 * psi0);
+      if (trace)
+        std::fprintf(stderr, "round %d it %d r/tol %.3e solved_cg %d alpha %.6g psi1 %.3e cg %ld fac %ld\n", round, it,
+                     r_norm / tol, solved ? 1 : 0, alpha, psi(1.0) / psi0, stats.cg_iterations, stats.factorisations);
+      stats.line_search_seconds += since(t1);
+      d.noalias() += alpha * delta;
+      ra.noalias() -= alpha * adelta;
+    }
+    const int moved = contacts.update_strengths(kStrengthFloor * contacts.force_scale());
+    if (trace) std::fprintf(stderr, "strengths moved %d\n", moved);
+    if (moved == 0) break;
+    if (round + 1 >= kMaxStrengthRounds) {
+      ++stats.unsettled;
+      r = ra;
+      contacts.forces_at(d, r);
+      break;
+    }
+  }
+  contacts.settle_states();
+  return "";
+}
+
+}  // namespace nmm::solve
