@@ -57,44 +57,6 @@ double segment_crossing(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return t;
 }
 
-/// Sutherland–Hodgman clip of a polygon by an axis-aligned box (for the region's area).
-Ring clip_polygon_to_box(const Ring& poly, double x0, double y0, double x1, double y1) {
-  Ring out = poly;
-  for (int edge = 0; edge < 4; ++edge) {
-    auto inside = [&](Vec2 p) {
-      switch (edge) {
-        case 0: return p.x >= x0;
-        case 1: return p.x <= x1;
-        case 2: return p.y >= y0;
-        default: return p.y <= y1;
-      }
-    };
-    auto cut = [&](Vec2 p, Vec2 q) {
-      double t = 0;
-      switch (edge) {
-        case 0: t = (x0 - p.x) / (q.x - p.x); break;
-        case 1: t = (x1 - p.x) / (q.x - p.x); break;
-        case 2: t = (y0 - p.y) / (q.y - p.y); break;
-        default: t = (y1 - p.y) / (q.y - p.y); break;
-      }
-      return lerp(p, q, t);
-    };
-    Ring in = out;
-    out.clear();
-    for (std::size_t i = 0; i < in.size(); ++i) {
-      const Vec2 p = in[i], q = in[(i + 1) % in.size()];
-      if (inside(q)) {
-        if (!inside(p)) out.push_back(cut(p, q));
-        out.push_back(q);
-      } else if (inside(p)) {
-        out.push_back(cut(p, q));
-      }
-    }
-    if (out.empty()) break;
-  }
-  return out;
-}
-
 struct Box {
   double x0, y0, x1, y1;
 };
@@ -224,6 +186,44 @@ std::int64_t sample_poisson(double lambda, RandomEngine& rng) {
     t -= std::log(rng.uniform_open());
   }
   return n;
+}
+
+// Sutherland–Hodgman, one box side at a time.
+Ring clip_polygon_to_box(const Ring& poly, double x0, double y0, double x1, double y1) {
+  Ring out = poly;
+  for (int edge = 0; edge < 4; ++edge) {
+    auto inside = [&](Vec2 p) {
+      switch (edge) {
+        case 0: return p.x >= x0;
+        case 1: return p.x <= x1;
+        case 2: return p.y >= y0;
+        default: return p.y <= y1;
+      }
+    };
+    auto cut = [&](Vec2 p, Vec2 q) {
+      double t = 0;
+      switch (edge) {
+        case 0: t = (x0 - p.x) / (q.x - p.x); break;
+        case 1: t = (x1 - p.x) / (q.x - p.x); break;
+        case 2: t = (y0 - p.y) / (q.y - p.y); break;
+        default: t = (y1 - p.y) / (q.y - p.y); break;
+      }
+      return lerp(p, q, t);
+    };
+    Ring in = out;
+    out.clear();
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const Vec2 p = in[i], q = in[(i + 1) % in.size()];
+      if (inside(q)) {
+        if (!inside(p)) out.push_back(cut(p, q));
+        out.push_back(q);
+      } else if (inside(p)) {
+        out.push_back(cut(p, q));
+      }
+    }
+    if (out.empty()) break;
+  }
+  return out;
 }
 
 std::vector<std::pair<Vec2, Vec2>> clip_segment_to_polygon(Vec2 a, Vec2 b, const Ring& poly) {
@@ -384,8 +384,13 @@ nlohmann::json explicit_scene(const nlohmann::json& doc, const SceneDef& scene,
     for (const Vec2& p : j.points) points.push_back({p.x, p.y});
     joints.push_back({{"set", scene.joint_sets[j.set].name}, {"points", points}});
   }
-  for (const GeneratedSetInput& in : inputs)
-    out["joint_sets"][scene.joint_sets[in.set].name].erase("generate");
+  // The generate block becomes generated_from: metadata the inspector compares the measured
+  // network with (requested P21, region); parsers read it but never generate from it again.
+  for (const GeneratedSetInput& in : inputs) {
+    nlohmann::json& set = out["joint_sets"][scene.joint_sets[in.set].name];
+    set["generated_from"] = set["generate"];
+    set.erase("generate");
+  }
   if (network) *network = std::move(net);
   return out;
 }
