@@ -135,7 +135,7 @@ std::vector<JointSetNetworkReport> joint_set_reports(const SceneDef& scene) {
     while (r.mean_angle_deg >= ref + 90) r.mean_angle_deg -= 180;
     const double th0 = r.mean_angle_deg * kPi / 180;
     const Vec2 d{std::cos(th0), std::sin(th0)}, n{-d.y, d.x};
-    r.scanline_angle_deg = r.mean_angle_deg + 90;
+    r.scanline_angle_deg = std::fmod(r.mean_angle_deg + 90 + 720, 180.0);  // in [0, 180)
     double cos_sum = 0;
     for (const auto& s : segs) {
       const Vec2 v = sub(s.second, s.first);

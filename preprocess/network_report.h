@@ -46,7 +46,7 @@ struct JointSetNetworkReport {
   double mean_angle_deg = 0;    ///< degrees, axial mean in [0, 180) (generated: request ± 90)
   double requested_angle_deg = 0;  ///< degrees, the generate block's mean_deg (generated sets)
   double resultant_length = 0;  ///< –, R̄ of the doubled angles
-  double scanline_angle_deg = 0;  ///< degrees, direction of the scanlines (θ̄ + 90°)
+  double scanline_angle_deg = 0;  ///< degrees in [0, 180), direction of the scanlines (θ̄ + 90°)
   int scanlines = 0;
   double scanline_length = 0;   ///< m, total
   std::size_t crossings = 0;
