@@ -147,6 +147,51 @@ TEST(NetworkReport, NonConvexRegionClipsEveryJointAndKeepsItsP21) {
   EXPECT_GT(net.stats[0].joints, 0);
 }
 
+// Termination through the uniform grid (joint_network.cpp, SegmentGrid): with probability 1 a
+// later-set joint stops at its first crossing on each side, so no earlier-set joint may cross the
+// inside of any later-set joint. Checked here against all pairs: a grid that missed a candidate
+// joint would leave crossings.
+TEST(NetworkReport, TerminationGridMissesNoCrossing) {
+  const Ring box = {{0, 0}, {200, 0}, {200, 200}, {0, 200}};
+  GeneratedSetInput a;
+  a.set = 0;
+  a.def.mean_angle_deg = 20;
+  a.def.dispersion = DispersionKind::von_mises;
+  a.def.kappa = 4;
+  a.def.p21 = 0.3;
+  a.def.length = {LengthDistribution::power_law, 0, 0, 2.5, 1.0, 60.0};  // a few long joints
+  a.def.seed = 3;
+  GeneratedSetInput b = a;
+  b.set = 1;
+  b.def.mean_angle_deg = 100;
+  b.def.length = {LengthDistribution::exponential, 12.0, 0, 0, 0, 0};
+  b.def.termination = 1;
+  b.def.seed = 4;
+  const JointNetwork net = generate_joint_network({a, b}, box);
+  ASSERT_GT(net.stats[1].sides_with_intersection, 500);
+  EXPECT_EQ(net.stats[1].sides_terminated, net.stats[1].sides_with_intersection);
+  std::size_t checked = 0;
+  for (const JointDef& jb : net.joints) {
+    if (jb.set != 1) continue;
+    const Vec2 p = jb.points[0], q = jb.points[1];
+    const double len = std::hypot(q.x - p.x, q.y - p.y);
+    for (const JointDef& ja : net.joints) {
+      if (ja.set != 0) continue;
+      const Vec2 c = ja.points[0], d = ja.points[1];
+      const Vec2 r{q.x - p.x, q.y - p.y}, sv{d.x - c.x, d.y - c.y}, ca{c.x - p.x, c.y - p.y};
+      const double den = r.x * sv.y - r.y * sv.x;
+      if (den == 0) continue;
+      const double t = (ca.x * sv.y - ca.y * sv.x) / den, u = (ca.x * r.y - ca.y * r.x) / den;
+      if (u < 0 || u > 1) continue;
+      const double margin = 1e-7 / std::max(len, 1e-9);
+      ASSERT_FALSE(t > margin && t < 1 - margin)
+          << "set-0 joint crosses a terminated set-1 joint at t = " << t;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 500u);  // the endpoints on earlier joints were seen
+}
+
 // Four elements in three blocks: areas 1 + 1 (block 0), 2 (block 1), 0.5 (block 2).
 Mesh block_mesh() {
   Mesh m;
