@@ -91,9 +91,46 @@ std::vector<JointSetNetworkReport> joint_set_reports(const SceneDef& scene) {
       // (spacing sets are then persistent).
       r.requested_p21 = g.p21 > 0 ? g.p21 : 1 / g.mean_spacing;
     }
+    // Measuring domain: a generated set's own region ∩ the box (where the generator meets its
+    // request); a set typed by hand: the rock itself, the bodies without their holes.
     const Ring region = r.generated && !g.region.empty() ? g.region : box;
-    r.region_area = std::abs(
-        ring_signed_area(clip_polygon_to_box(region, box[0].x, box[0].y, box[2].x, box[2].y)));
+    const bool by_bodies = !r.generated;
+    auto inside = [&](Vec2 a, Vec2 b) {
+      std::vector<std::pair<Vec2, Vec2>> pieces;
+      if (!by_bodies) {
+        for (const auto& p : clip_segment_to_polygon(a, b, region))
+          for (const auto& q : clip_segment_to_polygon(p.first, p.second, box)) pieces.push_back(q);
+        return pieces;
+      }
+      for (const BodyDef& body : scene.bodies)
+        for (const auto& p : clip_segment_to_polygon(a, b, body.outer)) {
+          // Subtract the holes: cut p at every hole piece and keep the rest.
+          std::vector<std::pair<double, double>> gone;  // parameter ranges along p inside holes
+          const double len = dist(p.first, p.second);
+          if (len <= 0) continue;
+          for (const Ring& hole : body.holes)
+            for (const auto& h : clip_segment_to_polygon(p.first, p.second, hole))
+              gone.emplace_back(dist(p.first, h.first) / len, dist(p.first, h.second) / len);
+          std::sort(gone.begin(), gone.end());
+          double t = 0;
+          auto at = [&](double u) {
+            return Vec2{p.first.x + u * (p.second.x - p.first.x),
+                        p.first.y + u * (p.second.y - p.first.y)};
+          };
+          for (const auto& [u0, u1] : gone) {
+            if (u0 > t) pieces.emplace_back(at(t), at(u0));
+            t = std::max(t, u1);
+          }
+          if (t < 1) pieces.emplace_back(at(t), p.second);
+        }
+      return pieces;
+    };
+    if (by_bodies) {
+      for (const BodyDef& body : scene.bodies) r.region_area += body_area(body);
+    } else {
+      r.region_area = std::abs(
+          ring_signed_area(clip_polygon_to_box(region, box[0].x, box[0].y, box[2].x, box[2].y)));
+    }
 
     // The set's segments, clipped to the measuring region and the box.
     std::vector<std::pair<Vec2, Vec2>> segs;
@@ -109,14 +146,13 @@ std::vector<JointSetNetworkReport> joint_set_reports(const SceneDef& scene) {
         if (th >= kPi) th -= kPi;
         r.angles_deg.push_back(th * 180 / kPi);
         r.angle_weights.push_back(dist(a, b));
-        for (const auto& p : clip_segment_to_polygon(a, b, region))
-          for (const auto& q : clip_segment_to_polygon(p.first, p.second, box)) {
-            segs.push_back(q);
-            const double l = dist(q.first, q.second);
-            inside_length += l;
-            sx += l * std::cos(2 * th);
-            sy += l * std::sin(2 * th);
-          }
+        for (const auto& q : inside(a, b)) {
+          segs.push_back(q);
+          const double l = dist(q.first, q.second);
+          inside_length += l;
+          sx += l * std::cos(2 * th);
+          sy += l * std::sin(2 * th);
+        }
       }
       r.lengths.push_back(len);
     }
@@ -145,7 +181,13 @@ std::vector<JointSetNetworkReport> joint_set_reports(const SceneDef& scene) {
 
     // Scanlines along n, spread evenly across the region along d.
     double d0 = 1e300, d1 = -1e300, n0 = 1e300, n1 = -1e300;
-    for (const Vec2& p : region) {
+    std::vector<Vec2> extent = region;
+    if (by_bodies) {
+      extent.clear();
+      for (const BodyDef& body : scene.bodies)
+        extent.insert(extent.end(), body.outer.begin(), body.outer.end());
+    }
+    for (const Vec2& p : extent) {
       d0 = std::min(d0, p.x * d.x + p.y * d.y); d1 = std::max(d1, p.x * d.x + p.y * d.y);
       n0 = std::min(n0, p.x * n.x + p.y * n.y); n1 = std::max(n1, p.x * n.x + p.y * n.y);
     }
@@ -156,22 +198,21 @@ std::vector<JointSetNetworkReport> joint_set_reports(const SceneDef& scene) {
       const double off = d0 + (k + 0.5) * (d1 - d0) / kScanlines;
       const Vec2 a{off * d.x + n0 * n.x, off * d.y + n0 * n.y};
       const Vec2 b{off * d.x + n1 * n.x, off * d.y + n1 * n.y};
-      for (const auto& p : clip_segment_to_polygon(a, b, region))
-        for (const auto& q : clip_segment_to_polygon(p.first, p.second, box)) {
-          const double len = dist(q.first, q.second);
-          r.scanline_length += len;
-          std::vector<double> ts;
-          for (const auto& s : segs) {
-            const double t = crossing(q.first, q.second, s.first, s.second);
-            if (t >= 0) ts.push_back(t * len);
-          }
-          std::sort(ts.begin(), ts.end());
-          r.crossings += ts.size();
-          for (std::size_t i = 1; i < ts.size(); ++i) {
-            gap_sum += ts[i] - ts[i - 1];
-            ++r.spacings;
-          }
+      for (const auto& q : inside(a, b)) {
+        const double len = dist(q.first, q.second);
+        r.scanline_length += len;
+        std::vector<double> ts;
+        for (const auto& s : segs) {
+          const double t = crossing(q.first, q.second, s.first, s.second);
+          if (t >= 0) ts.push_back(t * len);
         }
+        std::sort(ts.begin(), ts.end());
+        r.crossings += ts.size();
+        for (std::size_t i = 1; i < ts.size(); ++i) {
+          gap_sum += ts[i] - ts[i - 1];
+          ++r.spacings;
+        }
+      }
     }
     r.p10 = r.scanline_length > 0 ? static_cast<double>(r.crossings) / r.scanline_length : 0;
     r.mean_spacing = r.spacings > 0 ? gap_sum / static_cast<double>(r.spacings) : 0;

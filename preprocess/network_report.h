@@ -3,8 +3,9 @@
 // P10 along scanlines and the mean spacing normal to the set, trace-length and orientation
 // statistics; the block count and block-area distribution; and four SVG pictures.
 //
-// Definitions (A = area of the measuring region R, the set's generation region, or the bodies'
-// bounding box when the set was not generated, intersected with that box):
+// Definitions (A = area of the measuring region R: for a generated set its generation region
+// (default the bodies' bounding box) ∩ that box, where the generator meets its request; for a set
+// typed by hand the rock itself, the bodies without their holes):
 //   P21          = Σ (length of each joint inside R) / A                           m/m²
 //   mean angle θ̄ = ½ atan2(Σ Lᵢ sin 2θᵢ, Σ Lᵢ cos 2θᵢ) (axial, length-weighted), resultant
 //                  R̄ = |Σ Lᵢ e^{2iθᵢ}| / Σ Lᵢ (1: parallel joints)
@@ -41,7 +42,7 @@ struct JointSetNetworkReport {
   std::string name;
   bool generated = false;       ///< the set carries generated_from (or generate)
   double requested_p21 = 0;     ///< m/m², 0 when not generated
-  double region_area = 0;       ///< m², measuring region ∩ bodies' box
+  double region_area = 0;       ///< m², of the measuring region (see top of file)
   double measured_p21 = 0;      ///< m/m²
   double mean_angle_deg = 0;    ///< degrees, axial mean in [0, 180) (generated: request ± 90)
   double requested_angle_deg = 0;  ///< degrees, the generate block's mean_deg (generated sets)

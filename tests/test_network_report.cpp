@@ -75,6 +75,27 @@ TEST(NetworkReport, ParallelJointsHaveTheirKnownSpacingIntensityAndLengths) {
   EXPECT_NEAR(b.measured_p21, 30.0 / 5000, 1e-12);
 }
 
+// A set typed by hand is measured in the rock itself: a 100 m × 50 m body with a 20 m × 10 m
+// hole; one joint along y = 25 crosses the hole, so 80 m of it lie in 4800 m² of rock.
+TEST(NetworkReport, HandTypedSetIsMeasuredInTheRockWithoutHoles) {
+  SceneDef s;
+  BodyDef b;
+  b.material = 0;
+  b.outer = {{0, 0}, {100, 0}, {100, 50}, {0, 50}};
+  b.holes = {{{40, 20}, {60, 20}, {60, 30}, {40, 30}}};
+  s.bodies.push_back(b);
+  s.joint_sets.resize(1);
+  s.joint_sets[0].name = "h";
+  s.joints.push_back({0, {{0, 25}, {100, 25}}});
+  const auto r = joint_set_reports(s).at(0);
+  EXPECT_NEAR(r.region_area, 4800.0, 1e-9);
+  EXPECT_NEAR(r.measured_p21, 80.0 / 4800, 1e-12);
+  EXPECT_NEAR(r.trace_lengths.total, 100.0, 1e-12);  // the joint as typed
+  // 50 vertical scanlines 2 m apart: the 10 with x in (40, 60) meet the hole, not the joint.
+  EXPECT_EQ(r.crossings, 40u);
+  EXPECT_NEAR(r.scanline_length, 50 * 50.0 - 10 * 10.0, 1e-9);
+}
+
 TEST(NetworkReport, GeneratedPoissonSetMeetsItsRequestedP21AndStereologicalP10) {
   GeneratedSetInput in;
   in.set = 0;
