@@ -417,7 +417,6 @@ std::string network_svg(const SceneDef& scene) {
   const double size = x1 - x0, lw = 2e-3 * size;  // stroke widths are in model units
   for (const BodyDef& b : scene.bodies) {
     out.polygon(b.outer, {"#e8e8e8", "#000000", 2 * lw, 0, 1});
-    for (const Ring& h : b.holes) out.polygon(h, {"#ffffff", "#000000", 2 * lw, 0, 1});
   }
   std::vector<std::size_t> counts(scene.joint_sets.size(), 0);
   for (std::size_t si = 0; si < scene.joint_sets.size(); ++si) {
@@ -430,6 +429,9 @@ std::string network_svg(const SceneDef& scene) {
     }
     if (!segs.empty()) out.segments(segs, {"none", set_colour(si), lw, 0, 1});
   }
+  // Holes last: joint parts inside an opening are not in the rock (the cutter ignores them).
+  for (const BodyDef& b : scene.bodies)
+    for (const Ring& h : b.holes) out.polygon(h, {"#ffffff", "#000000", 2 * lw, 0, 1});
   const double fs = 0.025 * size;
   double y = y1 + 1.5 * fs * static_cast<double>(scene.joint_sets.size() + 1);
   out.text({x0, y}, "Joint network" + (scene.name.empty() ? std::string() : ": " + scene.name),

@@ -84,7 +84,8 @@ std::string rose_svg(const NetworkReport& report);
 std::string trace_length_histogram_svg(const NetworkReport& report);
 /// Cumulative distribution of block areas (fraction of blocks with area ≤ a), log area axis.
 std::string block_area_cdf_svg(const NetworkReport& report);
-/// The bodies (grey, holes white) with every joint drawn in its set's colour and a legend.
+/// The bodies (grey) with every joint in its set's colour, then the holes over them (white:
+/// joint parts in an opening are not in the rock), and a legend.
 std::string network_svg(const SceneDef& scene);
 
 /// Colour of set i in the network pictures.
