@@ -518,7 +518,8 @@ JointGenerationDef read_joint_generation(const Reader& r) {
 }
 
 JointSetDef read_joint_set(const std::string& name, const Reader& r) {
-  r.check_keys({"friction_deg", "cohesion", "tensile_strength", "normal", "shear", "generate"});
+  r.check_keys({"friction_deg", "cohesion", "tensile_strength", "normal", "shear", "generate",
+                "generated_from"});
   JointSetDef s;
   s.name = name;
   s.friction_deg = r.number("friction_deg", interval(0, true, 90, false));  // tan 90° is infinite
@@ -529,6 +530,15 @@ JointSetDef read_joint_set(const std::string& name, const Reader& r) {
   if (r.has("generate")) {
     s.generated = true;
     s.generate = read_joint_generation(r["generate"]);
+  }
+  // Written by nmm-preprocess in the embedded (explicit) scene: the generate block the listed
+  // joints came from (docs/joint-networks.md). Read with the same rules; never generates.
+  if (r.has("generated_from")) {
+    if (s.generated)
+      r["generated_from"].fail("a joint set has either generate (joints to generate) or "
+                               "generated_from (joints already generated), not both");
+    s.expanded = true;
+    s.generate = read_joint_generation(r["generated_from"]);
   }
   return s;
 }

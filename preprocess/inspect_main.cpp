@@ -1,6 +1,7 @@
 // nmm-inspect: reads a mesh file (.nmm) and reports on it; docs/inspect.md.
 //
 //   nmm-inspect MESH.nmm [--json [--full]] [--svg FILE] [--vtk FILE] [--cover N]
+//               [--network] [--network-svg PREFIX]
 //
 // Everything is read and checked before any file is written, so bad input never leaves some
 // outputs written and others not. Exit status 0, or 2 with one line on stderr for bad input of
@@ -10,12 +11,14 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "error.h"
 #include "mesh.h"
 #include "mesh_file.h"
 #include "mesh_report.h"
+#include "network_report.h"
 #include "scene.h"
 #include "svg_writer.h"
 #include "vtk_writer.h"
@@ -27,8 +30,8 @@ int run(int argc, char** argv) {
       "Reads an NMM mesh file written by nmm-preprocess and reports on it: a summary (default) "
       "or JSON on stdout, and optionally an SVG picture and a VTK file for ParaView.",
       "nmm-inspect"};
-  std::string mesh_path, svg_path, vtk_path;
-  bool json = false, full = false;
+  std::string mesh_path, svg_path, vtk_path, network_prefix;
+  bool json = false, full = false, network = false;
   long long cover = -1;
   app.add_option("mesh", mesh_path, "Mesh file (.nmm) written by nmm-preprocess")
       ->required()
@@ -47,6 +50,14 @@ int run(int argc, char** argv) {
       "--cover", cover,
       "Report on physical cover N; highlight it in the SVG and flag its elements in the VTK file");
   cover_opt->type_name("N");
+  app.add_flag("--network", network,
+               "Report the joint network: per set requested and measured P21, P10 on scanlines, "
+               "mean spacing, trace lengths; block count and block-area percentiles (with --json: "
+               "the key \"network\")");
+  app.add_option("--network-svg", network_prefix,
+                 "Write PREFIX-rose.svg, PREFIX-trace-lengths.svg, PREFIX-block-areas.svg and "
+                 "PREFIX-network.svg (docs/joint-networks.md)")
+      ->type_name("PREFIX");
 
   try {
     app.parse(argc, argv);
@@ -63,6 +74,16 @@ int run(int argc, char** argv) {
   if (has_cover) cover_json = nmm::cover_report_json(mesh, cover);  // range check before output
 
   // Build every output in memory first; only then touch the file system.
+  const bool want_network = network || !network_prefix.empty();
+  nmm::pre::NetworkReport network_rep;
+  if (want_network) network_rep = nmm::pre::network_report(mesh, scene);
+  std::vector<std::pair<std::string, std::string>> network_svgs;
+  if (!network_prefix.empty())
+    network_svgs = {{network_prefix + "-rose.svg", nmm::pre::rose_svg(network_rep)},
+                    {network_prefix + "-trace-lengths.svg",
+                     nmm::pre::trace_length_histogram_svg(network_rep)},
+                    {network_prefix + "-block-areas.svg", nmm::pre::block_area_cdf_svg(network_rep)},
+                    {network_prefix + "-network.svg", nmm::pre::network_svg(scene)}};
   std::string svg_text;
   if (!svg_path.empty())
     svg_text = nmm::mesh_svg(mesh, &scene, has_cover ? static_cast<int>(cover) : -1);
@@ -81,6 +102,7 @@ int run(int argc, char** argv) {
   }
   if (!svg_path.empty()) nmm::write_file_atomically(svg_path, svg_text);
   if (!vtk_path.empty()) nmm::write_file_atomically(vtk_path, vtk_text);
+  for (const auto& [path, text] : network_svgs) nmm::write_file_atomically(path, text);
 
   // Scene names, file names and the tool version come from the file: invalid UTF-8 there must
   // not make the JSON dump throw, so it is replaced.
@@ -88,6 +110,7 @@ int run(int argc, char** argv) {
   if (json) {
     nlohmann::json report = nmm::mesh_report_json(mesh, &scene, full);
     if (has_cover) report["cover"] = cover_json;
+    if (network) report["network"] = nmm::pre::network_report_json(network_rep);
     // --full is large: one compact line; the short report is indented for people.
     std::cout << (full ? report.dump(-1, ' ', false, kReplace)
                        : report.dump(2, ' ', false, kReplace))
@@ -95,8 +118,10 @@ int run(int argc, char** argv) {
   } else {
     std::cout << nmm::mesh_summary_text(mesh, &scene);
     if (has_cover) std::cout << nmm::cover_summary_text(mesh, cover);
+    if (network) std::cout << nmm::pre::network_report_text(network_rep);
     if (!svg_path.empty()) std::cout << "wrote " << svg_path << '\n';
     if (!vtk_path.empty()) std::cout << "wrote " << vtk_path << '\n';
+    for (const auto& svg : network_svgs) std::cout << "wrote " << svg.first << '\n';
   }
   std::cout.flush();
   if (!std::cout) throw nmm::InputError("", "stdout", "cannot write the report");

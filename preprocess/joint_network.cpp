@@ -57,44 +57,6 @@ double segment_crossing(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return t;
 }
 
-/// Sutherland–Hodgman clip of a polygon by an axis-aligned box (for the region's area).
-Ring clip_polygon_to_box(const Ring& poly, double x0, double y0, double x1, double y1) {
-  Ring out = poly;
-  for (int edge = 0; edge < 4; ++edge) {
-    auto inside = [&](Vec2 p) {
-      switch (edge) {
-        case 0: return p.x >= x0;
-        case 1: return p.x <= x1;
-        case 2: return p.y >= y0;
-        default: return p.y <= y1;
-      }
-    };
-    auto cut = [&](Vec2 p, Vec2 q) {
-      double t = 0;
-      switch (edge) {
-        case 0: t = (x0 - p.x) / (q.x - p.x); break;
-        case 1: t = (x1 - p.x) / (q.x - p.x); break;
-        case 2: t = (y0 - p.y) / (q.y - p.y); break;
-        default: t = (y1 - p.y) / (q.y - p.y); break;
-      }
-      return lerp(p, q, t);
-    };
-    Ring in = out;
-    out.clear();
-    for (std::size_t i = 0; i < in.size(); ++i) {
-      const Vec2 p = in[i], q = in[(i + 1) % in.size()];
-      if (inside(q)) {
-        if (!inside(p)) out.push_back(cut(p, q));
-        out.push_back(q);
-      } else if (inside(p)) {
-        out.push_back(cut(p, q));
-      }
-    }
-    if (out.empty()) break;
-  }
-  return out;
-}
-
 struct Box {
   double x0, y0, x1, y1;
 };
@@ -123,6 +85,97 @@ double length_margin(const LengthDef& d) {
   }
   return 0;
 }
+
+/// Uniform grid over the bodies' box holding the joints of the earlier sets, so that the
+/// termination search of a new trace looks only at joints in the cells its bounding box meets:
+/// O(1) candidates per trace for a stationary network instead of all earlier joints (O(N·M)).
+/// Cell side c = max(√(A/N), L̄/4) (A box area, N joints, L̄ their mean length), so a cell holds
+/// O(1) joints and a joint meets O(1) cells; at most 2²² cells. The result (the nearest crossing
+/// on each side) does not depend on the order candidates are visited in, so the grid changes no
+/// output bit.
+class SegmentGrid {
+ public:
+  SegmentGrid(const Box& box, const std::vector<JointDef>& joints, std::size_t count)
+      : box_(box), stamp_(count, 0) {
+    double total = 0;
+    for (std::size_t k = 0; k < count; ++k)
+      total += std::hypot(joints[k].points[1].x - joints[k].points[0].x,
+                          joints[k].points[1].y - joints[k].points[0].y);
+    const double w = std::max(box.x1 - box.x0, 1e-9), h = std::max(box.y1 - box.y0, 1e-9);
+    const double n = static_cast<double>(std::max<std::size_t>(count, 1));
+    double c = std::max(std::sqrt(w * h / n), 0.25 * total / n);
+    c = std::max(c, std::sqrt(w * h / 4194304.0));
+    nx_ = std::max(1, static_cast<int>(std::ceil(w / c)));
+    ny_ = std::max(1, static_cast<int>(std::ceil(h / c)));
+    cx_ = w / nx_;
+    cy_ = h / ny_;
+    // Counting sort into CSR arrays: cells in row-major order, joints in index order.
+    std::vector<std::int32_t> count_in(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::size_t k = 0; k < count; ++k) {
+        int i0, i1, j0, j1;
+        range(joints[k].points[0], joints[k].points[1], i0, i1, j0, j1);
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i) {
+            const std::size_t cell = static_cast<std::size_t>(j) * nx_ + i;
+            if (pass == 0) ++count_in[cell + 1];
+            else items_[fill_[cell]++] = static_cast<std::int32_t>(k);
+          }
+      }
+      if (pass == 0) {
+        for (std::size_t i = 1; i < count_in.size(); ++i) count_in[i] += count_in[i - 1];
+        start_ = count_in;
+        fill_ = std::vector<std::int32_t>(count_in.begin(), count_in.end() - 1);
+        items_.assign(static_cast<std::size_t>(count_in.back()), 0);
+      }
+    }
+  }
+
+  /// Calls f(k) once for every joint k whose cells meet the bounding box of a–b.
+  template <class F>
+  void visit(Vec2 a, Vec2 b, F&& f) {
+    ++query_;
+    int i0, i1, j0, j1;
+    if (!range(a, b, i0, i1, j0, j1)) return;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const std::size_t cell = static_cast<std::size_t>(j) * nx_ + i;
+        for (std::int32_t m = start_[cell]; m < start_[cell + 1]; ++m) {
+          const std::int32_t k = items_[m];
+          if (stamp_[k] == query_) continue;
+          stamp_[k] = query_;
+          f(static_cast<std::size_t>(k));
+        }
+      }
+  }
+
+ private:
+  /// Cell ranges of the bounding box of a–b, clamped to the grid; false if it misses the grid.
+  bool range(Vec2 a, Vec2 b, int& i0, int& i1, int& j0, int& j1) const {
+    const double x0 = std::min(a.x, b.x), x1 = std::max(a.x, b.x);
+    const double y0 = std::min(a.y, b.y), y1 = std::max(a.y, b.y);
+    if (x1 < box_.x0 || x0 > box_.x1 || y1 < box_.y0 || y0 > box_.y1) {
+      i0 = j0 = 0;
+      i1 = j1 = -1;
+      return false;
+    }
+    auto cell = [](double v, double lo, double size, int n) {
+      return std::clamp(static_cast<int>(std::floor((v - lo) / size)), 0, n - 1);
+    };
+    i0 = cell(x0, box_.x0, cx_, nx_);
+    i1 = cell(x1, box_.x0, cx_, nx_);
+    j0 = cell(y0, box_.y0, cy_, ny_);
+    j1 = cell(y1, box_.y0, cy_, ny_);
+    return true;
+  }
+
+  Box box_;
+  int nx_ = 1, ny_ = 1;
+  double cx_ = 1, cy_ = 1;
+  std::vector<std::int32_t> start_, fill_, items_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t query_ = 0;
+};
 
 }  // namespace
 
@@ -226,6 +279,44 @@ std::int64_t sample_poisson(double lambda, RandomEngine& rng) {
   return n;
 }
 
+// Sutherland–Hodgman, one box side at a time.
+Ring clip_polygon_to_box(const Ring& poly, double x0, double y0, double x1, double y1) {
+  Ring out = poly;
+  for (int edge = 0; edge < 4; ++edge) {
+    auto inside = [&](Vec2 p) {
+      switch (edge) {
+        case 0: return p.x >= x0;
+        case 1: return p.x <= x1;
+        case 2: return p.y >= y0;
+        default: return p.y <= y1;
+      }
+    };
+    auto cut = [&](Vec2 p, Vec2 q) {
+      double t = 0;
+      switch (edge) {
+        case 0: t = (x0 - p.x) / (q.x - p.x); break;
+        case 1: t = (x1 - p.x) / (q.x - p.x); break;
+        case 2: t = (y0 - p.y) / (q.y - p.y); break;
+        default: t = (y1 - p.y) / (q.y - p.y); break;
+      }
+      return lerp(p, q, t);
+    };
+    Ring in = out;
+    out.clear();
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const Vec2 p = in[i], q = in[(i + 1) % in.size()];
+      if (inside(q)) {
+        if (!inside(p)) out.push_back(cut(p, q));
+        out.push_back(q);
+      } else if (inside(p)) {
+        out.push_back(cut(p, q));
+      }
+    }
+    if (out.empty()) break;
+  }
+  return out;
+}
+
 std::vector<std::pair<Vec2, Vec2>> clip_segment_to_polygon(Vec2 a, Vec2 b, const Ring& poly) {
   std::vector<double> ts = {0.0, 1.0};
   for (std::size_t i = 0; i < poly.size(); ++i) {
@@ -266,6 +357,7 @@ JointNetwork generate_joint_network(const std::vector<GeneratedSetInput>& sets, 
           std::min(rb.x1, bb.x1) + margin, std::min(rb.y1, bb.y1) + margin};
     const double theta0 = def.mean_angle_deg * kPi / 180;
     const std::size_t earlier_end = net.joints.size();  // joints of earlier sets: [0, earlier_end)
+    SegmentGrid grid(bb, net.joints, earlier_end);
 
     auto add_trace = [&](Vec2 c, double angle, double length) {
       const Vec2 d{std::cos(angle), std::sin(angle)};
@@ -274,14 +366,14 @@ JointNetwork generate_joint_network(const std::vector<GeneratedSetInput>& sets, 
       // Termination: the first crossing with an earlier-set joint on each side of the centre.
       double plus = hi, minus = lo;
       bool hit_plus = false, hit_minus = false;
-      for (std::size_t k = 0; k < earlier_end; ++k) {
+      grid.visit(a, b, [&](std::size_t k) {
         const auto& p = net.joints[k].points;
         const double s = segment_crossing(a, b, p[0], p[1]);
-        if (s < 0) continue;
+        if (s < 0) return;
         const double t = lo + s * (hi - lo);
         if (t >= 0 && t < plus) { plus = t; hit_plus = true; }
         if (t < 0 && t > minus) { minus = t; hit_minus = true; }
-      }
+      });
       const double u_plus = rng.uniform(), u_minus = rng.uniform();  // always drawn: stable stream
       if (hit_plus) {
         ++st.sides_with_intersection;
@@ -384,8 +476,13 @@ nlohmann::json explicit_scene(const nlohmann::json& doc, const SceneDef& scene,
     for (const Vec2& p : j.points) points.push_back({p.x, p.y});
     joints.push_back({{"set", scene.joint_sets[j.set].name}, {"points", points}});
   }
-  for (const GeneratedSetInput& in : inputs)
-    out["joint_sets"][scene.joint_sets[in.set].name].erase("generate");
+  // The generate block becomes generated_from: metadata the inspector compares the measured
+  // network with (requested P21, region); parsers read it but never generate from it again.
+  for (const GeneratedSetInput& in : inputs) {
+    nlohmann::json& set = out["joint_sets"][scene.joint_sets[in.set].name];
+    set["generated_from"] = set["generate"];
+    set.erase("generate");
+  }
   if (network) *network = std::move(net);
   return out;
 }

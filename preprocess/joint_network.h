@@ -76,7 +76,8 @@ JointNetwork generate_joint_network(const std::vector<GeneratedSetInput>& sets, 
 
 /// The explicit scene of a scene document with generated joint sets: every set's `generate`
 /// block is run (sets in name order, so earlier sets are those with smaller names), the joints
-/// are appended to /joints as two-point joints and the `generate` blocks are removed, so that the
+/// are appended to /joints as two-point joints and each `generate` block is renamed
+/// `generated_from` (metadata: it generates nothing when parsed again), so that the
 /// result is an ordinary scene that nmm-solve and nmm-inspect re-parse with the same geometry.
 /// `scene` is the parsed `doc`; `network` (optional) receives the joints and statistics.
 nlohmann::json explicit_scene(const nlohmann::json& doc, const SceneDef& scene,
@@ -84,5 +85,9 @@ nlohmann::json explicit_scene(const nlohmann::json& doc, const SceneDef& scene,
 
 /// Clips segment a–b to a simple polygon: the pieces inside, in order along a–b.
 std::vector<std::pair<Vec2, Vec2>> clip_segment_to_polygon(Vec2 a, Vec2 b, const Ring& poly);
+
+/// Clips a polygon to the axis-aligned box [x0, x1] × [y0, y1] (Sutherland–Hodgman; exact for a
+/// convex polygon, and its area is right for any simple one).
+Ring clip_polygon_to_box(const Ring& poly, double x0, double y0, double x1, double y1);
 
 }  // namespace nmm::pre

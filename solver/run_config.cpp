@@ -60,6 +60,29 @@ void check_geometry_unchanged(const json& base, const json& doc, const std::stri
 }
 
 
+/// Generated joint sets are geometry too: their `generate` (or, in an embedded scene,
+/// `generated_from`) block made the joints the mesh was cut with. Changing it here would be
+/// accepted and ignored, so it is refused, naming the way that works (docs/joint-networks.md).
+void check_generation_unchanged(const json& base, const json& doc, const std::string& source) {
+  const json empty = json::object();
+  const json& a = base.is_object() && base.contains("joint_sets") ? base["joint_sets"] : empty;
+  const json& b = doc.is_object() && doc.contains("joint_sets") ? doc["joint_sets"] : empty;
+  if (!b.is_object()) return;  // scene_from_json reports the type error
+  for (auto it = b.begin(); it != b.end(); ++it) {
+    if (!it.value().is_object()) continue;
+    for (const char* key : {"generate", "generated_from"}) {
+      const bool in_doc = it.value().contains(key);
+      const bool in_base = a.is_object() && a.contains(it.key()) && a[it.key()].is_object() &&
+                           a[it.key()].contains(key);
+      if (in_doc == in_base && (!in_doc || a[it.key()][key] == it.value()[key])) continue;
+      throw InputError(source, "/joint_sets/" + it.key() + "/" + key,
+                       "generated joints are geometry fixed by the mesh file: re-preprocess "
+                       "with nmm-preprocess --set joint_sets." + it.key() +
+                           ".generate.KEY=VALUE for another network");
+    }
+  }
+}
+
 }  // namespace
 
 RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
@@ -79,8 +102,13 @@ RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
           "expected an object (a JSON merge patch, RFC 7386, on the scene), got " + describe_json_value(patch));
     doc.merge_patch(patch);
     check_geometry_unchanged(base, doc, config_path);
+    check_generation_unchanged(base, doc, config_path);
   }
-  for (const std::string& set : sets) apply_set(doc, set);
+  for (const std::string& set : sets) {
+    json before = doc;
+    apply_set(doc, set);
+    check_generation_unchanged(before, doc, "--set");
+  }
   if (!sets.empty()) check_geometry_unchanged(base, doc, "--set");
 
   std::string name = "scene in " + mesh_path + " with";

@@ -246,8 +246,19 @@ TEST(JointNetwork, DfnSlopeExampleMeetsItsRequest) {
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(ratio[i] / realisations, 1.0, 0.12) << "set " << i;
   EXPECT_EQ(out["joints"].size(), net.joints.size());
   EXPECT_FALSE(out["joint_sets"]["cross"].contains("generate"));
+  // The generate block is kept as metadata: parsed again it generates nothing.
+  EXPECT_EQ(out["joint_sets"]["cross"]["generated_from"],
+            parse_json_text(text, path)["joint_sets"]["cross"]["generate"]);
   const SceneDef again = scene_from_json(out, path);
   EXPECT_EQ(again.joints.size(), net.joints.size());
+  for (const auto& set : again.joint_sets) {
+    EXPECT_FALSE(set.generated);
+    EXPECT_TRUE(set.expanded);
+  }
+  EXPECT_DOUBLE_EQ(again.joint_sets[1].generate.p21, 0.12);
+  JointNetwork none;
+  EXPECT_EQ(explicit_scene(out, again, &none), out);  // nothing generated twice
+  EXPECT_TRUE(none.joints.empty());
 }
 }  // namespace
 }  // namespace nmm::pre

@@ -226,6 +226,43 @@ TEST(RunConfig, GeometryIsRefusedFromSet) {
   }
 }
 
+// Generated joint sets (docs/joint-networks.md): the embedded scene keeps the generate block as
+// generated_from; changing either on the solver would be accepted and ignored, so it is refused
+// with the command that does rebuild the network.
+TEST(RunConfig, GenerateKeysAreRefusedAndNameThePreprocessor) {
+  std::string text = kScene;
+  const std::string shear = R"("shear":  { "model": "constant", "ks": 2e11 } })";
+  const auto at = text.find(shear);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, shear.size(),
+               R"("shear":  { "model": "constant", "ks": 2e11 },
+                 "generated_from": { "orientation": { "mean_deg": 10 }, "p21": 0.1,
+                                     "length": 3, "seed": 1 } })");
+  const Mesh mesh = scene_mesh(text);
+  EXPECT_NO_THROW(make_run_scene(mesh, "m.nmm", "", {"joint_sets.bedding.friction_deg=25"}));
+  const struct {
+    const char* set;
+    const char* where;
+  } cases[] = {
+      {"joint_sets.bedding.generate.seed=3", "/joint_sets/bedding/generate"},
+      {"joint_sets.bedding.generated_from.seed=3", "/joint_sets/bedding/generated_from"},
+      {"joint_sets.bedding.generated_from=null", "/joint_sets/bedding/generated_from"},
+      {"joint_sets.new.generate.seed=3", "/joint_sets/new/generate"},
+  };
+  for (const auto& c : cases) {
+    const InputError e = input_error([&] { make_run_scene(mesh, "m.nmm", "", {c.set}); });
+    EXPECT_EQ(e.file(), "--set") << c.set;
+    EXPECT_EQ(e.where(), c.where) << c.set;
+    EXPECT_NE(e.message().find("nmm-preprocess --set"), std::string::npos) << e.what();
+  }
+  TempDir dir;
+  const std::string config =
+      dir.file("seed.json", R"({"joint_sets": {"bedding": {"generated_from": {"seed": 4}}}})");
+  const InputError e = input_error([&] { make_run_scene(mesh, "m.nmm", config, {}); });
+  EXPECT_EQ(e.file(), config);
+  EXPECT_EQ(e.where(), "/joint_sets/bedding/generated_from");
+}
+
 TEST(RunConfig, BadConfigFile) {
   TempDir dir;
   const std::string bad_json = dir.file("bad.json", "{\n  \"solver\": { \"steps\": 5, }\n}\n");

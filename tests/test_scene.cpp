@@ -242,8 +242,8 @@ const BadCase kBadCases[] = {
      "insitu_stress, interface_set, joint_sets, joints, loads, materials, measure_points, mesh, "
      "name, plane, solver, supports, tractions)"},
     {R"({"joint_sets": {"bedding": {"fricton_deg": 20}}})", "/joint_sets/bedding/fricton_deg",
-     "unknown key \"fricton_deg\" (allowed: cohesion, friction_deg, generate, normal, shear, "
-     "tensile_strength)"},
+     "unknown key \"fricton_deg\" (allowed: cohesion, friction_deg, generate, generated_from, "
+     "normal, shear, tensile_strength)"},
     {R"({"materials": {"rock": {"E": 1}}})", "/materials/rock/E", "unknown key \"E\""},
     {R"({"solver": {"timestep": 1}})", "/solver/timestep", "unknown key \"timestep\""},
     {R"({"mesh": {"size": 0.5, "type": "quad"}})", "/mesh/type",
