@@ -20,7 +20,8 @@
 // would drop the force from tanφ·N to 0 in one step and shake the blocks).
 //
 // States after each solve (T = tensile strength, c = cohesion, L = the contact's tributary
-// length: half of each candidate edge at P; both are lost once the contact slides or opens):
+// length: half of each candidate edge at P; both are lost once the contact slides or opens —
+// c drops to the joint set's residual_cohesion, 0 unless given):
 //   open    → locked   when gap < −ε (a fresh spring)
 //   closed  → open     when N < −T·L − kn·ε   (tension beyond the strength)
 //   locked  → sliding  when |ks·s| > N·tanφ + c·L   (Mohr–Coulomb), σ = sign(s)
@@ -76,6 +77,7 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
     law.rf = js.shear.rf;
     law.tan_phi = std::tan(js.friction_deg * kPi / 180.0);
     law.cohesion = js.cohesion;
+    law.residual_cohesion = js.residual_cohesion;
     law.tensile = js.tensile_strength;
     laws_.push_back(law);
   }

@@ -59,7 +59,8 @@ double initial_normal_stiffness(const ContactLaw& law, double length) {
 }
 
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken) {
-  return std::max(0.0, law.tan_phi * std::max(normal_force, 0.0) + (broken ? 0.0 : law.cohesion * length));
+  const double c = broken ? law.residual_cohesion : law.cohesion;
+  return std::max(0.0, law.tan_phi * std::max(normal_force, 0.0) + c * length);
 }
 
 double initial_shear_stiffness(const ContactLaw& law, double length) {

@@ -195,7 +195,8 @@ int main(int argc, char** argv) {
     nlohmann::json js = nlohmann::json::array();
     for (const SetStrength& s : strengths)
       js.push_back({{"name", s.name}, {"tan_phi", s.tan_phi}, {"cohesion", s.cohesion},
-                    {"tensile_strength", s.tensile_strength}, {"shear_model", s.shear_model}});
+                    {"tensile_strength", s.tensile_strength}, {"residual_cohesion", s.residual_cohesion},
+                    {"shear_model", s.shear_model}});
     j["sets"] = js;
     nlohmann::json jt = nlohmann::json::array();
     double total_wall = 0;
