@@ -201,6 +201,37 @@ TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
   EXPECT_NEAR(f, ref.fos, 0.03 * ref.fos);
 }
 
+// --settle: one run with the joints intact first, every trial restarting from its checkpoint.
+// The plastic wedge gives the same F; the brittle one (residual_cohesion 0) lies between the
+// friction-only factor and the plastic one — brittle cohesion fails progressively from the
+// plane's ends (studies/fos_reference.h), and no reduction of strength can raise F.
+TEST(FosPlanarSlide, SettleIntactThenReduce) {
+  const ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4);
+  const double friction_only = std::tan(25 * M_PI / 180) / std::tan(30 * M_PI / 180);
+  const fs::path dir = work_dir("planar_slide_settle");
+  const std::string mesh = mesh_of(ref.scene, dir);
+  const nlohmann::json p = fos_json(mesh, dir / "plastic", "--tol 0.01 --workers 2 --settle 200");
+  ASSERT_FALSE(p["fos"].is_null()) << p.dump();
+  ASSERT_TRUE(p["settle"].is_object());
+  const std::string checkpoint = p["settle"]["checkpoint"];
+  EXPECT_TRUE(fs::exists(checkpoint));
+  for (const auto& t : p["trials"]) {
+    std::ifstream in(dir / "plastic" / t["dir"].get<std::string>() / "run.sh");
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(text.find("'--restart' '" + checkpoint + "'"), std::string::npos) << t["dir"];
+  }
+  const double fp = p["fos"].get<double>();
+  EXPECT_NEAR(fp, ref.fos, 0.03 * ref.fos);
+  const nlohmann::json b = fos_json(mesh, dir / "brittle",
+                                    "--tol 0.01 --workers 2 --settle 200 --set joint_sets.plane.residual_cohesion=0");
+  ASSERT_FALSE(b["fos"].is_null()) << b.dump();
+  const double fb = b["fos"].get<double>();
+  std::printf("planar slide settled intact: plastic F = %.4f, brittle F = %.4f (friction only %.4f, "
+              "Hoek-Bray %.4f)\n", fp, fb, friction_only, ref.fos);
+  EXPECT_GT(fb, friction_only * 1.02);
+  EXPECT_LT(fb, fp);
+}
+
 // The Snakemake engine runs the same trials: the same verdicts, so the same F.
 TEST(FosEngines, SnakemakeGivesTheSameFactorAsThreads) {
   if (!have_snakemake()) GTEST_SKIP() << "snakemake is not installed (.ci/setup installs it)";
@@ -255,7 +286,8 @@ TEST(FosCli, BadInputIsExitTwoWithOneLine) {
   const fs::path dir = work_dir("bad");
   const std::string mesh = mesh_of(ref.scene, dir);
   for (const char* extra_c : {"--watch sideways", "--sets nosuch", "--tol 0", "--engine slurmish", "--set mesh.size=1",
-                                   "--restart no_such.nmmstate", "--frobnicate"}) {
+                                   "--restart no_such.nmmstate", "--frobnicate", "--settle -5",
+                                   "--settle 10 --restart no_such.nmmstate"}) {
     const std::string extra = extra_c;
     const fs::path err = dir / "err.txt";
     const int rc = run(std::string(NMM_FOS) + " " + mesh + " -o " + (dir / "out").string() + " " +
