@@ -518,13 +518,16 @@ JointGenerationDef read_joint_generation(const Reader& r) {
 }
 
 JointSetDef read_joint_set(const std::string& name, const Reader& r) {
-  r.check_keys({"friction_deg", "cohesion", "tensile_strength", "normal", "shear", "generate",
-                "generated_from"});
+  r.check_keys({"friction_deg", "cohesion", "tensile_strength", "residual_cohesion", "normal", "shear",
+                "generate", "generated_from"});
   JointSetDef s;
   s.name = name;
   s.friction_deg = r.number("friction_deg", interval(0, true, 90, false));  // tan 90° is infinite
   s.cohesion = r.optional_number("cohesion", 0, interval(0, true, kMaxStrength, true));
   s.tensile_strength = r.optional_number("tensile_strength", 0, interval(0, true, kMaxStrength, true));
+  // Residual cohesion (docs/contact.md, "Cohesion after failure"): 0 = brittle (the default),
+  // = cohesion: perfectly plastic Mohr–Coulomb, what limit-equilibrium closed forms assume.
+  s.residual_cohesion = r.optional_number("residual_cohesion", 0, interval(0, true, s.cohesion, true));
   s.normal = read_normal_law(r["normal"]);
   s.shear = read_shear_law(r["shear"]);
   if (r.has("generate")) {

@@ -15,7 +15,8 @@
 //           tension with the initial stiffness until N < −T·L, when it breaks for good;
 //   shear   elastoplastic: the spring carries an elastic shear s_el from step to step; the trial
 //           shear is s = s_el + slip and the force T(s) = ks·s (or the hyperbola) capped at the
-//           strength S = tanφ·N + c·L (c only while unbroken; 0 when open). A step that ends
+//           strength S = tanφ·N + c·L (c while unbroken, then the joint set's residual
+//           cohesion, 0 unless given; S = 0 when open). A step that ends
 //           sliding leaves s_el at the cap (return mapping), so the force stays continuous when
 //           the contact sticks again.
 // Forces enter the residual r = b − A d + Σ N·cn − Σ T·cs, tangents the Newton matrix
@@ -66,6 +67,7 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
     law.rf = js.shear.rf;
     law.tan_phi = std::tan(js.friction_deg * kPi / 180.0);
     law.cohesion = js.cohesion;
+    law.residual_cohesion = js.residual_cohesion;
     law.tensile = js.tensile_strength;
     laws_.push_back(law);
   }

@@ -14,7 +14,8 @@
 //   Unloading retraces the loading curve: closure is nonlinear elastic here (real joints show
 //   hysteresis between load cycles, which the first-cycle law does not describe).
 // Shear, hyperbolic (Kulhawy 1975; Duncan–Chang form), elastic shear u ≥ 0, strength
-// τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact:
+// τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact (c → the residual cohesion c_r once
+// the contact is broken: it slid or opened; c_r = 0 unless the joint set gives one):
 //     τ = u / (1/Ksi + Rf·u/τf)              ⇔  u = τ / (Ksi·(1 − Rf·τ/τf))
 //     ks = dτ/du · L = Ksi·L·(1 − Rf·τ/τf)²   (falls as u grows)
 //   The contact slips (Mohr–Coulomb) when the force reaches T_f, which the curve does at
@@ -59,7 +60,8 @@ double initial_normal_stiffness(const ContactLaw& law, double length) {
 }
 
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken) {
-  return std::max(0.0, law.tan_phi * std::max(normal_force, 0.0) + (broken ? 0.0 : law.cohesion * length));
+  const double c = broken ? law.residual_cohesion : law.cohesion;
+  return std::max(0.0, law.tan_phi * std::max(normal_force, 0.0) + c * length);
 }
 
 double initial_shear_stiffness(const ContactLaw& law, double length) {

@@ -19,6 +19,7 @@ struct ContactLaw {
   double rf = 1;        ///< –, failure ratio (hyperbolic)
   double tan_phi = 0;   ///< –, friction coefficient
   double cohesion = 0;  ///< Pa
+  double residual_cohesion = 0;  ///< Pa, cohesion of a broken contact (0: brittle)
   double tensile = 0;   ///< Pa, tensile strength
 };
 
@@ -35,7 +36,8 @@ SpringState normal_spring(const ContactLaw& law, double closure, double length);
 /// Normal stiffness used in tension and for judging opening (N/m): kn, or Kni·L.
 double initial_normal_stiffness(const ContactLaw& law, double length);
 
-/// Shear strength of a contact, N: tanφ·N + c·L (c only while not broken).
+/// Shear strength of a contact, N: tanφ·N + c·L, with the residual cohesion c_r in place of c once
+/// the contact is broken (it slid or opened; c_r = 0 by default: brittle).
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken);
 
 /// Shear spring at signed elastic shear s (m), with strength `strength` (N, ≥ 0) and length L.

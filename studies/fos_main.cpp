@@ -1,10 +1,13 @@
-// nmm-fos MESH.nmm -o OUT [--restart STATE] [--sets a,b] [--config V.json] [--set P=V]... [--watch W]
+// nmm-fos MESH.nmm -o OUT [--restart STATE | --settle STEPS] [--sets a,b] [--config V.json] [--set P=V]... [--watch W]
 //         [--tol 0.01] [--workers N] [--engine threads|snakemake] [--profile DIR]
 //
 // Factor of safety by strength reduction (strength_reduction.h): every trial is one nmm-solve run
 // (its contract CLI) with the chosen joint sets' strength divided by the trial factor, continuing
 // from STATE when given (else from the mesh's initial state), judged stable or failing by
-// trial_verdict.h. Writes OUT/fos.json, OUT/mechanism.svg (the failing trial with the smallest
+// trial_verdict.h. --settle STEPS makes that state first: one nmm-solve run of STEPS steps with
+// the chosen sets intact (cohesion and tensile strength at the scene limit, 1e11 Pa: UDEC's
+// practice of reaching initial equilibrium with strong joints, so that switching gravity on at
+// t = 0 breaks no bond), under OUT/settle/; every trial continues from its checkpoint. Writes OUT/fos.json, OUT/mechanism.svg (the failing trial with the smallest
 // factor), OUT/displacement_vs_F.svg and each trial's run under OUT/round-R/runs/.
 // Exit status: 0 F found; 2 bad input (one line on stderr); 3 no bracket (stable up to the
 // largest factor, or failing at the smallest), after writing fos.json with the reason.
@@ -66,10 +69,12 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   SearchOptions search;
   VerdictCriterion criterion;
-  int workers = 1;
+  int workers = 1, settle_steps = 0;
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
   app.add_option("--restart", restart, "settled state (OUTDIR/checkpoint.nmmstate) every trial continues from");
+  app.add_option("--settle", settle_steps,
+                 "settle STEPS steps with the chosen sets intact first; trials restart from it");
   app.add_option("--sets", sets_word, "joint sets whose strength is reduced, comma separated (default: all)");
   app.add_option("--config", config_path, "JSON merge patch for every trial (nmm-solve --config)");
   app.add_option("--set", sets, "PATH=VALUE for every trial (nmm-solve --set), repeatable");
@@ -102,6 +107,10 @@ int main(int argc, char** argv) {
     engine.workers = workers;
     engine.snakemake_profile = profile.empty() ? "" : fs::absolute(profile).string();
     engine.snakefile = snakefile;
+    if (settle_steps < 0 || settle_steps > 100000000)
+      throw nmm::InputError("", "--settle", "must be a number of steps in 0..1e8");
+    if (settle_steps > 0 && !restart.empty())
+      throw nmm::InputError("", "--settle", "give --settle or --restart, not both");
     if (!restart.empty() && !fs::is_regular_file(restart))
       throw nmm::InputError(restart, "", "no such checkpoint file (--restart)");
 
@@ -118,6 +127,44 @@ int main(int argc, char** argv) {
     const std::string solve = solver.empty() ? sibling_tool("nmm-solve") : solver;
     search.per_round = workers;
 
+    // The settled state: intact joints, the user's variants, STEPS steps.
+    auto with_variants = [&](std::vector<std::string> cmd, const std::vector<std::string>& extra) {
+      if (!config_path.empty()) {
+        cmd.push_back("--config");
+        cmd.push_back(fs::absolute(config_path).string());
+      }
+      std::vector<std::string> all = sets;
+      all.insert(all.end(), extra.begin(), extra.end());
+      for (const std::string& s : all) {
+        cmd.push_back("--set");
+        cmd.push_back(s);
+      }
+      return cmd;
+    };
+    nlohmann::json settle_json = nullptr;
+    if (settle_steps > 0) {
+      const fs::path root = out / "settle";
+      Job job;
+      job.id = "settle";
+      std::vector<std::string> intact = {"solver.steps=" + std::to_string(settle_steps)};
+      for (const SetStrength& s : strengths) {
+        intact.push_back("joint_sets." + s.name + ".cohesion=1e11");
+        intact.push_back("joint_sets." + s.name + ".tensile_strength=1e11");
+      }
+      job.commands.push_back(with_variants({solve, fs::absolute(mesh_path).string(), "-o",
+                                            (root / "runs" / job.id / "out").string(), "--quiet"},
+                                           intact));
+      std::cerr << "nmm-fos: settling " << settle_steps << " steps with the joints intact\n";
+      const JobResult r = run_jobs(root.string(), {job}, engine).at(0);
+      const std::string dir = job_dir(root.string(), job);
+      restart = dir + "/out/checkpoint.nmmstate";
+      if (r.exit_status != 0 || !fs::is_regular_file(restart))
+        throw nmm::RunError("the settling run failed (exit " + std::to_string(r.exit_status) + "; see " +
+                            dir + "/log.txt)");
+      settle_json = {{"steps", settle_steps}, {"wall_seconds", r.wall_seconds}, {"checkpoint", restart},
+                     {"intact", "cohesion and tensile_strength 1e11 Pa on the reduced sets"}};
+    }
+
     auto run_round = [&](const std::vector<double>& factors, int round) {
       const fs::path root = out / ("round-" + std::to_string(round));
       std::vector<Job> jobs;
@@ -132,17 +179,7 @@ int main(int argc, char** argv) {
           cmd.push_back("--restart");
           cmd.push_back(fs::absolute(restart).string());
         }
-        if (!config_path.empty()) {
-          cmd.push_back("--config");
-          cmd.push_back(fs::absolute(config_path).string());
-        }
-        std::vector<std::string> all = sets;
-        for (const std::string& s : reduction_sets(strengths, f)) all.push_back(s);
-        for (const std::string& s : all) {
-          cmd.push_back("--set");
-          cmd.push_back(s);
-        }
-        job.commands.push_back(cmd);
+        job.commands.push_back(with_variants(cmd, reduction_sets(strengths, f)));
         jobs.push_back(job);
       }
       std::cerr << "nmm-fos: round " << round << ":";
@@ -184,6 +221,7 @@ int main(int argc, char** argv) {
     j["engine"] = engine_word;
     j["mesh"] = mesh_path;
     j["restart"] = restart.empty() ? nlohmann::json(nullptr) : nlohmann::json(restart);
+    j["settle"] = settle_json;
     j["criterion"] = {{"velocity_floor", criterion.velocity_floor},
                       {"max_displacement", criterion.max_displacement},
                       {"watch", watch_word},
@@ -195,7 +233,8 @@ int main(int argc, char** argv) {
     nlohmann::json js = nlohmann::json::array();
     for (const SetStrength& s : strengths)
       js.push_back({{"name", s.name}, {"tan_phi", s.tan_phi}, {"cohesion", s.cohesion},
-                    {"tensile_strength", s.tensile_strength}, {"shear_model", s.shear_model}});
+                    {"tensile_strength", s.tensile_strength}, {"residual_cohesion", s.residual_cohesion},
+                    {"shear_model", s.shear_model}});
     j["sets"] = js;
     nlohmann::json jt = nlohmann::json::array();
     double total_wall = 0;

@@ -61,7 +61,7 @@ ReferenceSlide block_on_plane(double alpha_deg, double phi_deg, double duration)
 }
 
 ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, double crack_x,
-                            double phi_deg, double cohesion, double duration) {
+                            double phi_deg, double cohesion, double duration, bool plastic) {
   ReferenceSlide r;
   const double pf = rad(face_deg), pp = rad(plane_deg);
   // The wedge in the real frame: toe, crack base, crack top, crest.
@@ -89,7 +89,12 @@ ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, do
   r.scene = base_scene("planar-slide", pp, phi_deg, cohesion, duration);
   r.scene["bodies"] = {{{"material", "rock"}, {"outer", ring({{0, 0}, {right, 0}, {right, y0}, {0, y0}})}},
                        {{"material", "rock"}, {"outer", ring(wedge)}}};
-  r.scene["fixed_points"] = {{0.3, 0.3}, {right - 0.3, 0.3}, {0.5 * right, 0.3}};
+  if (plastic) r.scene["joint_sets"]["plane"]["residual_cohesion"] = cohesion;
+  // A rigid foundation: fixed points on a 0.5 m grid over the base body (see the header).
+  nlohmann::json fixed = nlohmann::json::array();
+  for (double x = 0.25; x < right - 0.1; x += 0.5)
+    for (double y : {0.25, 0.75}) fixed.push_back({x, y});
+  r.scene["fixed_points"] = fixed;
   // Measure point: the wedge's centroid-ish point, the mean of its corners.
   double mx = 0, my = 0;
   for (const auto& [x, y] : wedge) {

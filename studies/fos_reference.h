@@ -13,6 +13,17 @@
 // dip, g = (−g sin ψ, −g cos ψ): the same mechanics. The block or wedge is a body of its own
 // resting on a base body; their touching edge is the contact interface (joint set "plane"). The
 // rock behind the dry, open tension crack exerts no force and is left out.
+//
+// What the closed forms assume, the scenes build: (1) a rigid foundation — the base body of the
+// planar slide is held by fixed points on a 0.5 m grid. Held at three points only, the 1.1 m
+// thick base sags like a beam under the wedge, which then rests on its crack-end corner and a
+// 1.5 m patch over the middle support: 3/4 of the sliding plane stays open and, having no
+// contact, no cohesion (F came out 0.90 with perfectly plastic joints, 1.24 with the grid).
+// (2) Perfectly plastic Mohr–Coulomb: Hoek & Bray mobilise c over the whole plane at once, so
+// the plane's joint set keeps its cohesion after slip (residual_cohesion = cohesion,
+// docs/contact.md). With the default brittle joint (cohesion lost at a contact's first slip) the
+// elastic shear concentrations at the toe and the crack end fail first and the plane unzips:
+// F = 1.01 from a settled intact state, 0.87 from the initial one, against 1.253.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -30,8 +41,10 @@ struct ReferenceSlide {
 ReferenceSlide block_on_plane(double alpha_deg, double phi_deg, double duration = 0.4);
 
 /// Hoek & Bray planar slide: height H, face ψ_f, plane ψ_p, crack at x_c from the toe (must lie
-/// behind the crest: x_c > H cot ψ_f), friction φ, cohesion c (Pa).
+/// behind the crest: x_c > H cot ψ_f), friction φ, cohesion c (Pa). `plastic`: the plane keeps c
+/// after slip (residual_cohesion = c, the closed form's assumption); false: brittle.
 ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, double crack_x,
-                            double phi_deg, double cohesion, double duration = 0.4);
+                            double phi_deg, double cohesion, double duration = 0.4,
+                            bool plastic = true);
 
 }  // namespace nmm::studies

@@ -40,6 +40,7 @@ std::vector<SetStrength> set_strengths(const nlohmann::json& scene,
     s.tan_phi = std::tan(phi * kPi / 180);
     s.cohesion = js.value("cohesion", 0.0);
     s.tensile_strength = js.value("tensile_strength", 0.0);
+    s.residual_cohesion = js.value("residual_cohesion", 0.0);
     s.shear_model = js.contains("shear") ? js["shear"].value("model", "constant") : "constant";
     out.push_back(s);
   }
@@ -53,6 +54,8 @@ std::vector<std::string> reduction_sets(const std::vector<SetStrength>& sets, do
     out.push_back(p + "friction_deg=" + number(std::atan(s.tan_phi / factor) * 180 / kPi));
     out.push_back(p + "cohesion=" + number(s.cohesion / factor));
     out.push_back(p + "tensile_strength=" + number(s.tensile_strength / factor));
+    // The residual cohesion is strength too (and may not exceed the reduced cohesion).
+    if (s.residual_cohesion > 0) out.push_back(p + "residual_cohesion=" + number(s.residual_cohesion / factor));
   }
   return out;
 }

@@ -2,8 +2,8 @@
 // joints' strength must be divided to bring the model to failure.
 //
 // For a trial factor F the chosen joint sets get
-//   tan φ_F = tan φ / F,   c_F = c / F,   T_F = T / F
-// (friction angle, cohesion, tensile strength; docs/physics.md §5), so the Mohr–Coulomb strength
+//   tan φ_F = tan φ / F,   c_F = c / F,   T_F = T / F,   c_r,F = c_r / F
+// (friction angle, cohesion, tensile strength, residual cohesion; docs/fos-and-sweeps.md), so the Mohr–Coulomb strength
 // τf = c + σn·tan φ becomes τf / F at every σn. The seed's joint laws use the same strength: the
 // hyperbolic shear law τ = us / (1/Ksi + Rf·us/τf) takes the reduced τf, so its tangent stiffness
 // ks = Ksi·(1 − Rf·τ/τf)² follows it — the initial stiffness Ksi is unchanged, the curve bends
@@ -33,6 +33,7 @@ struct SetStrength {
   double tan_phi = 0;           ///< –
   double cohesion = 0;          ///< Pa
   double tensile_strength = 0;  ///< Pa
+  double residual_cohesion = 0;  ///< Pa, cohesion kept after failure (0: brittle)
   std::string shear_model;      ///< "constant" or "hyperbolic" (reported only)
 };
 

@@ -31,6 +31,19 @@ ContactLaw bb_law() {
 
 double closure_of(double sigma, const ContactLaw& l) { return sigma * l.vm / (l.kni * l.vm + sigma); }
 
+// Mohr–Coulomb strength tanφ·N + c·L; a broken contact (it slid or opened) keeps the residual
+// cohesion c_r instead of c: 0 by default (brittle), c for a perfectly plastic joint.
+TEST(JointLaw, ShearStrengthKeepsTheResidualCohesionOnceBroken) {
+  ContactLaw law;
+  law.tan_phi = 0.5;
+  law.cohesion = 1e4;
+  EXPECT_DOUBLE_EQ(shear_strength(law, 2000, 0.25, false), 0.5 * 2000 + 1e4 * 0.25);
+  EXPECT_DOUBLE_EQ(shear_strength(law, 2000, 0.25, true), 0.5 * 2000);
+  EXPECT_DOUBLE_EQ(shear_strength(law, -2000, 0.25, false), 1e4 * 0.25);  // tension: c only
+  law.residual_cohesion = 4e3;
+  EXPECT_DOUBLE_EQ(shear_strength(law, 2000, 0.25, true), 0.5 * 2000 + 4e3 * 0.25);
+}
+
 TEST(JointLaw, BandisBartonCurveAndTangent) {
   const ContactLaw law = bb_law();
   const double L = 0.25;

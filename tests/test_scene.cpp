@@ -243,7 +243,7 @@ const BadCase kBadCases[] = {
      "name, plane, solver, supports, tractions)"},
     {R"({"joint_sets": {"bedding": {"fricton_deg": 20}}})", "/joint_sets/bedding/fricton_deg",
      "unknown key \"fricton_deg\" (allowed: cohesion, friction_deg, generate, generated_from, "
-     "normal, shear, tensile_strength)"},
+     "normal, residual_cohesion, shear, tensile_strength)"},
     {R"({"materials": {"rock": {"E": 1}}})", "/materials/rock/E", "unknown key \"E\""},
     {R"({"solver": {"timestep": 1}})", "/solver/timestep", "unknown key \"timestep\""},
     {R"({"mesh": {"size": 0.5, "type": "quad"}})", "/mesh/type",
@@ -344,6 +344,8 @@ const BadCase kBadCases[] = {
      "must be in [0, 1e+11] (got -1)"},
     {R"({"joint_sets": {"fault": {"tensile_strength": -2e3}}})",
      "/joint_sets/fault/tensile_strength", "must be in [0, 1e+11] (got -2000)"},
+    {R"({"joint_sets": {"bedding": {"cohesion": 1e4, "residual_cohesion": 2e4}}})",
+     "/joint_sets/bedding/residual_cohesion", "must be in [0, 10000] (got 20000)"},
     {R"({"joint_sets": {"bedding": {"normal": {"kn": 0}}}})", "/joint_sets/bedding/normal/kn",
      "must be in (0, 1e+17] (got 0)"},
     {R"({"joint_sets": {"bedding": {"shear": {"ks": -1e9}}}})", "/joint_sets/bedding/shear/ks",
