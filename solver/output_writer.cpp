@@ -204,7 +204,7 @@ void OutputWriter::add_contacts(std::int64_t step, double time,
       rows += ',';
       append_double(rows, v);
     }
-    rows += '\n';
+    rows += ',' + std::to_string(c.vertex) + ',' + std::to_string(c.edge) + '\n';
   }
 }
 
@@ -215,10 +215,12 @@ void OutputWriter::flush_history() {
   if (!contacts_.empty())
     write_file_atomically(join_path(dir_, "contacts.csv"),
                           "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
-                          "kn,ks,length\n" + contacts_);
+                          "kn,ks,length,vertex,edge\n" + contacts_);
 }
 
-void OutputWriter::write_summary(const nlohmann::json& summary) {
+void OutputWriter::write_summary(const nlohmann::json& summary_in) {
+  nlohmann::json summary = summary_in;
+  if (!inputs_.is_null()) summary["inputs"] = inputs_;
   // Replace invalid UTF-8 (a reason built from a file name, say) rather than throw: the summary
   // is what a failed run leaves behind, so writing it must not fail for that.
   write_file_atomically(

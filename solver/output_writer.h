@@ -30,6 +30,8 @@ struct ContactSample {
   double shear_force;      ///< N
   double kn, ks;           ///< N/m, tangent stiffnesses (0 where the spring is off)
   double length;           ///< m, tributary joint length
+  int vertex;              ///< loop vertex P of the contact (Mesh::loop_xy index)
+  int edge;                ///< first loop vertex of the edge P faces (edge → next vertex)
 };
 
 /// What a frame shows: the element loops in their current position.
@@ -71,11 +73,15 @@ class OutputWriter {
 
   /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, and
   /// contacts.csv ("step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,
-  /// length") if any contact rows were added.
+  /// length,vertex,edge") if any contact rows were added.
   void flush_history();
 
-  /// Writes summary.json (pretty-printed).
+  /// Writes summary.json (pretty-printed), with the run's inputs (set_run_inputs) as "inputs".
   void write_summary(const nlohmann::json& summary);
+
+  /// What the run was made from (mesh file, --config, --set, --restart, picture field), kept in
+  /// summary.json "inputs" so that nmm-report can load the mesh and scene to redraw a frame.
+  void set_run_inputs(nlohmann::json inputs) { inputs_ = std::move(inputs); }
 
   const std::string& dir() const { return dir_; }
 
@@ -88,6 +94,7 @@ class OutputWriter {
   int contacts_every_ = 1;
   std::int64_t contact_calls_ = 0;
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
+  nlohmann::json inputs_;  // summary.json "inputs" (null: none)
 };
 
 }  // namespace nmm::solve

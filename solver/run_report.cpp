@@ -27,20 +27,28 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-// Rows of a CSV of numbers with a header line; columns by name.
-struct Table {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& n) const {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == n) return static_cast<int>(i);
-    return -1;
-  }
-};
+bool have_rsvg() { return std::system("command -v rsvg-convert >/dev/null 2>&1") == 0; }
 
-Table read_csv(const std::string& path) {
+void to_png(const std::string& dir, const std::string& svg, ReportFiles& files) {
+  const std::string png = svg.substr(0, svg.size() - 4) + ".png";
+  const std::string cmd = "rsvg-convert -b white -o '" + (fs::path(dir) / png).string() + "' '" +
+                          (fs::path(dir) / svg).string() + "' 2>/dev/null";
+  if (std::system(cmd.c_str()) == 0) files.written.push_back(png);
+}
+
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+
+}  // namespace
+
+int NumberTable::column(const std::string& n) const {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == n) return static_cast<int>(i);
+  return -1;
+}
+
+NumberTable read_number_csv(const std::string& path) {
   std::istringstream in(read_text(path));
-  Table t;
+  NumberTable t;
   std::string line;
   if (!std::getline(in, line)) throw InputError(path, "byte 0", "empty file, expected a header");
   std::stringstream h(line);
@@ -61,19 +69,6 @@ Table read_csv(const std::string& path) {
   }
   return t;
 }
-
-bool have_rsvg() { return std::system("command -v rsvg-convert >/dev/null 2>&1") == 0; }
-
-void to_png(const std::string& dir, const std::string& svg, ReportFiles& files) {
-  const std::string png = svg.substr(0, svg.size() - 4) + ".png";
-  const std::string cmd = "rsvg-convert -b white -o '" + (fs::path(dir) / png).string() + "' '" +
-                          (fs::path(dir) / svg).string() + "' 2>/dev/null";
-  if (std::system(cmd.c_str()) == 0) files.written.push_back(png);
-}
-
-const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-
-}  // namespace
 
 void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows) {
   std::string s = "step,time,dt,iterations,cuts,closed_contacts\n";
@@ -100,7 +95,7 @@ ReportFiles make_run_report(const std::string& dir) {
 
   // Measure points' histories, mm.
   const std::string history_path = (fs::path(dir) / "history.csv").string();
-  const Table h = read_csv(history_path);
+  const NumberTable h = read_number_csv(history_path);
   const int ct = h.column("time"), cp = h.column("point"), cux = h.column("ux"), cuy = h.column("uy");
   if (ct < 0 || cp < 0 || cux < 0 || cuy < 0)
     throw InputError(history_path, "line 1", "header lacks time, point, ux or uy");
@@ -131,7 +126,7 @@ ReportFiles make_run_report(const std::string& dir) {
   // Solver effort per step.
   const std::string rh_path = (fs::path(dir) / "run_history.csv").string();
   if (fs::exists(rh_path)) {
-    const Table r = read_csv(rh_path);
+    const NumberTable r = read_number_csv(rh_path);
     const int t = r.column("time"), it = r.column("iterations"), dt = r.column("dt");
     if (t >= 0 && it >= 0 && dt >= 0 && !r.rows.empty()) {
       PlotSeries iters{"open–close iterations per step", {}, {}, "#1f77b4", true, false};

@@ -24,6 +24,18 @@ struct StepRecord {
   std::int64_t closed_contacts;  ///< contacts closed after the step
 };
 
+/// A CSV of numbers with a header line (history.csv, contacts.csv, run_history.csv, energy.csv).
+struct NumberTable {
+  std::vector<std::string> names;         ///< the header's column names
+  std::vector<std::vector<double>> rows;  ///< one per data line
+  /// Index of the column named n, or -1.
+  int column(const std::string& n) const;
+};
+
+/// Reads such a CSV. InputError naming the file (and line) when it is missing or a cell is not a
+/// number.
+NumberTable read_number_csv(const std::string& path);
+
 /// Writes OUTDIR/run_history.csv ("step,time,dt,iterations,cuts,closed_contacts").
 void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows);
 

@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -72,6 +73,20 @@ int main(int argc, char** argv) {
     nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
                                                        : nmm::solve::FrameFormat::compressed);
     out.set_contacts_every(contacts_every);
+    {
+      // What this run was made from, so nmm-report can redraw any frame (result_redraw.h).
+      auto absolute = [](const std::string& p) {
+        return p.empty() ? nlohmann::json(nullptr)
+                         : nlohmann::json(std::filesystem::absolute(p).lexically_normal().string());
+      };
+      out.set_run_inputs({{"mesh", absolute(mesh_path)},
+                          {"config", absolute(config_path)},
+                          {"set", sets},
+                          {"restart", absolute(restart_path)},
+                          {"picture_field", field_name},
+                          {"contacts_every", contacts_every},
+                          {"text_frames", text_frames}});
+    }
 
     nmm::solve::install_interrupt_handlers();
     stepper.set_stop_check(nmm::solve::interrupt_requested);
@@ -107,7 +122,7 @@ int main(int argc, char** argv) {
         if (c.state != nmm::solve::ContactState::open)
           state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex],
                                     stepper.loop_xy()[2 * c.at.vertex + 1],
-                                    static_cast<int>(c.state)});
+                                    static_cast<int>(c.state), c.at.vertex, c.at.edge});
       for (const nmm::solve::TrackedPoint& p : stepper.measure_points())
         state.measure_points.push_back({p.x, p.y});
       nmm::write_file_atomically(out_dir + "/result.svg",

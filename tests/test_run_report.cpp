@@ -84,6 +84,19 @@ TEST(ResultPicture, SliverStressStaysOutOfTheColourScale) {
   EXPECT_DOUBLE_EQ(weighted_quantile(v2, a2, 0.99), 5.0);
 }
 
+TEST(ResultPicture, ContactStatesMarkTheEdgesAtTheVertexAndTheEdgeFaced) {
+  // Element 0: loop vertices 0..3; element 1: 4..6. A sliding contact of vertex 5 against edge
+  // 1 → 2 marks edges 4 → 5, 5 → 6 and 1 → 2 sliding; a sticking contact of vertex 4 marks the
+  // closing edge 6 → 4 sticking, and leaves edge 4 → 5 sliding (sliding wins).
+  Mesh m;
+  m.element_loop_offset = {0, 4, 7};
+  m.loop_xy.assign(14, 0.0);
+  m.loop_edge_origin.assign(7, kEdgeBoundary);
+  const std::vector<int> s =
+      edge_contact_states(m, {{0, 0, 2, 5, 1}, {0, 0, 1, 4, -1}, {0, 0, 1, -1, -1}});
+  EXPECT_EQ(s, (std::vector<int>{0, 2, 0, 0, 2, 2, 1}));
+}
+
 TEST(RunReport, PlotsHistoryAndWritesIndex) {
   const fs::path dir = fs::temp_directory_path() / ("nmm_report_" + std::to_string(::getpid()));
   fs::remove_all(dir);
