@@ -92,7 +92,7 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
   }
   for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "summary.json",
                            "result.svg", "result.png", "history.svg", "run_history.svg",
-                           "index.html", "checkpoint.nmmstate"})
+                           "index.html", "checkpoint.nmmstate", "energy.csv"})
     fs::remove(join_path(dir_, name), ec);
 }
 

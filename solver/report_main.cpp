@@ -1,7 +1,7 @@
 // nmm-report OUTDIR [--frame STEP] [--mesh MESH.nmm] [--picture-field F]: remakes the report of
 // a finished or stopped nmm-solve run from the files in its folder: result.svg redrawn from the
 // last frame (or the frame of step STEP) with the mesh summary.json names (result_redraw.h),
-// then history.svg, run_history.svg, energy.svg, index.html, PNGs when rsvg-convert is available
+// then history.svg, run_history.svg (solver effort and energy), index.html, PNGs when rsvg-convert is available
 // (run_report.h). Without --frame/--mesh, a result.svg that cannot be redrawn (the mesh file has
 // moved) is left as it is, with a warning; with them it is an error.
 // Exit status: 0 done, 2 the folder is not a run folder or the frame cannot be drawn (one line

@@ -1,8 +1,9 @@
 // The report of a finished (or stopped) run, made from the files in its folder, so that
 // `nmm-report OUTDIR` can remake it at any time and nmm-solve --pictures makes it at the end:
 //   history.svg      measure points' displacements ux, uy (mm) against time (from history.csv)
-//   run_history.svg  open–close iterations per step and step length against time
-//                    (from run_history.csv)
+//   run_history.svg  two panels: open–close iterations per step and step length against time
+//                    (from run_history.csv); the energy terms against time (from energy.csv,
+//                    energy.h: kinetic, strain, gravity, springs, work of loads, friction, residual)
 //   index.html       the pictures (result.svg when nmm-solve drew it) and summary.json's
 //                    status, times and counts, readable in any browser
 //   *.png            the SVGs converted by rsvg-convert (Debian librsvg2-bin) when it is on PATH

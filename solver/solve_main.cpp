@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "command_line.h"
+#include "energy.h"
 #include "error.h"
 #include "interrupt.h"
 #include "mesh_file.h"
@@ -94,6 +95,9 @@ int main(int argc, char** argv) {
     const double t_start = stepper.time();  // 0, or the checkpoint's time
     const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
     nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
+    // Energy terms after every step, a row per output step (energy.h, energy.csv).
+    nmm::solve::EnergyMeter energy(mesh, run.scene, stepper.fixed_point_stiffness());
+    energy.after_step(stepper.state(), stepper.contacts().contacts(), true);
     std::vector<nmm::solve::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;
     double t_prev = t_start;
@@ -102,6 +106,7 @@ int main(int argc, char** argv) {
                         static_cast<std::int64_t>(stepper.open_close_iterations() - iterations),
                         static_cast<std::int64_t>(stepper.time_step_cuts() - cuts),
                         static_cast<std::int64_t>(stepper.contacts().closed_count())});
+      energy.after_step(stepper.state(), stepper.contacts().contacts(), n % sv.output_every == 0);
       iterations = stepper.open_close_iterations();
       cuts = stepper.time_step_cuts();
       t_prev = t;
@@ -111,6 +116,8 @@ int main(int argc, char** argv) {
     const std::string status = summary["status"].get<std::string>();
     progress.finish(summary["steps_completed"].get<std::int64_t>(), stepper.time(), status);
     nmm::solve::write_run_history(out_dir, effort);
+    energy.keep_last();
+    energy.write_csv(out_dir);
 
     if (pictures) {
       nmm::solve::PictureState state;

@@ -106,7 +106,21 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
   std::ofstream(dir / "history.csv") << "step,time,point,x,y,ux,uy\n0,0,0,1,1,0,0\n"
                                         "1,0.001,0,1,0.999,0,-0.001\n2,0.002,0,1,0.998,0,-0.002\n";
   write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3}, {2, 0.002, 0.001, 7, 1, 4}});
+  std::ofstream(dir / "energy.csv") << "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n"
+                                       "0,0,0,0,0,0,0,0,0\n2,0.002,5,1,-6,0,0,0,0\n";
   const ReportFiles files = make_run_report(dir.string());
+  {
+    // Two panels in one picture: solver effort, then the energy terms.
+    std::stringstream rh_svg;
+    rh_svg << std::ifstream(dir / "run_history.svg").rdbuf();
+    const std::string svg = rh_svg.str();
+    EXPECT_LT(svg.find("solver effort per step"), svg.find("energy (J per m of thickness)")) << svg;
+    EXPECT_NE(svg.find("gravity potential V"), std::string::npos);
+    std::size_t nested = 0;
+    for (std::size_t at = svg.find("<svg "); at != std::string::npos; at = svg.find("<svg ", at + 1))
+      ++nested;
+    EXPECT_EQ(nested, 3u) << "the outer document and its two panels";
+  }
   EXPECT_TRUE(fs::exists(dir / "history.svg"));
   EXPECT_TRUE(fs::exists(dir / "run_history.svg"));
   std::stringstream html;
