@@ -11,8 +11,13 @@
 
 namespace nmm::solve {
 
-EnergyMeter::EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness)
-    : mesh_(mesh), scene_(scene), fixed_k_(fixed_point_stiffness) {
+EnergyMeter::EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
+                         double support_stiffness)
+    : mesh_(mesh), scene_(scene), fixed_k_(fixed_point_stiffness), support_k_(support_stiffness) {
+  for (std::size_t i = 0; i < scene.supports.size(); ++i)
+    for (const BoundaryEdge& e : edges_under(mesh, scene.supports[i].points, "scene",
+                                             "/supports/" + std::to_string(i) + "/points"))
+      held_.push_back({e.element, e.vertex, e.next, scene.supports[i].fix_x, scene.supports[i].fix_y});
   for (const MaterialDef& m : scene.materials)
     compliance_.push_back(elasticity_matrix(m, scene.plane).inverse());
   const std::size_t ne = mesh.element_count();
@@ -67,6 +72,18 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
   for (const TrackedPoint& f : s.fixed) {
     const double dx = f.x - f.x0, dy = f.y - f.y0;
     r.springs += 0.5 * fixed_k_ * (dx * dx + dy * dy);
+  }
+  // Supports: u linear along the edge, ∫ u² ds = L (ua² + ua·ub + ub²) / 3 per component.
+  for (const HeldEdge& h : held_) {
+    const std::int32_t body = mesh_.element_body[h.element];
+    if (static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body]) continue;
+    const double len = std::hypot(s.loop_xy[2 * h.b] - s.loop_xy[2 * h.a],
+                                  s.loop_xy[2 * h.b + 1] - s.loop_xy[2 * h.a + 1]);
+    for (int d = 0; d < 2; ++d) {
+      if (!(d == 0 ? h.x : h.y)) continue;
+      const double ua = s.loop_u[2 * h.a + d], ub = s.loop_u[2 * h.b + d];
+      r.springs += 0.5 * support_k_ * len * (ua * ua + ua * ub + ub * ub) / 3;
+    }
   }
   for (const Contact& c : contacts)
     if (c.state != ContactState::open)

@@ -10,23 +10,26 @@
 //                  (in-situ stress included; plane strain: D is the plane-strain matrix)
 //   gravity    V = −Σ_e ρ_e A0_e g·(c_e − c0_e)                c the element's centroid now, c0 at
 //                  the start, A0 its initial area (mass is conserved); 0 at the start
-//   springs    S = Σ_fixed ½ k_f |p − P|² + Σ_closed contacts (½ N·closure + ½ |T·s_el|)
-//                  penalty springs (N normal force, closure = −gap, T shear force, s_el elastic
-//                  shear; exact for constant springs, the secant energy for nonlinear laws)
+//   springs    S = Σ_fixed ½ k_f |p − P|² + Σ_supported edges ½ k_s ∫ u_d² ds
+//                  + Σ_closed contacts (½ N·closure + ½ |T·s_el|)
+//                  penalty springs (u_d the held displacement components, linear along the edge;
+//                  N normal force, closure = −gap, T shear force, s_el elastic shear; exact for
+//                  constant springs, the secant energy for nonlinear laws)
 //   load_work  W = Σ_steps Σ_loads f(t_n+1)·(p_n+1 − p_n)      work of point loads since the
 //                  start of this run (the implicit step applies the load at its end time)
 //   friction   D = Σ_steps Σ_sliding |T|·|s − s_el|             work of friction in sliding
 //                  contacts (s the trial elastic shear, s_el the shear left at the limit: the
 //                  step's slip)
 //   residual   R = W − D − [(K + U + V + S) − (K + U + V + S)_first row]
-//                  energy lost elsewhere: the Newmark scheme's numerical damping (β > ½), supports,
-//                  tractions, base shaking, contact springs unloading. Near 0 for a free fall.
+//                  energy lost elsewhere: the Newmark scheme's numerical damping (β > ½), work of
+//                  tractions and base shaking (not metered), contact springs unloading.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "boundary_conditions.h"
 #include "contact.h"
 #include "elasticity.h"
 #include "mesh.h"
@@ -49,8 +52,9 @@ struct EnergyRow {
 
 class EnergyMeter {
  public:
-  /// fixed_point_stiffness: N/m, the stiffness of the run's fixed-point springs.
-  EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness);
+  /// fixed_point_stiffness: N/m, support_stiffness: N/m², the run's penalty springs.
+  EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
+              double support_stiffness);
 
   /// The state terms (K, U, V, S) of a state; the path terms stay 0.
   EnergyRow state_terms(const RunState& s, const std::vector<Contact>& contacts) const;
@@ -71,6 +75,13 @@ class EnergyMeter {
   const Mesh& mesh_;
   const SceneDef& scene_;
   double fixed_k_;
+  double support_k_;
+  struct HeldEdge {
+    std::int32_t element;  // owning the edge
+    std::int32_t a, b;  // loop vertices of the edge's ends
+    bool x, y;          // held directions
+  };
+  std::vector<HeldEdge> held_;  // supported edges
   std::vector<Mat3> compliance_;     // [material] D⁻¹, 1/Pa
   std::vector<int> elem_mat_;        // [me] material
   std::vector<double> area0_;        // [me] m², initial area
