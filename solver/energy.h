@@ -21,7 +21,7 @@
 //                  contacts (s the trial elastic shear, s_el the shear left at the limit: the
 //                  step's slip)
 //   residual   R = W − D − [(K + U + V + S) − (K + U + V + S)_first row]
-//                  energy lost elsewhere: the Newmark scheme's numerical damping (β > ½), work of
+//                  energy lost elsewhere: the time scheme's numerical damping (Newmark γ = 1), work of
 //                  tractions and base shaking (not metered), contact springs unloading.
 #pragma once
 
