@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "error.h"
+#include "gzip_text.h"
 #include "vtk_writer.h"
 #include "vtu_compressed.h"
 
@@ -90,7 +91,7 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
     if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".vtu")
       fs::remove(entry.path(), ec);
   }
-  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "summary.json",
+  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "contacts.csv.gz", "summary.json",
                            "result.svg", "result.png", "history.svg", "run_history.svg",
                            "index.html", "checkpoint.nmmstate", "energy.csv"})
     fs::remove(join_path(dir_, name), ec);
@@ -212,10 +213,15 @@ void OutputWriter::flush_history() {
   contacts_ += pending_contacts_;
   pending_contacts_.clear();
   write_file_atomically(join_path(dir_, "history.csv"), "step,time,point,x,y,ux,uy\n" + history_);
-  if (!contacts_.empty())
-    write_file_atomically(join_path(dir_, "contacts.csv"),
-                          "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
-                          "kn,ks,length,vertex,edge\n" + contacts_);
+  if (!contacts_.empty()) {
+    const std::string csv =
+        "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
+        "kn,ks,length,vertex,edge\n" + contacts_;
+    if (contacts_gzip_)
+      write_file_atomically(join_path(dir_, "contacts.csv.gz"), gzip_compress(csv));
+    else
+      write_file_atomically(join_path(dir_, "contacts.csv"), csv);
+  }
 }
 
 void OutputWriter::write_summary(const nlohmann::json& summary_in) {

@@ -68,6 +68,10 @@ class OutputWriter {
   /// contacts.csv is the largest text output of a long run (nmm-solve --contacts-every).
   void set_contacts_every(int n) { contacts_every_ = n < 1 ? 1 : n; }
 
+  /// Write contacts.csv.gz (the same CSV, gzip-compressed: gzip_text.h) instead of contacts.csv
+  /// (nmm-solve --contacts-gzip).
+  void set_contacts_gzip(bool on) { contacts_gzip_ = on; }
+
   /// Appends one output step's contacts to contacts.csv (in memory until flush_history()).
   void add_contacts(std::int64_t step, double time, const std::vector<ContactSample>& contacts);
 
@@ -92,6 +96,7 @@ class OutputWriter {
   std::string contacts_;  // contacts.csv rows so far
   std::string pending_contacts_;  // the last skipped output step's rows (sampling)
   int contacts_every_ = 1;
+  bool contacts_gzip_ = false;
   std::int64_t contact_calls_ = 0;
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
   nlohmann::json inputs_;  // summary.json "inputs" (null: none)

@@ -132,9 +132,10 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
   state.loop_xy = &loop_xy;
   state.stress = &stress;
 
-  // Contacts of that step. A run without contacts.csv had no contacts at all; a contacts.csv
+  // Contacts of that step (contacts.csv, or contacts.csv.gz). A run without it had no contacts; a contacts.csv
   // without rows of this step was sampled (--contacts-every), unless the step is the last.
-  const std::string contacts_path = (fs::path(dir) / "contacts.csv").string();
+  std::string contacts_path = (fs::path(dir) / "contacts.csv").string();
+  if (!fs::exists(contacts_path) && fs::exists(contacts_path + ".gz")) contacts_path += ".gz";
   if (fs::exists(contacts_path)) {
     const NumberTable c = read_number_csv(contacts_path);
     const int cs = c.column("step"), cx = c.column("x"), cy = c.column("y"),

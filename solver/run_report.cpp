@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
+#include "gzip_text.h"
 #include "svg_plot.h"
 #include "vtk_writer.h"  // write_file_atomically
 #include "xml_text.h"
@@ -72,7 +73,9 @@ int NumberTable::column(const std::string& n) const {
 }
 
 NumberTable read_number_csv(const std::string& path) {
-  std::istringstream in(read_text(path));
+  std::string text = read_text(path);
+  if (is_gzip(text)) text = gzip_decompress(text, path);  // contacts.csv.gz
+  std::istringstream in(text);
   NumberTable t;
   std::string line;
   if (!std::getline(in, line)) throw InputError(path, "byte 0", "empty file, expected a header");
@@ -223,6 +226,7 @@ ReportFiles make_run_report(const std::string& dir) {
             "</td></tr>\n";
   html += "</table>\n<p>Files: history.csv, summary.json, frames.pvd (open in ParaView)";
   if (fs::exists(fs::path(dir) / "contacts.csv")) html += ", contacts.csv";
+  if (fs::exists(fs::path(dir) / "contacts.csv.gz")) html += ", contacts.csv.gz (gzip: zcat)";
   if (fs::exists(fs::path(dir) / "energy.csv")) html += ", energy.csv (docs/energy.md)";
   html += ".</p>\n</body></html>\n";
   write_file_atomically((fs::path(dir) / "index.html").string(), html);

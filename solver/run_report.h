@@ -33,8 +33,8 @@ struct NumberTable {
   int column(const std::string& n) const;
 };
 
-/// Reads such a CSV. InputError naming the file (and line) when it is missing or a cell is not a
-/// number.
+/// Reads such a CSV, plain or gzip-compressed (contacts.csv.gz). InputError naming the file (and
+/// line) when it is missing, damaged or a cell is not a number.
 NumberTable read_number_csv(const std::string& path);
 
 /// Writes OUTDIR/run_history.csv ("step,time,dt,iterations,cuts,closed_contacts").

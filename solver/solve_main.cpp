@@ -6,6 +6,7 @@
 // with the run's variants (friction, joint laws, loads, supports, time step, `excavate`); a
 // damaged checkpoint or one of another mesh is bad input (exit status 2).
 //           [--pictures [--picture-field displacement|sxx|syy|sxy]] [--text-frames] [--contacts-every N]
+//           [--contacts-gzip]
 //
 // Loads a mesh file (every check of the reader), applies the run's variants to the embedded
 // scene (run_config.h) and runs the time stepping (time_stepper.h), with a progress line
@@ -39,7 +40,7 @@ int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
   std::string mesh_path, out_dir, config_path, restart_path, field_name = "displacement";
   std::vector<std::string> sets;
-  bool quiet = false, pictures = false, text_frames = false;
+  bool quiet = false, pictures = false, text_frames = false, contacts_gzip = false;
   int contacts_every = 1;
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
   app.add_option("--contacts-every", contacts_every,
                  "contacts.csv keeps every N-th output step (and the last); default 1")
       ->check(CLI::PositiveNumber);
+  app.add_flag("--contacts-gzip", contacts_gzip,
+               "write contacts.csv.gz (the same CSV, gzip-compressed, about a third of the size)");
   app.add_option("--picture-field", field_name,
                  "what colours result.svg: displacement, sxx, syy or sxy");
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {
     nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
                                                        : nmm::solve::FrameFormat::compressed);
     out.set_contacts_every(contacts_every);
+    out.set_contacts_gzip(contacts_gzip);
     {
       // What this run was made from, so nmm-report can redraw any frame (result_redraw.h).
       auto absolute = [](const std::string& p) {
@@ -86,6 +90,7 @@ int main(int argc, char** argv) {
                           {"restart", absolute(restart_path)},
                           {"picture_field", field_name},
                           {"contacts_every", contacts_every},
+                          {"contacts_gzip", contacts_gzip},
                           {"text_frames", text_frames}});
     }
 

@@ -22,6 +22,7 @@
 
 #include "error.h"
 #include "mesh.h"
+#include "gzip_text.h"
 #include "output_writer.h"
 #include "vtu_compressed.h"
 #include "vtu_reader.h"
@@ -428,6 +429,28 @@ TEST(VtuReader, DamagedFramesAreInputErrors) {
   other.replace(other.find("vtkZLibDataCompressor"), 21, "vtkLZ4DataCompressor!");
   fails(other, "compressor");
   fails("<html></html>", "VTKFile");
+}
+
+
+// contacts.csv.gz (gzip_text.h): the same text back, same input same bytes, damage detected.
+TEST(GzipText, RoundTripAndDamage) {
+  std::string text = "step,time,contact,x,y\n";
+  for (int i = 0; i < 5000; ++i) text += std::to_string(i) + ",0.001," + std::to_string(i % 7) + ",1.5,-2.25\n";
+  const std::string gz = gzip_compress(text);
+  EXPECT_TRUE(is_gzip(gz));
+  EXPECT_FALSE(is_gzip(text));
+  EXPECT_LT(gz.size(), text.size() / 3);
+  EXPECT_EQ(gzip_compress(text), gz) << "deterministic";
+  EXPECT_EQ(gzip_decompress(gz, "c.csv.gz"), text);
+  EXPECT_THROW(gzip_decompress(gz.substr(0, gz.size() / 2), "c.csv.gz"), InputError);
+  std::string bad = gz;
+  bad[bad.size() - 6] = static_cast<char>(bad[bad.size() - 6] ^ 0x40);  // in the CRC-32
+  try {
+    gzip_decompress(bad, "c.csv.gz");
+    ADD_FAILURE() << "a wrong CRC was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "c.csv.gz");
+  }
 }
 
 }  // namespace

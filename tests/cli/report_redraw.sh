@@ -8,7 +8,9 @@
 #     from ASCII frames (--text-frames);
 #  2. with 40° friction it rests: sticking contacts, none sliding; with --contacts-every 3 a
 #     frame whose contacts were sampled out says so; a step without a frame is exit status 2;
-#  3. a moved mesh: a warning and the old picture kept; --mesh redraws it.
+#  3. a moved mesh: a warning and the old picture kept; --mesh redraws it;
+#  4. --contacts-gzip: contacts.csv.gz holds exactly the CSV a plain run writes, and nmm-report
+#     redraws from it the picture nmm-solve drew.
 set -u
 solve=$1 report=$2 mesh=$3 work=$4
 facts="python3 $(dirname "$0")/picture_facts.py"
@@ -53,4 +55,10 @@ mv "$work/moved.nmm" "$mesh"
 check "[ $status = 0 ] && grep -q 'warning: result.svg not redrawn' '$work/err' && test -s '$rest/result.svg'"
 cp "$mesh" "$work/copy.nmm"
 "$report" "$rest" -q --mesh "$work/copy.nmm" && check "cmp -s '$work/rest_live.svg' '$rest/result.svg'"
+gz="$work/slide_gzip"
+"$solve" "$mesh" -o "$gz" "${args[@]}" --contacts-gzip || { echo "FAIL: solve gzip"; exit 1; }
+check "[ ! -e '$gz/contacts.csv' ] && zcat '$gz/contacts.csv.gz' | cmp -s - '$work/slide_binary/contacts.csv'"
+check "[ $(stat -c %s "$gz/contacts.csv.gz") -lt $(( $(stat -c %s "$work/slide_binary/contacts.csv") / 2 )) ]"
+cp "$gz/result.svg" "$work/live_gzip.svg"
+"$report" "$gz" -q && check "cmp -s '$work/live_gzip.svg' '$gz/result.svg'"
 exit $fail
