@@ -220,6 +220,19 @@ ReportFiles make_run_report(const std::string& dir) {
     html += "<h2>Measure points</h2>\n<img src=\"history.svg\" alt=\"measure point history\">\n";
   if (fs::exists(fs::path(dir) / "run_history.svg"))
     html += "<h2>Solver effort and energy</h2>\n<img src=\"run_history.svg\" alt=\"solver effort and energy\">\n";
+  if (fs::exists(energy_path)) {
+    // The energy balance at the end, the numbers a user checks against the plot (energy.md).
+    const NumberTable e = read_number_csv(energy_path);
+    if (!e.rows.empty() && e.rows.back().size() >= e.names.size()) {
+      html += "<h2>Energy at the end (J per m of thickness)</h2>\n<table>\n";
+      char cell[64];
+      for (std::size_t c = 2; c < e.names.size(); ++c) {
+        std::snprintf(cell, sizeof cell, "%.6g", e.rows.back()[c]);
+        html += "<tr><th>" + xml_escape(e.names[c]) + "</th><td>" + cell + "</td></tr>\n";
+      }
+      html += "</table>\n";
+    }
+  }
   html += "<h2>Summary</h2>\n<table>\n";
   for (auto it = summary.begin(); it != summary.end(); ++it)
     html += "<tr><th>" + xml_escape(it.key()) + "</th><td>" + xml_escape(it.value().dump()) +

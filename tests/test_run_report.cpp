@@ -127,6 +127,7 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
   html << std::ifstream(dir / "index.html").rdbuf();
   EXPECT_NE(html.str().find("interrupted"), std::string::npos);
   EXPECT_NE(html.str().find("history.svg"), std::string::npos);
+  EXPECT_NE(html.str().find("<tr><th>gravity</th><td>-6</td></tr>"), std::string::npos) << html.str();
   std::stringstream rh;
   rh << std::ifstream(dir / "run_history.csv").rdbuf();
   EXPECT_EQ(rh.str().substr(0, 45), "step,time,dt,iterations,cuts,closed_contacts\n");
