@@ -220,20 +220,26 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   // Legend: a swatch and a line per state, the counts a user checks against contacts.csv.
   char buf[200];
   double ly = ymax + 2.6 * font;
-  auto entry = [&](double x, const std::string& colour, double width, const std::string& text) {
-    svg.segments({{{x, ly + 0.35 * font}, {x + 1.5 * font, ly + 0.35 * font}}},
+  // Entries one after the other; the text width is estimated (0.55 em per character), so the
+  // next swatch starts after it whatever the counts.
+  double lx = xmin;
+  auto entry = [&](const std::string& colour, double width, const std::string& text) {
+    svg.segments({{{lx, ly + 0.35 * font}, {lx + 1.5 * font, ly + 0.35 * font}}},
                  {"none", colour, width, 0, 1});
-    svg.text({x + 2 * font, ly}, text, 0.8 * font, "#333333");
+    svg.text({lx + 2 * font, ly}, text, 0.8 * font, "#333333");
+    std::size_t chars = 0;
+    for (unsigned char ch : text) chars += (ch & 0xC0) != 0x80;  // UTF-8 characters
+    lx += 2 * font + 0.55 * 0.8 * font * static_cast<double>(chars) + 1.5 * font;
   };
   if (state.contacts_known) {
     std::snprintf(buf, sizeof buf, "sliding: %zu contacts along %.3g m", sliding, len.sliding);
-    entry(xmin, "#ff7f0e", 3 * line, buf);
+    entry("#ff7f0e", 3 * line, buf);
     std::snprintf(buf, sizeof buf, "sticking: %zu contacts along %.3g m", sticking, len.sticking);
-    entry(xmin + 0.34 * size, "#1f77b4", 3 * line, buf);
+    entry("#1f77b4", 3 * line, buf);
     std::snprintf(buf, sizeof buf, "open joints: %.3g m", len.open);
-    entry(xmin + 0.68 * size, "#8b0000", 1.2 * line, buf);
+    entry("#8b0000", 1.2 * line, buf);
   } else {
-    entry(xmin, "#888888", 1.2 * line,
+    entry("#888888", 1.2 * line,
           "joints: contact state not recorded at this step (contacts.csv sampled, --contacts-every)");
   }
   ly -= 1.4 * font;
