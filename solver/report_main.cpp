@@ -8,6 +8,7 @@
 // on stderr).
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -37,14 +38,17 @@ int main(int argc, char** argv) {
   try {
     const bool must_draw = redraw.frame_step >= 0 || !redraw.mesh_path.empty() || !redraw.field.empty();
     std::string drawn;
-    try {
-      const nmm::solve::RedrawInfo info = nmm::solve::redraw_result(dir, redraw);
-      drawn = "result.svg (step " + std::to_string(info.step) + ", " +
-              std::to_string(info.polygons) + " elements, " + std::to_string(info.contacts) +
-              " closed contacts)";
-    } catch (const nmm::InputError& e) {
-      if (must_draw) throw;
-      std::cerr << "nmm-report: warning: result.svg not redrawn: " << e.what() << "\n";
+    // Not a run folder at all: make_run_report says so in its one line.
+    if (std::filesystem::exists(std::filesystem::path(dir) / "summary.json") || must_draw) {
+      try {
+        const nmm::solve::RedrawInfo info = nmm::solve::redraw_result(dir, redraw);
+        drawn = "result.svg (step " + std::to_string(info.step) + ", " +
+                std::to_string(info.polygons) + " elements, " + std::to_string(info.contacts) +
+                " closed contacts)";
+      } catch (const nmm::InputError& e) {
+        if (must_draw) throw;
+        std::cerr << "nmm-report: warning: result.svg not redrawn: " << e.what() << "\n";
+      }
     }
     const nmm::solve::ReportFiles files = nmm::solve::make_run_report(dir);
     if (!quiet) {
