@@ -9,7 +9,8 @@
 #  2. with 40° friction it rests: sticking contacts, none sliding; with --contacts-every 3 a
 #     frame whose contacts were sampled out says so; a step without a frame is exit status 2;
 #  3. a moved mesh: a warning and the old picture kept; --mesh redraws it;
-#  4. --contacts-gzip: contacts.csv.gz holds exactly the CSV a plain run writes, and nmm-report
+#  4. coloured by a stress component (read back from the frame's cell data): the same picture;
+#  5. --contacts-gzip: contacts.csv.gz holds exactly the CSV a plain run writes, and nmm-report
 #     redraws from it the picture nmm-solve drew.
 set -u
 solve=$1 report=$2 mesh=$3 work=$4
@@ -55,6 +56,12 @@ mv "$work/moved.nmm" "$mesh"
 check "[ $status = 0 ] && grep -q 'warning: result.svg not redrawn' '$work/err' && test -s '$rest/result.svg'"
 cp "$mesh" "$work/copy.nmm"
 "$report" "$rest" -q --mesh "$work/copy.nmm" && check "cmp -s '$work/rest_live.svg' '$rest/result.svg'"
+syy="$work/slide_syy"
+"$solve" "$mesh" -o "$syy" "${args[@]}" --picture-field syy || { echo "FAIL: solve syy"; exit 1; }
+cp "$syy/result.svg" "$work/live_syy.svg"
+"$report" "$syy" -q && check "grep -q 'σyy (MPa, tension +)' '$syy/result.svg' && cmp -s '$work/live_syy.svg' '$syy/result.svg'"
+"$report" "$syy" -q --picture-field displacement && check "cmp -s '$work/live_binary.svg' '$syy/result.svg'"
+
 gz="$work/slide_gzip"
 "$solve" "$mesh" -o "$gz" "${args[@]}" --contacts-gzip || { echo "FAIL: solve gzip"; exit 1; }
 check "[ ! -e '$gz/contacts.csv' ] && zcat '$gz/contacts.csv.gz' | cmp -s - '$work/slide_binary/contacts.csv'"
