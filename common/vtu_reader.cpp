@@ -106,6 +106,11 @@ std::string inflate_appended(const Parser& p, const std::string& s, std::size_t 
     const std::uint64_t csize = get_u64(s, at + 24 + 8 * b);
     if (csize > s.size() - data) p.fail(data, "compressed block runs past the end of the file");
     const std::uint64_t want = (b + 1 == nblocks && last != 0) ? last : block;
+    // zlib cannot expand more than about 1032:1, so a larger claim is damage — and refusing it
+    // keeps a corrupt header from asking for an allocation of its own choosing.
+    if (want > 1032 * csize + 64)
+      p.fail(at, "block " + std::to_string(b) + " claims " + std::to_string(want) +
+                     " bytes from " + std::to_string(csize) + " compressed");
     const std::size_t old = raw.size();
     raw.resize(old + want);
     uLongf got = static_cast<uLongf>(want);
@@ -196,7 +201,9 @@ PolygonGrid parse_vtu(const std::string& s, const std::string& name) {
     std::vector<double> f64;
     std::vector<std::int32_t> i32;
     if (format == "ascii") {
+      if (tag.self_closing) p.fail(tag.begin, "ascii array '" + array_name + "' has no values");
       const std::size_t close = s.find("</DataArray>", tag.end);
+      if (close == std::string::npos) p.fail(tag.begin, "unterminated <DataArray>");
       const char* c = s.data() + tag.end;
       const char* e = s.data() + close;
       while (true) {

@@ -432,6 +432,41 @@ TEST(VtuReader, DamagedFramesAreInputErrors) {
 }
 
 
+// Any damage — a byte changed, a stretch cut out, the file cut short — is an InputError or a
+// grid that passes check_grid, never a crash, another exception or a huge allocation.
+TEST(VtuReader, RandomDamageIsOnlyEverAnInputError) {
+  PolygonGrid g;
+  for (int i = 0; i < 400; ++i) g.add_point(0.5 * i, std::cos(0.1 * i));
+  for (int i = 0; i + 3 < 400; i += 4) g.add_cell({i, i + 1, i + 2, i + 3});
+  std::vector<double> d(1200, 0.25);
+  g.add_point_array("displacement", 3, d);
+  for (const std::string& good : {vtu_compressed(g), vtu_text(g)}) {
+    std::uint64_t x = 0x9e3779b97f4a7c15ull;  // fixed seed: the same cases every run
+    auto next = [&x]() {
+      x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+      return x;
+    };
+    int errors = 0;
+    for (int trial = 0; trial < 1500; ++trial) {
+      std::string bad = good;
+      const std::size_t at = next() % bad.size();
+      switch (trial % 3) {
+        case 0: bad[at] = static_cast<char>(next()); break;
+        case 1: bad.erase(at, 1 + next() % 16); break;
+        default: bad.resize(at); break;
+      }
+      try {
+        parse_vtu(bad, "f.vtu");
+      } catch (const InputError&) {
+        ++errors;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "trial " << trial << ": " << e.what();
+      }
+    }
+    EXPECT_GT(errors, 500);  // most damage is seen (a changed digit in ASCII may pass)
+  }
+}
+
 // contacts.csv.gz (gzip_text.h): the same text back, same input same bytes, damage detected.
 TEST(GzipText, RoundTripAndDamage) {
   std::string text = "step,time,contact,x,y\n";
