@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "element_integration.h"
+#include "insitu_stress.h"
 #include "time_table.h"
 #include "vtk_writer.h"  // write_file_atomically
 
@@ -18,6 +19,10 @@ EnergyMeter::EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_p
     for (const BoundaryEdge& e : edges_under(mesh, scene.supports[i].points, "scene",
                                              "/supports/" + std::to_string(i) + "/points"))
       held_.push_back({e.element, e.vertex, e.next, scene.supports[i].fix_x, scene.supports[i].fix_y});
+  for (std::size_t i = 0; i < scene.tractions.size(); ++i)
+    traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, "scene",
+                                          "/tractions/" + std::to_string(i) + "/points"));
+  shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
   for (const MaterialDef& m : scene.materials)
     compliance_.push_back(elasticity_matrix(m, scene.plane).inverse());
   const std::size_t ne = mesh.element_count();
@@ -103,7 +108,10 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     for (const Contact& c : contacts)
       if (c.state == ContactState::sliding)
         friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
+    load_work_ += traction_work(s) + shaking_work(s);
   }
+  if (!traction_edges_.empty()) prev_loop_u_ = s.loop_u;
+  if (shaking_) centroids(s, prev_cx_, prev_cy_);
   load_x_.resize(s.loads.size());
   load_y_.resize(s.loads.size());
   for (std::size_t l = 0; l < s.loads.size(); ++l) {
@@ -121,6 +129,75 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     rows_.push_back(r);
     last_kept_step_ = r.step;
   }
+}
+
+bool EnergyMeter::removed(const RunState& s, std::int32_t element) const {
+  const std::int32_t body = mesh_.element_body[element];
+  return static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body];
+}
+
+void EnergyMeter::centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const {
+  const std::size_t ne = mesh_.element_count();
+  cx.assign(ne, 0);
+  cy.assign(ne, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
+    const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, 0, 0);
+    if (m.a != 0) cx[e] = m.sx / m.a, cy[e] = m.sy / m.a;
+  }
+}
+
+double EnergyMeter::traction_work(const RunState& s) const {
+  // ∫ t·Δu ds on each edge, Δu linear between its ends, by the two-point Gauss rule (exact for
+  // a constant t; for σ_insitu·n, linear along the edge, too).
+  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
+  double w = 0;
+  if (prev_loop_u_.size() != s.loop_u.size()) return 0;
+  for (std::size_t i = 0; i < traction_edges_.size(); ++i) {
+    const TractionDef& td = scene_.tractions[i];
+    const double factor = table_value(td.table, s.time);
+    for (const BoundaryEdge& be : traction_edges_[i]) {
+      if (removed(s, be.element)) continue;
+      const double* a = s.loop_xy.data() + 2 * be.vertex;
+      const double* b = s.loop_xy.data() + 2 * be.next;
+      const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
+      if (!(len > 0)) continue;
+      const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
+      for (double xi : kGauss) {
+        double t[2];
+        if (td.from_insitu) {
+          const double uy = (1 - xi) * s.loop_u[2 * be.vertex + 1] + xi * s.loop_u[2 * be.next + 1];
+          const auto sg = insitu_stress_at(scene_.insitu_stress, a[0] + xi * dx, a[1] + xi * dy - uy);
+          t[0] = sg[0] * nx + sg[2] * ny;
+          t[1] = sg[2] * nx + sg[1] * ny;
+        } else {
+          t[0] = td.normal * nx + td.shear * be.sx;
+          t[1] = td.normal * ny + td.shear * be.sy;
+        }
+        for (int d = 0; d < 2; ++d) {
+          const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
+          const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
+          w += 0.5 * len * factor * t[d] * ((1 - xi) * du_a + xi * du_b);
+        }
+      }
+    }
+  }
+  return w;
+}
+
+double EnergyMeter::shaking_work(const RunState& s) const {
+  if (!shaking_ || prev_cx_.size() != mesh_.element_count()) return 0;
+  const double bx = -table_value(scene_.base_acceleration_x, s.time, 0.0);
+  const double by = -table_value(scene_.base_acceleration_y, s.time, 0.0);
+  std::vector<double> cx, cy;
+  centroids(s, cx, cy);
+  double w = 0;
+  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+    if (removed(s, static_cast<std::int32_t>(e))) continue;
+    const double rho = scene_.materials[elem_mat_[e]].density;
+    w += rho * area0_[e] * (bx * (cx[e] - prev_cx_[e]) + by * (cy[e] - prev_cy_[e]));
+  }
+  return w;
 }
 
 void EnergyMeter::keep_last() {

@@ -15,14 +15,18 @@
 //                  penalty springs (u_d the held displacement components, linear along the edge;
 //                  N normal force, closure = −gap, T shear force, s_el elastic shear; exact for
 //                  constant springs, the secant energy for nonlinear laws)
-//   load_work  W = Σ_steps Σ_loads f(t_n+1)·(p_n+1 − p_n)      work of point loads since the
-//                  start of this run (the implicit step applies the load at its end time)
+//   load_work  W = Σ_steps [Σ_loads f(t_n+1)·(p_n+1 − p_n)       work of the external loads since
+//                  + Σ_traction edges ∫ t(t_n+1)·Δu ds           the start of this run: point loads,
+//                  + Σ_e ρ_e A0_e b(t_n+1)·Δc_e]                 tractions (t = normal·n + shear·s,
+//                  or σ_insitu·n; two-point Gauss, exact for the linear Δu) and the body force of
+//                  base shaking b = −a_base; each at the step's end time, as the implicit step
+//                  applies it. (Gravity's work is −ΔV, not counted here.)
 //   friction   D = Σ_steps Σ_sliding |T|·|s − s_el|             work of friction in sliding
 //                  contacts (s the trial elastic shear, s_el the shear left at the limit: the
 //                  step's slip)
 //   residual   R = W − D − [(K + U + V + S) − (K + U + V + S)_first row]
-//                  energy lost elsewhere: the time scheme's numerical damping (Newmark γ = 1), work of
-//                  tractions and base shaking (not metered), contact springs unloading.
+//                  energy lost elsewhere: the time scheme's numerical damping (Newmark γ = 1), the
+//                  in-situ traction on faces between bodies (not metered), contact springs unloading.
 #pragma once
 
 #include <cstdint>
@@ -45,7 +49,7 @@ struct EnergyRow {
   double strain = 0;      ///< J/m
   double gravity = 0;     ///< J/m, potential of gravity relative to the start
   double springs = 0;     ///< J/m, penalty springs of fixed points and closed contacts
-  double load_work = 0;   ///< J/m, work of point loads since the start of this run
+  double load_work = 0;   ///< J/m, work of loads, tractions, base shaking since this run's start
   double friction = 0;    ///< J/m, work of friction since the start of this run
   double residual = 0;    ///< J/m, W − D − Δ(K + U + V + S)
 };
@@ -72,6 +76,11 @@ class EnergyMeter {
   void write_csv(const std::string& dir) const;
 
  private:
+  bool removed(const RunState& s, std::int32_t element) const;
+  void centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const;
+  double traction_work(const RunState& s) const;  // J/m, since the previous call
+  double shaking_work(const RunState& s) const;   // J/m, since the previous call
+
   const Mesh& mesh_;
   const SceneDef& scene_;
   double fixed_k_;
@@ -82,6 +91,10 @@ class EnergyMeter {
     bool x, y;          // held directions
   };
   std::vector<HeldEdge> held_;  // supported edges
+  std::vector<std::vector<BoundaryEdge>> traction_edges_;  // [traction] edges under it
+  std::vector<double> prev_loop_u_;  // [2·v] m, loop displacements at the previous call
+  std::vector<double> prev_cx_, prev_cy_;  // [me] m, centroids at the previous call (shaking)
+  bool shaking_ = false;  // a base acceleration table is given
   std::vector<Mat3> compliance_;     // [material] D⁻¹, 1/Pa
   std::vector<int> elem_mat_;        // [me] material
   std::vector<double> area0_;        // [me] m², initial area

@@ -14,6 +14,10 @@ Usage: check_energy.py CASE OUTDIR
              load's work W > 1000 J/m goes into K + U + S, |residual| < 5 % of W (measured 2.8 %:
              the scheme damps the local vibration under the point; 1.1 % at a quarter of the
              step; a wrong sign of W would leave 2 W)
+  traction   the same with a 200 kPa traction pulling its bottom edge: the same balance
+             (measured 1.8 %)
+  shaking    the free block without gravity, its base accelerated at 3 m/s^2 in x (a ramp over
+             0.1 s): the body force -m a_base does work W, all of it kinetic: K = W within 0.1 %
   slide      the block on the 30 deg incline with 20 deg friction: friction work = tan 20 deg
              * m g cos 30 deg * travel and gravity V = -m g sin 30 deg * travel within 2 %,
              K = 1/2 m v^2 with v from the last two rows of history.csv within 3 %
@@ -53,10 +57,14 @@ def main():
         if case == "hanging_support":
             smax = max(r["springs"] for r in e)
             checks.append(("the soft support stores > 50 J/m", smax, smax > 50))
-    elif case == "point_load":
+    elif case == "shaking":
+        w = last["load_work"]
+        checks.append(("work of the base shaking > 100 J/m", w, w > 100))
+        checks.append(("K = W (a free block)", last["kinetic"], abs(last["kinetic"] - w) <= 1e-3 * w))
+    elif case in ("point_load", "traction"):
         w = last["load_work"]
         rmax = max(abs(r["residual"]) for r in e)
-        checks.append(("work of the load > 1000 J/m", w, w > 1000))
+        checks.append((f"work of the {case.replace('_', ' ')} > 1000 J/m", w, w > 1000))
         checks.append(("|residual| < 5 % of it", rmax, rmax < 0.05 * w))
     elif case in ("slide", "rest"):
         m = 2650 * 2.0
