@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "error.h"
+#include "gzip_text.h"
 #include "vtk_writer.h"
 #include "vtu_compressed.h"
 
@@ -90,9 +91,9 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
     if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".vtu")
       fs::remove(entry.path(), ec);
   }
-  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "summary.json",
+  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "contacts.csv.gz", "summary.json",
                            "result.svg", "result.png", "history.svg", "run_history.svg",
-                           "index.html", "checkpoint.nmmstate"})
+                           "index.html", "checkpoint.nmmstate", "energy.csv"})
     fs::remove(join_path(dir_, name), ec);
 }
 
@@ -204,7 +205,7 @@ void OutputWriter::add_contacts(std::int64_t step, double time,
       rows += ',';
       append_double(rows, v);
     }
-    rows += '\n';
+    rows += ',' + std::to_string(c.vertex) + ',' + std::to_string(c.edge) + '\n';
   }
 }
 
@@ -212,13 +213,20 @@ void OutputWriter::flush_history() {
   contacts_ += pending_contacts_;
   pending_contacts_.clear();
   write_file_atomically(join_path(dir_, "history.csv"), "step,time,point,x,y,ux,uy\n" + history_);
-  if (!contacts_.empty())
-    write_file_atomically(join_path(dir_, "contacts.csv"),
-                          "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
-                          "kn,ks,length\n" + contacts_);
+  if (!contacts_.empty()) {
+    const std::string csv =
+        "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
+        "kn,ks,length,vertex,edge\n" + contacts_;
+    if (contacts_gzip_)
+      write_file_atomically(join_path(dir_, "contacts.csv.gz"), gzip_compress(csv));
+    else
+      write_file_atomically(join_path(dir_, "contacts.csv"), csv);
+  }
 }
 
-void OutputWriter::write_summary(const nlohmann::json& summary) {
+void OutputWriter::write_summary(const nlohmann::json& summary_in) {
+  nlohmann::json summary = summary_in;
+  if (!inputs_.is_null()) summary["inputs"] = inputs_;
   // Replace invalid UTF-8 (a reason built from a file name, say) rather than throw: the summary
   // is what a failed run leaves behind, so writing it must not fail for that.
   write_file_atomically(

@@ -30,6 +30,8 @@ struct ContactSample {
   double shear_force;      ///< N
   double kn, ks;           ///< N/m, tangent stiffnesses (0 where the spring is off)
   double length;           ///< m, tributary joint length
+  int vertex;              ///< loop vertex P of the contact (Mesh::loop_xy index)
+  int edge;                ///< first loop vertex of the edge P faces (edge → next vertex)
 };
 
 /// What a frame shows: the element loops in their current position.
@@ -66,16 +68,24 @@ class OutputWriter {
   /// contacts.csv is the largest text output of a long run (nmm-solve --contacts-every).
   void set_contacts_every(int n) { contacts_every_ = n < 1 ? 1 : n; }
 
+  /// Write contacts.csv.gz (the same CSV, gzip-compressed: gzip_text.h) instead of contacts.csv
+  /// (nmm-solve --contacts-gzip).
+  void set_contacts_gzip(bool on) { contacts_gzip_ = on; }
+
   /// Appends one output step's contacts to contacts.csv (in memory until flush_history()).
   void add_contacts(std::int64_t step, double time, const std::vector<ContactSample>& contacts);
 
   /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, and
   /// contacts.csv ("step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,
-  /// length") if any contact rows were added.
+  /// length,vertex,edge") if any contact rows were added.
   void flush_history();
 
-  /// Writes summary.json (pretty-printed).
+  /// Writes summary.json (pretty-printed), with the run's inputs (set_run_inputs) as "inputs".
   void write_summary(const nlohmann::json& summary);
+
+  /// What the run was made from (mesh file, --config, --set, --restart, picture field), kept in
+  /// summary.json "inputs" so that nmm-report can load the mesh and scene to redraw a frame.
+  void set_run_inputs(nlohmann::json inputs) { inputs_ = std::move(inputs); }
 
   const std::string& dir() const { return dir_; }
 
@@ -86,8 +96,10 @@ class OutputWriter {
   std::string contacts_;  // contacts.csv rows so far
   std::string pending_contacts_;  // the last skipped output step's rows (sampling)
   int contacts_every_ = 1;
+  bool contacts_gzip_ = false;
   std::int64_t contact_calls_ = 0;
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
+  nlohmann::json inputs_;  // summary.json "inputs" (null: none)
 };
 
 }  // namespace nmm::solve

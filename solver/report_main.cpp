@@ -1,16 +1,21 @@
-// nmm-report OUTDIR: remakes the report of a finished or stopped nmm-solve run from the files in
-// its folder (run_report.h): history.svg, run_history.svg, index.html, PNGs when rsvg-convert is
-// available. result.svg (the picture of the blocks) is drawn by nmm-solve --pictures, which has
-// the mesh and the final state; the report shows it when present.
-// Exit status: 0 done, 2 the folder is not a run folder (one line on stderr).
+// nmm-report OUTDIR [--frame STEP] [--mesh MESH.nmm] [--picture-field F]: remakes the report of
+// a finished or stopped nmm-solve run from the files in its folder: result.svg redrawn from the
+// last frame (or the frame of step STEP) with the mesh summary.json names (result_redraw.h),
+// then history.svg, run_history.svg (solver effort and energy), index.html, PNGs when rsvg-convert is available
+// (run_report.h). Without --frame/--mesh, a result.svg that cannot be redrawn (the mesh file has
+// moved) is left as it is, with a warning; with them it is an error.
+// Exit status: 0 done, 2 the folder is not a run folder or the frame cannot be drawn (one line
+// on stderr).
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <iostream>
 #include <string>
 
 #include "command_line.h"
 #include "error.h"
 #include "nmm_version.h"
+#include "result_redraw.h"
 #include "run_report.h"
 
 int main(int argc, char** argv) {
@@ -19,13 +24,36 @@ int main(int argc, char** argv) {
   bool quiet = false;
   app.add_option("outdir", dir, "output folder of nmm-solve")->required();
   app.add_flag("-q,--quiet", quiet, "do not list the files written");
+  nmm::solve::RedrawOptions redraw;
+  app.add_option("--frame", redraw.frame_step,
+                 "draw result.svg from the frame of this step (frames/frame_<step>.vtu); default: the last")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--mesh", redraw.mesh_path,
+                 "the run's mesh file, if summary.json's inputs.mesh no longer finds it");
+  app.add_option("--picture-field", redraw.field,
+                 "what colours result.svg: displacement, sxx, syy or sxy (default: the run's)");
   app.set_version_flag("--version", std::string("nmm-report ") + NMM_VERSION);
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-report"); status >= 0)
     return status;
   try {
+    const bool must_draw = redraw.frame_step >= 0 || !redraw.mesh_path.empty() || !redraw.field.empty();
+    std::string drawn;
+    // Not a run folder at all: make_run_report says so in its one line.
+    if (std::filesystem::exists(std::filesystem::path(dir) / "summary.json") || must_draw) {
+      try {
+        const nmm::solve::RedrawInfo info = nmm::solve::redraw_result(dir, redraw);
+        drawn = "result.svg (step " + std::to_string(info.step) + ", " +
+                std::to_string(info.polygons) + " elements, " + std::to_string(info.contacts) +
+                " closed contacts)";
+      } catch (const nmm::InputError& e) {
+        if (must_draw) throw;
+        std::cerr << "nmm-report: warning: result.svg not redrawn: " << e.what() << "\n";
+      }
+    }
     const nmm::solve::ReportFiles files = nmm::solve::make_run_report(dir);
     if (!quiet) {
       std::cout << "nmm-report: wrote";
+      if (!drawn.empty()) std::cout << ' ' << drawn;
       for (const std::string& f : files.written) std::cout << ' ' << f;
       std::cout << " in " << dir << "\n";
     }

@@ -59,6 +59,33 @@ double weighted_quantile(const std::vector<double>& values, const std::vector<do
   return values[order.back()];
 }
 
+std::vector<int> edge_contact_states(const Mesh& mesh,
+                                     const std::vector<PictureContact>& contacts) {
+  const std::size_t nv = mesh.loop_vertex_count();
+  std::vector<int> state(nv, 0);
+  // Loop neighbours of a vertex: its element's loop is element_loop_offset[e] .. [e+1].
+  std::vector<std::int32_t> prev(nv), next(nv);
+  for (std::size_t e = 0; e + 1 < mesh.element_loop_offset.size(); ++e) {
+    const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
+    for (int v = b; v < end; ++v) {
+      next[v] = v + 1 < end ? v + 1 : b;
+      prev[v] = v > b ? v - 1 : end - 1;
+    }
+  }
+  auto mark = [&](int v, int s) {
+    if (v >= 0 && static_cast<std::size_t>(v) < nv) state[v] = std::max(state[v], s);
+  };
+  for (const PictureContact& c : contacts) {
+    const int s = c.state == 2 ? 2 : 1;
+    if (c.vertex >= 0 && static_cast<std::size_t>(c.vertex) < nv) {
+      mark(c.vertex, s);
+      mark(prev[c.vertex], s);
+    }
+    mark(c.edge, s);
+  }
+  return state;
+}
+
 std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureState& state,
                        PictureField field) {
   const std::vector<double>& xy = *state.loop_xy;
@@ -109,20 +136,41 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     const std::string c = colour_at((value[e] - lo) / (hi - lo));
     svg.polygon(pts, {c, c, 0.3 * line, 0, 1});
   }
-  // Joints dark red, body boundaries black, both where they are now.
-  std::vector<std::pair<Vec2, Vec2>> joints, bounds;
+  // Joints and boundaries where they are now, coloured by the state of their contacts.
+  const std::vector<int> edge_state = edge_contact_states(mesh, state.contacts);
+  std::vector<std::pair<Vec2, Vec2>> joints, bounds, stick_edges, slide_edges;
+  JointStateLengths len;
   for (std::size_t e = 0; e < ne; ++e) {
     const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
     for (int v = b; v < end; ++v) {
       const int w = v + 1 < end ? v + 1 : b;
       const std::pair<Vec2, Vec2> seg{{xy[2 * v], xy[2 * v + 1]}, {xy[2 * w], xy[2 * w + 1]}};
-      if (mesh.loop_edge_origin[v] & kEdgeJoint) joints.push_back(seg);
-      else if (mesh.loop_edge_origin[v] & kEdgeBoundary) bounds.push_back(seg);
+      const bool joint = mesh.loop_edge_origin[v] & kEdgeJoint;
+      const bool bound = mesh.loop_edge_origin[v] & kEdgeBoundary;
+      if (!joint && !bound) continue;
+      // Each face of a joint is a loop edge of its own: half the length per face, so the legend
+      // gives the joint's length, not twice it.
+      const double l = 0.5 * std::hypot(seg.second.x - seg.first.x, seg.second.y - seg.first.y);
+      if (edge_state[v] == 2) {
+        slide_edges.push_back(seg);
+        len.sliding += l;
+      } else if (edge_state[v] == 1) {
+        stick_edges.push_back(seg);
+        len.sticking += l;
+      } else if (joint) {
+        joints.push_back(seg);
+        len.open += l;
+      } else {
+        bounds.push_back(seg);
+      }
     }
   }
+  const std::string joint_colour = state.contacts_known ? "#8b0000" : "#888888";
   svg.segments(bounds, {"none", "#000000", 1.5 * line, 0, 1});
-  svg.segments(joints, {"none", "#8b0000", 1.2 * line, 0, 1});
-  // Contacts: sticking blue, sliding orange (open contacts carry no force and are not drawn).
+  svg.segments(joints, {"none", joint_colour, 1.2 * line, 0, 1});
+  svg.segments(stick_edges, {"none", "#1f77b4", 3 * line, 0, 1});
+  svg.segments(slide_edges, {"none", "#ff7f0e", 3 * line, 0, 1});
+  // Contact points on top, in the colour of their state.
   std::size_t sticking = 0, sliding = 0;
   for (const PictureContact& c : state.contacts) {
     const bool slides = c.state == 2;
@@ -167,11 +215,35 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   std::snprintf(title, sizeof title, "%s  t = %.4g s  (%s)  deformation true scale",
                 scene.name.empty() ? "scene" : scene.name.c_str(), state.time,
                 state.status.empty() ? "ok" : state.status.c_str());
-  svg.text({xmin, ymax + 2.6 * font}, title, 1.2 * font, "#000000");
-  std::string legend = "joints dark red, boundaries black, contacts: " + std::to_string(sticking) +
-                       " sticking (blue), " + std::to_string(sliding) +
-                       " sliding (orange); ▲ fixed, ○ measure points";
-  svg.text({xmin, ymax + 1.0 * font}, legend, 0.8 * font, "#333333");
+  svg.text({xmin, ymax + 4.2 * font}, title, 1.2 * font, "#000000");
+
+  // Legend: a swatch and a line per state, the counts a user checks against contacts.csv.
+  char buf[200];
+  double ly = ymax + 2.6 * font;
+  // Entries one after the other; the text width is estimated (0.55 em per character), so the
+  // next swatch starts after it whatever the counts.
+  double lx = xmin;
+  auto entry = [&](const std::string& colour, double width, const std::string& text) {
+    svg.segments({{{lx, ly + 0.35 * font}, {lx + 1.5 * font, ly + 0.35 * font}}},
+                 {"none", colour, width, 0, 1});
+    svg.text({lx + 2 * font, ly}, text, 0.8 * font, "#333333");
+    std::size_t chars = 0;
+    for (unsigned char ch : text) chars += (ch & 0xC0) != 0x80;  // UTF-8 characters
+    lx += 2 * font + 0.55 * 0.8 * font * static_cast<double>(chars) + 1.5 * font;
+  };
+  if (state.contacts_known) {
+    std::snprintf(buf, sizeof buf, "sliding: %zu contacts along %.3g m", sliding, len.sliding);
+    entry("#ff7f0e", 3 * line, buf);
+    std::snprintf(buf, sizeof buf, "sticking: %zu contacts along %.3g m", sticking, len.sticking);
+    entry("#1f77b4", 3 * line, buf);
+    std::snprintf(buf, sizeof buf, "open joints: %.3g m", len.open);
+    entry("#8b0000", 1.2 * line, buf);
+  } else {
+    entry("#888888", 1.2 * line,
+          "joints: contact state not recorded at this step (contacts.csv sampled, --contacts-every)");
+  }
+  ly -= 1.4 * font;
+  svg.text({xmin, ly}, "boundaries black; ▲ fixed points, ○ measure points", 0.8 * font, "#333333");
   return svg.str(0.03, 1400);
 }
 

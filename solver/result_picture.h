@@ -1,7 +1,15 @@
 // The picture of one state of a run (result.svg): the deformed blocks, each manifold element
 // filled by a colour scale of displacement magnitude or one stress component, joints and body
-// boundaries in their current position, closed contacts marked by state (sticking, sliding),
-// fixed points and measure points marked, a colour bar with units and a title with the time.
+// boundaries in their current position, fixed points and measure points marked, a colour bar
+// with units and a title with the time.
+//
+// Joints by contact state: every loop edge that lies on a joint or a body boundary is drawn in
+// the state of the closed contacts on it — sliding (orange) if any contact touching the edge
+// slides, else sticking (blue) if any sticks, else open (joints dark red, free boundaries black).
+// A contact touches the two loop edges at its vertex P and the edge P faces, so both faces of a
+// joint show the state. The legend counts the contacts and the joint length in each state.
+// When the state's contacts were not recorded (contacts.csv sampled with --contacts-every), the
+// joints are drawn grey and the legend says so: no state is invented.
 //
 // Colour scale without slivers: an element's weight in the scale is its area, and the bar
 // spans the area-weighted 1st to 99th percentile of the field (displacement: 0 to the 99th).
@@ -26,8 +34,10 @@ bool parse_picture_field(const std::string& name, PictureField& field);
 
 /// One closed contact to mark.
 struct PictureContact {
-  double x, y;  ///< m, current position of the contact vertex
-  int state;    ///< 1 sticking (locked), 2 sliding (ContactState)
+  double x, y;      ///< m, current position of the contact vertex
+  int state;        ///< 1 sticking (locked), 2 sliding (ContactState)
+  int vertex = -1;  ///< loop vertex P of the contact (-1: unknown, then only its dot is drawn)
+  int edge = -1;    ///< first loop vertex of the edge P faces (-1: unknown)
 };
 
 struct PictureState {
@@ -36,8 +46,17 @@ struct PictureState {
   const std::vector<double>* loop_xy;   ///< [2·v] m, current loop vertex positions
   const std::vector<double>* stress;    ///< [3·me] Pa, σxx σyy σxy (tension positive)
   std::vector<PictureContact> contacts;
+  bool contacts_known = true;           ///< false: this state's contacts were not recorded
   std::vector<Vec2> measure_points;     ///< m, current positions
 };
+
+/// Joint length (m, current configuration) per drawn state, as the legend of result_svg states it.
+struct JointStateLengths {
+  double open = 0, sticking = 0, sliding = 0;  ///< m, of joint or boundary edges with contact
+};
+
+/// The state of each loop edge: 0 no closed contact, 1 sticking, 2 sliding (see above).
+std::vector<int> edge_contact_states(const Mesh& mesh, const std::vector<PictureContact>& contacts);
 
 /// The area-weighted quantile q in [0, 1] of `values` with weights `weights` (same length).
 double weighted_quantile(const std::vector<double>& values, const std::vector<double>& weights,

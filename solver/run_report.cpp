@@ -1,6 +1,7 @@
 // Report of a run folder: see run_report.h.
 #include "run_report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
+#include "gzip_text.h"
 #include "svg_plot.h"
 #include "vtk_writer.h"  // write_file_atomically
 #include "xml_text.h"
@@ -27,20 +29,54 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-// Rows of a CSV of numbers with a header line; columns by name.
-struct Table {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& n) const {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == n) return static_cast<int>(i);
-    return -1;
-  }
-};
+bool have_rsvg() { return std::system("command -v rsvg-convert >/dev/null 2>&1") == 0; }
 
-Table read_csv(const std::string& path) {
-  std::istringstream in(read_text(path));
-  Table t;
+void to_png(const std::string& dir, const std::string& svg, ReportFiles& files) {
+  const std::string png = svg.substr(0, svg.size() - 4) + ".png";
+  const std::string cmd = "rsvg-convert -b white -o '" + (fs::path(dir) / png).string() + "' '" +
+                          (fs::path(dir) / svg).string() + "' 2>/dev/null";
+  if (std::system(cmd.c_str()) == 0) files.written.push_back(png);
+}
+
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+
+// SVG documents one above the other in one document: each becomes a nested <svg> at its offset.
+std::string stack_svgs(const std::vector<std::string>& docs) {
+  double width = 0, height = 0;
+  std::string body;
+  auto attribute = [](const std::string& doc, const std::string& name) {
+    const std::size_t at = doc.find(" " + name + "=\"");
+    return at == std::string::npos ? 0.0 : std::strtod(doc.c_str() + at + name.size() + 3, nullptr);
+  };
+  for (const std::string& d : docs) {
+    std::size_t open = d.find("<svg ");
+    if (open == std::string::npos) continue;
+    std::string inner = d.substr(open);
+    inner.insert(5, "y=\"" + std::to_string(static_cast<long long>(height)) + "\" ");
+    body += inner;
+    if (body.back() != '\n') body += '\n';
+    width = std::max(width, attribute(inner, "width"));
+    height += attribute(inner, "height");
+  }
+  const std::string w = std::to_string(static_cast<long long>(width));
+  const std::string h = std::to_string(static_cast<long long>(height));
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + w +
+         "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\">\n" + body + "</svg>\n";
+}
+
+}  // namespace
+
+int NumberTable::column(const std::string& n) const {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == n) return static_cast<int>(i);
+  return -1;
+}
+
+NumberTable read_number_csv(const std::string& path) {
+  std::string text = read_text(path);
+  if (is_gzip(text)) text = gzip_decompress(text, path);  // contacts.csv.gz
+  std::istringstream in(text);
+  NumberTable t;
   std::string line;
   if (!std::getline(in, line)) throw InputError(path, "byte 0", "empty file, expected a header");
   std::stringstream h(line);
@@ -61,19 +97,6 @@ Table read_csv(const std::string& path) {
   }
   return t;
 }
-
-bool have_rsvg() { return std::system("command -v rsvg-convert >/dev/null 2>&1") == 0; }
-
-void to_png(const std::string& dir, const std::string& svg, ReportFiles& files) {
-  const std::string png = svg.substr(0, svg.size() - 4) + ".png";
-  const std::string cmd = "rsvg-convert -b white -o '" + (fs::path(dir) / png).string() + "' '" +
-                          (fs::path(dir) / svg).string() + "' 2>/dev/null";
-  if (std::system(cmd.c_str()) == 0) files.written.push_back(png);
-}
-
-const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-
-}  // namespace
 
 void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows) {
   std::string s = "step,time,dt,iterations,cuts,closed_contacts\n";
@@ -100,7 +123,7 @@ ReportFiles make_run_report(const std::string& dir) {
 
   // Measure points' histories, mm.
   const std::string history_path = (fs::path(dir) / "history.csv").string();
-  const Table h = read_csv(history_path);
+  const NumberTable h = read_number_csv(history_path);
   const int ct = h.column("time"), cp = h.column("point"), cux = h.column("ux"), cuy = h.column("uy");
   if (ct < 0 || cp < 0 || cux < 0 || cuy < 0)
     throw InputError(history_path, "line 1", "header lacks time, point, ux or uy");
@@ -128,10 +151,11 @@ ReportFiles make_run_report(const std::string& dir) {
     files.written.push_back("history.svg");
   }
 
-  // Solver effort per step.
+  // Solver effort per step (top panel) and the energy terms (bottom panel, energy.csv).
+  std::vector<std::string> panels;
   const std::string rh_path = (fs::path(dir) / "run_history.csv").string();
   if (fs::exists(rh_path)) {
-    const Table r = read_csv(rh_path);
+    const NumberTable r = read_number_csv(rh_path);
     const int t = r.column("time"), it = r.column("iterations"), dt = r.column("dt");
     if (t >= 0 && it >= 0 && dt >= 0 && !r.rows.empty()) {
       PlotSeries iters{"open–close iterations per step", {}, {}, "#1f77b4", true, false};
@@ -141,11 +165,33 @@ ReportFiles make_run_report(const std::string& dir) {
         iters.x.push_back(row[t]), iters.y.push_back(row[it]);
         steps.x.push_back(row[t]), steps.y.push_back(1e3 * row[dt]);
       }
-      write_svg_plot({"solver effort per step", "time (s)", "iterations / step length (ms)", false,
-                      false, {iters, steps}},
-                     (fs::path(dir) / "run_history.svg").string());
-      files.written.push_back("run_history.svg");
+      panels.push_back(svg_plot({"solver effort per step", "time (s)",
+                                 "iterations / step length (ms)", false, false, {iters, steps}}));
     }
+  }
+  const std::string energy_path = (fs::path(dir) / "energy.csv").string();
+  if (fs::exists(energy_path)) {
+    const NumberTable e = read_number_csv(energy_path);
+    const int t = e.column("time");
+    static const char* const kTerms[][3] = {
+        {"kinetic", "kinetic K", "#1f77b4"},       {"strain", "strain U", "#2ca02c"},
+        {"gravity", "gravity potential V", "#8c564b"}, {"springs", "penalty springs S", "#9467bd"},
+        {"load_work", "work of loads W", "#17becf"}, {"friction", "friction work D", "#ff7f0e"},
+        {"residual", "residual W − D − ΔE", "#d62728"}};
+    PlotSpec spec{"energy (J per m of thickness)", "time (s)", "energy (J/m)", false, false, {}};
+    for (const auto& term : kTerms) {
+      const int c = e.column(term[0]);
+      if (t < 0 || c < 0) continue;
+      PlotSeries series{term[1], {}, {}, term[2], true, false};
+      for (const auto& row : e.rows)
+        if (row.size() >= e.names.size()) series.x.push_back(row[t]), series.y.push_back(row[c]);
+      spec.series.push_back(std::move(series));
+    }
+    if (!spec.series.empty() && !spec.series[0].x.empty()) panels.push_back(svg_plot(spec));
+  }
+  if (!panels.empty()) {
+    write_file_atomically((fs::path(dir) / "run_history.svg").string(), stack_svgs(panels));
+    files.written.push_back("run_history.svg");
   }
 
   const bool has_result = fs::exists(fs::path(dir) / "result.svg");
@@ -173,13 +219,28 @@ ReportFiles make_run_report(const std::string& dir) {
   if (fs::exists(fs::path(dir) / "history.svg"))
     html += "<h2>Measure points</h2>\n<img src=\"history.svg\" alt=\"measure point history\">\n";
   if (fs::exists(fs::path(dir) / "run_history.svg"))
-    html += "<h2>Solver effort</h2>\n<img src=\"run_history.svg\" alt=\"solver effort\">\n";
+    html += "<h2>Solver effort and energy</h2>\n<img src=\"run_history.svg\" alt=\"solver effort and energy\">\n";
+  if (fs::exists(energy_path)) {
+    // The energy balance at the end, the numbers a user checks against the plot (energy.md).
+    const NumberTable e = read_number_csv(energy_path);
+    if (!e.rows.empty() && e.rows.back().size() >= e.names.size()) {
+      html += "<h2>Energy at the end (J per m of thickness)</h2>\n<table>\n";
+      char cell[64];
+      for (std::size_t c = 2; c < e.names.size(); ++c) {
+        std::snprintf(cell, sizeof cell, "%.6g", e.rows.back()[c]);
+        html += "<tr><th>" + xml_escape(e.names[c]) + "</th><td>" + cell + "</td></tr>\n";
+      }
+      html += "</table>\n";
+    }
+  }
   html += "<h2>Summary</h2>\n<table>\n";
   for (auto it = summary.begin(); it != summary.end(); ++it)
     html += "<tr><th>" + xml_escape(it.key()) + "</th><td>" + xml_escape(it.value().dump()) +
             "</td></tr>\n";
   html += "</table>\n<p>Files: history.csv, summary.json, frames.pvd (open in ParaView)";
   if (fs::exists(fs::path(dir) / "contacts.csv")) html += ", contacts.csv";
+  if (fs::exists(fs::path(dir) / "contacts.csv.gz")) html += ", contacts.csv.gz (gzip: zcat)";
+  if (fs::exists(fs::path(dir) / "energy.csv")) html += ", energy.csv (docs/energy.md)";
   html += ".</p>\n</body></html>\n";
   write_file_atomically((fs::path(dir) / "index.html").string(), html);
   files.written.push_back("index.html");

@@ -1,8 +1,9 @@
 // The report of a finished (or stopped) run, made from the files in its folder, so that
 // `nmm-report OUTDIR` can remake it at any time and nmm-solve --pictures makes it at the end:
 //   history.svg      measure points' displacements ux, uy (mm) against time (from history.csv)
-//   run_history.svg  open–close iterations per step and step length against time
-//                    (from run_history.csv)
+//   run_history.svg  two panels: open–close iterations per step and step length against time
+//                    (from run_history.csv); the energy terms against time (from energy.csv,
+//                    energy.h: kinetic, strain, gravity, springs, work of loads, friction, residual)
 //   index.html       the pictures (result.svg when nmm-solve drew it) and summary.json's
 //                    status, times and counts, readable in any browser
 //   *.png            the SVGs converted by rsvg-convert (Debian librsvg2-bin) when it is on PATH
@@ -23,6 +24,18 @@ struct StepRecord {
   std::int64_t cuts;     ///< time-step cuts before the step was accepted
   std::int64_t closed_contacts;  ///< contacts closed after the step
 };
+
+/// A CSV of numbers with a header line (history.csv, contacts.csv, run_history.csv, energy.csv).
+struct NumberTable {
+  std::vector<std::string> names;         ///< the header's column names
+  std::vector<std::vector<double>> rows;  ///< one per data line
+  /// Index of the column named n, or -1.
+  int column(const std::string& n) const;
+};
+
+/// Reads such a CSV, plain or gzip-compressed (contacts.csv.gz). InputError naming the file (and
+/// line) when it is missing, damaged or a cell is not a number.
+NumberTable read_number_csv(const std::string& path);
 
 /// Writes OUTDIR/run_history.csv ("step,time,dt,iterations,cuts,closed_contacts").
 void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows);

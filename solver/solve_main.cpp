@@ -6,6 +6,7 @@
 // with the run's variants (friction, joint laws, loads, supports, time step, `excavate`); a
 // damaged checkpoint or one of another mesh is bad input (exit status 2).
 //           [--pictures [--picture-field displacement|sxx|syy|sxy]] [--text-frames] [--contacts-every N]
+//           [--contacts-gzip]
 //
 // Loads a mesh file (every check of the reader), applies the run's variants to the embedded
 // scene (run_config.h) and runs the time stepping (time_stepper.h), with a progress line
@@ -16,11 +17,13 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "command_line.h"
+#include "energy.h"
 #include "error.h"
 #include "interrupt.h"
 #include "mesh_file.h"
@@ -37,7 +40,7 @@ int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
   std::string mesh_path, out_dir, config_path, restart_path, field_name = "displacement";
   std::vector<std::string> sets;
-  bool quiet = false, pictures = false, text_frames = false;
+  bool quiet = false, pictures = false, text_frames = false, contacts_gzip = false;
   int threads = 0;
   int contacts_every = 1;
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
@@ -57,6 +60,8 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads,
                  "threads of the factorisation (0: one below 150k unknowns, all cores above)")
       ->check(CLI::Range(0, 256));
+  app.add_flag("--contacts-gzip", contacts_gzip,
+               "write contacts.csv.gz (the same CSV, gzip-compressed, about a third of the size)");
   app.add_option("--picture-field", field_name,
                  "what colours result.svg: displacement, sxx, syy or sxy");
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
@@ -77,6 +82,22 @@ int main(int argc, char** argv) {
     nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
                                                        : nmm::solve::FrameFormat::compressed);
     out.set_contacts_every(contacts_every);
+    out.set_contacts_gzip(contacts_gzip);
+    {
+      // What this run was made from, so nmm-report can redraw any frame (result_redraw.h).
+      auto absolute = [](const std::string& p) {
+        return p.empty() ? nlohmann::json(nullptr)
+                         : nlohmann::json(std::filesystem::absolute(p).lexically_normal().string());
+      };
+      out.set_run_inputs({{"mesh", absolute(mesh_path)},
+                          {"config", absolute(config_path)},
+                          {"set", sets},
+                          {"restart", absolute(restart_path)},
+                          {"picture_field", field_name},
+                          {"contacts_every", contacts_every},
+                          {"contacts_gzip", contacts_gzip},
+                          {"text_frames", text_frames}});
+    }
 
     nmm::solve::install_interrupt_handlers();
     stepper.set_stop_check(nmm::solve::interrupt_requested);
@@ -84,6 +105,10 @@ int main(int argc, char** argv) {
     const double t_start = stepper.time();  // 0, or the checkpoint's time
     const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
     nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
+    // Energy terms after every step, a row per output step (energy.h, energy.csv).
+    nmm::solve::EnergyMeter energy(mesh, run.scene, stepper.fixed_point_stiffness(),
+                                   stepper.support_stiffness());
+    energy.after_step(stepper.state(), stepper.contacts().contacts(), true);
     std::vector<nmm::solve::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;
     double t_prev = t_start;
@@ -92,6 +117,7 @@ int main(int argc, char** argv) {
                         static_cast<std::int64_t>(stepper.open_close_iterations() - iterations),
                         static_cast<std::int64_t>(stepper.time_step_cuts() - cuts),
                         static_cast<std::int64_t>(stepper.contacts().closed_count())});
+      energy.after_step(stepper.state(), stepper.contacts().contacts(), n % sv.output_every == 0);
       iterations = stepper.open_close_iterations();
       cuts = stepper.time_step_cuts();
       t_prev = t;
@@ -101,6 +127,8 @@ int main(int argc, char** argv) {
     const std::string status = summary["status"].get<std::string>();
     progress.finish(summary["steps_completed"].get<std::int64_t>(), stepper.time(), status);
     nmm::solve::write_run_history(out_dir, effort);
+    energy.keep_last();
+    energy.write_csv(out_dir);
 
     if (pictures) {
       nmm::solve::PictureState state;
@@ -112,7 +140,7 @@ int main(int argc, char** argv) {
         if (c.state != nmm::solve::ContactState::open)
           state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex],
                                     stepper.loop_xy()[2 * c.at.vertex + 1],
-                                    static_cast<int>(c.state)});
+                                    static_cast<int>(c.state), c.at.vertex, c.at.edge});
       for (const nmm::solve::TrackedPoint& p : stepper.measure_points())
         state.measure_points.push_back({p.x, p.y});
       nmm::write_file_atomically(out_dir + "/result.svg",

@@ -729,7 +729,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
         if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
         rows.push_back({s_.loop_xy[2 * c.at.vertex], s_.loop_xy[2 * c.at.vertex + 1],
                         static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
-                        c.shear_force, c.kn_now, c.ks_now, c.length});
+                        c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge});
       }
       out.add_contacts(s, s_.time, rows);
     }

@@ -89,6 +89,8 @@ class TimeStepper {
   std::size_t time_step_cuts() const { return static_cast<std::size_t>(s_.cuts); }
   double max_penetration() const { return s_.max_penetration; }
   double model_half_size() const { return w0_; }
+  double fixed_point_stiffness() const { return fixed_k_; }  ///< N/m (energy.h)
+  double support_stiffness() const { return support_k_; }    ///< N/m² (energy.h)
   /// The system of the last step (for benchmarks comparing against a bare factorisation).
   const SystemMatrix& system() const { return system_; }
   const Eigen::VectorXd& rhs() const { return rhs_; }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <cmath>
 #include <cstring>
 #include <stdlib.h>
 
@@ -21,7 +22,10 @@
 
 #include "error.h"
 #include "mesh.h"
+#include "gzip_text.h"
 #include "output_writer.h"
+#include "vtu_compressed.h"
+#include "vtu_reader.h"
 
 namespace nmm::solve {
 namespace {
@@ -338,6 +342,150 @@ TEST(OutputWriter, CompressedFrameDecodesToTheValuesWritten) {
   EXPECT_DOUBLE_EQ(points[4], -0.004);
   const std::vector<double> stress = decode("stress");
   EXPECT_EQ(stress, (std::vector<double>{1e6, -2e6, 5e5, 3e6, 4e6, -5e6}));
+}
+
+
+// Reading frames back (vtu_reader.h): a frame, compressed or text, gives back exactly the
+// positions, displacements, stresses and identifiers written, and the cells of the mesh.
+TEST(VtuReader, FramesReadBackToTheValuesWritten) {
+  for (const FrameFormat format : {FrameFormat::compressed, FrameFormat::text}) {
+    TempDir dir;
+    const Mesh mesh = two_element_mesh();
+    write_run(dir.path(), mesh, format);
+    const Fields f = fields_at(mesh, 2);
+    const PolygonGrid g = read_vtu((dir.path() / "frames/frame_000020.vtu").string());
+    const PolygonGrid want = mesh_to_grid(mesh);
+    ASSERT_EQ(g.point_count(), 7u);
+    EXPECT_EQ(g.offsets, want.offsets);
+    EXPECT_EQ(g.connectivity, want.connectivity);
+    const GridArray* disp = nullptr;
+    for (const GridArray& a : g.point_data)
+      if (a.name == "displacement") disp = &a;
+    ASSERT_NE(disp, nullptr);
+    for (std::size_t v = 0; v < 7; ++v) {
+      // Text frames are written with the shortest round-trip text: exact in both formats.
+      EXPECT_EQ(disp->f64[3 * v], f.u[2 * v]) << v;
+      EXPECT_EQ(disp->f64[3 * v + 1], f.u[2 * v + 1]) << v;
+      EXPECT_EQ(g.points[3 * v], f.xy[2 * v]) << v;
+      EXPECT_EQ(g.points[3 * v + 1], f.xy[2 * v + 1]) << v;
+    }
+    std::vector<std::string> cell_names;
+    for (const GridArray& a : g.cell_data) {
+      cell_names.push_back(a.name);
+      if (a.name == "stress") {
+        EXPECT_EQ(a.f64, f.stress);
+      } else if (a.name == "block") {
+        EXPECT_EQ(a.i32, (std::vector<std::int32_t>{0, 1}));
+      } else if (a.name == "contact_state") {
+        EXPECT_EQ(a.f64, f.extra);
+      }
+    }
+    EXPECT_EQ(cell_names, (std::vector<std::string>{"element", "block", "body", "stress",
+                                                     "contact_state"}));
+  }
+}
+
+// Arrays larger than one 32 KiB zlib block (a real frame's) come back whole, in order.
+TEST(VtuReader, MultiBlockArraysRoundTrip) {
+  PolygonGrid g;
+  const int n = 5000;  // 15000 doubles = 120 kB of points: 4 blocks, the last one partial
+  for (int i = 0; i < n; ++i) g.add_point(0.001 * i, std::sin(0.37 * i));
+  for (int i = 0; i + 2 < n; i += 3) g.add_cell({i, i + 1, i + 2});
+  std::vector<double> d(3 * static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::cos(1.1 * static_cast<double>(i)) * 1e-3;
+  g.add_point_array("displacement", 3, d);
+  const PolygonGrid back = parse_vtu(vtu_compressed(g), "test.vtu");
+  EXPECT_EQ(back.points, g.points);
+  EXPECT_EQ(back.connectivity, g.connectivity);
+  EXPECT_EQ(back.offsets, g.offsets);
+  ASSERT_EQ(back.point_data.size(), 1u);
+  EXPECT_EQ(back.point_data[0].f64, d);
+}
+
+// Damaged frames are InputErrors naming the file and a byte offset, never a crash or a short array.
+TEST(VtuReader, DamagedFramesAreInputErrors) {
+  PolygonGrid g;
+  for (int i = 0; i < 300; ++i) g.add_point(i, 2.0 * i);
+  for (int i = 0; i + 2 < 300; i += 3) g.add_cell({i, i + 1, i + 2});
+  const std::string good = vtu_compressed(g);
+  ASSERT_NO_THROW(parse_vtu(good, "f.vtu"));
+  auto fails = [](const std::string& s, const std::string& part) {
+    try {
+      parse_vtu(s, "f.vtu");
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), "f.vtu");
+      EXPECT_EQ(e.where().rfind("byte ", 0), 0u) << e.what();
+      EXPECT_TRUE(contains(e.what(), part)) << e.what();
+      return;
+    }
+    ADD_FAILURE() << "no InputError for \"" << part << "\" (" << s.size() << " bytes)";
+  };
+  fails(good.substr(0, good.size() - 200), "");                    // truncated
+  std::string flipped = good;
+  const std::size_t last_byte = good.rfind("\n  </AppendedData>") - 1;  // of the last stream
+  flipped[last_byte] = static_cast<char>(flipped[last_byte] ^ 0x5a);
+  fails(flipped, "does not inflate");                               // a corrupt zlib stream
+  std::string other = good;
+  other.replace(other.find("vtkZLibDataCompressor"), 21, "vtkLZ4DataCompressor!");
+  fails(other, "compressor");
+  fails("<html></html>", "VTKFile");
+}
+
+
+// Any damage — a byte changed, a stretch cut out, the file cut short — is an InputError or a
+// grid that passes check_grid, never a crash, another exception or a huge allocation.
+TEST(VtuReader, RandomDamageIsOnlyEverAnInputError) {
+  PolygonGrid g;
+  for (int i = 0; i < 400; ++i) g.add_point(0.5 * i, std::cos(0.1 * i));
+  for (int i = 0; i + 3 < 400; i += 4) g.add_cell({i, i + 1, i + 2, i + 3});
+  std::vector<double> d(1200, 0.25);
+  g.add_point_array("displacement", 3, d);
+  for (const std::string& good : {vtu_compressed(g), vtu_text(g)}) {
+    std::uint64_t x = 0x9e3779b97f4a7c15ull;  // fixed seed: the same cases every run
+    auto next = [&x]() {
+      x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+      return x;
+    };
+    int errors = 0;
+    for (int trial = 0; trial < 1500; ++trial) {
+      std::string bad = good;
+      const std::size_t at = next() % bad.size();
+      switch (trial % 3) {
+        case 0: bad[at] = static_cast<char>(next()); break;
+        case 1: bad.erase(at, 1 + next() % 16); break;
+        default: bad.resize(at); break;
+      }
+      try {
+        parse_vtu(bad, "f.vtu");
+      } catch (const InputError&) {
+        ++errors;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "trial " << trial << ": " << e.what();
+      }
+    }
+    EXPECT_GT(errors, 500);  // most damage is seen (a changed digit in ASCII may pass)
+  }
+}
+
+// contacts.csv.gz (gzip_text.h): the same text back, same input same bytes, damage detected.
+TEST(GzipText, RoundTripAndDamage) {
+  std::string text = "step,time,contact,x,y\n";
+  for (int i = 0; i < 5000; ++i) text += std::to_string(i) + ",0.001," + std::to_string(i % 7) + ",1.5,-2.25\n";
+  const std::string gz = gzip_compress(text);
+  EXPECT_TRUE(is_gzip(gz));
+  EXPECT_FALSE(is_gzip(text));
+  EXPECT_LT(gz.size(), text.size() / 3);
+  EXPECT_EQ(gzip_compress(text), gz) << "deterministic";
+  EXPECT_EQ(gzip_decompress(gz, "c.csv.gz"), text);
+  EXPECT_THROW(gzip_decompress(gz.substr(0, gz.size() / 2), "c.csv.gz"), InputError);
+  std::string bad = gz;
+  bad[bad.size() - 6] = static_cast<char>(bad[bad.size() - 6] ^ 0x40);  // in the CRC-32
+  try {
+    gzip_decompress(bad, "c.csv.gz");
+    ADD_FAILURE() << "a wrong CRC was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "c.csv.gz");
+  }
 }
 
 }  // namespace

@@ -84,6 +84,19 @@ TEST(ResultPicture, SliverStressStaysOutOfTheColourScale) {
   EXPECT_DOUBLE_EQ(weighted_quantile(v2, a2, 0.99), 5.0);
 }
 
+TEST(ResultPicture, ContactStatesMarkTheEdgesAtTheVertexAndTheEdgeFaced) {
+  // Element 0: loop vertices 0..3; element 1: 4..6. A sliding contact of vertex 5 against edge
+  // 1 → 2 marks edges 4 → 5, 5 → 6 and 1 → 2 sliding; a sticking contact of vertex 4 marks the
+  // closing edge 6 → 4 sticking, and leaves edge 4 → 5 sliding (sliding wins).
+  Mesh m;
+  m.element_loop_offset = {0, 4, 7};
+  m.loop_xy.assign(14, 0.0);
+  m.loop_edge_origin.assign(7, kEdgeBoundary);
+  const std::vector<int> s =
+      edge_contact_states(m, {{0, 0, 2, 5, 1}, {0, 0, 1, 4, -1}, {0, 0, 1, -1, -1}});
+  EXPECT_EQ(s, (std::vector<int>{0, 2, 0, 0, 2, 2, 1}));
+}
+
 TEST(RunReport, PlotsHistoryAndWritesIndex) {
   const fs::path dir = fs::temp_directory_path() / ("nmm_report_" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -93,13 +106,28 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
   std::ofstream(dir / "history.csv") << "step,time,point,x,y,ux,uy\n0,0,0,1,1,0,0\n"
                                         "1,0.001,0,1,0.999,0,-0.001\n2,0.002,0,1,0.998,0,-0.002\n";
   write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3}, {2, 0.002, 0.001, 7, 1, 4}});
+  std::ofstream(dir / "energy.csv") << "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n"
+                                       "0,0,0,0,0,0,0,0,0\n2,0.002,5,1,-6,0,0,0,0\n";
   const ReportFiles files = make_run_report(dir.string());
+  {
+    // Two panels in one picture: solver effort, then the energy terms.
+    std::stringstream rh_svg;
+    rh_svg << std::ifstream(dir / "run_history.svg").rdbuf();
+    const std::string svg = rh_svg.str();
+    EXPECT_LT(svg.find("solver effort per step"), svg.find("energy (J per m of thickness)")) << svg;
+    EXPECT_NE(svg.find("gravity potential V"), std::string::npos);
+    std::size_t nested = 0;
+    for (std::size_t at = svg.find("<svg "); at != std::string::npos; at = svg.find("<svg ", at + 1))
+      ++nested;
+    EXPECT_EQ(nested, 3u) << "the outer document and its two panels";
+  }
   EXPECT_TRUE(fs::exists(dir / "history.svg"));
   EXPECT_TRUE(fs::exists(dir / "run_history.svg"));
   std::stringstream html;
   html << std::ifstream(dir / "index.html").rdbuf();
   EXPECT_NE(html.str().find("interrupted"), std::string::npos);
   EXPECT_NE(html.str().find("history.svg"), std::string::npos);
+  EXPECT_NE(html.str().find("<tr><th>gravity</th><td>-6</td></tr>"), std::string::npos) << html.str();
   std::stringstream rh;
   rh << std::ifstream(dir / "run_history.csv").rdbuf();
   EXPECT_EQ(rh.str().substr(0, 45), "step,time,dt,iterations,cuts,closed_contacts\n");

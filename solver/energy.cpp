@@ -1,0 +1,226 @@
+// Energy terms of a run: see energy.h for the formulas, docs/energy.md for their derivation.
+#include "energy.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+
+#include "element_integration.h"
+#include "insitu_stress.h"
+#include "time_table.h"
+#include "vtk_writer.h"  // write_file_atomically
+
+namespace nmm::solve {
+
+EnergyMeter::EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
+                         double support_stiffness)
+    : mesh_(mesh), scene_(scene), fixed_k_(fixed_point_stiffness), support_k_(support_stiffness) {
+  for (std::size_t i = 0; i < scene.supports.size(); ++i)
+    for (const BoundaryEdge& e : edges_under(mesh, scene.supports[i].points, "scene",
+                                             "/supports/" + std::to_string(i) + "/points"))
+      held_.push_back({e.element, e.vertex, e.next, scene.supports[i].fix_x, scene.supports[i].fix_y});
+  for (std::size_t i = 0; i < scene.tractions.size(); ++i)
+    traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, "scene",
+                                          "/tractions/" + std::to_string(i) + "/points"));
+  shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
+  for (const MaterialDef& m : scene.materials)
+    compliance_.push_back(elasticity_matrix(m, scene.plane).inverse());
+  const std::size_t ne = mesh.element_count();
+  elem_mat_.resize(ne);
+  area0_.resize(ne);
+  cx0_.resize(ne);
+  cy0_.resize(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    elem_mat_[e] = scene.bodies[mesh.element_body[e]].material;
+    const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
+    const PolygonMoments m = polygon_moments(mesh.loop_xy.data() + 2 * b, n, 0, 0);
+    area0_[e] = m.a;
+    cx0_[e] = m.a != 0 ? m.sx / m.a : 0;
+    cy0_[e] = m.a != 0 ? m.sy / m.a : 0;
+  }
+}
+
+EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>& contacts) const {
+  EnergyRow r;
+  r.step = s.step;
+  r.time = s.time;
+  const double gx = scene_.has_gravity ? scene_.gravity.x : 0.0;
+  const double gy = scene_.has_gravity ? scene_.gravity.y : 0.0;
+  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+    const std::int32_t body = mesh_.element_body[e];
+    if (static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body]) continue;
+    const MaterialDef& mat = scene_.materials[elem_mat_[e]];
+    const std::int32_t* ec = &mesh_.element_covers[3 * e];
+    const double ox = s.cover_xy[2 * ec[0]], oy = s.cover_xy[2 * ec[0] + 1];
+    const double p[6] = {0, 0, s.cover_xy[2 * ec[1]] - ox, s.cover_xy[2 * ec[1] + 1] - oy,
+                         s.cover_xy[2 * ec[2]] - ox, s.cover_xy[2 * ec[2] + 1] - oy};
+    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
+    const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
+    // Kinetic: the consistent mass, as the step assembles it.
+    const TriangleWeights w = triangle_weights(p);
+    if (w.twice_area > 0 && !s.velocity.empty())
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) {
+          const double vv = s.velocity[2 * ec[k]] * s.velocity[2 * ec[l]] +
+                            s.velocity[2 * ec[k] + 1] * s.velocity[2 * ec[l] + 1];
+          r.kinetic += 0.5 * mat.density * integral_ww(w, m, k, l) * vv;
+        }
+    // Strain: ½ A σᵀ D⁻¹ σ.
+    const Vec3 sigma(s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
+    r.strain += 0.5 * m.a * sigma.dot(compliance_[elem_mat_[e]] * sigma);
+    // Gravity: the centroid's drop, times the element's (conserved) mass.
+    if (m.a != 0) {
+      const double cx = ox + m.sx / m.a, cy = oy + m.sy / m.a;
+      r.gravity -= mat.density * area0_[e] * (gx * (cx - cx0_[e]) + gy * (cy - cy0_[e]));
+    }
+  }
+  for (const TrackedPoint& f : s.fixed) {
+    const double dx = f.x - f.x0, dy = f.y - f.y0;
+    r.springs += 0.5 * fixed_k_ * (dx * dx + dy * dy);
+  }
+  // Supports: u linear along the edge, ∫ u² ds = L (ua² + ua·ub + ub²) / 3 per component.
+  for (const HeldEdge& h : held_) {
+    const std::int32_t body = mesh_.element_body[h.element];
+    if (static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body]) continue;
+    const double len = std::hypot(s.loop_xy[2 * h.b] - s.loop_xy[2 * h.a],
+                                  s.loop_xy[2 * h.b + 1] - s.loop_xy[2 * h.a + 1]);
+    for (int d = 0; d < 2; ++d) {
+      if (!(d == 0 ? h.x : h.y)) continue;
+      const double ua = s.loop_u[2 * h.a + d], ub = s.loop_u[2 * h.b + d];
+      r.springs += 0.5 * support_k_ * len * (ua * ua + ua * ub + ub * ub) / 3;
+    }
+  }
+  for (const Contact& c : contacts)
+    if (c.state != ContactState::open)
+      r.springs += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+  return r;
+}
+
+void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& contacts, bool keep) {
+  EnergyRow r = state_terms(s, contacts);
+  if (started_) {
+    for (std::size_t l = 0; l < s.loads.size() && l < scene_.loads.size(); ++l) {
+      const double factor =
+          l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], s.time) : 1.0;
+      load_work_ += factor * (scene_.loads[l].force.x * (s.loads[l].x - load_x_[l]) +
+                              scene_.loads[l].force.y * (s.loads[l].y - load_y_[l]));
+    }
+    for (const Contact& c : contacts)
+      if (c.state == ContactState::sliding)
+        friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
+    load_work_ += traction_work(s) + shaking_work(s);
+  }
+  if (!traction_edges_.empty()) prev_loop_u_ = s.loop_u;
+  if (shaking_) centroids(s, prev_cx_, prev_cy_);
+  load_x_.resize(s.loads.size());
+  load_y_.resize(s.loads.size());
+  for (std::size_t l = 0; l < s.loads.size(); ++l) {
+    load_x_[l] = s.loads[l].x;
+    load_y_[l] = s.loads[l].y;
+  }
+  const double mech = r.kinetic + r.strain + r.gravity + r.springs;
+  if (!started_) mech0_ = mech;
+  started_ = true;
+  r.load_work = load_work_;
+  r.friction = friction_;
+  r.residual = load_work_ - friction_ - (mech - mech0_);
+  last_ = r;
+  if (keep) {
+    rows_.push_back(r);
+    last_kept_step_ = r.step;
+  }
+}
+
+bool EnergyMeter::removed(const RunState& s, std::int32_t element) const {
+  const std::int32_t body = mesh_.element_body[element];
+  return static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body];
+}
+
+void EnergyMeter::centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const {
+  const std::size_t ne = mesh_.element_count();
+  cx.assign(ne, 0);
+  cy.assign(ne, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
+    const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, 0, 0);
+    if (m.a != 0) cx[e] = m.sx / m.a, cy[e] = m.sy / m.a;
+  }
+}
+
+double EnergyMeter::traction_work(const RunState& s) const {
+  // ∫ t·Δu ds on each edge, Δu linear between its ends, by the two-point Gauss rule (exact for
+  // a constant t; for σ_insitu·n, linear along the edge, too).
+  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
+  double w = 0;
+  if (prev_loop_u_.size() != s.loop_u.size()) return 0;
+  for (std::size_t i = 0; i < traction_edges_.size(); ++i) {
+    const TractionDef& td = scene_.tractions[i];
+    const double factor = table_value(td.table, s.time);
+    for (const BoundaryEdge& be : traction_edges_[i]) {
+      if (removed(s, be.element)) continue;
+      const double* a = s.loop_xy.data() + 2 * be.vertex;
+      const double* b = s.loop_xy.data() + 2 * be.next;
+      const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
+      if (!(len > 0)) continue;
+      const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
+      for (double xi : kGauss) {
+        double t[2];
+        if (td.from_insitu) {
+          const double uy = (1 - xi) * s.loop_u[2 * be.vertex + 1] + xi * s.loop_u[2 * be.next + 1];
+          const auto sg = insitu_stress_at(scene_.insitu_stress, a[0] + xi * dx, a[1] + xi * dy - uy);
+          t[0] = sg[0] * nx + sg[2] * ny;
+          t[1] = sg[2] * nx + sg[1] * ny;
+        } else {
+          t[0] = td.normal * nx + td.shear * be.sx;
+          t[1] = td.normal * ny + td.shear * be.sy;
+        }
+        for (int d = 0; d < 2; ++d) {
+          const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
+          const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
+          w += 0.5 * len * factor * t[d] * ((1 - xi) * du_a + xi * du_b);
+        }
+      }
+    }
+  }
+  return w;
+}
+
+double EnergyMeter::shaking_work(const RunState& s) const {
+  if (!shaking_ || prev_cx_.size() != mesh_.element_count()) return 0;
+  const double bx = -table_value(scene_.base_acceleration_x, s.time, 0.0);
+  const double by = -table_value(scene_.base_acceleration_y, s.time, 0.0);
+  std::vector<double> cx, cy;
+  centroids(s, cx, cy);
+  double w = 0;
+  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+    if (removed(s, static_cast<std::int32_t>(e))) continue;
+    const double rho = scene_.materials[elem_mat_[e]].density;
+    w += rho * area0_[e] * (bx * (cx[e] - prev_cx_[e]) + by * (cy[e] - prev_cy_[e]));
+  }
+  return w;
+}
+
+void EnergyMeter::keep_last() {
+  if (started_ && last_.step != last_kept_step_) {
+    rows_.push_back(last_);
+    last_kept_step_ = last_.step;
+  }
+}
+
+void EnergyMeter::write_csv(const std::string& dir) const {
+  std::string out = "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n";
+  char buf[32];
+  for (const EnergyRow& r : rows_) {
+    out += std::to_string(r.step);
+    for (double v : {r.time, r.kinetic, r.strain, r.gravity, r.springs, r.load_work, r.friction,
+                     r.residual}) {
+      const auto res = std::to_chars(buf, buf + sizeof buf, v);
+      out += ',';
+      out.append(buf, res.ptr);
+    }
+    out += '\n';
+  }
+  write_file_atomically((std::filesystem::path(dir) / "energy.csv").string(), out);
+}
+
+}  // namespace nmm::solve

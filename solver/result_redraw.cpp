@@ -1,0 +1,174 @@
+// Redrawing result.svg from a run folder: see result_redraw.h.
+//
+// Checks, each an InputError naming the file at fault:
+// - summary.json must be readable; without "inputs.mesh" (runs of older versions) a mesh must be
+//   given (nmm-report --mesh).
+// - The frame must be of this mesh: as many points as loop vertices and as many cells as
+//   manifold elements (a frame of another mesh would colour the wrong elements silently).
+// - A chosen step must have a frame; the error lists the first and last steps that do.
+#include "result_redraw.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "error.h"
+#include "mesh_file.h"
+#include "run_config.h"
+#include "run_report.h"
+#include "scene.h"  // read_text_file
+#include "vtk_writer.h"
+#include "vtu_reader.h"
+
+namespace nmm::solve {
+namespace fs = std::filesystem;
+
+namespace {
+
+const GridArray* find_array(const std::vector<GridArray>& arrays, const std::string& name) {
+  for (const GridArray& a : arrays)
+    if (a.name == name && a.type == GridArray::Type::Float64) return &a;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& dir) {
+  const std::string path = (fs::path(dir) / "frames.pvd").string();
+  const std::string pvd = read_text_file(path);
+  std::vector<std::pair<double, std::int64_t>> out;
+  for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos;
+       at = pvd.find("<DataSet", at + 1)) {
+    const std::size_t t = pvd.find("timestep=\"", at), f = pvd.find("file=\"frames/frame_", at);
+    if (t == std::string::npos || f == std::string::npos)
+      throw InputError(path, "byte " + std::to_string(at), "a DataSet without timestep or frame file");
+    char* end = nullptr;
+    const double time = std::strtod(pvd.c_str() + t + 10, &end);
+    const long long step = std::strtoll(pvd.c_str() + f + 19, &end, 10);
+    out.emplace_back(time, static_cast<std::int64_t>(step));
+  }
+  if (out.empty()) throw InputError(path, "", "lists no frame");
+  std::sort(out.begin(), out.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  return out;
+}
+
+RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
+  const std::string summary_path = (fs::path(dir) / "summary.json").string();
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(read_text_file(summary_path));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
+  }
+  const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
+
+  // The mesh and the run's scene (its variants change fixed points and the scene's name).
+  std::string mesh_path = options.mesh_path;
+  if (mesh_path.empty()) {
+    if (!inputs.contains("mesh") || !inputs["mesh"].is_string())
+      throw InputError(summary_path, "/inputs/mesh",
+                       "does not name the mesh file; give it with --mesh MESH.nmm");
+    mesh_path = inputs["mesh"].get<std::string>();
+  }
+  const Mesh mesh = read_mesh_file(mesh_path);
+  std::string config_path;
+  std::vector<std::string> sets;
+  if (inputs.contains("config") && inputs["config"].is_string())
+    config_path = inputs["config"].get<std::string>();
+  if (inputs.contains("set") && inputs["set"].is_array())
+    for (const auto& s : inputs["set"])
+      if (s.is_string()) sets.push_back(s.get<std::string>());
+  const RunScene run = make_run_scene(mesh, mesh_path, config_path, sets);
+
+  std::string field_name = options.field;
+  if (field_name.empty()) field_name = inputs.value("picture_field", std::string("displacement"));
+  PictureField field;
+  if (!parse_picture_field(field_name, field))
+    throw InputError("--picture-field", "", "'" + field_name + "' is not one of displacement, sxx, syy, sxy");
+
+  // The frame.
+  const auto frames = list_run_frames(dir);
+  std::size_t pick = frames.size() - 1;
+  if (options.frame_step >= 0) {
+    pick = frames.size();
+    for (std::size_t i = 0; i < frames.size(); ++i)
+      if (frames[i].second == options.frame_step) pick = i;
+    if (pick == frames.size())
+      throw InputError((fs::path(dir) / "frames.pvd").string(), "",
+                       "no frame of step " + std::to_string(options.frame_step) + " (" +
+                           std::to_string(frames.size()) + " frames, steps " +
+                           std::to_string(frames.front().second) + " to " +
+                           std::to_string(frames.back().second) + ")");
+  }
+  const auto [time, step] = frames[pick];
+  char name[48];
+  std::snprintf(name, sizeof name, "frames/frame_%06lld.vtu", static_cast<long long>(step));
+  const std::string frame_path = (fs::path(dir) / name).string();
+  const PolygonGrid grid = read_vtu(frame_path);
+  if (grid.point_count() != mesh.loop_vertex_count() || grid.cell_count() != mesh.element_count())
+    throw InputError(frame_path, "",
+                     "is not a frame of " + mesh_path + " (" + std::to_string(grid.point_count()) +
+                         " points, " + std::to_string(grid.cell_count()) + " cells; the mesh has " +
+                         std::to_string(mesh.loop_vertex_count()) + " loop vertices, " +
+                         std::to_string(mesh.element_count()) + " elements)");
+  const GridArray* stress_array = find_array(grid.cell_data, "stress");
+  if (stress_array == nullptr || stress_array->components != 3)
+    throw InputError(frame_path, "", "has no 3-component cell array 'stress'");
+  std::vector<double> loop_xy(2 * grid.point_count());
+  for (std::size_t v = 0; v < grid.point_count(); ++v) {
+    loop_xy[2 * v] = grid.points[3 * v];
+    loop_xy[2 * v + 1] = grid.points[3 * v + 1];
+  }
+  const std::vector<double>& stress = stress_array->f64;
+
+  PictureState state;
+  state.time = time;
+  state.status = pick + 1 == frames.size() ? summary.value("status", std::string("unknown"))
+                                           : "step " + std::to_string(step);
+  state.loop_xy = &loop_xy;
+  state.stress = &stress;
+
+  // Contacts of that step (contacts.csv, or contacts.csv.gz). A run without it had no contacts; a contacts.csv
+  // without rows of this step was sampled (--contacts-every), unless the step is the last.
+  std::string contacts_path = (fs::path(dir) / "contacts.csv").string();
+  if (!fs::exists(contacts_path) && fs::exists(contacts_path + ".gz")) contacts_path += ".gz";
+  if (fs::exists(contacts_path)) {
+    const NumberTable c = read_number_csv(contacts_path);
+    const int cs = c.column("step"), cx = c.column("x"), cy = c.column("y"),
+              cst = c.column("state"), cv = c.column("vertex"), ce = c.column("edge");
+    if (cs < 0 || cx < 0 || cy < 0 || cst < 0)
+      throw InputError(contacts_path, "line 1", "header lacks step, x, y or state");
+    for (const auto& r : c.rows) {
+      if (r.size() < c.names.size() || static_cast<std::int64_t>(r[cs]) != step) continue;
+      PictureContact pc{r[cx], r[cy], static_cast<int>(r[cst])};
+      if (cv >= 0 && ce >= 0) {
+        pc.vertex = static_cast<int>(r[cv]);
+        pc.edge = static_cast<int>(r[ce]);
+      }
+      state.contacts.push_back(pc);
+    }
+    // contacts.csv holds only closed contacts: a step with none closed has no rows. Sampling
+    // (--contacts-every N) keeps output steps 0, N, 2N, ... and the last of the run: every
+    // output step writes a frame, so the frame's index among them says whether it was kept.
+    const int every = std::max(1, inputs.value("contacts_every", 1));
+    state.contacts_known = pick % static_cast<std::size_t>(every) == 0 || pick + 1 == frames.size();
+  }
+
+  // Measure points of that step.
+  const NumberTable h = read_number_csv((fs::path(dir) / "history.csv").string());
+  const int hs = h.column("step"), hx = h.column("x"), hy = h.column("y");
+  if (hs >= 0 && hx >= 0 && hy >= 0)
+    for (const auto& r : h.rows)
+      if (r.size() >= h.names.size() && static_cast<std::int64_t>(r[hs]) == step)
+        state.measure_points.push_back({r[hx], r[hy]});
+
+  write_file_atomically((fs::path(dir) / "result.svg").string(),
+                        result_svg(mesh, run.scene, state, field));
+  return {step, time, mesh.element_count(), state.contacts.size(), state.contacts_known};
+}
+
+}  // namespace nmm::solve
