@@ -147,6 +147,92 @@ void stack_stands(double dynamic_factor) {
 TEST(Contact, StackOfBlocksStandsDynamic) { stack_stands(1.0); }
 TEST(Contact, StackOfBlocksStandsQuasiStatic) { stack_stands(0.0); }
 
+// The four regimes of a block on an incline (Goodman & Bray), with the slope made by tilting
+// gravity by α = 30° over a flat base; block b wide, h tall, friction φ. Worked out dynamically:
+// - b/h ≥ tan α: the weight's line stays inside the base, no toppling from rest; the block
+//   slides when tan φ < tan α (a sliding block could topple only if b/h < tan φ < tan α).
+// - b/h < tan α: from rest it starts to rotate about its front corner O. Rotating without
+//   slipping, θ'' = τ/I_O with τ/m = g(h/2·sin α − b/2·cos α), I_O/m = (b² + h²)/3; its centre
+//   accelerates at θ''·(h/2, b/2), so O must supply R/m = (θ''h/2 − g sin α, θ''b/2 + g cos α).
+//   If |R_x|/R_y ≤ tan φ it topples without sliding; else it slides, and a sliding block (its base
+//   reaction inclined at φ, passing through the centre of mass while it does not rotate: (h/2)
+//   tan φ ≤ b/2) topples only when b/h < tan φ — so b/h = 0.5 with φ = 20° slides without
+//   toppling although 0.5 < tan 30°, and b/h = 0.25 with φ = 20° topples without sliding.
+struct RegimeResult {
+  double slide;     // m, along the slope, of the front bottom corner
+  double rotation;  // rad, forward (the top towards +x)
+};
+RegimeResult run_regime(double phi_deg, double width, double height, double t) {
+  SceneDef s = contact_scene(0.25, phi_deg);
+  s.gravity = {kG * std::sin(30 * kPi / 180), -kG * std::cos(30 * kPi / 180)};
+  const double x0 = 2, x1 = 2 + width;
+  s.bodies = {box(0, 0, 12, 1), box(x0, 1, x1, 1 + height)};
+  s.fixed_points = held_along(0.1, 11.9, 0.1);
+  const double xc = 0.5 * (x0 + x1);
+  s.measure_points = {{xc, 1.05}, {xc, 1 + height - 0.05}, {x1 - 0.001, 1.001}};
+  const Mesh m = pre::build_mesh(s, "regime");
+  TimeStepper st(m, s, "regime");
+  EXPECT_EQ(run_to(st, t), "ok");
+  const auto& p = st.measure_points();
+  const double ang0 = std::atan2(p[1].y0 - p[0].y0, p[1].x0 - p[0].x0);
+  const double ang1 = std::atan2(p[1].y - p[0].y, p[1].x - p[0].x);
+  return {st.displacement_at(p[2])[0], ang0 - ang1};
+}
+
+TEST(Contact, FourRegimesOfABlockOnAnIncline) {
+  const double t = 0.5, a = 30 * kPi / 180;
+  // The regime from the criteria above.
+  auto predict = [&](double phi_deg, double b, double h, bool& slides, bool& topples) {
+    const double tan_p = std::tan(phi_deg * kPi / 180);
+    if (b / h >= std::tan(a)) {
+      slides = tan_p < std::tan(a);
+      topples = slides && b / h < tan_p;
+      return;
+    }
+    const double acc = kG * (0.5 * h * std::sin(a) - 0.5 * b * std::cos(a)) / ((b * b + h * h) / 3);
+    const double rx = acc * h / 2 - kG * std::sin(a), ry = acc * b / 2 + kG * std::cos(a);
+    slides = std::abs(rx) / ry > tan_p;
+    topples = !slides || b / h < tan_p;
+  };
+  struct Case {
+    const char* name;
+    double phi, width, height;
+    bool slides, topples;  // the regime the test expects (checked against predict)
+  };
+  const Case cases[] = {
+      {"stable: phi 40, b/h 1.0", 40, 2.0, 2.0, false, false},
+      {"sliding: phi 20, b/h 1.0", 20, 2.0, 2.0, true, false},
+      {"sliding: phi 20, b/h 0.5 (tan phi < b/h < tan alpha)", 20, 1.0, 2.0, true, false},
+      {"toppling: phi 40, b/h 0.4", 40, 0.8, 2.0, false, true},
+      {"toppling: phi 20, b/h 0.25 (the corner holds: needs 0.327 < tan 20)", 20, 0.5, 2.0, false, true},
+      {"sliding and toppling: phi 10, b/h 0.15", 10, 0.3, 2.0, true, true},
+  };
+  for (const Case& c : cases) {
+    bool slides = false, topples = false;
+    predict(c.phi, c.width, c.height, slides, topples);
+    ASSERT_EQ(slides, c.slides) << c.name;
+    ASSERT_EQ(topples, c.topples) << c.name;
+    const RegimeResult r = run_regime(c.phi, c.width, c.height, t);
+    const double want = slide_distance(30, c.phi, t);
+    std::printf("%s: corner slid %.4e m (Coulomb for a sliding block %.4e m), rotated %.4e rad\n",
+                c.name, r.slide, want, r.rotation);
+    if (c.slides && !c.topples) {
+      EXPECT_NEAR(r.slide, want, 0.01 * want) << c.name;
+    }
+    if (c.slides && c.topples) {
+      EXPECT_GT(r.slide, 0.01) << c.name;
+    }
+    if (!c.slides) {
+      EXPECT_LT(std::abs(r.slide), 1e-3) << c.name << ": the base corner holds";
+    }
+    if (c.topples) {
+      EXPECT_GT(r.rotation, 0.03) << c.name;
+    } else {
+      EXPECT_LT(std::abs(r.rotation), 2e-3) << c.name;
+    }
+  }
+}
+
 TEST(Contact, CrackOpensOnlyWhereTheJointIs) {
   // A cantilever clamped at x = 0 with a crack from its top face down to mid-depth at x = 1,
   // static. A downward tip load puts the top in tension: the crack opens, while below its tip
