@@ -26,8 +26,15 @@ class SystemMatrix {
   /// per contact (the covers of both elements; an unknown may appear twice in a group).
   /// Group g holds dofs[offsets[g] .. offsets[g+1]).
   void build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
-  /// The same with element groups only.
-  void build_pattern(int n, const std::vector<std::array<int, 6>>& groups);
+
+  /// Unknowns whose diagonal is perturbed by eps·K_ii in the factorisation (linearly dependent
+  /// ones); solve() then refines iteratively. Empty (the default): plain Cholesky.
+  void set_regularised(std::vector<int> unknowns, double eps) {
+    regularised_ = std::move(unknowns);
+    eps_ = eps;
+  }
+  /// Iterative-refinement passes of the last solve (0 without regularisation).
+  int refinements() const { return refinements_; }
 
   /// Sets every value to zero, keeping the pattern.
   void set_zero();
@@ -47,7 +54,7 @@ class SystemMatrix {
   /// the matrix is not positive definite; failed_unknown() then names the unknown where it broke.
   bool factorize();
 
-  /// Solves K·x = b with the last factorisation.
+  /// Solves K·x = b with the last factorisation (refined when regularised).
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
 
   int failed_unknown() const { return failed_unknown_; }
@@ -69,6 +76,9 @@ class SystemMatrix {
   bool analysed_ = false;
   std::size_t analyses_ = 0;
   int failed_unknown_ = -1;
+  std::vector<int> regularised_;
+  double eps_ = 0;
+  int refinements_ = 0;
 };
 
 }  // namespace nmm::solve
