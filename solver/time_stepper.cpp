@@ -981,7 +981,8 @@ void TimeStepper::write_checkpoint(const std::string& path) const {
 
 void TimeStepper::restart_from(const std::string& path) {
   std::string history;
-  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history);
+  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history,
+                                          space_.dofs_per_cover(), space_.terms());
   restore(st, history, path);
 }
 
