@@ -9,6 +9,7 @@
 
 #include "cover_cutter.h"
 #include "cover_space.h"
+#include "error.h"
 #include "element_integration.h"
 #include "time_stepper.h"
 
@@ -319,6 +320,58 @@ TEST(CoverSpace, FreeFallIsExactAtOrderOne) {
   // Every loop vertex fell the same.
   for (std::size_t v = 1; v < st.loop_xy().size(); v += 2)
     EXPECT_NEAR(st.loop_xy()[v] - m.loop_xy[v], -4.905, 1e-8);
+}
+
+TEST(CoverSpace, RollersAndTractionGiveUniformStressAtOrderOneAndTwo) {
+  // A 1 m × 2 m column on rollers (bottom: y held, left: x held), pressed by 1 MPa on its top:
+  // σyy = −1 MPa, σxx = τxy = 0 everywhere, whatever the order (edge integrals of degree 2n + 2
+  // with the (n + 2)-point Gauss rule).
+  for (int order : {1, 2}) {
+    SceneDef s = plate(0.3, order);
+    s.plane = PlaneKind::stress;
+    s.bodies[0].outer = {{0, 0}, {1, 0}, {1, 2}, {0, 2}};
+    s.supports.push_back({{{-0.1, 0}, {1.1, 0}}, false, true});
+    s.supports.push_back({{{0, -0.1}, {0, 2.1}}, true, false});
+    TractionDef t;
+    t.points = {{-0.1, 2}, {1.1, 2}};
+    t.normal = -1e6;
+    s.tractions.push_back(t);
+    const Mesh m = pre::build_mesh(s, "column");
+    TimeStepper st(m, s, "column");
+    st.step(1.0);
+    const std::vector<double> mean = st.mean_stress();
+    double worst = 0;
+    for (std::size_t e = 0; e < m.element_count(); ++e) {
+      worst = std::max(worst, std::abs(mean[3 * e] - 0));
+      worst = std::max(worst, std::abs(mean[3 * e + 1] + 1e6));
+      worst = std::max(worst, std::abs(mean[3 * e + 2]));
+    }
+    EXPECT_LT(worst, 1e-4 * 1e6) << "order " << order;
+    // The top shortens by σ·L/E = 1e6·2/1e10 = 0.2 mm, and the bottom roller gives way by
+    // p/k_s with k_s = 100·E/h (boundary_conditions.h): 0.3 µm.
+    double dy = 0;
+    for (std::size_t v = 1; v < st.loop_xy().size(); v += 2) dy = std::min(dy, st.loop_xy()[v] - m.loop_xy[v]);
+    EXPECT_NEAR(dy, -(2e-4 + 1e6 / (100 * 1e10 / 0.3)), 1e-9) << "order " << order;
+  }
+}
+
+TEST(CoverSpace, UnsupportedCombinationsAreRefused) {
+  // Contacts (two bodies that may touch) at n = 1: bad input naming /solver/cover_order.
+  SceneDef s = plate(0.3, 1);
+  s.bodies[0].outer = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  BodyDef top = s.bodies[0];
+  top.outer = {{0, 1}, {1, 1}, {1, 2}, {0, 2}};
+  s.bodies.push_back(top);
+  s.solver.dynamic = true;
+  const Mesh m = pre::build_mesh(s, "blocks");
+  try {
+    TimeStepper st(m, s, "blocks");
+    FAIL() << "contacts at cover order 1 must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/solver/cover_order"), std::string::npos) << e.what();
+  }
+  s.solver.cover_order = 0;  // the same scene at order 0 runs
+  EXPECT_NO_THROW(TimeStepper(m, s, "blocks"));
 }
 
 }  // namespace
