@@ -876,6 +876,16 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
     fields.loop_u = &s_.loop_u;
     const std::vector<double> mean = mean_stress();  // n = 0: the element stresses themselves
     fields.stress = &mean;
+    std::vector<double> at_vertex;
+    if (space_.order() > 0) {
+      at_vertex.resize(s_.loop_xy.size() / 2 * 3);
+      for (std::size_t e = 0; e < mesh_.element_count(); ++e)
+        for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
+          const auto sg = stress_at(e, s_.loop_xy[2 * v], s_.loop_xy[2 * v + 1]);
+          for (int r = 0; r < 3; ++r) at_vertex[3 * static_cast<std::size_t>(v) + r] = sg[r];
+        }
+      fields.vertex_stress = &at_vertex;
+    }
     out.write_frame(s, s_.time, mesh_, fields);
     if (contacts_.active()) {
       std::vector<ContactSample> rows;
