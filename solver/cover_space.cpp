@@ -38,6 +38,12 @@ CoverSpace::CoverSpace(const Mesh& mesh, int order, double min_weight) : order_(
 ElementBasis CoverSpace::element_basis(double ox, double oy, const TriangleWeights& w,
                                        const double centre[6]) const {
   ElementBasis b;
+  element_basis(ox, oy, w, centre, b);
+  return b;
+}
+
+void CoverSpace::element_basis(double ox, double oy, const TriangleWeights& w,
+                               const double centre[6], ElementBasis& b) const {
   b.ox = ox;
   b.oy = oy;
   b.h = h_;
@@ -66,7 +72,6 @@ ElementBasis CoverSpace::element_basis(double ox, double oy, const TriangleWeigh
       b.dy[a] *= inv_h;
     }
   }
-  return b;
 }
 
 }  // namespace nmm::solve

@@ -77,6 +77,9 @@ class CoverSpace {
   /// each of the element's three covers).
   ElementBasis element_basis(double ox, double oy, const TriangleWeights& w,
                              const double centre[6]) const;
+  /// The same into `out`, reusing its storage (no allocation once sized).
+  void element_basis(double ox, double oy, const TriangleWeights& w, const double centre[6],
+                     ElementBasis& out) const;
 
  private:
   int order_ = 0;

@@ -273,7 +273,7 @@ void TimeStepper::compute_frames() {
   }
 }
 
-ElementBasis TimeStepper::basis(std::size_t e) const {
+const ElementBasis& TimeStepper::basis(std::size_t e) const {
   const std::int32_t* ec = &mesh_.element_covers[3 * e];
   double centre[6];
   for (int k = 0; k < 3; ++k) {
@@ -281,7 +281,17 @@ ElementBasis TimeStepper::basis(std::size_t e) const {
     centre[2 * k] = s_.cover_xy[2 * m];
     centre[2 * k + 1] = s_.cover_xy[2 * m + 1];
   }
-  return space_.element_basis(frame_[e].ox, frame_[e].oy, frame_[e].w, centre);
+  space_.element_basis(frame_[e].ox, frame_[e].oy, frame_[e].w, centre, basis_scratch_);
+  return basis_scratch_;
+}
+
+void TimeStepper::shape_values(std::size_t e, double x, double y, double* out) const {
+  if (space_.order() == 0) {  // the weights themselves, with the first-order code's round-off
+    const ElementFrame& f = frame_[e];
+    for (int k = 0; k < 3; ++k) out[k] = f.w.at(k, x - f.ox, y - f.oy);
+    return;
+  }
+  basis(e).values(x, y, out);
 }
 
 std::vector<double> TimeStepper::mean_stress() const {
@@ -406,8 +416,39 @@ void TimeStepper::assemble(double dt) {
       continue;
     }
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    const ElementBasis eb = basis(e);
     const std::size_t lb = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - lb;
+    if (space_.order() == 0) {
+      // n = 0: the same integrals specialised to constant strain (K_e = A·BᵀDB, no polynomial
+      // algebra): the first-order code path, for its speed and its round-off.
+      const ElementFrame& f = frame_[e];
+      const PolygonMoments pm = polygon_moments(s_.loop_xy.data() + 2 * lb, n, f.ox, f.oy);
+      const Mat36 B = strain_matrix(f.w);
+      const Mat3& D = material_d_[elem_mat_[e]];
+      Mat6 k6 = pm.a * (B.transpose() * D * B);
+      const Vec3 sigma(s_.stress[3 * e], s_.stress[3 * e + 1], s_.stress[3 * e + 2]);
+      Vec6 f6 = -pm.a * (B.transpose() * sigma);
+      const double rho = scene_.materials[elem_mat_[e]].density;
+      if (gravity)
+        for (int i = 0; i < 3; ++i) {
+          const double iw = integral_w(f.w, pm, i);
+          f6[2 * i] += rho * bx * iw;
+          f6[2 * i + 1] += rho * by * iw;
+        }
+      if (dynamic)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const double mij = rho * integral_ww(f.w, pm, i, j);
+            k6(2 * i, 2 * j) += mass_k * mij;
+            k6(2 * i + 1, 2 * j + 1) += mass_k * mij;
+            const int cj = 2 * ec[j];
+            f6[2 * i] += mij * (mass_v * s_.velocity[cj] + mass_a * s_.accel[cj]);
+            f6[2 * i + 1] += mij * (mass_v * s_.velocity[cj + 1] + mass_a * s_.accel[cj + 1]);
+          }
+      system_.add_group(e, k6.data());
+      for (int i = 0; i < 6; ++i) rhs_[g[i]] += f6[i];
+      continue;
+    }
+    const ElementBasis& eb = basis(e);
     const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * lb, n, eb.ox, eb.oy, eb.h,
                                                2 * space_.order() + 2);
     const Mat3& D = material_d_[elem_mat_[e]];
@@ -463,7 +504,7 @@ void TimeStepper::assemble(double dt) {
   // Fixed points: penalty springs back to where they started.
   std::vector<double> phi(static_cast<std::size_t>(nf));
   for (const TrackedPoint& p : s_.fixed) {
-    basis(p.element).values(p.x, p.y, phi.data());
+    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
     k.setZero();
     for (int a = 0; a < nf; ++a)
       for (int bb = 0; bb < nf; ++bb) {
@@ -482,7 +523,7 @@ void TimeStepper::assemble(double dt) {
     const int* g = space_.element_unknowns(p.element);
     const double factor =
         l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], t_end) : 1.0;
-    basis(p.element).values(p.x, p.y, phi.data());
+    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
     for (int a = 0; a < nf; ++a) {
       rhs_[g[2 * a]] += phi[a] * factor * scene_.loads[l].force.x;
       rhs_[g[2 * a + 1]] += phi[a] * factor * scene_.loads[l].force.y;
@@ -495,10 +536,9 @@ void TimeStepper::assemble_boundary(double t_end) {
   // Supports, tractions and the in-situ traction of faces between bodies (boundary_conditions.h).
   const int nd = space_.element_dofs();
   Eigen::MatrixXd k(nd, nd);
-  ElementBasis eb;  // of the edge being integrated
+  // The edge's element basis lives in basis()'s scratch until the next call.
   auto frame_of = [&](std::int32_t e) {
-    eb = basis(static_cast<std::size_t>(e));
-    return EdgeFrame{&eb, space_.order() + 2};
+    return EdgeFrame{&basis(static_cast<std::size_t>(e)), space_.order() + 2};
   };
   auto add_force = [&](std::int32_t e, const std::vector<double>& f, double factor) {
     const int* g = space_.element_unknowns(static_cast<std::size_t>(e));
@@ -596,8 +636,29 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   std::vector<double> de(static_cast<std::size_t>(nd)), phi(static_cast<std::size_t>(nf));
   for (std::size_t e = 0; e < ne; ++e) {
     const int* g = space_.element_unknowns(e);
-    const ElementBasis eb = basis(e);
     for (int i = 0; i < nd; ++i) de[i] = d[g[i]];
+    if (space_.order() == 0) {
+      // n = 0 specialised (constant strain; the first-order code path, see assemble()).
+      const ElementFrame& f = frame_[e];
+      const Vec6 de6 = Eigen::Map<const Vec6>(de.data());
+      const Vec3 ds = material_d_[elem_mat_[e]] * (strain_matrix(f.w) * de6);
+      for (int i = 0; i < 3; ++i) s_.stress[3 * e + i] += ds[i];
+      for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
+        const double x = s_.loop_xy[2 * v] - f.ox, y = s_.loop_xy[2 * v + 1] - f.oy;
+        double ux = 0, uy = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double w = f.w.at(k, x, y);
+          ux += w * de6[2 * k];
+          uy += w * de6[2 * k + 1];
+        }
+        s_.loop_xy[2 * v] += ux;
+        s_.loop_xy[2 * v + 1] += uy;
+        s_.loop_u[2 * v] += ux;
+        s_.loop_u[2 * v + 1] += uy;
+      }
+      continue;
+    }
+    const ElementBasis& eb = basis(e);
     // Δσ = D·B·d: strain polynomials of degree n, then D per coefficient.
     Poly eps[3];
     for (int r = 0; r < 3; ++r) eps[r].degree = space_.order();
@@ -628,7 +689,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   auto move = [&](std::vector<TrackedPoint>& pts) {
     for (TrackedPoint& p : pts) {
       const int* g = space_.element_unknowns(p.element);
-      basis(p.element).values(p.x, p.y, phi.data());
+      shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
       double ux = 0, uy = 0;
       for (int a = 0; a < nf; ++a) {
         ux += phi[a] * d[g[2 * a]];

@@ -129,8 +129,11 @@ class TimeStepper {
     return scene_.solver.dynamic || scene_.solver.static_mode == StaticMode::dda;
   }
   void build_pattern_with_pairs();
-  /// The shape functions of element e in its current frame.
-  ElementBasis basis(std::size_t e) const;
+  /// The shape functions of element e in its current frame, in a scratch object reused by the
+  /// next call (no allocation per element).
+  const ElementBasis& basis(std::size_t e) const;
+  /// The element's shape function values at (x, y) into out[0 .. element_dofs()/2).
+  void shape_values(std::size_t e, double x, double y, double* out) const;
   /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
   std::size_t stress_terms() const { return static_cast<std::size_t>(space_.terms()); }
   /// Exit 2 (InputError) for what cover order n ≥ 1 does not support yet.
@@ -146,6 +149,7 @@ class TimeStepper {
   std::vector<Mat3> material_d_;        // [material] elasticity matrix, Pa
   std::vector<std::int32_t> elem_mat_;  // [me] material index
   CoverSpace space_;                    // order, unknowns of each cover and element, shapes
+  mutable ElementBasis basis_scratch_;  // basis()'s result
   double fixed_k_ = 0;                  // N/m, penalty stiffness of a fixed point
   double support_k_ = 0;                // N/m², penalty stiffness of a support per unit length
   double pin_k_ = 0;                    // N/m, holds the unknowns of excavated covers at zero
