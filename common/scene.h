@@ -142,6 +142,10 @@ struct SolverDef {
   double support_stiffness = 0;
   /// steps over which the in-situ traction on a face freed by excavation is released (1: at once)
   std::int64_t excavation_steps = 1;
+  /// –, degree n of the cover functions (seed eq. 1): 0 constant (2 unknowns per physical
+  /// cover), 1 linear (6), 2 quadratic (12); a choice of the run, not of the mesh
+  /// (docs/higher-order-covers.md)
+  int cover_order = 0;
 };
 
 struct SceneDef {

@@ -83,20 +83,39 @@ std::vector<InterfaceEdge> interface_edges(const Mesh& mesh, const SceneDef& sce
   return out;
 }
 
+const double* gauss_points(int n) {
+  static constexpr double k2[2] = {0.21132486540518711775, 0.78867513459481288225};
+  static constexpr double k3[3] = {0.11270166537925831148, 0.5, 0.88729833462074168852};
+  static constexpr double k4[4] = {0.06943184420297371239, 0.33000947820757186760,
+                                   0.66999052179242813240, 0.93056815579702628761};
+  return n <= 2 ? k2 : n == 3 ? k3 : k4;
+}
+
+const double* gauss_weights(int n) {
+  static constexpr double k2[2] = {0.5, 0.5};
+  static constexpr double k3[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
+  static constexpr double k4[4] = {0.17392742256872692869, 0.32607257743127307131,
+                                   0.32607257743127307131, 0.17392742256872692869};
+  return n <= 2 ? k2 : n == 3 ? k3 : k4;
+}
+
 void edge_support(const EdgeFrame& f, const double a[2], const double b[2], const double ua[2],
                   const double ub[2], bool fix_x, bool fix_y, double k_s, double* k, double* f_out) {
+  const int nf = f.basis->functions(), nd = 2 * nf;
+  std::vector<double> w(static_cast<std::size_t>(nf));
   const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
-  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
-  for (double xi : kGauss) {
+  const double* gp = gauss_points(f.points);
+  const double* gw = gauss_weights(f.points);
+  for (int q = 0; q < f.points; ++q) {
+    const double xi = gp[q];
     const double x = a[0] + xi * dx, y = a[1] + xi * dy;
     const double u[2] = {(1 - xi) * ua[0] + xi * ub[0], (1 - xi) * ua[1] + xi * ub[1]};
-    double w[3];
-    for (int i = 0; i < 3; ++i) w[i] = f.w->at(i, x - f.ox, y - f.oy);
-    const double c = k_s * 0.5 * len;
+    f.basis->values(x, y, w.data());
+    const double c = k_s * gw[q] * len;
     for (int d = 0; d < 2; ++d) {
       if ((d == 0 && !fix_x) || (d == 1 && !fix_y)) continue;
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) k[(2 * j + d) * 6 + (2 * i + d)] += c * w[i] * w[j];
+      for (int i = 0; i < nf; ++i) {
+        for (int j = 0; j < nf; ++j) k[(2 * j + d) * nd + (2 * i + d)] += c * w[i] * w[j];
         f_out[2 * i + d] -= c * w[i] * u[d];
       }
     }

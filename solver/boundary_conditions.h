@@ -10,8 +10,9 @@
 //   traction  f_k = ∫ w_k t ds,  t = normal·n + shear·s  (or t = σ_insitu(x)·n)
 //   support   K  += k_s ∫ N_dᵀ N_d ds,  f −= k_s ∫ N_dᵀ u_d ds   for each held direction d
 // with u the displacement since the start (linear along the edge: the field is linear in an
-// element each step). The integrands are at most quadratic along the edge, so the two-point
-// Gauss rule (ξ = ½ ∓ 1/(2√3), weights L/2) integrates them exactly.
+// element each step at n = 0). At cover order n the integrands are of degree ≤ 2n + 2 along the
+// edge, so the (n + 2)-point Gauss rule integrates them exactly (n = 0: ξ = ½ ∓ 1/(2√3),
+// weights L/2).
 //
 // A support is a penalty spring per unit length, k_s = solver.support_stiffness or by default
 // 100·E_max/h N/m² (an edge of length h then holds like a fixed point, 100·E_max N/m): under a
@@ -27,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "cover_space.h"
 #include "element_integration.h"
 #include "mesh.h"
 #include "scene.h"
@@ -52,28 +54,38 @@ struct InterfaceEdge {
 };
 std::vector<InterfaceEdge> interface_edges(const Mesh& mesh, const SceneDef& scene);
 
-/// The element's weights in its current frame (origin ox, oy).
+/// The element's shape functions in its current frame (cover_space.h), and the Gauss rule
+/// along its edges: `points` = order + 2 integrates φ_a·φ_b (degree 2n + 2 along a straight
+/// edge) and a linear traction times φ_a exactly; n = 0 keeps the two-point rule.
 struct EdgeFrame {
-  double ox = 0, oy = 0;  ///< m
-  const TriangleWeights* w = nullptr;
+  const ElementBasis* basis = nullptr;
+  int points = 2;  ///< Gauss points per edge, 2..4
 };
 
-/// Nodal forces [fx0 fy0 fx1 fy1 fx2 fy2] (N) of a traction t(ξ) on the edge from a to b,
-/// where traction(x, y, nx, ny, out) fills out = {tx, ty} (Pa) at a point with outward normal n.
+/// Gauss–Legendre points on [0, 1] and weights (summing to 1) of the n-point rule, n = 2..4.
+const double* gauss_points(int n);
+const double* gauss_weights(int n);
+
+/// Nodal forces [fx0 fy0 fx1 fy1 …] (N, 2 per shape function) of a traction t(ξ) on the edge
+/// from a to b, where traction(x, y, nx, ny, out) fills out = {tx, ty} (Pa) at a point with
+/// outward normal n.
 template <class Traction>
-std::array<double, 6> edge_traction_forces(const EdgeFrame& f, const double a[2],
-                                           const double b[2], Traction traction) {
-  std::array<double, 6> out{};
+std::vector<double> edge_traction_forces(const EdgeFrame& f, const double a[2],
+                                         const double b[2], Traction traction) {
+  const int nf = f.basis->functions();
+  std::vector<double> out(2 * static_cast<std::size_t>(nf), 0.0), phi(static_cast<std::size_t>(nf));
   const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
   if (!(len > 0)) return out;
   const double nx = dy / len, ny = -dx / len;  // CCW loop: the outside is on the right
-  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
-  for (double xi : kGauss) {
-    const double x = a[0] + xi * dx, y = a[1] + xi * dy;
+  const double* gp = gauss_points(f.points);
+  const double* gw = gauss_weights(f.points);
+  for (int q = 0; q < f.points; ++q) {
+    const double x = a[0] + gp[q] * dx, y = a[1] + gp[q] * dy;
     double t[2];
     traction(x, y, nx, ny, t);
-    for (int k = 0; k < 3; ++k) {
-      const double w = f.w->at(k, x - f.ox, y - f.oy) * 0.5 * len;
+    f.basis->values(x, y, phi.data());
+    for (int k = 0; k < nf; ++k) {
+      const double w = phi[k] * gw[q] * len;
       out[2 * k] += w * t[0];
       out[2 * k + 1] += w * t[1];
     }
@@ -81,8 +93,8 @@ std::array<double, 6> edge_traction_forces(const EdgeFrame& f, const double a[2]
   return out;
 }
 
-/// Penalty support on the edge a → b: adds k_s ∫NᵀN ds to the 6×6 (column-major) k for the held
-/// directions, and −k_s ∫Nᵀu ds to f, with u linear from ua (at a) to ub (at b).
+/// Penalty support on the edge a → b: adds k_s ∫NᵀN ds to the (2·nf)² (column-major) k for the
+/// held directions, and −k_s ∫Nᵀu ds to f, with u linear from ua (at a) to ub (at b).
 void edge_support(const EdgeFrame& f, const double a[2], const double b[2], const double ua[2],
                   const double ub[2], bool fix_x, bool fix_y, double k_s, double* k, double* f_out);
 

@@ -23,9 +23,10 @@
 
 namespace nmm::solve {
 
-CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight) {
+CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover) {
   const std::size_t nc = mesh.cover_count(), ne = mesh.element_count();
   CoverUnknowns u;
+  u.dofs_per_cover = dofs_per_cover;
   u.max_weight.assign(nc, 0.0);
   u.master.resize(nc);
   for (std::size_t c = 0; c < nc; ++c) u.master[c] = static_cast<std::int32_t>(c);

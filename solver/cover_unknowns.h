@@ -10,17 +10,18 @@
 namespace nmm::solve {
 
 struct CoverUnknowns {
-  std::vector<std::int32_t> unknown;  ///< [pc] index of its x unknown (y is the next one)
+  std::vector<std::int32_t> unknown;  ///< [pc] index of its first unknown (cover_space.h)
   std::vector<std::int32_t> master;   ///< [pc] itself, or the cover whose unknowns it shares
   std::vector<double> max_weight;     ///< [pc] –, largest weight of the cover on its support
-  std::vector<std::int32_t> cover_of_unknown;  ///< [unknowns/2] the cover owning each pair
+  std::vector<std::int32_t> cover_of_unknown;  ///< [unknowns/dofs_per_cover] owner of each block
   std::size_t tied = 0;                        ///< covers sharing a neighbour's unknowns
-  int unknowns() const { return 2 * static_cast<int>(cover_of_unknown.size()); }
+  int dofs_per_cover = 2;                      ///< unknowns of one cover (cover_space.h)
+  int unknowns() const { return dofs_per_cover * static_cast<int>(cover_of_unknown.size()); }
 };
 
 /// Covers whose weight is below min_weight (in [0, 1/3)) on all of their support share the
 /// unknowns of a neighbour; the others get theirs in cover order (so without slivers cover c
-/// owns unknowns 2c and 2c + 1).
-CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight);
+/// owns unknowns m·c .. m·c + m − 1, m = dofs_per_cover).
+CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover = 2);
 
 }  // namespace nmm::solve

@@ -2,7 +2,10 @@
 // counter-clockwise polygon, and the linear weight functions of the element's triangle.
 #pragma once
 
+#include <array>
 #include <cstddef>
+
+#include "polynomial.h"
 
 namespace nmm::solve {
 
@@ -38,5 +41,20 @@ double integral_w(const TriangleWeights& w, const PolygonMoments& m, int k);
 
 /// ∫ w_k·w_l dA over a polygon with moments m.
 double integral_ww(const TriangleWeights& w, const PolygonMoments& m, int k, int l);
+
+/// Exact integrals of the monomials ξ^p·η^q (p + q ≤ degree, indexed as in polynomial.h) over a
+/// polygon, with ξ = (x − ox)/scale, η = (y − oy)/scale: m[i] = ∫ ξ^p η^q dA in m² (dA physical).
+/// General simplex formula (element_integration.cpp), for any degree ≤ kMaxDegree.
+struct MonomialMoments {
+  int degree = 0;
+  std::array<double, kMaxMonomials> m{};  ///< m², one per monomial
+};
+MonomialMoments monomial_moments(const double* xy, std::size_t n, double ox, double oy,
+                                 double scale, int degree);
+
+/// ∫ a dA and ∫ a·b dA over the polygon of m (a, b in the same scaled coordinates; the degrees
+/// must not exceed m.degree).
+double integral(const Poly& a, const MonomialMoments& m);
+double integral(const Poly& a, const Poly& b, const MonomialMoments& m);
 
 }  // namespace nmm::solve

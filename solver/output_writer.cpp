@@ -122,6 +122,7 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   check_size(fields.loop_u, 2 * nv, "loop_u");
   check_size(fields.stress, 3 * ne, "stress");
   if (fields.extra_cell != nullptr) check_size(fields.extra_cell, ne, "extra_cell");
+  if (fields.vertex_stress != nullptr) check_size(fields.vertex_stress, 3 * nv, "vertex_stress");
 
   PolygonGrid grid = mesh_to_grid(mesh);
   // mesh_to_grid keeps one point per loop vertex (it drops near-duplicates from the cells only),
@@ -140,6 +141,7 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   }
   grid.point_data.clear();
   grid.add_point_array("displacement", 3, std::move(displacement));
+  if (fields.vertex_stress != nullptr) grid.add_point_array("vertex_stress", 3, *fields.vertex_stress);
 
   // Keep the identifiers; drop what describes the cut mesh rather than this state (the area of
   // the undeformed loop, the triangle and covers are for nmm-inspect).

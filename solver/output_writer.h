@@ -43,6 +43,10 @@ struct FrameFields {
   /// Name of extra_cell in the .vtu. The `{}` lets `FrameFields{&xy, &u, &stress}` leave both
   /// extra members out without -Wmissing-field-initializers (GCC warns for a member without one).
   std::string extra_cell_name{};
+  /// [3·v] Pa, σxx σyy σxy of each loop vertex's element at that vertex (cover order ≥ 1: the
+  /// stress varies inside an element; every element owns its loop vertices, so the field shows
+  /// its jumps between elements); null: not written (point array "vertex_stress")
+  const std::vector<double>* vertex_stress = nullptr;
 };
 
 /// How frames are written: binary zlib-compressed appended data (vtu_compressed.h, the default:

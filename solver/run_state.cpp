@@ -124,7 +124,7 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
 
 RunState state_from_sections(const CheckpointSections& sections, const Mesh& mesh,
                              const std::string& name, std::string& contact_history,
-                             std::string* factor_source) {
+                             int dofs_per_cover, int stress_terms, std::string* factor_source) {
   static const char* const kTags[] = {"META",  "COVXY",  "COVU",   "VEL",     "ACC",
                                       "STRESS", "LOOPXY", "LOOPU", "POINTS",  "PATTERN",
                                       "BODIES", "CONTACT", "DIAG"};
@@ -174,10 +174,21 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
     return v;
   };
   s.cover_xy = vec(1, 2 * nc, "cover positions");
-  s.cover_u = vec(2, 2 * nc, "cover displacements");
-  s.velocity = vec(3, 2 * nc, "velocities");
-  s.accel = vec(4, 2 * nc, "accelerations");
-  s.stress = vec(5, 3 * ne, "element stresses");
+  // Cover functions of another order than the run's: a clear refusal (the sizes tell).
+  {
+    const std::size_t bytes = sections[2].second.size();  // u64 count, then the doubles
+    const std::size_t count = bytes >= 8 ? (bytes - 8) / 8 : 0;
+    if (nc > 0 && count % nc == 0 && count != static_cast<std::size_t>(dofs_per_cover) * nc)
+      throw InputError(name, "section COVU",
+                       "the checkpoint has " + std::to_string(count / nc) +
+                           " unknowns per physical cover, the run " + std::to_string(dofs_per_cover) +
+                           " (a restart keeps the cover order of the run that wrote it: solver.cover_order)");
+  }
+  const std::size_t dpc = static_cast<std::size_t>(dofs_per_cover);
+  s.cover_u = vec(2, dpc * nc, "cover displacements");
+  s.velocity = vec(3, dpc * nc, "velocities");
+  s.accel = vec(4, dpc * nc, "accelerations");
+  s.stress = vec(5, 3 * static_cast<std::size_t>(stress_terms) * ne, "element stresses");
   s.loop_xy = vec(6, 2 * nv, "loop vertices");
   s.loop_u = vec(7, 2 * nv, "loop displacements");
   {

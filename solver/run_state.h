@@ -30,11 +30,15 @@ struct RunState {
   double time = 0;        ///< s, simulated time
   double dt = 1e300;      ///< s, the step length step control has arrived at
   std::vector<double> cover_xy;  ///< [2·pc] m, current position of each cover's node
-  std::vector<double> cover_u;   ///< [2·pc] m, displacement since the start
-  std::vector<double> velocity;  ///< [2·pc] m/s, v0 of the next step
-  std::vector<double> accel;     ///< [2·pc] m/s², a0 of the next step
+  /// Per cover, its cover-function coefficients (m per cover = 2, 6, 12 at order 0, 1, 2;
+  /// cover_space.h): [m·pc]
+  std::vector<double> cover_u;   ///< [m·pc] m, displacement since the start
+  std::vector<double> velocity;  ///< [m·pc] m/s, v0 of the next step
+  std::vector<double> accel;     ///< [m·pc] m/s², a0 of the next step
   bool accel_known = false;      ///< a0 comes from a step (else the next step takes β = ½)
-  std::vector<double> stress;    ///< [3·me] Pa, σxx σyy τxy (tension positive)
+  /// [3·T·me] Pa, σxx σyy τxy (tension positive): per element T = (n+1)(n+2)/2 coefficients of
+  /// the stress polynomial in its scaled frame coordinates (n = 0: the element's stress)
+  std::vector<double> stress;
   std::vector<double> loop_xy;   ///< [2·v] m, current loop vertices
   std::vector<double> loop_u;    ///< [2·v] m, displacement since the start
   std::vector<TrackedPoint> fixed, loads, measure;
@@ -59,9 +63,12 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
 
 /// Reads a state back, checking every size and index against `mesh`; a checkpoint of another
 /// mesh, or damaged data, is an InputError naming `name` and the section.
-/// `factor_source` receives the optional FACTOR section (system_matrix.h factor_source()).
+/// dofs_per_cover and stress_terms (polynomial stress coefficients per element) are the run's
+/// (cover_space.h); a checkpoint of another cover order is an InputError. `factor_source`
+/// receives the optional FACTOR section (system_matrix.h factor_source()).
 RunState state_from_sections(const CheckpointSections& sections, const Mesh& mesh,
                              const std::string& name, std::string& contact_history,
+                             int dofs_per_cover = 2, int stress_terms = 1,
                              std::string* factor_source = nullptr);
 
 /// SHA-256 (hex) of the physical state: every section except the diagnostics. Two runs whose

@@ -135,7 +135,8 @@ int main(int argc, char** argv) {
       state.time = stepper.time();
       state.status = status;
       state.loop_xy = &stepper.loop_xy();
-      state.stress = &stepper.stress();
+      const std::vector<double> mean_stress = stepper.mean_stress();  // [3·me] at any order
+      state.stress = &mean_stress;
       for (const nmm::solve::Contact& c : stepper.contacts().contacts())
         if (c.state != nmm::solve::ContactState::open)
           state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex],

@@ -26,8 +26,15 @@ class SystemMatrix {
   /// per contact (the covers of both elements; an unknown may appear twice in a group).
   /// Group g holds dofs[offsets[g] .. offsets[g+1]).
   void build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
-  /// The same with element groups only.
-  void build_pattern(int n, const std::vector<std::array<int, 6>>& groups);
+
+  /// Unknowns whose diagonal is perturbed by eps·K_ii in the factorisation (linearly dependent
+  /// ones); solve() then refines iteratively. Empty (the default): plain Cholesky.
+  void set_regularised(std::vector<int> unknowns, double eps) {
+    regularised_ = std::move(unknowns);
+    eps_ = eps;
+  }
+  /// Iterative-refinement passes of the last solve (0 without regularisation).
+  int refinements() const { return refinements_; }
 
   /// Sets every value to zero, keeping the pattern.
   void set_zero();
@@ -48,7 +55,8 @@ class SystemMatrix {
   bool factorize();
 
   /// Solves K·x = b with the last factorisation (of whatever values it was made from: also
-  /// after the values or the pattern changed, when it serves as a preconditioner).
+  /// after the values or the pattern changed, when it serves as a preconditioner; refined
+  /// against the current values when regularised, cover_space.h).
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
   /// A successful factorisation of this size exists.
   bool has_factor() const { return has_factor_; }
@@ -97,6 +105,9 @@ class SystemMatrix {
   double factor_nonzeros_ = 0, factor_flops_ = 0;
   std::string ordering_;
   int failed_unknown_ = -1;
+  std::vector<int> regularised_;
+  double eps_ = 0;
+  int refinements_ = 0;
 };
 
 }  // namespace nmm::solve

@@ -109,10 +109,12 @@ std::string fmt_point(double x, double y) {
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
     : mesh_(mesh), scene_(scene), scene_name_(scene_name), contacts_(mesh, scene, scene_name) {
+  // The mesh file's dofs_per_cover describes the mesh as cut (constant covers, 2); the order of
+  // the cover functions is the run's choice (solver.cover_order, docs/higher-order-covers.md).
   if (mesh.dofs_per_cover != 2)
-    throw InputError(scene_name, "", "this solver supports constant cover functions only "
-                                     "(2 unknowns per physical cover), the mesh has " +
-                                         std::to_string(mesh.dofs_per_cover));
+    throw InputError(scene_name, "", "the mesh file says " + std::to_string(mesh.dofs_per_cover) +
+                                         " unknowns per physical cover; meshes hold 2 (the cover "
+                                         "order is chosen per run: solver.cover_order)");
   const std::size_t ne = mesh.element_count(), nc = mesh.cover_count();
   double e_max = 0;
   for (const MaterialDef& m : scene.materials) {
@@ -124,29 +126,36 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   support_k_ = scene.solver.support_stiffness > 0 ? scene.solver.support_stiffness
                                                   : 100.0 * e_max / mesh.mesh_size;
   pin_k_ = std::max(e_max, 1.0);
-  covers_ = assign_cover_unknowns(mesh, scene.solver.sliver_cover_weight);
-  contacts_.use_unknowns(covers_.unknown);
+  space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
+  refuse_unsupported(scene, scene_name);
+  contacts_.use_unknowns(space_.ties().unknown);
   elem_mat_.resize(ne);
-  groups_.resize(ne);
   for (std::size_t e = 0; e < ne; ++e) {
     const std::int32_t body = mesh.element_body[e];
     if (body < 0 || static_cast<std::size_t>(body) >= scene.bodies.size())
       throw InputError(scene_name, "/bodies", "the mesh has more bodies than its scene");
     elem_mat_[e] = scene.bodies[body].material;
-    for (int k = 0; k < 3; ++k) {
-      groups_[e][2 * k] = covers_.unknown[mesh.element_covers[3 * e + k]];
-      groups_[e][2 * k + 1] = covers_.unknown[mesh.element_covers[3 * e + k]] + 1;
-    }
   }
+  // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
+  if (space_.order() > 0) {
+    std::vector<int> reg;
+    for (std::size_t c = 0; c < nc; ++c) {
+      if (space_.basis_cover(c) != static_cast<int>(c)) continue;  // tied: its master's
+      for (int l = 0; l < space_.dofs_per_cover(); ++l)
+        if (space_.higher_order(l)) reg.push_back(space_.first_unknown(c) + l);
+    }
+    system_.set_regularised(std::move(reg), kRegularisation);
+  }
+  const std::size_t dpc = static_cast<std::size_t>(space_.dofs_per_cover());
   s_.cover_xy.resize(2 * nc);
   for (std::size_t c = 0; c < nc; ++c) {
     s_.cover_xy[2 * c] = mesh.node_xy[2 * mesh.cover_node[c]];
     s_.cover_xy[2 * c + 1] = mesh.node_xy[2 * mesh.cover_node[c] + 1];
   }
-  s_.cover_u.assign(2 * nc, 0.0);
-  s_.velocity.assign(2 * nc, 0.0);
-  s_.accel.assign(2 * nc, 0.0);
-  s_.stress.assign(3 * ne, 0.0);
+  s_.cover_u.assign(dpc * nc, 0.0);
+  s_.velocity.assign(dpc * nc, 0.0);
+  s_.accel.assign(dpc * nc, 0.0);
+  s_.stress.assign(3 * stress_terms() * ne, 0.0);
   s_.loop_xy = mesh.loop_xy;
   s_.loop_u.assign(s_.loop_xy.size(), 0.0);
   frame_.resize(ne);
@@ -201,7 +210,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
 
   // Fixed points and loads couple only the covers of their element: the element pattern holds
   // until contacts couple pairs of elements (update_pattern).
-  system_.build_pattern(unknowns(), groups_);
+  build_pattern_with_pairs();
   rhs_.resize(unknowns());
   set_threads(0);
   excavate(scene.excavate);
@@ -271,11 +280,79 @@ void TimeStepper::compute_frames() {
   }
 }
 
+const ElementBasis& TimeStepper::basis(std::size_t e) const {
+  const std::int32_t* ec = &mesh_.element_covers[3 * e];
+  double centre[6];
+  for (int k = 0; k < 3; ++k) {
+    const int m = space_.basis_cover(ec[k]);
+    centre[2 * k] = s_.cover_xy[2 * m];
+    centre[2 * k + 1] = s_.cover_xy[2 * m + 1];
+  }
+  space_.element_basis(frame_[e].ox, frame_[e].oy, frame_[e].w, centre, basis_scratch_);
+  return basis_scratch_;
+}
+
+void TimeStepper::shape_values(std::size_t e, double x, double y, double* out) const {
+  if (space_.order() == 0) {  // the weights themselves, with the first-order code's round-off
+    const ElementFrame& f = frame_[e];
+    for (int k = 0; k < 3; ++k) out[k] = f.w.at(k, x - f.ox, y - f.oy);
+    return;
+  }
+  basis(e).values(x, y, out);
+}
+
+std::vector<double> TimeStepper::mean_stress() const {
+  const std::size_t T = stress_terms(), ne = mesh_.element_count();
+  if (T == 1) return s_.stress;
+  std::vector<double> out(3 * ne, 0.0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    // The stress polynomial's origin is the element's first cover node, where it is now.
+    const std::int32_t c0 = mesh_.element_covers[3 * e];
+    const double ox = s_.cover_xy[2 * c0], oy = s_.cover_xy[2 * c0 + 1];
+    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
+    const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * b, n, ox, oy,
+                                               space_.scale(), space_.order());
+    if (!(m.m[0] > 0)) continue;
+    for (std::size_t t = 0; t < T; ++t)
+      for (int r = 0; r < 3; ++r) out[3 * e + r] += s_.stress[3 * (T * e + t) + r] * m.m[t] / m.m[0];
+  }
+  return out;
+}
+
+std::array<double, 3> TimeStepper::stress_at(std::size_t e, double x, double y) const {
+  const std::size_t T = stress_terms();
+  std::array<double, 3> out{};
+  const std::int32_t c0 = mesh_.element_covers[3 * e];
+  const double ox = s_.cover_xy[2 * c0], oy = s_.cover_xy[2 * c0 + 1];
+  for (std::size_t t = 0; t < T; ++t) {
+    Poly p;
+    p.degree = kMonomials.p[t] + kMonomials.q[t];
+    p.c[t] = 1;
+    const double v = p((x - ox) / space_.scale(), (y - oy) / space_.scale());
+    for (int r = 0; r < 3; ++r) out[r] += s_.stress[3 * (T * e + t) + r] * v;
+  }
+  return out;
+}
+
+void TimeStepper::refuse_unsupported(const SceneDef& scene, const std::string& scene_name) const {
+  if (space_.order() == 0) return;
+  const std::string why = " is not supported yet at cover order " + std::to_string(space_.order()) +
+                          " (solver.cover_order; docs/higher-order-covers.md): run it at order 0";
+  // Contacts (issue 11 rewrites them) carry 12 unknowns per contact: constant covers only.
+  if (contacts_.active())
+    throw InputError(scene_name, "/solver/cover_order",
+                     "contact between blocks or across joints" + why);
+  if (scene.insitu_stress.present)
+    throw InputError(scene_name, "/solver/cover_order", "in-situ stress" + why);
+  if (!scene.excavate.empty())
+    throw InputError(scene_name, "/solver/cover_order", "excavation" + why);
+}
+
 void TimeStepper::update_pattern() {
   // Elements, then one coupling group per pair of elements in contact. The pattern only grows:
   // pairs that part keep their (zero) entries, so the pattern — and with it CHOLMOD's symbolic
   // analysis — changes only when a pair of elements meets for the first time.
-  const int first = static_cast<int>(groups_.size());
+  const int first = static_cast<int>(mesh_.element_count());
   const auto now = contacts_.element_pairs();
   if (std::includes(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end())) {
     contacts_.assign_groups(s_.pattern_pairs, first);
@@ -292,13 +369,14 @@ void TimeStepper::update_pattern() {
 void TimeStepper::build_pattern_with_pairs() {
   const auto& pairs = s_.pattern_pairs;
   std::vector<int> offsets{0}, dofs;
-  for (const auto& g : groups_) {
-    dofs.insert(dofs.end(), g.begin(), g.end());
+  const int m = space_.element_dofs();
+  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+    dofs.insert(dofs.end(), space_.element_unknowns(e), space_.element_unknowns(e) + m);
     offsets.push_back(static_cast<int>(dofs.size()));
   }
   for (const auto& [a, b] : pairs) {
-    dofs.insert(dofs.end(), groups_[a].begin(), groups_[a].end());
-    dofs.insert(dofs.end(), groups_[b].begin(), groups_[b].end());
+    dofs.insert(dofs.end(), space_.element_unknowns(a), space_.element_unknowns(a) + m);
+    dofs.insert(dofs.end(), space_.element_unknowns(b), space_.element_unknowns(b) + m);
     offsets.push_back(static_cast<int>(dofs.size()));
   }
   system_.build_pattern(unknowns(), offsets, dofs);
@@ -323,73 +401,139 @@ void TimeStepper::assemble(double dt) {
   const double mass_a = dynamic ? 1.0 / (2 * beta) - 1.0 : 0.0;   // on a0
   system_.set_zero();
   rhs_.setZero();
-  Mat6 k;
+  // Element matrices from the polynomial shape functions, integrated exactly (cover_space.h,
+  // element_integration.h). With B_{a,s} = Σ_i ∂_iφ_a·E_{s,i} (E picks the strain row: u_x → εxx,
+  // u_y → γxy, v_x → γxy, v_y → εyy):
+  //   K(2a+s, 2b+t) = Σ_ij D(r(s,i), r(t,j)) ∫ ∂_iφ_a ∂_jφ_b dA
+  //   F_int(2a+s)   = Σ_i ∫ ∂_iφ_a σ_r(s,i) dA        (σ a polynomial of degree n)
+  //   M(a, b)       = ρ ∫ φ_a φ_b dA,   F_grav(2a+s) = ρ b_s ∫ φ_a dA
+  const int nd = space_.element_dofs(), nf = nd / 2;
+  const std::size_t T = stress_terms();
+  static constexpr int kRow[2][2] = {{0, 2}, {2, 1}};  // strain row of (direction s, derivative i)
+  Eigen::MatrixXd k(nd, nd);
+  Eigen::VectorXd fe(nd);
+  std::vector<double> mass(static_cast<std::size_t>(nf) * nf);
+  Poly sig[3];
+  for (int r = 0; r < 3; ++r) sig[r].degree = space_.order();
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    const auto& g = groups_[e];
+    const int* g = space_.element_unknowns(e);
     if (removed_elem_[e]) {  // excavated: its covers' unknowns are held at zero
-      k = pin_k_ * Mat6::Identity();
+      k = pin_k_ * Eigen::MatrixXd::Identity(nd, nd);
       system_.add_group(e, k.data());
       continue;
     }
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    const ElementFrame& f = frame_[e];
-    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
-    const PolygonMoments m = polygon_moments(s_.loop_xy.data() + 2 * b, n, f.ox, f.oy);
-    const Mat36 B = strain_matrix(f.w);
-    const Mat3& D = material_d_[elem_mat_[e]];
-    k.noalias() = m.a * (B.transpose() * D * B);
-    const Vec3 sigma(s_.stress[3 * e], s_.stress[3 * e + 1], s_.stress[3 * e + 2]);
-    Vec6 fe = -m.a * (B.transpose() * sigma);
-    const double rho = scene_.materials[elem_mat_[e]].density;
-    if (gravity)
-      for (int i = 0; i < 3; ++i) {
-        const double iw = integral_w(f.w, m, i);
-        fe[2 * i] += rho * bx * iw;
-        fe[2 * i + 1] += rho * by * iw;
-      }
-    {
+    const std::size_t lb = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - lb;
+    if (space_.order() == 0) {
+      // n = 0: the same integrals specialised to constant strain (K_e = A·BᵀDB, no polynomial
+      // algebra): the first-order code path, for its speed and its round-off.
+      const ElementFrame& f = frame_[e];
+      const PolygonMoments pm = polygon_moments(s_.loop_xy.data() + 2 * lb, n, f.ox, f.oy);
+      const Mat36 B = strain_matrix(f.w);
+      const Mat3& D = material_d_[elem_mat_[e]];
+      Mat6 k6 = pm.a * (B.transpose() * D * B);
+      const Vec3 sigma(s_.stress[3 * e], s_.stress[3 * e + 1], s_.stress[3 * e + 2]);
+      Vec6 f6 = -pm.a * (B.transpose() * sigma);
+      const double rho = scene_.materials[elem_mat_[e]].density;
+      if (gravity)
+        for (int i = 0; i < 3; ++i) {
+          const double iw = integral_w(f.w, pm, i);
+          f6[2 * i] += rho * bx * iw;
+          f6[2 * i + 1] += rho * by * iw;
+        }
       if (dynamic)
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) {
-            const double mij = rho * integral_ww(f.w, m, i, j);
-            k(2 * i, 2 * j) += mass_k * mij;
-            k(2 * i + 1, 2 * j + 1) += mass_k * mij;
+            const double mij = rho * integral_ww(f.w, pm, i, j);
+            k6(2 * i, 2 * j) += mass_k * mij;
+            k6(2 * i + 1, 2 * j + 1) += mass_k * mij;
             const int cj = 2 * ec[j];
-            fe[2 * i] += mij * (mass_v * s_.velocity[cj] + mass_a * s_.accel[cj]);
-            fe[2 * i + 1] += mij * (mass_v * s_.velocity[cj + 1] + mass_a * s_.accel[cj + 1]);
+            f6[2 * i] += mij * (mass_v * s_.velocity[cj] + mass_a * s_.accel[cj]);
+            f6[2 * i + 1] += mij * (mass_v * s_.velocity[cj + 1] + mass_a * s_.accel[cj + 1]);
           }
+      system_.add_group(e, k6.data());
+      for (int i = 0; i < 6; ++i) rhs_[g[i]] += f6[i];
+      continue;
+    }
+    const ElementBasis& eb = basis(e);
+    const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * lb, n, eb.ox, eb.oy, eb.h,
+                                               2 * space_.order() + 2);
+    const Mat3& D = material_d_[elem_mat_[e]];
+    for (std::size_t t = 0; t < T; ++t)
+      for (int r = 0; r < 3; ++r) sig[r].c[t] = s_.stress[3 * (T * e + t) + r];
+    k.setZero();
+    fe.setZero();
+    for (int a = 0; a < nf; ++a) {
+      const Poly* da[2] = {&eb.dx[a], &eb.dy[a]};
+      for (int bb = a; bb < nf; ++bb) {
+        const Poly* db[2] = {&eb.dx[bb], &eb.dy[bb]};
+        double G[2][2];
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 2; ++j) G[i][j] = integral(*da[i], *db[j], m);
+        for (int sd = 0; sd < 2; ++sd)
+          for (int td = 0; td < 2; ++td) {
+            double v = 0;
+            for (int i = 0; i < 2; ++i)
+              for (int j = 0; j < 2; ++j) v += D(kRow[sd][i], kRow[td][j]) * G[i][j];
+            k(2 * a + sd, 2 * bb + td) = v;
+            k(2 * bb + td, 2 * a + sd) = v;
+          }
+      }
+      for (int sd = 0; sd < 2; ++sd)
+        for (int i = 0; i < 2; ++i) fe[2 * a + sd] -= integral(*da[i], sig[kRow[sd][i]], m);
+    }
+    const double rho = scene_.materials[elem_mat_[e]].density;
+    if (gravity)
+      for (int a = 0; a < nf; ++a) {
+        const double ia = integral(eb.phi[a], m);
+        fe[2 * a] += rho * bx * ia;
+        fe[2 * a + 1] += rho * by * ia;
+      }
+    if (dynamic) {
+      const int P = space_.terms();
+      const std::size_t dpc = static_cast<std::size_t>(space_.dofs_per_cover());
+      for (int a = 0; a < nf; ++a)
+        for (int bb = a; bb < nf; ++bb) mass[a * nf + bb] = mass[bb * nf + a] = rho * integral(eb.phi[a], eb.phi[bb], m);
+      for (int a = 0; a < nf; ++a)
+        for (int bb = 0; bb < nf; ++bb) {
+          const double mab = mass[a * nf + bb];
+          k(2 * a, 2 * bb) += mass_k * mab;
+          k(2 * a + 1, 2 * bb + 1) += mass_k * mab;
+          // v0, a0 of term j of the element's cover kb (its own copy, equal to its master's)
+          const std::size_t vb = dpc * static_cast<std::size_t>(ec[bb / P]) + 2 * static_cast<std::size_t>(bb % P);
+          fe[2 * a] += mab * (mass_v * s_.velocity[vb] + mass_a * s_.accel[vb]);
+          fe[2 * a + 1] += mab * (mass_v * s_.velocity[vb + 1] + mass_a * s_.accel[vb + 1]);
+        }
     }
     system_.add_group(e, k.data());
-    for (int i = 0; i < 6; ++i) rhs_[g[i]] += fe[i];
+    for (int i = 0; i < nd; ++i) rhs_[g[i]] += fe[i];
   }
   // Fixed points: penalty springs back to where they started.
+  std::vector<double> phi(static_cast<std::size_t>(nf));
   for (const TrackedPoint& p : s_.fixed) {
-    const ElementFrame& f = frame_[p.element];
-    double w[3];
-    for (int i = 0; i < 3; ++i) w[i] = f.w.at(i, p.x - f.ox, p.y - f.oy);
+    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
     k.setZero();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        k(2 * i, 2 * j) = fixed_k_ * w[i] * w[j];
-        k(2 * i + 1, 2 * j + 1) = fixed_k_ * w[i] * w[j];
+    for (int a = 0; a < nf; ++a)
+      for (int bb = 0; bb < nf; ++bb) {
+        k(2 * a, 2 * bb) = fixed_k_ * phi[a] * phi[bb];
+        k(2 * a + 1, 2 * bb + 1) = fixed_k_ * phi[a] * phi[bb];
       }
     system_.add_group(p.element, k.data());
-    const auto& g = groups_[p.element];
-    for (int i = 0; i < 3; ++i) {
-      rhs_[g[2 * i]] -= fixed_k_ * w[i] * (p.x - p.x0);
-      rhs_[g[2 * i + 1]] -= fixed_k_ * w[i] * (p.y - p.y0);
+    const int* g = space_.element_unknowns(p.element);
+    for (int a = 0; a < nf; ++a) {
+      rhs_[g[2 * a]] -= fixed_k_ * phi[a] * (p.x - p.x0);
+      rhs_[g[2 * a + 1]] -= fixed_k_ * phi[a] * (p.y - p.y0);
     }
   }
   for (std::size_t l = 0; l < s_.loads.size(); ++l) {
     const TrackedPoint& p = s_.loads[l];
-    const ElementFrame& f = frame_[p.element];
-    const auto& g = groups_[p.element];
+    const int* g = space_.element_unknowns(p.element);
     const double factor =
         l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], t_end) : 1.0;
-    for (int i = 0; i < 3; ++i) {
-      const double w = f.w.at(i, p.x - f.ox, p.y - f.oy);
-      rhs_[g[2 * i]] += w * factor * scene_.loads[l].force.x;
-      rhs_[g[2 * i + 1]] += w * factor * scene_.loads[l].force.y;
+    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
+    for (int a = 0; a < nf; ++a) {
+      rhs_[g[2 * a]] += phi[a] * factor * scene_.loads[l].force.x;
+      rhs_[g[2 * a + 1]] += phi[a] * factor * scene_.loads[l].force.y;
     }
   }
   assemble_boundary(t_end);
@@ -397,11 +541,15 @@ void TimeStepper::assemble(double dt) {
 
 void TimeStepper::assemble_boundary(double t_end) {
   // Supports, tractions and the in-situ traction of faces between bodies (boundary_conditions.h).
-  Mat6 k;
-  auto frame_of = [&](std::int32_t e) { return EdgeFrame{frame_[e].ox, frame_[e].oy, &frame_[e].w}; };
-  auto add_force = [&](std::int32_t e, const std::array<double, 6>& f, double factor) {
-    const auto& g = groups_[e];
-    for (int i = 0; i < 6; ++i) rhs_[g[i]] += factor * f[i];
+  const int nd = space_.element_dofs();
+  Eigen::MatrixXd k(nd, nd);
+  // The edge's element basis lives in basis()'s scratch until the next call.
+  auto frame_of = [&](std::int32_t e) {
+    return EdgeFrame{&basis(static_cast<std::size_t>(e)), space_.order() + 2};
+  };
+  auto add_force = [&](std::int32_t e, const std::vector<double>& f, double factor) {
+    const int* g = space_.element_unknowns(static_cast<std::size_t>(e));
+    for (int i = 0; i < nd; ++i) rhs_[g[i]] += factor * f[i];
   };
   const double* xy = s_.loop_xy.data();
   for (std::size_t i = 0; i < support_edges_.size(); ++i) {
@@ -409,12 +557,12 @@ void TimeStepper::assemble_boundary(double t_end) {
     for (const BoundaryEdge& be : support_edges_[i]) {
       if (removed_elem_[be.element]) continue;
       k.setZero();
-      double f[6] = {0, 0, 0, 0, 0, 0};
+      std::vector<double> f(static_cast<std::size_t>(nd), 0.0);
       edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next,
                    s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, sd.fix_x,
-                   sd.fix_y, support_k_, k.data(), f);
+                   sd.fix_y, support_k_, k.data(), f.data());
       system_.add_group(be.element, k.data());
-      add_force(be.element, {f[0], f[1], f[2], f[3], f[4], f[5]}, 1.0);
+      add_force(be.element, f, 1.0);
     }
   }
   const InsituStressDef& insitu = scene_.insitu_stress;
@@ -439,10 +587,10 @@ void TimeStepper::assemble_boundary(double t_end) {
         if (removed_elem_[be.element]) continue;
         const double* a = xy + 2 * be.vertex;
         const double* b = xy + 2 * be.next;
-        std::array<double, 6> f = edge_traction_forces(
+        std::vector<double> f = edge_traction_forces(
             frame_of(be.element), a, b,
             insitu_traction(s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, a, b));
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < nd / 2; ++c) {
           if (!sd.fix_x) f[2 * c] = 0;
           if (!sd.fix_y) f[2 * c + 1] = 0;
         }
@@ -456,7 +604,7 @@ void TimeStepper::assemble_boundary(double t_end) {
       if (removed_elem_[be.element]) continue;
       const double* a = xy + 2 * be.vertex;
       const double* b = xy + 2 * be.next;
-      std::array<double, 6> f;
+      std::vector<double> f;
       if (td.from_insitu) {
         f = edge_traction_forces(frame_of(be.element), a, b,
                                  insitu_traction(s_.loop_u.data() + 2 * be.vertex,
@@ -489,21 +637,55 @@ void TimeStepper::assemble_boundary(double t_end) {
 
 void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   const std::size_t ne = mesh_.element_count();
+  const int nd = space_.element_dofs(), nf = nd / 2;
+  const std::size_t T = stress_terms();
   double max_d = 0;
+  std::vector<double> de(static_cast<std::size_t>(nd)), phi(static_cast<std::size_t>(nf));
   for (std::size_t e = 0; e < ne; ++e) {
-    const auto& g = groups_[e];
-    const ElementFrame& f = frame_[e];
-    Vec6 de;
-    for (int i = 0; i < 6; ++i) de[i] = d[g[i]];
-    const Vec3 ds = material_d_[elem_mat_[e]] * (strain_matrix(f.w) * de);
-    for (int i = 0; i < 3; ++i) s_.stress[3 * e + i] += ds[i];
+    const int* g = space_.element_unknowns(e);
+    for (int i = 0; i < nd; ++i) de[i] = d[g[i]];
+    if (space_.order() == 0) {
+      // n = 0 specialised (constant strain; the first-order code path, see assemble()).
+      const ElementFrame& f = frame_[e];
+      const Vec6 de6 = Eigen::Map<const Vec6>(de.data());
+      const Vec3 ds = material_d_[elem_mat_[e]] * (strain_matrix(f.w) * de6);
+      for (int i = 0; i < 3; ++i) s_.stress[3 * e + i] += ds[i];
+      for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
+        const double x = s_.loop_xy[2 * v] - f.ox, y = s_.loop_xy[2 * v + 1] - f.oy;
+        double ux = 0, uy = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double w = f.w.at(k, x, y);
+          ux += w * de6[2 * k];
+          uy += w * de6[2 * k + 1];
+        }
+        s_.loop_xy[2 * v] += ux;
+        s_.loop_xy[2 * v + 1] += uy;
+        s_.loop_u[2 * v] += ux;
+        s_.loop_u[2 * v + 1] += uy;
+      }
+      continue;
+    }
+    const ElementBasis& eb = basis(e);
+    // Δσ = D·B·d: strain polynomials of degree n, then D per coefficient.
+    Poly eps[3];
+    for (int r = 0; r < 3; ++r) eps[r].degree = space_.order();
+    for (int a = 0; a < nf; ++a)
+      for (std::size_t t = 0; t < T; ++t) {
+        eps[0].c[t] += eb.dx[a].c[t] * de[2 * a];
+        eps[1].c[t] += eb.dy[a].c[t] * de[2 * a + 1];
+        eps[2].c[t] += eb.dy[a].c[t] * de[2 * a] + eb.dx[a].c[t] * de[2 * a + 1];
+      }
+    const Mat3& D = material_d_[elem_mat_[e]];
+    for (std::size_t t = 0; t < T; ++t) {
+      const Vec3 ds = D * Vec3(eps[0].c[t], eps[1].c[t], eps[2].c[t]);
+      for (int r = 0; r < 3; ++r) s_.stress[3 * (T * e + t) + r] += ds[r];
+    }
     for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
-      const double x = s_.loop_xy[2 * v] - f.ox, y = s_.loop_xy[2 * v + 1] - f.oy;
+      eb.values(s_.loop_xy[2 * v], s_.loop_xy[2 * v + 1], phi.data());
       double ux = 0, uy = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double w = f.w.at(k, x, y);
-        ux += w * de[2 * k];
-        uy += w * de[2 * k + 1];
+      for (int a = 0; a < nf; ++a) {
+        ux += phi[a] * de[2 * a];
+        uy += phi[a] * de[2 * a + 1];
       }
       s_.loop_xy[2 * v] += ux;
       s_.loop_xy[2 * v + 1] += uy;
@@ -513,13 +695,12 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   }
   auto move = [&](std::vector<TrackedPoint>& pts) {
     for (TrackedPoint& p : pts) {
-      const ElementFrame& f = frame_[p.element];
-      const auto& g = groups_[p.element];
+      const int* g = space_.element_unknowns(p.element);
+      shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
       double ux = 0, uy = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double w = f.w.at(k, p.x - f.ox, p.y - f.oy);
-        ux += w * d[g[2 * k]];
-        uy += w * d[g[2 * k + 1]];
+      for (int a = 0; a < nf; ++a) {
+        ux += phi[a] * d[g[2 * a]];
+        uy += phi[a] * d[g[2 * a + 1]];
       }
       p.x += ux;
       p.y += uy;
@@ -528,14 +709,39 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   move(s_.fixed);
   move(s_.loads);
   move(s_.measure);
+  // Cover nodes move by their cover function at the node: its constant term for an untied
+  // cover (the basis is centred there); a tied cover evaluates its master's polynomial.
+  const int P = space_.terms();
+  const std::size_t nc = mesh_.cover_count();
+  std::vector<double> node_d(2 * nc, 0.0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const int first = space_.first_unknown(c);
+    const int mc = space_.basis_cover(c);
+    if (mc == static_cast<int>(c) || P == 1) {
+      node_d[2 * c] = d[first];
+      node_d[2 * c + 1] = d[first + 1];
+      continue;
+    }
+    const double xi = (s_.cover_xy[2 * c] - s_.cover_xy[2 * mc]) / space_.scale();
+    const double eta = (s_.cover_xy[2 * c + 1] - s_.cover_xy[2 * mc + 1]) / space_.scale();
+    for (int j = 0; j < P; ++j) {
+      Poly pj;
+      pj.degree = kMonomials.p[j] + kMonomials.q[j];
+      pj.c[j] = 1;
+      const double pv = pj(xi, eta);
+      node_d[2 * c] += pv * d[first + 2 * j];
+      node_d[2 * c + 1] += pv * d[first + 2 * j + 1];
+    }
+  }
+  for (std::size_t i = 0; i < s_.cover_xy.size(); ++i) s_.cover_xy[i] += node_d[i];
   const bool dynamic = scene_.solver.dynamic;
   const double beta = s_.accel_known ? scene_.solver.newmark_beta : 0.5;
   const double k = scene_.solver.dynamic_factor;
   for (Eigen::Index i = 0; i < d.size(); ++i) max_d = std::max(max_d, std::abs(d[i]));
   // Per cover; a tied cover takes its master's increment (and so keeps its master's velocity).
+  const std::size_t dpc = static_cast<std::size_t>(space_.dofs_per_cover());
   for (std::size_t i = 0; i < s_.cover_u.size(); ++i) {
-    const double di = d[covers_.unknown[i / 2] + static_cast<int>(i % 2)];
-    s_.cover_xy[i] += di;
+    const double di = d[space_.first_unknown(i / dpc) + static_cast<int>(i % dpc)];
     s_.cover_u[i] += di;
     if (dynamic) {
       const double a1 = (di - dt * s_.velocity[i] - (0.5 - beta) * dt * dt * s_.accel[i]) / (beta * dt * dt);
@@ -576,7 +782,7 @@ std::string TimeStepper::attempt(double dt) {
     std::ostringstream os;
     os << "the system matrix is not positive definite";
     if (u >= 0) {
-      const int c = covers_.cover_of_unknown[u / 2];
+      const int c = space_.cover_of_unknown(u);
       os << " at cover " << c << " (node "
          << fmt_point(mesh_.node_xy[2 * mesh_.cover_node[c]], mesh_.node_xy[2 * mesh_.cover_node[c] + 1])
          << "): it is unconstrained (held by no fixed point or closed contact); add fixed "
@@ -610,7 +816,7 @@ std::string TimeStepper::attempt(double dt) {
   }
   for (Eigen::Index i = 0; i < d.size(); ++i)
     if (!std::isfinite(d[i]))
-      throw RunError("the displacement of cover " + std::to_string(covers_.cover_of_unknown[i / 2]) +
+      throw RunError("the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
                      " is not a finite number at t = " + std::to_string(s_.time) + " s");
   if (contact) {
     // Shi's step control: a step may move no cover more than 2·g2·w0 (contacts farther than the
@@ -721,7 +927,18 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
     FrameFields fields;
     fields.loop_xy = &s_.loop_xy;
     fields.loop_u = &s_.loop_u;
-    fields.stress = &s_.stress;
+    const std::vector<double> mean = mean_stress();  // n = 0: the element stresses themselves
+    fields.stress = &mean;
+    std::vector<double> at_vertex;
+    if (space_.order() > 0) {
+      at_vertex.resize(s_.loop_xy.size() / 2 * 3);
+      for (std::size_t e = 0; e < mesh_.element_count(); ++e)
+        for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
+          const auto sg = stress_at(e, s_.loop_xy[2 * v], s_.loop_xy[2 * v + 1]);
+          for (int r = 0; r < 3; ++r) at_vertex[3 * static_cast<std::size_t>(v) + r] = sg[r];
+        }
+      fields.vertex_stress = &at_vertex;
+    }
     out.write_frame(s, s_.time, mesh_, fields);
     if (contacts_.active()) {
       std::vector<ContactSample> rows;
@@ -809,7 +1026,9 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["unknowns"] = unknowns();
   summary["threads"] = threads_;
   summary["physical_covers"] = mesh_.cover_count();
-  summary["tied_sliver_covers"] = covers_.tied;
+  summary["tied_sliver_covers"] = space_.ties().tied;
+  summary["cover_order"] = space_.order();
+  summary["dofs_per_cover"] = space_.dofs_per_cover();
   summary["manifold_elements"] = mesh_.element_count();
   summary["symbolic_analyses"] = system_.analyses();
   summary["time_step"] = sv.time_step;
@@ -840,7 +1059,8 @@ void TimeStepper::write_checkpoint(const std::string& path) const {
 
 void TimeStepper::restart_from(const std::string& path) {
   std::string history, factor;
-  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history, &factor);
+  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history,
+                                          space_.dofs_per_cover(), space_.terms(), &factor);
   restore(st, history, path);
   if (!factor.empty() && contacts_.active() && !system_.factor_from_source(factor))
     throw InputError(path, "section FACTOR", "not the matrix of a factorisation of this run's size");
@@ -870,7 +1090,7 @@ void TimeStepper::restore(const RunState& st, const std::string& history, const 
   // round-off.
   if (!s_.pattern_pairs.empty()) {
     build_pattern_with_pairs();
-    contacts_.assign_groups(s_.pattern_pairs, static_cast<int>(groups_.size()));
+    contacts_.assign_groups(s_.pattern_pairs, static_cast<int>(mesh_.element_count()));
   }
   apply_removed();
   excavate(scene_.excavate);
@@ -890,7 +1110,10 @@ void TimeStepper::apply_removed() {
   // Removed covers keep no velocity: they stand still, held at zero.
   for (std::size_t c = 0; c < mesh_.cover_count(); ++c)
     if (s_.body_removed[mesh_.cover_body[c]])
-      for (int i = 0; i < 2; ++i) s_.velocity[2 * c + i] = s_.accel[2 * c + i] = 0;
+      for (int i = 0; i < space_.dofs_per_cover(); ++i) {
+        const std::size_t j = c * static_cast<std::size_t>(space_.dofs_per_cover()) + i;
+        s_.velocity[j] = s_.accel[j] = 0;
+      }
 }
 
 }  // namespace nmm::solve

@@ -12,6 +12,7 @@
 #include "element_integration.h"
 #include "contact.h"
 #include "contact_solve.h"
+#include "cover_space.h"
 #include "cover_unknowns.h"
 #include "elasticity.h"
 #include "mesh.h"
@@ -65,9 +66,16 @@ class TimeStepper {
   /// the state is left as it was and the reason is returned (the caller cuts dt and retries).
   /// Throws RunError for what no smaller step can cure.
   std::string attempt(double dt);
-  const std::vector<double>& cover_displacement() const { return s_.cover_u; }  ///< [2·pc] m
-  const std::vector<double>& velocity() const { return s_.velocity; }           ///< [2·pc] m/s
-  const std::vector<double>& stress() const { return s_.stress; }  ///< [3·me] Pa σxx σyy τxy
+  /// [m·pc] m, m = space().dofs_per_cover(): cover-function coefficients (n = 0: u, v)
+  const std::vector<double>& cover_displacement() const { return s_.cover_u; }
+  const std::vector<double>& velocity() const { return s_.velocity; }  ///< [m·pc] m/s, likewise
+  /// [3·T·me] Pa σxx σyy τxy: per element, T = (n+1)(n+2)/2 polynomial coefficients of the
+  /// stress in the element's scaled frame coordinates (n = 0: the element's constant stress)
+  const std::vector<double>& stress() const { return s_.stress; }
+  /// [3·me] Pa, the mean stress of each element (∫σ dA / A; n = 0: stress() itself)
+  std::vector<double> mean_stress() const;
+  /// Stress (Pa, σxx σyy τxy) of element e at the point (x, y) of its current configuration.
+  std::array<double, 3> stress_at(std::size_t e, double x, double y) const;
   const std::vector<double>& loop_xy() const { return s_.loop_xy; }              ///< [2·v] m
   const std::vector<TrackedPoint>& measure_points() const { return s_.measure; }
   /// Displacement of a point (x, y) of element e in its current configuration, m.
@@ -80,9 +88,11 @@ class TimeStepper {
   const StepTimings& timings() const { return timings_; }
   /// The physical effects this run computes (summary.json "effects").
   std::vector<std::string> effects() const;
-  /// Two per independent cover: sliver covers share a neighbour's (cover_unknowns.cpp).
-  int unknowns() const { return covers_.unknowns(); }
-  const CoverUnknowns& cover_unknowns() const { return covers_; }
+  /// dofs_per_cover per independent cover: sliver covers share a neighbour's (cover_unknowns.cpp).
+  int unknowns() const { return space_.unknowns(); }
+  const CoverUnknowns& cover_unknowns() const { return space_.ties(); }
+  /// The approximation space: order, unknowns per cover, shape functions (cover_space.h).
+  const CoverSpace& space() const { return space_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
   std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }
@@ -127,6 +137,17 @@ class TimeStepper {
     return scene_.solver.dynamic || scene_.solver.static_mode == StaticMode::dda;
   }
   void build_pattern_with_pairs();
+  /// The shape functions of element e in its current frame, in a scratch object reused by the
+  /// next call (no allocation per element).
+  const ElementBasis& basis(std::size_t e) const;
+  /// The element's shape function values at (x, y) into out[0 .. element_dofs()/2).
+  void shape_values(std::size_t e, double x, double y, double* out) const;
+  /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
+  std::size_t stress_terms() const { return static_cast<std::size_t>(space_.terms()); }
+  /// Exit 2 (InputError) for what cover order n ≥ 1 does not support yet.
+  void refuse_unsupported(const SceneDef& scene, const std::string& scene_name) const;
+  /// ε of the regularised factorisation (system_matrix.h), relative to each diagonal entry.
+  static constexpr double kRegularisation = 1e-10;
   void apply_removed();
   void assemble_boundary(double t_end);
 
@@ -135,8 +156,8 @@ class TimeStepper {
   std::string scene_name_;
   std::vector<Mat3> material_d_;        // [material] elasticity matrix, Pa
   std::vector<std::int32_t> elem_mat_;  // [me] material index
-  CoverUnknowns covers_;                // which unknowns each cover moves with
-  std::vector<std::array<int, 6>> groups_;  // [me] unknowns of the element's covers
+  CoverSpace space_;                    // order, unknowns of each cover and element, shapes
+  mutable ElementBasis basis_scratch_;  // basis()'s result
   double fixed_k_ = 0;                  // N/m, penalty stiffness of a fixed point
   double support_k_ = 0;                // N/m², penalty stiffness of a support per unit length
   double pin_k_ = 0;                    // N/m, holds the unknowns of excavated covers at zero
