@@ -21,20 +21,15 @@ namespace nmm {
 
 namespace {
 
-struct Box {
-  double x0 = std::numeric_limits<double>::infinity(), y0 = x0;
-  double x1 = -std::numeric_limits<double>::infinity(), y1 = x1;
-};
-
+// The box of every body's outer ring; empty (x0 > x1) without body points.
 Box bodies_box(const std::vector<BodyDef>& bodies) {
-  Box b;
-  for (const BodyDef& body : bodies)
-    for (const Vec2& p : body.outer) {
-      b.x0 = std::min(b.x0, p.x);
-      b.x1 = std::max(b.x1, p.x);
-      b.y0 = std::min(b.y0, p.y);
-      b.y1 = std::max(b.y1, p.y);
-    }
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Box b{inf, inf, -inf, -inf};
+  for (const BodyDef& body : bodies) {
+    if (body.outer.empty()) continue;
+    const Box r = bounding_box(body.outer);
+    b = {std::min(b.x0, r.x0), std::min(b.y0, r.y0), std::max(b.x1, r.x1), std::max(b.y1, r.y1)};
+  }
   return b;
 }
 

@@ -14,4 +14,22 @@ inline bool operator==(const Vec2& a, const Vec2& b) { return a.x == b.x && a.y 
 /// A closed polygon as its vertices, any orientation, first vertex not repeated at the end. m.
 using Ring = std::vector<Vec2>;
 
+/// An axis-aligned box, m.
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+
+/// The bounding box of a non-empty ring.
+inline Box bounding_box(const Ring& r) {
+  Box b{r[0].x, r[0].y, r[0].x, r[0].y};
+  for (const Vec2& p : r) {
+    b.x0 = p.x < b.x0 ? p.x : b.x0;
+    b.y0 = p.y < b.y0 ? p.y : b.y0;
+    b.x1 = p.x > b.x1 ? p.x : b.x1;
+    b.y1 = p.y > b.y1 ? p.y : b.y1;
+  }
+  return b;
+}
+
 }  // namespace nmm

@@ -104,22 +104,6 @@ struct BoundarySeg {
   bool body_left;
 };
 
-struct Box {
-  double x0, y0, x1, y1;
-  bool overlaps(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
-};
-
-Box ring_box(const Ring& r) {
-  Box b{r[0].x, r[0].y, r[0].x, r[0].y};
-  for (const Vec2& p : r) {
-    b.x0 = std::min(b.x0, p.x);
-    b.y0 = std::min(b.y0, p.y);
-    b.x1 = std::max(b.x1, p.x);
-    b.y1 = std::max(b.y1, p.y);
-  }
-  return b;
-}
-
 // The mathematical mesh before cutting: lattice nodes, candidate triangles, their edges.
 struct RawMesh {
   Lattice lat;
@@ -133,7 +117,7 @@ RawMesh make_raw_mesh(const SceneDef& scene) {
   m.lat = make_lattice(scene.bodies, scene.mesh_size);  // ranges checked by parse_scene()
   const Lattice& L = m.lat;
   std::vector<Box> boxes;
-  for (const BodyDef& b : scene.bodies) boxes.push_back(ring_box(b.outer));
+  for (const BodyDef& b : scene.bodies) boxes.push_back(bounding_box(b.outer));
   const std::int64_t i1 = L.i0 + L.ni - 1, j1 = L.j0 + L.nj - 1;
   m.node_xy.resize(static_cast<std::size_t>(L.ni * L.nj));
   for (std::int64_t j = L.j0; j <= j1; ++j)

@@ -57,21 +57,6 @@ double segment_crossing(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return t;
 }
 
-struct Box {
-  double x0, y0, x1, y1;
-};
-
-Box bounding_box(const Ring& r) {
-  Box b{r[0].x, r[0].y, r[0].x, r[0].y};
-  for (const Vec2& p : r) {
-    b.x0 = std::min(b.x0, p.x);
-    b.y0 = std::min(b.y0, p.y);
-    b.x1 = std::max(b.x1, p.x);
-    b.y1 = std::max(b.y1, p.y);
-  }
-  return b;
-}
-
 /// Half the length beyond which at most 1e-4 of the traces lie (Lmax for the power law).
 double length_margin(const LengthDef& d) {
   switch (d.kind) {

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
+
+#include "error.h"
+#include "state_bytes.h"
 
 namespace nmm::solve {
 
@@ -118,34 +120,35 @@ bool SystemMatrix::factorize() {
 
 std::string SystemMatrix::factor_source() const {
   if (!has_factor_) return {};
-  const std::int64_t n = factored_.rows(), nnz = factored_.nonZeros();
-  std::string out;
-  auto put = [&](const void* p, std::size_t bytes) { out.append(static_cast<const char*>(p), bytes); };
-  put(&n, sizeof n);
-  put(&nnz, sizeof nnz);
-  put(factored_.outerIndexPtr(), sizeof(int) * static_cast<std::size_t>(n + 1));
-  put(factored_.innerIndexPtr(), sizeof(int) * static_cast<std::size_t>(nnz));
-  put(factored_.valuePtr(), sizeof(double) * static_cast<std::size_t>(nnz));
-  return out;
+  const auto n = static_cast<std::size_t>(factored_.rows()), nnz = static_cast<std::size_t>(factored_.nonZeros());
+  ByteWriter w;
+  w.put_vector(std::vector<int>(factored_.outerIndexPtr(), factored_.outerIndexPtr() + n + 1));
+  w.put_vector(std::vector<int>(factored_.innerIndexPtr(), factored_.innerIndexPtr() + nnz));
+  w.put_vector(std::vector<double>(factored_.valuePtr(), factored_.valuePtr() + nnz));
+  return w.take();
 }
 
 bool SystemMatrix::factor_from_source(const std::string& bytes) {
-  std::int64_t n = 0, nnz = 0;
-  if (bytes.size() < 2 * sizeof n) return false;
-  std::memcpy(&n, bytes.data(), sizeof n);
-  std::memcpy(&nnz, bytes.data() + sizeof n, sizeof nnz);
-  if (n != k_.rows() || nnz < n || nnz > n * n) return false;
-  const std::size_t need = 2 * sizeof n + sizeof(int) * static_cast<std::size_t>(n + 1 + nnz) +
-                           sizeof(double) * static_cast<std::size_t>(nnz);
-  if (bytes.size() != need) return false;
+  const auto n = static_cast<std::int64_t>(k_.rows());
+  std::vector<int> outer, inner;
+  std::vector<double> values;
+  try {
+    ByteReader r(bytes, "", "FACTOR");
+    outer = r.get_vector<int>(static_cast<std::size_t>(n + 1), "column starts");
+    const std::int64_t nnz = outer.back();
+    if (nnz < n || nnz > n * n) return false;
+    inner = r.get_vector<int>(static_cast<std::size_t>(nnz), "rows");
+    values = r.get_vector<double>(static_cast<std::size_t>(nnz), "values");
+    r.expect_end();
+  } catch (const InputError&) {
+    return false;
+  }
+  const auto nnz = static_cast<std::int64_t>(inner.size());
   Sparse m(n, n);
   m.resizeNonZeros(nnz);
-  const char* p = bytes.data() + 2 * sizeof n;
-  std::memcpy(m.outerIndexPtr(), p, sizeof(int) * static_cast<std::size_t>(n + 1));
-  p += sizeof(int) * static_cast<std::size_t>(n + 1);
-  std::memcpy(m.innerIndexPtr(), p, sizeof(int) * static_cast<std::size_t>(nnz));
-  p += sizeof(int) * static_cast<std::size_t>(nnz);
-  std::memcpy(m.valuePtr(), p, sizeof(double) * static_cast<std::size_t>(nnz));
+  std::copy(outer.begin(), outer.end(), m.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), m.innerIndexPtr());
+  std::copy(values.begin(), values.end(), m.valuePtr());
   // Structure checks: columns in order, rows sorted, in the lower triangle, diagonal first.
   const int* o = m.outerIndexPtr();
   const int* in = m.innerIndexPtr();
