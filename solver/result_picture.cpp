@@ -189,6 +189,17 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     (slides ? sliding : sticking)++;
     svg.circle({c.x, c.y}, 2.5 * line, {slides ? "#ff7f0e" : "#1f77b4", "none", 0, 0, 1});
   }
+  // Supports (rollers and pins along the boundary): a thick green line where they hold, with
+  // what they hold ("x", "y", "xy") at the middle of their polyline. Drawn where the scene puts
+  // them: a support holds its boundary still (to within its spring's give).
+  for (const SupportDef& sp : scene.supports) {
+    if (sp.points.size() < 2) continue;
+    svg.polyline(sp.points, {"none", "#2ca02c", 4 * line, 0, 1});
+    const std::size_t k = sp.points.size() / 2;
+    const Vec2 a = sp.points[k - 1], b = sp.points[k];
+    svg.text({0.5 * (a.x + b.x) + 0.3 * font, 0.5 * (a.y + b.y) + 0.3 * font},
+             sp.fix_x && sp.fix_y ? "xy" : sp.fix_x ? "x" : "y", 0.8 * font, "#2ca02c");
+  }
   // Fixed points: black triangles; measure points: magenta rings with their index.
   for (const Vec2& p : scene.fixed_points) {
     const double r = 0.012 * size;
@@ -260,8 +271,11 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     if (state.excavated_body[b] != 0)
       excavated_note += (excavated_note.empty() ? "; excavated (dashed grey, not drawn): body " : ", ") +
                         std::to_string(b);
-  svg.text({xmin, ly}, "boundaries black; ▲ fixed points, ○ measure points" + excavated_note,
-           0.8 * font, "#333333");
+  std::string marks = "boundaries black";
+  if (!scene.fixed_points.empty()) marks += "; ▲ fixed points";
+  if (!scene.supports.empty()) marks += "; green: supports (x, y or xy held)";
+  if (!state.measure_points.empty()) marks += "; ○ measure points";
+  svg.text({xmin, ly}, marks + excavated_note, 0.8 * font, "#333333");
   return svg.str(0.03, 1400);
 }
 

@@ -1,7 +1,7 @@
 // The picture of one state of a run (result.svg): the deformed blocks, each manifold element
 // filled by a colour scale of displacement magnitude or one stress component, joints and body
-// boundaries in their current position, fixed points and measure points marked, a colour bar
-// with units and a title with the time.
+// boundaries in their current position, fixed points, supports (what each holds) and measure
+// points marked, a colour bar with units and a title with the time.
 //
 // Joints by contact state: every loop edge that lies on a joint or a body boundary is drawn in
 // the state of the closed contacts on it — sliding (orange) if any contact touching the edge
