@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
     }
     if (status == "interrupted") {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
-                << " steps at t = " << stepper.time() << " s; history.csv and summary.json written\n";
+                << " steps at t = " << stepper.time() << " s; history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
       return nmm::solve::kExitInterrupted;
     }
     if (status != "ok") {
