@@ -123,4 +123,21 @@ void apply_set(json& doc, const std::string& text) {
 }
 
 
+void throw_if_misspelt_name(const json& base, const json& doc, const InputError& error) {
+  for (const char* group : {"joint_sets", "materials"}) {
+    if (!doc.contains(group) || !doc[group].is_object()) continue;
+    for (auto it = doc[group].begin(); it != doc[group].end(); ++it) {
+      if (base.contains(group) && base[group].is_object() && base[group].contains(it.key())) continue;
+      std::string names;
+      if (base.contains(group) && base[group].is_object())
+        for (auto b = base[group].begin(); b != base[group].end(); ++b)
+          names += (names.empty() ? "" : ", ") + b.key();
+      const std::string kind = std::string(group) == "joint_sets" ? "joint set" : "material";
+      throw InputError("--set", std::string("/") + group + "/" + it.key(),
+                       "no " + kind + " '" + it.key() + "'; " + kind + "s are: " + names +
+                           " (a new " + kind + " needs every key: " + error.message() + ")");
+    }
+  }
+}
+
 }  // namespace nmm

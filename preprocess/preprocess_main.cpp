@@ -60,14 +60,23 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string scene_file = scene_path;
     std::string text = nmm::read_text_file(scene_path);
+    nlohmann::json base;
     if (!sets.empty()) {
       // --set edits the scene before anything is built (json_set.h); the mesh embeds the result.
       nlohmann::json doc = nmm::parse_json_text(text, scene_path);
+      base = doc;
       for (const std::string& set : sets) nmm::apply_set(doc, set);
       text = doc.dump(1) + "\n";
       scene_path += " with --set";
     }
-    nmm::SceneDef scene = nmm::parse_scene(text, scene_path);
+    nmm::SceneDef scene;
+    try {
+      scene = nmm::parse_scene(text, scene_path);
+    } catch (const nmm::InputError& e) {
+      // A misspelt joint set or material in a --set: "no joint set 'beding'; joint sets are: ..."
+      if (!sets.empty()) nmm::throw_if_misspelt_name(base, nmm::parse_json_text(text, scene_path), e);
+      throw;
+    }
     // Generated joint sets (docs/joint-networks.md): the mesh embeds the explicit scene, with
     // the generated joints listed and the generate blocks removed, so that nmm-solve and
     // nmm-inspect re-parse exactly the geometry that was cut.

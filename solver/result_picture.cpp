@@ -94,10 +94,16 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   if (xy.size() != mesh.loop_xy.size() || sigma.size() != 3 * ne)
     throw std::logic_error("result_svg: state arrays do not match the mesh");
 
+  // Elements of excavated bodies: not drawn, no weight in the colour scale.
+  std::vector<std::uint8_t> gone(ne, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto b = static_cast<std::size_t>(mesh.element_body[e]);
+    gone[e] = b < state.excavated_body.size() && state.excavated_body[b] != 0;
+  }
   // Per-element value (mm or MPa) and area weight.
   std::vector<double> value(ne), area(ne);
   for (std::size_t e = 0; e < ne; ++e) {
-    area[e] = std::abs(element_area(mesh, e));
+    area[e] = gone[e] ? 0.0 : std::abs(element_area(mesh, e));
     const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
     if (field == PictureField::displacement) {
       double s = 0;
@@ -130,6 +136,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   // Elements: no outline of their own, so the colour field reads as a field, not a mesh.
   std::vector<Vec2> pts;
   for (std::size_t e = 0; e < ne; ++e) {
+    if (gone[e]) continue;
     pts.clear();
     for (int v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
       pts.push_back({xy[2 * v], xy[2 * v + 1]});
@@ -138,7 +145,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   }
   // Joints and boundaries where they are now, coloured by the state of their contacts.
   const std::vector<int> edge_state = edge_contact_states(mesh, state.contacts);
-  std::vector<std::pair<Vec2, Vec2>> joints, bounds, stick_edges, slide_edges;
+  std::vector<std::pair<Vec2, Vec2>> joints, bounds, stick_edges, slide_edges, excavated;
   JointStateLengths len;
   for (std::size_t e = 0; e < ne; ++e) {
     const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
@@ -147,6 +154,10 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
       const std::pair<Vec2, Vec2> seg{{xy[2 * v], xy[2 * v + 1]}, {xy[2 * w], xy[2 * w + 1]}};
       const bool joint = mesh.loop_edge_origin[v] & kEdgeJoint;
       const bool bound = mesh.loop_edge_origin[v] & kEdgeBoundary;
+      if (gone[e]) {  // the outline of what was taken out (its joints are gone with it)
+        if (bound) excavated.push_back(seg);
+        continue;
+      }
       if (!joint && !bound) continue;
       // Each face of a joint is a loop edge of its own: half the length per face, so the legend
       // gives the joint's length, not twice it.
@@ -166,6 +177,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     }
   }
   const std::string joint_colour = state.contacts_known ? "#8b0000" : "#888888";
+  svg.segments(excavated, {"none", "#999999", line, 6 * line, 1});
   svg.segments(bounds, {"none", "#000000", 1.5 * line, 0, 1});
   svg.segments(joints, {"none", joint_colour, 1.2 * line, 0, 1});
   svg.segments(stick_edges, {"none", "#1f77b4", 3 * line, 0, 1});
@@ -176,6 +188,17 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     const bool slides = c.state == 2;
     (slides ? sliding : sticking)++;
     svg.circle({c.x, c.y}, 2.5 * line, {slides ? "#ff7f0e" : "#1f77b4", "none", 0, 0, 1});
+  }
+  // Supports (rollers and pins along the boundary): a thick green line where they hold, with
+  // what they hold ("x", "y", "xy") at the middle of their polyline. Drawn where the scene puts
+  // them: a support holds its boundary still (to within its spring's give).
+  for (const SupportDef& sp : scene.supports) {
+    if (sp.points.size() < 2) continue;
+    svg.polyline(sp.points, {"none", "#2ca02c", 4 * line, 0, 1});
+    const std::size_t k = sp.points.size() / 2;
+    const Vec2 a = sp.points[k - 1], b = sp.points[k];
+    svg.text({0.5 * (a.x + b.x) + 0.3 * font, 0.5 * (a.y + b.y) + 0.3 * font},
+             sp.fix_x && sp.fix_y ? "xy" : sp.fix_x ? "x" : "y", 0.8 * font, "#2ca02c");
   }
   // Fixed points: black triangles; measure points: magenta rings with their index.
   for (const Vec2& p : scene.fixed_points) {
@@ -243,7 +266,16 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
           "joints: contact state not recorded at this step (contacts.csv sampled, --contacts-every)");
   }
   ly -= 1.4 * font;
-  svg.text({xmin, ly}, "boundaries black; ▲ fixed points, ○ measure points", 0.8 * font, "#333333");
+  std::string excavated_note;
+  for (std::size_t b = 0; b < state.excavated_body.size(); ++b)
+    if (state.excavated_body[b] != 0)
+      excavated_note += (excavated_note.empty() ? "; excavated (dashed grey, not drawn): body " : ", ") +
+                        std::to_string(b);
+  std::string marks = "boundaries black";
+  if (!scene.fixed_points.empty()) marks += "; ▲ fixed points";
+  if (!scene.supports.empty()) marks += "; green: supports (x, y or xy held)";
+  if (!state.measure_points.empty()) marks += "; ○ measure points";
+  svg.text({xmin, ly}, marks + excavated_note, 0.8 * font, "#333333");
   return svg.str(0.03, 1400);
 }
 

@@ -1,7 +1,7 @@
 // The picture of one state of a run (result.svg): the deformed blocks, each manifold element
 // filled by a colour scale of displacement magnitude or one stress component, joints and body
-// boundaries in their current position, fixed points and measure points marked, a colour bar
-// with units and a title with the time.
+// boundaries in their current position, fixed points, supports (what each holds) and measure
+// points marked, a colour bar with units and a title with the time.
 //
 // Joints by contact state: every loop edge that lies on a joint or a body boundary is drawn in
 // the state of the closed contacts on it — sliding (orange) if any contact touching the edge
@@ -16,8 +16,13 @@
 // A sliver of 1e-4 of the mean element area carries 1e-4 of the weight, so a spurious 37 MPa in
 // one 0.0125 m² element cannot stretch the bar of a slope whose stresses are about 1 MPa.
 // Values beyond the bar are drawn in its end colours, and the bar says how much area that is.
+//
+// Excavated bodies (excavation.h) are gone from the model: the solver only holds their covers
+// still so that the system stays regular. They are not filled, not in the colour scale, and
+// their outline is drawn thin, grey and dashed where they were, the legend saying "excavated".
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -48,6 +53,7 @@ struct PictureState {
   std::vector<PictureContact> contacts;
   bool contacts_known = true;           ///< false: this state's contacts were not recorded
   std::vector<Vec2> measure_points;     ///< m, current positions
+  std::vector<std::uint8_t> excavated_body;  ///< [body] 1: excavated by this state (empty: none)
 };
 
 /// Joint length (m, current configuration) per drawn state, as the legend of result_svg states it.

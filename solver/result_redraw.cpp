@@ -131,6 +131,17 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
                                            : "step " + std::to_string(step);
   state.loop_xy = &loop_xy;
   state.stress = &stress;
+  // Bodies excavated by this frame's step (summary.json "excavated_bodies", cumulative across
+  // restarts): left out of the picture as nmm-solve --pictures leaves them out.
+  if (summary.contains("excavated_bodies") && summary["excavated_bodies"].is_array())
+    for (const auto& x : summary["excavated_bodies"]) {
+      if (!x.is_object() || !x.contains("body") || !x["body"].is_number_integer()) continue;
+      const std::int64_t body = x["body"].get<std::int64_t>();
+      const std::int64_t at = x.value("step", std::int64_t{0});
+      if (body < 0 || static_cast<std::size_t>(body) >= run.scene.bodies.size() || at > step) continue;
+      state.excavated_body.resize(run.scene.bodies.size(), 0);
+      state.excavated_body[static_cast<std::size_t>(body)] = 1;
+    }
 
   // Contacts of that step (contacts.csv, or contacts.csv.gz). A run without it had no contacts; a contacts.csv
   // without rows of this step was sampled (--contacts-every), unless the step is the last.

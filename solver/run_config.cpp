@@ -119,23 +119,7 @@ RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
   try {
     run.scene = scene_from_json(doc, name);
   } catch (const InputError& e) {
-    // A --set into a joint set or material the scene does not have creates it (a new set may be
-    // built one --set at a time); when that new object is incomplete, the likely cause is a
-    // misspelt name, so say so and list the names the scene has.
-    for (const char* group : {"joint_sets", "materials"}) {
-      if (!doc.contains(group) || !doc[group].is_object()) continue;
-      for (auto it = doc[group].begin(); it != doc[group].end(); ++it) {
-        if (base.contains(group) && base[group].contains(it.key())) continue;
-        std::string names;
-        if (base.contains(group) && base[group].is_object())
-          for (auto b = base[group].begin(); b != base[group].end(); ++b)
-            names += (names.empty() ? "" : ", ") + b.key();
-        const std::string kind = std::string(group) == "joint_sets" ? "joint set" : "material";
-        throw InputError("--set", std::string("/") + group + "/" + it.key(),
-                         "no " + kind + " '" + it.key() + "'; " + kind + "s are: " + names +
-                             " (a new " + kind + " needs every key: " + e.message() + ")");
-      }
-    }
+    throw_if_misspelt_name(base, doc, e);  // "no joint set 'beding'; joint sets are: ..."
     throw;
   }
   run.effective = std::move(doc);

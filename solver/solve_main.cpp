@@ -144,6 +144,7 @@ int main(int argc, char** argv) {
                                     static_cast<int>(c.state), c.at.vertex, c.at.edge});
       for (const nmm::solve::TrackedPoint& p : stepper.measure_points())
         state.measure_points.push_back({p.x, p.y});
+      state.excavated_body = stepper.state().body_removed;
       nmm::write_file_atomically(out_dir + "/result.svg",
                                  nmm::solve::result_svg(mesh, run.scene, state, field));
       const nmm::solve::ReportFiles files = nmm::solve::make_run_report(out_dir);
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
     }
     if (status == "interrupted") {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
-                << " steps at t = " << stepper.time() << " s; history.csv and summary.json written\n";
+                << " steps at t = " << stepper.time() << " s; history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
       return nmm::solve::kExitInterrupted;
     }
     if (status != "ok") {

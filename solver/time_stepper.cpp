@@ -987,6 +987,12 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["simulated_time"] = s_.time;
   summary["wall_seconds"] = since(wall0);
   summary["effects"] = effects();
+  // Bodies removed by excavation so far (cumulative across restarts) and the step each went:
+  // nmm-report leaves them out of a redrawn frame as nmm-solve --pictures does.
+  summary["excavated_bodies"] = nlohmann::json::array();
+  for (std::size_t b = 0; b < s_.body_removed.size(); ++b)
+    if (s_.body_removed[b])
+      summary["excavated_bodies"].push_back({{"body", b}, {"step", s_.body_removed_at[b]}});
   summary["analysis"] = scene_.solver.dynamic                                ? "dynamic"
                         : scene_.solver.static_mode == StaticMode::dda ? "static_dda"
                                                                        : "static_equilibrium";

@@ -12,6 +12,8 @@ The scene's header holds lines of the form (each a comment line of the scene fil
     // expect: history ux P at end within X +- TOL       (also uy) a component at the last row, m
     // expect: history uy P at end < NUMBER              (also >, <=, >=)
     // expect: history uy P minus uy Q at end within X +- TOL   a difference of two points, m
+    // expect: history travel P from T to end < NUMBER   |u(end) − u(T)| of point P, m: what it
+                                                         moved after time T s (it has stopped)
 and every one of them must hold. A scene without an `expect:` line fails: every example states
 what it shows. One line per check is printed; the exit status is 1 when any fails.
 """
@@ -39,7 +41,19 @@ def main():
         m = re.match(r"summary\.(\w+)\s*(==|>=|<=|>|<)\s*(.+)$", e)
         h = re.match(r"history\s+(travel|ux|uy)\s+(\d+)(?:\s+minus\s+(ux|uy)\s+(\d+))?\s+at end\s+(?:within\s+(\S+)\s*\+-\s*(\S+)|"
                      r"(==|>=|<=|>|<)\s*(\S+))$", e)
-        if m:
+        f = re.match(r"history\s+travel\s+(\d+)\s+from\s+(\S+)\s+to end\s*(==|>=|<=|>|<)\s*(\S+)$", e)
+        if f:
+            point, t0, op, bound = f.groups()
+            mine = [r for r in rows if int(r["point"]) == int(point)]
+            start = [r for r in mine if float(r["time"]) >= float(t0) - 1e-9]
+            if not start:
+                print(f"FAIL {e}: no history rows for the point after t = {t0} s")
+                failed += 1
+                continue
+            got = math.hypot(float(mine[-1]["ux"]) - float(start[0]["ux"]),
+                             float(mine[-1]["uy"]) - float(start[0]["uy"]))
+            ok = ops[op](got, float(bound))
+        elif m:
             key, op, want = m.groups()
             want = json.loads(want)
             got = summary.get(key)
