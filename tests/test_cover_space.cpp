@@ -11,6 +11,7 @@
 #include "cover_space.h"
 #include "error.h"
 #include "element_integration.h"
+#include "energy.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
@@ -320,6 +321,57 @@ TEST(CoverSpace, FreeFallIsExactAtOrderOne) {
   // Every loop vertex fell the same.
   for (std::size_t v = 1; v < st.loop_xy().size(); v += 2)
     EXPECT_NEAR(st.loop_xy()[v] - m.loop_xy[v], -4.905, 1e-8);
+}
+
+TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
+  // energy.csv at n ≥ 1 (energy.h): the strain energy of a linear in-situ field on a 2 m × 1 m
+  // box, ½ ∫ σ(y)ᵀ D⁻¹ σ(y) dA (Simpson in y: exact for the quadratic integrand), and the
+  // kinetic and gravity energies of a body that fell for 1 s: ½ m (g t)² and −m g·½ g t².
+  for (int order : {1, 2}) {
+    SceneDef s;
+    s.materials.push_back({"rock", 2500, 1e10, 0.25});
+    BodyDef b;
+    b.material = 0;
+    b.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+    s.bodies.push_back(b);
+    s.mesh_size = 0.35;
+    s.plane = PlaneKind::strain;
+    s.solver.cover_order = order;
+    s.insitu_stress.present = true;
+    s.insitu_stress.sxx = -3e6;
+    s.insitu_stress.syy = -5e6;
+    s.insitu_stress.sxy = 1e6;
+    s.insitu_stress.y_ref = 1;
+    s.insitu_stress.gyy = -2.5e5;
+    s.insitu_stress.gxx = 4e5;
+    const Mesh m = pre::build_mesh(s, "energy");
+    TimeStepper st(m, s, "energy");
+    EnergyMeter meter(m, s, st.fixed_point_stiffness(), st.support_stiffness(), &st.space());
+    const Mat3 C = elasticity_matrix(s.materials[0], s.plane).inverse();
+    auto u_density = [&](double y) {  // ½ σᵀ C σ per unit area at height y
+      const Vec3 sg(-3e6 + (1 - y) * 4e5, -5e6 + (1 - y) * -2.5e5, 1e6);
+      return 0.5 * sg.dot(C * sg);
+    };
+    const double want = 2.0 * (u_density(0) + 4 * u_density(0.5) + u_density(1)) / 6;
+    const EnergyRow r = meter.state_terms(st.state(), {});
+    std::printf("n = %d: strain energy %.9e J/m, exact %.9e\n", order, r.strain, want);
+    EXPECT_NEAR(r.strain, want, 1e-12 * want) << "order " << order;
+    EXPECT_EQ(r.kinetic, 0.0);
+
+    s.insitu_stress.present = false;
+    s.has_gravity = true;
+    s.gravity = {0, -9.81};
+    TimeStepper fall(m, s, "fall");
+    EnergyMeter fmeter(m, s, fall.fixed_point_stiffness(), fall.support_stiffness(), &fall.space());
+    for (int i = 0; i < 50; ++i) fall.step(0.02);
+    const EnergyRow f = fmeter.state_terms(fall.state(), {});
+    const double mass = 2500 * 2.0, v = 9.81 * 1.0;
+    std::printf("n = %d: after 1 s of free fall K = %.9e, V = %.9e J/m (½mv² = %.9e)\n", order,
+                f.kinetic, f.gravity, 0.5 * mass * v * v);
+    EXPECT_NEAR(f.kinetic, 0.5 * mass * v * v, 1e-9 * 0.5 * mass * v * v) << "order " << order;
+    EXPECT_NEAR(f.gravity, -0.5 * mass * v * v, 1e-9 * 0.5 * mass * v * v) << "order " << order;
+    EXPECT_LT(std::abs(f.strain), 1e-9 * 0.5 * mass * v * v) << "order " << order;
+  }
 }
 
 TEST(CoverSpace, RollersAndTractionGiveUniformStressAtOrderOneAndTwo) {
