@@ -450,7 +450,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
         md << num(shown(c, r.out.computed), "%.6g") << " | "
            << num(100 * (r.out.computed - r.exact) / std::abs(r.exact), "%+.3f") << " %";
       else
-        md << "did not complete | –";
+        md << (r.out.reason.rfind("not available", 0) == 0 ? "not available" : "did not complete") << " | –";
       md << " | " << num(r.wall(), "%.4f") << " (" << num(r.out.mesh_seconds, "%.4f") << " + "
          << num(r.out.run_seconds, "%.4f") << ") | " << r.out.unknowns << " | " << r.out.steps
          << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
