@@ -1064,7 +1064,8 @@ void TimeStepper::write_checkpoint(const std::string& path) const {
   // With contact the factorisation lives on from step to step (a preconditioner): the checkpoint
   // keeps its matrix so that a restart continues bitwise as the straight run.
   write_state_file(path, s_, contact_history(), mesh_,
-                   contacts_.active() ? system_.factor_source() : std::string());
+                   contacts_.active() && contacts_can_arise(mesh_, scene_) ? system_.factor_source()
+                                                                           : std::string());
 }
 
 void TimeStepper::restart_from(const std::string& path) {
