@@ -13,8 +13,9 @@
 namespace nmm::solve {
 
 EnergyMeter::EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
-                         double support_stiffness)
-    : mesh_(mesh), scene_(scene), fixed_k_(fixed_point_stiffness), support_k_(support_stiffness) {
+                         double support_stiffness, const CoverSpace* space)
+    : mesh_(mesh), scene_(scene), space_(space && space->order() > 0 ? space : nullptr),
+      fixed_k_(fixed_point_stiffness), support_k_(support_stiffness) {
   for (std::size_t i = 0; i < scene.supports.size(); ++i)
     for (const BoundaryEdge& e : edges_under(mesh, scene.supports[i].points, "scene",
                                              "/supports/" + std::to_string(i) + "/points"))
@@ -56,18 +57,56 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
                          s.cover_xy[2 * ec[2]] - ox, s.cover_xy[2 * ec[2] + 1] - oy};
     const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
-    // Kinetic: the consistent mass, as the step assembles it.
     const TriangleWeights w = triangle_weights(p);
-    if (w.twice_area > 0 && !s.velocity.empty())
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) {
-          const double vv = s.velocity[2 * ec[k]] * s.velocity[2 * ec[l]] +
-                            s.velocity[2 * ec[k] + 1] * s.velocity[2 * ec[l] + 1];
-          r.kinetic += 0.5 * mat.density * integral_ww(w, m, k, l) * vv;
+    if (space_ && w.twice_area > 0) {
+      // Cover order n ≥ 1: the velocity field and the stress polynomial, integrated exactly.
+      const int P = space_->terms(), nf = 3 * P, order = space_->order();
+      const std::size_t dpc = static_cast<std::size_t>(space_->dofs_per_cover());
+      double centre[6];
+      for (int k = 0; k < 3; ++k) {
+        const int mc = space_->basis_cover(ec[k]);
+        centre[2 * k] = s.cover_xy[2 * mc];
+        centre[2 * k + 1] = s.cover_xy[2 * mc + 1];
+      }
+      space_->element_basis(ox, oy, w, centre, basis_);
+      const MonomialMoments mm = monomial_moments(s.loop_xy.data() + 2 * b, n, ox, oy,
+                                                  space_->scale(), 2 * order + 2);
+      if (!s.velocity.empty()) {
+        Poly vx, vy;
+        vx.degree = vy.degree = order + 1;
+        for (int a = 0; a < nf; ++a) {
+          // v of term j of the element's cover k (its own copy, equal to its master's)
+          const std::size_t va = dpc * static_cast<std::size_t>(ec[a / P]) + 2 * static_cast<std::size_t>(a % P);
+          for (int i = 0; i < basis_.phi[a].size(); ++i) {
+            vx.c[i] += basis_.phi[a].c[i] * s.velocity[va];
+            vy.c[i] += basis_.phi[a].c[i] * s.velocity[va + 1];
+          }
         }
-    // Strain: ½ A σᵀ D⁻¹ σ.
-    const Vec3 sigma(s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
-    r.strain += 0.5 * m.a * sigma.dot(compliance_[elem_mat_[e]] * sigma);
+        r.kinetic += 0.5 * mat.density * (integral(vx, vx, mm) + integral(vy, vy, mm));
+      }
+      const std::size_t T = static_cast<std::size_t>(P);
+      Poly sig[3];
+      for (int q = 0; q < 3; ++q) {
+        sig[q].degree = order;
+        for (std::size_t t = 0; t < T; ++t) sig[q].c[t] = s.stress[3 * (T * e + t) + q];
+      }
+      const Mat3& c = compliance_[elem_mat_[e]];
+      for (int q = 0; q < 3; ++q)
+        for (int l = 0; l < 3; ++l)
+          if (c(q, l) != 0) r.strain += 0.5 * c(q, l) * integral(sig[q], sig[l], mm);
+    } else if (!space_) {
+      // Kinetic: the consistent mass, as the step assembles it.
+      if (w.twice_area > 0 && !s.velocity.empty())
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l) {
+            const double vv = s.velocity[2 * ec[k]] * s.velocity[2 * ec[l]] +
+                              s.velocity[2 * ec[k] + 1] * s.velocity[2 * ec[l] + 1];
+            r.kinetic += 0.5 * mat.density * integral_ww(w, m, k, l) * vv;
+          }
+      // Strain: ½ A σᵀ D⁻¹ σ.
+      const Vec3 sigma(s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
+      r.strain += 0.5 * m.a * sigma.dot(compliance_[elem_mat_[e]] * sigma);
+    }
     // Gravity: the centroid's drop, times the element's (conserved) mass.
     if (m.a != 0) {
       const double cx = ox + m.sx / m.a, cy = oy + m.sy / m.a;

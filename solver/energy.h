@@ -5,9 +5,12 @@
 // stepping is not touched (docs/energy.md has the derivations):
 //
 //   kinetic    K = ½ Σ_e ρ_e Σ_kl (∫_e w_k w_l dA) v_k·v_l     the consistent mass the step uses;
-//                  v_k the velocity the next step starts from (0 in static and quasi-static runs)
+//                  v_k the velocity the next step starts from (0 in static and quasi-static runs);
+//                  cover order n ≥ 1: ½ Σ_e ρ_e ∫_e |Σ_a φ_a v_a|² dA over the element's shape
+//                  functions φ_a (cover_space.h), integrated exactly
 //   strain     U = ½ Σ_e A_e σ_eᵀ D_e⁻¹ σ_e                    elastic energy of the stress state
-//                  (in-situ stress included; plane strain: D is the plane-strain matrix)
+//                  (in-situ stress included; plane strain: D is the plane-strain matrix);
+//                  n ≥ 1: ½ Σ_e ∫_e σ(x)ᵀ D_e⁻¹ σ(x) dA of the stress polynomial, exactly
 //   gravity    V = −Σ_e ρ_e A0_e g·(c_e − c0_e)                c the element's centroid now, c0 at
 //                  the start, A0 its initial area (mass is conserved); 0 at the start
 //   springs    S = Σ_fixed ½ k_f |p − P|² + Σ_supported edges ½ k_s ∫ u_d² ds
@@ -27,6 +30,9 @@
 //   residual   R = W − D − [(K + U + V + S) − (K + U + V + S)_first row]
 //                  energy lost elsewhere: the time scheme's numerical damping (Newmark γ = 1), the
 //                  in-situ traction on faces between bodies (not metered), contact springs unloading.
+// At cover order n ≥ 1 the traction work and the support springs still take the displacement
+// linear between an edge's ends (the field there has degree n + 1): an O(h²) approximation that
+// shows in the residual; K and U are exact.
 #pragma once
 
 #include <cstdint>
@@ -35,6 +41,7 @@
 
 #include "boundary_conditions.h"
 #include "contact.h"
+#include "cover_space.h"
 #include "elasticity.h"
 #include "mesh.h"
 #include "run_state.h"
@@ -57,8 +64,10 @@ struct EnergyRow {
 class EnergyMeter {
  public:
   /// fixed_point_stiffness: N/m, support_stiffness: N/m², the run's penalty springs.
+  /// `space`: the run's approximation space (TimeStepper::space()); at cover order n ≥ 1 the
+  /// kinetic and strain energies integrate its shape functions and stress polynomials.
   EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
-              double support_stiffness);
+              double support_stiffness, const CoverSpace* space = nullptr);
 
   /// The state terms (K, U, V, S) of a state; the path terms stay 0.
   EnergyRow state_terms(const RunState& s, const std::vector<Contact>& contacts) const;
@@ -83,6 +92,7 @@ class EnergyMeter {
 
   const Mesh& mesh_;
   const SceneDef& scene_;
+  const CoverSpace* space_;  // null or order 0: the constant-cover formulas
   double fixed_k_;
   double support_k_;
   struct HeldEdge {
@@ -106,6 +116,7 @@ class EnergyMeter {
   EnergyRow last_;
   std::int64_t last_kept_step_ = -1;
   std::vector<EnergyRow> rows_;
+  mutable ElementBasis basis_;  // scratch of state_terms at n ≥ 1
 };
 
 }  // namespace nmm::solve

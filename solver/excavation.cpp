@@ -5,13 +5,16 @@
 
 namespace nmm::solve {
 
-void excavate_bodies(const std::vector<int>& bodies, const Mesh& mesh, RunState& s) {
+void excavate_bodies(const std::vector<int>& bodies, const Mesh& mesh, std::size_t stress_terms,
+                     RunState& s) {
+  const std::size_t per_element = 3 * stress_terms;
   for (int b : bodies) {
     if (b < 0 || static_cast<std::size_t>(b) >= s.body_removed.size() || s.body_removed[b]) continue;
     s.body_removed[b] = 1;
     s.body_removed_at[b] = s.step;
     for (std::size_t e = 0; e < mesh.element_count(); ++e)
-      if (mesh.element_body[e] == b) std::fill_n(s.stress.begin() + 3 * static_cast<long>(e), 3, 0.0);
+      if (mesh.element_body[e] == b)
+        std::fill_n(s.stress.begin() + static_cast<long>(per_element * e), per_element, 0.0);
   }
 }
 

@@ -14,6 +14,10 @@
 //       f_applied = f · max(0, 1 − k/N)   in the k-th step after the excavation (k = 1, 2, ...)
 //   Forces the removed body carried through contacts (its weight on the rock, say) vanish with
 //   its contacts at once.
+// At cover order n ≥ 1 the same: f is integrated with the run's shape functions (polynomials of
+// degree n + 1; the (n + 2)-point Gauss rule along each face is exact for them and the linear
+// field), the removed elements' stress polynomials are zeroed, their covers' n-th order
+// unknowns pinned like the constant ones.
 // The step a body was removed at is part of the run state, so a restart in the middle of a
 // gradual release goes on releasing it.
 #pragma once
@@ -27,8 +31,10 @@
 namespace nmm::solve {
 
 /// Marks `bodies` removed at the state's current step (bodies already removed stay as they
-/// were) and zeroes their elements' stress.
-void excavate_bodies(const std::vector<int>& bodies, const Mesh& mesh, RunState& s);
+/// were) and zeroes their elements' stress: all `stress_terms` polynomial coefficients of each
+/// (T = (n+1)(n+2)/2 at cover order n; s.stress holds 3·T per element).
+void excavate_bodies(const std::vector<int>& bodies, const Mesh& mesh, std::size_t stress_terms,
+                     RunState& s);
 
 /// [me] 1 for elements of removed bodies.
 std::vector<std::uint8_t> removed_elements(const Mesh& mesh, const RunState& s);

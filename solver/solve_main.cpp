@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
     nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
     // Energy terms after every step, a row per output step (energy.h, energy.csv).
     nmm::solve::EnergyMeter energy(mesh, run.scene, stepper.fixed_point_stiffness(),
-                                   stepper.support_stiffness());
+                                   stepper.support_stiffness(), &stepper.space());
     energy.after_step(stepper.state(), stepper.contacts().contacts(), true);
     std::vector<nmm::solve::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;

@@ -99,6 +99,17 @@ double dist_to_loop(const double* xy, std::size_t n, double x, double y) {
   return best;
 }
 
+// Whether two faces can ever touch: joints, or more than one block that the scene does not
+// excavate at the start (an opening cut out of a single unjointed block leaves none).
+bool contacts_can_arise(const Mesh& mesh, const SceneDef& scene) {
+  if (!scene.joints.empty()) return true;
+  std::size_t kept = 0;
+  for (std::size_t b = 0; b < mesh.block_count(); ++b)
+    if (std::find(scene.excavate.begin(), scene.excavate.end(), mesh.block_body[b]) == scene.excavate.end())
+      ++kept;
+  return kept > 1;
+}
+
 std::string fmt_point(double x, double y) {
   std::ostringstream os;
   os << "(" << x << ", " << y << ")";
@@ -162,7 +173,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   s_.body_removed.assign(scene.bodies.size(), 0);
   s_.body_removed_at.assign(scene.bodies.size(), -1);
   if (scene.insitu_stress.present) {
-    apply_insitu_stress(scene.insitu_stress, mesh, s_.stress);
+    apply_insitu_stress(scene.insitu_stress, mesh, space_.order(), space_.scale(), s_.stress);
     interface_edges_ = interface_edges(mesh, scene);
   }
   for (std::size_t i = 0; i < scene.supports.size(); ++i)
@@ -339,13 +350,10 @@ void TimeStepper::refuse_unsupported(const SceneDef& scene, const std::string& s
   const std::string why = " is not supported yet at cover order " + std::to_string(space_.order()) +
                           " (solver.cover_order; docs/higher-order-covers.md): run it at order 0";
   // Contacts (issue 11 rewrites them) carry 12 unknowns per contact: constant covers only.
-  if (contacts_.active())
+  if (contacts_.active() && contacts_can_arise(mesh_, scene))
     throw InputError(scene_name, "/solver/cover_order",
                      "contact between blocks or across joints" + why);
-  if (scene.insitu_stress.present)
-    throw InputError(scene_name, "/solver/cover_order", "in-situ stress" + why);
-  if (!scene.excavate.empty())
-    throw InputError(scene_name, "/solver/cover_order", "excavation" + why);
+  // In-situ stress and excavation work at every order (insitu_stress.h, excavation.h).
 }
 
 void TimeStepper::update_pattern() {
@@ -754,7 +762,9 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
 }
 
 std::string TimeStepper::attempt(double dt) {
-  const bool contact = contacts_.active();
+  // Where no two faces can touch (an opening excavated from one unjointed block), the plain
+  // solve: no contact detection, no contact problem.
+  const bool contact = contacts_.active() && contacts_can_arise(mesh_, scene_);
   if (!step_inertia() && !contact) check_static_support();
   auto t0 = Clock::now();
   compute_frames();
@@ -1060,7 +1070,8 @@ void TimeStepper::write_checkpoint(const std::string& path) const {
   // With contact the factorisation lives on from step to step (a preconditioner): the checkpoint
   // keeps its matrix so that a restart continues bitwise as the straight run.
   write_state_file(path, s_, contact_history(), mesh_,
-                   contacts_.active() ? system_.factor_source() : std::string());
+                   contacts_.active() && contacts_can_arise(mesh_, scene_) ? system_.factor_source()
+                                                                           : std::string());
 }
 
 void TimeStepper::restart_from(const std::string& path) {
@@ -1103,7 +1114,7 @@ void TimeStepper::restore(const RunState& st, const std::string& history, const 
 }
 
 void TimeStepper::excavate(const std::vector<int>& bodies) {
-  excavate_bodies(bodies, mesh_, s_);
+  excavate_bodies(bodies, mesh_, stress_terms(), s_);
   apply_removed();
 }
 

@@ -93,6 +93,8 @@ class TimeStepper {
   const CoverUnknowns& cover_unknowns() const { return space_.ties(); }
   /// The approximation space: order, unknowns per cover, shape functions (cover_space.h).
   const CoverSpace& space() const { return space_; }
+  /// The mesh the run steps on.
+  const Mesh& mesh() const { return mesh_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
   std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }

@@ -11,6 +11,7 @@
 #include "cover_space.h"
 #include "error.h"
 #include "element_integration.h"
+#include "energy.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
@@ -263,6 +264,148 @@ TEST(CoverSpace, QuadraticFieldIsExactAtOrderOne) {
   EXPECT_LT(worst_r, 1e-5 * scale) << "interior covers in equilibrium";
 }
 
+TEST(CoverSpace, CubicFieldIsExactAtOrderTwo) {
+  // Order n reproduces fields of degree n + 1: at n = 2 a cubic u. With linear weights
+  // (Σ w_i = 1, Σ w_i x_i = x) the polar form does it: for a homogeneous F of degree m with
+  // symmetric m-linear form B, Σ_i w_i(x)·B(x_i, x, …, x) = B(x, …, x) = F(x); so cover i takes
+  // p_i(x) = ℓ(x) + B2(x_i, x) + B3(x_i, x, x), a quadratic, written in its scaled basis about
+  // x_i (Taylor coefficients, exact by central differences for a quadratic). The cubic part is
+  // chosen with divergence-free stress (a kernel of the 4 × 8 map from its coefficients to the
+  // linear terms of div σ), the quadratic part's constant div σ is balanced by gravity: then every
+  // cover whose star lies inside the body is in equilibrium, all 12 unknowns.
+  SceneDef s = plate(0.2, 2);
+  const MaterialDef& mat = s.materials[0];
+  const Mat3 D = elasticity_matrix(mat, s.plane);
+  auto stress_poly = [&](const Poly u[2], Poly sig[3]) {  // σ = D ε as polynomials in (x, y)
+    const Poly exx = u[0].d_xi(), eyy = u[1].d_eta(), uxy = u[0].d_eta(), uyx = u[1].d_xi();
+    for (int r = 0; r < 3; ++r) {
+      sig[r].degree = exx.degree;
+      for (int i = 0; i < exx.size(); ++i)
+        sig[r].c[i] = D(r, 0) * exx.c[i] + D(r, 1) * eyy.c[i] + D(r, 2) * (uxy.c[i] + uyx.c[i]);
+    }
+  };
+  auto div = [&](const Poly u[2], Poly out[2]) {
+    Poly sig[3];
+    stress_poly(u, sig);
+    const Poly a = sig[0].d_xi(), b = sig[2].d_eta(), c = sig[2].d_xi(), d = sig[1].d_eta();
+    out[0] = a;
+    out[1] = c;
+    for (int i = 0; i < a.size(); ++i) {
+      out[0].c[i] += b.c[i];
+      out[1].c[i] += d.c[i];
+    }
+  };
+  // The cubic monomials x³, x²y, xy², y³ (indices 6..9) of ux and uy.
+  Eigen::MatrixXd M(4, 8);
+  for (int k = 0; k < 8; ++k) {
+    Poly u[2];
+    u[0].degree = u[1].degree = 3;
+    u[k / 4].c[6 + k % 4] = 1;
+    Poly dv[2];
+    div(u, dv);
+    for (int dir = 0; dir < 2; ++dir)
+      for (int l = 0; l < 2; ++l) M(2 * dir + l, k) = dv[dir].c[1 + l];  // x and y terms
+  }
+  const Eigen::MatrixXd ker = Eigen::FullPivLU<Eigen::MatrixXd>(M).kernel();
+  ASSERT_EQ(ker.cols(), 4);
+  Poly u[2];
+  u[0].degree = u[1].degree = 3;
+  const double lin[4] = {1e-7, 2e-8, -3e-8, 5e-8}, quad[6] = {2e-7, -1e-7, 3e-8, -5e-8, 1.5e-7, 4e-8};
+  for (int dir = 0; dir < 2; ++dir) {
+    u[dir].c[1] = lin[2 * dir];
+    u[dir].c[2] = lin[2 * dir + 1];
+    for (int l = 0; l < 3; ++l) u[dir].c[3 + l] = quad[3 * dir + l];
+  }
+  const Eigen::VectorXd cubic = 4e-8 * (ker.col(0) - 0.7 * ker.col(1) + 0.4 * ker.col(2) + ker.col(3)) /
+                                ker.cwiseAbs().maxCoeff();
+  for (int k = 0; k < 8; ++k) u[k / 4].c[6 + k % 4] = cubic[k];
+  Poly dv[2];
+  div(u, dv);
+  ASSERT_LT(std::abs(dv[0].c[1]) + std::abs(dv[0].c[2]) + std::abs(dv[1].c[1]) + std::abs(dv[1].c[2]),
+            1e-12 * (std::abs(dv[0].c[0]) + std::abs(dv[1].c[0])));
+  s.has_gravity = true;
+  s.gravity = {-dv[0].c[0] / mat.density, -dv[1].c[0] / mat.density};  // ρ g + div σ = 0
+
+  // p_i(x): the polar forms at x_i. B2(a, x) = Σ q·(a-x blossom), B3(a, x, x) likewise.
+  auto cover_field = [&](double X, double Y, int dir, double x, double y) {
+    const Poly& f = u[dir];
+    const double l = f.c[1] * x + f.c[2] * y;
+    const double q = f.c[3] * X * x + f.c[4] * 0.5 * (X * y + Y * x) + f.c[5] * Y * y;
+    const double c = f.c[6] * X * x * x + f.c[7] * (2 * X * x * y + Y * x * x) / 3 +
+                     f.c[8] * (X * y * y + 2 * Y * x * y) / 3 + f.c[9] * Y * y * y;
+    return l + q + c;
+  };
+  const Mesh m = pre::build_mesh(s, "patch3");
+  TimeStepper st(m, s, "patch3");
+  const CoverSpace& sp = st.space();
+  ASSERT_EQ(sp.dofs_per_cover(), 12);
+  const double h = sp.scale();
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(st.unknowns());
+  for (std::size_t cv = 0; cv < m.cover_count(); ++cv) {
+    if (sp.basis_cover(cv) != static_cast<int>(cv)) continue;
+    const double X = m.node_xy[2 * m.cover_node[cv]], Y = m.node_xy[2 * m.cover_node[cv] + 1];
+    const int f = sp.first_unknown(cv);
+    for (int dir = 0; dir < 2; ++dir) {
+      auto p = [&](double dx, double dy) { return cover_field(X, Y, dir, X + dx * h, Y + dy * h); };
+      // Basis 1, ξ, η, ξ², ξη, η² with ξ = (x − X)/h: Taylor coefficients in ξ, η.
+      const double c[6] = {p(0, 0),
+                           0.5 * (p(1, 0) - p(-1, 0)),
+                           0.5 * (p(0, 1) - p(0, -1)),
+                           0.5 * (p(1, 0) - 2 * p(0, 0) + p(-1, 0)),
+                           0.25 * (p(1, 1) - p(1, -1) - p(-1, 1) + p(-1, -1)),
+                           0.5 * (p(0, 1) - 2 * p(0, 0) + p(0, -1))};
+      for (int j = 0; j < 6; ++j) d[f + 2 * j + dir] = c[j];
+    }
+  }
+  std::vector<double> xy0 = st.loop_xy();
+  st.impose_displacement(d);
+  double worst_u = 0, umax = 0;
+  for (std::size_t v = 0; v < xy0.size() / 2; ++v)
+    for (int dir = 0; dir < 2; ++dir) {
+      const double exact = u[dir](xy0[2 * v], xy0[2 * v + 1]);
+      worst_u = std::max(worst_u, std::abs(st.loop_xy()[2 * v + dir] - xy0[2 * v + dir] - exact));
+      umax = std::max(umax, std::abs(exact));
+    }
+  EXPECT_LT(worst_u, 1e-8 * umax) << "the cubic field is reproduced at every loop vertex";
+  Poly sig[3];
+  stress_poly(u, sig);
+  double worst_s = 0, smax = 0;
+  for (std::size_t e = 0; e < m.element_count(); ++e)
+    for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v) {
+      const double x = m.loop_xy[2 * v], y = m.loop_xy[2 * v + 1];
+      const std::int32_t c0 = m.element_covers[3 * e];
+      const double nx = m.node_xy[2 * m.cover_node[c0]], ny = m.node_xy[2 * m.cover_node[c0] + 1];
+      const auto got = st.stress_at(e, x + u[0](nx, ny), y + u[1](nx, ny));
+      for (int r = 0; r < 3; ++r) {
+        worst_s = std::max(worst_s, std::abs(got[r] - sig[r](x, y)));
+        smax = std::max(smax, std::abs(sig[r](x, y)));
+      }
+    }
+  EXPECT_LT(worst_s, 1e-9 * smax) << "σ = D ε(x) exactly (quadratic)";
+  std::vector<char> touches_boundary(m.cover_count(), 0);
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    bool cut = false;
+    for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v)
+      cut |= (m.loop_edge_origin[v] & kEdgeBoundary) != 0;
+    if (cut)
+      for (int k = 0; k < 3; ++k) touches_boundary[m.element_covers[3 * e + k]] = 1;
+  }
+  const Eigen::VectorXd& r = st.assemble_rhs(1.0);
+  const double scale = smax * s.mesh_size;
+  int interior = 0;
+  double worst_r = 0;
+  for (std::size_t cv = 0; cv < m.cover_count(); ++cv) {
+    if (touches_boundary[cv]) continue;
+    ++interior;
+    for (int l = 0; l < 12; ++l) worst_r = std::max(worst_r, std::abs(r[sp.first_unknown(cv) + l]));
+  }
+  EXPECT_GT(interior, 10);
+  std::printf("cubic patch at n = 2: displacement error %.2e, stress error %.2e (relative), worst "
+              "interior residual %.2e of σ·h over %d covers\n",
+              worst_u / umax, worst_s / smax, worst_r / scale, interior);
+  EXPECT_LT(worst_r, 1e-5 * scale) << "interior covers in equilibrium";
+}
+
 TEST(CoverSpace, LinearFieldIsExactAtOrderZeroAndTwo) {
   // A linear field at n = 2 (quadratic covers): constant terms u(x_i), linear terms h·∇u,
   // quadratic terms zero: uniform stress everywhere.
@@ -320,6 +463,57 @@ TEST(CoverSpace, FreeFallIsExactAtOrderOne) {
   // Every loop vertex fell the same.
   for (std::size_t v = 1; v < st.loop_xy().size(); v += 2)
     EXPECT_NEAR(st.loop_xy()[v] - m.loop_xy[v], -4.905, 1e-8);
+}
+
+TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
+  // energy.csv at n ≥ 1 (energy.h): the strain energy of a linear in-situ field on a 2 m × 1 m
+  // box, ½ ∫ σ(y)ᵀ D⁻¹ σ(y) dA (Simpson in y: exact for the quadratic integrand), and the
+  // kinetic and gravity energies of a body that fell for 1 s: ½ m (g t)² and −m g·½ g t².
+  for (int order : {1, 2}) {
+    SceneDef s;
+    s.materials.push_back({"rock", 2500, 1e10, 0.25});
+    BodyDef b;
+    b.material = 0;
+    b.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+    s.bodies.push_back(b);
+    s.mesh_size = 0.35;
+    s.plane = PlaneKind::strain;
+    s.solver.cover_order = order;
+    s.insitu_stress.present = true;
+    s.insitu_stress.sxx = -3e6;
+    s.insitu_stress.syy = -5e6;
+    s.insitu_stress.sxy = 1e6;
+    s.insitu_stress.y_ref = 1;
+    s.insitu_stress.gyy = -2.5e5;
+    s.insitu_stress.gxx = 4e5;
+    const Mesh m = pre::build_mesh(s, "energy");
+    TimeStepper st(m, s, "energy");
+    EnergyMeter meter(m, s, st.fixed_point_stiffness(), st.support_stiffness(), &st.space());
+    const Mat3 C = elasticity_matrix(s.materials[0], s.plane).inverse();
+    auto u_density = [&](double y) {  // ½ σᵀ C σ per unit area at height y
+      const Vec3 sg(-3e6 + (1 - y) * 4e5, -5e6 + (1 - y) * -2.5e5, 1e6);
+      return 0.5 * sg.dot(C * sg);
+    };
+    const double want = 2.0 * (u_density(0) + 4 * u_density(0.5) + u_density(1)) / 6;
+    const EnergyRow r = meter.state_terms(st.state(), {});
+    std::printf("n = %d: strain energy %.9e J/m, exact %.9e\n", order, r.strain, want);
+    EXPECT_NEAR(r.strain, want, 1e-12 * want) << "order " << order;
+    EXPECT_EQ(r.kinetic, 0.0);
+
+    s.insitu_stress.present = false;
+    s.has_gravity = true;
+    s.gravity = {0, -9.81};
+    TimeStepper fall(m, s, "fall");
+    EnergyMeter fmeter(m, s, fall.fixed_point_stiffness(), fall.support_stiffness(), &fall.space());
+    for (int i = 0; i < 50; ++i) fall.step(0.02);
+    const EnergyRow f = fmeter.state_terms(fall.state(), {});
+    const double mass = 2500 * 2.0, v = 9.81 * 1.0;
+    std::printf("n = %d: after 1 s of free fall K = %.9e, V = %.9e J/m (½mv² = %.9e)\n", order,
+                f.kinetic, f.gravity, 0.5 * mass * v * v);
+    EXPECT_NEAR(f.kinetic, 0.5 * mass * v * v, 1e-9 * 0.5 * mass * v * v) << "order " << order;
+    EXPECT_NEAR(f.gravity, -0.5 * mass * v * v, 1e-9 * 0.5 * mass * v * v) << "order " << order;
+    EXPECT_LT(std::abs(f.strain), 1e-9 * 0.5 * mass * v * v) << "order " << order;
+  }
 }
 
 TEST(CoverSpace, RollersAndTractionGiveUniformStressAtOrderOneAndTwo) {

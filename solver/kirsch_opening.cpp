@@ -1,0 +1,153 @@
+// The Kirsch opening: scene and wall read-off (kirsch_opening.h).
+#include "kirsch_opening.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "time_stepper.h"
+
+namespace nmm::solve {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kArcSides = 48;  // polygon sides per quarter circle
+
+// σθ (compression positive) of a stress (σxx, σyy, τxy; tension positive) at angle θ.
+double hoop_of(const std::array<double, 3>& s, double th) {
+  const double c = std::cos(th), sn = std::sin(th);
+  return -(s[0] * sn * sn + s[1] * c * c - 2 * s[2] * sn * c);
+}
+}  // namespace
+
+SceneDef kirsch_scene(const KirschSetup& k) {
+  const double a = kKirschRadius, b = k.b_over_a * a, py = kKirschPressure, px = k.k0 * py;
+  SceneDef s;
+  s.materials.push_back({"rock", 2500, kKirschYoung, kKirschPoisson});
+  s.mesh_size = k.h;
+  s.plane = PlaneKind::strain;
+  std::vector<Vec2> arc;  // from (a, 0) to (0, a)
+  for (int i = 0; i <= kArcSides; ++i) {
+    const double t = 0.5 * kPi * i / kArcSides;
+    arc.push_back({a * std::cos(t), a * std::sin(t)});
+  }
+  arc.front() = {a, 0};
+  arc.back() = {0, a};
+  BodyDef rock;
+  rock.material = 0;
+  rock.outer = {{a, 0}, {b, 0}, {b, b}, {0, b}};
+  for (int i = kArcSides; i >= 0; --i) rock.outer.push_back(arc[i]);
+  rock.outer.pop_back();  // (a, 0) is already the first point
+  s.bodies = {rock};
+  if (k.with_core) {
+    JointSetDef js;
+    js.name = "interface";
+    js.friction_deg = 30;
+    js.normal.kn = 1e12;
+    js.shear.ks = 4e11;
+    s.joint_sets = {js};
+    s.interface_set = 0;
+    BodyDef core;
+    core.material = 0;
+    core.outer = {{0, 0}};
+    for (const Vec2& q : arc) core.outer.push_back(q);
+    s.bodies.push_back(core);
+    s.excavate = {1};
+  }
+  s.insitu_stress.present = true;
+  s.insitu_stress.sxx = -px;
+  s.insitu_stress.syy = -py;
+  TractionDef t;
+  t.points = {{b, 0}, {b, b}, {0, b}};
+  t.from_insitu = true;
+  s.tractions = {t};
+  // Rollers on the symmetry lines, stiff enough that their give (σ/k_s) is far below the error.
+  SupportDef left, base;
+  left.points = {{0, a}, {0, b}};
+  left.fix_x = true;
+  base.points = {{a, 0}, {b, 0}};
+  base.fix_y = true;
+  s.supports = {left, base};
+  s.solver.support_stiffness = 1e4 * kKirschYoung / k.h;
+  s.solver.dynamic = false;
+  s.solver.static_mode = StaticMode::equilibrium;  // K d = F: the elastic answer in one step
+  s.solver.cover_order = k.order;
+  return s;
+}
+
+double kirsch_hoop(double px, double py, double r, double theta) {
+  const double a = kKirschRadius, P = 0.5 * (px + py), Q = 0.5 * (px - py), ar2 = a * a / (r * r);
+  return P * (1 + ar2) - Q * (1 + 3 * ar2 * ar2) * std::cos(2 * theta);
+}
+
+double kirsch_radial_displacement(double px, double py, double g, double nu, double r, double theta) {
+  const double a = kKirschRadius;
+  return a * a / (4 * g * r) * ((px + py) + (px - py) * (4 * (1 - nu) - a * a / (r * r)) * std::cos(2 * theta));
+}
+
+KirschWall kirsch_wall(const KirschSetup& k, const Mesh& m, const TimeStepper& st) {
+  const double a = kKirschRadius, py = kKirschPressure, px = k.k0 * py, nu = kKirschPoisson;
+  const double G = kKirschYoung / (2 * (1 + nu)), P = 0.5 * (px + py), Q = 0.5 * (px - py);
+  const double hoop_max = std::max(std::abs(2 * P - 4 * Q), std::abs(2 * P + 4 * Q));
+  const double ur_max = a / (4 * G) * (std::abs(px + py) + std::abs(px - py) * (3 - 4 * nu));
+  const double tol = 1e-6 * k.h;
+  const std::vector<double> mean = st.mean_stress();
+  const std::vector<double>& now = st.loop_xy();
+  const std::vector<double>& u = st.state().loop_u;
+  auto on_wall = [&](double x, double y) { return std::abs(std::hypot(x, y) - a) < 1e-3 * a; };
+  double e_wall = 0, e_cent = 0, e_ur = 0, side = 0;
+  std::size_t n_wall = 0, n_cent = 0, n_ur = 0, n_side = 0;
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    if (m.element_body[e] != 0) continue;
+    bool wall = false;
+    double cx = 0, cy = 0;
+    const std::int32_t b0 = m.element_loop_offset[e], b1 = m.element_loop_offset[e + 1];
+    for (std::int32_t v = b0; v < b1; ++v) {
+      const double x = m.loop_xy[2 * v], y = m.loop_xy[2 * v + 1];
+      cx += x / (b1 - b0);
+      cy += y / (b1 - b0);
+      const std::int32_t nv = v + 1 < b1 ? v + 1 : b0;
+      const bool boundary = (m.loop_edge_origin[v] & kEdgeBoundary) != 0;
+      if (boundary && on_wall(x, y) && on_wall(m.loop_xy[2 * nv], m.loop_xy[2 * nv + 1])) {
+        wall = true;
+        // The element's stress field at both ends of its wall edge (where it is now).
+        for (const std::int32_t w : {v, nv}) {
+          const double x0 = m.loop_xy[2 * w], y0 = m.loop_xy[2 * w + 1], th = std::atan2(y0, x0);
+          const double got = hoop_of(st.stress_at(e, now[2 * w], now[2 * w + 1]), th);
+          const double want = kirsch_hoop(px, py, std::hypot(x0, y0), th);
+          e_wall += (got - want) * (got - want);
+          ++n_wall;
+          if (std::abs(y0) < tol && std::abs(x0 - a) < tol) {
+            side += got;
+            ++n_side;
+          }
+        }
+      }
+      if (boundary && on_wall(x, y) && x > tol && y > tol) {
+        // Radial displacement of a wall vertex (inward positive) against Kirsch.
+        const double th = std::atan2(y, x);
+        const double ur = -(u[2 * v] * std::cos(th) + u[2 * v + 1] * std::sin(th));
+        const double want = kirsch_radial_displacement(px, py, G, nu, std::hypot(x, y), th);
+        e_ur += (ur - want) * (ur - want);
+        ++n_ur;
+      }
+    }
+    if (!wall) continue;
+    const double th = std::atan2(cy, cx);
+    const double got = hoop_of({mean[3 * e], mean[3 * e + 1], mean[3 * e + 2]}, th);
+    const double want = kirsch_hoop(px, py, std::hypot(cx, cy), th);
+    e_cent += (got - want) * (got - want);
+    ++n_cent;
+  }
+  KirschWall out;
+  out.hoop_wall = std::sqrt(e_wall / std::max<std::size_t>(n_wall, 1)) / hoop_max;
+  out.hoop_centroid = std::sqrt(e_cent / std::max<std::size_t>(n_cent, 1)) / hoop_max;
+  out.radial = std::sqrt(e_ur / std::max<std::size_t>(n_ur, 1)) / ur_max;
+  out.side_wall_hoop = n_side ? side / static_cast<double>(n_side) : std::nan("");
+  out.side_wall_exact = kirsch_hoop(px, py, a, 0);
+  out.wall_points = n_wall;
+  return out;
+}
+
+}  // namespace nmm::solve
