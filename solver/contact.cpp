@@ -390,8 +390,9 @@ double ContactSet::force_scale() const {
   return f;
 }
 
-int ContactSet::update_strengths(double force_floor) {
+int ContactSet::update_strengths(double force_floor, double* largest_move) {
   int changed = 0;
+  double largest = 0;
   for (Contact& c : contacts_) {
     const ContactLaw& law = laws_[c.law];
     // A bond breaks for good beyond its tensile strength; cohesion is lost once a contact
@@ -422,12 +423,25 @@ int ContactSet::update_strengths(double force_floor) {
     if (moved > kContactTolerances.strength_change * std::max(s, c.strength) && moved > force_floor) {
       const bool matters = law.shear != ShearModel::constant ||
                            std::abs(trial_shear(law, c, c.shear)) >= kContactTolerances.near_limit * std::min(s, c.strength);
-      if (matters) ++changed;
+      if (matters) {
+        ++changed;
+        largest = std::max(largest, moved);
+      }
     }
     c.friction_normal = n;
     c.strength = s;
   }
+  if (largest_move) *largest_move = largest;
   return changed;
+}
+
+void ContactSet::strengths(Eigen::VectorXd& out) const {
+  out.resize(static_cast<Eigen::Index>(contacts_.size()));
+  for (std::size_t i = 0; i < contacts_.size(); ++i) out[static_cast<Eigen::Index>(i)] = contacts_[i].strength;
+}
+
+void ContactSet::set_strengths(const Eigen::VectorXd& s) {
+  for (std::size_t i = 0; i < contacts_.size(); ++i) contacts_[i].strength = s[static_cast<Eigen::Index>(i)];
 }
 
 void ContactSet::settle_states() {

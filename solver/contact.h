@@ -145,8 +145,12 @@ class ContactSet {
   /// After an inner solve: bonds beyond their tensile strength or cohesion break (for good), and
   /// shear strengths follow the normal forces (the friction fixed point). Returns the number of
   /// contacts whose strength changed where it matters (at or near the limit) by more than 0.1 %
-  /// and more than `force_floor` (N).
-  int update_strengths(double force_floor);
+  /// and more than `force_floor` (N); `largest_move` (if given) gets the largest such change, N.
+  int update_strengths(double force_floor, double* largest_move = nullptr);
+  /// Every contact's shear strength for the inner solve, N (the friction fixed point's unknowns).
+  void strengths(Eigen::VectorXd& out) const;
+  /// Sets the shear strengths (an accelerated fixed point step), N.
+  void set_strengths(const Eigen::VectorXd& s);
   /// The states the step ends in (open, locked, sliding) and the events they make.
   void settle_states();
 
