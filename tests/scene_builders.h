@@ -63,9 +63,11 @@ inline SceneDef sliding_block_tilted(double alpha_deg, double friction_deg, doub
 /// Reference problem: the sliding block on a real incline of α (degrees) cut by the mesh at an
 /// angle (data/block_on_incline.json at α = 30°): a 2 m × 1 m block touching the incline, the
 /// base held along its bottom. Measure point 0: the block's centre. Down the slope is
-/// (−cos α, −sin α).
+/// (−cos α, −sin α). `margin` > 0 (m): a compact base instead, the incline reaching `margin`
+/// beyond the block on each side and standing 1 m above the base's held bottom at its low end
+/// (the same incline line, so the mesh cuts it the same way).
 inline SceneDef sliding_block_incline(double alpha_deg, double friction_deg, double h = 0.5,
-                                      int order = 0) {
+                                      int order = 0, double margin = -1) {
   SceneDef s = interface_scene(h, friction_deg, order);
   const double a = alpha_deg * 3.14159265358979323846 / 180;
   const double c = std::cos(a), sn = std::sin(a), y0 = 0.144338;
@@ -73,11 +75,17 @@ inline SceneDef sliding_block_incline(double alpha_deg, double friction_deg, dou
   BodyDef base;
   base.material = 0;
   base.outer = {{0, 0}, {19.9, 0}, {19.9, 19.9 * sn / c + y0}, p1, p0, {0, y0}};
+  s.fixed_points = held_along(0.1, 19.8, 0.05);
+  if (margin > 0) {
+    const double xa = p0.x - margin * c, xb = p1.x + margin * c;
+    const double ya = xa * sn / c + y0, yb = xb * sn / c + y0, y_bottom = ya - 1;
+    base.outer = {{xa, y_bottom}, {xb, y_bottom}, {xb, yb}, p1, p0, {xa, ya}};
+    s.fixed_points = held_along(xa + 0.1, xb - 0.1, y_bottom + 0.05);
+  }
   BodyDef block;
   block.material = 0;
   block.outer = {p0, p1, {p1.x - sn, p1.y + c}, {p0.x - sn, p0.y + c}};
   s.bodies = {base, block};
-  s.fixed_points = held_along(0.1, 19.8, 0.05);
   s.measure_points = {{0.5 * (p0.x + p1.x) - 0.5 * sn, 0.5 * (p0.y + p1.y) + 0.5 * c}};
   return s;
 }
