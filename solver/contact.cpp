@@ -2,11 +2,16 @@
 //
 // A contact is a vertex P of element A facing an edge Q2 → Q3 of element B (contact_detection).
 // With the edge's unit tangent t, outward normal n and P's projection P0 = Q2 + ω(Q3 − Q2), the
-// gap and the relative tangential motion of the step are linear in the cover displacements d:
-//     gap  = g0 + cnᵀd,   cn = [ w_A,k(P)·n  for A's covers ;  −w_B,k(P0)·n  for B's ]
+// gap and the relative tangential motion of the step are linear in the step's unknowns d,
+// through the full approximation of each element u(x) = Σ_a φ_a(x)·d_a (cover_space.h: at
+// cover order n the φ_a = w_k·p_j are the weights times the cover polynomials, 3·(n+1)(n+2)/2
+// functions per element, each with an x and a y unknown):
+//     gap  = g0 + cnᵀd,   cn = [ φ_A,a(P)·n  for A's unknowns ;  −φ_B,a(P0)·n  for B's ]
 //     slip = csᵀd,        cs = the same with t
-// (to first order this is Shi's triangle-area formula dn = Δ(P1,P2,P3)/l with the edge's own
-// motion taken at P0).
+// so a contact's row holds the unknowns of the covers of its two elements, 2 × 3 × dofs per
+// cover (12 at n = 0, 36 at n = 1, 72 at n = 2), in the order of the element pair's coupling
+// group in the system matrix. At n = 0 this is Shi's triangle-area formula dn = Δ(P1,P2,P3)/l
+// to first order, with the edge's own motion taken at P0.
 //
 // Springs, each a convex energy of the step's increment (the step is solved as one convex
 // minimisation: contact_solve.cpp):
@@ -39,8 +44,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 
+#include "contact_tolerances.h"
 #include "error.h"
 
 namespace nmm::solve {
@@ -93,24 +98,29 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   }
 }
 
-void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<ElementFrame>& frames,
-                            double d0, double shallow, double w0) {
+void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& shapes, double d0,
+                            double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
   near_pairs_.clear();
   closed_block_.assign(topo_.next.size(), -1);
-  for (const Contact& c : committed_)
-    if (c.state != ContactState::open) closed_block_[c.at.vertex] = topo_.block_of[c.at.elem_b];
-  eps_ = 1e-10 * w0;
-  skin_ = 1e-12 * w0;
+  for (const ContactHistory& h : history_)
+    if (h.state != ContactState::open) closed_block_[h.vertex] = h.block;
+  eps_ = kContactTolerances.open_gap * w0;
+  skin_ = kContactTolerances.skin * w0;
   const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_, &near_pairs_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Transfer: a vertex keeps its state while it stays against the same block (on the same edge,
   // or having slid onto another edge of that block, e.g. the next element's along a joint).
-  std::map<std::int32_t, const Contact*> before;
-  for (const Contact& c : committed_) before[c.at.vertex] = &c;
-  std::vector<Contact> now;
+  history_at_.resize(topo_.next.size(), -1);
+  for (std::size_t i = 0; i < history_.size(); ++i) history_at_[history_[i].vertex] = static_cast<std::int32_t>(i);
+  // The last accepted step's rows stay readable (accepted()) while this attempt rebuilds its own
+  // in the other vector: no copies.
+  if (rows_accepted_) std::swap(accepted_, contacts_);
+  rows_accepted_ = false;
+  std::vector<Contact>& now = contacts_;
+  now.clear();
   now.reserve(found.size());
   for (const ContactCandidate& f : found) {
     if (!removed_.empty() && (removed_[f.elem_a] || removed_[f.elem_b])) continue;  // excavated
@@ -120,9 +130,9 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
     if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
     if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
     c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
-    const auto it = before.find(f.vertex);
-    if (it != before.end() && topo_.block_of[it->second->at.elem_b] == topo_.block_of[f.elem_b]) {
-      const Contact& o = *it->second;
+    const std::int32_t at = history_at_[f.vertex];
+    if (at >= 0 && history_[at].block == topo_.block_of[f.elem_b]) {
+      const ContactHistory& o = history_[at];
       c.state = o.state;
       c.broken = o.broken;
       c.slip_sign = o.slip_sign;
@@ -139,37 +149,42 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
     c.start_state = c.state;
     now.push_back(c);
   }
-  contacts_ = std::move(now);
+  for (const ContactHistory& h : history_) history_at_[h.vertex] = -1;
 
-  // Linearise each contact in the current configuration.
-  for (Contact& c : contacts_) {
+  // Linearise each contact in the current configuration: its row over the unknowns of both
+  // elements (the element's local unknown 2a + s is shape function a, direction s: cover_space.h).
+  const int nd = space_->element_dofs(), nf = nd / 2;
+  row_ = 2 * nd;
+  const std::size_t rows = contacts_.size() * static_cast<std::size_t>(row_);
+  dofs_.resize(rows);
+  cn_.resize(rows);
+  cs_.resize(rows);
+  std::vector<double> phi_a(static_cast<std::size_t>(nf)), phi_b(static_cast<std::size_t>(nf));
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    Contact& c = contacts_[i];
     const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo_.next[q2];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
     const double l = std::hypot(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
     const double p0x = xy[2 * q2] + c.at.omega * dx, p0y = xy[2 * q2 + 1] + c.at.omega * dy;
-    const ElementFrame& fa = frames[c.at.elem_a];
-    const ElementFrame& fb = frames[c.at.elem_b];
-    for (int k = 0; k < 3; ++k) {
-      const double wa = fa.w.at(k, px - fa.ox, py - fa.oy);
-      const double wb = fb.w.at(k, p0x - fb.ox, p0y - fb.oy);
-      const int ca = mesh_.element_covers[3 * c.at.elem_a + k];
-      const int cb = mesh_.element_covers[3 * c.at.elem_b + k];
-      const int ua = unknown_.empty() ? 2 * ca : unknown_[ca];
-      const int ub = unknown_.empty() ? 2 * cb : unknown_[cb];
-      c.dofs[2 * k] = ua;
-      c.dofs[2 * k + 1] = ua + 1;
-      c.dofs[6 + 2 * k] = ub;
-      c.dofs[6 + 2 * k + 1] = ub + 1;
-      c.cn[2 * k] = wa * nx;
-      c.cn[2 * k + 1] = wa * ny;
-      c.cn[6 + 2 * k] = -wb * nx;
-      c.cn[6 + 2 * k + 1] = -wb * ny;
-      c.cs[2 * k] = wa * tx;
-      c.cs[2 * k + 1] = wa * ty;
-      c.cs[6 + 2 * k] = -wb * tx;
-      c.cs[6 + 2 * k + 1] = -wb * ty;
-    }
+    shapes(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
+    shapes(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
+    const int* ga = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_a));
+    const int* gb = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_b));
+    int* dof = dofs_.data() + i * static_cast<std::size_t>(row_);
+    double* cn = cn_.data() + i * static_cast<std::size_t>(row_);
+    double* cs = cs_.data() + i * static_cast<std::size_t>(row_);
+    const double n_dir[2] = {nx, ny}, t_dir[2] = {tx, ty};
+    for (int a = 0; a < nf; ++a)
+      for (int sd = 0; sd < 2; ++sd) {
+        const int la = 2 * a + sd, lb = nd + 2 * a + sd;
+        dof[la] = ga[la];
+        dof[lb] = gb[la];
+        cn[la] = phi_a[a] * n_dir[sd];
+        cs[la] = phi_a[a] * t_dir[sd];
+        cn[lb] = -phi_b[a] * n_dir[sd];
+        cs[lb] = -phi_b[a] * t_dir[sd];
+      }
     c.gap0 = c.at.gap;
     c.gap = c.at.gap;
     c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
@@ -181,9 +196,9 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
       const std::int32_t f = topo_.next[s];
       const double ex = xy[2 * f] - xy[2 * s], ey = xy[2 * f + 1] - xy[2 * s + 1];
       const double el = std::hypot(ex, ey);
-      if (el > 0 && (ey / el) * nx + (-ex / el) * ny < -0.7) c.length += 0.5 * el;
+      if (el > 0 && (ey / el) * nx + (-ex / el) * ny < kContactTolerances.tributary_cos) c.length += 0.5 * el;
     }
-    if (c.length == 0) c.length = 1e-3 * topo_.mesh_size;  // a bare corner: a point
+    if (c.length == 0) c.length = kContactTolerances.corner_length * topo_.mesh_size;  // a bare corner: a point
   }
 }
 
@@ -273,7 +288,8 @@ Spring shear_at(const ContactLaw& law, const Contact& c, double s) {
 // Sliding: the trial force reaches the strength (a hyperbola with Rf = 1 only approaches it:
 // 99.9 % counts as slip).
 bool slides(const ContactLaw& law, const Contact& c) {
-  const double limit = law.shear == ShearModel::constant ? c.strength : 0.999 * c.strength;
+  const double limit =
+      law.shear == ShearModel::constant ? c.strength : kContactTolerances.hyperbola_slip * c.strength;
   return std::abs(trial_shear(law, c, c.shear)) >= limit;
 }
 }  // namespace
@@ -289,12 +305,15 @@ void ContactSet::start_strengths() {
 }
 
 void ContactSet::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
-  for (Contact& c : contacts_) {
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    Contact& c = contacts_[k];
     const ContactLaw& law = laws_[c.law];
+    const int* dof = row_dofs(k);
+    const double *cn = row_cn(k), *cs = row_cs(k);
     double dg = 0, ds = 0;
-    for (int i = 0; i < 12; ++i) {
-      dg += c.cn[i] * d[c.dofs[i]];
-      ds += c.cs[i] * d[c.dofs[i]];
+    for (int i = 0; i < row_; ++i) {
+      dg += cn[i] * d[dof[i]];
+      ds += cs[i] * d[dof[i]];
     }
     c.gap = c.gap0 + dg;
     c.shear = c.shear0 + ds;
@@ -306,41 +325,48 @@ void ContactSet::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
     c.shear_force = t.force;
     c.ks_now = t.stiffness;
     if (n.force == 0 && t.force == 0) continue;
-    for (int i = 0; i < 12; ++i) r[c.dofs[i]] += n.force * c.cn[i] - t.force * c.cs[i];
+    for (int i = 0; i < row_; ++i) r[dof[i]] += n.force * cn[i] - t.force * cs[i];
   }
 }
 
 void ContactSet::add_tangents(SystemMatrix& k) const {
-  Eigen::Matrix<double, 12, 12> block;
-  for (const Contact& c : contacts_) {
+  block_.resize(row_, row_);
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
     if (c.kn_now == 0 && c.ks_now == 0) continue;
-    const Eigen::Map<const Eigen::Matrix<double, 12, 1>> cn(c.cn.data()), cs(c.cs.data());
-    block.noalias() = c.kn_now * cn * cn.transpose();
-    if (c.ks_now != 0) block.noalias() += c.ks_now * cs * cs.transpose();
-    k.add_group(static_cast<std::size_t>(c.group), block.data());
+    const Eigen::Map<const Eigen::VectorXd> cn(row_cn(i), row_), cs(row_cs(i), row_);
+    block_.noalias() = c.kn_now * cn * cn.transpose();
+    if (c.ks_now != 0) block_.noalias() += c.ks_now * cs * cs.transpose();
+    k.add_group(static_cast<std::size_t>(c.group), block_.data());
   }
 }
 
 void ContactSet::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
-  for (const Contact& c : contacts_) {
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
     if (c.kn_now == 0 && c.ks_now == 0) continue;
+    const int* dof = row_dofs(k);
+    const double *cn = row_cn(k), *cs = row_cs(k);
     double a = 0, b = 0;
-    for (int i = 0; i < 12; ++i) {
-      a += c.cn[i] * v[c.dofs[i]];
-      b += c.cs[i] * v[c.dofs[i]];
+    for (int i = 0; i < row_; ++i) {
+      a += cn[i] * v[dof[i]];
+      b += cs[i] * v[dof[i]];
     }
     a *= c.kn_now;
     b *= c.ks_now;
-    for (int i = 0; i < 12; ++i) y[c.dofs[i]] += a * c.cn[i] + b * c.cs[i];
+    for (int i = 0; i < row_; ++i) y[dof[i]] += a * cn[i] + b * cs[i];
   }
 }
 
 void ContactSet::set_direction(const Eigen::VectorXd& delta) {
-  for (Contact& c : contacts_) {
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    Contact& c = contacts_[k];
+    const int* dof = row_dofs(k);
+    const double *cn = row_cn(k), *cs = row_cs(k);
     double dg = 0, ds = 0;
-    for (int i = 0; i < 12; ++i) {
-      dg += c.cn[i] * delta[c.dofs[i]];
-      ds += c.cs[i] * delta[c.dofs[i]];
+    for (int i = 0; i < row_; ++i) {
+      dg += cn[i] * delta[dof[i]];
+      ds += cs[i] * delta[dof[i]];
     }
     c.rate_gap = dg;
     c.rate_shear = ds;
@@ -393,9 +419,9 @@ int ContactSet::update_strengths(double force_floor) {
     double s = closed ? shear_strength(law, n, c.length, c.broken) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
     const double moved = std::abs(s - c.strength);
-    if (moved > 1e-3 * std::max(s, c.strength) && moved > force_floor) {
+    if (moved > kContactTolerances.strength_change * std::max(s, c.strength) && moved > force_floor) {
       const bool matters = law.shear != ShearModel::constant ||
-                           std::abs(trial_shear(law, c, c.shear)) >= 0.99 * std::min(s, c.strength);
+                           std::abs(trial_shear(law, c, c.shear)) >= kContactTolerances.near_limit * std::min(s, c.strength);
       if (matters) ++changed;
     }
     c.friction_normal = n;
@@ -438,7 +464,13 @@ void ContactSet::end_step() {
       c.shear_el = c.slip_sign * shear_at_force(law, c.strength, c.strength, c.length);
     }
   }
-  committed_ = contacts_;
+  history_.resize(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
+                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force};
+  }
+  rows_accepted_ = true;
 }
 
 double ContactSet::max_penetration() const {

@@ -4,12 +4,14 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "contact_detection.h"
+#include "cover_space.h"
 #include "element_integration.h"
 #include "joint_law.h"
 #include "mesh.h"
@@ -26,31 +28,49 @@ struct ElementFrame {
 
 enum class ContactState : std::uint8_t { open, locked, sliding };
 
+/// What a contact carries from one accepted step to the next: all a step needs of the past
+/// (ContactSet::history(); with the rows' diagnostics, the checkpoint's CONTACT section). The
+/// next step finds it again by its vertex, against the same block.
+struct ContactHistory {
+  std::int32_t vertex = -1;  ///< loop vertex P
+  std::int32_t block = -1;   ///< block of the edge P was against
+  ContactState state = ContactState::open;
+  bool broken = false;       ///< cohesion and tensile strength lost (it slid or opened)
+  std::int8_t slip_sign = 0; ///< direction of sliding along the edge (±1, 0 never slid)
+  double shear_el = 0;       ///< m, elastic shear of the shear spring (return mapping)
+  double normal_force = 0;   ///< N, compression > 0: the next step's first friction strength
+};
+
+/// One contact of the step being solved: rebuilt by every begin_step() from the detection and
+/// the history, iterated by the solve, read by output and diagnostics after the step. Its
+/// linearisation rows (unknowns, cn, cs) are ContactSet's flat arrays.
 struct Contact {
+  // Where, and the law (this step's detection).
   ContactCandidate at;  ///< vertex P, edge, elements, ω, gap at the start of the step
   int law = 0;          ///< index into ContactSet::laws()
   double length = 0;    ///< m, tributary joint length of the contact point
+  // State: from the history at the start of the step, the solution's at its end.
   ContactState state = ContactState::open;
   ContactState start_state = ContactState::open;  ///< state at the start of the step
   bool broken = false;       ///< cohesion and tensile strength lost (it slid or opened)
   double shear_el = 0;       ///< m, elastic shear of the shear spring at the start of the step
+                             ///< (at its end after end_step())
   int slip_sign = 0;         ///< direction of sliding along the edge (±1)
-  double normal_force = 0;   ///< N, compression > 0, from the last solve
+  // The inner solve's working values.
   double friction_normal = 0;  ///< N, normal force the shear strength of the inner solve uses
-  double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
   double strength = 0;       ///< N, shear strength of the inner solve (tanφ·N + c·L, 0 if open)
   bool bonded = false;       ///< normal spring holds tension (unbroken, tensile strength, closed)
-  double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
-  double ks_now = 0;         ///< N/m, tangent shear stiffness at the last solve (0 sliding)
-  double shear_force = 0;    ///< N, shear force at the last solve
-  bool capped = false;       ///< closure held below Vm at the last solve
-  double shear = 0;          ///< m, trial elastic shear after the last solve (shear_el + slip)
-  // Linearisation for this step: gap = gap0 + cnᵀd, shear = shear0 + csᵀd over 12 unknowns.
-  std::array<int, 12> dofs{};
-  std::array<double, 12> cn{}, cs{};
-  double gap0 = 0, shear0 = 0;
+  double gap0 = 0, shear0 = 0;  ///< m, gap = gap0 + cnᵀd, shear = shear0 + csᵀd
   int group = -1;  ///< coupling group of its element pair in the system matrix
   double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
+  // The last solve (output and diagnostics).
+  double normal_force = 0;   ///< N, compression > 0
+  double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
+  double shear = 0;          ///< m, trial elastic shear after the last solve (shear_el + slip)
+  double shear_force = 0;    ///< N
+  double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
+  double ks_now = 0;         ///< N/m, tangent shear stiffness at the last solve (0 sliding)
+  bool capped = false;       ///< closure held below Vm at the last solve
 };
 
 /// All contacts of a run.
@@ -59,27 +79,43 @@ class ContactSet {
   ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
 
   bool active() const { return active_; }
-  /// The x unknown of each physical cover (y is the next); without a call, cover c has 2c.
-  void use_unknowns(const std::vector<std::int32_t>& unknown) { unknown_ = unknown; }
+  /// The approximation space of the run (unknowns of each element; it must outlive this set).
+  void use_space(const CoverSpace& space) { space_ = &space; }
+  /// Unknowns of one contact's rows: both elements' (CoverSpace::element_dofs() each).
+  int row_size() const { return row_; }
+  /// Contact i's unknowns (A's element unknowns, then B's) and the coefficients of its gap and
+  /// slip on them, row_size() each, for the step being solved.
+  const int* row_dofs(std::size_t i) const { return dofs_.data() + i * static_cast<std::size_t>(row_); }
+  const double* row_cn(std::size_t i) const { return cn_.data() + i * static_cast<std::size_t>(row_); }
+  const double* row_cs(std::size_t i) const { return cs_.data() + i * static_cast<std::size_t>(row_); }
   /// "contact", and "friction", "cohesion", "tension" when a law in use has them.
   std::vector<std::string> effects() const;
   const std::vector<ContactLaw>& laws() const { return laws_; }
+  /// The contacts of the step being solved, or of the last step taken.
   const std::vector<Contact>& contacts() const { return contacts_; }
-  /// The contacts as the last accepted step left them (saved by contact_history.h).
-  const std::vector<Contact>& committed() const { return committed_; }
-  /// A restart: the next step starts from these contacts and states.
-  void restore_committed(std::vector<Contact> c) {
-    committed_ = c;
-    contacts_ = std::move(c);
+  /// What the last accepted step left for the next (one entry per contact of accepted()).
+  const std::vector<ContactHistory>& history() const { return history_; }
+  /// The contacts of the last accepted step (contacts() unless an attempt was cut since).
+  const std::vector<Contact>& accepted() const { return rows_accepted_ ? contacts_ : accepted_; }
+  /// A restart: the next step starts from this history; `rows` (the accepted step's contacts,
+  /// one per history entry) are shown until then.
+  void restore(std::vector<ContactHistory> history, std::vector<Contact> rows) {
+    history_ = std::move(history);
+    contacts_ = std::move(rows);
+    rows_accepted_ = true;
   }
   /// [me] 1 for elements of excavated bodies: no contact is detected on them.
   void set_removed_elements(std::vector<std::uint8_t> removed) { removed_ = std::move(removed); }
 
+  /// The shape functions of element e at the point (x, y) (m) of the step's configuration into
+  /// out[0 .. element_dofs()/2): the full approximation (weights times cover polynomials).
+  using ShapeValues = std::function<void(std::size_t e, double x, double y, double* out)>;
+
   /// Detects contacts in the current configuration (search distance d0, new contacts at most
-  /// `shallow` deep, m; model half-size w0), carries over the states of the previous step and linearises each
-  /// contact with the element frames.
-  void begin_step(const std::vector<double>& loop_xy, const std::vector<ElementFrame>& frames,
-                  double d0, double shallow, double w0);
+  /// `shallow` deep, m; model half-size w0), carries over the states of the previous step and
+  /// linearises each contact with the shape functions of its two elements.
+  void begin_step(const std::vector<double>& loop_xy, const ShapeValues& shapes, double d0,
+                  double shallow, double w0);
 
   /// Element pairs coupled by the current contacts and those near enough to touch soon
   /// (within the search distance), sorted and unique: the pairs the pattern should hold.
@@ -138,7 +174,11 @@ class ContactSet {
 
  private:
   const Mesh& mesh_;
-  std::vector<std::int32_t> unknown_;  // [pc] x unknown of each cover (empty: 2·pc)
+  const CoverSpace* space_ = nullptr;  // unknowns of each element
+  int row_ = 0;                        // unknowns per contact row: 2 × element_dofs()
+  std::vector<int> dofs_;              // [contact · row_] this step's rows: unknowns,
+  std::vector<double> cn_, cs_;        // [contact · row_] –, gap and slip per unit unknown
+  mutable Eigen::MatrixXd block_;      // add_tangents()' scratch
   ContactTopology topo_;
   std::vector<ContactLaw> laws_;
   std::vector<int> joint_law_;  // [joint] law index
@@ -147,12 +187,15 @@ class ContactSet {
   bool nonlinear_ = false;       // a law in use is not a constant spring
   bool active_ = false;
   std::vector<Contact> contacts_;   // this step's, being iterated
-  std::vector<Contact> committed_;  // as the last accepted step left them
+  std::vector<Contact> accepted_;   // the last accepted step's, while contacts_ is a later attempt's
+  bool rows_accepted_ = false;      // contacts_ are the last accepted step's
+  std::vector<ContactHistory> history_;  // what the last accepted step left for the next
+  std::vector<std::int32_t> history_at_;  // [v] index into history_ of vertex v, or -1 (scratch)
   std::vector<std::uint8_t> removed_;  // [me] excavated elements (empty: none)
   std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
   ElementPairs near_pairs_;                 // element pairs within the search distance
-  double eps_ = 0;                          // m, gap tolerance (1e-10·w0)
-  double skin_ = 0;                         // m, smoothing of the normal spring at touching (1e-12·w0)
+  double eps_ = 0;                          // m, gap tolerance (contact_tolerances.h open_gap·w0)
+  double skin_ = 0;                         // m, smoothing of the normal spring (skin·w0)
   DetectionStats stats_;
   double detection_seconds_ = 0;
 };

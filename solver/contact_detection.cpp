@@ -40,6 +40,8 @@
 // was closed is kept, else the one of the lower vertex index.
 #include "contact_detection.h"
 
+#include "contact_tolerances.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -97,7 +99,7 @@ void cover_weights(const Mesh& m, std::size_t e, double x, double y, double w[3]
 ContactTopology build_contact_topology(const Mesh& mesh) {
   ContactTopology t;
   t.mesh_size = mesh.mesh_size;
-  t.master_depth = 1e-4 * mesh.mesh_size;
+  t.master_depth = kContactTolerances.master_depth * mesh.mesh_size;
   const std::size_t nv = mesh.loop_vertex_count();
   t.next.resize(nv);
   t.prev.resize(nv);
@@ -158,12 +160,12 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
       std::vector<std::pair<double, double>> dirs;
       for (const auto& d : out_dirs) {
         bool seen = false;
-        for (const auto& e : dirs) seen |= d.first * e.first + d.second * e.second > 1 - 1e-9;
+        for (const auto& e : dirs) seen |= d.first * e.first + d.second * e.second > 1 - kContactTolerances.same_direction;
         if (!seen) dirs.push_back(d);
       }
       const bool flat = dirs.size() == 2 &&
                         dirs[0].first * dirs[1].first + dirs[0].second * dirs[1].second <
-                            -std::cos(10.0 * 3.14159265358979323846 / 180.0);
+                            -std::cos(kContactTolerances.flat_turn_deg * 3.14159265358979323846 / 180.0);
       if (flat)
         for (std::int32_t v : vs) t.corner[v] = 0;
     }
@@ -188,12 +190,12 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
         // Cover → weight, dropping covers with no weight at this point.
         std::map<std::int32_t, double> ca, cb;
         for (int k = 0; k < 3; ++k) {
-          if (std::abs(wa[k]) > 1e-9) ca[mesh.element_covers[3 * ea + k]] += wa[k];
-          if (std::abs(wb[k]) > 1e-9) cb[mesh.element_covers[3 * eb + k]] += wb[k];
+          if (std::abs(wa[k]) > kContactTolerances.same_weight) ca[mesh.element_covers[3 * ea + k]] += wa[k];
+          if (std::abs(wb[k]) > kContactTolerances.same_weight) cb[mesh.element_covers[3 * eb + k]] += wb[k];
         }
         bool same = ca.size() == cb.size();
         for (auto ia = ca.begin(), ib = cb.begin(); same && ia != ca.end(); ++ia, ++ib)
-          same = ia->first == ib->first && std::abs(ia->second - ib->second) < 1e-9;
+          same = ia->first == ib->first && std::abs(ia->second - ib->second) < kContactTolerances.same_weight;
         if (same) t.continuous.emplace_back(p, eb);
       }
   }
@@ -222,7 +224,8 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   std::vector<ContactCandidate> out;
   if (topo.edges.empty()) return out;
   const double cell = std::max(topo.mesh_size, 2 * d0);
-  const double p_max = 0.3 * topo.mesh_size;
+  const ContactTolerances& tl = kContactTolerances;
+  const double p_max = tl.closed_depth * topo.mesh_size;
 
   // Grid: (cell key, edge) pairs sorted by key; a vertex looks up its own cell.
   double x0 = xy[0], y0 = xy[1];
@@ -268,7 +271,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       }
     }
     const double nl = std::hypot(nx, ny);
-    if (nl < 1e-9) continue;  // the tip of a slit: both faces are this element's own
+    if (nl < tl.slit_tip_normal) continue;  // the tip of a slit: both faces are this element's own
     nx /= nl;
     ny /= nl;
     // Single pass: an upward-facing flat vertex only touches where it pokes clearly into the
@@ -283,7 +286,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     for (std::int32_t i = topo.mirror_offset[p]; !closed_block.empty() && i < topo.mirror_offset[p + 1]; ++i) {
       const std::int32_t m = topo.mirrors[i];
       if (closed_block[m] == topo.block_of[ea] &&
-          std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= 1e-2 * topo.mesh_size)
+          std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= tl.same_point * topo.mesh_size)
         mirror_closed = topo.block_of[topo.element_of[m]];
     }
     const auto [ci, cj] = cell_of(px, py);
@@ -299,34 +302,34 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       ++tested;
       const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
       const double l = std::hypot(dx, dy);
-      if (!(l > 1e-12 * topo.mesh_size)) continue;
+      if (!(l > tl.degenerate_edge * topo.mesh_size)) continue;
       const double tx = dx / l, ty = dy / l, ex = ty, ey = -tx;
       const double rx = px - xy[2 * q2], ry = py - xy[2 * q2 + 1];
       const double omega = (rx * tx + ry * ty) / l;
       // A little past the ends: a vertex right above a vertex of the other face projects onto
       // both neighbouring edges at ω ≈ 0 or 1 and lies inside only one of their elements;
       // round-off must not push it off that one (the point is clamped onto the edge).
-      if (omega < -1e-3 || omega > 1 + 1e-3) continue;
+      if (omega < -tl.beside_edge || omega > 1 + tl.beside_edge) continue;
       const double g = rx * ex + ry * ey;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
       const bool was_closed = !closed_block.empty() && (closed_block[p] == topo.block_of[eb] ||
                                                         mirror_closed == topo.block_of[eb]);
-      const double eps = 1e-9 * topo.mesh_size;
+      const double eps = tl.gap_round_off * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
       if (g < -eps && !inside_element(topo, xy, topo.first_vertex[eb], px, py)) {
         // Sunk at a mesh node, next to an end of the edge: the element below the node may hold
         // it instead. Only there, and only shallow; elsewhere a vertex outside B is not in contact.
-        const bool near_end = omega < 0.25 || omega > 0.75;
-        if (!near_end || g < -0.05 * topo.mesh_size || !inside_near(topo, xy, eb, px, py)) continue;
+        const bool near_end = omega < tl.node_sink_omega || omega > 1 - tl.node_sink_omega;
+        if (!near_end || g < -tl.node_sink_depth * topo.mesh_size || !inside_near(topo, xy, eb, px, py)) continue;
       }
       const double face = nx * ex + ny * ey;  // −1: exactly opposite
-      if (face > -0.2) continue;
+      if (face > tl.facing_cos) continue;
       const double ag = std::abs(g);
-      const double tol = 1e-9 * topo.mesh_size;
+      const double tol = tl.gap_round_off * topo.mesh_size;
       const bool better = !found || ag < best_abs - tol ||
-                          (ag <= best_abs + tol && (face < best_face - 1e-12 ||
-                                                    (face <= best_face + 1e-12 && q2 < best.edge)));
+                          (ag <= best_abs + tol && (face < best_face - tl.facing_tie ||
+                                                    (face <= best_face + tl.facing_tie && q2 < best.edge)));
       if (better) {
         best = {p, q2, ea, eb, std::clamp(omega, 0.0, 1.0), g};
         best_abs = ag;
@@ -341,7 +344,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   }
   // One contact per point of a joint: drop the mirror of a contact between coincident vertices.
   std::vector<char> drop(out.size(), 0);
-  const double tol = 1e-2 * topo.mesh_size;
+  const double tol = tl.same_point * topo.mesh_size;
   auto near = [&](std::int32_t u, std::int32_t v) {
     return std::hypot(xy[2 * u] - xy[2 * v], xy[2 * u + 1] - xy[2 * v + 1]) <= tol;
   };

@@ -1,13 +1,15 @@
 // Contact history <-> bytes (contact_history.h). Layout 2: u32 layout, u64 count, then per
-// contact what lasts from one step to the next, in this order: vertex, edge, elements A and B
-// (i32), ω and the gap at detection (f64), law (i32), tributary length (f64), state (u8),
-// broken (u8), elastic shear (f64), slip direction (i32), normal force (f64), and what the last
-// solve left for output: gap, shear, shear force, tangent normal and shear stiffness (f64),
-// capped (u8). What a step rebuilds (unknowns, cn, cs, gap0, strengths, coupling groups) is not
-// saved: begin_step() makes it again from the geometry, bitwise as in the straight run.
+// contact of the last accepted step, in this order: where it was — vertex, edge, elements A and
+// B (i32), ω and the gap at detection (f64), law (i32), tributary length (f64); what lasts from
+// one step to the next (ContactHistory; its block is element B's) — state (u8), broken (u8),
+// elastic shear (f64), slip direction (i32), normal force (f64); and what the last solve left
+// for output: gap, shear, shear force, tangent normal and shear stiffness (f64), capped (u8).
+// What a step rebuilds (unknowns, cn, cs, gap0, strengths, coupling groups) is not saved:
+// begin_step() makes it again from the geometry and the history, bitwise as in the straight run.
 #include "contact_history.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "state_bytes.h"
 
@@ -20,9 +22,15 @@ constexpr std::uint32_t kContactLayout = 2;
 std::string save_contact_history(const ContactSet& contacts) {
   ByteWriter w;
   w.put(kContactLayout);
-  const std::vector<Contact>& cs = contacts.committed();
+  // The history (what lasts) with the accepted rows it came from (where, and the last solve's
+  // values for output): one each per contact, in the same order.
+  const std::vector<Contact>& cs = contacts.accepted();
+  const std::vector<ContactHistory>& hs = contacts.history();
+  if (cs.size() != hs.size()) throw std::logic_error("contact history and rows out of step");
   w.put<std::uint64_t>(cs.size());
-  for (const Contact& c : cs) {
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    const Contact& c = cs[i];
+    const ContactHistory& h = hs[i];
     w.put(c.at.vertex);
     w.put(c.at.edge);
     w.put(c.at.elem_a);
@@ -31,11 +39,11 @@ std::string save_contact_history(const ContactSet& contacts) {
     w.put(c.at.gap);
     w.put<std::int32_t>(c.law);
     w.put(c.length);
-    w.put(static_cast<std::uint8_t>(c.state));
-    w.put<std::uint8_t>(c.broken ? 1 : 0);
-    w.put(c.shear_el);
-    w.put<std::int32_t>(c.slip_sign);
-    w.put(c.normal_force);
+    w.put(static_cast<std::uint8_t>(h.state));
+    w.put<std::uint8_t>(h.broken ? 1 : 0);
+    w.put(h.shear_el);
+    w.put<std::int32_t>(h.slip_sign);
+    w.put(h.normal_force);
     w.put(c.gap);
     w.put(c.shear);
     w.put(c.shear_force);
@@ -71,7 +79,9 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     return b == 1;
   };
   std::vector<Contact> cs;
+  std::vector<ContactHistory> hs;
   cs.reserve(static_cast<std::size_t>(n));
+  hs.reserve(static_cast<std::size_t>(n));
   for (std::uint64_t i = 0; i < n; ++i) {
     Contact c;
     c.at.vertex = r.get<std::int32_t>();
@@ -100,10 +110,12 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     c.kn_now = finite(r.get<double>());
     c.ks_now = finite(r.get<double>());
     c.capped = flag(r.get<std::uint8_t>());
+    hs.push_back({c.at.vertex, mesh.element_block[c.at.elem_b], c.state, c.broken,
+                  static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force});
     cs.push_back(c);
   }
   r.expect_end();
-  contacts.restore_committed(std::move(cs));
+  contacts.restore(std::move(hs), std::move(cs));
 }
 
 }  // namespace nmm::solve

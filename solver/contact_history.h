@@ -1,7 +1,8 @@
-// The contact history in a checkpoint: the contacts and their states as the last accepted step
-// left them (ContactSet::committed()). The one place that knows the Contact struct's layout on
-// disk: a change of Contact needs only these two functions adapted (and the layout number
-// raised, so that older checkpoints are refused rather than misread).
+// The contact history in a checkpoint: what the last accepted step left for the next
+// (ContactSet::history()) with that step's contacts (ContactSet::accepted(): where they were and
+// the last solve's values, for output). The one place that knows their layout on disk: a change
+// needs only these two functions adapted (and the layout number raised, so that older
+// checkpoints are refused rather than misread).
 #pragma once
 
 #include <string>

@@ -107,10 +107,11 @@ bool SystemMatrix::factorize() {
     }
   }
   llt_.factorize(k_);
-  for (std::size_t r = 0; r < regularised_.size(); ++r) k_.valuePtr()[diag_[regularised_[r]]] -= delta[r];
   failed_unknown_ = -1;
   has_factor_ = llt_.info() == Eigen::Success;
+  // The matrix factorised, perturbation included: a restart refactorises exactly it (bitwise).
   if (has_factor_) factored_ = k_;
+  for (std::size_t r = 0; r < regularised_.size(); ++r) k_.valuePtr()[diag_[regularised_[r]]] -= delta[r];
   if (!has_factor_) {
     failed_unknown_ = llt_.failed_column();
     return false;

@@ -2,7 +2,7 @@
 // a sparsity pattern built once from the element–cover incidence, and CHOLMOD's factorisation.
 //
 // Pattern and numbers are kept apart (deal.II step-8 style): build_pattern() fixes the nonzeros
-// and precomputes, for every element, where each entry of its 6×6 block lands in the value
+// and precomputes, for every group, where each entry of its block lands in the value
 // array, so assembly is a scatter with no search. CHOLMOD's symbolic analysis (fill-reducing
 // ordering, supernodes) runs only when the pattern changes; each step refactors the numbers.
 #pragma once
@@ -22,8 +22,8 @@ class SystemMatrix {
   using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
   /// Builds the pattern of the n×n matrix (n = unknowns) coupling, for each group, all the
-  /// unknowns in it: one group of 6 per element (its three covers × two directions), one of 12
-  /// per contact (the covers of both elements; an unknown may appear twice in a group).
+  /// unknowns in it: one group per element (its CoverSpace::element_dofs() unknowns), one per
+  /// pair of elements in contact (both elements' unknowns; an unknown may appear twice in a group).
   /// Group g holds dofs[offsets[g] .. offsets[g+1]).
   void build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
 

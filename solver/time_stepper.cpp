@@ -61,6 +61,7 @@
 
 #include "contact_history.h"
 #include "contact_solve.h"
+#include "contact_tolerances.h"
 #include "solver_threads.h"
 #include "error.h"
 #include "excavation.h"
@@ -138,8 +139,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
                                                   : 100.0 * e_max / mesh.mesh_size;
   pin_k_ = std::max(e_max, 1.0);
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
-  refuse_unsupported(scene, scene_name);
-  contacts_.use_unknowns(space_.ties().unknown);
+  contacts_.use_space(space_);
   elem_mat_.resize(ne);
   for (std::size_t e = 0; e < ne; ++e) {
     const std::int32_t body = mesh.element_body[e];
@@ -343,17 +343,6 @@ std::array<double, 3> TimeStepper::stress_at(std::size_t e, double x, double y) 
     for (int r = 0; r < 3; ++r) out[r] += s_.stress[3 * (T * e + t) + r] * v;
   }
   return out;
-}
-
-void TimeStepper::refuse_unsupported(const SceneDef& scene, const std::string& scene_name) const {
-  if (space_.order() == 0) return;
-  const std::string why = " is not supported yet at cover order " + std::to_string(space_.order()) +
-                          " (solver.cover_order; docs/higher-order-covers.md): run it at order 0";
-  // Contacts (issue 11 rewrites them) carry 12 unknowns per contact: constant covers only.
-  if (contacts_.active() && contacts_can_arise(mesh_, scene))
-    throw InputError(scene_name, "/solver/cover_order",
-                     "contact between blocks or across joints" + why);
-  // In-situ stress and excavation work at every order (insitu_stress.h, excavation.h).
 }
 
 void TimeStepper::update_pattern() {
@@ -772,7 +761,9 @@ std::string TimeStepper::attempt(double dt) {
   if (contact) {
     // Search distance: 2.5 × the displacement a step may make (Shi: g2·w0 per step, cut at 2×).
     const double g2w0 = scene_.solver.max_displacement_ratio * w0_;
-    contacts_.begin_step(s_.loop_xy, frame_, 2.5 * g2w0, 1e-3 * mesh_.mesh_size, w0_);
+    contacts_.begin_step(
+        s_.loop_xy, [this](std::size_t e, double x, double y, double* out) { shape_values(e, x, y, out); },
+        2.5 * g2w0, kContactTolerances.new_depth * mesh_.mesh_size, w0_);
     update_pattern();
   }
   timings_.contact_detection = contacts_.detection_seconds();

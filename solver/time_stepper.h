@@ -146,8 +146,6 @@ class TimeStepper {
   void shape_values(std::size_t e, double x, double y, double* out) const;
   /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
   std::size_t stress_terms() const { return static_cast<std::size_t>(space_.terms()); }
-  /// Exit 2 (InputError) for what cover order n ≥ 1 does not support yet.
-  void refuse_unsupported(const SceneDef& scene, const std::string& scene_name) const;
   /// ε of the regularised factorisation (system_matrix.h), relative to each diagonal entry.
   static constexpr double kRegularisation = 1e-10;
   void apply_removed();

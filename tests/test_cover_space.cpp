@@ -588,24 +588,5 @@ TEST(CoverSpace, CheckpointRestartIsBitwiseAtOrderOneAndRefusedAtAnotherOrder) {
   }
 }
 
-TEST(CoverSpace, UnsupportedCombinationsAreRefused) {
-  // Contacts (two bodies that may touch) at n = 1: bad input naming /solver/cover_order.
-  SceneDef s = plate(0.3, 1);
-  s.bodies[0].outer = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  BodyDef top = s.bodies[0];
-  top.outer = {{0, 1}, {1, 1}, {1, 2}, {0, 2}};
-  s.bodies.push_back(top);
-  s.solver.dynamic = true;
-  const Mesh m = pre::build_mesh(s, "blocks");
-  try {
-    TimeStepper st(m, s, "blocks");
-    FAIL() << "contacts at cover order 1 must be refused";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("/solver/cover_order"), std::string::npos) << e.what();
-  }
-  s.solver.cover_order = 0;  // the same scene at order 0 runs
-  EXPECT_NO_THROW(TimeStepper(m, s, "blocks"));
-}
-
 }  // namespace
 }  // namespace nmm::solve
