@@ -17,22 +17,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
 // Penalty 20·E (Shi recommends 10 to 100·E): kn = 2e11 N/m, ks = kn/2.5 with E = 10 GPa.
-SceneDef contact_scene(double h, double friction_deg) {
-  SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
-  JointSetDef js;
-  js.name = "interface";
-  js.friction_deg = friction_deg;
-  js.normal.kn = 2e11;
-  js.shear.ks = 8e10;
-  s.joint_sets.push_back(js);
-  s.interface_set = 0;
-  s.mesh_size = h;
-  s.has_gravity = true;
-  s.gravity = {0, -kG};
-  s.solver.time_step = 1e-3;
-  return s;
-}
+SceneDef contact_scene(double h, double friction_deg) { return test::interface_scene(h, friction_deg); }
 
 using test::box;
 
