@@ -97,19 +97,22 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
                             double d0, double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
   near_pairs_.clear();
-  closed_block_.assign(topo_.next.size(), -1);
+  closed_.pairs.clear();
   for (const Contact& c : committed_)
-    if (c.state != ContactState::open) closed_block_[c.at.vertex] = topo_.block_of[c.at.elem_b];
+    if (c.state != ContactState::open) closed_.pairs.emplace_back(c.at.vertex, topo_.block_of[c.at.elem_b]);
+  std::sort(closed_.pairs.begin(), closed_.pairs.end());
+  closed_.pairs.erase(std::unique(closed_.pairs.begin(), closed_.pairs.end()), closed_.pairs.end());
   eps_ = 1e-10 * w0;
   skin_ = 1e-12 * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_, &near_pairs_);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, &near_pairs_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Transfer: a vertex keeps its state while it stays against the same block (on the same edge,
-  // or having slid onto another edge of that block, e.g. the next element's along a joint).
-  std::map<std::int32_t, const Contact*> before;
-  for (const Contact& c : committed_) before[c.at.vertex] = &c;
+  // or having slid onto another edge of that block, e.g. the next element's along a joint); a
+  // vertex has at most one contact per block (contact_detection.cpp).
+  std::map<std::pair<std::int32_t, std::int32_t>, const Contact*> before;
+  for (const Contact& c : committed_) before[{c.at.vertex, topo_.block_of[c.at.elem_b]}] = &c;
   std::vector<Contact> now;
   now.reserve(found.size());
   for (const ContactCandidate& f : found) {
@@ -120,8 +123,8 @@ void ContactSet::begin_step(const std::vector<double>& xy, const std::vector<Ele
     if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
     if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
     c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
-    const auto it = before.find(f.vertex);
-    if (it != before.end() && topo_.block_of[it->second->at.elem_b] == topo_.block_of[f.elem_b]) {
+    const auto it = before.find({f.vertex, topo_.block_of[f.elem_b]});
+    if (it != before.end()) {
       const Contact& o = *it->second;
       c.state = o.state;
       c.broken = o.broken;

@@ -153,7 +153,7 @@ class ContactSet {
   std::vector<Contact> contacts_;   // this step's, being iterated
   std::vector<Contact> committed_;  // as the last accepted step left them
   std::vector<std::uint8_t> removed_;  // [me] excavated elements (empty: none)
-  std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
+  ClosedContacts closed_;                   // (vertex, block) pairs closed after the last step
   ElementPairs near_pairs_;                 // element pairs within the search distance
   double eps_ = 0;                          // m, gap tolerance (1e-10·w0)
   double skin_ = 0;                         // m, smoothing of the normal spring at touching (1e-12·w0)

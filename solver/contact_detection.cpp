@@ -31,9 +31,15 @@
 //     of a doubled set always end up in tension and the states chatter); the faces of a joint
 //     have opposite normals, so exactly one of them is that side everywhere. Corners always
 //     touch.
-// Each vertex keeps one edge (the angle rule of DDA, here for angle–edge and angle–angle
-// alike): the smallest |g|, then the edge most opposite to P's own normal (the entrance edge),
-// then the lower index. Edge–edge contact is the two vertex–edge contacts of its end points.
+// Each vertex keeps one edge per other block (the angle rule of DDA, here for angle–edge and
+// angle–angle alike): the smallest |g|, then the edge most opposite to P's own normal (the
+// entrance edge), then the lower index. Edge–edge contact is the two vertex–edge contacts of its
+// end points. Per block, as DDA detects contacts block pair by block pair: a corner at a concave
+// junction of two other blocks (the bottom corner of a block standing on a base beside another
+// block) touches both. With one edge per vertex in all, such a corner held only one of them and
+// swapped every step — on the base, it sank and the other face's gap became the smaller; against
+// the face, the base let it rise — a period-2 motion that no solver tolerance removes
+// (tests/test_hard_cases.cpp, BlocksSideBySideBesideMeshNodesAreStill).
 // Where two vertices meet, within 0.01·h, and each picks an edge of the other's element ending
 // at the other (angle–angle: matching vertices on the two faces of a joint, a block corner
 // passing over a vertex of the surface it slides on), one point is one contact: the one that
@@ -50,6 +56,17 @@ namespace nmm::solve {
 
 bool ContactTopology::is_continuous(std::int32_t vertex, std::int32_t element) const {
   return std::binary_search(continuous.begin(), continuous.end(), std::make_pair(vertex, element));
+}
+
+std::pair<std::size_t, std::size_t> ClosedContacts::range(std::int32_t v) const {
+  const auto lo = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(v, std::int32_t{-1}));
+  auto hi = lo;
+  while (hi != pairs.end() && hi->first == v) ++hi;
+  return {static_cast<std::size_t>(lo - pairs.begin()), static_cast<std::size_t>(hi - pairs.begin())};
+}
+
+bool ClosedContacts::with(std::int32_t v, std::int32_t block) const {
+  return std::binary_search(pairs.begin(), pairs.end(), std::make_pair(v, block));
 }
 
 namespace {
@@ -217,7 +234,7 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& xy, double d0,
                                               double shallow,
-                                              const std::vector<std::int32_t>& closed_block,
+                                              const ClosedContacts& closed,
                                               DetectionStats* stats, ElementPairs* near_pairs) {
   std::vector<ContactCandidate> out;
   if (topo.edges.empty()) return out;
@@ -251,7 +268,17 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   std::sort(entries.begin(), entries.end());
 
   std::size_t tested = 0;
-  std::unordered_map<std::int32_t, std::size_t> by_vertex;
+  // (vertex, block of the edge) → index in out
+  auto vb_key = [](std::int32_t v, std::int32_t b) {
+    return (static_cast<std::int64_t>(v) << 32) | static_cast<std::uint32_t>(b);
+  };
+  std::unordered_map<std::int64_t, std::size_t> by_vertex;
+  struct Best {
+    std::int32_t block;
+    ContactCandidate c;
+    double abs, face;
+  };
+  std::vector<Best> bests;
   for (std::int32_t p : topo.vertices) {
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const std::int32_t ea = topo.element_of[p];
@@ -279,19 +306,20 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     // expansion — the other face's vertex there takes over: its depth is that contact's closure,
     // not a new contact's (which must be shallow). mirror_closed: the block of a coincident
     // vertex closed against P's block, or −1.
-    std::int32_t mirror_closed = -1;
-    for (std::int32_t i = topo.mirror_offset[p]; !closed_block.empty() && i < topo.mirror_offset[p + 1]; ++i) {
+    // mirror_closed: the blocks of coincident vertices closed against P's block (at most a few).
+    std::int32_t mirror_closed[4];
+    int n_mirror_closed = 0;
+    for (std::int32_t i = topo.mirror_offset[p]; !closed.pairs.empty() && i < topo.mirror_offset[p + 1]; ++i) {
       const std::int32_t m = topo.mirrors[i];
-      if (closed_block[m] == topo.block_of[ea] &&
+      if (n_mirror_closed < 4 && closed.with(m, topo.block_of[ea]) &&
           std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= 1e-2 * topo.mesh_size)
-        mirror_closed = topo.block_of[topo.element_of[m]];
+        mirror_closed[n_mirror_closed++] = topo.block_of[topo.element_of[m]];
     }
+    const auto [closed_lo, closed_hi] = closed.range(p);
     const auto [ci, cj] = cell_of(px, py);
     const std::int64_t k = key(ci, cj);
     auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
-    bool found = false;
-    ContactCandidate best{};
-    double best_abs = 0, best_face = 0;
+    bests.clear();
     for (; it != entries.end() && it->first == k; ++it) {
       const std::int32_t q2 = it->second, q3 = topo.next[q2];
       const std::int32_t eb = topo.element_of[q2];
@@ -309,8 +337,10 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (omega < -1e-3 || omega > 1 + 1e-3) continue;
       const double g = rx * ex + ry * ey;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
-      const bool was_closed = !closed_block.empty() && (closed_block[p] == topo.block_of[eb] ||
-                                                        mirror_closed == topo.block_of[eb]);
+      const std::int32_t block_b = topo.block_of[eb];
+      bool was_closed = false;
+      for (std::size_t i = closed_lo; i < closed_hi; ++i) was_closed |= closed.pairs[i].second == block_b;
+      for (int i = 0; i < n_mirror_closed; ++i) was_closed |= mirror_closed[i] == block_b;
       const double eps = 1e-9 * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
@@ -324,19 +354,24 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (face > -0.2) continue;
       const double ag = std::abs(g);
       const double tol = 1e-9 * topo.mesh_size;
-      const bool better = !found || ag < best_abs - tol ||
-                          (ag <= best_abs + tol && (face < best_face - 1e-12 ||
-                                                    (face <= best_face + 1e-12 && q2 < best.edge)));
-      if (better) {
-        best = {p, q2, ea, eb, std::clamp(omega, 0.0, 1.0), g};
-        best_abs = ag;
-        best_face = face;
-        found = true;
+      Best* b = nullptr;
+      for (Best& x : bests)
+        if (x.block == block_b) b = &x;
+      const bool better = !b || ag < b->abs - tol ||
+                          (ag <= b->abs + tol && (face < b->face - 1e-12 ||
+                                                  (face <= b->face + 1e-12 && q2 < b->c.edge)));
+      if (!better) continue;
+      if (!b) {
+        bests.push_back({});
+        b = &bests.back();
       }
+      *b = {block_b, {p, q2, ea, eb, std::clamp(omega, 0.0, 1.0), g}, ag, face};
     }
-    if (found) {
-      by_vertex[p] = out.size();
-      out.push_back(best);
+    // In the order of the blocks, so that the output does not depend on the grid's order.
+    std::sort(bests.begin(), bests.end(), [](const Best& a, const Best& b) { return a.block < b.block; });
+    for (const Best& b : bests) {
+      by_vertex[vb_key(p, b.block)] = out.size();
+      out.push_back(b.c);
     }
   }
   // One contact per point of a joint: drop the mirror of a contact between coincident vertices.
@@ -349,13 +384,13 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     const ContactCandidate& a = out[c];
     for (std::int32_t q : {a.edge, topo.next[a.edge]}) {
       if (!near(q, a.vertex)) continue;
-      const auto m = by_vertex.find(q);
+      // q's contact against P's block, if any
+      const auto m = by_vertex.find(vb_key(q, topo.block_of[a.elem_a]));
       if (m == by_vertex.end() || drop[m->second] || drop[c]) continue;
       const ContactCandidate& b = out[m->second];
-      if (topo.block_of[b.elem_b] != topo.block_of[a.elem_a]) continue;
       if (!near(b.edge, a.vertex) && !near(topo.next[b.edge], a.vertex)) continue;
-      const bool a_closed = !closed_block.empty() && closed_block[a.vertex] >= 0;
-      const bool q_closed = !closed_block.empty() && closed_block[q] >= 0;
+      const bool a_closed = closed.with(a.vertex, topo.block_of[a.elem_b]);
+      const bool q_closed = closed.with(q, topo.block_of[b.elem_b]);
       const bool keep_a = a_closed != q_closed ? a_closed : a.vertex < q;
       drop[keep_a ? m->second : c] = 1;
     }
