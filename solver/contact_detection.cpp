@@ -55,7 +55,11 @@
 namespace nmm::solve {
 
 bool ContactTopology::is_continuous(std::int32_t vertex, std::int32_t element) const {
-  return std::binary_search(continuous.begin(), continuous.end(), std::make_pair(vertex, element));
+  if (continuous_offset.empty())
+    return std::binary_search(continuous.begin(), continuous.end(), std::make_pair(vertex, element));
+  for (std::int32_t i = continuous_offset[vertex]; i < continuous_offset[vertex + 1]; ++i)
+    if (continuous[i].second == element) return true;
+  return false;
 }
 
 std::pair<std::size_t, std::size_t> ClosedContacts::range(std::int32_t v) const {
@@ -228,6 +232,9 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
   }
   std::sort(t.continuous.begin(), t.continuous.end());
   t.continuous.erase(std::unique(t.continuous.begin(), t.continuous.end()), t.continuous.end());
+  t.continuous_offset.assign(nv + 1, 0);
+  for (const auto& [v, e] : t.continuous) ++t.continuous_offset[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) t.continuous_offset[v + 1] += t.continuous_offset[v];
   return t;
 }
 
@@ -256,14 +263,30 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^
                                      (static_cast<std::uint64_t>(j) & 0xffffffffu));
   };
+  // Each candidate edge's start, unit tangent and length, once per call (not once per vertex
+  // that meets it: about 25 vertices per edge in a brick wall).
+  struct EdgeGeometry {
+    double x, y, tx, ty, l;
+    std::int32_t q2, element;
+    bool usable;  // not degenerate
+  };
+  std::vector<EdgeGeometry> geometry(topo.edges.size());
+  for (std::size_t k = 0; k < topo.edges.size(); ++k) {
+    const std::int32_t q2 = topo.edges[k], q3 = topo.next[q2];
+    const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
+    const double l = std::hypot(dx, dy);
+    geometry[k] = {xy[2 * q2], xy[2 * q2 + 1], dx / l, dy / l, l, q2, topo.element_of[q2],
+                   l > 1e-12 * topo.mesh_size};
+  }
+  // (cell key, index into topo.edges)
   std::vector<std::pair<std::int64_t, std::int32_t>> entries;
-  entries.reserve(topo.edges.size() * 2);
-  for (std::int32_t e : topo.edges) {
-    const std::int32_t f = topo.next[e];
+  entries.reserve(topo.edges.size() * 4);
+  for (std::size_t k = 0; k < topo.edges.size(); ++k) {
+    const std::int32_t e = topo.edges[k], f = topo.next[e];
     const auto [i0, j0] = cell_of(std::min(xy[2 * e], xy[2 * f]) - d0, std::min(xy[2 * e + 1], xy[2 * f + 1]) - d0);
     const auto [i1, j1] = cell_of(std::max(xy[2 * e], xy[2 * f]) + d0, std::max(xy[2 * e + 1], xy[2 * f + 1]) + d0);
     for (std::int64_t i = i0; i <= i1; ++i)
-      for (std::int64_t j = j0; j <= j1; ++j) entries.emplace_back(key(i, j), e);
+      for (std::int64_t j = j0; j <= j1; ++j) entries.emplace_back(key(i, j), static_cast<std::int32_t>(k));
   }
   std::sort(entries.begin(), entries.end());
 
@@ -304,9 +327,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     // One contact is kept per joint point (the mirror rule below). When the kept one is lost —
     // its vertex slid a fraction of a µm off the other face, as a corner can with Poisson
     // expansion — the other face's vertex there takes over: its depth is that contact's closure,
-    // not a new contact's (which must be shallow). mirror_closed: the block of a coincident
-    // vertex closed against P's block, or −1.
-    // mirror_closed: the blocks of coincident vertices closed against P's block (at most a few).
+    // not a new contact's (which must be shallow). mirror_closed: the blocks of coincident vertices closed against P's block (at most a few).
     std::int32_t mirror_closed[4];
     int n_mirror_closed = 0;
     for (std::int32_t i = topo.mirror_offset[p]; !closed.pairs.empty() && i < topo.mirror_offset[p + 1]; ++i) {
@@ -321,21 +342,22 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
     bests.clear();
     for (; it != entries.end() && it->first == k; ++it) {
-      const std::int32_t q2 = it->second, q3 = topo.next[q2];
-      const std::int32_t eb = topo.element_of[q2];
-      if (eb == ea || topo.is_continuous(p, eb)) continue;
+      const EdgeGeometry& eg = geometry[static_cast<std::size_t>(it->second)];
+      const std::int32_t q2 = eg.q2, eb = eg.element;
+      if (eb == ea) continue;
       ++tested;
-      const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
-      const double l = std::hypot(dx, dy);
-      if (!(l > 1e-12 * topo.mesh_size)) continue;
-      const double tx = dx / l, ty = dy / l, ex = ty, ey = -tx;
-      const double rx = px - xy[2 * q2], ry = py - xy[2 * q2 + 1];
-      const double omega = (rx * tx + ry * ty) / l;
+      if (!eg.usable) continue;
+      const double tx = eg.tx, ty = eg.ty, ex = ty, ey = -tx;
+      const double rx = px - eg.x, ry = py - eg.y;
+      const double omega = (rx * tx + ry * ty) / eg.l;
       // A little past the ends: a vertex right above a vertex of the other face projects onto
       // both neighbouring edges at ω ≈ 0 or 1 and lies inside only one of their elements;
       // round-off must not push it off that one (the point is clamped onto the edge).
       if (omega < -1e-3 || omega > 1 + 1e-3) continue;
       const double g = rx * ex + ry * ey;
+      // Cheap geometric rejections first; continuity (a binary search) only for what is near.
+      if (g > d0 || (g < -d0 && g < -p_max)) continue;
+      if (topo.is_continuous(p, eb)) continue;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
       const std::int32_t block_b = topo.block_of[eb];
       bool was_closed = false;

@@ -27,6 +27,7 @@ struct ContactTopology {
   /// Sorted (vertex, element) pairs that are continuous: the vertex coincides with a vertex of
   /// that element and both see the same covers with the same weights there.
   std::vector<std::pair<std::int32_t, std::int32_t>> continuous;
+  std::vector<std::int32_t> continuous_offset;  ///< [v+1] CSR of `continuous` by vertex
   /// CSR over loop vertices: the candidate vertices of other blocks that start at the same point
   /// (the two faces of a joint at one of its points, which make one contact between them).
   std::vector<std::int32_t> mirror_offset, mirrors;
