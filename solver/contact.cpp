@@ -98,23 +98,36 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   }
 }
 
+ClosedContacts ContactSet::closed_contacts() const {
+  ClosedContacts closed;
+  for (const ContactHistory& h : history_)
+    if (h.state != ContactState::open) closed.pairs.emplace_back(h.vertex, h.block);
+  std::sort(closed.pairs.begin(), closed.pairs.end());
+  closed.pairs.erase(std::unique(closed.pairs.begin(), closed.pairs.end()), closed.pairs.end());
+  return closed;
+}
+
 void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& shapes, double d0,
                             double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
   near_pairs_.clear();
-  closed_block_.assign(topo_.next.size(), -1);
-  for (const ContactHistory& h : history_)
-    if (h.state != ContactState::open) closed_block_[h.vertex] = h.block;
+  closed_ = closed_contacts();
   eps_ = kContactTolerances.open_gap * w0;
   skin_ = kContactTolerances.skin * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_block_, &stats_, &near_pairs_);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, &near_pairs_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Transfer: a vertex keeps its state while it stays against the same block (on the same edge,
-  // or having slid onto another edge of that block, e.g. the next element's along a joint).
+  // or having slid onto another edge of that block, e.g. the next element's along a joint); a
+  // vertex has at most one contact per block (contact_detection.cpp), so (vertex, block) keys
+  // the history: history_at_[v] heads a chain through history_next_ of v's entries.
   history_at_.resize(topo_.next.size(), -1);
-  for (std::size_t i = 0; i < history_.size(); ++i) history_at_[history_[i].vertex] = static_cast<std::int32_t>(i);
+  history_next_.resize(history_.size());
+  for (std::size_t i = history_.size(); i-- > 0;) {
+    history_next_[i] = history_at_[history_[i].vertex];
+    history_at_[history_[i].vertex] = static_cast<std::int32_t>(i);
+  }
   // The last accepted step's rows stay readable (accepted()) while this attempt rebuilds its own
   // in the other vector: no copies.
   if (rows_accepted_) std::swap(accepted_, contacts_);
@@ -130,8 +143,9 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
     if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
     if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
     c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
-    const std::int32_t at = history_at_[f.vertex];
-    if (at >= 0 && history_[at].block == topo_.block_of[f.elem_b]) {
+    std::int32_t at = history_at_[f.vertex];
+    while (at >= 0 && history_[at].block != topo_.block_of[f.elem_b]) at = history_next_[at];
+    if (at >= 0) {
       const ContactHistory& o = history_[at];
       c.state = o.state;
       c.broken = o.broken;

@@ -95,6 +95,9 @@ class ContactSet {
   const std::vector<Contact>& contacts() const { return contacts_; }
   /// What the last accepted step left for the next (one entry per contact of accepted()).
   const std::vector<ContactHistory>& history() const { return history_; }
+  /// The (vertex, block) pairs in closed contact after the last accepted step (what contact
+  /// detection is given to let a vertex stay inside a block it was against).
+  ClosedContacts closed_contacts() const;
   /// The contacts of the last accepted step (contacts() unless an attempt was cut since).
   const std::vector<Contact>& accepted() const { return rows_accepted_ ? contacts_ : accepted_; }
   /// A restart: the next step starts from this history; `rows` (the accepted step's contacts,
@@ -190,9 +193,10 @@ class ContactSet {
   std::vector<Contact> accepted_;   // the last accepted step's, while contacts_ is a later attempt's
   bool rows_accepted_ = false;      // contacts_ are the last accepted step's
   std::vector<ContactHistory> history_;  // what the last accepted step left for the next
-  std::vector<std::int32_t> history_at_;  // [v] index into history_ of vertex v, or -1 (scratch)
+  std::vector<std::int32_t> history_at_;    // [v] first index into history_ of vertex v, or -1 (scratch)
+  std::vector<std::int32_t> history_next_;  // [i] next history_ entry of the same vertex, or -1
   std::vector<std::uint8_t> removed_;  // [me] excavated elements (empty: none)
-  std::vector<std::int32_t> closed_block_;  // [v] block v is in closed contact with, or -1
+  ClosedContacts closed_;                   // (vertex, block) pairs closed after the last step
   ElementPairs near_pairs_;                 // element pairs within the search distance
   double eps_ = 0;                          // m, gap tolerance (contact_tolerances.h open_gap·w0)
   double skin_ = 0;                         // m, smoothing of the normal spring (skin·w0)

@@ -31,9 +31,15 @@
 //     of a doubled set always end up in tension and the states chatter); the faces of a joint
 //     have opposite normals, so exactly one of them is that side everywhere. Corners always
 //     touch.
-// Each vertex keeps one edge (the angle rule of DDA, here for angle–edge and angle–angle
-// alike): the smallest |g|, then the edge most opposite to P's own normal (the entrance edge),
-// then the lower index. Edge–edge contact is the two vertex–edge contacts of its end points.
+// Each vertex keeps one edge per other block (the angle rule of DDA, here for angle–edge and
+// angle–angle alike): the smallest |g|, then the edge most opposite to P's own normal (the
+// entrance edge), then the lower index. Edge–edge contact is the two vertex–edge contacts of its
+// end points. Per block, as DDA detects contacts block pair by block pair: a corner at a concave
+// junction of two other blocks (the bottom corner of a block standing on a base beside another
+// block) touches both. With one edge per vertex in all, such a corner held only one of them and
+// swapped every step — on the base, it sank and the other face's gap became the smaller; against
+// the face, the base let it rise — a period-2 motion that no solver tolerance removes
+// (tests/test_hard_cases.cpp, BlocksSideBySideBesideMeshNodesAreStill).
 // Where two vertices meet, within 0.01·h, and each picks an edge of the other's element ending
 // at the other (angle–angle: matching vertices on the two faces of a joint, a block corner
 // passing over a vertex of the surface it slides on), one point is one contact: the one that
@@ -51,7 +57,22 @@
 namespace nmm::solve {
 
 bool ContactTopology::is_continuous(std::int32_t vertex, std::int32_t element) const {
-  return std::binary_search(continuous.begin(), continuous.end(), std::make_pair(vertex, element));
+  if (continuous_offset.empty())
+    return std::binary_search(continuous.begin(), continuous.end(), std::make_pair(vertex, element));
+  for (std::int32_t i = continuous_offset[vertex]; i < continuous_offset[vertex + 1]; ++i)
+    if (continuous[i].second == element) return true;
+  return false;
+}
+
+std::pair<std::size_t, std::size_t> ClosedContacts::range(std::int32_t v) const {
+  const auto lo = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(v, std::int32_t{-1}));
+  auto hi = lo;
+  while (hi != pairs.end() && hi->first == v) ++hi;
+  return {static_cast<std::size_t>(lo - pairs.begin()), static_cast<std::size_t>(hi - pairs.begin())};
+}
+
+bool ClosedContacts::with(std::int32_t v, std::int32_t block) const {
+  return std::binary_search(pairs.begin(), pairs.end(), std::make_pair(v, block));
 }
 
 namespace {
@@ -213,13 +234,16 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
   }
   std::sort(t.continuous.begin(), t.continuous.end());
   t.continuous.erase(std::unique(t.continuous.begin(), t.continuous.end()), t.continuous.end());
+  t.continuous_offset.assign(nv + 1, 0);
+  for (const auto& [v, e] : t.continuous) ++t.continuous_offset[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) t.continuous_offset[v + 1] += t.continuous_offset[v];
   return t;
 }
 
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& xy, double d0,
                                               double shallow,
-                                              const std::vector<std::int32_t>& closed_block,
+                                              const ClosedContacts& closed,
                                               DetectionStats* stats, ElementPairs* near_pairs) {
   std::vector<ContactCandidate> out;
   if (topo.edges.empty()) return out;
@@ -242,19 +266,45 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^
                                      (static_cast<std::uint64_t>(j) & 0xffffffffu));
   };
+  // Each candidate edge's start, unit tangent and length, once per call (not once per vertex
+  // that meets it: about 25 vertices per edge in a brick wall).
+  struct EdgeGeometry {
+    double x, y, tx, ty, l;
+    std::int32_t q2, element;
+    bool usable;  // not degenerate
+  };
+  std::vector<EdgeGeometry> geometry(topo.edges.size());
+  for (std::size_t k = 0; k < topo.edges.size(); ++k) {
+    const std::int32_t q2 = topo.edges[k], q3 = topo.next[q2];
+    const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
+    const double l = std::hypot(dx, dy);
+    geometry[k] = {xy[2 * q2], xy[2 * q2 + 1], dx / l, dy / l, l, q2, topo.element_of[q2],
+                   l > tl.degenerate_edge * topo.mesh_size};
+  }
+  // (cell key, index into topo.edges)
   std::vector<std::pair<std::int64_t, std::int32_t>> entries;
-  entries.reserve(topo.edges.size() * 2);
-  for (std::int32_t e : topo.edges) {
-    const std::int32_t f = topo.next[e];
+  entries.reserve(topo.edges.size() * 4);
+  for (std::size_t k = 0; k < topo.edges.size(); ++k) {
+    const std::int32_t e = topo.edges[k], f = topo.next[e];
     const auto [i0, j0] = cell_of(std::min(xy[2 * e], xy[2 * f]) - d0, std::min(xy[2 * e + 1], xy[2 * f + 1]) - d0);
     const auto [i1, j1] = cell_of(std::max(xy[2 * e], xy[2 * f]) + d0, std::max(xy[2 * e + 1], xy[2 * f + 1]) + d0);
     for (std::int64_t i = i0; i <= i1; ++i)
-      for (std::int64_t j = j0; j <= j1; ++j) entries.emplace_back(key(i, j), e);
+      for (std::int64_t j = j0; j <= j1; ++j) entries.emplace_back(key(i, j), static_cast<std::int32_t>(k));
   }
   std::sort(entries.begin(), entries.end());
 
   std::size_t tested = 0;
-  std::unordered_map<std::int32_t, std::size_t> by_vertex;
+  // (vertex, block of the edge) → index in out
+  auto vb_key = [](std::int32_t v, std::int32_t b) {
+    return (static_cast<std::int64_t>(v) << 32) | static_cast<std::uint32_t>(b);
+  };
+  std::unordered_map<std::int64_t, std::size_t> by_vertex;
+  struct Best {
+    std::int32_t block;
+    ContactCandidate c;
+    double abs, face;
+  };
+  std::vector<Best> bests;
   for (std::int32_t p : topo.vertices) {
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const std::int32_t ea = topo.element_of[p];
@@ -280,40 +330,42 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     // One contact is kept per joint point (the mirror rule below). When the kept one is lost —
     // its vertex slid a fraction of a µm off the other face, as a corner can with Poisson
     // expansion — the other face's vertex there takes over: its depth is that contact's closure,
-    // not a new contact's (which must be shallow). mirror_closed: the block of a coincident
-    // vertex closed against P's block, or −1.
-    std::int32_t mirror_closed = -1;
-    for (std::int32_t i = topo.mirror_offset[p]; !closed_block.empty() && i < topo.mirror_offset[p + 1]; ++i) {
+    // not a new contact's (which must be shallow). mirror_closed: the blocks of coincident vertices closed against P's block (at most a few).
+    std::int32_t mirror_closed[4];
+    int n_mirror_closed = 0;
+    for (std::int32_t i = topo.mirror_offset[p]; !closed.pairs.empty() && i < topo.mirror_offset[p + 1]; ++i) {
       const std::int32_t m = topo.mirrors[i];
-      if (closed_block[m] == topo.block_of[ea] &&
+      if (n_mirror_closed < 4 && closed.with(m, topo.block_of[ea]) &&
           std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= tl.same_point * topo.mesh_size)
-        mirror_closed = topo.block_of[topo.element_of[m]];
+        mirror_closed[n_mirror_closed++] = topo.block_of[topo.element_of[m]];
     }
+    const auto [closed_lo, closed_hi] = closed.range(p);
     const auto [ci, cj] = cell_of(px, py);
     const std::int64_t k = key(ci, cj);
     auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
-    bool found = false;
-    ContactCandidate best{};
-    double best_abs = 0, best_face = 0;
+    bests.clear();
     for (; it != entries.end() && it->first == k; ++it) {
-      const std::int32_t q2 = it->second, q3 = topo.next[q2];
-      const std::int32_t eb = topo.element_of[q2];
-      if (eb == ea || topo.is_continuous(p, eb)) continue;
+      const EdgeGeometry& eg = geometry[static_cast<std::size_t>(it->second)];
+      const std::int32_t q2 = eg.q2, eb = eg.element;
+      if (eb == ea) continue;
       ++tested;
-      const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
-      const double l = std::hypot(dx, dy);
-      if (!(l > tl.degenerate_edge * topo.mesh_size)) continue;
-      const double tx = dx / l, ty = dy / l, ex = ty, ey = -tx;
-      const double rx = px - xy[2 * q2], ry = py - xy[2 * q2 + 1];
-      const double omega = (rx * tx + ry * ty) / l;
+      if (!eg.usable) continue;
+      const double tx = eg.tx, ty = eg.ty, ex = ty, ey = -tx;
+      const double rx = px - eg.x, ry = py - eg.y;
+      const double omega = (rx * tx + ry * ty) / eg.l;
       // A little past the ends: a vertex right above a vertex of the other face projects onto
       // both neighbouring edges at ω ≈ 0 or 1 and lies inside only one of their elements;
       // round-off must not push it off that one (the point is clamped onto the edge).
       if (omega < -tl.beside_edge || omega > 1 + tl.beside_edge) continue;
       const double g = rx * ex + ry * ey;
+      // Cheap geometric rejections first; continuity (a binary search) only for what is near.
+      if (g > d0 || (g < -d0 && g < -p_max)) continue;
+      if (topo.is_continuous(p, eb)) continue;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
-      const bool was_closed = !closed_block.empty() && (closed_block[p] == topo.block_of[eb] ||
-                                                        mirror_closed == topo.block_of[eb]);
+      const std::int32_t block_b = topo.block_of[eb];
+      bool was_closed = false;
+      for (std::size_t i = closed_lo; i < closed_hi; ++i) was_closed |= closed.pairs[i].second == block_b;
+      for (int i = 0; i < n_mirror_closed; ++i) was_closed |= mirror_closed[i] == block_b;
       const double eps = tl.gap_round_off * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
@@ -327,19 +379,24 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (face > tl.facing_cos) continue;
       const double ag = std::abs(g);
       const double tol = tl.gap_round_off * topo.mesh_size;
-      const bool better = !found || ag < best_abs - tol ||
-                          (ag <= best_abs + tol && (face < best_face - tl.facing_tie ||
-                                                    (face <= best_face + tl.facing_tie && q2 < best.edge)));
-      if (better) {
-        best = {p, q2, ea, eb, std::clamp(omega, 0.0, 1.0), g};
-        best_abs = ag;
-        best_face = face;
-        found = true;
+      Best* b = nullptr;
+      for (Best& x : bests)
+        if (x.block == block_b) b = &x;
+      const bool better = !b || ag < b->abs - tol ||
+                          (ag <= b->abs + tol && (face < b->face - tl.facing_tie ||
+                                                  (face <= b->face + tl.facing_tie && q2 < b->c.edge)));
+      if (!better) continue;
+      if (!b) {
+        bests.push_back({});
+        b = &bests.back();
       }
+      *b = {block_b, {p, q2, ea, eb, std::clamp(omega, 0.0, 1.0), g}, ag, face};
     }
-    if (found) {
-      by_vertex[p] = out.size();
-      out.push_back(best);
+    // In the order of the blocks, so that the output does not depend on the grid's order.
+    std::sort(bests.begin(), bests.end(), [](const Best& a, const Best& b) { return a.block < b.block; });
+    for (const Best& b : bests) {
+      by_vertex[vb_key(p, b.block)] = out.size();
+      out.push_back(b.c);
     }
   }
   // One contact per point of a joint: drop the mirror of a contact between coincident vertices.
@@ -352,13 +409,13 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     const ContactCandidate& a = out[c];
     for (std::int32_t q : {a.edge, topo.next[a.edge]}) {
       if (!near(q, a.vertex)) continue;
-      const auto m = by_vertex.find(q);
+      // q's contact against P's block, if any
+      const auto m = by_vertex.find(vb_key(q, topo.block_of[a.elem_a]));
       if (m == by_vertex.end() || drop[m->second] || drop[c]) continue;
       const ContactCandidate& b = out[m->second];
-      if (topo.block_of[b.elem_b] != topo.block_of[a.elem_a]) continue;
       if (!near(b.edge, a.vertex) && !near(topo.next[b.edge], a.vertex)) continue;
-      const bool a_closed = !closed_block.empty() && closed_block[a.vertex] >= 0;
-      const bool q_closed = !closed_block.empty() && closed_block[q] >= 0;
+      const bool a_closed = closed.with(a.vertex, topo.block_of[a.elem_b]);
+      const bool q_closed = closed.with(q, topo.block_of[b.elem_b]);
       const bool keep_a = a_closed != q_closed ? a_closed : a.vertex < q;
       drop[keep_a ? m->second : c] = 1;
     }

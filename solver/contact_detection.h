@@ -27,6 +27,7 @@ struct ContactTopology {
   /// Sorted (vertex, element) pairs that are continuous: the vertex coincides with a vertex of
   /// that element and both see the same covers with the same weights there.
   std::vector<std::pair<std::int32_t, std::int32_t>> continuous;
+  std::vector<std::int32_t> continuous_offset;  ///< [v+1] CSR of `continuous` by vertex
   /// CSR over loop vertices: the candidate vertices of other blocks that start at the same point
   /// (the two faces of a joint at one of its points, which make one contact between them).
   std::vector<std::int32_t> mirror_offset, mirrors;
@@ -54,20 +55,30 @@ struct DetectionStats {
   std::size_t contacts = 0;      ///< candidates kept
 };
 
+/// The blocks each loop vertex was in closed contact with after the last step: sorted, unique
+/// (vertex, block) pairs (a vertex at a concave junction can be closed against two blocks).
+struct ClosedContacts {
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  /// [first, last) of vertex v's pairs.
+  std::pair<std::size_t, std::size_t> range(std::int32_t v) const;
+  bool with(std::int32_t v, std::int32_t block) const;
+};
+
 /// Element pairs (a, b) with a vertex of a and an edge of b within the search distance, facing
 /// or not: the pairs that may come into contact soon (for the sparsity pattern). Sorted, unique.
 using ElementPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
 
-/// Finds, for every candidate vertex, the one edge it faces within distance d0 (m), by a uniform
-/// grid over the edges (cost about linear in the number of edges) and the narrow-phase rules.
-/// `closed_block[v]` is the block vertex v was in closed contact with after the last step (-1
-/// if none): such a vertex may be inside that block's elements by up to 0.3·h; any other by up
-/// to `shallow` (m) at most, a depth only a contact can explain (a vertex deeper inside without
-/// having come in through a contact is near that edge from the wrong side).
+/// Finds, for every candidate vertex and every other block, the one edge of that block it faces
+/// within distance d0 (m), by a uniform grid over the edges (cost about linear in the number of
+/// edges) and the narrow-phase rules. `closed` lists the blocks each vertex was in closed contact
+/// with after the last step: against such a block a vertex may be inside its elements by up to
+/// 0.3·h; against any other by up to `shallow` (m) at most, a depth only a contact can explain (a
+/// vertex deeper inside without having come in through a contact is near that edge from the
+/// wrong side).
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& loop_xy, double d0,
                                               double shallow,
-                                              const std::vector<std::int32_t>& closed_block,
+                                              const ClosedContacts& closed,
                                               DetectionStats* stats = nullptr,
                                               ElementPairs* near = nullptr);
 

@@ -1,0 +1,104 @@
+// Contact detection alone (issue 11: "contact detection must cost a small fraction of a step"):
+// the broad and narrow phase of solver/contact_detection.cpp on the staggered brick walls of
+// contact_bench after 3 static steps, repeated on the same configuration.
+//
+//   detection_bench [--sizes 10,20,30,50] [--reps 20] [--csv FILE]
+//
+// Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), fastest and median of `reps`
+// calls: on a machine shared with other jobs the wall-clock time of a call includes the time
+// the thread waits for a core, its CPU time does not. The counts (candidate edges and vertices,
+// vertex–edge pairs reaching the narrow phase, contacts, element pairs near) do not depend on
+// the machine. The step time to compare with is contact_bench's (bench/results/contact_bench.csv).
+#include <time.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "contact_detection.h"
+#include "cover_cutter.h"
+#include "scene_builders.h"
+#include "time_stepper.h"
+
+namespace {
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+std::vector<int> parse_sizes(const char* s) {
+  std::vector<int> v;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(std::stoi(item));
+  return v;
+}
+
+double load_average() {
+  std::ifstream f("/proc/loadavg");
+  double l = -1;
+  f >> l;
+  return l;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes{10, 20, 30, 50};
+  int reps = 20;
+  std::string csv_path = "detection_bench.csv";
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = parse_sizes(argv[++i]);
+    else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
+    else {
+      std::fprintf(stderr, "usage: detection_bench [--sizes 10,20,30,50] [--reps 20] [--csv FILE]\n");
+      return 2;
+    }
+  }
+  std::ofstream csv(csv_path);
+  const char* header =
+      "wall_n,blocks,elements,candidate_edges,candidate_vertices,search_distance_m,pairs_tested,"
+      "contacts,near_pairs,fastest_ms,median_ms,us_per_edge,load_average\n";
+  csv << header;
+  std::fputs(header, stdout);
+  for (int n : sizes) {
+    const nmm::SceneDef s = nmm::test::brick_wall(n, false);
+    const nmm::Mesh m = nmm::pre::build_mesh(s, "wall");
+    nmm::solve::TimeStepper st(m, s, "wall");
+    st.set_threads(1);
+    st.run_until(3e-3, [](std::int64_t) {});
+    const nmm::solve::ContactTopology topo = nmm::solve::build_contact_topology(m);
+    // The closed contacts of the last step, as the solver passes them.
+    const nmm::solve::ClosedContacts closed = st.contacts().closed_contacts();
+    // As time_stepper.cpp: search distance 2.5·g2·w0, new contacts at most 1e-3·h deep.
+    const double d0 = 2.5 * s.solver.max_displacement_ratio * st.model_half_size();
+    std::vector<double> times;
+    std::size_t contacts = 0, near = 0;
+    nmm::solve::DetectionStats stats;
+    for (int r = 0; r < reps; ++r) {
+      nmm::solve::DetectionStats one;
+      nmm::solve::ElementPairs pairs;
+      const double t0 = cpu_seconds();
+      const auto found = nmm::solve::detect_contacts(topo, st.loop_xy(), d0, 1e-3 * s.mesh_size, closed, &one, &pairs);
+      times.push_back(cpu_seconds() - t0);
+      contacts = found.size();
+      near = pairs.size();
+      stats = one;
+    }
+    std::sort(times.begin(), times.end());
+    char line[400];
+    std::snprintf(line, sizeof line, "%d,%zu,%zu,%zu,%zu,%.4f,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.2f\n", n,
+                  m.block_count(), m.element_count(), topo.edges.size(), topo.vertices.size(), d0,
+                  stats.pairs_tested, contacts, near, 1e3 * times.front(), 1e3 * times[times.size() / 2],
+                  1e6 * times.front() / static_cast<double>(topo.edges.size()), load_average());
+    csv << line;
+    std::fputs(line, stdout);
+    std::fflush(stdout);
+  }
+  return 0;
+}
