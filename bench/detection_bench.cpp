@@ -9,42 +9,21 @@
 // the thread waits for a core, its CPU time does not. The counts (candidate edges and vertices,
 // vertex–edge pairs reaching the narrow phase, contacts, element pairs near) do not depend on
 // the machine. The step time to compare with is contact_bench's (bench/results/contact_bench.csv).
-#include <time.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "contact_detection.h"
+#include "bench_common.h"
 #include "cover_cutter.h"
 #include "scene_builders.h"
 #include "time_stepper.h"
 
 namespace {
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-std::vector<int> parse_sizes(const char* s) {
-  std::vector<int> v;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ',')) v.push_back(std::stoi(item));
-  return v;
-}
-
-double load_average() {
-  std::ifstream f("/proc/loadavg");
-  double l = -1;
-  f >> l;
-  return l;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,7 +31,7 @@ int main(int argc, char** argv) {
   int reps = 20;
   std::string csv_path = "detection_bench.csv";
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = parse_sizes(argv[++i]);
+    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
     else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
@@ -83,9 +62,9 @@ int main(int argc, char** argv) {
     for (int r = 0; r < reps; ++r) {
       nmm::solve::DetectionStats one;
       nmm::solve::ElementPairs pairs;
-      const double t0 = cpu_seconds();
+      const double t0 = nmm::bench::thread_cpu_seconds();
       const auto found = nmm::solve::detect_contacts(topo, st.loop_xy(), d0, 1e-3 * s.mesh_size, closed, &one, &pairs);
-      times.push_back(cpu_seconds() - t0);
+      times.push_back(nmm::bench::thread_cpu_seconds() - t0);
       contacts = found.size();
       near = pairs.size();
       stats = one;
@@ -95,7 +74,7 @@ int main(int argc, char** argv) {
     std::snprintf(line, sizeof line, "%d,%zu,%zu,%zu,%zu,%.4f,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.2f\n", n,
                   m.block_count(), m.element_count(), topo.edges.size(), topo.vertices.size(), d0,
                   stats.pairs_tested, contacts, near, 1e3 * times.front(), 1e3 * times[times.size() / 2],
-                  1e6 * times.front() / static_cast<double>(topo.edges.size()), load_average());
+                  1e6 * times.front() / static_cast<double>(topo.edges.size()), nmm::bench::load_average());
     csv << line;
     std::fputs(line, stdout);
     std::fflush(stdout);

@@ -30,12 +30,12 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <Eigen/CholmodSupport>
 
+#include "bench_common.h"
 #include "cover_cutter.h"
 #include "scene_builders.h"
 #include "time_stepper.h"
@@ -44,21 +44,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Sparse = nmm::solve::SystemMatrix::Sparse;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-std::vector<int> parse_sizes(const char* s) {
-  std::vector<int> v;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ',')) v.push_back(std::stoi(item));
-  return v;
-}
-
-double load_average() {
-  std::ifstream f("/proc/loadavg");
-  double l = -1;
-  f >> l;
-  return l;
-}
 
 struct Ordered {
   double factor_nnz = 0, flops = 0, analyse_ms = 0, factor_ms = 0;
@@ -124,7 +109,7 @@ int main(int argc, char** argv) {
   int reps = 3;
   std::string csv_path = "matrix_bench.csv";
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = parse_sizes(argv[++i]);
+    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
     else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
@@ -212,7 +197,7 @@ int main(int argc, char** argv) {
         std::snprintf(line, sizeof line, "%d,%s,%.4f,%ld,%ld,%.2f,%s,%s,%.0f,%.1f,%.2f,%.2f,%.2f,%.2f%s\n", n,
                       c.scene.c_str(), c.h, static_cast<long>(c.a.rows()), static_cast<long>(c.a.nonZeros()),
                       c.a.nonZeros() / nu, o.name, r.selected.c_str(), r.factor_nnz, r.factor_nnz / nu,
-                      r.flops / 1e6, r.analyse_ms, r.factor_ms, load_average(), r.ok ? "" : ",not positive definite");
+                      r.flops / 1e6, r.analyse_ms, r.factor_ms, nmm::bench::load_average(), r.ok ? "" : ",not positive definite");
         csv << line;
         std::fputs(line, stdout);
         std::fflush(stdout);
