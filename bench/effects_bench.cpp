@@ -32,19 +32,13 @@
 #include <vector>
 
 #include "cover_cutter.h"
+#include "scene_builders.h"
 #include "time_stepper.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-nmm::BodyDef box(double x0, double y0, double x1, double y1) {
-  nmm::BodyDef b;
-  b.material = 0;
-  b.outer = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  return b;
-}
 
 // A square body of about `unknowns` unknowns (h = 1 m, as solver_bench), under gravity,
 // dynamic, held by fixed points along its bottom.
@@ -68,7 +62,7 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   js.normal.kn = 2e11;
   js.shear.ks = 8e10;
   s.joint_sets.push_back(js);
-  s.bodies.push_back(box(0, 0, side, side));
+  s.bodies.push_back(nmm::test::box(0, 0, side, side));
   s.mesh_size = h;
   s.has_gravity = o.gravity;
   s.gravity = {0, o.gravity ? -9.81 : 0.0};
@@ -80,7 +74,7 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   for (int i = 0; i < o.loads; ++i)
     s.loads.push_back({{0.1 + (side - 0.2) * i / std::max(o.loads - 1, 1), side - 0.1}, {1e3, -1e4}});
   if (o.joint_outside) s.joints.push_back({0, {{-5, 0}, {-5, side}}});
-  if (o.far_body) s.bodies.push_back(box(side + 50, 0, side + 51, 1));
+  if (o.far_body) s.bodies.push_back(nmm::test::box(side + 50, 0, side + 51, 1));
   if (side_out) *side_out = side;
   return s;
 }
@@ -326,25 +320,7 @@ int main(int argc, char** argv) {
   write(csv, c1);
   {
     const int n = quick ? 5 : 10;
-    nmm::SceneDef s;
-    s.materials.push_back({"rock", 2650, 1e10, 0.25});
-    nmm::JointSetDef js;
-    js.name = "mortar";
-    js.friction_deg = 35;
-    js.normal.kn = 2e11;
-    js.shear.ks = 8e10;
-    s.joint_sets.push_back(js);
-    s.interface_set = 0;
-    s.mesh_size = 0.5;
-    s.has_gravity = true;
-    s.gravity = {0, -9.81};
-    s.bodies.push_back(box(-1, -1, n + 1.5, 0));
-    for (double x = -0.9; x < n + 1.4; x += 0.5) s.fixed_points.push_back({x, -0.9});
-    for (int row = 0; row < n; ++row) {
-      const double shift = (row % 2) ? 0.5 : 0.0;
-      for (int i = 0; i < n; ++i) s.bodies.push_back(box(i + shift, 0.5 * row, i + shift + 1, 0.5 * row + 0.5));
-    }
-    s.solver.time_step = 1e-3;
+    const nmm::SceneDef s = nmm::test::brick_wall(n, true);  // the wall of contact_bench
     char name[64];
     std::snprintf(name, sizeof name, "brick wall N = %d", n);
     Timed wall(s, "c", name, quick ? 10 : 20);

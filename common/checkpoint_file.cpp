@@ -12,6 +12,7 @@
 #include <set>
 #include <system_error>
 
+#include "byte_fields.h"
 #include "crc32.h"
 #include "error.h"
 
@@ -23,19 +24,10 @@ constexpr char kMagic[8] = {'N', 'M', 'M', 'S', 'T', 'A', 'T', 'E'};
 constexpr std::uint32_t kEndianMarker = 0x01020304u;
 constexpr std::size_t kHeaderSize = 32, kEntrySize = 32, kHeaderCrcOffset = 20;
 
-void put_u32(std::string& s, std::size_t at, std::uint32_t v) { std::memcpy(&s[at], &v, 4); }
-void put_u64(std::string& s, std::size_t at, std::uint64_t v) { std::memcpy(&s[at], &v, 8); }
-std::uint32_t get_u32(const std::string& s, std::size_t at) {
-  std::uint32_t v;
-  std::memcpy(&v, s.data() + at, 4);
-  return v;
-}
-std::uint64_t get_u64(const std::string& s, std::size_t at) {
-  std::uint64_t v;
-  std::memcpy(&v, s.data() + at, 8);
-  return v;
-}
-
+using bytes::get_u32;
+using bytes::get_u64;
+using bytes::put_u32;
+using bytes::put_u64;
 
 bool tag_ok(const char* raw, std::string& tag) {
   tag.clear();

@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "byte_fields.h"
 #include "crc32.h"
 #include "error.h"
 
@@ -116,24 +117,10 @@ constexpr const char* kTagScene = "SCENE";
 
 // ---- little helpers ---------------------------------------------------------------------------
 
-// Values are copied with memcpy in host order: the format is little-endian and the byte order
-// marker makes a reader on a big-endian host refuse the file instead of misreading it.
-void put_u32(std::string& out, std::size_t pos, std::uint32_t v) {
-  std::memcpy(&out[pos], &v, 4);
-}
-void put_u64(std::string& out, std::size_t pos, std::uint64_t v) {
-  std::memcpy(&out[pos], &v, 8);
-}
-std::uint32_t get_u32(const std::string& in, std::size_t pos) {
-  std::uint32_t v;
-  std::memcpy(&v, in.data() + pos, 4);
-  return v;
-}
-std::uint64_t get_u64(const std::string& in, std::size_t pos) {
-  std::uint64_t v;
-  std::memcpy(&v, in.data() + pos, 8);
-  return v;
-}
+using bytes::get_u32;
+using bytes::get_u64;
+using bytes::put_u32;
+using bytes::put_u64;
 
 std::uint64_t align8(std::uint64_t n) {
   return (n + 7) & ~std::uint64_t{7};
