@@ -2,6 +2,7 @@
 // in DDA static mode and dynamic, the reference problem of tests/scene_builders.h.
 //
 //   contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE]
+//   contact_bench --trace N --sizes 10 [--dynamic]    per-step counts of N steps (a long run)
 //
 // Bricks 1 m × 0.5 m, odd rows shifted by half a brick, all touching their neighbours (one
 // interface set, penalty 2e11 N/m, φ = 35°), mesh size 0.5 m, Δt = 1e-3 s. Each wall takes 5
@@ -18,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/CholmodSupport>
+
 #include "bench_common.h"
 #include "cover_cutter.h"
 #include "scene_builders.h"  // the brick wall, the same scene the static-analysis test uses
@@ -27,20 +30,83 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// A long run of one wall, one line per step: where a settling wall's work goes as it settles.
+int trace_run(int n, bool dynamic, int steps) {
+  const nmm::SceneDef s = nmm::test::brick_wall(n, dynamic);
+  const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
+  nmm::solve::TimeStepper st(m, s, "bench");
+  std::printf("step,newton,friction_rounds,cg,factorisations,cg_over_budget,cg_skipped,unsettled,cuts,ms,"
+              "factorisation_ms,cg_ms,detection_ms,cpu_ms\n");
+  nmm::solve::ContactSolveStats a = st.contact_solve_stats();
+  nmm::solve::StepTimings ta = st.timings();
+  std::size_t cuts = st.time_step_cuts();
+  for (int k = 1; k <= steps; ++k) {
+    const auto w0 = Clock::now();
+    const double c0 = nmm::bench::thread_cpu_seconds();
+    const std::string status = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
+    const double ms = 1e3 * since(w0), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
+    const nmm::solve::ContactSolveStats& b = st.contact_solve_stats();
+    const nmm::solve::StepTimings& tb = st.timings();
+    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f\n", k, b.newton - a.newton,
+                b.strength_rounds - a.strength_rounds, b.cg_iterations - a.cg_iterations,
+                b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.cg_skipped - a.cg_skipped, b.unsettled - a.unsettled,
+                st.time_step_cuts() - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
+                1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms);
+    std::fflush(stdout);
+    if (status != "ok") {
+      std::printf("# stopped: %s\n", status.c_str());
+      return 1;
+    }
+    if (k == 1 || k == steps)
+      std::printf("# unknowns %d, matrix nonzeros %zu, factor nonzeros %.0f, factorisation Mflop %.1f, ordering %s, analyses %zu\n",
+                  st.unknowns(), st.system().nonzeros(), st.system().factor_nonzeros(), 1e-6 * st.system().factor_flops(),
+                  st.system().ordering().c_str(), st.symbolic_analyses());
+    a = b;
+    ta = tb;
+    cuts = st.time_step_cuts();
+  }
+  // One factorisation against one CG iteration's work (a factor solve pair and a product with
+  // the matrix) on the last step's matrix, thread CPU time: what one factorisation is worth.
+  const auto& km = st.system().matrix();
+  Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Lower> llt;
+  llt.analyzePattern(km);
+  double f_best = 1e9, s_best = 1e9;
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(km.rows()), y(km.rows());
+  for (int rep = 0; rep < 3; ++rep) {
+    double c0 = nmm::bench::thread_cpu_seconds();
+    llt.factorize(km);
+    f_best = std::min(f_best, nmm::bench::thread_cpu_seconds() - c0);
+    c0 = nmm::bench::thread_cpu_seconds();
+    for (int i = 0; i < 20; ++i) {
+      y = llt.solve(x);
+      x.noalias() = km.selfadjointView<Eigen::Lower>() * y;
+      x /= x.norm();
+    }
+    s_best = std::min(s_best, (nmm::bench::thread_cpu_seconds() - c0) / 20);
+  }
+  std::printf("# factorisation %.3f ms, CG iteration (solve pair + product) %.3f ms, ratio %.1f (thread CPU)\n",
+              1e3 * f_best, 1e3 * s_best, f_best / s_best);
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 30, 50};
   std::string csv_path = "contact_bench.csv";
+  int trace_steps = 0;
+  bool trace_dynamic = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) sizes = {5, 10};
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
+    else if (!std::strcmp(argv[i], "--trace") && i + 1 < argc) trace_steps = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--dynamic")) trace_dynamic = true;
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
-      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic]\n");
       return 2;
     }
   }
+  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, trace_steps);
   std::ofstream csv(csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"

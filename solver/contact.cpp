@@ -245,12 +245,29 @@ std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::element_pairs() c
   return pairs;
 }
 
+std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::touching_pairs() const {
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  for (const Contact& c : contacts_)
+    if (c.start_state != ContactState::open || c.gap0 <= 0) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
 void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
                                int first_group) {
   for (Contact& c : contacts_) {
-    const auto it = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(c.at.elem_a, c.at.elem_b));
-    c.group = first_group + static_cast<int>(it - pairs.begin());
+    const auto key = std::make_pair(c.at.elem_a, c.at.elem_b);
+    const auto it = std::lower_bound(pairs.begin(), pairs.end(), key);
+    c.group = it != pairs.end() && *it == key ? first_group + static_cast<int>(it - pairs.begin()) : -1;
   }
+}
+
+std::size_t ContactSet::springs_outside_pattern() const {
+  std::size_t n = 0;
+  for (const Contact& c : contacts_)
+    if (c.group < 0) n += (c.kn_now != 0) + (c.ks_now != 0);
+  return n;
 }
 
 namespace {
@@ -347,7 +364,7 @@ void ContactSet::add_tangents(SystemMatrix& k) const {
   block_.resize(row_, row_);
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
-    if (c.kn_now == 0 && c.ks_now == 0) continue;
+    if ((c.kn_now == 0 && c.ks_now == 0) || c.group < 0) continue;  // outside the pattern: CG's
     const Eigen::Map<const Eigen::VectorXd> cn(row_cn(i), row_), cs(row_cs(i), row_);
     block_.noalias() = c.kn_now * cn * cn.transpose();
     if (c.ks_now != 0) block_.noalias() += c.ks_now * cs * cs.transpose();

@@ -123,9 +123,16 @@ class ContactSet {
   /// Element pairs coupled by the current contacts and those near enough to touch soon
   /// (within the search distance), sorted and unique: the pairs the pattern should hold.
   std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs() const;
-  /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted,
-  /// a superset of element_pairs()).
+  /// Element pairs of the contacts that touch at the start of the step (closed, or a gap ≤ 0),
+  /// sorted and unique: the pairs the system matrix's pattern holds (docs/contact.md "Sparse
+  /// pattern").
+  std::vector<std::pair<std::int32_t, std::int32_t>> touching_pairs() const;
+  /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
+  /// or -1 when its pair is not there: add_tangents() leaves such a contact out of the matrix
+  /// (the contact solve's CG takes its springs from tangent_times(), which has all contacts).
   void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
+  /// Spring terms (kn, ks) of the last forces_at() that add_tangents() leaves out (group -1).
+  std::size_t springs_outside_pattern() const;
 
   // --- The step's contact problem as a convex minimisation (contact.cpp, contact_solve.cpp) ---
   /// Sets each contact's shear strength for the step's first inner solve from what it carries
@@ -134,7 +141,7 @@ class ContactSet {
   /// Evaluates every contact at the increment d: gap, shear, the forces on the constitutive
   /// curves and their tangents; adds the contact forces Σ N·cn − Σ T·cs to r (the residual).
   void forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r);
-  /// Adds the tangent springs of the last forces_at() to the matrix.
+  /// Adds the tangent springs of the last forces_at() to the matrix (contacts with a group).
   void add_tangents(SystemMatrix& k) const;
   /// y += (Σ kn·cn cnᵀ + ks·cs csᵀ)·v with the tangents of the last forces_at().
   void tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;

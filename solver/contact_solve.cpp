@@ -34,6 +34,14 @@
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
 // next direction comes from a new factorisation, which the following runs then reuse.
 //
+// The rank of H − P is known before a run: the factorisation keeps a note of the springs it was
+// made with (per contact: its vertex, element pair and tangents kn, ks), and r counts the spring
+// terms kn·cn cnᵀ, ks·cs csᵀ that appeared, vanished, moved to another element pair or changed
+// by more than kSpringChange since. (What is left — A's change with the geometry between steps,
+// smaller tangent changes — is a perturbation of P⁻¹H close to the identity, which CG removes in
+// a few iterations.) When r + 1 exceeds half the budget the run would at best end in the
+// factorisation the rule above asks for, so H is factorised at once and the run is not tried.
+//
 // Friction strength S = tanφ·N + c·L needs the normal force: a fixed point on N around the
 // convex solve (start: the N the contact ended the last step with), repeated while a strength at
 // or near its limit moves by more than 0.1 %. Cohesion and tensile bonds break for good when
@@ -46,6 +54,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <vector>
 
 namespace nmm::solve {
 
@@ -66,10 +75,67 @@ constexpr double kStrengthFloor = 1e-6;
 constexpr double kFactorFlopAdvantage = 1.0;
 
 int cg_budget(const SystemMatrix& k, std::size_t contacts) {
+  static const char* fixed = std::getenv("NMM_BUDGET");  // EXPERIMENT
+  if (fixed) return std::atoi(fixed);
   const double per_iteration = 4.0 * k.factor_nonzeros() + 4.0 * static_cast<double>(k.nonzeros()) +
                                100.0 * static_cast<double>(contacts);
   const double budget = k.factor_flops() / (kFactorFlopAdvantage * per_iteration);
   return static_cast<int>(std::clamp(budget, 3.0, 200.0));
+}
+
+// A spring term whose tangent changed by more than this fraction since the factorisation counts
+// in the rank of H − P (an eigenvalue of P⁻¹H moved far from 1); below it, a cluster near 1.
+constexpr double kSpringChange = 0.25;
+
+// The note of a factorisation: per contact with a spring, (vertex, element A, element B, kn, ks),
+// sorted by vertex.
+constexpr int kNoteStride = 5;
+std::vector<double> spring_note(const ContactSet& contacts) {
+  std::vector<std::size_t> order;
+  const auto& cs = contacts.contacts();
+  for (std::size_t i = 0; i < cs.size(); ++i)
+    if ((cs[i].kn_now != 0 || cs[i].ks_now != 0) && cs[i].group >= 0) order.push_back(i);  // in the matrix
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return cs[a].at.vertex < cs[b].at.vertex || (cs[a].at.vertex == cs[b].at.vertex && cs[a].at.elem_b < cs[b].at.elem_b);
+  });
+  std::vector<double> note;
+  note.reserve(kNoteStride * order.size());
+  for (std::size_t i : order)
+    note.insert(note.end(), {static_cast<double>(cs[i].at.vertex), static_cast<double>(cs[i].at.elem_a),
+                             static_cast<double>(cs[i].at.elem_b), cs[i].kn_now, cs[i].ks_now});
+  return note;
+}
+
+// r: spring terms in which the current tangents differ from the factorisation's note.
+int changed_springs(const std::vector<double>& note, const ContactSet& contacts) {
+  const std::size_t m = note.size() / kNoteStride;
+  std::vector<char> matched(m, 0);
+  const auto differs = [](double a, double b) {
+    return std::abs(a - b) > kSpringChange * std::max(std::abs(a), std::abs(b));
+  };
+  int r = 0;
+  for (const Contact& c : contacts.contacts()) {
+    // First note entry of this vertex (entries are sorted by vertex, then element B).
+    std::size_t lo = 0, hi = m;
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      if (note[kNoteStride * mid] < c.at.vertex) lo = mid + 1;
+      else hi = mid;
+    }
+    std::size_t k = lo;
+    while (k < m && note[kNoteStride * k] == c.at.vertex &&
+           (note[kNoteStride * k + 1] != c.at.elem_a || note[kNoteStride * k + 2] != c.at.elem_b))
+      ++k;
+    if (k < m && note[kNoteStride * k] == c.at.vertex) {
+      matched[k] = 1;
+      r += differs(c.kn_now, note[kNoteStride * k + 3]) + differs(c.ks_now, note[kNoteStride * k + 4]);
+    } else {
+      r += (c.kn_now != 0) + (c.ks_now != 0);
+    }
+  }
+  for (std::size_t k = 0; k < m; ++k)
+    if (!matched[k]) r += (note[kNoteStride * k + 3] != 0) + (note[kNoteStride * k + 4] != 0);
+  return r;
 }
 
 // y = H v.
@@ -165,9 +231,18 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
       ++stats.newton;
       // Direction: CG on the reused factorisation, or a new factorisation of H.
       bool solved = false;
+      const int budget = cg_budget(system, contacts.contacts().size());
+      int rank = -1;  // of H − P, from the factorisation's note (-1: no factorisation to reuse)
+      static const bool no_skip = std::getenv("NMM_NO_RANK_SKIP") != nullptr;  // EXPERIMENT
+      if (system.has_factor() && !refresh && !no_skip) {
+        rank = changed_springs(system.factor_note(), contacts);
+        if (2 * (rank + 1) > budget) {
+          ++stats.cg_skipped;
+          refresh = true;
+        }
+      }
       if (system.has_factor() && !refresh) {
         const auto t0 = Clock::now();
-        const int budget = cg_budget(system, contacts.contacts().size());
         const long before = stats.cg_iterations;
         solved = pcg(system, contacts, r, std::max(1e-6 * r_norm, 0.3 * tol), budget, delta, stats);
         // A run that needed more than half its budget says the factorisation is far from H: the
@@ -186,7 +261,19 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
         ++stats.factorisations;
         stats.factorisation_seconds += since(t0);
         if (!ok) return "not positive definite";
-        delta = system.solve(r);
+        system.set_factor_note(spring_note(contacts));
+        const std::size_t outside = contacts.springs_outside_pattern();
+        if (outside == 0) {
+          delta = system.solve(r);
+        } else {
+          // Springs of pairs not in the pattern are not in the factorisation: H − P has rank
+          // `outside`, which CG resolves in about as many iterations. Should it not, P's own
+          // direction P⁻¹r is still one of descent (P is symmetric positive definite).
+          const auto t2 = Clock::now();
+          const int cap = std::max(budget, 2 * static_cast<int>(outside) + 10);
+          if (!pcg(system, contacts, r, std::max(1e-6 * r_norm, 0.3 * tol), cap, delta, stats)) delta = system.solve(r);
+          stats.cg_seconds += since(t2);
+        }
       }
       if (!delta.allFinite()) return "the contact solve produced a displacement that is not finite";
       // Exact line search on ψ(α) = r(d + αδ)ᵀδ.
@@ -206,8 +293,9 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
       }
       const double alpha = line_search(psi, psi0, 1e-8 * psi0);
       if (trace)
-        std::fprintf(stderr, "round %d it %d r/tol %.3e solved_cg %d alpha %.6g psi1 %.3e cg %ld fac %ld\n", round, it,
-                     r_norm / tol, solved ? 1 : 0, alpha, psi(1.0) / psi0, stats.cg_iterations, stats.factorisations);
+        std::fprintf(stderr, "round %d it %d r/tol %.3e solved_cg %d alpha %.6g psi1 %.3e cg %ld fac %ld rank %d budget %d\n",
+                     round, it, r_norm / tol, solved ? 1 : 0, alpha, psi(1.0) / psi0, stats.cg_iterations,
+                     stats.factorisations, rank, budget);
       stats.line_search_seconds += since(t1);
       d.noalias() += alpha * delta;
       ra.noalias() -= alpha * adelta;

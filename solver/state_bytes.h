@@ -61,6 +61,7 @@ class ByteReader {
     pos_ += sizeof(T) * v.size();
     return v;
   }
+  bool at_end() const { return pos_ == b_.size(); }
   void expect_end() const {
     if (pos_ != b_.size()) fail("unexpected bytes after the data");
   }

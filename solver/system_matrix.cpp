@@ -107,6 +107,7 @@ bool SystemMatrix::factorize() {
     }
   }
   llt_.factorize(k_);
+  factor_note_.clear();
   failed_unknown_ = -1;
   has_factor_ = llt_.info() == Eigen::Success;
   // The matrix factorised, perturbation included: a restart refactorises exactly it (bitwise).
@@ -126,13 +127,14 @@ std::string SystemMatrix::factor_source() const {
   w.put_vector(std::vector<int>(factored_.outerIndexPtr(), factored_.outerIndexPtr() + n + 1));
   w.put_vector(std::vector<int>(factored_.innerIndexPtr(), factored_.innerIndexPtr() + nnz));
   w.put_vector(std::vector<double>(factored_.valuePtr(), factored_.valuePtr() + nnz));
+  if (!factor_note_.empty()) w.put_vector(factor_note_);  // optional: older checkpoints have none
   return w.take();
 }
 
 bool SystemMatrix::factor_from_source(const std::string& bytes) {
   const auto n = static_cast<std::int64_t>(k_.rows());
   std::vector<int> outer, inner;
-  std::vector<double> values;
+  std::vector<double> values, note;
   try {
     ByteReader r(bytes, "", "FACTOR");
     outer = r.get_vector<int>(static_cast<std::size_t>(n + 1), "column starts");
@@ -140,6 +142,7 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
     if (nnz < n || nnz > n * n) return false;
     inner = r.get_vector<int>(static_cast<std::size_t>(nnz), "rows");
     values = r.get_vector<double>(static_cast<std::size_t>(nnz), "values");
+    if (!r.at_end()) note = r.get_vector<double>(SIZE_MAX, "note");
     r.expect_end();
   } catch (const InputError&) {
     return false;
@@ -172,6 +175,7 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   analysed_ = false;
   has_factor_ = llt_.info() == Eigen::Success;
   if (has_factor_) factored_ = std::move(m);
+  factor_note_ = has_factor_ ? std::move(note) : std::vector<double>();
   return has_factor_;
 }
 

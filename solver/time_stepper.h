@@ -98,6 +98,8 @@ class TimeStepper {
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
   std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }
+  /// What the contact solves of the run have cost so far (summary.json "contact_solve").
+  const ContactSolveStats& contact_solve_stats() const { return solve_stats_; }
   std::size_t time_step_cuts() const { return static_cast<std::size_t>(s_.cuts); }
   double max_penetration() const { return s_.max_penetration; }
   double model_half_size() const { return w0_; }
