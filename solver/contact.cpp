@@ -245,10 +245,9 @@ std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::element_pairs() c
   return pairs;
 }
 
-std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::touching_pairs() const {
+std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::contact_pairs() const {
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  for (const Contact& c : contacts_)
-    if (c.start_state != ContactState::open || c.gap0 <= 0) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
+  for (const Contact& c : contacts_) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;

@@ -123,13 +123,13 @@ class ContactSet {
   /// Element pairs coupled by the current contacts and those near enough to touch soon
   /// (within the search distance), sorted and unique: the pairs the pattern should hold.
   std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs() const;
-  /// Element pairs of the contacts that touch at the start of the step (closed, or a gap ≤ 0),
-  /// sorted and unique: the pairs the system matrix's pattern holds (docs/contact.md "Sparse
-  /// pattern").
-  std::vector<std::pair<std::int32_t, std::int32_t>> touching_pairs() const;
+  /// Element pairs of the step's contacts (open or closed), sorted and unique: the pairs the
+  /// system matrix's pattern must hold (docs/contact.md "Sparse pattern").
+  std::vector<std::pair<std::int32_t, std::int32_t>> contact_pairs() const;
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
-  /// or -1 when its pair is not there: add_tangents() leaves such a contact out of the matrix
-  /// (the contact solve's CG takes its springs from tangent_times(), which has all contacts).
+  /// or -1 when its pair is not there (a pattern restored from a checkpoint before the step's
+  /// own): add_tangents() leaves such a contact out of the matrix, and the contact solve takes
+  /// its springs by CG (tangent_times() has all contacts).
   void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
   /// Spring terms (kn, ks) of the last forces_at() that add_tangents() leaves out (group -1).
   std::size_t springs_outside_pattern() const;

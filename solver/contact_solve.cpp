@@ -27,9 +27,15 @@
 // switched and, from one step to the next, by the small change of A with the geometry. Conjugate
 // gradients preconditioned by P converge in at most r + 1 iterations when H − P has rank r, so a
 // few switched contacts cost a few factor solves instead of a factorisation, and a settled
-// system needs no factorisation at all. Each CG run gets a budget in work units (from the
-// factor's flops and nonzeros, not from clocks, so a run is the same on every machine): when it
-// is spent, H is factorised (P ← H) and the direction solved directly.
+// system needs no factorisation at all. Each CG run gets a budget of iterations worth one
+// factorisation (cg_budget: from the factor's flops and nonzeros, capped by a measurement; not
+// from clocks, so a run is the same on every machine): when it is spent, H is factorised
+// (P ← H) and the direction solved directly.
+//
+// P need not hold every spring of H: the system matrix's pattern holds the element pairs whose
+// contacts touched at the start of some step (time_stepper.cpp update_pattern); a contact that
+// closes within a step on a pair outside it is left out of P, and the direction after a
+// factorisation is then CG's with the new P (H − P of the rank of the left-out springs).
 //
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
 // next direction comes from a new factorisation, which the following runs then reuse.
@@ -69,18 +75,19 @@ constexpr double kResidualTolerance = 1e-10;
 // that barely touch (N ≈ 0) a 0.1 % change is nothing the blocks feel.
 constexpr double kStrengthFloor = 1e-6;
 
-// CG iterations worth one factorisation: a factorisation runs dense kernels (BLAS 3), about
-// this many times faster per flop than the factor solves and sparse products of an iteration
-// (measured on the brick walls, bench/contact_bench.cpp).
-constexpr double kFactorFlopAdvantage = 1.0;
+// CG iterations worth one numeric factorisation. From flops: a factorisation's over one
+// iteration's (a factor solve pair, a product with the matrix, the contacts' rows). Measured
+// (thread CPU time, one core) on the brick walls of bench/contact_bench.cpp from 2.4k to 20k
+// unknowns, one factorisation costs 18–38 iterations, while the flop ratio grows with the size
+// (16 → 57): the factorisation's dense kernels run faster per flop on larger supernodes (2.5 →
+// 10 Gflop/s, the memory-bound solves stay at 3–4). So the flop ratio, at most
+// kMaxFactorisationInCgIterations. Counts, not clocks, so a run is the same on every machine.
+constexpr double kMaxFactorisationInCgIterations = 25;
 
 int cg_budget(const SystemMatrix& k, std::size_t contacts) {
-  static const char* fixed = std::getenv("NMM_BUDGET");  // EXPERIMENT
-  if (fixed) return std::atoi(fixed);
   const double per_iteration = 4.0 * k.factor_nonzeros() + 4.0 * static_cast<double>(k.nonzeros()) +
                                100.0 * static_cast<double>(contacts);
-  const double budget = k.factor_flops() / (kFactorFlopAdvantage * per_iteration);
-  return static_cast<int>(std::clamp(budget, 3.0, 200.0));
+  return static_cast<int>(std::clamp(k.factor_flops() / per_iteration, 3.0, kMaxFactorisationInCgIterations));
 }
 
 // A spring term whose tangent changed by more than this fraction since the factorisation counts
@@ -218,6 +225,8 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
   bool refresh = false;  // factorise H for the next direction
   for (int round = 0;; ++round) {
     if (round > 0) ++stats.strength_rounds;
+    double last_r = std::numeric_limits<double>::infinity();
+    bool last_full_cg = false;  // the last step was a full (α = 1) step along a CG direction
     for (int it = 0;; ++it) {
       r = ra;
       contacts.forces_at(d, r);
@@ -225,6 +234,12 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
                          std::numeric_limits<double>::min();
       const double r_norm = r.norm();
       if (r_norm <= tol) break;
+      // A full Newton step that did not halve the residual: no contact changed its spring along
+      // it (else α < 1), so the direction was not H⁻¹r — CG's recursive residual drifted from the
+      // true one (ill-conditioned H, e.g. higher cover orders). The next direction is solved
+      // directly.
+      if (last_full_cg && r_norm > 0.5 * last_r) refresh = true;
+      last_r = r_norm;
       if (it >= kMaxNewton)
         return "the contact solve did not converge in " + std::to_string(kMaxNewton) +
                " Newton iterations (residual " + std::to_string(r_norm / tol) + " × its tolerance)";
@@ -233,8 +248,7 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
       bool solved = false;
       const int budget = cg_budget(system, contacts.contacts().size());
       int rank = -1;  // of H − P, from the factorisation's note (-1: no factorisation to reuse)
-      static const bool no_skip = std::getenv("NMM_NO_RANK_SKIP") != nullptr;  // EXPERIMENT
-      if (system.has_factor() && !refresh && !no_skip) {
+      if (system.has_factor() && !refresh) {
         rank = changed_springs(system.factor_note(), contacts);
         if (2 * (rank + 1) > budget) {
           ++stats.cg_skipped;
@@ -292,6 +306,7 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
         continue;
       }
       const double alpha = line_search(psi, psi0, 1e-8 * psi0);
+      last_full_cg = solved && alpha == 1.0;
       if (trace)
         std::fprintf(stderr, "round %d it %d r/tol %.3e solved_cg %d alpha %.6g psi1 %.3e cg %ld fac %ld rank %d budget %d\n",
                      round, it, r_norm / tol, solved ? 1 : 0, alpha, psi(1.0) / psi0, stats.cg_iterations,

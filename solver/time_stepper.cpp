@@ -52,7 +52,6 @@
 #include "time_stepper.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -347,15 +346,14 @@ std::array<double, 3> TimeStepper::stress_at(std::size_t e, double x, double y) 
 }
 
 void TimeStepper::update_pattern() {
-  // Elements, then one coupling group per pair of elements whose contacts touch at the start of
-  // a step. The pattern only grows: pairs that part keep their (zero) entries, so the pattern —
-  // and with it CHOLMOD's symbolic analysis — changes only when a pair of elements touches for
-  // the first time. A contact that closes within a step on a pair not yet in the pattern is
-  // left out of the factorisation and taken by the contact solve's CG (contact_solve.cpp); the
-  // next step adds its pair.
+  // Elements, then one coupling group per pair of elements with a contact (open or closed: all
+  // the step's contacts can close within it). The pattern only grows: pairs that part keep their
+  // (zero) entries, so the pattern — and with it CHOLMOD's symbolic analysis — changes only when
+  // a pair of elements first has a contact. (Pairs merely within the search distance are not
+  // added in advance: that margin doubled to tripled the factorisation's flops on brick walls,
+  // docs/contact.md "Sparse pattern".)
   const int first = static_cast<int>(mesh_.element_count());
-  static const bool near = std::getenv("NMM_PATTERN_NEAR") != nullptr;  // EXPERIMENT
-  const auto now = near ? contacts_.element_pairs() : contacts_.touching_pairs();
+  const auto now = contacts_.contact_pairs();
   if (std::includes(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end())) {
     contacts_.assign_groups(s_.pattern_pairs, first);
     return;
@@ -769,9 +767,7 @@ std::string TimeStepper::attempt(double dt) {
     contacts_.begin_step(
         s_.loop_xy, [this](std::size_t e, double x, double y, double* out) { shape_values(e, x, y, out); },
         2.5 * g2w0, kContactTolerances.new_depth * mesh_.mesh_size, w0_);
-    const auto tp = Clock::now();
     update_pattern();
-    if (std::getenv("NMM_TRACE_PATTERN")) std::fprintf(stderr, "pattern %.3f ms analyses %zu\n", 1e3 * since(tp), system_.analyses());
   }
   timings_.contact_detection = contacts_.detection_seconds();
   t0 = Clock::now();
