@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atomic_file.h"
 #include "cover_cutter.h"
 #include "joint_network.h"
 #include "json_set.h"

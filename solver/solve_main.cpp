@@ -34,7 +34,7 @@
 #include "run_config.h"
 #include "run_report.h"
 #include "time_stepper.h"
-#include "vtk_writer.h"  // write_file_atomically
+#include "atomic_file.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "atomic_file.h"
 #include "command_line.h"
 #include "error.h"
 #include "job_runner.h"

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "atomic_file.h"
 #include "command_line.h"
 #include "error.h"
 #include "job_runner.h"
