@@ -55,8 +55,8 @@ class SystemMatrix {
   bool factorize();
 
   /// Solves K·x = b with the last factorisation (of whatever values it was made from: also
-  /// after the values or the pattern changed, when it serves as a preconditioner; refined
-  /// against the current values when regularised, cover_space.h).
+  /// after the values or the pattern changed; refined against the current values when
+  /// regularised, cover_space.h). A preconditioner uses solve_unrefined() instead.
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
   /// Solves with the last factorisation only, no iterative refinement: a preconditioner's solve.
   Eigen::VectorXd solve_unrefined(const Eigen::VectorXd& b) const { return llt_.solve(b); }
