@@ -12,6 +12,7 @@
 #include <set>
 #include <system_error>
 
+#include "atomic_file.h"
 #include "byte_fields.h"
 #include "crc32.h"
 #include "error.h"
@@ -120,32 +121,7 @@ CheckpointSections checkpoint_from_bytes(const std::string& b, const std::string
 }
 
 void write_checkpoint_file(const CheckpointSections& sections, const std::string& path) {
-  const std::string bytes = checkpoint_to_bytes(sections);
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  auto fail = [&](int err) {
-    if (fd >= 0) ::close(fd);
-    ::unlink(tmp.c_str());
-    throw InputError(path, "", "cannot write: " + std::system_category().message(err));
-  };
-  if (fd < 0) fail(errno);
-  const char* p = bytes.data();
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t w = ::write(fd, p, std::min<std::size_t>(left, std::size_t{1} << 30));
-    if (w < 0) {
-      if (errno == EINTR) continue;
-      fail(errno);
-    }
-    if (w == 0) fail(EIO);
-    p += w;
-    left -= static_cast<std::size_t>(w);
-  }
-  if (::fsync(fd) != 0) fail(errno);
-  const int closed = ::close(fd);
-  fd = -1;
-  if (closed != 0) fail(errno);
-  if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno);
+  write_file_atomically(path, checkpoint_to_bytes(sections));
 }
 
 CheckpointSections read_checkpoint_file(const std::string& path) {

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "svg_writer.h"
-#include "vtk_writer.h"  // write_file_atomically
+#include "atomic_file.h"
 
 namespace nmm {
 

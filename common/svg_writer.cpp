@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "error.h"
-#include "vtk_writer.h"  // write_file_atomically
+#include "atomic_file.h"
 
 namespace nmm {
 

@@ -3,6 +3,7 @@
 // every VTK since 4.x, ParaView and meshio read.
 #include "vtk_writer.h"
 
+#include "atomic_file.h"
 #include "xml_text.h"
 
 #include <fcntl.h>
@@ -350,37 +351,5 @@ PolygonGrid mesh_to_grid(const Mesh& mesh) {
   return g;
 }
 
-void write_file_atomically(const std::string& path, const std::string& contents) {
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long long>(::getpid()));
-  auto fail = [&](const std::string& what, int err) {
-    ::unlink(tmp.c_str());
-    throw InputError(path, "", what + ": " + std::strerror(err));
-  };
-  // POSIX I/O rather than iostreams: we need fsync before the rename, or a crash right after it
-  // could leave an empty file under the final name on some file systems.
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0)
-    throw InputError(path, "", std::string("cannot create file: ") + std::strerror(errno));
-  const char* p = contents.data();
-  std::size_t left = contents.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      fail("cannot write file", err);
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) {
-    const int err = errno;
-    ::close(fd);
-    fail("cannot flush file", err);
-  }
-  if (::close(fd) != 0) fail("cannot close file", errno);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("cannot rename temporary file", errno);
-}
 
 }  // namespace nmm

@@ -79,9 +79,5 @@ void write_vtk_by_extension(const PolygonGrid& grid, const std::string& path,
 /// covers (Int32, 3 components, the physical cover of each triangle node in its node order).
 PolygonGrid mesh_to_grid(const Mesh& mesh);
 
-/// Writes `contents` to `FILE.tmp.<pid>`, flushes it to disk, then renames it over `path`, so
-/// no half-written file ever appears under the final name. On failure the temporary is removed
-/// and InputError(path, "", reason) is thrown. Shared by every text output writer.
-void write_file_atomically(const std::string& path, const std::string& contents);
 
 }  // namespace nmm

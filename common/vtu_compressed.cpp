@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "atomic_file.h"
 #include "xml_text.h"
 
 namespace nmm {

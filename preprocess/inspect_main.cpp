@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "atomic_file.h"
 #include "error.h"
 #include "mesh.h"
 #include "mesh_file.h"

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atomic_file.h"
 #include "cover_cutter.h"
 #include "joint_network.h"
 #include "json_set.h"
@@ -140,16 +141,11 @@ int main(int argc, char** argv) {
                    "write %.3f, total %.3f\n",
                    cut.mesh_generation, cut.arrangement, cut.labelling, cut.covers, write_s,
                    total_s);
-  } catch (const nmm::InputError& e) {
-    std::cerr << e.what() << "\n";
-    return nmm::kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::cerr << scene_path << ": out of memory while cutting covers (use a larger mesh.size)\n";
     return nmm::kExitBadInput;
-  } catch (const std::exception& e) {
-    // An internal error is a bug, not bad input: say so plainly, still on one line.
-    std::cerr << "nmm-preprocess: internal error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return nmm::exit_status_of_current_exception("nmm-preprocess");
   }
   return nmm::kExitOk;
 }

@@ -152,12 +152,26 @@ void hessian_times(const SystemMatrix& k, const ContactSet& contacts, const Eige
   contacts.tangent_times(v, y);
 }
 
+// z = C r, the preconditioner of the CG runs: C = (P + E)⁻¹ P (P + E)⁻¹ from the kept
+// factorisation of P + E (E: the regularisation at n ≥ 1, 0 at n = 0, where C = P⁻¹). It is
+// symmetric, zero on the null space of P (the zero-field combinations, which H shares) and
+// (P + E)⁻¹·(1 − O(ε/λ)) on the rest, so the iterates stay out of the null space: a residual's
+// round-off component there, which (P + E)⁻¹ alone amplifies by 1/ε, is not followed
+// (docs/higher-order-covers.md "Keeping the null space out"). No iterative refinement: a
+// preconditioner needs none.
+void precondition(const SystemMatrix& k, const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  z = k.solve_unrefined(r);
+  k.remove_null_part(z);
+}
+
 // Preconditioned CG for H x = r to ‖H x − r‖ ≤ target; false when the budget is spent or H
 // shows a non-positive curvature (then the caller factorises H).
-bool pcg(SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& r, double target,
+bool pcg(const SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& r, double target,
          int budget, Eigen::VectorXd& x, ContactSolveStats& stats) {
   x.setZero(r.size());
-  Eigen::VectorXd res = r, z = k.solve(res), p = z, hp(r.size());
+  Eigen::VectorXd res = r, z(r.size()), hp(r.size());
+  precondition(k, res, z);
+  Eigen::VectorXd p = z;
   double rz = res.dot(z);
   for (int it = 1; it <= budget; ++it) {
     ++stats.cg_iterations;
@@ -168,7 +182,7 @@ bool pcg(SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& r, 
     x.noalias() += a * p;
     res.noalias() -= a * hp;
     if (res.norm() <= target) return true;
-    z = k.solve(res);
+    precondition(k, res, z);
     const double rz_new = res.dot(z);
     p = z + (rz_new / rz) * p;
     rz = rz_new;
@@ -279,13 +293,19 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
         const std::size_t outside = contacts.springs_outside_pattern();
         if (outside == 0) {
           delta = system.solve(r);
+          // The exact solve leaves r's round-off null component amplified by 1/ε in δ (zero field,
+          // but rᵀδ then gives the line search a false slope): remove it.
+          system.remove_null_part(delta);
         } else {
           // Springs of pairs not in the pattern are not in the factorisation: H − P has rank
           // `outside`, which CG resolves in about as many iterations. Should it not, P's own
           // direction P⁻¹r is still one of descent (P is symmetric positive definite).
           const auto t2 = Clock::now();
           const int cap = std::max(budget, 2 * static_cast<int>(outside) + 10);
-          if (!pcg(system, contacts, r, std::max(1e-6 * r_norm, 0.3 * tol), cap, delta, stats)) delta = system.solve(r);
+          if (!pcg(system, contacts, r, std::max(1e-6 * r_norm, 0.3 * tol), cap, delta, stats)) {
+            delta = system.solve(r);
+            system.remove_null_part(delta);
+          }
           stats.cg_seconds += since(t2);
         }
       }

@@ -8,7 +8,7 @@
 #include "element_integration.h"
 #include "insitu_stress.h"
 #include "time_table.h"
-#include "vtk_writer.h"  // write_file_atomically
+#include "atomic_file.h"
 
 namespace nmm::solve {
 

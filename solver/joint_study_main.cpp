@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "atomic_file.h"
 #include "command_line.h"
 #include "cover_cutter.h"
 #include "error.h"

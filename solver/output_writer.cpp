@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "atomic_file.h"
 #include "error.h"
 #include "gzip_text.h"
 #include "vtk_writer.h"

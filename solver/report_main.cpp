@@ -57,12 +57,8 @@ int main(int argc, char** argv) {
       for (const std::string& f : files.written) std::cout << ' ' << f;
       std::cout << " in " << dir << "\n";
     }
-  } catch (const nmm::InputError& e) {
-    std::cerr << e.what() << "\n";
-    return nmm::kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "nmm-report: internal error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return nmm::exit_status_of_current_exception("nmm-report");
   }
   return nmm::kExitOk;
 }

@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atomic_file.h"
 #include "error.h"
 #include "mesh_file.h"
 #include "run_config.h"

@@ -14,7 +14,7 @@
 #include "error.h"
 #include "gzip_text.h"
 #include "svg_plot.h"
-#include "vtk_writer.h"  // write_file_atomically
+#include "atomic_file.h"
 #include "xml_text.h"
 
 namespace nmm::solve {

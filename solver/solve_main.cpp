@@ -34,7 +34,7 @@
 #include "run_config.h"
 #include "run_report.h"
 #include "time_stepper.h"
-#include "vtk_writer.h"  // write_file_atomically
+#include "atomic_file.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
@@ -162,15 +162,11 @@ int main(int argc, char** argv) {
                 << " steps: " << status << "\n";
       return nmm::kExitRunFailed;
     }
-  } catch (const nmm::InputError& e) {
-    std::cerr << e.what() << "\n";
-    return nmm::kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::cerr << mesh_path << ": out of memory\n";
     return nmm::kExitRunFailed;
-  } catch (const std::exception& e) {
-    std::cerr << "nmm-solve: internal error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return nmm::exit_status_of_current_exception("nmm-solve");
   }
   return nmm::kExitOk;
 }

@@ -111,7 +111,10 @@ bool SystemMatrix::factorize() {
   failed_unknown_ = -1;
   has_factor_ = llt_.info() == Eigen::Success;
   // The matrix factorised, perturbation included: a restart refactorises exactly it (bitwise).
-  if (has_factor_) factored_ = k_;
+  if (has_factor_) {
+    factored_ = k_;
+    set_perturbation();
+  }
   for (std::size_t r = 0; r < regularised_.size(); ++r) k_.valuePtr()[diag_[regularised_[r]]] -= delta[r];
   if (!has_factor_) {
     failed_unknown_ = llt_.failed_column();
@@ -174,9 +177,25 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   llt_.factorize(m);
   analysed_ = false;
   has_factor_ = llt_.info() == Eigen::Success;
-  if (has_factor_) factored_ = std::move(m);
+  if (has_factor_) {
+    factored_ = std::move(m);
+    set_perturbation();
+  }
   factor_note_ = has_factor_ ? std::move(note) : std::vector<double>();
   return has_factor_;
+}
+
+void SystemMatrix::set_perturbation() {
+  // E from the factorised matrix itself (diagonal (1 + ε)·K_ii): the same numbers whether the
+  // factor was made here or restored from a checkpoint, so a restart stays bitwise.
+  perturbation_.setZero(factored_.rows());
+  for (int i : regularised_)
+    perturbation_[i] = factored_.valuePtr()[factored_.outerIndexPtr()[i]] * (eps_ / (1 + eps_));
+}
+
+void SystemMatrix::remove_null_part(Eigen::VectorXd& x) const {
+  if (regularised_.empty() || !has_factor_) return;
+  x -= llt_.solve(perturbation_.cwiseProduct(x));
 }
 
 void SystemMatrix::saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {

@@ -55,9 +55,18 @@ class SystemMatrix {
   bool factorize();
 
   /// Solves K·x = b with the last factorisation (of whatever values it was made from: also
-  /// after the values or the pattern changed, when it serves as a preconditioner; refined
-  /// against the current values when regularised, cover_space.h).
+  /// after the values or the pattern changed; refined against the current values when
+  /// regularised, cover_space.h). A preconditioner uses solve_unrefined() instead.
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
+  /// Solves with the last factorisation only, no iterative refinement: a preconditioner's solve.
+  Eigen::VectorXd solve_unrefined(const Eigen::VectorXd& b) const { return llt_.solve(b); }
+  /// Removes from x its component in the null space of the factorised matrix P (the
+  /// zero-field combinations of the cover coefficients, docs/higher-order-covers.md "Keeping
+  /// the null space out"): x ← x − (P + E)⁻¹ E x with E the diagonal perturbation of the factor.
+  /// In the generalised eigenvectors of P v = μ E v this multiplies each component by
+  /// μ/(μ + 1): null vectors (μ = 0) go, kept ones change by at most 1/(1 + μ_min) ≈ ε/λ_min.
+  /// A no-op without regularisation (n = 0).
+  void remove_null_part(Eigen::VectorXd& x) const;
   /// A successful factorisation of this size exists.
   bool has_factor() const { return has_factor_; }
   /// Forgets the factorisation (the next solve must factorise first).
@@ -93,6 +102,7 @@ class SystemMatrix {
   std::size_t analyses() const { return analyses_; }  ///< symbolic analyses done so far
 
  private:
+  void set_perturbation();  // perturbation_ of factored_
   // Eigen's CHOLMOD wrapper, with the failing column exposed.
   struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> {
     int failed_column() const;
@@ -113,6 +123,7 @@ class SystemMatrix {
   int failed_unknown_ = -1;
   std::vector<int> regularised_;
   double eps_ = 0;
+  Eigen::VectorXd perturbation_;  // [n] E: the factor's diagonal perturbation (0 off regularised_)
   int refinements_ = 0;
 };
 

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "atomic_file.h"
 #include "command_line.h"
 #include "error.h"
 #include "job_runner.h"
@@ -283,15 +284,8 @@ int main(int argc, char** argv) {
     }
     std::printf("F = %.4f (bracket %.4f .. %.4f, %zu trials in %d rounds)\n", result.fos, result.lo,
                 result.hi, result.trials.size(), result.rounds);
-  } catch (const nmm::InputError& e) {
-    std::cerr << e.what() << "\n";
-    return nmm::kExitBadInput;
-  } catch (const nmm::RunError& e) {
-    std::cerr << "nmm-fos: " << e.what() << "\n";
-    return nmm::kExitRunFailed;
-  } catch (const std::exception& e) {
-    std::cerr << "nmm-fos: internal error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return nmm::exit_status_of_current_exception("nmm-fos");
   }
   return nmm::kExitOk;
 }

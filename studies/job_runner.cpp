@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atomic_file.h"
 #include "error.h"
 #include "vtk_writer.h"
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "atomic_file.h"
 #include "error.h"
 #include "frame_reader.h"
 #include "svg_writer.h"

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "atomic_file.h"
 #include "command_line.h"
 #include "error.h"
 #include "job_runner.h"
@@ -93,15 +94,8 @@ int main(int argc, char** argv) {
     std::cerr << "nmm-sweep: " << results.size() - bad - stopped << " ran to the end, " << stopped
               << " stopped (exit 3), " << bad << " failed; " << (out / "sweep.csv").string() << "\n";
     if (bad > 0) return nmm::kExitRunFailed;
-  } catch (const nmm::InputError& e) {
-    std::cerr << e.what() << "\n";
-    return nmm::kExitBadInput;
-  } catch (const nmm::RunError& e) {
-    std::cerr << "nmm-sweep: " << e.what() << "\n";
-    return nmm::kExitRunFailed;
-  } catch (const std::exception& e) {
-    std::cerr << "nmm-sweep: internal error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return nmm::exit_status_of_current_exception("nmm-sweep");
   }
   return nmm::kExitOk;
 }

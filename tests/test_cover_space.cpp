@@ -174,6 +174,50 @@ TEST(CoverSpace, RankOfTheFreeStiffnessMatrix) {
   }
 }
 
+TEST(CoverSpace, RemoveNullPartTakesOutZeroFieldCombinationsOnly) {
+  // SystemMatrix::remove_null_part (docs/higher-order-covers.md "Keeping the null space out of
+  // the contact solve"): x ← x − (P + E)⁻¹E x removes a vector's zero-field part, however large,
+  // and leaves its field alone (up to ε/λ on the stiffest-to-resolve kept modes). The matrix: a
+  // free plate's dynamic step matrix A = K + 2M/Δt², positive definite but for the zero-field
+  // combinations. The zero-field vector: every cover's ξ coefficient of u equal (Σ w_k (x − c_k) ≡ 0).
+  for (int order : {1, 2}) {
+    SceneDef s = plate(0.3, order);
+    s.bodies[0].outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+    s.solver.dynamic = true;
+    s.has_gravity = true;
+    s.gravity = {0, -9.81};
+    const Mesh m = pre::build_mesh(s, "null");
+    TimeStepper st(m, s, "null");
+    ASSERT_EQ(st.cover_unknowns().tied, 0u);
+    st.step(1e-3);  // leaves the factorisation of this step's matrix
+    const SystemMatrix& sys = st.system();
+    ASSERT_TRUE(sys.has_factor());
+    const SystemMatrix::Sparse a = sys.matrix().selfadjointView<Eigen::Lower>();
+    const CoverSpace& sp = st.space();
+    const Eigen::Index n = sp.unknowns();
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(n), x(n);
+    for (std::size_t c = 0; c < m.cover_count(); ++c) z[sp.first_unknown(c) + 2] = 1.0;  // term 1 = ξ, x
+    for (Eigen::Index i = 0; i < n; ++i) x[i] = 1e-3 * std::sin(1.0 + 0.37 * static_cast<double>(i));
+    const double a_max = a.coeffs().cwiseAbs().maxCoeff();
+    ASSERT_LT((a * z).norm(), 1e-12 * a_max * z.norm()) << "order " << order << ": z is a zero-field combination";
+
+    Eigen::VectorXd z1 = z;
+    sys.remove_null_part(z1);
+    Eigen::VectorXd x1 = x;
+    sys.remove_null_part(x1);
+    Eigen::VectorXd y1 = x + 1e3 * z;  // a large null part on top: the same result
+    sys.remove_null_part(y1);
+    const double field_change = (a * (x1 - x)).norm() / (a * x).norm();
+    std::printf("order %d: %ld unknowns; zero-field vector kept %.1e of its size; a vector's field changed by "
+                "%.1e; with 1e3 × the zero-field vector added, the result moved by %.1e of what was added\n",
+                order, static_cast<long>(n), z1.norm() / z.norm(), field_change, (y1 - x1).norm() / (1e3 * z.norm()));
+    EXPECT_LT(z1.norm(), 1e-5 * z.norm()) << "order " << order;
+    EXPECT_LT(field_change, 1e-6) << "order " << order;
+    EXPECT_LT((y1 - x1).norm(), 1e-5 * 1e3 * z.norm()) << "order " << order;
+    EXPECT_GT((x1 - x).norm(), 1e-3 * x.norm()) << "order " << order << ": x had a null part to remove";
+  }
+}
+
 TEST(CoverSpace, QuadraticFieldIsExactAtOrderOne) {
   // u = Σ_i w_i(x)·[u(x_i) + (∇ℓ + ½∇q(x_i))·(x − x_i)] reproduces u = ℓ + q (ℓ linear, q
   // quadratic) exactly, since Σ w_i x_i = x gives x_iᵀA x summed to xᵀA x. Imposed on every
