@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"
       "factorisation_ms,solves_ms,update_ms,iterations_per_step,factorisations_per_step,"
-      "solves_per_step,cuts,status\n";
+      "solves_per_step,cuts,status,step_cpu_ms,load_average\n";
   csv << header;
   std::fputs(header, stdout);
   for (const bool dynamic : {false, true}) {
@@ -125,14 +125,15 @@ int main(int argc, char** argv) {
       std::int64_t steps = 0;
       const double timed = n > 30 ? 10e-3 : 20e-3;
       const auto w0 = Clock::now();
+      const double c0 = nmm::bench::thread_cpu_seconds();
       if (status == "ok") status = st.run_until(5e-3 + timed, [&](std::int64_t) { ++steps; });
-      const double wall = since(w0);
+      const double wall = since(w0), cpu = nmm::bench::thread_cpu_seconds() - c0;
       const nmm::solve::StepTimings& t1 = st.timings();
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(steps, 1));
       const double k = 1e3 * per;
       char line[600];
       std::snprintf(line, sizeof line,
-                    "%s,%d,%zu,%zu,%d,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%zu,%s\n",
+                    "%s,%d,%zu,%zu,%d,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%zu,%s,%.3f,%.2f\n",
                     dynamic ? "dynamic" : "static", n, m.block_count(), m.element_count(),
                     st.unknowns(), st.contacts().contacts().size(), wall * k,
                     (t1.contact_detection - t0.contact_detection) * k, (t1.assembly - t0.assembly) * k,
@@ -141,7 +142,8 @@ int main(int argc, char** argv) {
                     static_cast<double>(st.open_close_iterations() - it0) * per,
                     static_cast<double>(t1.factorisations - t0.factorisations) * per,
                     static_cast<double>(t1.solves_count - t0.solves_count) * per,
-                    st.time_step_cuts() - cuts0, status == "ok" ? "ok" : status.c_str());
+                    st.time_step_cuts() - cuts0, status == "ok" ? "ok" : status.c_str(), cpu * k,
+                    nmm::bench::load_average());
       csv << line;
       std::fputs(line, stdout);
       std::fflush(stdout);

@@ -45,8 +45,8 @@
 // terms kn·cn cnᵀ, ks·cs csᵀ that appeared, vanished, moved to another element pair or changed
 // by more than kSpringChange since. (What is left — A's change with the geometry between steps,
 // smaller tangent changes — is a perturbation of P⁻¹H close to the identity, which CG removes in
-// a few iterations.) When r + 1 exceeds half the budget the run would at best end in the
-// factorisation the rule above asks for, so H is factorised at once and the run is not tried.
+// a few iterations.) When r + 1 exceeds the budget the run would spend it and fail, so H is
+// factorised at once and the run is not tried.
 //
 // Friction strength S = tanφ·N + c·L needs the normal force: a fixed point on N around the
 // convex solve (start: the N the contact ended the last step with), repeated while a strength at
@@ -264,7 +264,7 @@ std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const
       int rank = -1;  // of H − P, from the factorisation's note (-1: no factorisation to reuse)
       if (system.has_factor() && !refresh) {
         rank = changed_springs(system.factor_note(), contacts);
-        if (2 * (rank + 1) > budget) {
+        if (rank + 1 > budget) {
           ++stats.cg_skipped;
           refresh = true;
         }
