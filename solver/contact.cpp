@@ -110,11 +110,10 @@ ClosedContacts ContactSet::closed_contacts() const {
 void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& shapes, double d0,
                             double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
-  near_pairs_.clear();
   closed_ = closed_contacts();
   eps_ = kContactTolerances.open_gap * w0;
   skin_ = kContactTolerances.skin * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, &near_pairs_);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -235,14 +234,6 @@ std::vector<std::string> ContactSet::effects() const {
   if (bb) e.push_back("bandis_barton");
   if (hyp) e.push_back("hyperbolic");
   return e;
-}
-
-std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::element_pairs() const {
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs = near_pairs_;
-  for (const Contact& c : contacts_) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
 }
 
 std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::contact_pairs() const {

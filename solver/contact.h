@@ -120,15 +120,12 @@ class ContactSet {
   void begin_step(const std::vector<double>& loop_xy, const ShapeValues& shapes, double d0,
                   double shallow, double w0);
 
-  /// Element pairs coupled by the current contacts and those near enough to touch soon
-  /// (within the search distance), sorted and unique: the pairs the pattern should hold.
-  std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs() const;
   /// Element pairs of the step's contacts (open or closed), sorted and unique: the pairs the
   /// system matrix's pattern must hold (docs/contact.md "Sparse pattern").
   std::vector<std::pair<std::int32_t, std::int32_t>> contact_pairs() const;
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
-  /// or -1 when its pair is not there (a pattern restored from a checkpoint before the step's
-  /// own): add_tangents() leaves such a contact out of the matrix, and the contact solve takes
+  /// or -1 when its pair is not there (a safeguard: the pattern takes every step's contact
+  /// pairs): add_tangents() leaves such a contact out of the matrix, and the contact solve takes
   /// its springs by CG (tangent_times() has all contacts).
   void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
   /// Spring terms (kn, ks) of the last forces_at() that add_tangents() leaves out (group -1).
@@ -204,7 +201,6 @@ class ContactSet {
   std::vector<std::int32_t> history_next_;  // [i] next history_ entry of the same vertex, or -1
   std::vector<std::uint8_t> removed_;  // [me] excavated elements (empty: none)
   ClosedContacts closed_;                   // (vertex, block) pairs closed after the last step
-  ElementPairs near_pairs_;                 // element pairs within the search distance
   double eps_ = 0;                          // m, gap tolerance (contact_tolerances.h open_gap·w0)
   double skin_ = 0;                         // m, smoothing of the normal spring (skin·w0)
   DetectionStats stats_;

@@ -32,10 +32,10 @@
 // from clocks, so a run is the same on every machine): when it is spent, H is factorised
 // (P ← H) and the direction solved directly.
 //
-// P need not hold every spring of H: the system matrix's pattern holds the element pairs whose
-// contacts touched at the start of some step (time_stepper.cpp update_pattern); a contact that
-// closes within a step on a pair outside it is left out of P, and the direction after a
-// factorisation is then CG's with the new P (H − P of the rank of the left-out springs).
+// The system matrix's pattern holds the element pairs that have had a contact (every step adds
+// its contacts' pairs: time_stepper.cpp update_pattern). Should a contact's pair be missing,
+// add_tangents() leaves it out of P, and the direction after a factorisation is CG's with the
+// new P (H − P of the rank of the left-out springs) — a safeguard.
 //
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
 // next direction comes from a new factorisation, which the following runs then reuse.

@@ -19,7 +19,7 @@ struct ContactSolveStats {
   long cg_iterations = 0;   ///< preconditioned CG iterations (one factor solve pair each)
   long factorisations = 0;  ///< numeric factorisations
   long cg_aborted = 0;      ///< CG runs stopped at their budget (then a factorisation)
-  long cg_skipped = 0;      ///< CG runs not tried: H − P of rank above half the budget
+  long cg_skipped = 0;      ///< CG runs not tried: H − P of rank above the budget
   long strength_rounds = 0; ///< inner solves after the first of a step (friction fixed point)
   long unsettled = 0;       ///< steps taken with friction strengths still moving
   double factorisation_seconds = 0, cg_seconds = 0, line_search_seconds = 0;
