@@ -6,8 +6,9 @@
 //
 // For each staggered brick wall of N × N bricks (tests/scene_builders.h, the wall of
 // contact_bench) the wall settles 3 static steps, so that its pattern holds the contact coupling
-// of a settling wall (one 12 × 12 block per element pair in contact or within the search
-// distance: docs/contact.md, "Sparse pattern"); the matrix of its last step is then analysed and
+// of a settling wall (one 12 × 12 block per element pair that has had a contact: docs/contact.md,
+// "Sparse pattern"; until issue 11's speed work also every pair within the search distance, which
+// the committed CSV's "wall" rows show); the matrix of its last step is then analysed and
 // factorised (supernodal LLᵀ, as nmm-solve does) with
 //   amd     approximate minimum degree,
 //   metis   METIS's nested dissection (Debian's CHOLMOD is built with METIS),
@@ -16,8 +17,8 @@
 // each run `reps` times (fastest factorisation kept). How much of the wall's pattern is contact
 // coupling: the same unknowns with the pattern of the elements alone plus the element pairs of
 // the step's contacts only (all found, open or closed: "wall_contact_pairs") or of its closed
-// contacts only ("wall_closed_pairs"), instead of every pair that has come within the search
-// distance since the start (the pattern only grows). Against it, the same outline as one body
+// contacts only ("wall_closed_pairs"), instead of every pair that has had a contact since the
+// start (the pattern only grows). Against it, the same outline as one body
 // with no joints (base and wall one continuum, fixed at the bottom): the "plain elasticity
 // pattern", once on the same mesh (fewer unknowns: no covers doubled along joints) and once on
 // a finer mesh with about as many unknowns as the wall.
