@@ -1,0 +1,52 @@
+// The resting-block reference run, shared by the contact tests at every cover order
+// (tests/test_contact.cpp, tests/test_contact_orders.cpp): a 2 m × 1 m block placed on a 6 m ×
+// 1 m base held along its bottom, dynamic, φ = 30°, 2 s with no damping but the scheme's. Its
+// kinetic energy must settle onto the contact springs in the first steps and then stay at
+// round-off, and nothing may creep (docs/contact.md, "What the tests show").
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "cover_cutter.h"
+#include "energy.h"
+#include "scene_builders.h"
+#include "time_stepper.h"
+
+namespace nmm::test {
+
+struct RestingBlockRun {
+  std::string status;        ///< the run's status ("ok")
+  double kinetic_max = 0;    ///< J/m, largest kinetic energy over the 2 s
+  double kinetic_late = 0;   ///< J/m, largest after t = 1 s
+  double weight_height = 0;  ///< J/m, the block's weight times its height (m·g·1 m)
+  std::array<double, 2> moved{};  ///< m, displacement of the block's centre at 2 s
+  double normal_force_sum = 0;     ///< N/m, Σ N over the contacts at 2 s
+  double weight = 0;               ///< N/m, the block's weight (2 m × 1 m of rock)
+};
+
+inline RestingBlockRun resting_block_two_seconds(int order) {
+  SceneDef s = interface_scene(0.5, 30, order);
+  s.bodies = {box(0, 0, 6, 1), box(2, 1, 4, 2)};
+  s.fixed_points = held_along(0.1, 5.9, 0.1);
+  s.measure_points = {{3, 1.5}};
+  const Mesh m = pre::build_mesh(s, "rest");
+  solve::TimeStepper st(m, s, "rest");
+  solve::EnergyMeter meter(m, s, st.fixed_point_stiffness(), st.support_stiffness());
+  meter.after_step(st.state(), st.contacts().contacts(), true);
+  RestingBlockRun r;
+  r.status = st.run_until(2.0, [&](std::int64_t) {
+    meter.after_step(st.state(), st.contacts().contacts(), true);
+    r.kinetic_max = std::max(r.kinetic_max, meter.rows().back().kinetic);
+    if (st.time() > 1.0) r.kinetic_late = std::max(r.kinetic_late, meter.rows().back().kinetic);
+  });
+  r.weight_height = 2650 * 2.0 * 9.81 * 1.0;
+  const auto u = st.displacement_at(st.measure_points()[0]);
+  r.moved = {u[0], u[1]};
+  for (const solve::Contact& c : st.contacts().contacts()) r.normal_force_sum += c.normal_force;
+  r.weight = 2650 * 2.0 * 9.81;
+  return r;
+}
+
+}  // namespace nmm::test
