@@ -7,7 +7,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "cover_cutter.h"
 #include "energy.h"
@@ -47,6 +51,20 @@ inline RestingBlockRun resting_block_two_seconds(int order) {
   for (const solve::Contact& c : st.contacts().contacts()) r.normal_force_sum += c.normal_force;
   r.weight = 2650 * 2.0 * 9.81;
   return r;
+}
+
+/// What the run must show at any order, with `label` naming it in the printed line.
+inline void expect_resting_block_at_rest(const RestingBlockRun& r, const char* label) {
+  ASSERT_EQ(r.status, "ok");
+  std::printf("%sresting block, 2 s: largest kinetic energy %.3e J/m (after 1 s %.3e), moved %.3e, %.3e m, "
+              "Σ N / weight %.6f\n",
+              label, r.kinetic_max, r.kinetic_late, r.moved[0], r.moved[1], r.normal_force_sum / r.weight);
+  EXPECT_LT(r.kinetic_max, 1e-5 * r.weight_height);  // settling onto its springs in the first steps
+  EXPECT_LT(r.kinetic_late, 1e-8 * r.weight_height);
+  EXPECT_LT(std::abs(r.moved[0]), 1e-6);
+  EXPECT_LT(std::abs(r.moved[1]), 1e-4);
+  // The block's weight is carried by its contacts: Σ N = m·g.
+  EXPECT_NEAR(r.normal_force_sum, r.weight, 1e-3 * r.weight);
 }
 
 }  // namespace nmm::test
