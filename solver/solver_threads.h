@@ -17,7 +17,8 @@ inline constexpr int kThreadedUnknowns = 150000;
 int default_solver_threads(int unknowns);
 
 /// Sets OpenBLAS's and OpenMP's thread counts (each only if the library is loaded; a reference
-/// BLAS has no threads to set). Returns the count set.
+/// BLAS has no threads to set), also for OpenMP regions that name their own count (CHOLMOD's).
+/// Returns the count set.
 int set_solver_threads(int threads);
 
 }  // namespace nmm::solve
