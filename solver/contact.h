@@ -47,6 +47,10 @@ struct ContactHistory {
 struct Contact {
   // Where, and the law (this step's detection).
   ContactCandidate at;  ///< vertex P, edge, elements, ω, gap at the start of the step
+  /// The vertex of the other face at the same point whose contact against P's element would be
+  /// this one seen from the other side (element_of(mirror) = at.elem_b), −1 if none: the same
+  /// gap, shear and spring rows (contact.cpp begin_step), so a swap between the two is no change.
+  std::int32_t mirror = -1;
   int law = 0;          ///< index into ContactSet::laws()
   double length = 0;    ///< m, tributary joint length of the contact point
   // State: from the history at the start of the step, the solution's at its end.

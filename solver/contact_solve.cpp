@@ -121,19 +121,23 @@ int changed_springs(const std::vector<double>& note, const ContactSet& contacts)
     return std::abs(a - b) > kSpringChange * std::max(std::abs(a), std::abs(b));
   };
   int r = 0;
-  for (const Contact& c : contacts.contacts()) {
-    // First note entry of this vertex (entries are sorted by vertex, then element B).
+  // The note entry of (vertex, element A, element B), m if none (entries are sorted by vertex).
+  const auto entry = [&](double vertex, double elem_a, double elem_b) {
     std::size_t lo = 0, hi = m;
     while (lo < hi) {
       const std::size_t mid = (lo + hi) / 2;
-      if (note[kNoteStride * mid] < c.at.vertex) lo = mid + 1;
+      if (note[kNoteStride * mid] < vertex) lo = mid + 1;
       else hi = mid;
     }
-    std::size_t k = lo;
-    while (k < m && note[kNoteStride * k] == c.at.vertex &&
-           (note[kNoteStride * k + 1] != c.at.elem_a || note[kNoteStride * k + 2] != c.at.elem_b))
-      ++k;
-    if (k < m && note[kNoteStride * k] == c.at.vertex) {
+    for (std::size_t k = lo; k < m && note[kNoteStride * k] == vertex; ++k)
+      if (note[kNoteStride * k + 1] == elem_a && note[kNoteStride * k + 2] == elem_b) return k;
+    return m;
+  };
+  for (const Contact& c : contacts.contacts()) {
+    std::size_t k = entry(c.at.vertex, c.at.elem_a, c.at.elem_b);
+    // Made with the other face's vertex at this point: the same spring rows (contact.h mirror).
+    if (k == m && c.mirror >= 0) k = entry(c.mirror, c.at.elem_b, c.at.elem_a);
+    if (k < m) {
       matched[k] = 1;
       r += differs(c.kn_now, note[kNoteStride * k + 3]) + differs(c.ks_now, note[kNoteStride * k + 4]);
     } else {

@@ -66,6 +66,13 @@ struct ContactTolerances {
   double tributary_cos = -0.7;
   /// ×h, the tributary length of a bare corner (no edge at P faces the contacted one): a point.
   double corner_length = 1e-3;
+  /// –, a contact that slid into this step and whose shear force is within this fraction below
+  /// its strength (round-off: the return mapping left it exactly at the limit) takes the slip
+  /// branch's tangent 0 at the kink, not the stick branch's ks: the shear energy has no second
+  /// derivative there and either one-sided one gives a descent direction, but picking "stick" by
+  /// round-off put ~18 springs per step into the Newton matrix that the first iteration took out
+  /// again (20 × 20 brick wall), each a rank in H − P the factorisation cannot reuse.
+  double slip_kink = 1e-9;
   /// –, a hyperbolic shear law (Rf = 1) only approaches its strength: a trial force at this
   /// fraction of it counts as sliding.
   double hyperbola_slip = 0.999;
