@@ -77,12 +77,14 @@ constexpr double kStrengthFloor = 1e-6;
 
 // CG iterations worth one numeric factorisation. From flops: a factorisation's over one
 // iteration's (a factor solve pair, a product with the matrix, the contacts' rows). Measured
-// (thread CPU time, one core) on the brick walls of bench/contact_bench.cpp from 2.4k to 20k
-// unknowns, one factorisation costs 18–38 iterations, while the flop ratio grows with the size
-// (16 → 57): the factorisation's dense kernels run faster per flop on larger supernodes (2.5 →
-// 10 Gflop/s, the memory-bound solves stay at 3–4). So the flop ratio, at most
-// kMaxFactorisationInCgIterations. Counts, not clocks, so a run is the same on every machine.
-constexpr double kMaxFactorisationInCgIterations = 25;
+// (thread CPU time, one core, contact_bench --trace) on the brick walls of
+// bench/contact_bench.cpp from 2.4k to 20k unknowns, one factorisation costs 8.5–11 iterations
+// (1.3 / 8.0 / 26 ms against 0.15 / 0.72 / 2.9 ms), while the flop ratio grows with the size
+// (16 → 57): the factorisation's dense kernels run faster per flop on larger supernodes, the
+// memory-bound solves do not. (18–38 before the factorisation ran without libgomp's per-region
+// overhead, solver_threads.cpp.) So the flop ratio, at most kMaxFactorisationInCgIterations.
+// Counts, not clocks, so a run is the same on every machine.
+constexpr double kMaxFactorisationInCgIterations = 10;
 
 int cg_budget(const SystemMatrix& k, std::size_t contacts) {
   const double per_iteration = 4.0 * k.factor_nonzeros() + 4.0 * static_cast<double>(k.nonzeros()) +

@@ -21,4 +21,8 @@ int default_solver_threads(int unknowns);
 /// Returns the count set.
 int set_solver_threads(int threads);
 
+/// This thread was set to one solver thread: OpenMP regions of the libraries run as plain calls
+/// (solver_threads.cpp, GOMP_parallel).
+bool solver_runs_serial();
+
 }  // namespace nmm::solve
