@@ -6,6 +6,8 @@
 // 5.7 ms per factorisation of a 10 × 10 brick wall, 89k context switches in 30 steps). So the
 // default is one thread below kThreadedUnknowns unknowns and all cores above, where the dense
 // fronts are large enough to share (`nmm-solve --threads N` overrides; 0 = this default).
+// Asking for one thread takes more than omp_set_num_threads with this CHOLMOD: its own thread
+// count clause and libgomp's per-region overhead (solver_threads.cpp, docs/contact.md "Threads").
 #pragma once
 
 namespace nmm::solve {
