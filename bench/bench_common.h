@@ -5,6 +5,7 @@
 
 #include <time.h>
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -19,6 +20,15 @@ inline std::vector<int> parse_sizes(const char* s) {
   std::string item;
   while (std::getline(in, item, ',')) v.push_back(std::stoi(item));
   return v;
+}
+
+/// Opens the CSV at `path` and writes its header line there and on stdout (every bench echoes
+/// its rows to the terminal as it writes them).
+inline std::ofstream start_csv(const std::string& path, const char* header) {
+  std::ofstream csv(path);
+  csv << header;
+  std::fputs(header, stdout);
+  return csv;
 }
 
 /// The 1-minute load average (/proc/loadavg), −1 where it cannot be read.

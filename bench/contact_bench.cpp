@@ -107,13 +107,11 @@ int main(int argc, char** argv) {
     }
   }
   if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, trace_steps);
-  std::ofstream csv(csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"
       "factorisation_ms,solves_ms,update_ms,iterations_per_step,factorisations_per_step,"
       "solves_per_step,cuts,status,step_cpu_ms,load_average\n";
-  csv << header;
-  std::fputs(header, stdout);
+  std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (const bool dynamic : {false, true}) {
     for (int n : sizes) {
       const nmm::SceneDef s = nmm::test::brick_wall(n, dynamic);

@@ -23,9 +23,6 @@
 #include "scene_builders.h"
 #include "time_stepper.h"
 
-namespace {
-}  // namespace
-
 int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 30, 50};
   int reps = 20;
@@ -39,12 +36,10 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  std::ofstream csv(csv_path);
   const char* header =
       "wall_n,blocks,elements,candidate_edges,candidate_vertices,search_distance_m,pairs_tested,"
       "contacts,near_pairs,fastest_ms,median_ms,us_per_edge,load_average\n";
-  csv << header;
-  std::fputs(header, stdout);
+  std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (int n : sizes) {
     const nmm::SceneDef s = nmm::test::brick_wall(n, false);
     const nmm::Mesh m = nmm::pre::build_mesh(s, "wall");

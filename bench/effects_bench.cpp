@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench_common.h"
 #include "cover_cutter.h"
 #include "scene_builders.h"
 #include "time_stepper.h"
@@ -233,13 +234,11 @@ int main(int argc, char** argv) {
   }
   const double big = quick ? 1e4 : 5e4, mid = quick ? 5e3 : 2e4;
   const int steps = quick ? 5 : 10, many = quick ? 200 : 1000, rounds = quick ? 3 : 5;
-  std::ofstream csv(csv_path);
   const char* header =
       "section,scene,effects,unknowns,elements,steps_per_batch,step_ms,contact_detection_ms,"
       "assembly_ms,factorisation_ms,solves_ms,geometry_update_ms,other_ms,symbolic_analyses,"
       "iterations_per_step,cuts_per_step,first_step_ms,status,note\n";
-  csv << header;
-  std::fputs(header, stdout);
+  std::ofstream csv = nmm::bench::start_csv(csv_path, header);
 
   // (a) Contact off for a jointless single body; the same body with contact switched on.
   SquareOptions a;

@@ -118,12 +118,10 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  std::ofstream csv(csv_path);
   const char* header =
       "wall_n,scene,mesh_size_m,unknowns,matrix_nnz_lower,nnz_per_unknown,ordering,selected,"
       "factor_nnz,factor_nnz_per_unknown,factor_mflops,analyse_ms,factor_ms,load_average\n";
-  csv << header;
-  std::fputs(header, stdout);
+  std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   const struct {
     const char* name;
     int id;

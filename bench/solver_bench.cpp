@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.h"
 #include "cover_cutter.h"
 #include "time_stepper.h"
 
@@ -41,12 +42,10 @@ int main(int argc, char** argv) {
   }
   std::vector<double> targets = quick ? std::vector<double>{5e3, 2e4}
                                       : std::vector<double>{1e4, 2.5e4, 5e4, 1e5, 2e5};
-  std::ofstream csv(csv_path);
   const char* header =
       "unknowns,elements,step_s,assembly_s,factorisation_s,solves_s,geometry_update_s,"
       "reference_factor_solve_s,step_over_reference\n";
-  csv << header;
-  std::fputs(header, stdout);
+  std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (double target : targets) {
     const double h = 1.0, side = std::sqrt(target * h * h * std::sqrt(3.0) / 4);
     nmm::SceneDef s;
