@@ -18,7 +18,8 @@
 
 namespace nmm {
 
-void write_file_atomically(const std::string& path, const std::string& contents) {
+void write_file_atomically(const std::string& path, const std::string& contents,
+                           Durability durability) {
   const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
   int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   auto fail = [&](int err) {
@@ -39,11 +40,12 @@ void write_file_atomically(const std::string& path, const std::string& contents)
     p += w;
     left -= static_cast<std::size_t>(w);
   }
-  if (::fsync(fd) != 0) fail(errno);
+  if (durability == Durability::synced && ::fsync(fd) != 0) fail(errno);
   const int closed = ::close(fd);
   fd = -1;  // closed even when close() reports an error
   if (closed != 0) fail(errno);
   if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno);
+  if (durability == Durability::renamed) return;
   // Persist the rename itself. Best effort: the file is already complete under its name, so a
   // failure here is not reported as a failed write.
   const std::size_t slash = path.rfind('/');

@@ -5,10 +5,23 @@
 
 namespace nmm {
 
-/// Writes `contents` to `path.tmp.<pid>` in the target's folder, flushes it to disk (fsync),
-/// renames it over `path` (atomic within one file system) and flushes the folder. On failure
-/// the temporary is removed and InputError(path, "", "cannot write: <reason>") is thrown.
-/// Shared by the mesh file, the checkpoint and every text output writer.
-void write_file_atomically(const std::string& path, const std::string& contents);
+/// What a write promises after a crash of the machine (a killed process never leaves a
+/// half-written file under the final name either way: the rename is atomic).
+enum class Durability {
+  /// fsync of the file before the rename and of the folder after it: the file survives a power
+  /// cut (mesh files, checkpoints, summaries).
+  synced,
+  /// the rename alone: frames and frames.pvd, rewritten many times a run, where two fsyncs per
+  /// file cost more than writing the frame (docs/performance.md, "Output") and a power cut loses
+  /// the run anyway. The checkpoint, written synced, is what a run restarts from.
+  renamed,
+};
+
+/// Writes `contents` to `path.tmp.<pid>` in the target's folder, flushes it to disk (fsync,
+/// unless Durability::renamed), renames it over `path` (atomic within one file system) and
+/// flushes the folder. On failure the temporary is removed and InputError(path, "", "cannot
+/// write: <reason>") is thrown. Shared by the mesh file, the checkpoint and every output writer.
+void write_file_atomically(const std::string& path, const std::string& contents,
+                           Durability durability = Durability::synced);
 
 }  // namespace nmm

@@ -578,7 +578,7 @@ SolverDef read_solver(const Reader& r) {
   r.check_keys({"time_step", "steps", "dynamic", "dynamic_factor", "newmark_beta",
                 "max_displacement_ratio", "output_every", "fixed_point_stiffness",
                 "sliver_cover_weight", "checkpoint_every", "support_stiffness", "static_mode",
-                "excavation_steps", "cover_order"});
+                "excavation_steps", "cover_order", "history_every", "stop_at_ratio"});
   SolverDef s;  // defaults from scene.h
   s.time_step = r.optional_number("time_step", s.time_step, interval(kMinTimeStep, true, kMaxTimeStep, true));
   s.steps = r.optional_integer("steps", s.steps, 0);
@@ -594,6 +594,8 @@ SolverDef read_solver(const Reader& r) {
   s.max_displacement_ratio = r.optional_number("max_displacement_ratio", s.max_displacement_ratio,
                                                interval(0, false, 1, false));
   s.output_every = r.optional_integer("output_every", s.output_every, 1);
+  s.history_every = r.optional_integer("history_every", s.history_every, 1);
+  s.stop_at_ratio = r.optional_number("stop_at_ratio", s.stop_at_ratio, interval(0, false, 1, false));
   // Below 1/3 every element keeps at least one cover above it (its three weights sum to 1).
   s.sliver_cover_weight = r.optional_number("sliver_cover_weight", s.sliver_cover_weight,
                                             interval(0, true, 0.3, false));

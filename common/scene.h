@@ -131,7 +131,13 @@ struct SolverDef {
   double newmark_beta = 0.6;              ///< –, in [0.5, 1]: 0.5 is Shi's scheme exactly
   double fixed_point_stiffness = 0;       ///< N/m per unit thickness; 0: 100 × largest E·1 m
   double max_displacement_ratio = 0.001;  ///< –, g2 in Shi's step control, in (0, 1)
-  std::int64_t output_every = 10;         ///< steps between outputs, >= 1
+  std::int64_t output_every = 10;         ///< steps between outputs (frames), >= 1
+  /// steps between history.csv rows, >= 1; 0 (absent): output_every. Rows cost no frame.
+  std::int64_t history_every = 0;
+  /// –, in (0, 1): stop the run once the maximum unbalanced force ratio falls below it (and, in a
+  /// dynamic run, no cover moves faster than the rest velocity): UDEC's `solve ratio`
+  /// (solver/equilibrium_indicator.cpp); 0 (absent): run all steps
+  double stop_at_ratio = 0;
   /// –, in [0, 0.3): a physical cover whose weight stays below this everywhere on its support (a
   /// sliver left where a joint passes next to the edge of its star) shares the unknowns of the
   /// neighbour cover it overlaps most; 0 never ties (solver/cover_unknowns.cpp)

@@ -275,8 +275,8 @@ std::string legacy_vtk_text(const PolygonGrid& g, const std::string& title) {
   return out;
 }
 
-void write_vtu(const PolygonGrid& grid, const std::string& path) {
-  write_file_atomically(path, vtu_text(grid));
+void write_vtu(const PolygonGrid& grid, const std::string& path, Durability durability) {
+  write_file_atomically(path, vtu_text(grid), durability);
 }
 
 void write_legacy_vtk(const PolygonGrid& grid, const std::string& path, const std::string& title) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "atomic_file.h"
 #include "mesh.h"
 
 namespace nmm {
@@ -61,7 +62,8 @@ std::string vtu_text(const PolygonGrid& grid);
 std::string legacy_vtk_text(const PolygonGrid& grid, const std::string& title);
 
 /// Write atomically (see write_file_atomically). InputError naming `path` on failure.
-void write_vtu(const PolygonGrid& grid, const std::string& path);
+void write_vtu(const PolygonGrid& grid, const std::string& path,
+               Durability durability = Durability::synced);
 void write_legacy_vtk(const PolygonGrid& grid, const std::string& path,
                       const std::string& title = "nmm");
 /// True if `path` ends in ".vtu": such files get the XML format, all others the legacy one.

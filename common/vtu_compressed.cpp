@@ -30,7 +30,7 @@ void put_u64(std::string& out, std::uint64_t v) {
 }
 
 /// Appends one array's header and compressed blocks to `data`.
-void append_compressed(std::string& data, const void* raw, std::size_t bytes) {
+void append_compressed(std::string& data, const void* raw, std::size_t bytes, int level) {
   const std::size_t nblocks = (bytes + kBlock - 1) / kBlock;
   std::vector<std::string> blocks(nblocks);
   const auto* p = static_cast<const Bytef*>(raw);
@@ -39,7 +39,7 @@ void append_compressed(std::string& data, const void* raw, std::size_t bytes) {
     uLongf out_len = compressBound(static_cast<uLong>(n));
     blocks[b].resize(out_len);
     if (compress2(reinterpret_cast<Bytef*>(blocks[b].data()), &out_len, p + b * kBlock,
-                  static_cast<uLong>(n), Z_DEFAULT_COMPRESSION) != Z_OK)
+                  static_cast<uLong>(n), level) != Z_OK)
       throw std::runtime_error("zlib compress2 failed");
     blocks[b].resize(out_len);
   }
@@ -51,6 +51,7 @@ void append_compressed(std::string& data, const void* raw, std::size_t bytes) {
 }
 
 struct Writer {
+  int level;  // zlib, 0–9
   std::string xml, data;
   void array(const char* type, const std::string& name, int components, const void* raw,
              std::size_t bytes, const char* indent) {
@@ -60,7 +61,7 @@ struct Writer {
     xml += "\" Name=\"" + xml_escape(name) + "\"";
     if (components > 0) xml += " NumberOfComponents=\"" + std::to_string(components) + "\"";
     xml += " format=\"appended\" offset=\"" + std::to_string(data.size()) + "\"/>\n";
-    append_compressed(data, raw, bytes);
+    append_compressed(data, raw, bytes, level);
   }
   void arrays(const std::vector<GridArray>& list, const char* tag) {
     if (list.empty()) return;
@@ -77,10 +78,11 @@ struct Writer {
 
 }  // namespace
 
-std::string vtu_compressed(const PolygonGrid& g) {
+std::string vtu_compressed(const PolygonGrid& g, int level) {
   check_grid(g);
   if (!little_endian()) throw std::logic_error("vtu_compressed: big-endian hosts are not supported");
-  Writer w;
+  if (level < 0 || level > 9) throw std::logic_error("vtu_compressed: zlib level outside 0-9");
+  Writer w{level, {}, {}};
   w.xml += "<?xml version=\"1.0\"?>\n";
   w.xml +=
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -106,8 +108,9 @@ std::string vtu_compressed(const PolygonGrid& g) {
   return w.xml;
 }
 
-void write_vtu_compressed(const PolygonGrid& grid, const std::string& path) {
-  write_file_atomically(path, vtu_compressed(grid));
+void write_vtu_compressed(const PolygonGrid& grid, const std::string& path,
+                          Durability durability) {
+  write_file_atomically(path, vtu_compressed(grid), durability);
 }
 
 }  // namespace nmm

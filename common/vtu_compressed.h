@@ -14,14 +14,22 @@
 
 #include <string>
 
+#include "atomic_file.h"
 #include "vtk_writer.h"
 
 namespace nmm {
 
-/// The .vtu file contents, binary appended and zlib-compressed.
-std::string vtu_compressed(const PolygonGrid& grid);
+/// zlib level of the frames: 1 (fastest). Measured on the block on the incline (bench/
+/// output_bench, docs/performance.md "Output"): level 1 compresses a frame several times faster
+/// than level 6 for a file a few per cent larger.
+constexpr int kFrameCompressionLevel = 1;
 
-/// vtu_compressed written atomically. InputError naming `path` on failure.
-void write_vtu_compressed(const PolygonGrid& grid, const std::string& path);
+/// The .vtu file contents, binary appended and zlib-compressed at `level` (0–9).
+std::string vtu_compressed(const PolygonGrid& grid, int level = kFrameCompressionLevel);
+
+/// vtu_compressed written atomically (write_file_atomically with `durability`). InputError
+/// naming `path` on failure.
+void write_vtu_compressed(const PolygonGrid& grid, const std::string& path,
+                          Durability durability = Durability::synced);
 
 }  // namespace nmm

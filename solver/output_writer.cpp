@@ -1,8 +1,10 @@
 // Solver output files (output_writer.h, contract in docs/interface.md "Solver output in OUTDIR").
 //
 // Rules:
-// - Every file is written whole through write_file_atomically (temporary name, fsync, rename), so
-//   a reader never sees a half-written file under its final name, even when a run is killed.
+// - Every file is written whole through write_file_atomically (temporary name, rename), so a
+//   reader never sees a half-written file under its final name, even when a run is killed.
+//   Frames and frames.pvd skip the fsync (Durability::renamed): two fsyncs per file were most of
+//   a frame's cost (docs/performance.md, "Output"); history, summary and checkpoint keep it.
 //   history.csv and frames.pvd are therefore kept in memory and rewritten whole each time; both
 //   are small next to the frames.
 // - Numbers are written as the shortest text that reads back to the same double (std::to_chars):
@@ -125,11 +127,24 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   if (fields.extra_cell != nullptr) check_size(fields.extra_cell, ne, "extra_cell");
   if (fields.vertex_stress != nullptr) check_size(fields.vertex_stress, 3 * nv, "vertex_stress");
 
-  PolygonGrid grid = mesh_to_grid(mesh);
-  // mesh_to_grid keeps one point per loop vertex (it drops near-duplicates from the cells only),
-  // so point v is loop vertex v; a different layout would silently misplace every value below.
-  if (grid.point_count() != nv)
-    throw std::logic_error("mesh_to_grid no longer has one point per loop vertex");
+  if (grid_mesh_ != &mesh) {
+    // Once per run: mesh_to_grid's cells (near-duplicate vertices dropped) cost about as much as
+    // compressing a frame.
+    grid_ = mesh_to_grid(mesh);
+    grid_mesh_ = &mesh;
+    // mesh_to_grid keeps one point per loop vertex (it drops near-duplicates from the cells
+    // only), so point v is loop vertex v; a different layout would silently misplace every value.
+    if (grid_.point_count() != nv)
+      throw std::logic_error("mesh_to_grid no longer has one point per loop vertex");
+    // Keep the identifiers; drop what describes the cut mesh rather than a state (the area of
+    // the undeformed loop, the triangle and covers are for nmm-inspect).
+    std::vector<GridArray> kept;
+    for (GridArray& a : grid_.cell_data)
+      if (a.name == "element" || a.name == "block" || a.name == "body") kept.push_back(std::move(a));
+    grid_.cell_data = std::move(kept);
+    grid_cell_arrays_ = grid_.cell_data.size();
+  }
+  PolygonGrid& grid = grid_;
   const std::vector<double>& xy = *fields.loop_xy;
   const std::vector<double>& u = *fields.loop_u;
   std::vector<double> displacement(3 * nv);
@@ -144,12 +159,7 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   grid.add_point_array("displacement", 3, std::move(displacement));
   if (fields.vertex_stress != nullptr) grid.add_point_array("vertex_stress", 3, *fields.vertex_stress);
 
-  // Keep the identifiers; drop what describes the cut mesh rather than this state (the area of
-  // the undeformed loop, the triangle and covers are for nmm-inspect).
-  std::vector<GridArray> kept;
-  for (GridArray& a : grid.cell_data)
-    if (a.name == "element" || a.name == "block" || a.name == "body") kept.push_back(std::move(a));
-  grid.cell_data = std::move(kept);
+  grid.cell_data.resize(grid_cell_arrays_);  // the last frame's fields go
   grid.add_cell_array("stress", 3, *fields.stress);
   if (fields.extra_cell != nullptr)
     grid.add_cell_array(
@@ -157,10 +167,11 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
         *fields.extra_cell);
 
   const std::string file = frame_file_name(step);
+  // Frames and frames.pvd: the rename without fsync (atomic_file.h, Durability::renamed).
   if (format_ == FrameFormat::text)
-    write_vtu(grid, join_path(dir_, file));
+    write_vtu(grid, join_path(dir_, file), Durability::renamed);
   else
-    write_vtu_compressed(grid, join_path(dir_, file));
+    write_vtu_compressed(grid, join_path(dir_, file), Durability::renamed);
 
   bool replaced = false;
   for (auto& frame : frames_)
@@ -181,7 +192,7 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
     pvd += "\" group=\"\" part=\"0\" file=\"" + name + "\"/>\n";
   }
   pvd += "  </Collection>\n</VTKFile>\n";
-  write_file_atomically(join_path(dir_, "frames.pvd"), pvd);
+  write_file_atomically(join_path(dir_, "frames.pvd"), pvd, Durability::renamed);
 }
 
 void OutputWriter::add_contacts(std::int64_t step, double time,

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh.h"
+#include "vtk_writer.h"
 
 namespace nmm::solve {
 
@@ -104,6 +105,11 @@ class OutputWriter {
   std::int64_t contact_calls_ = 0;
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
   nlohmann::json inputs_;  // summary.json "inputs" (null: none)
+  // The frame grid: mesh_to_grid of the mesh as cut, with the identifier cell arrays only; every
+  // frame overwrites its points and adds its fields (the connectivity never changes).
+  const Mesh* grid_mesh_ = nullptr;
+  PolygonGrid grid_;
+  std::size_t grid_cell_arrays_ = 0;  // element, block, body
 };
 
 }  // namespace nmm::solve

@@ -64,7 +64,8 @@ void ProgressLine::update(std::int64_t step, double time) {
   std::fflush(out_);
 }
 
-void ProgressLine::finish(std::int64_t step, double time, const std::string& status) {
+void ProgressLine::finish(std::int64_t step, double time, const std::string& status,
+                          const std::string& note) {
   if (mode_ == Mode::off) return;
   // A run that did not end "ok" is reported by the caller in exactly one line (the exit-status
   // contract): only end a terminal's in-place line here.
@@ -73,7 +74,8 @@ void ProgressLine::finish(std::int64_t step, double time, const std::string& sta
     std::fflush(out_);
     return;
   }
-  const std::string text = line(step, time, seconds_since_start());
+  const std::string text =
+      line(step, time, seconds_since_start()) + (note.empty() ? std::string() : "; " + note);
   if (mode_ == Mode::terminal) std::fprintf(out_, "\r%s\033[K\n", text.c_str());
   else std::fprintf(out_, "%s\n", text.c_str());
   std::fflush(out_);

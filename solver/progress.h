@@ -21,9 +21,11 @@ class ProgressLine {
                double terminal_period = 0.5, double plain_period = 5.0);
   /// After an accepted step: prints when the period has passed since the last line.
   void update(std::int64_t step, double time);
-  /// At the end of an "ok" run: the last line. Any other status prints nothing (the caller's
-  /// one line says why), a terminal's in-place line is only ended.
-  void finish(std::int64_t step, double time, const std::string& status);
+  /// At the end of an "ok" run: the last line, with `note` after it (nmm-solve: the status and
+  /// the equilibrium verdict). Any other status prints nothing (the caller's one line says why),
+  /// a terminal's in-place line is only ended.
+  void finish(std::int64_t step, double time, const std::string& status,
+              const std::string& note = "");
   /// The text of one line (no line ending), for tests.
   std::string line(std::int64_t step, double time, double wall_seconds) const;
 

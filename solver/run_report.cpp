@@ -99,13 +99,15 @@ NumberTable read_number_csv(const std::string& path) {
 }
 
 void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows) {
-  std::string s = "step,time,dt,iterations,cuts,closed_contacts\n";
-  char buf[160];
+  std::string s = "step,time,dt,iterations,cuts,closed_contacts,max_unbalanced_ratio,"
+                  "mean_unbalanced_ratio,max_velocity\n";
+  char buf[256];
   for (const StepRecord& r : rows) {
-    std::snprintf(buf, sizeof buf, "%lld,%.17g,%.17g,%lld,%lld,%lld\n",
+    std::snprintf(buf, sizeof buf, "%lld,%.17g,%.17g,%lld,%lld,%lld,%.6g,%.6g,%.6g\n",
                   static_cast<long long>(r.step), r.time, r.dt,
                   static_cast<long long>(r.iterations), static_cast<long long>(r.cuts),
-                  static_cast<long long>(r.closed_contacts));
+                  static_cast<long long>(r.closed_contacts), r.max_unbalanced_ratio,
+                  r.mean_unbalanced_ratio, r.max_velocity);
     s += buf;
   }
   write_file_atomically((fs::path(dir) / "run_history.csv").string(), s);
@@ -167,6 +169,27 @@ ReportFiles make_run_report(const std::string& dir) {
       }
       panels.push_back(svg_plot({"solver effort per step", "time (s)",
                                  "iterations / step length (ms)", false, false, {iters, steps}}));
+    }
+    // Equilibrium indicators (equilibrium_indicator.h), log scale: UDEC's ratio limit 1e-5 drawn.
+    const int rmax = r.column("max_unbalanced_ratio"), rmean = r.column("mean_unbalanced_ratio"),
+              vmax = r.column("max_velocity");
+    if (t >= 0 && rmax >= 0 && rmean >= 0 && vmax >= 0 && !r.rows.empty()) {
+      PlotSeries mx{"max unbalanced force ratio", {}, {}, "#d62728", true, false};
+      PlotSeries mn{"mean unbalanced force ratio", {}, {}, "#ff7f0e", true, false};
+      PlotSeries v{"largest velocity (m/s)", {}, {}, "#1f77b4", true, false};
+      PlotSeries limit{"ratio 1e-5 (at rest below)", {}, {}, "#777777", true, false};
+      for (const auto& row : r.rows) {
+        if (row.size() < r.names.size()) continue;
+        mx.x.push_back(row[t]), mx.y.push_back(row[rmax]);
+        mn.x.push_back(row[t]), mn.y.push_back(row[rmean]);
+        v.x.push_back(row[t]), v.y.push_back(row[vmax]);
+      }
+      if (!mx.x.empty()) {
+        limit.x = {mx.x.front(), mx.x.back()};
+        limit.y = {1e-5, 1e-5};
+      }
+      panels.push_back(svg_plot({"equilibrium: unbalanced force ratio and velocity", "time (s)",
+                                 "ratio (–) / velocity (m/s)", false, true, {mx, mn, v, limit}}));
     }
   }
   const std::string energy_path = (fs::path(dir) / "energy.csv").string();

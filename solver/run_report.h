@@ -1,8 +1,10 @@
 // The report of a finished (or stopped) run, made from the files in its folder, so that
 // `nmm-report OUTDIR` can remake it at any time and nmm-solve --pictures makes it at the end:
 //   history.svg      measure points' displacements ux, uy (mm) against time (from history.csv)
-//   run_history.svg  two panels: open–close iterations per step and step length against time
-//                    (from run_history.csv); the energy terms against time (from energy.csv,
+//   run_history.svg  panels: open–close iterations per step and step length against time
+//                    (from run_history.csv); the equilibrium indicators — maximum and mean
+//                    unbalanced force ratio and largest velocity, log scale (run_history.csv,
+//                    equilibrium_indicator.h); the energy terms against time (from energy.csv,
 //                    energy.h: kinetic, strain, gravity, springs, work of loads, friction, residual)
 //   index.html       the pictures (result.svg when nmm-solve drew it) and summary.json's
 //                    status, times and counts, readable in any browser
@@ -23,6 +25,9 @@ struct StepRecord {
   std::int64_t iterations;  ///< open–close iterations (solves) the step took, cut attempts included
   std::int64_t cuts;     ///< time-step cuts before the step was accepted
   std::int64_t closed_contacts;  ///< contacts closed after the step
+  double max_unbalanced_ratio = 0;   ///< –, equilibrium_indicator.h
+  double mean_unbalanced_ratio = 0;  ///< –
+  double max_velocity = 0;           ///< m/s, largest cover velocity
 };
 
 /// A CSV of numbers with a header line (history.csv, contacts.csv, run_history.csv, energy.csv).
@@ -37,7 +42,8 @@ struct NumberTable {
 /// line) when it is missing, damaged or a cell is not a number.
 NumberTable read_number_csv(const std::string& path);
 
-/// Writes OUTDIR/run_history.csv ("step,time,dt,iterations,cuts,closed_contacts").
+/// Writes OUTDIR/run_history.csv ("step,time,dt,iterations,cuts,closed_contacts,
+/// max_unbalanced_ratio,mean_unbalanced_ratio,max_velocity").
 void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows);
 
 /// What make_run_report wrote (file names relative to the folder).

@@ -113,19 +113,26 @@ int main(int argc, char** argv) {
     std::size_t iterations = 0, cuts = 0;
     double t_prev = t_start;
     stepper.set_progress([&](std::int64_t n, double t) {
-      effort.push_back({n, t, t - t_prev,
+      // Step numbers as history.csv counts them: after --restart they go on from the checkpoint's.
+      const std::int64_t step = stepper.step_count();
+      const nmm::solve::EquilibriumSample& eq = stepper.equilibrium();
+      effort.push_back({step, t, t - t_prev,
                         static_cast<std::int64_t>(stepper.open_close_iterations() - iterations),
                         static_cast<std::int64_t>(stepper.time_step_cuts() - cuts),
-                        static_cast<std::int64_t>(stepper.contacts().closed_count())});
+                        static_cast<std::int64_t>(stepper.contacts().closed_count()),
+                        eq.max_ratio, eq.mean_ratio, eq.max_velocity});
       energy.after_step(stepper.state(), stepper.contacts().contacts(), n % sv.output_every == 0);
       iterations = stepper.open_close_iterations();
       cuts = stepper.time_step_cuts();
       t_prev = t;
-      progress.update(n, t);
+      progress.update(step, t);
     });
     const nlohmann::json summary = stepper.run(out, false);
     const std::string status = summary["status"].get<std::string>();
-    progress.finish(summary["steps_completed"].get<std::int64_t>(), stepper.time(), status);
+    const std::string verdict = nmm::solve::equilibrium_line(summary["equilibrium"]);
+    progress.finish(stepper.step_count(), stepper.time(), status,
+                    status + ", " + verdict +
+                        (summary["stopped_by"] == "stop_at_ratio" ? ", stopped by stop_at_ratio" : ""));
     nmm::solve::write_run_history(out_dir, effort);
     energy.keep_last();
     energy.write_csv(out_dir);
@@ -154,12 +161,13 @@ int main(int argc, char** argv) {
     }
     if (status == "interrupted") {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
-                << " steps at t = " << stepper.time() << " s; history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
+                << " steps at t = " << stepper.time() << " s (" << verdict
+                << "); history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
       return nmm::solve::kExitInterrupted;
     }
     if (status != "ok") {
       std::cerr << "nmm-solve: stopped after " << summary["steps_completed"].get<long long>()
-                << " steps: " << status << "\n";
+                << " steps: " << status << " (" << verdict << ")\n";
       return nmm::kExitRunFailed;
     }
   } catch (const std::bad_alloc&) {

@@ -139,6 +139,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
                                                   : 100.0 * e_max / mesh.mesh_size;
   pin_k_ = std::max(e_max, 1.0);
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
+  indicator_ = EquilibriumIndicator(mesh, scene, space_);
   contacts_.use_space(space_);
   elem_mat_.resize(ne);
   for (std::size_t e = 0; e < ne; ++e) {
@@ -846,11 +847,40 @@ std::string TimeStepper::attempt(double dt) {
     s_.max_capped = std::max(s_.max_capped, contacts_.capped_count());
   }
   t0 = Clock::now();
+  measure_balance(d, dt, contact);
   update(d, dt);
   timings_.geometry_update += since(t0);
   s_.time += dt;
   ++s_.step;
   return "";
+}
+
+void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool contact) {
+  // The same body force, β and loads as the step's assembly (assemble()), at the step's end.
+  const double t_end = s_.time + dt;
+  const double bx = (scene_.has_gravity ? scene_.gravity.x : 0.0) -
+                    table_value(scene_.base_acceleration_x, t_end, 0.0);
+  const double by = (scene_.has_gravity ? scene_.gravity.y : 0.0) -
+                    table_value(scene_.base_acceleration_y, t_end, 0.0);
+  StepBalance b;
+  b.d = &d;
+  b.v0 = &s_.velocity;
+  b.a0 = &s_.accel;
+  b.dt = dt;
+  b.beta = s_.accel_known && scene_.solver.dynamic ? scene_.solver.newmark_beta : 0.5;
+  Eigen::VectorXd kd;
+  if (!step_inertia()) {
+    // No mass: the force the solve balanced, K·d (with contacts: the saved matrix, K without
+    // the contact springs; without: K·d = the right-hand side itself).
+    if (contact) system_.saved_times(d, kd);
+    b.balance = contact ? &kd : &rhs_;
+  }
+  b.applied_sum = applied_force_sum(scene_, s_, t_end, std::hypot(bx, by),
+                                    indicator_.active_mass(s_.body_removed), traction_edges_,
+                                    interface_edges_, removed_elem_);
+  b.stress = &s_.stress;
+  b.stress_terms = stress_terms();
+  balance_ = indicator_.measure(b, s_.body_removed);
 }
 
 void TimeStepper::step(double dt) {
@@ -888,6 +918,7 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
   const double dt_floor = 1e-3 * sv.time_step;
   double dt = std::min(s_.dt, sv.time_step);
   std::int64_t done = 0;
+  stopped_at_ratio_ = false;
   while (s_.time < t_end - 1e-9 * sv.time_step) {
     // Between steps only, so an interrupted run stops in a consistent state.
     if (stop_check_ && stop_check_()) return "interrupted";
@@ -914,7 +945,11 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
     }
     dt = std::min(1.3 * dt, sv.time_step);
     s_.dt = dt;
+    // UDEC's `solve ratio`: the run has reached equilibrium (equilibrium_indicator.cpp).
+    stopped_at_ratio_ = sv.stop_at_ratio > 0 && balance_.max_ratio < sv.stop_at_ratio &&
+                        (!sv.dynamic || balance_.max_velocity < RestCriterion::kVelocity);
     on_step(++done);
+    if (stopped_at_ratio_) return "ok";
   }
   return "ok";
 }
@@ -924,10 +959,21 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   const SolverDef& sv = scene_.solver;
   const std::int64_t step0 = s_.step;  // steps before this run (a restart continues from them)
   const std::string checkpoint = out.dir() + "/checkpoint.nmmstate";
+  // history.csv rows every history_every steps, frames (and contacts.csv) every output_every:
+  // a history at every step costs no frame.
+  const std::int64_t history_every = sv.history_every > 0 ? sv.history_every : sv.output_every;
+  std::int64_t last_history = -1;
+  auto history = [&](std::int64_t n) {
+    if (n == last_history) return;
+    const auto t0 = Clock::now();
+    out.add_history(step0 + n, s_.time, sample_measure_points());
+    last_history = n;
+    timings_.output += since(t0);
+  };
   auto output = [&](std::int64_t n) {
     const std::int64_t s = step0 + n;
+    history(n);
     const auto t0 = Clock::now();
-    out.add_history(s, s_.time, sample_measure_points());
     FrameFields fields;
     fields.loop_xy = &s_.loop_xy;
     fields.loop_u = &s_.loop_u;
@@ -962,7 +1008,9 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
   const std::string status = run_until(t_end, [&](std::int64_t n) {
     done = n;
-    if (n % sv.output_every == 0 || s_.time >= t_end - 1e-9 * sv.time_step) output(n);
+    const bool last = s_.time >= t_end - 1e-9 * sv.time_step || stopped_at_ratio_;
+    if (n % sv.output_every == 0 || last) output(n);
+    else if (n % history_every == 0) history(n);
     if (sv.checkpoint_every > 0 && n % sv.checkpoint_every == 0) {
       const auto t0 = Clock::now();
       write_checkpoint(checkpoint);
@@ -984,6 +1032,14 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
 
   nlohmann::json summary;
   summary["status"] = status;
+  // Why the run ended: all its steps, solver.stop_at_ratio met, an interrupt, or an error
+  // (status then says which).
+  summary["stopped_by"] = status == "interrupted" ? "interrupt"
+                          : status != "ok"        ? "error"
+                          : stopped_at_ratio_     ? "stop_at_ratio"
+                                                  : "steps";
+  summary["equilibrium"] = equilibrium_verdict(balance_, sv.dynamic);
+  if (sv.stop_at_ratio > 0) summary["equilibrium"]["stop_at_ratio"] = sv.stop_at_ratio;
   summary["steps_completed"] = done;
   summary["first_step"] = step0;  // steps before this run (a restart from a checkpoint)
   summary["step"] = s_.step;      // steps since step 0 of the first run

@@ -15,6 +15,7 @@
 #include "cover_space.h"
 #include "cover_unknowns.h"
 #include "elasticity.h"
+#include "equilibrium_indicator.h"
 #include "mesh.h"
 #include "boundary_conditions.h"
 #include "output_writer.h"
@@ -128,6 +129,10 @@ class TimeStepper {
   void excavate(const std::vector<int>& bodies);
   /// Steps the run has completed since step 0 of its first stage.
   std::int64_t step_count() const { return s_.step; }
+  /// The equilibrium indicators of the last accepted step (equilibrium_indicator.h).
+  const EquilibriumSample& equilibrium() const { return balance_; }
+  /// The last run_until stopped because solver.stop_at_ratio was met.
+  bool stopped_at_ratio() const { return stopped_at_ratio_; }
 
  private:
   void compute_frames();
@@ -136,6 +141,9 @@ class TimeStepper {
   void update(const Eigen::VectorXd& d, double dt);
   std::vector<MeasureSample> sample_measure_points() const;
   void check_static_support() const;
+  /// The equilibrium indicators of the step just solved (increment d of length dt), before
+  /// update() moves the state on.
+  void measure_balance(const Eigen::VectorXd& d, double dt, bool contact);
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
   bool step_inertia() const {
     return scene_.solver.dynamic || scene_.solver.static_mode == StaticMode::dda;
@@ -181,6 +189,9 @@ class TimeStepper {
   std::function<void(std::int64_t, double)> progress_;  // progress.h
   ContactSolveStats solve_stats_;
   int threads_ = 1;  // what the contact solves cost (contact_solve.h)
+  EquilibriumIndicator indicator_;  // lumped cover masses (derived from the mesh: no run state)
+  EquilibriumSample balance_;       // of the last accepted step (diagnostics, not state)
+  bool stopped_at_ratio_ = false;
 };
 
 }  // namespace nmm::solve

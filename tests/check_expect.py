@@ -6,7 +6,8 @@ Usage: check_expect.py SCENE.json OUTDIR [--quick]
 With --quick the "// expect-quick: ..." lines are checked instead (the scene's "// quick:" run).
 
 The scene's header holds lines of the form (each a comment line of the scene file)
-    // expect: summary.KEY == "text"            string equality of summary.json's KEY
+    // expect: summary.KEY == "text"            string equality of summary.json's KEY (KEY may
+                                             name a nested one: equilibrium.verdict)
     // expect: summary.KEY >= NUMBER            also <=, >, <, == for numbers
     // expect: history travel P at end within X +- TOL   |u| of measure point P at the last row, m
     // expect: history ux P at end within X +- TOL       (also uy) a component at the last row, m
@@ -38,7 +39,7 @@ def main():
            ">": lambda a, b: a > b, "<": lambda a, b: a < b}
     failed = 0
     for e in expects:
-        m = re.match(r"summary\.(\w+)\s*(==|>=|<=|>|<)\s*(.+)$", e)
+        m = re.match(r"summary\.([\w.]+)\s*(==|>=|<=|>|<)\s*(.+)$", e)
         h = re.match(r"history\s+(travel|ux|uy)\s+(\d+)(?:\s+minus\s+(ux|uy)\s+(\d+))?\s+at end\s+(?:within\s+(\S+)\s*\+-\s*(\S+)|"
                      r"(==|>=|<=|>|<)\s*(\S+))$", e)
         f = re.match(r"history\s+travel\s+(\d+)\s+from\s+(\S+)\s+to end\s*(==|>=|<=|>|<)\s*(\S+)$", e)
@@ -56,7 +57,9 @@ def main():
         elif m:
             key, op, want = m.groups()
             want = json.loads(want)
-            got = summary.get(key)
+            got = summary
+            for part in key.split("."):
+                got = got.get(part) if isinstance(got, dict) else None
             ok = got is not None and ops[op](got, want)
         elif h:
             what, point, what2, point2, x, tol, op, bound = h.groups()

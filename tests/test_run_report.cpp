@@ -105,21 +105,24 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
                                            "simulated_time": 0.002, "wall_seconds": 0.1})";
   std::ofstream(dir / "history.csv") << "step,time,point,x,y,ux,uy\n0,0,0,1,1,0,0\n"
                                         "1,0.001,0,1,0.999,0,-0.001\n2,0.002,0,1,0.998,0,-0.002\n";
-  write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3}, {2, 0.002, 0.001, 7, 1, 4}});
+  write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3, 0.2, 0.01, 0.3},
+                                   {2, 0.002, 0.001, 7, 1, 4, 3e-6, 1e-7, 2e-5}});
   std::ofstream(dir / "energy.csv") << "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n"
                                        "0,0,0,0,0,0,0,0,0\n2,0.002,5,1,-6,0,0,0,0\n";
   const ReportFiles files = make_run_report(dir.string());
   {
-    // Two panels in one picture: solver effort, then the energy terms.
+    // Three panels in one picture: solver effort, the equilibrium indicators, the energy terms.
     std::stringstream rh_svg;
     rh_svg << std::ifstream(dir / "run_history.svg").rdbuf();
     const std::string svg = rh_svg.str();
-    EXPECT_LT(svg.find("solver effort per step"), svg.find("energy (J per m of thickness)")) << svg;
+    EXPECT_LT(svg.find("solver effort per step"), svg.find("equilibrium: unbalanced force ratio")) << svg;
+    EXPECT_LT(svg.find("equilibrium: unbalanced force ratio"), svg.find("energy (J per m of thickness)")) << svg;
+    EXPECT_NE(svg.find("max unbalanced force ratio"), std::string::npos);
     EXPECT_NE(svg.find("gravity potential V"), std::string::npos);
     std::size_t nested = 0;
     for (std::size_t at = svg.find("<svg "); at != std::string::npos; at = svg.find("<svg ", at + 1))
       ++nested;
-    EXPECT_EQ(nested, 3u) << "the outer document and its two panels";
+    EXPECT_EQ(nested, 4u) << "the outer document and its three panels";
   }
   EXPECT_TRUE(fs::exists(dir / "history.svg"));
   EXPECT_TRUE(fs::exists(dir / "run_history.svg"));
@@ -130,7 +133,10 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
   EXPECT_NE(html.str().find("<tr><th>gravity</th><td>-6</td></tr>"), std::string::npos) << html.str();
   std::stringstream rh;
   rh << std::ifstream(dir / "run_history.csv").rdbuf();
-  EXPECT_EQ(rh.str().substr(0, 45), "step,time,dt,iterations,cuts,closed_contacts\n");
+  EXPECT_EQ(rh.str().substr(0, 108),
+            "step,time,dt,iterations,cuts,closed_contacts,max_unbalanced_ratio,mean_unbalanced_ratio,"
+            "max_velocity\n1,0.001");
+  EXPECT_NE(rh.str().find(",3e-06,1e-07,2e-05\n"), std::string::npos) << rh.str();
   fs::remove(dir / "summary.json");
   EXPECT_THROW(make_run_report(dir.string()), InputError);
   fs::remove_all(dir);

@@ -16,8 +16,9 @@ rm -rf "$dir" && mkdir -p "$dir"
 fail=0
 "$solve" "$dir/m.nmm" -o "$dir/straight" -q --set solver.steps=$((2 * n)) || { echo "straight run failed"; exit 1; }
 "$solve" "$dir/m.nmm" -o "$dir/first" -q --set solver.steps=$n || { echo "first run failed"; exit 1; }
-"$solve" "$dir/m.nmm" -o "$dir/second" -q --set solver.steps=$n --restart "$dir/first/checkpoint.nmmstate" ||
-  { echo "restart failed"; exit 1; }
+# Not quiet: its last line (the progress line's) must count steps as history.csv does.
+"$solve" "$dir/m.nmm" -o "$dir/second" --set solver.steps=$n --restart "$dir/first/checkpoint.nmmstate" \
+  2> "$dir/second.log" || { echo "restart failed"; cat "$dir/second.log"; exit 1; }
 field() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
 h1=$(field "$dir/straight/summary.json" state_hash)
 h2=$(field "$dir/second/summary.json" state_hash)
@@ -26,6 +27,18 @@ echo "straight $h1"; echo "restart  $h2"; echo "half     $h0"
 [ "$h1" = "$h2" ] || { echo "restarted state differs from the straight run"; fail=1; }
 [ "$h0" != "$h2" ] || { echo "the state did not move in the second half"; fail=1; }
 [ "$(field "$dir/second/summary.json" step)" = $((2 * n)) ] || { echo "step numbers do not continue"; fail=1; }
+# The progress line, run_history.csv and history.csv count on from the checkpoint alike.
+last=$(tail -n 1 "$dir/second.log")
+echo "restart's last line: $last"
+case "$last" in *" step $((2 * n)) "*) ;; *) echo "the progress line does not end at step $((2 * n))"; fail=1 ;; esac
+case "$last" in *"ok, moving"*|*"ok, at_rest"*) ;; *) echo "no status and verdict on the last line"; fail=1 ;; esac
+[ "$(awk -F, 'NR == 2 {print $1}' "$dir/second/run_history.csv")" = $((n + 1)) ] &&
+  [ "$(tail -n 1 "$dir/second/run_history.csv" | cut -d, -f1)" = $((2 * n)) ] ||
+  { echo "run_history.csv steps do not go on from the checkpoint"; fail=1; }
+# The equilibrium indicators carry no state: the restart's last step measures as the straight run's.
+e1=$(field "$dir/straight/summary.json" equilibrium)
+e2=$(field "$dir/second/summary.json" equilibrium)
+[ "$e1" = "$e2" ] || { echo "equilibrium differs: straight $e1, restart $e2"; fail=1; }
 # The checkpoint must catch contacts sliding (state 2 in contacts.csv), or the test proves less.
 sliding=$(awk -F, -v s=$n 'NR > 1 && $1 == s && $6 == 2' "$dir/first/contacts.csv" | wc -l)
 echo "contacts sliding at the checkpoint (step $n): $sliding"

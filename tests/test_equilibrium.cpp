@@ -1,0 +1,137 @@
+// Equilibrium indicators (solver/equilibrium_indicator.cpp, docs/solver.md "Equilibrium
+// indicators"): the unbalanced force ratio and largest velocity against the sliding block's
+// closed form, the verdict for blocks that slide and blocks that rest, dynamic and static, and
+// solver.stop_at_ratio.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cover_cutter.h"
+#include "time_stepper.h"
+
+namespace nmm::solve {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double polygon_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) a += p[j].x * p[i].y - p[i].x * p[j].y;
+  return 0.5 * std::abs(a);
+}
+
+// The block on a 30° incline of friction φ, data/block_on_incline.json (its base 100 times
+// stiffer than the block, so that the base does not ring and the block's motion is all there
+// is): a = g (sin α − cos α tan φ) down the slope while it slides.
+struct Incline {
+  SceneDef scene;
+  Mesh mesh;
+  double accel = 0;          // m/s², the closed form (0: it holds)
+  double block_fraction = 0; // –, block mass over the model's (one density)
+};
+
+Incline incline(double friction_deg, bool dynamic) {
+  Incline c;
+  const std::string path = std::string(NMM_SOURCE_DIR) + "/data/block_on_incline.json";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  c.scene = parse_scene(text.str(), path);
+  c.scene.joint_sets[0].friction_deg = friction_deg;
+  c.scene.solver.dynamic = dynamic;
+  c.mesh = pre::build_mesh(c.scene, "incline");
+  const double a = 30 * kPi / 180, phi = friction_deg * kPi / 180;
+  c.accel = std::max(0.0, 9.81 * (std::sin(a) - std::cos(a) * std::tan(phi)));
+  const double block = polygon_area(c.scene.bodies[1].outer);
+  c.block_fraction = block / (block + polygon_area(c.scene.bodies[0].outer));
+  EXPECT_NEAR(block, 2.0, 1e-5) << "m², the 2 m × 1 m block";
+  return c;
+}
+
+TEST(Equilibrium, SlidingBlockIsMovingWithTheClosedFormsRatioAndVelocity) {
+  // Dynamic, φ = 20° on 30°: a = 1.813 m/s². The out-of-balance force of the block's covers is
+  // its mass times a, so Σ_c R_c = m_block·a, while F_ref·N = the weight of the whole model:
+  //   mean ratio = (m_block / m_model)·(a / g),   largest velocity = a·t.
+  // A ratio taken from the velocity, from the consistent-mass residual of the whole system or
+  // against the block's weight alone would miss both by far more than 1 %.
+  Incline c = incline(20, true);
+  TimeStepper st(c.mesh, c.scene, "incline");
+  ASSERT_EQ(st.run_until(0.3, [](std::int64_t) {}), "ok");
+  const EquilibriumSample& e = st.equilibrium();
+  const double mean_expected = c.block_fraction * c.accel / 9.81;
+  std::printf("sliding block: mean ratio %.6g (closed form %.6g), max %.4g, velocity %.5g m/s "
+              "(a t = %.5g)\n", e.mean_ratio, mean_expected, e.max_ratio, e.max_velocity, c.accel * 0.3);
+  EXPECT_NEAR(e.mean_ratio, mean_expected, 0.01 * mean_expected);
+  EXPECT_NEAR(e.max_velocity, c.accel * 0.3, 0.01 * c.accel * 0.3);
+  EXPECT_GT(e.max_ratio, 0.1) << "a cover of the block carries about its weight × a/g";
+  EXPECT_EQ(equilibrium_verdict(e, true)["verdict"], "moving");
+}
+
+TEST(Equilibrium, SlidingBlockIsMovingInStaticAnalysisToo) {
+  // Static DDA: every step starts from rest and moves the block by ½ a Δt², so 2 M d / Δt² is
+  // again m·a: the same mean ratio, and the verdict "moving" although velocities are reset.
+  Incline c = incline(20, false);
+  TimeStepper st(c.mesh, c.scene, "incline");
+  ASSERT_EQ(st.run_until(0.05, [](std::int64_t) {}), "ok");
+  const EquilibriumSample& e = st.equilibrium();
+  const double mean_expected = c.block_fraction * c.accel / 9.81;
+  std::printf("sliding block, static: mean ratio %.6g (closed form %.6g)\n", e.mean_ratio, mean_expected);
+  EXPECT_NEAR(e.mean_ratio, mean_expected, 0.02 * mean_expected);
+  EXPECT_EQ(equilibrium_verdict(e, false)["verdict"], "moving");
+}
+
+TEST(Equilibrium, BlockHeldByFrictionIsAtRestDynamicAndStatic) {
+  // φ = 40° > 30°: the block holds. After the first steps settle it onto its contacts, the
+  // ratio falls far below UDEC's 1e-5 and no cover moves.
+  for (bool dynamic : {true, false}) {
+    Incline c = incline(40, dynamic);
+    TimeStepper st(c.mesh, c.scene, "incline");
+    ASSERT_EQ(st.run_until(0.1, [](std::int64_t) {}), "ok");
+    const EquilibriumSample& e = st.equilibrium();
+    std::printf("held block (%s): max ratio %.3g, mean %.3g, velocity %.3g m/s\n",
+                dynamic ? "dynamic" : "static", e.max_ratio, e.mean_ratio, e.max_velocity);
+    EXPECT_LT(e.max_ratio, 1e-5);
+    EXPECT_LT(e.max_velocity, RestCriterion::kVelocity);
+    EXPECT_EQ(equilibrium_verdict(e, dynamic)["verdict"], "at_rest");
+  }
+}
+
+TEST(Equilibrium, StopAtRatioEndsAStaticRunAtTheFirstStepBelowIt) {
+  Incline c = incline(40, false);
+  c.scene.solver.stop_at_ratio = 1e-6;
+  TimeStepper st(c.mesh, c.scene, "incline");
+  std::vector<double> ratios;
+  ASSERT_EQ(st.run_until(1.0, [&](std::int64_t) { ratios.push_back(st.equilibrium().max_ratio); }), "ok");
+  std::printf("stop_at_ratio 1e-6: stopped after %zu steps at ratio %.3g\n", ratios.size(), ratios.back());
+  EXPECT_TRUE(st.stopped_at_ratio());
+  ASSERT_GE(ratios.size(), 2u);
+  EXPECT_LT(ratios.size(), 100u) << "stopped early (the run asked for 1000 steps)";
+  EXPECT_LT(ratios.back(), 1e-6);
+  for (std::size_t i = 0; i + 1 < ratios.size(); ++i) EXPECT_GE(ratios[i], 1e-6) << "step " << i + 1;
+  EXPECT_LT(st.time(), 0.1);
+}
+
+TEST(Equilibrium, ADynamicRunIsJudgedByVelocityAStaticOneByRatio) {
+  // No unbalanced force but a velocity (sliding at constant speed): moving in a dynamic run, at
+  // rest by the static rule (where a velocity d/Δt comes with an unbalanced force).
+  EquilibriumSample s;
+  s.measured = true;
+  s.max_ratio = 0;
+  s.max_velocity = 0.3;
+  EXPECT_FALSE(at_rest(s, true));
+  EXPECT_TRUE(at_rest(s, false));
+  // Elastic ringing: inertia forces but covers barely moving (the jointed slope at 1 s).
+  s.max_ratio = 1.5e-3;
+  s.max_velocity = 3e-5;
+  EXPECT_TRUE(at_rest(s, true));
+  EXPECT_FALSE(at_rest(s, false));
+  EXPECT_EQ(equilibrium_verdict(EquilibriumSample{}, true)["verdict"], "unknown");
+}
+
+}  // namespace
+}  // namespace nmm::solve
