@@ -128,8 +128,7 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   if (fields.vertex_stress != nullptr) check_size(fields.vertex_stress, 3 * nv, "vertex_stress");
 
   if (grid_mesh_ != &mesh) {
-    // Once per run: mesh_to_grid's cells (near-duplicate vertices dropped) cost about as much as
-    // compressing a frame.
+    // Once per run: the cells never change (near-duplicate vertices dropped by mesh_to_grid).
     grid_ = mesh_to_grid(mesh);
     grid_mesh_ = &mesh;
     // mesh_to_grid keeps one point per loop vertex (it drops near-duplicates from the cells
