@@ -116,6 +116,30 @@ TEST(Equilibrium, StopAtRatioEndsAStaticRunAtTheFirstStepBelowIt) {
   EXPECT_LT(st.time(), 0.1);
 }
 
+TEST(Equilibrium, EquilibriumModeMeasuresTheForceEachSolveBalanced) {
+  // static_mode "equilibrium" has no mass: R = K·d, the force the step's solve balanced. The
+  // hanging column's first step balances its whole weight from a stress-free start, so
+  // Σ_c |R_c| = Σ_c m_c g = N·F_ref: mean ratio 1 (the gravity load ρ g ∫ w_c dA is the lumped
+  // mass times g). Later steps only correct for the geometry the first one moved: at rest.
+  const std::string path = std::string(NMM_SOURCE_DIR) + "/tests/cli/hanging_column.json";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  SceneDef scene = parse_scene(text.str(), path);
+  scene.solver.dynamic = false;
+  scene.solver.static_mode = StaticMode::equilibrium;
+  const Mesh mesh = pre::build_mesh(scene, "column");
+  TimeStepper st(mesh, scene, "column");
+  std::vector<EquilibriumSample> steps;
+  ASSERT_EQ(st.run_until(4 * scene.solver.time_step, [&](std::int64_t) { steps.push_back(st.equilibrium()); }), "ok");
+  ASSERT_EQ(steps.size(), 4u);
+  std::printf("hanging column, equilibrium mode: mean ratio %.9f at step 1, max ratio %.3g at step 4\n",
+              steps[0].mean_ratio, steps[3].max_ratio);
+  EXPECT_NEAR(steps[0].mean_ratio, 1.0, 1e-6);
+  EXPECT_LT(steps[3].max_ratio, 1e-5);
+  EXPECT_EQ(equilibrium_verdict(steps[3], false)["verdict"], "at_rest");
+}
+
 TEST(Equilibrium, ADynamicRunIsJudgedByVelocityAStaticOneByRatio) {
   // No unbalanced force but a velocity (sliding at constant speed): moving in a dynamic run, at
   // rest by the static rule (where a velocity d/Δt comes with an unbalanced force).

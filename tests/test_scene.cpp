@@ -369,6 +369,9 @@ const BadCase kBadCases[] = {
     {R"({"solver": {"steps": 10.5}})", "/solver/steps", "must be a whole number (got 10.5)"},
     {R"({"solver": {"steps": 1e30}})", "/solver/steps", "integer too large"},
     {R"({"solver": {"output_every": 0}})", "/solver/output_every", "must be >= 1 (got 0)"},
+    {R"({"solver": {"history_every": 0}})", "/solver/history_every", "must be >= 1 (got 0)"},
+    {R"({"solver": {"stop_at_ratio": 0}})", "/solver/stop_at_ratio", "must be in (0, 1) (got 0)"},
+    {R"({"solver": {"stop_at_ratio": 1}})", "/solver/stop_at_ratio", "must be in (0, 1) (got 1)"},
     {R"({"solver": {"max_displacement_ratio": 1}})", "/solver/max_displacement_ratio",
      "must be in (0, 1) (got 1)"},
     // At 1/3 an element could have all three covers tied (its weights sum to 1).
