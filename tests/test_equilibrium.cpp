@@ -35,13 +35,18 @@ struct Incline {
   double block_fraction = 0; // –, block mass over the model's (one density)
 };
 
-Incline incline(double friction_deg, bool dynamic) {
-  Incline c;
-  const std::string path = std::string(NMM_SOURCE_DIR) + "/data/block_on_incline.json";
+/// The scene of a file under the source tree.
+SceneDef scene_file(const std::string& relative) {
+  const std::string path = std::string(NMM_SOURCE_DIR) + "/" + relative;
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
-  c.scene = parse_scene(text.str(), path);
+  return parse_scene(text.str(), path);
+}
+
+Incline incline(double friction_deg, bool dynamic) {
+  Incline c;
+  c.scene = scene_file("data/block_on_incline.json");
   c.scene.joint_sets[0].friction_deg = friction_deg;
   c.scene.solver.dynamic = dynamic;
   c.mesh = pre::build_mesh(c.scene, "incline");
@@ -53,36 +58,42 @@ Incline incline(double friction_deg, bool dynamic) {
   return c;
 }
 
+/// The sliding block (φ = 20°) after `t` s: its indicators and the closed-form mean ratio.
+struct Sliding {
+  EquilibriumSample e;
+  double mean_expected = 0;  // –
+  double accel = 0;          // m/s²
+};
+Sliding slide(bool dynamic, double t) {
+  Incline c = incline(20, dynamic);
+  TimeStepper st(c.mesh, c.scene, "incline");
+  EXPECT_EQ(st.run_until(t, [](std::int64_t) {}), "ok");
+  const double expected = c.block_fraction * c.accel / 9.81;
+  std::printf("sliding block (%s): mean ratio %.6g (closed form %.6g), max %.4g, velocity %.5g m/s\n",
+              dynamic ? "dynamic" : "static", st.equilibrium().mean_ratio, expected,
+              st.equilibrium().max_ratio, st.equilibrium().max_velocity);
+  return {st.equilibrium(), expected, c.accel};
+}
+
 TEST(Equilibrium, SlidingBlockIsMovingWithTheClosedFormsRatioAndVelocity) {
   // Dynamic, φ = 20° on 30°: a = 1.813 m/s². The out-of-balance force of the block's covers is
   // its mass times a, so Σ_c R_c = m_block·a, while F_ref·N = the weight of the whole model:
   //   mean ratio = (m_block / m_model)·(a / g),   largest velocity = a·t.
   // A ratio taken from the velocity, from the consistent-mass residual of the whole system or
   // against the block's weight alone would miss both by far more than 1 %.
-  Incline c = incline(20, true);
-  TimeStepper st(c.mesh, c.scene, "incline");
-  ASSERT_EQ(st.run_until(0.3, [](std::int64_t) {}), "ok");
-  const EquilibriumSample& e = st.equilibrium();
-  const double mean_expected = c.block_fraction * c.accel / 9.81;
-  std::printf("sliding block: mean ratio %.6g (closed form %.6g), max %.4g, velocity %.5g m/s "
-              "(a t = %.5g)\n", e.mean_ratio, mean_expected, e.max_ratio, e.max_velocity, c.accel * 0.3);
-  EXPECT_NEAR(e.mean_ratio, mean_expected, 0.01 * mean_expected);
-  EXPECT_NEAR(e.max_velocity, c.accel * 0.3, 0.01 * c.accel * 0.3);
-  EXPECT_GT(e.max_ratio, 0.1) << "a cover of the block carries about its weight × a/g";
-  EXPECT_EQ(equilibrium_verdict(e, true)["verdict"], "moving");
+  const Sliding r = slide(true, 0.3);
+  EXPECT_NEAR(r.e.mean_ratio, r.mean_expected, 0.01 * r.mean_expected);
+  EXPECT_NEAR(r.e.max_velocity, r.accel * 0.3, 0.01 * r.accel * 0.3);
+  EXPECT_GT(r.e.max_ratio, 0.1) << "a cover of the block carries about its weight × a/g";
+  EXPECT_EQ(equilibrium_verdict(r.e, true)["verdict"], "moving");
 }
 
 TEST(Equilibrium, SlidingBlockIsMovingInStaticAnalysisToo) {
   // Static DDA: every step starts from rest and moves the block by ½ a Δt², so 2 M d / Δt² is
   // again m·a: the same mean ratio, and the verdict "moving" although velocities are reset.
-  Incline c = incline(20, false);
-  TimeStepper st(c.mesh, c.scene, "incline");
-  ASSERT_EQ(st.run_until(0.05, [](std::int64_t) {}), "ok");
-  const EquilibriumSample& e = st.equilibrium();
-  const double mean_expected = c.block_fraction * c.accel / 9.81;
-  std::printf("sliding block, static: mean ratio %.6g (closed form %.6g)\n", e.mean_ratio, mean_expected);
-  EXPECT_NEAR(e.mean_ratio, mean_expected, 0.02 * mean_expected);
-  EXPECT_EQ(equilibrium_verdict(e, false)["verdict"], "moving");
+  const Sliding r = slide(false, 0.05);
+  EXPECT_NEAR(r.e.mean_ratio, r.mean_expected, 0.02 * r.mean_expected);
+  EXPECT_EQ(equilibrium_verdict(r.e, false)["verdict"], "moving");
 }
 
 TEST(Equilibrium, BlockHeldByFrictionIsAtRestDynamicAndStatic) {
@@ -121,11 +132,7 @@ TEST(Equilibrium, EquilibriumModeMeasuresTheForceEachSolveBalanced) {
   // hanging column's first step balances its whole weight from a stress-free start, so
   // Σ_c |R_c| = Σ_c m_c g = N·F_ref: mean ratio 1 (the gravity load ρ g ∫ w_c dA is the lumped
   // mass times g). Later steps only correct for the geometry the first one moved: at rest.
-  const std::string path = std::string(NMM_SOURCE_DIR) + "/tests/cli/hanging_column.json";
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  SceneDef scene = parse_scene(text.str(), path);
+  SceneDef scene = scene_file("tests/cli/hanging_column.json");
   scene.solver.dynamic = false;
   scene.solver.static_mode = StaticMode::equilibrium;
   const Mesh mesh = pre::build_mesh(scene, "column");
