@@ -47,6 +47,10 @@
 // singular. The pure equilibrium solve K d = F (a continuum held by fixed points, reached in
 // one step) is static_mode "equilibrium"; it needs every block held by two fixed points.
 //
+// After each step's solve, before the state moves on, the equilibrium indicators (unbalanced
+// force ratio, largest velocity: equilibrium_indicator.cpp) are taken from d, v0 and a0; they
+// carry no state. history.csv rows come every history_every steps, frames every output_every.
+//
 // Only the effects a scene calls for are computed: no mass in an equilibrium solve, no gravity
 // term without gravity, nothing for loads or fixed points that are not there.
 #include "time_stepper.h"
