@@ -14,6 +14,9 @@
 // --pictures it draws the last state (result.svg, result_picture.h) and writes the run report
 // (history.svg, run_history.svg, index.html: run_report.h). Exit status: 0 done, 2 bad input
 // (one line on stderr), 3 the run could not go on (summary.json says why), 130 interrupted.
+// The last line on stderr gives the status beside the equilibrium verdict (at_rest / moving,
+// equilibrium_indicator.h); step numbers, there and in run_history.csv, count as history.csv
+// does (after --restart, on from the checkpoint's).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
