@@ -59,7 +59,8 @@ struct Mesh {
   std::vector<std::int32_t> contact_edge_opposite;  ///< [c] element across the edge, -1 if none
 
   // ---- provenance ---------------------------------------------------------------------------
-  std::string tool_version;              ///< version of nmm-preprocess that wrote the file
+  std::string tool = "nmm-preprocess";  ///< program that wrote the file
+  std::string tool_version;              ///< version of that program
   std::string scene_file;                ///< scene file name as given on the command line
   std::string scene_text;                ///< the scene itself, verbatim (comments included)
   std::array<std::uint8_t, 32> scene_sha256{};  ///< SHA-256 of scene_text

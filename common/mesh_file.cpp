@@ -378,7 +378,7 @@ void copy_array(const std::string& bytes, const InSection& s, std::vector<T>& ou
 
 std::string provenance_json(const Mesh& mesh) {
   nlohmann::json j;
-  j["tool"] = "nmm-preprocess";
+  j["tool"] = mesh.tool;
   j["tool_version"] = mesh.tool_version;
   j["scene_file"] = mesh.scene_file;
   j["scene_sha256"] = to_hex(mesh.scene_sha256);
@@ -428,7 +428,7 @@ void read_provenance(const std::string& text, std::uint32_t version, Mesh& mesh,
       throw InputError(name, where, std::string("\"") + key + "\" is missing or not a string");
     return it->get<std::string>();
   };
-  text_field("tool");  // any tool may write the format; only its presence is required
+  mesh.tool = text_field("tool");  // any program may write the format; it is kept as written
   mesh.tool_version = text_field("tool_version");
   mesh.scene_file = text_field("scene_file");
   if (!parse_hex_digest(text_field("scene_sha256"), mesh.scene_sha256))
@@ -438,6 +438,23 @@ void read_provenance(const std::string& text, std::uint32_t version, Mesh& mesh,
     throw InputError(name, where,
                      "\"format_version\" is missing or differs from the header's version " +
                          std::to_string(version));
+  if (j.size() != 5)
+    throw InputError(name, where,
+                     "has " + std::to_string(j.size()) +
+                         " keys; it holds exactly tool, tool_version, scene_file, scene_sha256 "
+                         "and format_version");
+  // One text for one set of values: a file that is read must write back to the same bytes
+  // (docs/mesh-format.md), so any other spelling of the same JSON — other spacing, escapes, key
+  // order, bytes after the document — is refused rather than silently normalised.
+  const std::string canonical = provenance_json(mesh);
+  if (canonical != text) {
+    std::size_t at = 0;
+    while (at < text.size() && at < canonical.size() && text[at] == canonical[at]) ++at;
+    throw InputError(name, where,
+                     "byte " + std::to_string(at) +
+                         " of the text differs from the writer's form (sorted keys, two-space "
+                         "indent, no escapes beyond JSON's, one final newline)");
+  }
 }
 
 // ---- validation helpers -------------------------------------------------------------------------
