@@ -57,7 +57,8 @@ std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& 
   return out;
 }
 
-RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
+std::string redraw_result_svg(const std::string& dir, const RedrawOptions& options,
+                              RedrawInfo* info) {
   const std::string summary_path = (fs::path(dir) / "summary.json").string();
   nlohmann::json summary;
   try {
@@ -170,17 +171,32 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
     state.contacts_known = pick % static_cast<std::size_t>(every) == 0 || pick + 1 == frames.size();
   }
 
-  // Measure points of that step.
+  // Measure points of that step, and where they started (x − ux: the exaggerated drawing).
   const NumberTable h = read_number_csv((fs::path(dir) / "history.csv").string());
   const int hs = h.column("step"), hx = h.column("x"), hy = h.column("y");
+  const int hux = h.column("ux"), huy = h.column("uy");
   if (hs >= 0 && hx >= 0 && hy >= 0)
     for (const auto& r : h.rows)
-      if (r.size() >= h.names.size() && static_cast<std::int64_t>(r[hs]) == step)
+      if (r.size() >= h.names.size() && static_cast<std::int64_t>(r[hs]) == step) {
         state.measure_points.push_back({r[hx], r[hy]});
+        if (hux >= 0 && huy >= 0) state.measure_start.push_back({r[hx] - r[hux], r[hy] - r[huy]});
+      }
+  if (state.measure_start.size() != state.measure_points.size()) state.measure_start.clear();
 
-  write_file_atomically((fs::path(dir) / "result.svg").string(),
-                        result_svg(mesh, run.scene, state, field));
-  return {step, time, mesh.element_count(), state.contacts.size(), state.contacts_known};
+  state.exaggeration = options.exaggerate;
+  if (!(state.exaggeration > 0) && inputs.contains("exaggerate") && inputs["exaggerate"].is_number())
+    state.exaggeration = inputs["exaggerate"].get<double>();
+  state.title = options.title;
+  if (info != nullptr)
+    *info = {step, time, mesh.element_count(), state.contacts.size(), state.contacts_known};
+  return result_svg(mesh, run.scene, state, field);
+}
+
+RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
+  RedrawInfo info;
+  const std::string svg = redraw_result_svg(dir, options, &info);
+  write_file_atomically((fs::path(dir) / "result.svg").string(), svg);
+  return info;
 }
 
 }  // namespace nmm::solve
