@@ -82,16 +82,26 @@ std::string svg_plot(const PlotSpec& spec, double pixel_width) {
   const double px = 0.04 * (x1 - x0), py = 0.06 * (y1 - y0);
   x0 -= spec.log_x ? 0 : (x0 == 0 ? 0 : px), x1 += px;
   y0 -= spec.log_y ? 0 : (y0 == 0 ? 0 : py), y1 += py;
+  if (!spec.x_categories.empty())  // half a slot beside the first and the last category
+    x0 = 0.5, x1 = static_cast<double>(spec.x_categories.size()) + 0.5;
   auto X = [&](double v) { return kW * (tx(v) - x0) / (x1 - x0); };
   auto Y = [&](double v) { return kH * (ty(v) - y0) / (y1 - y0); };
 
   SvgWriter w;
   const SvgStyle axis{"none", "#222222", 0.25, 0, 1}, grid{"none", "#dddddd", 0.12, 0, 1};
-  for (double t : ticks(x0, x1, spec.log_x)) {
+  std::vector<double> x_ticks = ticks(x0, x1, spec.log_x);
+  if (!spec.x_categories.empty()) {
+    x_ticks.clear();
+    for (std::size_t k = 1; k <= spec.x_categories.size(); ++k) x_ticks.push_back(static_cast<double>(k));
+  }
+  for (double t : x_ticks) {
     const double x = kW * (t - x0) / (x1 - x0);
     if (x < -1e-9 || x > kW + 1e-9) continue;
     w.polyline({{x, 0}, {x, kH}}, grid);
-    w.text({x - 2, -4}, tick_label(spec.log_x ? std::pow(10.0, t) : t), 2.4, "#222222");
+    const std::string label = spec.x_categories.empty()
+                                  ? tick_label(spec.log_x ? std::pow(10.0, t) : t)
+                                  : spec.x_categories[static_cast<std::size_t>(t) - 1];
+    w.text({x - 0.5 * SvgWriter::text_width(label, 2.4), -4}, label, 2.4, "#222222");
   }
   for (double t : ticks(y0, y1, spec.log_y)) {
     const double y = kH * (t - y0) / (y1 - y0);

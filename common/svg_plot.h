@@ -19,6 +19,9 @@ struct PlotSpec {
   std::string title, xlabel, ylabel;
   bool log_x = false, log_y = false;  ///< logarithmic axes (non-positive values are skipped)
   std::vector<PlotSeries> series;
+  /// Names of x = 1, 2, 3, …: a categorical x axis ticked at those values with these names
+  /// (empty: a numeric axis).
+  std::vector<std::string> x_categories{};
 };
 
 /// Round tick values covering [lo, hi]: steps of 1, 2 or 5 × 10^k, about `target` of them

@@ -375,6 +375,14 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   if (!scene.fixed_points.empty()) marks += "; ▲ fixed points";
   if (!scene.supports.empty()) marks += "; green: supports (x, y or xy held)";
   if (!state.measure_points.empty()) marks += "; ○ measure points";
+  // A scene built in a tilted frame (a block on a plane as a horizontal plane under tilted
+  // gravity) is drawn in that frame: say so, or the incline looks flat.
+  if (scene.has_gravity && scene.gravity.x != 0) {
+    char g[96];
+    std::snprintf(g, sizeof g, "; gravity %.3g° from −y (model axes)",
+                  std::atan2(std::abs(scene.gravity.x), -scene.gravity.y) * 180 / M_PI);
+    marks += g;
+  }
   svg.text({xmin, ly}, marks + excavated_note, 0.8 * font, "#333333");
   return svg.str(0.03, 1400);
 }

@@ -23,6 +23,26 @@ bool to_number(const std::string& s, double& v) {
   return end == s.c_str() + s.size() && std::isfinite(v);
 }
 
+// Short names for titles and legends (the axis labels keep the full ones): a parameter's last
+// path component ("joint_sets.interface.friction_deg" → "friction_deg"), an output without
+// its source ("summary.max_penetration" → "max_penetration", "history.ux.p0" → "ux of
+// point 0").
+std::string short_parameter(const std::string& name) {
+  const std::size_t dot = name.rfind('.');
+  return dot == std::string::npos ? name : name.substr(dot + 1);
+}
+
+std::string short_output(const std::string& name) {
+  if (name.rfind("summary.", 0) == 0) return name.substr(8);
+  if (name.rfind("history.", 0) == 0) {
+    const std::string rest = name.substr(8);
+    const std::size_t dot = rest.rfind(".p");
+    if (dot != std::string::npos) return rest.substr(0, dot) + " of point " + rest.substr(dot + 2);
+    return rest;
+  }
+  return name;
+}
+
 }  // namespace
 
 std::vector<std::string> split_csv_line(const std::string& line) {
@@ -118,20 +138,17 @@ std::string sweep_svg(const Sweep& sweep, const std::string& csv, std::size_t* p
         }
         std::string rest;
         for (std::size_t qi = 0; qi < params.size(); ++qi)
-          if (qi != pi) rest += (rest.empty() ? "" : ", ") + params[qi].name + " " + cell(r, params[qi].col);
+          if (qi != pi)
+            rest += (rest.empty() ? "" : ", ") + short_parameter(params[qi].name) + " " +
+                    cell(r, params[qi].col);
         if (!by_rest.count(rest)) order.push_back(rest);
         nmm::PlotSeries& s = by_rest[rest];
         s.x.push_back(x), s.y.push_back(y);
       }
       nmm::PlotSpec spec;
-      spec.title = out_name + " against " + p.name;
+      spec.title = short_output(out_name) + " against " + short_parameter(p.name);
       spec.xlabel = p.name;
-      if (!p.numeric) {
-        spec.xlabel += " (";
-        for (std::size_t k = 0; k < p.levels.size(); ++k)
-          spec.xlabel += (k ? ", " : "") + std::to_string(k + 1) + " " + p.levels[k];
-        spec.xlabel += ")";
-      }
+      if (!p.numeric) spec.x_categories = p.levels;
       spec.ylabel = out_name;
       for (std::size_t k = 0; k < order.size(); ++k) {
         nmm::PlotSeries s = by_rest[order[k]];

@@ -6,8 +6,9 @@
 // other than "ok") are red dots in a series of their own, "stopped runs": their outputs are
 // those of the state they stopped in, not of the end.
 //
-// Parameter values that are not numbers (variant names) are placed at 1, 2, 3, … in the order
-// they first appear, the x label saying which is which. Outputs are the sweep's summary and
+// Parameter values that are not numbers (variant names) are categories on the x axis, in the
+// order they first appear. Titles and legends use short names (the parameter's last path
+// component, "ux of point 0"); the axis labels the full column names of sweep.csv. Outputs are the sweep's summary and
 // history columns that hold a number in at least one run (status text is left out).
 #pragma once
 

@@ -224,16 +224,19 @@ TEST(Pictures, SweepGridHasAPanelPerParameterAndOutput) {
   // 2 parameters × 2 numeric outputs (summary.status is text: no panel).
   EXPECT_EQ(panels, 4u);
   EXPECT_EQ(count(svg, "<svg "), 5u) << "the grid and its four panels";
-  for (const char* p : {"summary.max_penetration against variant",
-                        "summary.max_penetration against joint_sets.interface.friction_deg",
-                        "history.ux.p0 against variant",
-                        "history.ux.p0 against joint_sets.interface.friction_deg"})
+  for (const char* p : {"max_penetration against variant", "max_penetration against friction_deg",
+                        "ux of point 0 against variant", "ux of point 0 against friction_deg"})
     EXPECT_EQ(count(svg, std::string(">") + p + "<"), 1u) << p;
-  EXPECT_EQ(svg.find("summary.status against"), std::string::npos);
-  // Variant names are categories 1, 2; a line per variant along the friction angle; the run
-  // that stopped in a series of its own.
-  EXPECT_NE(svg.find("variant (1 springs, 2 joint-laws)"), std::string::npos);
+  EXPECT_EQ(svg.find("status against"), std::string::npos);
+  // Axis labels with the full column names.
+  EXPECT_EQ(count(svg, ">joint_sets.interface.friction_deg<"), 2u);
+  EXPECT_EQ(count(svg, ">history.ux.p0<"), 2u);
+  // Variant names are categories on the axis; a line per variant along the friction angle, a
+  // line per friction angle across the variants; the run that stopped in a series of its own.
+  EXPECT_EQ(count(svg, ">springs<"), 2u);
+  EXPECT_EQ(count(svg, ">joint-laws<"), 2u);
   EXPECT_NE(svg.find(">variant springs<"), std::string::npos);
+  EXPECT_NE(svg.find(">friction_deg 10<"), std::string::npos);
   EXPECT_NE(svg.find(">stopped runs<"), std::string::npos);
   // Two columns: the second panel starts at the first's width.
   EXPECT_NE(svg.find("<svg x=\"480\" y=\"0\""), std::string::npos);
