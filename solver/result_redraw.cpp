@@ -57,6 +57,36 @@ std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& 
   return out;
 }
 
+RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_given) {
+  const std::string summary_path = (fs::path(dir) / "summary.json").string();
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(read_text_file(summary_path));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
+  }
+  const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
+  // The mesh and the run's scene (its variants change fixed points and the scene's name).
+  RunInputs r;
+  r.mesh_path = mesh_path_given;
+  if (r.mesh_path.empty()) {
+    if (!inputs.contains("mesh") || !inputs["mesh"].is_string())
+      throw InputError(summary_path, "/inputs/mesh",
+                       "does not name the mesh file; give it with --mesh MESH.nmm");
+    r.mesh_path = inputs["mesh"].get<std::string>();
+  }
+  r.mesh = read_mesh_file(r.mesh_path);
+  std::string config_path;
+  std::vector<std::string> sets;
+  if (inputs.contains("config") && inputs["config"].is_string())
+    config_path = inputs["config"].get<std::string>();
+  if (inputs.contains("set") && inputs["set"].is_array())
+    for (const auto& s : inputs["set"])
+      if (s.is_string()) sets.push_back(s.get<std::string>());
+  r.scene = make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
+  return r;
+}
+
 std::string redraw_result_svg(const std::string& dir, const RedrawOptions& options,
                               RedrawInfo* info) {
   const std::string summary_path = (fs::path(dir) / "summary.json").string();
@@ -67,24 +97,10 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
     throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
   }
   const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
-
-  // The mesh and the run's scene (its variants change fixed points and the scene's name).
-  std::string mesh_path = options.mesh_path;
-  if (mesh_path.empty()) {
-    if (!inputs.contains("mesh") || !inputs["mesh"].is_string())
-      throw InputError(summary_path, "/inputs/mesh",
-                       "does not name the mesh file; give it with --mesh MESH.nmm");
-    mesh_path = inputs["mesh"].get<std::string>();
-  }
-  const Mesh mesh = read_mesh_file(mesh_path);
-  std::string config_path;
-  std::vector<std::string> sets;
-  if (inputs.contains("config") && inputs["config"].is_string())
-    config_path = inputs["config"].get<std::string>();
-  if (inputs.contains("set") && inputs["set"].is_array())
-    for (const auto& s : inputs["set"])
-      if (s.is_string()) sets.push_back(s.get<std::string>());
-  const RunScene run = make_run_scene(mesh, mesh_path, config_path, sets);
+  const RunInputs run_inputs = load_run_inputs(dir, options.mesh_path);
+  const Mesh& mesh = run_inputs.mesh;
+  const std::string& mesh_path = run_inputs.mesh_path;
+  const SceneDef& scene = run_inputs.scene;
 
   std::string field_name = options.field;
   if (field_name.empty()) field_name = inputs.value("picture_field", std::string("displacement"));
@@ -140,8 +156,8 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
       if (!x.is_object() || !x.contains("body") || !x["body"].is_number_integer()) continue;
       const std::int64_t body = x["body"].get<std::int64_t>();
       const std::int64_t at = x.value("step", std::int64_t{0});
-      if (body < 0 || static_cast<std::size_t>(body) >= run.scene.bodies.size() || at > step) continue;
-      state.excavated_body.resize(run.scene.bodies.size(), 0);
+      if (body < 0 || static_cast<std::size_t>(body) >= scene.bodies.size() || at > step) continue;
+      state.excavated_body.resize(scene.bodies.size(), 0);
       state.excavated_body[static_cast<std::size_t>(body)] = 1;
     }
 
@@ -189,7 +205,7 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
   state.title = options.title;
   if (info != nullptr)
     *info = {step, time, mesh.element_count(), state.contacts.size(), state.contacts_known};
-  return result_svg(mesh, run.scene, state, field);
+  return result_svg(mesh, scene, state, field);
 }
 
 RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {

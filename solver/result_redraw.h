@@ -13,7 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "mesh.h"
 #include "result_picture.h"
+#include "scene.h"
 
 namespace nmm::solve {
 
@@ -34,6 +36,16 @@ struct RedrawInfo {
   std::size_t contacts = 0;  ///< closed contacts drawn
   bool contacts_known = true;
 };
+
+/// The mesh and run scene of a run folder: the mesh file summary.json "inputs.mesh" names (or
+/// `mesh_path` when not empty) with the run's --config and --set applied. InputError naming
+/// summary.json or the mesh file when they cannot be used.
+struct RunInputs {
+  std::string mesh_path;
+  Mesh mesh;
+  SceneDef scene;
+};
+RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path);
 
 /// (time s, step) of every frame listed in RUN/frames.pvd, in order. InputError if unreadable.
 std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& dir);

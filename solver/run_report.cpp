@@ -12,9 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
+#include "failure_cause.h"
 #include "gzip_text.h"
 #include "number_format.h"
 #include "png_copy.h"
+#include "result_redraw.h"
 #include "svg_plot.h"
 #include "atomic_file.h"
 #include "xml_text.h"
@@ -266,8 +268,18 @@ ReportFiles make_run_report(const std::string& dir) {
           "</span>, simulated time " + format_engineering(number_at("simulated_time"), "s") +
           " in " + summary_cell(summary.value("steps_completed", nlohmann::json(0)), "").first +
           " steps, wall " + format_engineering(number_at("wall_seconds"), "s") + "</p>\n";
-  if (!finished && status != "interrupted")
+  if (status_is_failure(status)) {
     html += "<p class=\"bad\">" + xml_escape(status) + "</p>\n";
+    // The likely cause needs the run's mesh and scene; a folder whose mesh has moved gets the
+    // reason alone.
+    std::string cause;
+    try {
+      const RunInputs in = load_run_inputs(dir, "");
+      cause = likely_failure_cause(in.mesh, in.scene, status);
+    } catch (const InputError&) {
+    }
+    if (!cause.empty()) html += "<p>likely cause: " + xml_escape(cause) + "</p>\n";
+  }
   if (has_result) html += "<h2>Result</h2>\n<img src=\"result.svg\" alt=\"result picture\">\n";
   if (fs::exists(fs::path(dir) / "history.svg"))
     html += "<h2>Measure points</h2>\n<img src=\"history.svg\" alt=\"measure point history\">\n";

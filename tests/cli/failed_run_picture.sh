@@ -31,6 +31,7 @@ print(f"reason in {len(lines)} lines, longest {max(map(len, lines))} characters"
 sys.exit(0 if len(lines) >= 2 and max(map(len, lines)) < 140 else 1)
 PY
 check "grep -q 'class=\"bad\">time step cut below its floor' '$work/run/index.html'"
+check "grep -q '<p>likely cause: mesh size 10 m against body 0' '$work/run/index.html'"
 if command -v rsvg-convert >/dev/null 2>&1; then check "test -s '$work/run/result.png'"; fi
 # nmm-report: the same picture by default, and the factor asked for.
 cp "$svg" "$work/live.svg"
