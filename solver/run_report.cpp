@@ -243,8 +243,8 @@ ReportFiles make_run_report(const std::string& dir) {
   }
 
   // index.html: pictures first (users look at pictures before numbers), then the summary. The
-  // page is never wider than the window: a max-width column, pictures scaled to it, long words
-  // (paths, hashes) broken anywhere.
+  // page is never wider than the window: a max-width column, pictures scaled to it (each a link
+  // to itself at full size), long words (paths, hashes) broken anywhere.
   std::string html =
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">"
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
@@ -280,11 +280,11 @@ ReportFiles make_run_report(const std::string& dir) {
     }
     if (!cause.empty()) html += "<p>likely cause: " + xml_escape(cause) + "</p>\n";
   }
-  if (has_result) html += "<h2>Result</h2>\n<img src=\"result.svg\" alt=\"result picture\">\n";
+  if (has_result) html += "<h2>Result</h2>\n<a href=\"result.svg\"><img src=\"result.svg\" alt=\"result picture\"></a>\n";
   if (fs::exists(fs::path(dir) / "history.svg"))
-    html += "<h2>Measure points</h2>\n<img src=\"history.svg\" alt=\"measure point history\">\n";
+    html += "<h2>Measure points</h2>\n<a href=\"history.svg\"><img src=\"history.svg\" alt=\"measure point history\"></a>\n";
   if (fs::exists(fs::path(dir) / "run_history.svg"))
-    html += "<h2>Solver effort and energy</h2>\n<img src=\"run_history.svg\" alt=\"solver effort and energy\">\n";
+    html += "<h2>Solver effort and energy</h2>\n<a href=\"run_history.svg\"><img src=\"run_history.svg\" alt=\"solver effort and energy\"></a>\n";
   if (fs::exists(energy_path)) {
     // The energy balance at the end, the numbers a user checks against the plot (energy.md).
     const NumberTable e = read_number_csv(energy_path);
