@@ -278,10 +278,16 @@ int main(int argc, char** argv) {
       char title[128];
       std::snprintf(title, sizeof title, "failing mechanism at F = %.4g,",
                     mechanism->factor);
-      write_mechanism_svg(mechanism->dir + "/out", title, (out / "mechanism.svg").string());
-      j["mechanism_svg"] = "mechanism.svg";
-      if (!nmm::write_png_copy((out / "mechanism.svg").string()).empty())
-        j["mechanism_png"] = "mechanism.png";
+      // The factor is the study's result; a trial folder that cannot be drawn (its mesh moved
+      // on another machine) costs the picture, not the result.
+      try {
+        write_mechanism_svg(mechanism->dir + "/out", title, (out / "mechanism.svg").string());
+        j["mechanism_svg"] = "mechanism.svg";
+        if (!nmm::write_png_copy((out / "mechanism.svg").string()).empty())
+          j["mechanism_png"] = "mechanism.png";
+      } catch (const nmm::RunError& e) {
+        std::cerr << "nmm-fos: warning: no mechanism.svg: " << e.what() << "\n";
+      }
     }
     nmm::write_file_atomically((out / "fos.json").string(), j.dump(2) + "\n");
     if (!result.found) {

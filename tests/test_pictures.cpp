@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include "error.h"
 #include "failure_cause.h"
+#include "mechanism_picture.h"
 #include "number_format.h"
 #include "result_picture.h"
 #include "svg_plot.h"
@@ -242,6 +245,14 @@ TEST(Pictures, SweepGridHasAPanelPerParameterAndOutput) {
   EXPECT_NE(svg.find("<svg x=\"480\" y=\"0\""), std::string::npos);
   sweep.parameters.clear();
   EXPECT_EQ(studies::sweep_svg(sweep, csv), "");
+}
+
+TEST(Pictures, AMechanismThatCannotBeDrawnIsARunErrorAndNoFile) {
+  // nmm-fos warns and goes on (its factor is the result); the trial folder is its own output.
+  const std::string svg = (std::filesystem::temp_directory_path() / "nmm_no_mechanism.svg").string();
+  std::filesystem::remove(svg);
+  EXPECT_THROW(studies::write_mechanism_svg("/nonexistent/trial/out", "t", svg), RunError);
+  EXPECT_FALSE(std::filesystem::exists(svg));
 }
 
 TEST(Pictures, ColourMapIsViridis) {
