@@ -13,7 +13,8 @@
 // (progress.h) and SIGINT/SIGTERM ending the run after the current step (interrupt.h). With
 // --pictures it draws the last state (result.svg, result_picture.h) and writes the run report
 // (history.svg, run_history.svg, index.html: run_report.h). Exit status: 0 done, 2 bad input
-// (one line on stderr), 3 the run could not go on (summary.json says why), 130 interrupted.
+// (one line on stderr), 3 the run could not go on (summary.json says why; the one stderr line
+// adds the likely cause, failure_cause.h), 130 interrupted.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
