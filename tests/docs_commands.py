@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 """docs_commands.py --source SRC --bin BIN --work DIR PAGE.md
+   docs_commands.py --self-test --bin BIN --work DIR
 
 Runs the shell commands a documentation page shows, as a user would type them on a fresh clone
 after the README's set-up (the tools on PATH: `export PATH=$PWD/build/bin:$PATH`), and fails
@@ -20,7 +21,8 @@ checked on its own: a failing command ends the page's test with its text and exi
 Commands that cannot run here, or would take too long, are in the two tables below, each with
 its reason: SKIP (the command is not run) and SHORTEN (the command is run with a textual change
 that keeps it what it is, only smaller). An entry that matches no command of its page is an
-error, so the tables cannot outlive the text they describe.
+error, so the tables cannot outlive the text they describe. --self-test runs small pages of
+known outcome (CTest docs.commands.selftest).
 """
 import argparse
 import os
@@ -177,14 +179,51 @@ def logical_commands(lines):
     return cmds
 
 
+# --self-test: pages whose outcome is known, so that this script is seen to fail on a failing
+# command wherever it hides (mid-chain, in a loop, in a pipe, after a here-document).
+SELF_TEST = [
+    ("```\ntrue && false && true\n```\n", 1),
+    ("```sh\nfor k in 1 2; do\n  false\n  true\ndone\n```\n", 1),
+    ("```console\n$ false\nsome output\n```\n", 1),
+    ("```\nfalse | cat\n```\n", 1),
+    ("```\nnmm-solve no_such_mesh.nmm -o out\n```\n", 1),
+    ("```\ncat > f.txt <<'EOF'\nfalse\nEOF\ntest -s f.txt && grep -q false f.txt\n```\n", 0),
+    ("```text\nfalse\n```\n```json\n{ }\n```\n  ```\n  true   # indented in a list\n  ```\n", 0),
+    ("```\nfor k in 1 2; do echo $k; done\nnmm-solve --help > /dev/null\n```\n", 0),
+]
+
+
+def self_test(bindir, work):
+    bad = 0
+    for n, (page, want) in enumerate(SELF_TEST):
+        src = os.path.join(work, f"self_test_src{n}")
+        shutil.rmtree(src, ignore_errors=True)
+        os.makedirs(src)
+        with open(os.path.join(src, "page.md"), "w", encoding="utf-8") as f:
+            f.write(page)
+        rc = subprocess.run([sys.executable, os.path.abspath(__file__), "--source", src, "--bin",
+                             bindir, "--work", os.path.join(work, f"self_test_run{n}"), "page.md"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+        ok = (rc != 0) == (want != 0)
+        bad += not ok
+        print(f"self-test {n}: exit {rc}, expected {'failure' if want else 'success'}: "
+              f"{'ok' if ok else 'WRONG'}  {page.splitlines()[1]!r}")
+    return 1 if bad else 0
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--source", required=True)
+    ap.add_argument("--source")
     ap.add_argument("--bin", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--list", action="store_true", help="print the commands, run nothing")
-    ap.add_argument("page")
+    ap.add_argument("--self-test", action="store_true", help="check this script on known pages")
+    ap.add_argument("page", nargs="?")
     a = ap.parse_args()
+    if a.self_test:
+        return self_test(os.path.abspath(a.bin), os.path.abspath(a.work))
+    if not a.source or not a.page:
+        ap.error("--source and PAGE are required")
     source, bindir = os.path.abspath(a.source), os.path.abspath(a.bin)
     page_path = os.path.abspath(os.path.join(source, a.page)) if not os.path.isabs(a.page) else a.page
     page = os.path.basename(page_path)
