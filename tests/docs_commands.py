@@ -16,7 +16,9 @@ How they are run: the page's blocks, in order, as one bash script (so a later co
 what an earlier one made) in a scratch copy of the source tree (DIR/PAGE: the tree without .git
 and build folders, `build` a link to BIN's parent), with BIN first on PATH, `set -e -o
 pipefail`, and every logical command (continuation lines, here-documents and loops joined)
-checked on its own: a failing command ends the page's test with its text and exit status.
+checked on its own: a failing command ends the page's test with its text and exit status. A
+command the page shows failing on purpose says so in its trailing comment, "# exit N: why"; it
+must then end with exactly status N.
 
 Commands that cannot run here, or would take too long, are in the two tables below, each with
 its reason: SKIP (the command is not run) and SHORTEN (the command is run with a textual change
@@ -77,13 +79,11 @@ SHORTEN = [
      "settings"),
     ("performance.md", r"(effects_bench) --csv ", r"\1 --quick --csv ",
      "the full benchmark takes about 45 s; --quick runs every effect once"),
-    ("fos-and-sweeps.md", r"--set solver\.steps=500( |$)", r"--set solver.steps=60\1",
-     "settling 500 steps takes 13-20 s; 60 steps (past the start, when gravity comes on) make "
-     "the kind of checkpoint the next command needs"),
     ("fos-and-sweeps.md", r"(--workers 2 --set solver\.steps=)300",
-     r"\g<1>20 --set solver.output_every=2 --tol 0.5 --max-factor 4",
-     "a full search of 300-step trials on the jointed slope takes many minutes; a coarse search "
-     "of 20-step trials (the verdict needs 4 outputs per trial) runs the same command path"),
+     r"\g<1>100 --max-factor 4",
+     "the search up to F = 64 takes 77 s on the loaded machine; trials of 100 steps up to F = 4 "
+     "(3 trials) reach the same end, all stable, exit 3 (trials of 40 steps are too short: "
+     "the reduction's transient reads as failing near 1 mm/s)"),
     ("fos-and-sweeps.md", r"(nmm-sweep data/sweeps/dfn_slope_seeds\.json -o dfn_sweep --workers 2)$",
      r"\1 --set solver.steps=5",
      "three 400-step runs take minutes; 5 steps each still preprocess one mesh per seed"),
@@ -190,6 +190,9 @@ SELF_TEST = [
     ("```\ncat > f.txt <<'EOF'\nfalse\nEOF\ntest -s f.txt && grep -q false f.txt\n```\n", 0),
     ("```text\nfalse\n```\n```json\n{ }\n```\n  ```\n  true   # indented in a list\n  ```\n", 0),
     ("```\nfor k in 1 2; do echo $k; done\nnmm-solve --help > /dev/null\n```\n", 0),
+    ("```\nnmm-solve no_such_mesh.nmm -o out   # exit 2: no mesh\n```\n", 0),
+    ("```\nnmm-solve no_such_mesh.nmm -o out   # exit 3: wrong status\n```\n", 1),
+    ("```\ntrue   # exit 3: a command that succeeds where the page says it fails\n```\n", 1),
 ]
 
 
@@ -209,6 +212,13 @@ def self_test(bindir, work):
         print(f"self-test {n}: exit {rc}, expected {'failure' if want else 'success'}: "
               f"{'ok' if ok else 'WRONG'}  {page.splitlines()[1]!r}")
     return 1 if bad else 0
+
+
+def expected_status(cmd):
+    """The exit status a page announces for a command in its trailing comment ("# exit 3: why"),
+    else 0."""
+    m = re.search(r"#\s*exit (\d+)\b", cmd.split("\n")[-1])
+    return int(m.group(1)) if m else 0
 
 
 def main():
@@ -271,10 +281,15 @@ def main():
         label = cmd.split("\n")[0].replace("'", "'\\''")
         script += [f"__line={line}; __cmd='{label}'",
                    f"echo '--- {page}:{line}: {label}'",
-                   "__t0=$EPOCHREALTIME",
-                   "{", cmd, "}",
-                   "__rc=$?; [ $__rc -eq 0 ] || exit $__rc",
-                   "echo \"    ok, $(awk -v a=$__t0 -v b=$EPOCHREALTIME 'BEGIN{printf \"%.1f\", b-a}') s\""]
+                   "__t0=$EPOCHREALTIME"]
+        want = expected_status(cmd)
+        if want == 0:
+            script += ["{", cmd, "}", "__rc=$?; [ $__rc -eq 0 ] || exit $__rc"]
+        else:  # the page says this command ends with status `want`: anything else fails
+            script += ["__rc=0", "{", cmd, "} || __rc=$?",
+                       f"[ $__rc -eq {want} ] || {{ echo \"docs.commands: exit $__rc, the page "
+                       f"says {want}\" >&2; exit 1; }}"]
+        script += ["echo \"    ok, $(awk -v a=$__t0 -v b=$EPOCHREALTIME 'BEGIN{printf \"%.1f\", b-a}') s\""]
 
     work = os.path.join(os.path.abspath(a.work), os.path.splitext(page)[0])
     shutil.rmtree(work, ignore_errors=True)
