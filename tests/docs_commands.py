@@ -64,7 +64,7 @@ SKIP = [
     ("guide.md", r"--profile workflow/profiles/slurm",
      "needs a Slurm cluster (see fos-and-sweeps.md)"),
     ("guide.md", r"^sh docs/regenerate\.sh",
-     "about 4 min; CTest study.joint_full and study.accuracy_quick run the same studies and "
+     "3 min; CTest study.joint_full and study.accuracy_quick run the same studies and "
      "docs.tables_match_fresh_run.* compare their rows with the committed tables"),
     ("joint-studies.md", r"^build/bin/nmm-joint-study docs/figures --data data",
      "the same run as CTest study.joint_full, whose rows docs.tables_match_fresh_run.* compare"),
