@@ -1,7 +1,7 @@
 // The NMM mesh: mathematical mesh, physical covers (PC), manifold elements (ME), blocks and the
 // contact-candidate edges, as plain arrays indexed by integers (no pointer graphs).
 //
-// Definitions (docs/interface.md, physics.md §1):
+// Definitions (docs/interface.md, docs/physics.md §1):
 // - nodes, triangles: the equilateral mathematical mesh of side `mesh_size`, only the triangles
 //   meeting the domain with positive area and their nodes. Triangles are counter-clockwise.
 // - physical cover: a connected piece of (star of node ∩ body) minus joints. A joint ending inside

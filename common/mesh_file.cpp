@@ -128,6 +128,14 @@ std::uint64_t align8(std::uint64_t n) {
 }
 
 
+// A scene file: text whose first non-blank characters open a JSON object or a // comment
+// (scenes start with a comment block). A mesh file starts with the magic "NMMMESH\0".
+bool looks_like_scene_json(const std::string& bytes) {
+  const std::size_t first = bytes.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return false;
+  return bytes[first] == '{' || bytes.compare(first, 2, "//") == 0;
+}
+
 std::string byte_at(std::uint64_t offset) {
   return "byte " + std::to_string(offset);
 }
@@ -230,6 +238,11 @@ struct InSection {
 std::map<std::string, InSection> parse_container(const std::string& bytes,
                                                  const std::string& name) {
   const std::uint64_t file_size = bytes.size();
+  // The commonest mix-up first: the scene itself handed to a tool that reads meshes.
+  if (looks_like_scene_json(bytes))
+    throw InputError(name, byte_at(0),
+                     "not an nmm mesh file but a scene (JSON): run nmm-preprocess SCENE.json -o "
+                     "MESH.nmm first and pass MESH.nmm");
   if (file_size < kHeaderSize)
     throw InputError(name, "",
                      "file is " + std::to_string(file_size) + " bytes, shorter than the " +

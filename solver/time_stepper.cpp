@@ -1,4 +1,4 @@
-// NMM time stepping with Shi's implicit scheme (Shi 1988, 1991; physics.md §2).
+// NMM time stepping with Shi's implicit scheme (Shi 1988, 1991; docs/physics.md §2).
 //
 // Unknowns: the displacement increment d = (u, v) of every physical cover during the step
 // (constant cover functions); a sliver cover shares the unknowns of a neighbour

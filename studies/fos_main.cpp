@@ -41,13 +41,6 @@ using namespace nmm::studies;
 
 namespace {
 
-std::string sibling_tool(const std::string& name) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && fs::exists(self.parent_path() / name)) return (self.parent_path() / name).string();
-  return name;  // from PATH
-}
-
 std::vector<std::string> split_commas(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream ss(s);

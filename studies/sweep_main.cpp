@@ -27,15 +27,6 @@
 namespace fs = std::filesystem;
 using namespace nmm::studies;
 
-namespace {
-std::string sibling_tool(const std::string& name) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && fs::exists(self.parent_path() / name)) return (self.parent_path() / name).string();
-  return name;
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   CLI::App app{"nmm-sweep: independent nmm-solve runs over a list or product of variants"};
   std::string sweep_path, out_dir, engine_word = "threads", profile, snakefile;
