@@ -1,7 +1,7 @@
 // The NMM mesh: mathematical mesh, physical covers (PC), manifold elements (ME), blocks and the
 // contact-candidate edges, as plain arrays indexed by integers (no pointer graphs).
 //
-// Definitions (docs/interface.md, physics.md §1):
+// Definitions (docs/interface.md, docs/physics.md §1):
 // - nodes, triangles: the equilateral mathematical mesh of side `mesh_size`, only the triangles
 //   meeting the domain with positive area and their nodes. Triangles are counter-clockwise.
 // - physical cover: a connected piece of (star of node ∩ body) minus joints. A joint ending inside
@@ -59,7 +59,8 @@ struct Mesh {
   std::vector<std::int32_t> contact_edge_opposite;  ///< [c] element across the edge, -1 if none
 
   // ---- provenance ---------------------------------------------------------------------------
-  std::string tool_version;              ///< version of nmm-preprocess that wrote the file
+  std::string tool = "nmm-preprocess";  ///< program that wrote the file
+  std::string tool_version;              ///< version of that program
   std::string scene_file;                ///< scene file name as given on the command line
   std::string scene_text;                ///< the scene itself, verbatim (comments included)
   std::array<std::uint8_t, 32> scene_sha256{};  ///< SHA-256 of scene_text

@@ -128,6 +128,14 @@ std::uint64_t align8(std::uint64_t n) {
 }
 
 
+// A scene file: text whose first non-blank characters open a JSON object or a // comment
+// (scenes start with a comment block). A mesh file starts with the magic "NMMMESH\0".
+bool looks_like_scene_json(const std::string& bytes) {
+  const std::size_t first = bytes.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return false;
+  return bytes[first] == '{' || bytes.compare(first, 2, "//") == 0;
+}
+
 std::string byte_at(std::uint64_t offset) {
   return "byte " + std::to_string(offset);
 }
@@ -230,6 +238,11 @@ struct InSection {
 std::map<std::string, InSection> parse_container(const std::string& bytes,
                                                  const std::string& name) {
   const std::uint64_t file_size = bytes.size();
+  // The commonest mix-up first: the scene itself handed to a tool that reads meshes.
+  if (looks_like_scene_json(bytes))
+    throw InputError(name, byte_at(0),
+                     "not an nmm mesh file but a scene (JSON): run nmm-preprocess SCENE.json -o "
+                     "MESH.nmm first and pass MESH.nmm");
   if (file_size < kHeaderSize)
     throw InputError(name, "",
                      "file is " + std::to_string(file_size) + " bytes, shorter than the " +
@@ -378,7 +391,7 @@ void copy_array(const std::string& bytes, const InSection& s, std::vector<T>& ou
 
 std::string provenance_json(const Mesh& mesh) {
   nlohmann::json j;
-  j["tool"] = "nmm-preprocess";
+  j["tool"] = mesh.tool;
   j["tool_version"] = mesh.tool_version;
   j["scene_file"] = mesh.scene_file;
   j["scene_sha256"] = to_hex(mesh.scene_sha256);
@@ -428,7 +441,7 @@ void read_provenance(const std::string& text, std::uint32_t version, Mesh& mesh,
       throw InputError(name, where, std::string("\"") + key + "\" is missing or not a string");
     return it->get<std::string>();
   };
-  text_field("tool");  // any tool may write the format; only its presence is required
+  mesh.tool = text_field("tool");  // any program may write the format; it is kept as written
   mesh.tool_version = text_field("tool_version");
   mesh.scene_file = text_field("scene_file");
   if (!parse_hex_digest(text_field("scene_sha256"), mesh.scene_sha256))
@@ -438,6 +451,23 @@ void read_provenance(const std::string& text, std::uint32_t version, Mesh& mesh,
     throw InputError(name, where,
                      "\"format_version\" is missing or differs from the header's version " +
                          std::to_string(version));
+  if (j.size() != 5)
+    throw InputError(name, where,
+                     "has " + std::to_string(j.size()) +
+                         " keys; it holds exactly tool, tool_version, scene_file, scene_sha256 "
+                         "and format_version");
+  // One text for one set of values: a file that is read must write back to the same bytes
+  // (docs/mesh-format.md), so any other spelling of the same JSON — other spacing, escapes, key
+  // order, bytes after the document — is refused rather than silently normalised.
+  const std::string canonical = provenance_json(mesh);
+  if (canonical != text) {
+    std::size_t at = 0;
+    while (at < text.size() && at < canonical.size() && text[at] == canonical[at]) ++at;
+    throw InputError(name, where,
+                     "byte " + std::to_string(at) +
+                         " of the text differs from the writer's form (sorted keys, two-space "
+                         "indent, no escapes beyond JSON's, one final newline)");
+  }
 }
 
 // ---- validation helpers -------------------------------------------------------------------------

@@ -1,7 +1,9 @@
 #include "number_format.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace nmm {
 
@@ -15,6 +17,25 @@ std::string format_rough(double v, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   return buf;
+}
+
+std::string format_engineering(double v, const std::string& unit, int digits) {
+  const std::string tail = unit.empty() ? "" : " " + unit;
+  if (!std::isfinite(v)) return format_rough(v, digits) + tail;
+  if (v == 0) return "0" + tail;
+  // Round first: 999.7 with three digits is 1.00e3, so the prefix must follow the rounded value.
+  const double rounded = std::stod(format_rough(v, digits));
+  int exp3 = static_cast<int>(std::floor(std::log10(std::abs(rounded)) / 3)) * 3;
+  if (unit.empty()) {
+    if (std::abs(rounded) >= 1e-3 && std::abs(rounded) < 1e6) return format_rough(rounded, digits);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*e", digits - 1, rounded);
+    return buf;
+  }
+  static const char* const kPrefix[] = {"p", "n", "µ", "m", "", "k", "M", "G", "T"};
+  exp3 = exp3 < -12 ? -12 : exp3 > 12 ? 12 : exp3;
+  const double mantissa = rounded / std::pow(10.0, exp3);
+  return format_rough(mantissa, digits) + " " + kPrefix[exp3 / 3 + 4] + unit;
 }
 
 }  // namespace nmm

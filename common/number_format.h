@@ -11,4 +11,10 @@ std::string format_number(double v);
 /// printf-style "%.<digits>g", for rough figures such as an estimated triangle count.
 std::string format_rough(double v, int digits);
 
+/// Engineering notation for reports: `digits` significant digits, the exponent a multiple of 3
+/// carried by an SI prefix on `unit` ("5.58 s", "120 µm", "10 GN/m"); without a unit the
+/// exponent is written out ("1.23e+09") outside [0.001, 10⁶). Zero is "0 unit"; inf and NaN
+/// are written as such.
+std::string format_engineering(double v, const std::string& unit, int digits = 3);
+
 }  // namespace nmm

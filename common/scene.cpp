@@ -386,7 +386,7 @@ NormalLawDef read_normal_law(const Reader& r) {
     law.model = NormalModel::constant;
     law.kn = r.number("kn", kStiffness);
   } else if (r.has("jrc") || r.has("jcs") || r.has("ucs")) {
-    // Barton–Bandis empirical relations (Barton, Bandis & Bakhtar 1985; physics.md §4), with
+    // Barton–Bandis empirical relations (Barton, Bandis & Bakhtar 1985; docs/physics.md §4), with
     // JCS and σc in MPa and lengths in mm inside the formulas:
     //   a_j = (JRC/5)(0.2·σc/JCS − 0.1)           initial aperture, mm
     //   Kni = −7.15 + 1.75·JRC + 0.02·JCS/a_j      MPa/mm = GPa/m

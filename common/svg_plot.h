@@ -19,10 +19,29 @@ struct PlotSpec {
   std::string title, xlabel, ylabel;
   bool log_x = false, log_y = false;  ///< logarithmic axes (non-positive values are skipped)
   std::vector<PlotSeries> series;
+  /// Names of x = 1, 2, 3, …: a categorical x axis ticked at those values with these names
+  /// (empty: a numeric axis).
+  std::vector<std::string> x_categories{};
 };
 
-/// The plot as an SVG document.
-std::string svg_plot(const PlotSpec& spec);
+/// Round tick values covering [lo, hi]: steps of 1, 2 or 5 × 10^k, about `target` of them
+/// (fewer when the span is short). Shared by the plots and result.svg's axes.
+std::vector<double> nice_ticks(double lo, double hi, int target = 6);
+
+/// The 1, 2 or 5 × 10^k nearest below v (v > 0): scale bars, exaggeration factors.
+double round_down_125(double v);
+
+/// Tick label: "%g", or one significant digit in e-notation far from 1 ("2e-05").
+std::string tick_label(double v);
+
+/// The plot as an SVG document, `pixel_width` wide (sweep.svg's panels are smaller).
+std::string svg_plot(const PlotSpec& spec, double pixel_width = 900);
+
+/// SVG documents (each with width and height attributes) as one document, in rows of `columns`
+/// cells left to right: each becomes a nested <svg> at its cell's offset, the cells as wide as
+/// the widest document, each row as high as its highest. run_history.svg's panels (1 column),
+/// sweep.svg's grid.
+std::string svg_grid(const std::vector<std::string>& docs, std::size_t columns);
 
 /// Writes svg_plot(spec) to `path` atomically (InputError naming the file on failure).
 void write_svg_plot(const PlotSpec& spec, const std::string& path);

@@ -100,10 +100,44 @@ void SvgWriter::rect(Vec2 lo, double width, double height, const SvgStyle& style
 void SvgWriter::text(Vec2 at, const std::string& text, double size, const std::string& colour) {
   // The box must hold the text too; 0.6 em per character is a fair guess for sans-serif.
   extend(at.x, at.y - 0.25 * size);
-  extend(at.x + 0.6 * size * static_cast<double>(utf8_length(text)), at.y + size);
+  extend(at.x + text_width(text, size), at.y + size);
   SvgStyle st;
   st.fill = colour;
   shapes_.push_back({Kind::text, {at}, st, size, text});
+}
+
+double SvgWriter::text_width(const std::string& text, double size) {
+  return 0.6 * size * static_cast<double>(utf8_length(text));
+}
+
+std::size_t SvgWriter::text_block(Vec2 at, const std::string& text, double size,
+                                  const std::string& colour, double width) {
+  const auto chars = static_cast<std::size_t>(std::max(1.0, std::floor(width / (0.6 * size))));
+  const std::vector<std::string> lines = wrap_words(text, chars);
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    this->text({at.x, at.y - 1.3 * size * static_cast<double>(i)}, lines[i], size, colour);
+  return lines.size();
+}
+
+std::vector<std::string> wrap_words(const std::string& text, std::size_t max_chars) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  auto flush_word = [&] {
+    if (word.empty()) return;
+    if (!line.empty() && utf8_length(line) + 1 + utf8_length(word) > max_chars) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ' || c == '\n') flush_word();
+    else word += c;
+  }
+  flush_word();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
 }
 
 std::string SvgWriter::str(double margin_fraction, double pixel_width) const {
@@ -172,11 +206,17 @@ std::string SvgWriter::str(double margin_fraction, double pixel_width) const {
                "\" width=\"" + num(s.pts[1].x) + "\" height=\"" + num(s.pts[1].y) + "\"" +
                style(s.style) + "/>\n";
         break;
-      case Kind::text:
-        out += "<text x=\"" + num(s.pts[0].x) + "\" y=\"" + num(-s.pts[0].y) + "\" font-size=\"" +
-               num(s.size) + "\" font-family=\"sans-serif\" fill=\"" + s.style.fill + "\">" +
-               xml_escape(s.text) + "</text>\n";
+      case Kind::text: {
+        // The font is set at 100 units and scaled down to its size in model units: a font
+        // size of 0.1 (a 5 m model) is laid out by Pango (rsvg-convert) in whole 1/1024 pt
+        // steps, which garbles the letter spacing; at 100 the layout is exact.
+        char k[32];
+        std::snprintf(k, sizeof k, "%.6g", s.size / 100);
+        out += "<text transform=\"translate(" + num(s.pts[0].x) + "," + num(-s.pts[0].y) +
+               ") scale(" + k + ")\" font-size=\"100\" font-family=\"sans-serif\" fill=\"" +
+               s.style.fill + "\">" + xml_escape(s.text) + "</text>\n";
         break;
+      }
     }
   }
   out += "</svg>\n";

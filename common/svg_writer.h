@@ -3,7 +3,8 @@
 // Shapes are given in model coordinates (m, +y up). The writer flips y itself (SVG's y axis
 // points down) instead of using a scale(1,-1) transform, so text is not drawn upside down, and it
 // fits the viewBox to everything drawn, plus a margin. Stroke widths and font sizes are in model
-// units, so the caller picks them relative to the model (see write_mesh_svg).
+// units, so the caller picks them relative to the model (see write_mesh_svg); text is drawn at
+// font size 100 scaled down to its size (a transform), which renderers lay out exactly.
 #pragma once
 
 #include <string>
@@ -38,6 +39,13 @@ class SvgWriter {
   void rect(Vec2 lo, double width, double height, const SvgStyle& style);
   /// Text with its baseline starting at `at`; `size` is the font size in m.
   void text(Vec2 at, const std::string& text, double size, const std::string& colour);
+  /// The width the writer reserves for `text` at font size `size` (0.6 em per character), m.
+  static double text_width(const std::string& text, double size);
+  /// `text` wrapped at word boundaries to lines no wider than `width` (m, at the writer's
+  /// estimate of 0.6 em per character), the first baseline at `at`, the next ones 1.3 em below.
+  /// Returns the number of lines.
+  std::size_t text_block(Vec2 at, const std::string& text, double size, const std::string& colour,
+                         double width);
 
   /// The document: the viewBox is the bounding box of everything drawn, widened by
   /// `margin_fraction` of its larger side; `pixel_width` sets the width attribute.
@@ -62,6 +70,10 @@ class SvgWriter {
   double xmin_ = 0, xmax_ = 0, ymin_ = 0, ymax_ = 0;
   bool have_box_ = false;
 };
+
+/// `text` split at spaces into lines of at most `max_chars` characters (UTF-8 code points); a
+/// word longer than that gets a line of its own.
+std::vector<std::string> wrap_words(const std::string& text, std::size_t max_chars);
 
 /// Colour of block b in the mesh picture: a fixed pastel palette cycled by block index, so the
 /// same mesh always gives the same picture.

@@ -1,6 +1,6 @@
 // Cover cutting with an exact arrangement (CGAL Arrangement_2, EPECK kernel, segment traits).
 //
-// Method (physics.md §1, docs/preprocess.md):
+// Method (docs/physics.md §1, docs/preprocess.md):
 // 1. Mathematical mesh: equilateral triangles of side h on a lattice anchored at the origin,
 //    node (i, j) at x = (i + ½·(j mod 2))·h, y = j·h·√3/2, kept where a triangle's bounding box
 //    meets a body's bounding box. Node coordinates are doubles, computed once.

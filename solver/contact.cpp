@@ -1,4 +1,4 @@
-// Contact springs, friction and states (Shi's DDA contacts, solved as a convex problem; physics.md §3).
+// Contact springs, friction and states (Shi's DDA contacts, solved as a convex problem; docs/physics.md §3).
 //
 // A contact is a vertex P of element A facing an edge Q2 → Q3 of element B (contact_detection).
 // With the edge's unit tangent t, outward normal n and P's projection P0 = Q2 + ω(Q3 − Q2), the

@@ -1,4 +1,4 @@
-// Contact detection (classic NMM / DDA, physics.md §3).
+// Contact detection (classic NMM / DDA, docs/physics.md §3).
 //
 // Broad phase: a uniform grid of cell size max(h, 2·d0). Every candidate edge is entered in the
 // cells its box (grown by d0) overlaps; every candidate vertex meets the edges of its own cell.

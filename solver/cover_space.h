@@ -4,7 +4,7 @@
 // element's shape functions as polynomials. Nothing else in the solver knows how many unknowns a
 // cover has.
 //
-// Seed eq. 1–3 with the weights of physics.md §1: in a manifold element with covers k = 0, 1, 2
+// Seed eq. 1–3 with the weights of docs/physics.md §1: in a manifold element with covers k = 0, 1, 2
 //   u(x) = Σ_k w_k(x) · Σ_j p_j((x − c_k)/h) · d_kj,      d_kj = (u, v) coefficients,
 // with w_k the linear weights of the element's triangle, p_j the monomials of degree ≤ n
 // (1, ξ, η, ξ², ξη, η²; polynomial.h), c_k the node of cover k (of its master for a tied sliver

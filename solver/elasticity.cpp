@@ -1,4 +1,4 @@
-// Plane elasticity (physics.md §1). With engineering shear strain γxy:
+// Plane elasticity (docs/physics.md §1). With engineering shear strain γxy:
 //   plane strain: D = E/((1+ν)(1−2ν)) · [[1−ν, ν, 0], [ν, 1−ν, 0], [0, 0, (1−2ν)/2]]
 //   plane stress: D = E/(1−ν²)        · [[1, ν, 0], [ν, 1, 0], [0, 0, (1−ν)/2]]
 // The displacement in an element is u = Σ_k w_k·u_k over its three covers, so

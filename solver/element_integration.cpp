@@ -1,4 +1,4 @@
-// Simplex integration (Shi 1991; physics.md §1). For a CCW polygon, summing over its edges
+// Simplex integration (Shi 1991; docs/physics.md §1). For a CCW polygon, summing over its edges
 // (x2, y2) → (x3, y3) with f = x2·y3 − x3·y2 (each edge and the origin span a signed triangle):
 //   ∫1   += f/2
 //   ∫x   += f (x2 + x3)/6                      ∫y   likewise

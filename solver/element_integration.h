@@ -1,4 +1,4 @@
-// Integration over manifold elements (physics.md §1): simplex integration of polynomials over a
+// Integration over manifold elements (docs/physics.md §1): simplex integration of polynomials over a
 // counter-clockwise polygon, and the linear weight functions of the element's triangle.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Joint laws on contact springs (seed paper; physics.md §4).
+// Joint laws on contact springs (seed paper; docs/physics.md §4).
 //
 // A contact point stands for a tributary length L of joint (contact.cpp: half of each of the
 // contact vertex's candidate edges that face the contacted edge). Its spring force is the joint

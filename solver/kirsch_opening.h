@@ -1,4 +1,4 @@
-// The Kirsch opening, the rock-engineering reference problem (physics.md §5; Brady & Brown,
+// The Kirsch opening, the rock-engineering reference problem (docs/physics.md §5; Brady & Brown,
 // "Rock Mechanics for Underground Mining", §7.2): a circular opening of radius a excavated in
 // elastic rock under far-field compression p_x, p_y. Built here once and used by
 // tests/test_rock_setups.cpp (excavation against Kirsch at each cover order) and nmm-study (the

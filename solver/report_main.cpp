@@ -1,4 +1,4 @@
-// nmm-report OUTDIR [--frame STEP] [--mesh MESH.nmm] [--picture-field F]: remakes the report of
+// nmm-report OUTDIR [--frame STEP] [--mesh MESH.nmm] [--picture-field F] [--exaggerate F]: remakes the report of
 // a finished or stopped nmm-solve run from the files in its folder: result.svg redrawn from the
 // last frame (or the frame of step STEP) with the mesh summary.json names (result_redraw.h),
 // then history.svg, run_history.svg (solver effort and energy), index.html, PNGs when rsvg-convert is available
@@ -32,11 +32,16 @@ int main(int argc, char** argv) {
                  "the run's mesh file, if summary.json's inputs.mesh no longer finds it");
   app.add_option("--picture-field", redraw.field,
                  "what colours result.svg: displacement, sxx, syy or sxy (default: the run's)");
+  app.add_option("--exaggerate", redraw.exaggerate,
+                 "draw result.svg's displacements F times larger (1: true scale); default: the "
+                 "run's --exaggerate, else automatic below 1 % of the model size")
+      ->check(CLI::PositiveNumber);
   app.set_version_flag("--version", std::string("nmm-report ") + NMM_VERSION);
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-report"); status >= 0)
     return status;
   try {
-    const bool must_draw = redraw.frame_step >= 0 || !redraw.mesh_path.empty() || !redraw.field.empty();
+    const bool must_draw = redraw.frame_step >= 0 || !redraw.mesh_path.empty() ||
+                           !redraw.field.empty() || redraw.exaggerate > 0;
     std::string drawn;
     // Not a run folder at all: make_run_report says so in its one line.
     if (std::filesystem::exists(std::filesystem::path(dir) / "summary.json") || must_draw) {

@@ -7,13 +7,23 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "failure_cause.h"
+#include "svg_plot.h"
 #include "svg_writer.h"
 
 namespace nmm::solve {
 namespace {
 
-// A perceptually ordered colour map (viridis, 5 stops, linear between them).
-std::string colour_at(double f) {
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return buf;
+}
+
+}  // namespace
+
+std::string colour_map(double f) {
+  // viridis: perceptually ordered, readable in grey and by most colour-blind readers.
   static const double stops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140},
                                      {94, 201, 98}, {253, 231, 37}};
   f = std::clamp(std::isfinite(f) ? f : 0.0, 0.0, 1.0) * 4;
@@ -27,13 +37,12 @@ std::string colour_at(double f) {
   return buf;
 }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
+double automatic_exaggeration(double max_displacement, double model_size) {
+  if (!(model_size > 0) || !(max_displacement > 1e-9 * model_size) ||
+      max_displacement >= 0.01 * model_size)
+    return 1;
+  return round_down_125(0.05 * model_size / max_displacement);
 }
-
-}  // namespace
 
 bool parse_picture_field(const std::string& name, PictureField& field) {
   if (name == "displacement") field = PictureField::displacement;
@@ -124,11 +133,33 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     if (value[e] < lo || value[e] > hi) clamped_area += area[e];
   }
 
+  // The drawn positions: start + F × displacement. F = 1 keeps the positions themselves, so a
+  // true-scale picture is the state's geometry bit for bit.
+  double umax = 0, x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (gone[e]) continue;
+    for (int v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
+      umax = std::max(umax, std::hypot(xy[2 * v] - mesh.loop_xy[2 * v],
+                                       xy[2 * v + 1] - mesh.loop_xy[2 * v + 1]));
+  }
+  for (std::size_t v = 0; v < mesh.loop_xy.size() / 2; ++v) {
+    x0 = std::min(x0, mesh.loop_xy[2 * v]), x1 = std::max(x1, mesh.loop_xy[2 * v]);
+    y0 = std::min(y0, mesh.loop_xy[2 * v + 1]), y1 = std::max(y1, mesh.loop_xy[2 * v + 1]);
+  }
+  const double factor = state.exaggeration > 0
+                            ? state.exaggeration
+                            : automatic_exaggeration(umax, std::max(x1 - x0, y1 - y0));
+  std::vector<double> drawn(xy);
+  if (factor != 1)
+    for (std::size_t i = 0; i < xy.size(); ++i)
+      drawn[i] = mesh.loop_xy[i] + factor * (xy[i] - mesh.loop_xy[i]);
+  auto at = [&](int v) { return Vec2{drawn[2 * v], drawn[2 * v + 1]}; };
+
   SvgWriter svg;
   double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (std::size_t v = 0; v < xy.size() / 2; ++v) {
-    xmin = std::min(xmin, xy[2 * v]), xmax = std::max(xmax, xy[2 * v]);
-    ymin = std::min(ymin, xy[2 * v + 1]), ymax = std::max(ymax, xy[2 * v + 1]);
+  for (std::size_t v = 0; v < drawn.size() / 2; ++v) {
+    xmin = std::min(xmin, drawn[2 * v]), xmax = std::max(xmax, drawn[2 * v]);
+    ymin = std::min(ymin, drawn[2 * v + 1]), ymax = std::max(ymax, drawn[2 * v + 1]);
   }
   const double size = std::max(xmax - xmin, ymax - ymin);
   const double font = 0.022 * size, line = 0.0012 * size;
@@ -139,11 +170,12 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     if (gone[e]) continue;
     pts.clear();
     for (int v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
-      pts.push_back({xy[2 * v], xy[2 * v + 1]});
-    const std::string c = colour_at((value[e] - lo) / (hi - lo));
+      pts.push_back(at(v));
+    const std::string c = colour_map((value[e] - lo) / (hi - lo));
     svg.polygon(pts, {c, c, 0.3 * line, 0, 1});
   }
-  // Joints and boundaries where they are now, coloured by the state of their contacts.
+  // Joints and boundaries where they are now, coloured by the state of their contacts; the
+  // legend's lengths are the true ones.
   const std::vector<int> edge_state = edge_contact_states(mesh, state.contacts);
   std::vector<std::pair<Vec2, Vec2>> joints, bounds, stick_edges, slide_edges, excavated;
   JointStateLengths len;
@@ -151,7 +183,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
     for (int v = b; v < end; ++v) {
       const int w = v + 1 < end ? v + 1 : b;
-      const std::pair<Vec2, Vec2> seg{{xy[2 * v], xy[2 * v + 1]}, {xy[2 * w], xy[2 * w + 1]}};
+      const std::pair<Vec2, Vec2> seg{at(v), at(w)};
       const bool joint = mesh.loop_edge_origin[v] & kEdgeJoint;
       const bool bound = mesh.loop_edge_origin[v] & kEdgeBoundary;
       if (gone[e]) {  // the outline of what was taken out (its joints are gone with it)
@@ -161,7 +193,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
       if (!joint && !bound) continue;
       // Each face of a joint is a loop edge of its own: half the length per face, so the legend
       // gives the joint's length, not twice it.
-      const double l = 0.5 * std::hypot(seg.second.x - seg.first.x, seg.second.y - seg.first.y);
+      const double l = 0.5 * std::hypot(xy[2 * w] - xy[2 * v], xy[2 * w + 1] - xy[2 * v + 1]);
       if (edge_state[v] == 2) {
         slide_edges.push_back(seg);
         len.sliding += l;
@@ -182,12 +214,14 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   svg.segments(joints, {"none", joint_colour, 1.2 * line, 0, 1});
   svg.segments(stick_edges, {"none", "#1f77b4", 3 * line, 0, 1});
   svg.segments(slide_edges, {"none", "#ff7f0e", 3 * line, 0, 1});
-  // Contact points on top, in the colour of their state.
+  // Contact points on top, in the colour of their state, at their vertex's drawn position.
   std::size_t sticking = 0, sliding = 0;
   for (const PictureContact& c : state.contacts) {
     const bool slides = c.state == 2;
     (slides ? sliding : sticking)++;
-    svg.circle({c.x, c.y}, 2.5 * line, {slides ? "#ff7f0e" : "#1f77b4", "none", 0, 0, 1});
+    const bool known = c.vertex >= 0 && static_cast<std::size_t>(c.vertex) < drawn.size() / 2;
+    const Vec2 p = factor != 1 && known ? at(c.vertex) : Vec2{c.x, c.y};
+    svg.circle(p, 2.5 * line, {slides ? "#ff7f0e" : "#1f77b4", "none", 0, 0, 1});
   }
   // Supports (rollers and pins along the boundary): a thick green line where they hold, with
   // what they hold ("x", "y", "xy") at the middle of their polyline. Drawn where the scene puts
@@ -207,7 +241,11 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
                 {"#000000", "none", 0, 0, 1});
   }
   for (std::size_t i = 0; i < state.measure_points.size(); ++i) {
-    const Vec2& p = state.measure_points[i];
+    Vec2 p = state.measure_points[i];
+    if (factor != 1 && i < state.measure_start.size()) {
+      const Vec2& s0 = state.measure_start[i];
+      p = {s0.x + factor * (p.x - s0.x), s0.y + factor * (p.y - s0.y)};
+    }
     svg.circle(p, 0.01 * size, {"none", "#ff00ff", 2.5 * line, 0, 1});
     svg.text({p.x + 0.013 * size, p.y + 0.008 * size}, "m" + std::to_string(i), font, "#ff00ff");
   }
@@ -217,28 +255,90 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   const int bands = 40;
   for (int i = 0; i < bands; ++i)
     svg.rect({bx, by + bh * i / bands}, bw, bh / bands + 1e-9 * size,
-             {colour_at((i + 0.5) / bands), "none", 0, 0, 1});
-  for (int i = 0; i <= 4; ++i)
-    svg.text({bx + 1.3 * bw, by + bh * i / 4 - 0.3 * font}, number(lo + (hi - lo) * i / 4), font,
-             "#000000");
+             {colour_map((i + 0.5) / bands), "none", 0, 0, 1});
+  double right = bx + bw;  // the picture's right edge, for the wrapped text below
+  for (int i = 0; i <= 4; ++i) {
+    const std::string label = number(lo + (hi - lo) * i / 4);
+    svg.text({bx + 1.3 * bw, by + bh * i / 4 - 0.3 * font}, label, font, "#000000");
+    right = std::max(right, bx + 1.3 * bw + SvgWriter::text_width(label, font));
+  }
   const std::string unit_title =
       field == PictureField::displacement ? "|u| (mm)"
       : field == PictureField::stress_xx  ? "σxx (MPa, tension +)"
       : field == PictureField::stress_yy  ? "σyy (MPa, tension +)"
                                           : "τxy (MPa)";
-  svg.text({bx, by + bh + 0.8 * font}, unit_title, font, "#000000");
+  svg.text({bx, by + bh + 1.0 * font}, unit_title, font, "#000000");
   char note[160];
   std::snprintf(note, sizeof note, "bar: area-weighted %s; %.2g%% of area beyond it",
                 field == PictureField::displacement ? "0–99th pct" : "1st–99th pct",
                 total_area > 0 ? 100 * clamped_area / total_area : 0.0);
   svg.text({bx, by - 1.5 * font}, note, 0.7 * font, "#444444");
+  right = std::max(right, bx + SvgWriter::text_width(note, 0.7 * font));
 
-  // Title and legend above the model.
+  // Axes in metres along the bottom and the left of the model, round ticks (drawn after the
+  // colour bar, whose labels are the first numbers in the document).
+  const double tick = 0.4 * font, label_font = 0.8 * font, gap = 0.03 * size;
+  const SvgStyle axis_style{"none", "#444444", 0.8 * line, 0, 1};
+  auto text_width = &SvgWriter::text_width;
+  const double ax_y = ymin - gap, ax_x = xmin - gap;
+  svg.polyline({{xmin, ax_y}, {xmax, ax_y}}, axis_style);
+  for (double t : nice_ticks(xmin, xmax, 6)) {
+    svg.polyline({{t, ax_y}, {t, ax_y - tick}}, axis_style);
+    const std::string l = tick_label(t);
+    svg.text({t - 0.5 * text_width(l, label_font), ax_y - tick - 1.1 * label_font}, l, label_font,
+             "#444444");
+  }
+  svg.text({0.5 * (xmin + xmax) - 0.5 * text_width("x (m)", label_font),
+            ax_y - tick - 2.4 * label_font},
+           "x (m)", label_font, "#444444");
+  svg.polyline({{ax_x, ymin}, {ax_x, ymax}}, axis_style);
+  for (double t : nice_ticks(ymin, ymax, ymax - ymin > 0.3 * size ? 6 : 3)) {
+    svg.polyline({{ax_x, t}, {ax_x - tick, t}}, axis_style);
+    const std::string l = tick_label(t);
+    svg.text({ax_x - tick - 0.3 * label_font - text_width(l, label_font), t - 0.35 * label_font}, l,
+             label_font, "#444444");
+  }
+  svg.text({ax_x - text_width("y (m)", label_font), ymax + 0.8 * label_font}, "y (m)", label_font,
+           "#444444");
+
+  // Scale bar under the x axis, at its right end: a round length about a fifth of the model.
+  const double bar_len = round_down_125(0.2 * (xmax - xmin > 0 ? xmax - xmin : size));
+  const double sb_y = ax_y - tick - 4.4 * label_font, sb_h = 0.35 * font;
+  svg.rect({xmax - bar_len, sb_y}, 0.5 * bar_len, sb_h, {"#000000", "#000000", 0.5 * line, 0, 1});
+  svg.rect({xmax - 0.5 * bar_len, sb_y}, 0.5 * bar_len, sb_h, {"#ffffff", "#000000", 0.5 * line, 0, 1});
+  const std::string bar_label = "scale bar " + tick_label(bar_len) + " m";
+  svg.text({xmax - bar_len - 0.5 * font - text_width(bar_label, label_font), sb_y}, bar_label,
+           label_font, "#000000");
+
+  // Title and legend above the model; a failure's reason under the scale bar, wrapped.
+  const bool failed = status_is_failure(state.status);
+  const std::string status_word = state.status.empty() ? "ok"
+                                  : failed             ? "stopped, reason below"
+                                                       : state.status;
+  char scale[64];
+  if (factor == 1)
+    std::snprintf(scale, sizeof scale, "deformation true scale");
+  else
+    std::snprintf(scale, sizeof scale, factor >= 1 ? "displacement ×%.0f" : "displacement ×%g",
+                  factor);
   char title[256];
-  std::snprintf(title, sizeof title, "%s  t = %.4g s  (%s)  deformation true scale",
-                scene.name.empty() ? "scene" : scene.name.c_str(), state.time,
-                state.status.empty() ? "ok" : state.status.c_str());
+  std::snprintf(title, sizeof title, "%s  t = %.4g s  (%s)  %s",
+                !state.title.empty() ? state.title.c_str()
+                : scene.name.empty() ? "scene"
+                                     : scene.name.c_str(),
+                state.time, status_word.c_str(), scale);
   svg.text({xmin, ymax + 4.2 * font}, title, 1.2 * font, "#000000");
+  if (failed) {
+    const double width = std::max(right, xmax) - ax_x;
+    const double reason_font = 0.9 * font;
+    double y = sb_y - 2.0 * reason_font;
+    const std::size_t n = svg.text_block({ax_x, y}, "stopped: " + state.status, reason_font,
+                                         "#b00000", width);
+    y -= 1.3 * reason_font * static_cast<double>(n) + 0.4 * reason_font;
+    const std::string cause = likely_failure_cause(mesh, scene, state.status);
+    if (!cause.empty())
+      svg.text_block({ax_x, y}, "likely cause: " + cause, reason_font, "#202020", width);
+  }
 
   // Legend: a swatch and a line per state, the counts a user checks against contacts.csv.
   char buf[200];
@@ -275,6 +375,14 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   if (!scene.fixed_points.empty()) marks += "; ▲ fixed points";
   if (!scene.supports.empty()) marks += "; green: supports (x, y or xy held)";
   if (!state.measure_points.empty()) marks += "; ○ measure points";
+  // A scene built in a tilted frame (a block on a plane as a horizontal plane under tilted
+  // gravity) is drawn in that frame: say so, or the incline looks flat.
+  if (scene.has_gravity && scene.gravity.x != 0) {
+    char g[96];
+    std::snprintf(g, sizeof g, "; gravity %.3g° from −y (model axes)",
+                  std::atan2(std::abs(scene.gravity.x), -scene.gravity.y) * 180 / M_PI);
+    marks += g;
+  }
   svg.text({xmin, ly}, marks + excavated_note, 0.8 * font, "#333333");
   return svg.str(0.03, 1400);
 }

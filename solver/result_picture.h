@@ -17,6 +17,15 @@
 // one 0.0125 m² element cannot stretch the bar of a slope whose stresses are about 1 MPa.
 // Values beyond the bar are drawn in its end colours, and the bar says how much area that is.
 //
+// Frame and scale: axes in metres along the bottom and left of the model (round ticks), a
+// scale bar under the x axis. Displacements smaller than 1 % of the model size are drawn
+// exaggerated (automatic_exaggeration, or nmm-solve/nmm-report --exaggerate F), the factor in
+// the title: drawn position = start + F × displacement, for elements, joints, contacts and
+// measure points. The colour bar, the legend's lengths and every number stay true.
+//
+// A run that stopped on a failure gets a short title ("stopped, reason below"); the reason and
+// its likely cause (failure_cause.h) are written under the picture, wrapped to its width.
+//
 // Excavated bodies (excavation.h) are gone from the model: the solver only holds their covers
 // still so that the system stays regular. They are not filled, not in the colour scale, and
 // their outline is drawn thin, grey and dashed where they were, the legend saying "excavated".
@@ -54,7 +63,23 @@ struct PictureState {
   bool contacts_known = true;           ///< false: this state's contacts were not recorded
   std::vector<Vec2> measure_points;     ///< m, current positions
   std::vector<std::uint8_t> excavated_body;  ///< [body] 1: excavated by this state (empty: none)
+  /// m, where each measure point started (empty: drawn where it is, not exaggerated)
+  std::vector<Vec2> measure_start;
+  /// Factor the drawn displacements are multiplied by (1: true scale); 0: automatic_exaggeration.
+  double exaggeration = 0;
+  std::string title;  ///< first words of the title; "": the scene's name
 };
+
+/// The colour map of every result picture (result.svg, nmm-fos's mechanism.svg): viridis, five
+/// stops, linear between them; f in [0, 1] (clamped; NaN gives the low end).
+std::string colour_map(double f);
+inline constexpr const char* kColourMapName = "viridis";
+
+/// The exaggeration drawn when none is asked for: 1 (true scale) when the largest displacement
+/// is 1 % of the model size or more, or too small to be anything but round-off (1e-9 of it);
+/// else the 1, 2 or 5 × 10^k at or below 5 % of the model size over the largest displacement,
+/// so that the largest displacement is drawn as about 2–5 % of the picture.
+double automatic_exaggeration(double max_displacement, double model_size);
 
 /// Joint length (m, current configuration) per drawn state, as the legend of result_svg states it.
 struct JointStateLengths {

@@ -57,7 +57,7 @@ std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& 
   return out;
 }
 
-RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
+RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_given) {
   const std::string summary_path = (fs::path(dir) / "summary.json").string();
   nlohmann::json summary;
   try {
@@ -66,16 +66,16 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
     throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
   }
   const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
-
   // The mesh and the run's scene (its variants change fixed points and the scene's name).
-  std::string mesh_path = options.mesh_path;
-  if (mesh_path.empty()) {
+  RunInputs r;
+  r.mesh_path = mesh_path_given;
+  if (r.mesh_path.empty()) {
     if (!inputs.contains("mesh") || !inputs["mesh"].is_string())
       throw InputError(summary_path, "/inputs/mesh",
                        "does not name the mesh file; give it with --mesh MESH.nmm");
-    mesh_path = inputs["mesh"].get<std::string>();
+    r.mesh_path = inputs["mesh"].get<std::string>();
   }
-  const Mesh mesh = read_mesh_file(mesh_path);
+  r.mesh = read_mesh_file(r.mesh_path);
   std::string config_path;
   std::vector<std::string> sets;
   if (inputs.contains("config") && inputs["config"].is_string())
@@ -83,7 +83,24 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
   if (inputs.contains("set") && inputs["set"].is_array())
     for (const auto& s : inputs["set"])
       if (s.is_string()) sets.push_back(s.get<std::string>());
-  const RunScene run = make_run_scene(mesh, mesh_path, config_path, sets);
+  r.scene = make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
+  return r;
+}
+
+std::string redraw_result_svg(const std::string& dir, const RedrawOptions& options,
+                              RedrawInfo* info) {
+  const std::string summary_path = (fs::path(dir) / "summary.json").string();
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(read_text_file(summary_path));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
+  }
+  const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
+  const RunInputs run_inputs = load_run_inputs(dir, options.mesh_path);
+  const Mesh& mesh = run_inputs.mesh;
+  const std::string& mesh_path = run_inputs.mesh_path;
+  const SceneDef& scene = run_inputs.scene;
 
   std::string field_name = options.field;
   if (field_name.empty()) field_name = inputs.value("picture_field", std::string("displacement"));
@@ -139,8 +156,8 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
       if (!x.is_object() || !x.contains("body") || !x["body"].is_number_integer()) continue;
       const std::int64_t body = x["body"].get<std::int64_t>();
       const std::int64_t at = x.value("step", std::int64_t{0});
-      if (body < 0 || static_cast<std::size_t>(body) >= run.scene.bodies.size() || at > step) continue;
-      state.excavated_body.resize(run.scene.bodies.size(), 0);
+      if (body < 0 || static_cast<std::size_t>(body) >= scene.bodies.size() || at > step) continue;
+      state.excavated_body.resize(scene.bodies.size(), 0);
       state.excavated_body[static_cast<std::size_t>(body)] = 1;
     }
 
@@ -170,17 +187,32 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
     state.contacts_known = pick % static_cast<std::size_t>(every) == 0 || pick + 1 == frames.size();
   }
 
-  // Measure points of that step.
+  // Measure points of that step, and where they started (x − ux: the exaggerated drawing).
   const NumberTable h = read_number_csv((fs::path(dir) / "history.csv").string());
   const int hs = h.column("step"), hx = h.column("x"), hy = h.column("y");
+  const int hux = h.column("ux"), huy = h.column("uy");
   if (hs >= 0 && hx >= 0 && hy >= 0)
     for (const auto& r : h.rows)
-      if (r.size() >= h.names.size() && static_cast<std::int64_t>(r[hs]) == step)
+      if (r.size() >= h.names.size() && static_cast<std::int64_t>(r[hs]) == step) {
         state.measure_points.push_back({r[hx], r[hy]});
+        if (hux >= 0 && huy >= 0) state.measure_start.push_back({r[hx] - r[hux], r[hy] - r[huy]});
+      }
+  if (state.measure_start.size() != state.measure_points.size()) state.measure_start.clear();
 
-  write_file_atomically((fs::path(dir) / "result.svg").string(),
-                        result_svg(mesh, run.scene, state, field));
-  return {step, time, mesh.element_count(), state.contacts.size(), state.contacts_known};
+  state.exaggeration = options.exaggerate;
+  if (!(state.exaggeration > 0) && inputs.contains("exaggerate") && inputs["exaggerate"].is_number())
+    state.exaggeration = inputs["exaggerate"].get<double>();
+  state.title = options.title;
+  if (info != nullptr)
+    *info = {step, time, mesh.element_count(), state.contacts.size(), state.contacts_known};
+  return result_svg(mesh, scene, state, field);
+}
+
+RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
+  RedrawInfo info;
+  const std::string svg = redraw_result_svg(dir, options, &info);
+  write_file_atomically((fs::path(dir) / "result.svg").string(), svg);
+  return info;
 }
 
 }  // namespace nmm::solve

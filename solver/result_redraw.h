@@ -13,7 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "mesh.h"
 #include "result_picture.h"
+#include "scene.h"
 
 namespace nmm::solve {
 
@@ -21,6 +23,9 @@ struct RedrawOptions {
   std::int64_t frame_step = -1;  ///< step number of the frame (frames/frame_<step>.vtu); -1: last
   std::string mesh_path;         ///< "" : summary.json inputs.mesh
   std::string field;             ///< "" : summary.json inputs.picture_field, else displacement
+  /// Drawn displacement factor; 0: summary.json inputs.exaggerate, else automatic.
+  double exaggerate = 0;
+  std::string title;             ///< first words of the title; "": the scene's name
 };
 
 /// What redraw_result drew.
@@ -32,8 +37,23 @@ struct RedrawInfo {
   bool contacts_known = true;
 };
 
+/// The mesh and run scene of a run folder: the mesh file summary.json "inputs.mesh" names (or
+/// `mesh_path` when not empty) with the run's --config and --set applied. InputError naming
+/// summary.json or the mesh file when they cannot be used.
+struct RunInputs {
+  std::string mesh_path;
+  Mesh mesh;
+  SceneDef scene;
+};
+RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path);
+
 /// (time s, step) of every frame listed in RUN/frames.pvd, in order. InputError if unreadable.
 std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& dir);
+
+/// result.svg of the chosen frame, as text (nmm-fos draws a trial's mechanism with it); `info`
+/// (when given) says what was drawn. Errors as redraw_result.
+std::string redraw_result_svg(const std::string& dir, const RedrawOptions& options,
+                              RedrawInfo* info = nullptr);
 
 /// Writes DIR/result.svg for the chosen frame. InputError (file, where, what) when the folder,
 /// the mesh or the frame cannot be used: a frame of another mesh, a step without a frame, ...

@@ -12,7 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
+#include "failure_cause.h"
 #include "gzip_text.h"
+#include "number_format.h"
+#include "png_copy.h"
+#include "result_redraw.h"
 #include "svg_plot.h"
 #include "atomic_file.h"
 #include "xml_text.h"
@@ -29,40 +33,74 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-bool have_rsvg() { return std::system("command -v rsvg-convert >/dev/null 2>&1") == 0; }
+// Units of summary.json's numbers, by key (the leaf's name; timings.* are all seconds).
+std::string summary_unit(const std::string& parent, const std::string& key) {
+  static const std::map<std::string, std::string> kUnits = {
+      {"simulated_time", "s"},   {"wall_seconds", "s"},          {"time_step", "s"},
+      {"max_penetration", "m"},  {"max_step_displacement", "m"}, {"fixed_point_stiffness", "N/m"},
+      {"support_stiffness", "N/m"}};
+  if (parent == "timings") return "s";
+  const auto it = kUnits.find(key);
+  if (it != kUnits.end()) return it->second;
+  if (key.size() > 8 && key.compare(key.size() - 8, 8, "_seconds") == 0) return "s";
+  return "";
+}
 
-void to_png(const std::string& dir, const std::string& svg, ReportFiles& files) {
-  const std::string png = svg.substr(0, svg.size() - 4) + ".png";
-  const std::string cmd = "rsvg-convert -b white -o '" + (fs::path(dir) / png).string() + "' '" +
-                          (fs::path(dir) / svg).string() + "' 2>/dev/null";
-  if (std::system(cmd.c_str()) == 0) files.written.push_back(png);
+// One summary value as (text, numeric?): counts with digit groups, other numbers in
+// engineering notation with their unit, lists joined, null as a dash.
+std::pair<std::string, bool> summary_cell(const nlohmann::json& v, const std::string& unit) {
+  if (v.is_number_integer() || v.is_number_unsigned()) {
+    std::string digits = v.dump(), grouped;
+    const std::size_t sign = digits[0] == '-' ? 1 : 0;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+      if (i > sign && (digits.size() - i) % 3 == 0) grouped += "\u202f";  // narrow no-break space
+      grouped += digits[i];
+    }
+    return {grouped + (unit.empty() ? "" : " " + unit), true};
+  }
+  if (v.is_number()) return {format_engineering(v.get<double>(), unit), true};
+  if (v.is_boolean()) return {v.get<bool>() ? "yes" : "no", false};
+  if (v.is_null()) return {"—", false};
+  if (v.is_string()) return {v.get<std::string>(), false};
+  if (v.is_array()) {
+    if (v.empty()) return {"none", false};
+    std::string out;
+    for (const auto& item : v) {
+      if (!out.empty()) out += item.is_object() ? "; " : ", ";
+      if (item.is_object()) {
+        std::string parts;
+        for (auto it = item.begin(); it != item.end(); ++it)
+          parts += (parts.empty() ? "" : " ") + it.key() + " " + summary_cell(it.value(), "").first;
+        out += parts;
+      } else {
+        out += summary_cell(item, unit).first;
+      }
+    }
+    return {out, false};
+  }
+  return {v.dump(), false};
+}
+
+// summary.json as table rows: a heading row per object, its members indented below it.
+std::string summary_rows(const nlohmann::json& j, const std::string& parent, int depth) {
+  std::string rows;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    std::string name = it.key();
+    std::replace(name.begin(), name.end(), '_', ' ');
+    const std::string th = depth > 0 ? "<th class=\"sub\">" : "<th>";
+    if (it.value().is_object() && !it.value().empty()) {
+      rows += "<tr><th class=\"group\" colspan=\"2\">" + xml_escape(name) + "</th></tr>\n";
+      rows += summary_rows(it.value(), it.key(), depth + 1);
+      continue;
+    }
+    const auto [text, numeric] = summary_cell(it.value(), summary_unit(parent, it.key()));
+    rows += "<tr>" + th + xml_escape(name) + "</th><td" + (numeric ? " class=\"n\"" : "") + ">" +
+            xml_escape(text) + "</td></tr>\n";
+  }
+  return rows;
 }
 
 const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-
-// SVG documents one above the other in one document: each becomes a nested <svg> at its offset.
-std::string stack_svgs(const std::vector<std::string>& docs) {
-  double width = 0, height = 0;
-  std::string body;
-  auto attribute = [](const std::string& doc, const std::string& name) {
-    const std::size_t at = doc.find(" " + name + "=\"");
-    return at == std::string::npos ? 0.0 : std::strtod(doc.c_str() + at + name.size() + 3, nullptr);
-  };
-  for (const std::string& d : docs) {
-    std::size_t open = d.find("<svg ");
-    if (open == std::string::npos) continue;
-    std::string inner = d.substr(open);
-    inner.insert(5, "y=\"" + std::to_string(static_cast<long long>(height)) + "\" ");
-    body += inner;
-    if (body.back() != '\n') body += '\n';
-    width = std::max(width, attribute(inner, "width"));
-    height += attribute(inner, "height");
-  }
-  const std::string w = std::to_string(static_cast<long long>(width));
-  const std::string h = std::to_string(static_cast<long long>(height));
-  return "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + w +
-         "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\">\n" + body + "</svg>\n";
-}
 
 }  // namespace
 
@@ -213,53 +251,75 @@ ReportFiles make_run_report(const std::string& dir) {
     if (!spec.series.empty() && !spec.series[0].x.empty()) panels.push_back(svg_plot(spec));
   }
   if (!panels.empty()) {
-    write_file_atomically((fs::path(dir) / "run_history.svg").string(), stack_svgs(panels));
+    write_file_atomically((fs::path(dir) / "run_history.svg").string(), svg_grid(panels, 1));
     files.written.push_back("run_history.svg");
   }
 
   const bool has_result = fs::exists(fs::path(dir) / "result.svg");
-  if (have_rsvg()) {
+  if (png_converter_available()) {
     files.png = true;
     std::vector<std::string> svgs = files.written;
     if (has_result) svgs.push_back("result.svg");
-    for (const std::string& s : svgs) to_png(dir, s, files);
+    for (const std::string& s : svgs)
+      if (!write_png_copy((fs::path(dir) / s).string()).empty())
+        files.written.push_back(s.substr(0, s.size() - 4) + ".png");
   }
 
-  // index.html: pictures first (users look at pictures before numbers), then the summary.
+  // index.html: pictures first (users look at pictures before numbers), then the summary. The
+  // page is never wider than the window: a max-width column, pictures scaled to it (each a link
+  // to itself at full size), long words (paths, hashes) broken anywhere.
   std::string html =
-      "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>nmm run report</title>\n"
-      "<style>body{font-family:sans-serif;margin:1.5em;background:#fff;color:#111}"
-      "img{max-width:100%;border:1px solid #ccc;margin:.5em 0}"
-      "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;text-align:left}"
+      "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+      "<title>nmm run report</title>\n"
+      "<style>body{font-family:sans-serif;max-width:70em;margin:1.5em auto;"
+      "padding:0 1em;background:#fff;color:#111;overflow-wrap:anywhere}"
+      "img{display:block;max-width:100%;height:auto;border:1px solid #ccc;margin:.5em 0}"
+      "table{border-collapse:collapse;max-width:100%}"
+      "td,th{border:1px solid #ccc;padding:2px 8px;text-align:left;vertical-align:top}"
+      "td.n{text-align:right;white-space:nowrap}th.group{background:#eee}th.sub{padding-left:1.5em}"
       ".bad{color:#b00;font-weight:bold}.ok{color:#070;font-weight:bold}</style></head><body>\n";
   const std::string status = summary.value("status", std::string("unknown"));
+  const bool finished = status == "ok";
+  auto number_at = [&](const char* key) {
+    const auto it = summary.find(key);
+    return it != summary.end() && it->is_number() ? it->get<double>() : 0.0;
+  };
   html += "<h1>nmm run report</h1>\n<p>status: <span class=\"" +
-          std::string(status == "ok" ? "ok" : "bad") + "\">" + xml_escape(status) +
-          "</span>, simulated time " + summary.value("simulated_time", nlohmann::json(0)).dump() +
-          " s in " + summary.value("steps_completed", nlohmann::json(0)).dump() + " steps, wall " +
-          summary.value("wall_seconds", nlohmann::json(0)).dump() + " s</p>\n";
-  if (has_result) html += "<h2>Result</h2>\n<img src=\"result.svg\" alt=\"result picture\">\n";
+          std::string(finished ? "ok" : "bad") + "\">" +
+          (finished || status == "interrupted" ? xml_escape(status) : std::string("stopped")) +
+          "</span>, simulated time " + format_engineering(number_at("simulated_time"), "s") +
+          " in " + summary_cell(summary.value("steps_completed", nlohmann::json(0)), "").first +
+          " steps, wall " + format_engineering(number_at("wall_seconds"), "s") + "</p>\n";
+  if (status_is_failure(status)) {
+    html += "<p class=\"bad\">" + xml_escape(status) + "</p>\n";
+    // The likely cause needs the run's mesh and scene; a folder whose mesh has moved gets the
+    // reason alone.
+    std::string cause;
+    try {
+      const RunInputs in = load_run_inputs(dir, "");
+      cause = likely_failure_cause(in.mesh, in.scene, status);
+    } catch (const InputError&) {
+    }
+    if (!cause.empty()) html += "<p>likely cause: " + xml_escape(cause) + "</p>\n";
+  }
+  if (has_result) html += "<h2>Result</h2>\n<a href=\"result.svg\"><img src=\"result.svg\" alt=\"result picture\"></a>\n";
   if (fs::exists(fs::path(dir) / "history.svg"))
-    html += "<h2>Measure points</h2>\n<img src=\"history.svg\" alt=\"measure point history\">\n";
+    html += "<h2>Measure points</h2>\n<a href=\"history.svg\"><img src=\"history.svg\" alt=\"measure point history\"></a>\n";
   if (fs::exists(fs::path(dir) / "run_history.svg"))
-    html += "<h2>Solver effort and energy</h2>\n<img src=\"run_history.svg\" alt=\"solver effort and energy\">\n";
+    html += "<h2>Solver effort and energy</h2>\n<a href=\"run_history.svg\"><img src=\"run_history.svg\" alt=\"solver effort and energy\"></a>\n";
   if (fs::exists(energy_path)) {
     // The energy balance at the end, the numbers a user checks against the plot (energy.md).
     const NumberTable e = read_number_csv(energy_path);
     if (!e.rows.empty() && e.rows.back().size() >= e.names.size()) {
-      html += "<h2>Energy at the end (J per m of thickness)</h2>\n<table>\n";
-      char cell[64];
-      for (std::size_t c = 2; c < e.names.size(); ++c) {
-        std::snprintf(cell, sizeof cell, "%.6g", e.rows.back()[c]);
-        html += "<tr><th>" + xml_escape(e.names[c]) + "</th><td>" + cell + "</td></tr>\n";
-      }
+      html += "<h2>Energy at the end (per m of thickness)</h2>\n<table>\n";
+      for (std::size_t c = 2; c < e.names.size(); ++c)
+        html += "<tr><th>" + xml_escape(e.names[c]) + "</th><td class=\"n\">" +
+                xml_escape(format_engineering(e.rows.back()[c], "J/m")) + "</td></tr>\n";
       html += "</table>\n";
     }
   }
-  html += "<h2>Summary</h2>\n<table>\n";
-  for (auto it = summary.begin(); it != summary.end(); ++it)
-    html += "<tr><th>" + xml_escape(it.key()) + "</th><td>" + xml_escape(it.value().dump()) +
-            "</td></tr>\n";
+  html += "<h2>Summary</h2>\n<table>\n" + summary_rows(summary, "", 0);
   html += "</table>\n<p>Files: history.csv, summary.json, frames.pvd (open in ParaView)";
   if (fs::exists(fs::path(dir) / "contacts.csv")) html += ", contacts.csv";
   if (fs::exists(fs::path(dir) / "contacts.csv.gz")) html += ", contacts.csv.gz (gzip: zcat)";

@@ -7,7 +7,9 @@
 //                    equilibrium_indicator.h); the energy terms against time (from energy.csv,
 //                    energy.h: kinetic, strain, gravity, springs, work of loads, friction, residual)
 //   index.html       the pictures (result.svg when nmm-solve drew it) and summary.json's
-//                    status, times and counts, readable in any browser
+//                    status (a stopped run's reason and likely cause, failure_cause.h), times
+//                    and counts as a table in engineering notation with units, never wider
+//                    than the window
 //   *.png            the SVGs converted by rsvg-convert (Debian librsvg2-bin) when it is on PATH
 #pragma once
 

@@ -5,7 +5,7 @@
 // same mesh): solver.steps more steps, step numbers and times going on from the checkpoint's,
 // with the run's variants (friction, joint laws, loads, supports, time step, `excavate`); a
 // damaged checkpoint or one of another mesh is bad input (exit status 2).
-//           [--pictures [--picture-field displacement|sxx|syy|sxy]] [--text-frames] [--contacts-every N]
+//           [--pictures [--picture-field displacement|sxx|syy|sxy] [--exaggerate F]] [--text-frames] [--contacts-every N]
 //           [--contacts-gzip]
 //
 // Loads a mesh file (every check of the reader), applies the run's variants to the embedded
@@ -13,7 +13,8 @@
 // (progress.h) and SIGINT/SIGTERM ending the run after the current step (interrupt.h). With
 // --pictures it draws the last state (result.svg, result_picture.h) and writes the run report
 // (history.svg, run_history.svg, index.html: run_report.h). Exit status: 0 done, 2 bad input
-// (one line on stderr), 3 the run could not go on (summary.json says why), 130 interrupted.
+// (one line on stderr), 3 the run could not go on (summary.json says why; the one stderr line
+// adds the likely cause, failure_cause.h), 130 interrupted.
 // The last line on stderr gives the status beside the equilibrium verdict (at_rest / moving,
 // equilibrium_indicator.h); step numbers, there and in run_history.csv, count as history.csv
 // does (after --restart, on from the checkpoint's).
@@ -27,6 +28,7 @@
 
 #include "command_line.h"
 #include "energy.h"
+#include "failure_cause.h"
 #include "error.h"
 #include "interrupt.h"
 #include "mesh_file.h"
@@ -46,6 +48,7 @@ int main(int argc, char** argv) {
   bool quiet = false, pictures = false, text_frames = false, contacts_gzip = false;
   int threads = 0;
   int contacts_every = 1;
+  double exaggerate = 0;  // 0: automatic (result_picture.h)
   app.add_option("mesh", mesh_path, "mesh file written by nmm-preprocess")->required();
   app.add_option("-o,--output", out_dir, "output folder")->required();
   app.add_option("--config", config_path, "JSON merge patch applied to the embedded scene");
@@ -67,6 +70,10 @@ int main(int argc, char** argv) {
                "write contacts.csv.gz (the same CSV, gzip-compressed, about a third of the size)");
   app.add_option("--picture-field", field_name,
                  "what colours result.svg: displacement, sxx, syy or sxy");
+  app.add_option("--exaggerate", exaggerate,
+                 "draw result.svg's displacements F times larger (1: true scale); default: "
+                 "automatic when the largest displacement is under 1 % of the model size")
+      ->check(CLI::PositiveNumber);
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-solve"); status >= 0)
     return status;
@@ -97,6 +104,8 @@ int main(int argc, char** argv) {
                           {"set", sets},
                           {"restart", absolute(restart_path)},
                           {"picture_field", field_name},
+                          {"exaggerate", exaggerate > 0 ? nlohmann::json(exaggerate)
+                                                        : nlohmann::json(nullptr)},
                           {"contacts_every", contacts_every},
                           {"contacts_gzip", contacts_gzip},
                           {"text_frames", text_frames}});
@@ -152,8 +161,13 @@ int main(int argc, char** argv) {
           state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex],
                                     stepper.loop_xy()[2 * c.at.vertex + 1],
                                     static_cast<int>(c.state), c.at.vertex, c.at.edge});
-      for (const nmm::solve::TrackedPoint& p : stepper.measure_points())
+      for (const nmm::solve::TrackedPoint& p : stepper.measure_points()) {
         state.measure_points.push_back({p.x, p.y});
+        // x − (x − x0): what nmm-report computes from history.csv (x, ux), so its redraw of an
+        // exaggerated picture is this one byte for byte.
+        state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
+      }
+      state.exaggeration = exaggerate;
       state.excavated_body = stepper.state().body_removed;
       nmm::write_file_atomically(out_dir + "/result.svg",
                                  nmm::solve::result_svg(mesh, run.scene, state, field));
@@ -169,8 +183,10 @@ int main(int argc, char** argv) {
       return nmm::solve::kExitInterrupted;
     }
     if (status != "ok") {
+      const std::string cause = nmm::solve::likely_failure_cause(mesh, run.scene, status);
       std::cerr << "nmm-solve: stopped after " << summary["steps_completed"].get<long long>()
-                << " steps: " << status << " (" << verdict << ")\n";
+                << " steps: " << status << (cause.empty() ? "" : "; likely cause: " + cause)
+                << "; equilibrium at the last step: " << verdict << "\n";
       return nmm::kExitRunFailed;
     }
   } catch (const std::bad_alloc&) {

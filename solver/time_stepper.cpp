@@ -1,4 +1,4 @@
-// NMM time stepping with Shi's implicit scheme (Shi 1988, 1991; physics.md §2).
+// NMM time stepping with Shi's implicit scheme (Shi 1988, 1991; docs/physics.md §2).
 //
 // Unknowns: the displacement increment d = (u, v) of every physical cover during the step
 // (constant cover functions); a sliver cover shares the unknowns of a neighbour
@@ -70,6 +70,7 @@
 #include "error.h"
 #include "excavation.h"
 #include "insitu_stress.h"
+#include "number_format.h"
 #include "time_table.h"
 #include "nmm_version.h"
 
@@ -834,17 +835,26 @@ std::string TimeStepper::attempt(double dt) {
     const double dmax = d.cwiseAbs().maxCoeff();
     // An equilibrium increment does not shrink with Δt (no inertia): the limit applies to runs
     // with the inertia term (dynamic and DDA static).
+    // The reason names w0 in words: users coming from UDEC do not know DDA's symbol. The value
+    // and its limit get the digits that tell them apart (6e-06 against 6e-06 would puzzle).
+    const std::string ratio = format_rough(scene_.solver.max_displacement_ratio, 3);
+    const std::string w0 = format_rough(w0_, 3) + " m";
+    auto apart = [](double value, double bound) {
+      int digits = 3;
+      while (digits < 9 && format_rough(value, digits) == format_rough(bound, digits)) ++digits;
+      return std::make_pair(format_rough(value, digits), format_rough(bound, digits));
+    };
     if (step_inertia() && dmax > 2 * limit) {
-      std::ostringstream os;
-      os << "a displacement of " << dmax << " m in one step exceeds 2 × max_displacement_ratio × w0 = "
-         << 2 * limit << " m";
-      return os.str();
+      const auto [moved, allowed] = apart(dmax, 2 * limit);
+      return "one step moved a cover by " + moved + " m, more than the " + allowed +
+             " m a step may move (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
+             ", w0 being half the model size as in DDA)";
     }
     if (contacts_.max_penetration() > limit) {
-      std::ostringstream os;
-      os << "a penetration of " << contacts_.max_penetration()
-         << " m exceeds max_displacement_ratio × w0 = " << limit << " m";
-      return os.str();
+      const auto [depth, allowed] = apart(contacts_.max_penetration(), limit);
+      return "a contact penetrated " + depth + " m, more than the " + allowed +
+             " m allowed (max_displacement_ratio " + ratio + " × w0 " + w0 +
+             ", w0 being half the model size as in DDA)";
     }
     contacts_.end_step();
     s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());
@@ -942,7 +952,7 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
       if (dt < dt_floor) {
         std::ostringstream os;
         os << "time step cut below its floor (" << dt_floor << " s) at t = " << s_.time
-           << " s: " << why;
+           << " s because " << why;
         return os.str();
       }
       continue;

@@ -8,7 +8,8 @@
 // the chosen sets intact (cohesion and tensile strength at the scene limit, 1e11 Pa: UDEC's
 // practice of reaching initial equilibrium with strong joints, so that switching gravity on at
 // t = 0 breaks no bond), under OUT/settle/; every trial continues from its checkpoint. Writes OUT/fos.json, OUT/mechanism.svg (the failing trial with the smallest
-// factor), OUT/displacement_vs_F.svg and each trial's run under OUT/round-R/runs/.
+// factor, drawn as every result.svg), OUT/displacement_vs_F.svg (with .png copies of both when
+// rsvg-convert is on PATH) and each trial's run under OUT/round-R/runs/.
 // Exit status: 0 F found; 2 bad input (one line on stderr); 3 no bracket (stable up to the
 // largest factor, or failing at the smallest), after writing fos.json with the reason.
 #include <CLI/CLI.hpp>
@@ -28,6 +29,7 @@
 #include "mechanism_picture.h"
 #include "mesh_file.h"
 #include "nmm_version.h"
+#include "png_copy.h"
 #include "run_config.h"
 #include "strength_reduction.h"
 #include "svg_plot.h"
@@ -38,13 +40,6 @@ namespace fs = std::filesystem;
 using namespace nmm::studies;
 
 namespace {
-
-std::string sibling_tool(const std::string& name) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && fs::exists(self.parent_path() / name)) return (self.parent_path() / name).string();
-  return name;  // from PATH
-}
 
 std::vector<std::string> split_commas(const std::string& s) {
   std::vector<std::string> out;
@@ -269,13 +264,23 @@ int main(int argc, char** argv) {
     if (!plot.series.empty()) {
       nmm::write_svg_plot(plot, (out / "displacement_vs_F.svg").string());
       j["plot_svg"] = "displacement_vs_F.svg";
+      if (!nmm::write_png_copy((out / "displacement_vs_F.svg").string()).empty())
+        j["plot_png"] = "displacement_vs_F.png";
     }
     if (mechanism != nullptr) {
       char title[128];
-      std::snprintf(title, sizeof title, "failing mechanism at F = %.4g (|u| at the trial's end)",
+      std::snprintf(title, sizeof title, "failing mechanism at F = %.4g,",
                     mechanism->factor);
-      write_mechanism_svg(mechanism->dir + "/out", title, (out / "mechanism.svg").string());
-      j["mechanism_svg"] = "mechanism.svg";
+      // The factor is the study's result; a trial folder that cannot be drawn (its mesh moved
+      // on another machine) costs the picture, not the result.
+      try {
+        write_mechanism_svg(mechanism->dir + "/out", title, (out / "mechanism.svg").string());
+        j["mechanism_svg"] = "mechanism.svg";
+        if (!nmm::write_png_copy((out / "mechanism.svg").string()).empty())
+          j["mechanism_png"] = "mechanism.png";
+      } catch (const nmm::RunError& e) {
+        std::cerr << "nmm-fos: warning: no mechanism.svg: " << e.what() << "\n";
+      }
     }
     nmm::write_file_atomically((out / "fos.json").string(), j.dump(2) + "\n");
     if (!result.found) {

@@ -46,9 +46,31 @@ std::string job_dir(const std::string& root, const Job& job) {
   return (fs::path(root) / "runs" / job.id).string();
 }
 
+namespace {
+fs::path own_folder() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path() : self.parent_path();
+}
+}  // namespace
+
 std::string default_snakefile() {
   if (const char* env = std::getenv("NMM_SNAKEFILE"); env != nullptr && *env != '\0') return env;
+  // NMM_INSTALLED_WORKFLOW: the install's workflow folder relative to its bin folder
+  // (studies/CMakeLists.txt), so an installed tree can be moved or installed under any prefix.
+  if (const fs::path bin = own_folder(); !bin.empty()) {
+    const fs::path installed = (bin / NMM_INSTALLED_WORKFLOW / "Snakefile").lexically_normal();
+    std::error_code ec;
+    if (fs::is_regular_file(installed, ec)) return installed.string();
+  }
   return std::string(NMM_WORKFLOW_DIR) + "/Snakefile";
+}
+
+std::string sibling_tool(const std::string& name) {
+  const fs::path bin = own_folder();
+  std::error_code ec;
+  if (!bin.empty() && fs::exists(bin / name, ec)) return (bin / name).string();
+  return name;  // from PATH
 }
 
 namespace {

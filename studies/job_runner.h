@@ -51,7 +51,14 @@ std::vector<JobResult> run_jobs(const std::string& root, const std::vector<Job>&
 /// Quotes a word for POSIX sh (single quotes).
 std::string shell_quote(const std::string& word);
 
-/// The Snakefile shipped in workflow/ (NMM_WORKFLOW_DIR, or $NMM_SNAKEFILE when set).
+/// The Snakefile shipped in workflow/: $NMM_SNAKEFILE when set; else the installed copy next to
+/// the running program (PREFIX/bin/nmm-sweep → PREFIX/share/nmm/workflow/Snakefile, written by
+/// `cmake --install`); else the source tree's (NMM_WORKFLOW_DIR, for programs run from build/bin).
 std::string default_snakefile();
+
+/// The program NAME (nmm-solve, nmm-preprocess) in the running program's own folder — build/bin
+/// or the install's bin — when it is there, so the tools drive their own build; else NAME, found
+/// on PATH.
+std::string sibling_tool(const std::string& name);
 
 }  // namespace nmm::studies

@@ -1,7 +1,9 @@
 // nmm-sweep SWEEP.json -o OUT [--engine threads|snakemake] [--workers N] [--profile DIR] [--set P=V]...
 //
 // Expands a sweep file (sweep.h) into independent runs, runs them with the chosen engine and
-// writes OUT/sweep.csv (one row per run) and OUT/sweep.json (the expanded runs). A scene without
+// writes OUT/sweep.csv (one row per run), OUT/sweep.json (the expanded runs) and OUT/sweep.svg
+// (each varied parameter against each measured output, sweep_picture.h; sweep.png too when
+// rsvg-convert is on PATH). A scene without
 // per-run preprocessing is preprocessed once into OUT/base.nmm. Exit status: 0 every run ran
 // (a run that stopped with status 3 is a row, not an error); 2 bad input (one line on stderr);
 // 3 the engine failed or some run had bad input (its row says so; sweep.csv is still written).
@@ -17,20 +19,13 @@
 #include "error.h"
 #include "job_runner.h"
 #include "nmm_version.h"
+#include "png_copy.h"
 #include "sweep.h"
+#include "sweep_picture.h"
 #include "vtk_writer.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;
-
-namespace {
-std::string sibling_tool(const std::string& name) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && fs::exists(self.parent_path() / name)) return (self.parent_path() / name).string();
-  return name;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"nmm-sweep: independent nmm-solve runs over a list or product of variants"};
@@ -85,14 +80,24 @@ int main(int argc, char** argv) {
     const std::vector<Job> jobs = sweep_jobs(sweep, out.string(), base_mesh, solve, preprocess);
     std::cerr << "nmm-sweep: " << jobs.size() << " runs, engine " << engine_word << "\n";
     const std::vector<JobResult> results = run_jobs(out.string(), jobs, engine);
-    nmm::write_file_atomically((out / "sweep.csv").string(), sweep_csv(sweep, out.string(), results));
+    const std::string csv = sweep_csv(sweep, out.string(), results);
+    nmm::write_file_atomically((out / "sweep.csv").string(), csv);
+    // The picture of the table: each varied parameter against each measured output.
+    std::string picture_note;
+    if (const std::string svg = sweep_svg(sweep, csv); !svg.empty()) {
+      nmm::write_file_atomically((out / "sweep.svg").string(), svg);
+      picture_note = nmm::write_png_copy((out / "sweep.svg").string()).empty()
+                         ? ", sweep.svg"
+                         : ", sweep.svg (and .png)";
+    }
     int bad = 0, stopped = 0;
     for (const JobResult& r : results) {
       bad += r.exit_status != 0 && r.exit_status != nmm::kExitRunFailed;
       stopped += r.exit_status == nmm::kExitRunFailed;
     }
     std::cerr << "nmm-sweep: " << results.size() - bad - stopped << " ran to the end, " << stopped
-              << " stopped (exit 3), " << bad << " failed; " << (out / "sweep.csv").string() << "\n";
+              << " stopped (exit 3), " << bad << " failed; " << (out / "sweep.csv").string()
+              << picture_note << "\n";
     if (bad > 0) return nmm::kExitRunFailed;
   } catch (...) {
     return nmm::exit_status_of_current_exception("nmm-sweep");

@@ -9,11 +9,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "fos_reference.h"
+#include "png_copy.h"
+#include "result_picture.h"
 #include "strength_reduction.h"
 
 namespace fs = std::filesystem;
@@ -119,6 +122,33 @@ TEST(FosSearch, ReductionDividesTanPhiCohesionAndTension) {
   EXPECT_THROW(set_strengths(scene, {"nosuch"}, "scene"), std::exception);
 }
 
+// mechanism.svg is drawn as result.svg: the same colour map (the colour bar's 40 bands are
+// viridis, result_picture.h), |u| in mm, the model's frame with axes in metres and a scale bar,
+// the trial's factor in the title; PNG copies when rsvg-convert is there.
+namespace {
+void expect_mechanism_like_result(const fs::path& out, const nlohmann::json& fos) {
+  std::stringstream text;
+  text << std::ifstream(out / "mechanism.svg").rdbuf();
+  const std::string svg = text.str();
+  std::string bands, viridis;
+  std::size_t at = 0;
+  for (int i = 0; i < 40; ++i) viridis += nmm::solve::colour_map((i + 0.5) / 40) + " ";
+  // The bar's bands are the only filled <rect>s without a stroke after the white background.
+  for (at = svg.find("<rect ", svg.find("<rect ") + 1); at != std::string::npos; at = svg.find("<rect ", at + 1)) {
+    const std::size_t f = svg.find("fill=\"", at), end = svg.find('>', at);
+    if (f > end || svg.compare(f, 13, "fill=\"#ffffff") == 0) continue;
+    if (svg.find("stroke=\"none\"", at) > end) continue;
+    bands += svg.substr(f + 6, 7) + " ";
+  }
+  EXPECT_EQ(bands, viridis) << "mechanism.svg's colour bar is not result.svg's map (" << nmm::solve::kColourMapName << ")";
+  for (const char* t : {">failing mechanism at F = ", ">|u| (mm)<", ">x (m)<", ">y (m)<", ">scale bar "})
+    EXPECT_NE(svg.find(t), std::string::npos) << t;
+  EXPECT_EQ(fos.contains("mechanism_png"), nmm::png_converter_available());
+  EXPECT_EQ(fs::exists(out / "mechanism.png"), nmm::png_converter_available());
+  EXPECT_EQ(fs::exists(out / "displacement_vs_F.png"), nmm::png_converter_available());
+}
+}  // namespace
+
 // F = tan φ / tan α within the bisection tolerance + 1 %, from above 1 and from below 1.
 TEST(FosBlockOnPlane, MatchesTanPhiOverTanAlpha) {
   for (auto [alpha, phi] : {std::pair{30.0, 35.0}, std::pair{30.0, 25.0}}) {
@@ -133,6 +163,7 @@ TEST(FosBlockOnPlane, MatchesTanPhiOverTanAlpha) {
     EXPECT_NEAR(f, ref.fos, (0.01 + 0.01) * ref.fos);
     EXPECT_TRUE(fs::exists(dir / "fos" / "mechanism.svg"));
     EXPECT_TRUE(fs::exists(dir / "fos" / "displacement_vs_F.svg"));
+    expect_mechanism_like_result(dir / "fos", j);
   }
 }
 

@@ -20,7 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 ContactLaw bb_law() {
   ContactLaw law;
   law.normal = NormalModel::bandis_barton;
-  law.kni = 15.35e9;  // JRC 10, JCS 100 MPa, σc 150 MPa (physics.md §4)
+  law.kni = 15.35e9;  // JRC 10, JCS 100 MPa, σc 150 MPa (docs/physics.md §4)
   law.vm = 0.227e-3;
   law.shear = ShearModel::hyperbolic;
   law.ksi = 1e10;
@@ -100,7 +100,7 @@ TEST(JointLaw, BartonBandisEmpiricalRelationsFromJrcJcsUcs) {
   const NormalLawDef& n = s.joint_sets[0].normal;
   EXPECT_EQ(n.model, NormalModel::bandis_barton);
   EXPECT_NEAR(n.aperture, 0.40e-3, 1e-6);
-  EXPECT_NEAR(n.kni, 15.35e9, 0.01e9);  // GPa/m in physics.md's worked example
+  EXPECT_NEAR(n.kni, 15.35e9, 0.01e9);  // GPa/m in docs/physics.md's worked example
   EXPECT_NEAR(n.vm, 0.2277e-3, 0.0005e-3);
 }
 

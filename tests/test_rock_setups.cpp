@@ -391,7 +391,7 @@ TEST(RockSetups, TimeTableFromCsvInterpolatesLinearly) {
   }
 }
 
-// Newmark's sliding block (physics.md §5): a block resting on a plane inclined at α (gravity
+// Newmark's sliding block (docs/physics.md §5): a block resting on a plane inclined at α (gravity
 // tilted by α, the base held by fixed points) with friction φ > α, shaken along the plane by a
 // one-cycle sine base acceleration a_b(t). Relative to the base the block feels g·sinα − a_b(t)
 // along the plane; it slides (downslope only: upslope needs a_b > g(sinα + cosα·tanφ), not

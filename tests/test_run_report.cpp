@@ -102,7 +102,11 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "summary.json") << R"({"status": "interrupted", "steps_completed": 2,
-                                           "simulated_time": 0.002, "wall_seconds": 0.1})";
+                                           "simulated_time": 0.002, "wall_seconds": 5.576478281,
+                                           "contacts": {"pairs_tested": 3694546},
+                                           "timings": {"solves": 0.000123},
+                                           "max_penetration": 3.16e-6,
+                                           "effects": ["elasticity", "gravity"]})";
   std::ofstream(dir / "history.csv") << "step,time,point,x,y,ux,uy\n0,0,0,1,1,0,0\n"
                                         "1,0.001,0,1,0.999,0,-0.001\n2,0.002,0,1,0.998,0,-0.002\n";
   write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3, 0.2, 0.01, 0.3},
@@ -130,7 +134,19 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
   html << std::ifstream(dir / "index.html").rdbuf();
   EXPECT_NE(html.str().find("interrupted"), std::string::npos);
   EXPECT_NE(html.str().find("history.svg"), std::string::npos);
-  EXPECT_NE(html.str().find("<tr><th>gravity</th><td>-6</td></tr>"), std::string::npos) << html.str();
+  // Numbers rounded, with units (engineering notation); the summary a table, not JSON.
+  EXPECT_NE(html.str().find("<tr><th>gravity</th><td class=\"n\">-6 J/m</td></tr>"), std::string::npos)
+      << html.str();
+  EXPECT_NE(html.str().find("simulated time 2 ms in 2 steps, wall 5.58 s"), std::string::npos);
+  EXPECT_NE(html.str().find("<th class=\"group\" colspan=\"2\">contacts</th>"), std::string::npos);
+  EXPECT_NE(html.str().find("<th class=\"sub\">pairs tested</th><td class=\"n\">3\u202f694\u202f546</td>"),
+            std::string::npos);
+  EXPECT_NE(html.str().find("<th class=\"sub\">solves</th><td class=\"n\">123 µs</td>"), std::string::npos);
+  EXPECT_NE(html.str().find("<th>max penetration</th><td class=\"n\">3.16 µm</td>"), std::string::npos);
+  EXPECT_NE(html.str().find("<th>effects</th><td>elasticity, gravity</td>"), std::string::npos);
+  EXPECT_EQ(html.str().find("5.576478281"), std::string::npos);
+  EXPECT_EQ(html.str().find("{\""), std::string::npos) << "no raw JSON";
+  EXPECT_NE(html.str().find("max-width:100%;height:auto"), std::string::npos);
   std::stringstream rh;
   rh << std::ifstream(dir / "run_history.csv").rdbuf();
   EXPECT_EQ(rh.str().substr(0, 108),

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "png_copy.h"
 #include "sweep.h"
 
 namespace fs = std::filesystem;
@@ -66,6 +67,20 @@ std::vector<Row> sweep(const std::string& name, const std::string& engine) {
   const int rc = run(std::string(NMM_SWEEP) + " " + kSweep + " -o " + out.string() +
                      " --workers 2 --set solver.steps=100 --engine " + engine + " 2> " + out.string() + ".log");
   EXPECT_EQ(rc, 0) << "see " << out.string() << ".log";
+  // sweep.svg: a panel per (varied parameter, numeric output): 2 parameters (variant, friction
+  // angle) × 7 outputs (5 numeric summary keys of the 6 — status is text — and ux, uy of the
+  // one measure point).
+  std::stringstream svg;
+  svg << std::ifstream(out / "sweep.svg").rdbuf();
+  std::size_t nested = 0, titles = 0;
+  for (std::size_t at = svg.str().find("<svg "); at != std::string::npos; at = svg.str().find("<svg ", at + 1))
+    ++nested;
+  for (std::size_t at = svg.str().find(" against "); at != std::string::npos; at = svg.str().find(" against ", at + 1))
+    ++titles;
+  EXPECT_EQ(nested, 1u + 14u) << "the grid and its panels";
+  EXPECT_EQ(titles, 14u);
+  EXPECT_NE(svg.str().find(">ux of point 0 against friction_deg<"), std::string::npos);
+  EXPECT_EQ(fs::exists(out / "sweep.png"), nmm::png_converter_available());
   return read_csv(out / "sweep.csv");
 }
 

@@ -4,7 +4,7 @@
 Checks the outcome data/shaking_slope.json promises: the block stands before the shaking
 (< 1 mm), slides down the slope by the rigid-block Newmark displacement within 5 %, and has
 stopped by the end. The Newmark reference is integrated here from the scene's own time table,
-slope and friction (physics.md §5):
+slope and friction (docs/physics.md §5):
     s'' = a cos α + g sin α − tan φ (g cos α − a sin α)   while s' > 0 (or the right side > 0)
 with a(t) the ground acceleration in x (+x drives the block down the slope, which falls to −x).
 """

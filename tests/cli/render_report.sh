@@ -1,6 +1,11 @@
 #!/bin/sh
-# Renders RUNDIR/index.html in headless Chromium and checks the screenshot is not blank: more
-# than 2 % of its pixels differ from white. Exit 77 (CTest: skipped) when chromium is absent.
+# Renders RUNDIR/index.html in headless Chromium and checks that
+# - the screenshot is not blank: more than 2 % of its pixels differ from white;
+# - the page never scrolls sideways, at a desktop (1200 px) and a phone (480 px) window width:
+#   the document's scrollWidth is at most its clientWidth, measured by a script in a copy of
+#   the page (a <base> pointing at RUNDIR, so the pictures load) after every picture loaded
+#   (--dump-dom prints the DOM the script wrote its figures into).
+# Exit 77 (CTest: skipped) when chromium is absent.
 # Usage: render_report.sh RUNDIR WORKDIR
 run=$1; work=$2
 browser=$(command -v chromium || command -v chromium-browser || true)
@@ -8,12 +13,36 @@ if [ -z "$browser" ]; then
   echo "SKIPPED: chromium is not installed (bash .ci/setup installs Debian's chromium)"; exit 77
 fi
 rm -rf "$work"; mkdir -p "$work/profile"
-"$browser" --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
-  --disable-background-networking --disable-component-update --disable-sync \
-  --user-data-dir="$work/profile" --window-size=1200,1600 --screenshot="$work/report.png" \
-  "file://$(cd "$run" && pwd)/index.html" >"$work/chromium.log" 2>&1
+rundir=$(cd "$run" && pwd)
+chrome() {
+  "$browser" --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
+    --disable-background-networking --disable-component-update --disable-sync \
+    --user-data-dir="$work/profile" "$@" 2>>"$work/chromium.log"
+}
+chrome --window-size=1200,1600 --screenshot="$work/report.png" "file://$rundir/index.html" >/dev/null
 test -s "$work/report.png" || { echo "no screenshot"; cat "$work/chromium.log"; exit 1; }
-python3 - "$work/report.png" <<'PY'
+python3 - "$rundir/index.html" "$work/measure.html" "file://$rundir/" <<'PY'
+import sys
+page = open(sys.argv[1], encoding="utf-8").read()
+probe = ("<script>window.addEventListener('load', function () {"
+         "var d = document.documentElement;"
+         "document.body.setAttribute('data-widths', d.scrollWidth + ' ' + d.clientWidth);"
+         "});</script>")
+page = page.replace("<head>", '<head><base href="' + sys.argv[3] + '">', 1)
+page = page.replace("</body>", probe + "</body>", 1)
+open(sys.argv[2], "w", encoding="utf-8").write(page)
+PY
+fail=0
+for width in 1200 480; do
+  chrome --window-size=$width,1600 --virtual-time-budget=10000 --dump-dom "file://$work/measure.html" \
+    >"$work/dom_$width.html"
+  widths=$(sed -n 's/.*data-widths="\([0-9]*\) \([0-9]*\)".*/\1 \2/p' "$work/dom_$width.html" | head -1)
+  if [ -z "$widths" ]; then echo "window $width px: the page did not report its width"; fail=1; continue; fi
+  set -- $widths
+  echo "window $width px: page scroll width $1 px, visible width $2 px"
+  [ "$1" -le "$2" ] || { echo "the page scrolls sideways at $width px"; fail=1; }
+done
+python3 - "$work/report.png" <<'PY' || fail=1
 import struct, sys, zlib
 data = open(sys.argv[1], "rb").read()
 assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
@@ -42,5 +71,6 @@ for y in range(h):
     prev = line
 share = nonwhite / (w * h)
 print(f"screenshot {w}x{h}: {100 * share:.1f} % of pixels not white")
-sys.exit(0 if share > 0.02 else 1)
+sys.exit(0 if share > 0.02 and w == 1200 else 1)
 PY
+exit $fail

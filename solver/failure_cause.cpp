@@ -1,0 +1,54 @@
+// The likely cause of a stopped run: see failure_cause.h.
+#include "failure_cause.h"
+
+#include <algorithm>
+#include <string>
+
+#include "number_format.h"
+#include "scene_checks.h"
+
+namespace nmm::solve {
+
+bool status_is_failure(const std::string& status) {
+  return !(status.empty() || status == "ok" || status == "interrupted" ||
+           status.rfind("step ", 0) == 0);
+}
+
+std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const std::string& status) {
+  if (!status_is_failure(status)) return "";
+  auto has = [&](const char* s) { return status.find(s) != std::string::npos; };
+
+  // The body the mesh is coarsest against (largest mesh size / inradius above 1).
+  double worst = 1;
+  std::size_t body = scene.bodies.size();
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const double r = body_inradius_estimate(scene.bodies[b]);
+    if (r > 0 && mesh.mesh_size / r > worst) worst = mesh.mesh_size / r, body = b;
+  }
+  if (body < scene.bodies.size()) {
+    const Ring& ring = scene.bodies[body].outer;
+    double x0 = ring.front().x, x1 = x0, y0 = ring.front().y, y1 = y0;
+    for (const Vec2& p : ring) {
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+      y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    }
+    const double r = body_inradius_estimate(scene.bodies[body]);
+    return "mesh size " + format_rough(mesh.mesh_size, 3) + " m against body " +
+           std::to_string(body) + ", " + format_rough(x1 - x0, 3) + " m wide and " +
+           format_rough(y1 - y0, 3) + " m high: the mesh is coarser than the body, which moves as a few stiff elements "
+           "whose corners jump from step to step. Cut the scene again with mesh.size at most " +
+           format_rough(0.5 * r, 2) + " m.";
+  }
+  if (has("a step may move") || has("penetrated"))
+    return "a block moved farther in one step than contacts can follow: a block falling or "
+           "flying off (hold the model with supports or fixed points), or solver.time_step too "
+           "long for the joint stiffness (try a smaller one).";
+  if (has("did not converge"))
+    return "contacts keep changing state: try a smaller solver.time_step, a lower "
+           "max_displacement_ratio or a softer penalty (joint_sets.NAME.normal.kn).";
+  if (has("positive definite") || has("unconstrained"))
+    return "a block is held by nothing: give it fixed points or supports, or run dynamic.";
+  return "";
+}
+
+}  // namespace nmm::solve
