@@ -148,6 +148,11 @@ SceneDef joint_wave_scene(const JointWaveSetup& w) {
 
 JointWaveHistory run_joint_wave(const Mesh& mesh, const SceneDef& scene) {
   TimeStepper st(mesh, scene, scene.name);
+  return run_joint_wave(st, scene, [](std::int64_t) {});
+}
+
+JointWaveHistory run_joint_wave(TimeStepper& st, const SceneDef& scene,
+                                const std::function<void(std::int64_t)>& on_step) {
   JointWaveHistory h;
   auto sample = [&]() {
     h.time.push_back(st.time());
@@ -156,7 +161,10 @@ JointWaveHistory run_joint_wave(const Mesh& mesh, const SceneDef& scene) {
   };
   sample();
   const double t_end = static_cast<double>(scene.solver.steps) * scene.solver.time_step;
-  h.status = st.run_until(t_end * (1 - 1e-12), [&](std::int64_t) { sample(); });
+  h.status = st.run_until(t_end * (1 - 1e-12), [&](std::int64_t n) {
+    sample();
+    on_step(n);
+  });
   return h;
 }
 

@@ -40,6 +40,8 @@
 // samples against the closed form's peak, found where dσ_t/ds = 0, i.e. σ_t = σ_i).
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,6 +49,8 @@
 #include "scene.h"
 
 namespace nmm::solve {
+
+class TimeStepper;
 
 /// The physical problem: rock, pulse, joint and bar (defaults: the scene of data/joint_wave.json).
 struct JointWaveSetup {
@@ -118,6 +122,9 @@ struct JointWaveHistory {
 
 /// Runs the scene (from joint_wave_scene or the data file) on its mesh to its last step.
 JointWaveHistory run_joint_wave(const Mesh& mesh, const SceneDef& scene);
+/// The same on a stepper made for it (nmm-study times it); on_step(n) after the n-th step.
+JointWaveHistory run_joint_wave(TimeStepper& st, const SceneDef& scene,
+                                const std::function<void(std::int64_t)>& on_step);
 
 /// The run against the closed form (read-off above).
 struct JointWaveErrors {

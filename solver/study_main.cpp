@@ -18,6 +18,13 @@
 //                    (solver/kirsch_opening.h), the hoop stress along the wall against Kirsch
 //                    (RMS over the wall points, relative to its peak); mesh size at cover order
 //                    n = 0, 1, 2.
+//  joint_wave        a 1 MPa half-sine pulse crossing one joint of constant springs (kn =
+//                    1.37 GPa/m, τ = 2 ms; solver/joint_wave.h, data/joint_wave.json): the
+//                    transmitted displacement history against the displacement-discontinuity
+//                    model (RMS relative to its peak), the peak particle velocity shown; mesh
+//                    size, time step. Also writes OUTDIR/joint_wave.svg: particle velocity
+//                    before and after the joint, the runs against the closed form, τ = 2 and
+//                    0.5 ms (docs/joint-studies.md).
 // The cover order axis (docs/higher-order-covers.md): the cantilever and the Kirsch opening at
 // n = 0, 1, 2 across mesh sizes, the sliding block (a joint case) at n = 0, 1, 2. A run the
 // solver refuses at an order (exit-2 input error naming /solver/cover_order) is listed as not
@@ -49,6 +56,7 @@
 #include "cover_cutter.h"
 #include "error.h"
 #include "joint_specimen.h"
+#include "joint_wave.h"
 #include "kirsch_opening.h"
 #include "scene.h"
 #include "svg_plot.h"
@@ -387,6 +395,75 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   return r;
 }
 
+// ---- a wave crossing a joint (solver/joint_wave.h) -----------------------------------------
+// The bar of data/joint_wave.json at mesh size h and time step Δt. The error is the RMS of the
+// transmitted displacement history against the closed form, relative to its peak; the table's
+// value column is the peak particle velocity after the joint.
+Row joint_wave(const std::string& setting, double h, double dt) {
+  nmm::solve::JointWaveSetup w;
+  w.h = h;
+  w.dt = dt;
+  Row r;
+  r.case_name = "joint_wave";
+  r.setting = setting;
+  r.value = setting == "mesh_size" ? h : dt;
+  r.value_text = "h = " + num(h, "%.6g") + " m, Δt = " + num(dt) + " s";
+  const nmm::solve::JointWaveClosedForm cf(w);
+  r.exact = cf.transmitted_peak() / cf.impedance();
+  const SceneDef s = nmm::solve::joint_wave_scene(w);
+  r.out = timed_run(s, "joint wave", [&](nmm::solve::TimeStepper& st, Outcome& o) {
+    const nmm::solve::JointWaveHistory hist =
+        nmm::solve::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
+    const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+    o.computed = e.peak_velocity;
+    o.own_error = e.after_rms;
+    return hist.status;
+  });
+  return r;
+}
+
+// joint_wave.svg: particle velocity before and after the joint, runs (h = 0.5 m, Δt = 25 µs,
+// dots) against the closed form (lines), for τ = 2 ms and 0.5 ms.
+void write_wave_plot(const std::string& path) {
+  nmm::PlotSpec spec{"A half-sine pulse crossing a joint: nmm (dots) against the "
+                     "displacement-discontinuity model (lines)",
+                     "time, ms", "particle velocity, m/s", false, false, {}};
+  const std::vector<std::pair<double, std::string>> joints = {{1.37e9, "#1f77b4"},
+                                                             {5.48e9, "#d62728"}};
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    nmm::solve::JointWaveSetup w;
+    w.kn = joints[j].first;
+    const nmm::solve::JointWaveClosedForm cf(w);
+    const SceneDef s = nmm::solve::joint_wave_scene(w);
+    const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
+    const nmm::solve::JointWaveHistory hist = nmm::solve::run_joint_wave(m, s);
+    if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
+    const std::string tau = "τ = " + num(1e3 * cf.tau(), "%.2g") + " ms";
+    const std::string kn = "kn = " + num(1e-9 * w.kn, "%.3g") + " GPa/m";
+    auto add_point = [&](double x, const std::vector<double>& u, const std::string& where,
+                         const std::string& colour) {
+      nmm::PlotSeries run{"nmm, " + where + ", " + kn, {}, {}, colour, false, true};
+      nmm::PlotSeries exact{"closed form, " + where + ", " + tau, {}, {}, colour, true, false};
+      for (std::size_t k = 1; k < hist.time.size(); ++k) {
+        const double t = 0.5 * (hist.time[k] + hist.time[k - 1]);
+        if (t > cf.valid_until(x)) break;
+        exact.x.push_back(1e3 * t);
+        exact.y.push_back(cf.velocity(x, t));
+        if (k % 8 == 0) {  // every 8th step: the dots stay apart
+          run.x.push_back(1e3 * t);
+          run.y.push_back((u[k] - u[k - 1]) / (hist.time[k] - hist.time[k - 1]));
+        }
+      }
+      spec.series.push_back(exact);
+      spec.series.push_back(run);
+    };
+    // Before the joint the incident wave is the same for both joints: drawn once.
+    if (j == 0) add_point(w.before_x, hist.before, "x = " + num(w.before_x) + " m (incident, reflected)", "#7f7f7f");
+    add_point(w.after_x, hist.after, "x = " + num(w.after_x) + " m (transmitted)", joints[j].second);
+  }
+  nmm::write_svg_plot(spec, path);
+}
+
 // ---- outputs -------------------------------------------------------------------------------
 std::string csv_text(const std::vector<Row>& rows) {
   std::ostringstream os;
@@ -404,6 +481,7 @@ std::string unit_of(const std::string& case_name) {
          : case_name == "sliding_block" ? "slide, m"
          : case_name == "bandis_barton" ? "closure, mm"
          : case_name == "tight_joint"   ? "shortening, mm"
+         : case_name == "joint_wave"    ? "peak particle velocity after the joint, mm/s"
                                         : "slip, mm";
 }
 
@@ -439,7 +517,9 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     md << "\n### " << c << "\n\nexact: " << num(shown(c, first->exact), "%.6g") << " ("
        << unit_of(c) << ")\n\n"
        << "| setting | run | " << unit_of(c) << " | "
-       << (c == "kirsch" ? "hoop RMS error along the wall" : "signed error")
+       << (c == "kirsch"       ? "hoop RMS error along the wall"
+           : c == "joint_wave" ? "transmitted u RMS error"
+                               : "signed error")
        << " | wall s (mesh + run) | unknowns | steps | step cuts | contact solves |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Row& r : rows) {
@@ -524,11 +604,13 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
       {{"bandis_barton", "contact_model"}, "closure model"},
       {{"hyperbolic_shear", "contact_model"}, "shear model"},
       {{"tight_joint", "penalty"}, "tight joint kn"},
+      {{"joint_wave", "mesh_size"}, "joint wave h"},
+      {{"joint_wave", "time_step"}, "joint wave Δt"},
   };
   const std::vector<std::string> colours = {"#1f77b4", "#393b79", "#6b6ecf", "#d62728", "#ff7f0e",
                                             "#2ca02c", "#9467bd", "#17becf", "#8c564b", "#e377c2",
                                             "#7f7f7f", "#bcbd22", "#e7ba52", "#ad494a",
-                                            "#637939", "#843c39"};
+                                            "#637939", "#843c39", "#3182bd"};
   nmm::PlotSpec spec{"Error against wall time, cheapest setting first",
                      "wall time, s (log)", "relative error (log)", true, true, {}};
   for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -556,7 +638,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> only;
   app.add_option("--only", only,
                  "run only these cases (cantilever, kirsch, sliding_block, bandis_barton, "
-                 "hyperbolic_shear, tight_joint)");
+                 "hyperbolic_shear, tight_joint, joint_wave)");
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-study"); status >= 0)
     return status;
   try {
@@ -627,6 +709,12 @@ int main(int argc, char** argv) {
     }
     if (want("tight_joint"))
       for (double k : quick ? V{1, 20, 1000} : V{1, 5, 20, 100, 1000, 1e4}) add(tight_joint(joint, k));
+
+    if (want("joint_wave")) {
+      for (double h : quick ? V{0.5} : V{1, 0.5, 0.25}) add(joint_wave("mesh_size", h, 2.5e-5));
+      for (double dt : quick ? V{} : V{1e-4, 5e-5, 2.5e-5, 1.25e-5}) add(joint_wave("time_step", 0.5, dt));
+      write_wave_plot(out + "/joint_wave.svg");
+    }
 
     nmm::write_file_atomically(out + "/accuracy_time.csv", csv_text(rows));
     write_plot(rows, out + "/accuracy_time.svg");
