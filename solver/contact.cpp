@@ -44,6 +44,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "contact_tolerances.h"
 #include "error.h"
@@ -352,6 +353,10 @@ void ContactSet::start_strengths() {
     c.bonded = closed && !c.broken && law.tensile > 0;
     c.friction_normal = closed ? std::max(c.normal_force, 0.0) : 0.0;
     c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken) : 0.0;
+    // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
+    // sticks until the fixed point has its normal force.
+    if (!closed && elastic_predictor_ && c.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
+      c.strength = std::numeric_limits<double>::infinity();
   }
 }
 
@@ -470,7 +475,9 @@ int ContactSet::update_strengths(double force_floor) {
     double s = closed ? shear_strength(law, n, c.length, c.broken) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
     const double moved = std::abs(s - c.strength);
-    if (moved > kContactTolerances.strength_change * std::max(s, c.strength) && moved > force_floor) {
+    if (!std::isfinite(c.strength)) {
+      ++changed;  // the elastic predictor's stick ends: solve again with the real strength
+    } else if (moved > kContactTolerances.strength_change * std::max(s, c.strength) && moved > force_floor) {
       const bool matters = !linear_shear(law) ||
                            std::abs(trial_shear(law, c, c.shear)) >= kContactTolerances.near_limit * std::min(s, c.strength);
       if (matters) ++changed;
@@ -534,6 +541,17 @@ std::size_t ContactSet::capped_count() const {
   std::size_t n = 0;
   for (const Contact& c : contacts_) n += c.capped && c.state != ContactState::open ? 1 : 0;
   return n;
+}
+
+ContactSet::JointStresses ContactSet::joint_stresses() const {
+  JointStresses j;
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::open || !(c.length > 0)) continue;
+    j.closed_length += c.length;
+    j.max_normal_stress = std::max(j.max_normal_stress, c.normal_force / c.length);
+    j.max_shear_stress = std::max(j.max_shear_stress, std::abs(c.shear_force) / c.length);
+  }
+  return j;
 }
 
 std::size_t ContactSet::closed_count() const {

@@ -212,6 +212,9 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
   nmm::JointSetDef js;
   js.name = "interface";
   js.friction_deg = 20;
+  // DDA's point penalty (N/m per contact point), stated in Shi's multiples of E as DDA codes do.
+  js.normal.model = nmm::NormalModel::penalty;
+  js.shear.model = nmm::ShearModel::penalty;
   js.normal.kn = kn_over_e * E;
   js.shear.ks = kn_over_e * E / 2.5;
   s.joint_sets.push_back(js);
@@ -318,13 +321,13 @@ Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool wan
   });
 }
 
-// The joint's constant springs (the scene's kn, ks beside the law's parameters) instead of its
-// laws: the setting "contact_model" (value 0 constant, 1 the joint laws).
+// The joint's constant stiffnesses (the scene's kn, ks in Pa/m beside the law's parameters)
+// instead of its laws: the setting "contact_model" (value 0 constant, 1 the joint laws).
 std::string use_constant_springs(SceneDef& s) {
   auto& js = s.joint_sets[0];
   js.normal.model = nmm::NormalModel::constant;
   js.shear.model = nmm::ShearModel::constant;
-  return "constant kn = " + num(js.normal.kn) + " N/m, ks = " + num(js.shear.ks) + " N/m, ";
+  return "constant kn = " + num(js.normal.kn) + " Pa/m, ks = " + num(js.shear.ks) + " Pa/m, ";
 }
 
 Row bandis_barton(const SceneDef& joint, const std::string& setting, double h, double dt,
@@ -367,7 +370,8 @@ Row hyperbolic_shear(const SceneDef& joint, const std::string& setting, double h
 }
 
 // ---- tight joint: what a penalty spring costs in accuracy ------------------------------------
-// The single-joint specimen with constant springs kn = factor·E·(1 m) standing for a tight joint
+// The single-joint specimen with DDA's point penalty kn = factor·E·(1 m) per contact point
+// (model "penalty") standing for a tight joint
 // (no closure of its own), σn = 5 MPa. The exact shortening between (1, 0.5) and (1, 1.5) is
 // that of the intact rock, σn·(1 m)/E (uniform stress; constant-strain elements represent it
 // exactly); the penalty springs add their own compliance, N/kn per contact, which a stiffer kn
@@ -376,7 +380,8 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   const double sigma = 5e6, e = joint.materials[0].young;
   SceneDef s = joint;
   auto& js = s.joint_sets[0];
-  use_constant_springs(s);
+  js.normal.model = nmm::NormalModel::penalty;
+  js.shear.model = nmm::ShearModel::penalty;
   js.normal.kn = kn_over_e * e;
   js.shear.ks = js.normal.kn / 2.5;
   s.measure_points = {{1.0, 1.5}, {1.0, 0.5}};

@@ -13,11 +13,15 @@
 // the joint there is stiffer and stronger than written (and a Bandis–Barton joint closes less
 // at one end than at the other, which tilts the block on top).
 //
-// So each contact's share is cut at the midpoint to its nearest neighbour on the same joint (a
+// First, P's halves end where the contacted face ends (an end of the contacted edge that is a
+// corner of its block). Then each contact's share is cut at the midpoint to its nearest neighbour on the same joint (a
 // contact between the same two blocks whose edge is parallel within 10°, on the same line, and
 // whose own halves overlap P's):
 //     L = min(hi, min u_j/2 over u_j > 0) − max(lo, max u_j/2 over u_j < 0),  u_j = (P_j − P)·t
-// a one-dimensional Voronoi cell of the contact points, bounded by P's own faces. Neighbours that
+// a one-dimensional Voronoi cell of the contact points, bounded by P's own faces. Where the faces
+// have slid, the corner of one face and the first contact point of the other stand more than
+// their two halves apart: a gap of up to h between P's halves and the next contact's on the same
+// joint is shared at its middle. Neighbours that
 // that tile already (matching vertices) do not overlap, so nothing changes there; two contacts
 // at one point whose halves overlap split it by index. A contact with no length of its own (a bare corner
 // touching a face) is a point: `corner_length`.
@@ -26,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 #include "contact_tolerances.h"
@@ -73,6 +78,11 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
       fr.lo = std::min(fr.lo, a);
       fr.hi = std::max(fr.hi, a);
     }
+    // The contacted face ends at a corner of its block: no length of joint beyond it (a flat
+    // vertex of the wider face at the narrower block's corner, kept for the pair of coincident
+    // points, would otherwise count its half-edge over the overhang).
+    if (topo.corner[q2]) fr.lo = std::max(fr.lo, std::min(0.0, (xy[2 * q2] - fr.px) * fr.tx + (xy[2 * q2 + 1] - fr.py) * fr.ty));
+    if (topo.corner[q3]) fr.hi = std::min(fr.hi, std::max(0.0, (xy[2 * q3] - fr.px) * fr.tx + (xy[2 * q3 + 1] - fr.py) * fr.ty));
     const std::int32_t ba = topo.block_of[c.elem_a], bb = topo.block_of[c.elem_b];
     fr.b0 = std::min(ba, bb);
     fr.b1 = std::max(ba, bb);
@@ -95,6 +105,8 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
     const Frame& a = f[i];
     if (!(a.hi > a.lo)) continue;
     double lo = a.lo, hi = a.hi;
+    // Nearest own-half boundaries of the neighbours beyond P's halves (no overlap), each side.
+    double next_hi = std::numeric_limits<double>::infinity(), next_lo = -next_hi;
     const auto ci = static_cast<std::int64_t>(std::floor(a.px / h)), cj = static_cast<std::int64_t>(std::floor(a.py / h));
     for (std::int64_t di = -1; di <= 1; ++di)
       for (std::int64_t dj = -1; dj <= 1; ++dj) {
@@ -112,7 +124,11 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
           // vertices of one face at one point, in two elements, stand for its two sides).
           const bool along = a.tx * b.tx + a.ty * b.ty > 0;
           const double b_lo = u + (along ? b.lo : -b.hi), b_hi = u + (along ? b.hi : -b.lo);
-          if (std::min(a.hi, b_hi) - std::max(a.lo, b_lo) <= tie) continue;
+          if (std::min(a.hi, b_hi) - std::max(a.lo, b_lo) <= tie) {
+            if (b_lo >= a.hi - tie) next_hi = std::min(next_hi, b_lo);
+            if (b_hi <= a.lo + tie) next_lo = std::max(next_lo, b_hi);
+            continue;
+          }
           // Two contacts at one point split it by index: the higher takes the side beyond.
           const bool same_point = std::abs(u) <= tie;
           if (same_point ? j > i : u > 0)
@@ -121,6 +137,11 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
             lo = std::max(lo, same_point ? 0.0 : 0.5 * u);
         }
       }
+    // A gap of at most h between P's halves and the next contact's on the same joint (the faces
+    // have slid: a corner of one face and the first contact point of the other no longer stand
+    // half an edge apart each) is shared at its middle.
+    if (hi == a.hi && next_hi - a.hi > tie && next_hi - a.hi <= h) hi = 0.5 * (a.hi + next_hi);
+    if (lo == a.lo && a.lo - next_lo > tie && a.lo - next_lo <= h) lo = 0.5 * (a.lo + next_lo);
     length[i] = std::max(hi - lo, 0.0);
     if (!(length[i] > 0)) length[i] = corner_length;
   }
