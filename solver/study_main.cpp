@@ -22,9 +22,10 @@
 //                    1.37 GPa/m, τ = 2 ms; solver/joint_wave.h, data/joint_wave.json): the
 //                    transmitted displacement history against the displacement-discontinuity
 //                    model (RMS relative to its peak), the peak particle velocity shown; mesh
-//                    size, time step. Also writes OUTDIR/joint_wave.svg: particle velocity
-//                    before and after the joint, the runs against the closed form, τ = 2 and
-//                    0.5 ms (docs/joint-studies.md).
+//                    size, time step. Also writes OUTDIR/joint_wave_tables.md (the read-off of
+//                    joint_wave.h for τ = 2 and 0.5 ms at h = 0.5 and 0.25 m) and
+//                    OUTDIR/joint_wave.svg (particle velocity before and after the joint, the
+//                    runs against the closed form; docs/joint-studies.md).
 // The cover order axis (docs/higher-order-covers.md): the cantilever and the Kirsch opening at
 // n = 0, 1, 2 across mesh sizes, the sliding block (a joint case) at n = 0, 1, 2. A run the
 // solver refuses at an order (exit-2 input error naming /solver/cover_order) is listed as not
@@ -427,46 +428,73 @@ Row joint_wave(const std::string& setting, double h, double dt) {
   return r;
 }
 
-// joint_wave.svg: particle velocity before and after the joint, runs (h = 0.5 m, Δt = 25 µs,
-// dots) against the closed form (lines), for τ = 2 ms and 0.5 ms.
-void write_wave_plot(const std::string& path) {
+// The wave against the closed form in detail, for τ = 2 ms (kn = 1.37 GPa/m) and 0.5 ms
+// (5.48 GPa/m) at h = 0.5 and 0.25 m (--quick: 0.5 m), Δt = 25 µs: joint_wave_tables.md (the
+// read-off of solver/joint_wave.h: RMS of the displacement histories, half-rise time and peak
+// particle velocity after the joint) and joint_wave.svg (particle velocity before and after the
+// joint at h = 0.5 m, the runs as dots against the closed form as lines).
+void write_wave_outputs(const std::string& out, bool quick) {
   nmm::PlotSpec spec{"A half-sine pulse crossing a joint: nmm (dots) against the "
                      "displacement-discontinuity model (lines)",
                      "time, ms", "particle velocity, m/s", false, false, {}};
+  std::ostringstream md;
+  md << "<!-- made by nmm-study" << (quick ? " --quick" : "") << " -->\n\n"
+     << "### joint_wave: the runs against the closed form\n\n"
+     << "| run | incident alone, RMS | incident + reflected, RMS | transmitted, RMS | "
+        "half-rise, ms (closed form) | half-rise error, ms | peak velocity, mm/s (closed form) | "
+        "peak velocity error |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
   const std::vector<std::pair<double, std::string>> joints = {{1.37e9, "#1f77b4"},
                                                              {5.48e9, "#d62728"}};
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    nmm::solve::JointWaveSetup w;
-    w.kn = joints[j].first;
-    const nmm::solve::JointWaveClosedForm cf(w);
-    const SceneDef s = nmm::solve::joint_wave_scene(w);
-    const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
-    const nmm::solve::JointWaveHistory hist = nmm::solve::run_joint_wave(m, s);
-    if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
-    const std::string tau = "τ = " + num(1e3 * cf.tau(), "%.2g") + " ms";
-    const std::string kn = "kn = " + num(1e-9 * w.kn, "%.3g") + " GPa/m";
-    auto add_point = [&](double x, const std::vector<double>& u, const std::string& where,
-                         const std::string& colour) {
-      nmm::PlotSeries run{"nmm, " + where + ", " + kn, {}, {}, colour, false, true};
-      nmm::PlotSeries exact{"closed form, " + where + ", " + tau, {}, {}, colour, true, false};
-      for (std::size_t k = 1; k < hist.time.size(); ++k) {
-        const double t = 0.5 * (hist.time[k] + hist.time[k - 1]);
-        if (t > cf.valid_until(x)) break;
-        exact.x.push_back(1e3 * t);
-        exact.y.push_back(cf.velocity(x, t));
-        if (k % 8 == 0) {  // every 8th step: the dots stay apart
-          run.x.push_back(1e3 * t);
-          run.y.push_back((u[k] - u[k - 1]) / (hist.time[k] - hist.time[k - 1]));
+  for (std::size_t j = 0; j < joints.size(); ++j)
+    for (double h : quick ? std::vector<double>{0.5} : std::vector<double>{0.5, 0.25}) {
+      nmm::solve::JointWaveSetup w;
+      w.kn = joints[j].first;
+      w.h = h;
+      const nmm::solve::JointWaveClosedForm cf(w);
+      const SceneDef s = nmm::solve::joint_wave_scene(w);
+      const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
+      const nmm::solve::JointWaveHistory hist = nmm::solve::run_joint_wave(m, s);
+      if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
+      const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+      md << "| τ = " << num(1e3 * cf.tau(), "%.2g") << " ms (kn = " << num(1e-9 * w.kn, "%.3g")
+         << " GPa/m), h = " << num(h) << " m, Δt = " << num(1e6 * w.dt) << " µs | "
+         << num(100 * e.incident_rms, "%.2f") << " % | " << num(100 * e.before_rms, "%.2f") << " % | "
+         << num(100 * e.after_rms, "%.2f") << " % | "
+         << num(1e3 * (e.half_rise_exact + e.half_rise), "%.3f") << " ("
+         << num(1e3 * e.half_rise_exact, "%.3f") << ") | " << num(1e3 * e.half_rise, "%+.3f") << " | "
+         << num(1e3 * e.peak_velocity, "%.1f") << " (" << num(1e3 * e.peak_velocity_exact, "%.1f")
+         << ") | " << num(100 * e.peak_velocity_error(), "%+.2f") << " % |\n";
+      if (h != 0.5) continue;
+      const std::string tau = "τ = " + num(1e3 * cf.tau(), "%.2g") + " ms";
+      const std::string kn = "kn = " + num(1e-9 * w.kn, "%.3g") + " GPa/m";
+      auto add_point = [&](double x, const std::vector<double>& u, const std::string& where,
+                           const std::string& colour) {
+        nmm::PlotSeries run{"nmm, " + where + ", " + kn, {}, {}, colour, false, true};
+        nmm::PlotSeries exact{"closed form, " + where + ", " + tau, {}, {}, colour, true, false};
+        for (std::size_t k = 1; k < hist.time.size(); ++k) {
+          const double t = 0.5 * (hist.time[k] + hist.time[k - 1]);
+          if (t > cf.valid_until(x)) break;
+          if (k % 2 == 0) {
+            exact.x.push_back(1e3 * t);
+            exact.y.push_back(cf.velocity(x, t));
+          }
+          if (k % 8 == 0) {  // every 8th step: the dots stay apart
+            run.x.push_back(1e3 * t);
+            run.y.push_back((u[k] - u[k - 1]) / (hist.time[k] - hist.time[k - 1]));
+          }
         }
-      }
-      spec.series.push_back(exact);
-      spec.series.push_back(run);
-    };
-    // Before the joint the incident wave is the same for both joints: drawn once.
-    if (j == 0) add_point(w.before_x, hist.before, "x = " + num(w.before_x) + " m (incident, reflected)", "#7f7f7f");
-    add_point(w.after_x, hist.after, "x = " + num(w.after_x) + " m (transmitted)", joints[j].second);
-  }
-  nmm::write_svg_plot(spec, path);
+        spec.series.push_back(exact);
+        spec.series.push_back(run);
+      };
+      // Before the joint: the incident wave, the same for both joints, and the reflection off
+      // the softer one (drawn once).
+      if (j == 0)
+        add_point(w.before_x, hist.before, "x = " + num(w.before_x) + " m (incident, reflected)",
+                  "#7f7f7f");
+      add_point(w.after_x, hist.after, "x = " + num(w.after_x) + " m (transmitted)", joints[j].second);
+    }
+  nmm::write_svg_plot(spec, out + "/joint_wave.svg");
+  nmm::write_file_atomically(out + "/joint_wave_tables.md", md.str());
 }
 
 // ---- outputs -------------------------------------------------------------------------------
@@ -718,7 +746,7 @@ int main(int argc, char** argv) {
     if (want("joint_wave")) {
       for (double h : quick ? V{0.5} : V{1, 0.5, 0.25}) add(joint_wave("mesh_size", h, 2.5e-5));
       for (double dt : quick ? V{} : V{1e-4, 5e-5, 2.5e-5, 1.25e-5}) add(joint_wave("time_step", 0.5, dt));
-      write_wave_plot(out + "/joint_wave.svg");
+      write_wave_outputs(out, quick);
     }
 
     nmm::write_file_atomically(out + "/accuracy_time.csv", csv_text(rows));
