@@ -27,17 +27,19 @@
 //   (I_t(∞) = 2p/ω: the joint delays the pulse, it does not keep any of it).
 //   At a point x before the joint the incident wave passes at s = t − x/c, the reflected one at
 //   s = t − (2x_j − x)/c; after the joint the transmitted wave at s = t − x/c:
-//     x < x_j:  v = (σ_i(t − x/c) − σ_r(t − (2x_j − x)/c))/Z,  u = (I_i(…) − I_t(…) + I_i(…))/Z
-//     x > x_j:  v = σ_t(t − x/c)/Z,                          u = I_t(t − x/c)/Z.
+//     x < x_j:  v = (σ_i(s_i) − σ_r(s_r))/Z,  u = (I_i(s_i) − I_t(s_r) + I_i(s_r))/Z
+//               with s_i = t − x/c, s_r = t − (2x_j − x)/c
+//     x > x_j:  v = σ_t(t − x/c)/Z,           u = I_t(t − x/c)/Z.
 //   The closed form holds until a wave it leaves out arrives: the reflection off the joint
 //   reflected again at the loaded end (free once the pulse is over), at (2x_j + x)/c, and the
 //   transmitted wave reflected at the far end, at (2L − x)/c.
 //
 // Read-off (JointWaveErrors): the displacement histories at x_a and x_b against the closed form
 // from the wave's arrival x/c to valid_until(x) (RMS of the difference over the samples there,
-// relative to the largest closed-form |u| there; before x/c both are still); the half-rise time after the joint (u_b reaching half the final
-// displacement 2p/(ωZ)); the peak particle velocity after the joint (the largest Δu/Δt between
-// samples against the closed form's peak, found where dσ_t/ds = 0, i.e. σ_t = σ_i).
+// relative to the largest closed-form |u| there; before x/c both are still); the half-rise
+// time after the joint (u_b reaching half the final displacement 2p/(ωZ)); the peak particle
+// velocity after the joint (the largest Δu/Δt between samples against the closed form's peak,
+// found where dσ_t/ds = 0, i.e. σ_t = σ_i).
 #pragma once
 
 #include <cstdint>
