@@ -127,5 +127,13 @@ TEST(JointWave, SoftJointFineMesh) { check(1.37e9, 0.25); }   // τ = 2.0 ms
 TEST(JointWave, StiffJointCoarseMesh) { check(5.48e9, 0.5); }  // τ = 0.50 ms
 TEST(JointWave, StiffJointFineMesh) { check(5.48e9, 0.25); }
 
+// x_j = 12 m lies on lattice nodes at both mesh sizes (every other row's node is on the joint):
+// the same soft joint 0.1 m off them, cut through the triangles.
+TEST(JointWave, SoftJointOffTheLattice) {
+  JointWaveSetup s;
+  s.joint_x = 12.1;
+  check(s, joint_wave_scene(s));
+}
+
 }  // namespace
 }  // namespace nmm::solve
