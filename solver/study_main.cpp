@@ -643,7 +643,7 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
   const std::vector<std::string> colours = {"#1f77b4", "#393b79", "#6b6ecf", "#d62728", "#ff7f0e",
                                             "#2ca02c", "#9467bd", "#17becf", "#8c564b", "#e377c2",
                                             "#7f7f7f", "#bcbd22", "#e7ba52", "#ad494a",
-                                            "#637939", "#843c39", "#3182bd"};
+                                            "#637939", "#000000", "#c51b8a"};
   nmm::PlotSpec spec{"Error against wall time, cheapest setting first",
                      "wall time, s (log)", "relative error (log)", true, true, {}};
   for (std::size_t i = 0; i < curves.size(); ++i) {
