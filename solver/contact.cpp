@@ -15,7 +15,7 @@
 //
 // Springs, each a convex energy of the step's increment (the step is solved as one convex
 // minimisation: contact_solve.cpp):
-//   normal  N(δ) on the closure δ = −gap (constant kn·δ, or Bandis–Barton), 0 when open; a bond
+//   normal  N(δ) on the closure δ = −gap (constant kn·L·δ, penalty kn·δ, or Bandis–Barton), 0 when open; a bond
 //           (tensile strength T, unbroken, closed at the start of the step) continues it into
 //           tension with the initial stiffness until N < −T·L, when it breaks for good;
 //   shear   elastoplastic: the spring carries an elastic shear s_el from step to step; the trial
@@ -31,8 +31,10 @@
 // the step (settle_states): open when N = 0 and no bond, sliding when the trial force reaches S.
 // Cohesion and the bond are lost once a contact slides or opens.
 //
-// Joint laws (Bandis–Barton closure, hyperbolic shear) replace the constant springs through
-// joint_law.h: the force is exactly on the constitutive curve, the matrix gets the tangent.
+// The springs come from joint_law.h: a joint stress per unit closure or shear (constant kn, ks in
+// Pa/m, Bandis–Barton closure, hyperbolic shear) times the contact's tributary length L
+// (tributary_length.h), or DDA's point penalty (N/m per contact); the force is exactly on the
+// constitutive curve, the matrix gets the tangent.
 //
 // Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
 // the scene's interface_set, else the default interface: kn = 20·E_max/h in Pa/m (a contact of

@@ -14,17 +14,17 @@
 // at one end than at the other, which tilts the block on top).
 //
 // First, P's halves end where the contacted face ends (an end of the contacted edge that is a
-// corner of its block). Then each contact's share is cut at the midpoint to its nearest neighbour on the same joint (a
-// contact between the same two blocks whose edge is parallel within 10°, on the same line, and
-// whose own halves overlap P's):
+// corner of its block). Then each contact's share is cut at the midpoint to its nearest
+// neighbour on the same joint (a contact between the same two blocks whose edge is parallel
+// within 10°, on the same line, and whose own halves overlap P's):
 //     L = min(hi, min u_j/2 over u_j > 0) − max(lo, max u_j/2 over u_j < 0),  u_j = (P_j − P)·t
-// a one-dimensional Voronoi cell of the contact points, bounded by P's own faces. Where the faces
-// have slid, the corner of one face and the first contact point of the other stand more than
-// their two halves apart: a gap of up to h between P's halves and the next contact's on the same
-// joint is shared at its middle. Neighbours that
-// that tile already (matching vertices) do not overlap, so nothing changes there; two contacts
-// at one point whose halves overlap split it by index. A contact with no length of its own (a bare corner
-// touching a face) is a point: `corner_length`.
+// a one-dimensional Voronoi cell of the contact points, bounded by P's own faces. Neighbours that
+// tile already (matching vertices) do not overlap, so nothing changes there; two contacts at one
+// point whose halves overlap split it by index. Where the faces have slid, the corner of one face
+// and the first contact point of the other stand more than their two halves apart: a gap of up
+// to h between P's halves and the next contact's on the same joint is shared at its middle. A
+// contact with no length of its own (a bare corner touching a face) is a point: `corner_length`.
+// Checked by tests/test_contact_patch.cpp (the tributary lengths add up to the joint's length).
 #include "tributary_length.h"
 
 #include <algorithm>
