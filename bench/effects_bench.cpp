@@ -60,8 +60,8 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   nmm::JointSetDef js;
   js.name = "joint";
   js.friction_deg = 30;
-  js.normal.kn = 2e11;
-  js.shear.ks = 8e10;
+  js.normal.kn = 2e11;  // Pa/m (constant joint stiffness, 20·E/h at h = 1 m)
+  js.shear.ks = 8e10;   // Pa/m
   s.joint_sets.push_back(js);
   s.bodies.push_back(nmm::test::box(0, 0, side, side));
   s.mesh_size = h;

@@ -377,13 +377,14 @@ MaterialDef read_material(const std::string& name, const Reader& r) {
 NormalLawDef read_normal_law(const Reader& r) {
   r.expect_object();
   NormalLawDef law;
-  const std::size_t model = r["model"].as_choice({"constant", "bandis_barton"}, "normal model");
+  // constant: kn in Pa/m (per unit joint length); penalty: DDA's kn in N/m per contact point.
+  const std::size_t model = r["model"].as_choice({"constant", "bandis_barton", "penalty"}, "normal model");
   // A joint set may hold the parameters of both models, so that a run can switch models with
   // --set joint_sets.NAME.normal.model=... on the same mesh; the model picks which are needed.
   r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs"}, "");
   if (r.has("kn")) law.kn = r.number("kn", kStiffness);
-  if (model == 0) {
-    law.model = NormalModel::constant;
+  if (model == 0 || model == 2) {
+    law.model = model == 0 ? NormalModel::constant : NormalModel::penalty;
     law.kn = r.number("kn", kStiffness);
   } else if (r.has("jrc") || r.has("jcs") || r.has("ucs")) {
     // Barton–Bandis empirical relations (Barton, Bandis & Bakhtar 1985; docs/physics.md §4), with
@@ -420,11 +421,12 @@ NormalLawDef read_normal_law(const Reader& r) {
 ShearLawDef read_shear_law(const Reader& r) {
   r.expect_object();
   ShearLawDef law;
-  const std::size_t model = r["model"].as_choice({"constant", "hyperbolic"}, "shear model");
+  // constant: ks in Pa/m (per unit joint length); penalty: DDA's ks in N/m per contact point.
+  const std::size_t model = r["model"].as_choice({"constant", "hyperbolic", "penalty"}, "shear model");
   r.check_keys({"model", "ks", "ksi", "rf"}, "");  // both models' parameters may be given
   if (r.has("ks")) law.ks = r.number("ks", kStiffness);
-  if (model == 0) {
-    law.model = ShearModel::constant;
+  if (model == 0 || model == 2) {
+    law.model = model == 0 ? ShearModel::constant : ShearModel::penalty;
     law.ks = r.number("ks", kStiffness);
   } else {
     law.model = ShearModel::hyperbolic;

@@ -43,10 +43,13 @@ struct MaterialDef {
   double poisson = 0;  ///< –, in [0, 0.5)
 };
 
-enum class NormalModel { constant, bandis_barton };
+/// constant: kn in Pa/m (joint stress per unit closure, integrated over each contact's tributary
+/// length); bandis_barton: the closure curve (Pa/m, m); penalty: DDA's point spring, kn in N/m
+/// per contact point (so the joint's stiffness grows with the number of contact points).
+enum class NormalModel { constant, bandis_barton, penalty };
 struct NormalLawDef {
   NormalModel model = NormalModel::constant;
-  double kn = 0;   ///< N/m per contact point (constant model)
+  double kn = 0;   ///< Pa/m (constant model) or N/m per contact point (penalty)
   double kni = 0;  ///< Pa/m, initial normal stiffness (Bandis–Barton)
   double vm = 0;   ///< m, maximum closure (Bandis–Barton)
   // Given instead of kni and vm, these derive them (Barton–Bandis empirical relations):
@@ -56,10 +59,12 @@ struct NormalLawDef {
   double aperture = 0;  ///< m, initial aperture a_j derived from them
 };
 
-enum class ShearModel { constant, hyperbolic };
+/// constant: ks in Pa/m (shear stress per unit shear displacement); hyperbolic: the curve (Pa/m,
+/// –); penalty: DDA's point spring, ks in N/m per contact point.
+enum class ShearModel { constant, hyperbolic, penalty };
 struct ShearLawDef {
   ShearModel model = ShearModel::constant;
-  double ks = 0;   ///< N/m per contact point (constant model)
+  double ks = 0;   ///< Pa/m (constant model) or N/m per contact point (penalty)
   double ksi = 0;  ///< Pa/m, initial shear stiffness (hyperbolic)
   double rf = 0;   ///< –, failure ratio in (0, 1] (hyperbolic)
 };

@@ -15,7 +15,7 @@
 //
 // Springs, each a convex energy of the step's increment (the step is solved as one convex
 // minimisation: contact_solve.cpp):
-//   normal  N(δ) on the closure δ = −gap (constant kn·δ, or Bandis–Barton), 0 when open; a bond
+//   normal  N(δ) on the closure δ = −gap (constant kn·L·δ, penalty kn·δ, or Bandis–Barton), 0 when open; a bond
 //           (tensile strength T, unbroken, closed at the start of the step) continues it into
 //           tension with the initial stiffness until N < −T·L, when it breaks for good;
 //   shear   elastoplastic: the spring carries an elastic shear s_el from step to step; the trial
@@ -31,27 +31,33 @@
 // the step (settle_states): open when N = 0 and no bond, sliding when the trial force reaches S.
 // Cohesion and the bond are lost once a contact slides or opens.
 //
-// Joint laws (Bandis–Barton closure, hyperbolic shear) replace the constant springs through
-// joint_law.h: the force is exactly on the constitutive curve, the matrix gets the tangent.
+// The springs come from joint_law.h: a joint stress per unit closure or shear (constant kn, ks in
+// Pa/m, Bandis–Barton closure, hyperbolic shear) times the contact's tributary length L
+// (tributary_length.h), or DDA's point penalty (N/m per contact); the force is exactly on the
+// constitutive curve, the matrix gets the tangent.
 //
 // Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
-// the scene's interface_set, else the default interface: kn = 20·E_max·(1 m), ks = kn/2.5,
-// frictionless, no cohesion or tension. (Shi's default is 50·E; within his recommended 10–100·E,
-// 10–20·E is where the open–close iteration here is accurate and settles quickly: see
-// docs/contact.md.)
+// the scene's interface_set, else the default interface: kn = 20·E_max/h in Pa/m (a contact of
+// tributary length h gets DDA's point penalty 20·E·(1 m)), ks = kn/2.5, frictionless, no cohesion
+// or tension. (Shi's default point penalty is 50·E; within his recommended 10–100·E, 10–20·E is
+// where the open–close iteration here is accurate and settles quickly: see docs/contact.md.)
 #include "contact.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "contact_tolerances.h"
 #include "error.h"
+#include "tributary_length.h"
 
 namespace nmm::solve {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+/// –, the default interface's kn = this × E_max / h (Pa/m).
+constexpr double kDefaultInterfaceStiffness = 20.0;
 }
 
 ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
@@ -83,8 +89,14 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   } else {
     double e_max = 0;
     for (const MaterialDef& m : scene.materials) e_max = std::max(e_max, m.young);
+    // The default interface of touching bodies is numerical, not a joint: as stiff as the
+    // material over a twentieth of an element, kn = 20·E_max/h (Pa/m). A contact standing for
+    // a length h of face then has the spring 20·E·(1 m) of DDA's default penalty (Shi: 10–100·E),
+    // so the conditioning is that of the former point penalty, and the faces' overlap stays a
+    // small fraction of the elements' own deformation at every mesh size (it vanishes as h → 0,
+    // as rigid contact should). A scene with a real joint gives an interface_set.
     ContactLaw law;
-    law.kn = 20.0 * e_max;
+    law.kn = kDefaultInterfaceStiffness * e_max / mesh.mesh_size;
     law.ks = law.kn / 2.5;
     laws_.push_back(law);
     interface_law_ = static_cast<int>(laws_.size()) - 1;
@@ -92,7 +104,7 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   std::vector<int> used = joint_law_;
   if (interface_used_) used.push_back(interface_law_);
   for (int l : used) {
-    nonlinear_ |= laws_[l].normal != NormalModel::constant || laws_[l].shear != ShearModel::constant;
+    nonlinear_ |= laws_[l].normal == NormalModel::bandis_barton || !linear_shear(laws_[l]);
     if (laws_[l].normal == NormalModel::bandis_barton)
       topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
   }
@@ -194,6 +206,12 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
   cn_.resize(rows);
   cs_.resize(rows);
   std::vector<double> phi_a(static_cast<std::size_t>(nf)), phi_b(static_cast<std::size_t>(nf));
+  // Tributary lengths: the joint shared among its contacts (tributary_length.cpp).
+  std::vector<ContactCandidate> kept;
+  kept.reserve(contacts_.size());
+  for (const Contact& c : contacts_) kept.push_back(c.at);
+  const std::vector<double> lengths =
+      tributary_lengths(topo_, xy, kept, kContactTolerances.corner_length * topo_.mesh_size);
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
     const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo_.next[q2];
@@ -222,17 +240,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
     c.gap0 = c.at.gap;
     c.gap = c.at.gap;
     c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
-    // Tributary length: half of each candidate edge at P that faces the contacted edge (a
-    // corner's other side is not on this joint).
-    c.length = 0;
-    for (std::int32_t s : {topo_.prev[p], p}) {
-      if (!topo_.edge_candidate[s]) continue;
-      const std::int32_t f = topo_.next[s];
-      const double ex = xy[2 * f] - xy[2 * s], ey = xy[2 * f + 1] - xy[2 * s + 1];
-      const double el = std::hypot(ex, ey);
-      if (el > 0 && (ey / el) * nx + (-ex / el) * ny < kContactTolerances.tributary_cos) c.length += 0.5 * el;
-    }
-    if (c.length == 0) c.length = kContactTolerances.corner_length * topo_.mesh_size;  // a bare corner: a point
+    c.length = lengths[i];
   }
 }
 
@@ -314,7 +322,6 @@ Spring normal_at(const ContactLaw& law, const Contact& c, double g, double skin)
 
 // The trial shear force of the spring at elastic shear s, before the strength caps it.
 double trial_shear(const ContactLaw& law, const Contact& c, double s) {
-  if (law.shear == ShearModel::constant) return law.ks * s;
   return shear_spring(law, s, c.strength, c.length).force;
 }
 
@@ -336,7 +343,7 @@ Spring shear_at(const ContactLaw& law, const Contact& c, double s) {
 // 99.9 % counts as slip).
 bool slides(const ContactLaw& law, const Contact& c) {
   const double limit =
-      law.shear == ShearModel::constant ? c.strength : kContactTolerances.hyperbola_slip * c.strength;
+      linear_shear(law) ? c.strength : kContactTolerances.hyperbola_slip * c.strength;
   return std::abs(trial_shear(law, c, c.shear)) >= limit;
 }
 }  // namespace
@@ -348,6 +355,10 @@ void ContactSet::start_strengths() {
     c.bonded = closed && !c.broken && law.tensile > 0;
     c.friction_normal = closed ? std::max(c.normal_force, 0.0) : 0.0;
     c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken) : 0.0;
+    // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
+    // sticks until the fixed point has its normal force.
+    if (!closed && elastic_predictor_ && c.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
+      c.strength = std::numeric_limits<double>::infinity();
   }
 }
 
@@ -466,8 +477,10 @@ int ContactSet::update_strengths(double force_floor) {
     double s = closed ? shear_strength(law, n, c.length, c.broken) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
     const double moved = std::abs(s - c.strength);
-    if (moved > kContactTolerances.strength_change * std::max(s, c.strength) && moved > force_floor) {
-      const bool matters = law.shear != ShearModel::constant ||
+    if (!std::isfinite(c.strength)) {
+      ++changed;  // the elastic predictor's stick ends: solve again with the real strength
+    } else if (moved > kContactTolerances.strength_change * std::max(s, c.strength) && moved > force_floor) {
+      const bool matters = !linear_shear(law) ||
                            std::abs(trial_shear(law, c, c.shear)) >= kContactTolerances.near_limit * std::min(s, c.strength);
       if (matters) ++changed;
     }
@@ -530,6 +543,17 @@ std::size_t ContactSet::capped_count() const {
   std::size_t n = 0;
   for (const Contact& c : contacts_) n += c.capped && c.state != ContactState::open ? 1 : 0;
   return n;
+}
+
+ContactSet::JointStresses ContactSet::joint_stresses() const {
+  JointStresses j;
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::open || !(c.length > 0)) continue;
+    j.closed_length += c.length;
+    j.max_normal_stress = std::max(j.max_normal_stress, c.normal_force / c.length);
+    j.max_shear_stress = std::max(j.max_shear_stress, std::abs(c.shear_force) / c.length);
+  }
+  return j;
 }
 
 std::size_t ContactSet::closed_count() const {

@@ -139,6 +139,14 @@ class ContactSet {
   /// Sets each contact's shear strength for the step's first inner solve from what it carries
   /// (warm start): the normal force of the last accepted step where it was closed.
   void start_strengths();
+  /// Steps without inertia (static_mode "equilibrium"): a block resting on contacts it has just
+  /// met is held sideways only by their shear springs, which have no strength before the
+  /// friction fixed point has a normal force. Touching contacts (gap ≤ 1e-10·w0 at the start of
+  /// the step) that start open then stick in the first inner solve (an elastic predictor, as for a
+  /// contact with unbounded strength); the fixed point gives them their real strength from its
+  /// normal force. Without it the first solve of such a block is singular ("not positive
+  /// definite"). With inertia (dynamic, DDA static) the mass holds the block: off.
+  void set_elastic_predictor(bool on) { elastic_predictor_ = on; }
   /// Evaluates every contact at the increment d: gap, shear, the forces on the constitutive
   /// curves and their tangents; adds the contact forces Σ N·cn − Σ T·cs to r (the residual).
   void forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r);
@@ -176,6 +184,12 @@ class ContactSet {
   /// Largest penetration of the contacts after the last solve, m.
   double max_penetration() const;
   std::size_t closed_count() const;
+  /// The closed contacts' joint after the last solve: Σ of their tributary lengths (m) and the
+  /// largest normal and shear stress N/L, |T|/L (Pa) among them.
+  struct JointStresses {
+    double closed_length = 0, max_normal_stress = 0, max_shear_stress = 0;
+  };
+  JointStresses joint_stresses() const;
   /// Contacts whose closure is held below Vm after the last solve.
   std::size_t capped_count() const;
   /// True if some law is nonlinear (Bandis–Barton or hyperbolic).
@@ -196,6 +210,7 @@ class ContactSet {
   int interface_law_ = 0;
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
   bool nonlinear_ = false;       // a law in use is not a constant spring
+  bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve
   bool active_ = false;
   std::vector<Contact> contacts_;   // this step's, being iterated
   std::vector<Contact> accepted_;   // the last accepted step's, while contacts_ is a later attempt's

@@ -369,11 +369,19 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double eps = tl.gap_round_off * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
-      if (g < -eps && !inside_element(topo, xy, topo.first_vertex[eb], px, py)) {
+      // Inside B: tested at P moved onto the edge's span (ω within [β, 1 − β], β = beside_edge),
+      // so a vertex a round-off past the end of the edge — the corner of one block over the
+      // corner of the other, both moved apart by the same Poisson expansion — is judged as the
+      // vertex beside the edge that it is. Tested where it is, such a corner pair lost both
+      // contacts at once (each corner a few 1e-7 m outside the other block) and the joint's end
+      // lost its tributary length: it closed more there than in the middle.
+      const double shift = (std::clamp(omega, tl.beside_edge, 1 - tl.beside_edge) - omega) * eg.l;
+      const double ix = px + shift * tx, iy = py + shift * ty;
+      if (g < -eps && !inside_element(topo, xy, topo.first_vertex[eb], ix, iy)) {
         // Sunk at a mesh node, next to an end of the edge: the element below the node may hold
         // it instead. Only there, and only shallow; elsewhere a vertex outside B is not in contact.
         const bool near_end = omega < tl.node_sink_omega || omega > 1 - tl.node_sink_omega;
-        if (!near_end || g < -tl.node_sink_depth * topo.mesh_size || !inside_near(topo, xy, eb, px, py)) continue;
+        if (!near_end || g < -tl.node_sink_depth * topo.mesh_size || !inside_near(topo, xy, eb, ix, iy)) continue;
       }
       const double face = nx * ex + ny * ey;  // −1: exactly opposite
       if (face > tl.facing_cos) continue;

@@ -22,7 +22,12 @@
 //   u = τf/(Ksi(1 − Rf)) (for Rf = 1 only asymptotically: slip then comes from the limit check
 //   at 99.9 % of T_f). Guards: ks ≥ 1e-3·Ksi·L; with no strength (τf = 0) there is no shear
 //   force and no division: the contact slides. Unloading (u shrinking) follows the same curve.
-// Constant: force = k·x, stiffness k (N/m per contact point, Shi's penalty).
+// Constant (a joint stiffness, like the laws above): σn = kn·δ, τ = ks·u with kn, ks in Pa/m;
+//   force kn·L·δ, stiffness kn·L. A joint closes by σn/kn whatever the mesh size, because the
+//   tributary lengths of the contacts along it add up to its length.
+// Penalty (Shi's DDA point spring): force = k·x, stiffness k (N/m per contact point). The joint's
+//   stiffness is then k times the contact points per metre of joint, which grows as 1/h: kept by
+//   name for DDA habits and comparisons with DDA codes.
 #include "joint_law.h"
 
 #include <algorithm>
@@ -32,9 +37,9 @@ namespace nmm::solve {
 
 SpringState normal_spring(const ContactLaw& law, double closure, double length) {
   SpringState s;
-  if (law.normal == NormalModel::constant) {
-    s.force = law.kn * closure;
-    s.stiffness = law.kn;
+  if (law.normal != NormalModel::bandis_barton) {
+    s.stiffness = initial_normal_stiffness(law, length);
+    s.force = s.stiffness * closure;
     return s;
   }
   const double k0 = law.kni * length;
@@ -56,7 +61,12 @@ SpringState normal_spring(const ContactLaw& law, double closure, double length) 
 }
 
 double initial_normal_stiffness(const ContactLaw& law, double length) {
-  return law.normal == NormalModel::constant ? law.kn : law.kni * length;
+  switch (law.normal) {
+    case NormalModel::constant: return law.kn * length;
+    case NormalModel::penalty: return law.kn;
+    case NormalModel::bandis_barton: break;
+  }
+  return law.kni * length;
 }
 
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken) {
@@ -65,14 +75,21 @@ double shear_strength(const ContactLaw& law, double normal_force, double length,
 }
 
 double initial_shear_stiffness(const ContactLaw& law, double length) {
-  return law.shear == ShearModel::constant ? law.ks : law.ksi * length;
+  switch (law.shear) {
+    case ShearModel::constant: return law.ks * length;
+    case ShearModel::penalty: return law.ks;
+    case ShearModel::hyperbolic: break;
+  }
+  return law.ksi * length;
 }
+
+bool linear_shear(const ContactLaw& law) { return law.shear != ShearModel::hyperbolic; }
 
 SpringState shear_spring(const ContactLaw& law, double shear, double strength, double length) {
   SpringState s;
-  if (law.shear == ShearModel::constant) {
-    s.force = law.ks * shear;
-    s.stiffness = law.ks;
+  if (linear_shear(law)) {
+    s.stiffness = initial_shear_stiffness(law, length);
+    s.force = s.stiffness * shear;
     return s;
   }
   const double k0 = law.ksi * length;
@@ -90,7 +107,7 @@ SpringState shear_spring(const ContactLaw& law, double shear, double strength, d
 
 double shear_at_force(const ContactLaw& law, double force, double strength, double length) {
   const double f = std::abs(force);
-  if (law.shear == ShearModel::constant) return f / law.ks;
+  if (linear_shear(law)) return f / initial_shear_stiffness(law, length);
   const double k0 = law.ksi * length;
   if (!(strength > 0)) return 0;
   const double t = std::min(f, 0.999 * strength / std::max(law.rf, 1e-12));

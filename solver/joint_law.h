@@ -1,6 +1,7 @@
 // Rock-joint constitutive laws for contact springs (the seed paper's modified contact model):
-// Bandis–Barton closure for the normal direction, the hyperbolic law for shear, or constant
-// penalty springs. See joint_law.cpp for the equations and the mapping onto contact points.
+// Bandis–Barton closure for the normal direction, the hyperbolic law for shear, constant joint
+// stiffnesses (Pa/m), or DDA's point penalty (N/m per contact point). See joint_law.cpp for the
+// equations and the mapping onto contact points.
 #pragma once
 
 #include "scene.h"
@@ -11,10 +12,10 @@ namespace nmm::solve {
 struct ContactLaw {
   NormalModel normal = NormalModel::constant;
   ShearModel shear = ShearModel::constant;
-  double kn = 0;        ///< N/m per contact point (constant normal)
+  double kn = 0;        ///< Pa/m (constant normal) or N/m per contact point (penalty)
   double kni = 0;       ///< Pa/m, initial normal stiffness (Bandis–Barton)
   double vm = 0;        ///< m, maximum closure (Bandis–Barton)
-  double ks = 0;        ///< N/m per contact point (constant shear)
+  double ks = 0;        ///< Pa/m (constant shear) or N/m per contact point (penalty)
   double ksi = 0;       ///< Pa/m, initial shear stiffness (hyperbolic)
   double rf = 1;        ///< –, failure ratio (hyperbolic)
   double tan_phi = 0;   ///< –, friction coefficient
@@ -33,17 +34,20 @@ struct SpringState {
 /// Normal spring at closure δ ≥ 0 (m) for a contact of tributary length L (m).
 SpringState normal_spring(const ContactLaw& law, double closure, double length);
 
-/// Normal stiffness used in tension and for judging opening (N/m): kn, or Kni·L.
+/// Normal stiffness used in tension and for judging opening (N/m): kn·L, Kni·L, or the penalty kn.
 double initial_normal_stiffness(const ContactLaw& law, double length);
 
 /// Shear strength of a contact, N: tanφ·N + c·L, with the residual cohesion c_r in place of c once
 /// the contact is broken (it slid or opened; c_r = 0 by default: brittle).
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken);
 
+/// True if the shear spring is linear (constant or penalty): its force is ks·s up to the strength.
+bool linear_shear(const ContactLaw& law);
+
 /// Shear spring at signed elastic shear s (m), with strength `strength` (N, ≥ 0) and length L.
 SpringState shear_spring(const ContactLaw& law, double shear, double strength, double length);
 
-/// Initial shear stiffness (N/m): ks, or Ksi·L.
+/// Initial shear stiffness (N/m): ks·L, Ksi·L, or the penalty ks.
 double initial_shear_stiffness(const ContactLaw& law, double length);
 
 /// Elastic shear (m, ≥ 0) at which the shear spring carries `force` (N) below its strength:

@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
     tun.solver.steps = quick ? 10 : 100;
     const nmm::Mesh tm = nmm::pre::build_mesh(tun, data + "/tunnel.json");
     std::ostringstream kcsv;  // written atomically at the end
-    kcsv << "model,contact,closure_m,kn_n_per_m,ks_n_per_m\n";
+    kcsv << "model,contact,closure_m,kn_n_per_m,ks_n_per_m,length_m\n";
     md << "| model | closed contacts | kn per contact, N/m (min – max) | kn per metre of joint, Pa/m "
           "(min – median – max) | ks per metre, Pa/m (min – max) |\n|---|---:|---:|---:|---:|\n";
     nmm::PlotSeries scatter{"contacts (joint laws)", {}, {}, "#d62728", false, true};
@@ -204,7 +204,7 @@ int main(int argc, char** argv) {
       for (const auto& c : st.contacts().contacts()) {
         if (c.state == nmm::solve::ContactState::open) continue;
         kcsv << (variant ? "joint_laws" : "constant") << "," << i++ << "," << -c.gap << ","
-             << c.kn_now << "," << c.ks_now << "\n";
+             << c.kn_now << "," << c.ks_now << "," << c.length << "\n";
         kn_point.push_back(c.kn_now);
         const double L = std::max(c.length, 1e-12);
         kn_m.push_back(c.kn_now / L);
@@ -219,10 +219,9 @@ int main(int argc, char** argv) {
       md << "| " << (variant ? "joint laws" : "constant springs") << " (" << status.substr(0, 2)
          << ") | " << kn_point.size() << " | " << num(kn_point.front()) << " – "
          << num(kn_point.back()) << " | "
-         << (variant ? num(kn_m.front()) + " – " + num(kn_m[kn_m.size() / 2]) + " – " + num(kn_m.back())
-                     : std::string("(one spring per point)"))
+         << num(kn_m.front()) + " – " + num(kn_m[kn_m.size() / 2]) + " – " + num(kn_m.back())
          << " | "
-         << (variant && !ks_m.empty() ? num(ks_m.front()) + " – " + num(ks_m.back()) : std::string("–"))
+         << (!ks_m.empty() ? num(ks_m.front()) + " – " + num(ks_m.back()) : std::string("–"))
          << " |\n";
     }
     nmm::PlotSeries curve{"Kni/(1 − δ/Vm)²", {}, {}, "#1f77b4"};
@@ -233,8 +232,10 @@ int main(int argc, char** argv) {
       curve.x.push_back(d * 1e3);
       curve.y.push_back(kni_t / ((1 - d / vm_t) * (1 - d / vm_t)) / 1e9);
     }
-    md << "\n(Constant springs have one kn per contact point whatever the closure. With the joint "
-          "laws each contact's normal stiffness per metre of joint follows its own closure, "
+    md << "\n(Constant springs have one kn per metre of joint whatever the closure, and each "
+          "contact's spring is kn times its tributary length; below kn per metre only where a "
+          "contact touches with almost no force, inside the ±τ skin of the normal spring. With the "
+          "joint laws each contact's normal stiffness per metre of joint follows its own closure, "
           "Kni/(1 − δ/Vm)², and its shear stiffness its own shear.)\n";
     nmm::write_svg_plot({"Tunnel, joint laws: normal stiffness of each closed contact against its closure",
                          "closure δ, mm", "kn per metre of joint, GPa/m", false, false, {curve, scatter}},

@@ -218,7 +218,13 @@ void OutputWriter::add_contacts(std::int64_t step, double time,
       rows += ',';
       append_double(rows, v);
     }
-    rows += ',' + std::to_string(c.vertex) + ',' + std::to_string(c.edge) + '\n';
+    rows += ',' + std::to_string(c.vertex) + ',' + std::to_string(c.edge);
+    // The joint's stresses, Pa: the forces over the contact's tributary length.
+    for (double v : {c.normal_force / c.length, c.shear_force / c.length}) {
+      rows += ',';
+      append_double(rows, v);
+    }
+    rows += '\n';
   }
 }
 
@@ -229,7 +235,7 @@ void OutputWriter::flush_history() {
   if (!contacts_.empty()) {
     const std::string csv =
         "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
-        "kn,ks,length,vertex,edge\n" + contacts_;
+        "kn,ks,length,vertex,edge,normal_stress,shear_stress\n" + contacts_;
     if (contacts_gzip_)
       write_file_atomically(join_path(dir_, "contacts.csv.gz"), gzip_compress(csv));
     else

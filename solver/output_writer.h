@@ -82,7 +82,8 @@ class OutputWriter {
 
   /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, and
   /// contacts.csv ("step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,
-  /// length,vertex,edge") if any contact rows were added.
+  /// length,vertex,edge,normal_stress,shear_stress": forces in N, stiffnesses N/m, the tributary
+  /// length in m and the joint stresses N/L, T/L in Pa) if any contact rows were added.
   void flush_history();
 
   /// Writes summary.json (pretty-printed), with the run's inputs (set_run_inputs) as "inputs".

@@ -57,17 +57,21 @@ std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& 
   return out;
 }
 
-RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_given) {
+nlohmann::json read_run_summary(const std::string& dir) {
   const std::string summary_path = (fs::path(dir) / "summary.json").string();
-  nlohmann::json summary;
   try {
-    summary = nlohmann::json::parse(read_text_file(summary_path));
+    return nlohmann::json::parse(read_text_file(summary_path));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
   }
-  const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
-  // The mesh and the run's scene (its variants change fixed points and the scene's name).
+}
+
+RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_given) {
+  const std::string summary_path = (fs::path(dir) / "summary.json").string();
   RunInputs r;
+  r.summary = read_run_summary(dir);
+  const nlohmann::json inputs = r.summary.value("inputs", nlohmann::json::object());
+  // The mesh and the run's scene (its variants change fixed points and the scene's name).
   r.mesh_path = mesh_path_given;
   if (r.mesh_path.empty()) {
     if (!inputs.contains("mesh") || !inputs["mesh"].is_string())
@@ -89,15 +93,9 @@ RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_g
 
 std::string redraw_result_svg(const std::string& dir, const RedrawOptions& options,
                               RedrawInfo* info) {
-  const std::string summary_path = (fs::path(dir) / "summary.json").string();
-  nlohmann::json summary;
-  try {
-    summary = nlohmann::json::parse(read_text_file(summary_path));
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
-  }
-  const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
   const RunInputs run_inputs = load_run_inputs(dir, options.mesh_path);
+  const nlohmann::json& summary = run_inputs.summary;
+  const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
   const Mesh& mesh = run_inputs.mesh;
   const std::string& mesh_path = run_inputs.mesh_path;
   const SceneDef& scene = run_inputs.scene;

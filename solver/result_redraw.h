@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "mesh.h"
 #include "result_picture.h"
 #include "scene.h"
@@ -44,8 +46,12 @@ struct RunInputs {
   std::string mesh_path;
   Mesh mesh;
   SceneDef scene;
+  nlohmann::json summary;  ///< the run's summary.json, as read
 };
 RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path);
+
+/// RUN/summary.json parsed; InputError naming it when it is missing or not JSON.
+nlohmann::json read_run_summary(const std::string& dir);
 
 /// (time s, step) of every frame listed in RUN/frames.pvd, in order. InputError if unreadable.
 std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& dir);

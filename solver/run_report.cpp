@@ -153,13 +153,7 @@ void write_run_history(const std::string& dir, const std::vector<StepRecord>& ro
 
 ReportFiles make_run_report(const std::string& dir) {
   ReportFiles files;
-  const std::string summary_path = (fs::path(dir) / "summary.json").string();
-  nlohmann::json summary;
-  try {
-    summary = nlohmann::json::parse(read_text(summary_path));
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(summary_path, "", std::string("not JSON: ") + e.what());
-  }
+  const nlohmann::json summary = read_run_summary(dir);
 
   // Measure points' histories, mm.
   const std::string history_path = (fs::path(dir) / "history.csv").string();

@@ -18,6 +18,14 @@
 //                    (solver/kirsch_opening.h), the hoop stress along the wall against Kirsch
 //                    (RMS over the wall points, relative to its peak); mesh size at cover order
 //                    n = 0, 1, 2.
+//  joint_wave        a 1 MPa half-sine pulse crossing one joint of constant springs (kn =
+//                    1.37 GPa/m, τ = 2 ms; solver/joint_wave.h, data/joint_wave.json): the
+//                    transmitted displacement history against the displacement-discontinuity
+//                    model (RMS relative to its peak), the peak particle velocity shown; mesh
+//                    size, time step. Also writes OUTDIR/joint_wave_tables.md (the read-off of
+//                    joint_wave.h for τ = 2 and 0.5 ms at h = 0.5 and 0.25 m) and
+//                    OUTDIR/joint_wave.svg (particle velocity before and after the joint, the
+//                    runs against the closed form; docs/joint-studies.md).
 // The cover order axis (docs/higher-order-covers.md): the cantilever and the Kirsch opening at
 // n = 0, 1, 2 across mesh sizes, the sliding block (a joint case) at n = 0, 1, 2. A run the
 // solver refuses at an order (exit-2 input error naming /solver/cover_order) is listed as not
@@ -49,6 +57,7 @@
 #include "cover_cutter.h"
 #include "error.h"
 #include "joint_specimen.h"
+#include "joint_wave.h"
 #include "kirsch_opening.h"
 #include "scene.h"
 #include "svg_plot.h"
@@ -204,6 +213,9 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
   nmm::JointSetDef js;
   js.name = "interface";
   js.friction_deg = 20;
+  // DDA's point penalty (N/m per contact point), stated in Shi's multiples of E as DDA codes do.
+  js.normal.model = nmm::NormalModel::penalty;
+  js.shear.model = nmm::ShearModel::penalty;
   js.normal.kn = kn_over_e * E;
   js.shear.ks = kn_over_e * E / 2.5;
   s.joint_sets.push_back(js);
@@ -310,13 +322,13 @@ Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool wan
   });
 }
 
-// The joint's constant springs (the scene's kn, ks beside the law's parameters) instead of its
-// laws: the setting "contact_model" (value 0 constant, 1 the joint laws).
+// The joint's constant stiffnesses (the scene's kn, ks in Pa/m beside the law's parameters)
+// instead of its laws: the setting "contact_model" (value 0 constant, 1 the joint laws).
 std::string use_constant_springs(SceneDef& s) {
   auto& js = s.joint_sets[0];
   js.normal.model = nmm::NormalModel::constant;
   js.shear.model = nmm::ShearModel::constant;
-  return "constant kn = " + num(js.normal.kn) + " N/m, ks = " + num(js.shear.ks) + " N/m, ";
+  return "constant kn = " + num(js.normal.kn) + " Pa/m, ks = " + num(js.shear.ks) + " Pa/m, ";
 }
 
 Row bandis_barton(const SceneDef& joint, const std::string& setting, double h, double dt,
@@ -359,7 +371,8 @@ Row hyperbolic_shear(const SceneDef& joint, const std::string& setting, double h
 }
 
 // ---- tight joint: what a penalty spring costs in accuracy ------------------------------------
-// The single-joint specimen with constant springs kn = factor·E·(1 m) standing for a tight joint
+// The single-joint specimen with DDA's point penalty kn = factor·E·(1 m) per contact point
+// (model "penalty") standing for a tight joint
 // (no closure of its own), σn = 5 MPa. The exact shortening between (1, 0.5) and (1, 1.5) is
 // that of the intact rock, σn·(1 m)/E (uniform stress; constant-strain elements represent it
 // exactly); the penalty springs add their own compliance, N/kn per contact, which a stiffer kn
@@ -368,7 +381,8 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   const double sigma = 5e6, e = joint.materials[0].young;
   SceneDef s = joint;
   auto& js = s.joint_sets[0];
-  use_constant_springs(s);
+  js.normal.model = nmm::NormalModel::penalty;
+  js.shear.model = nmm::ShearModel::penalty;
   js.normal.kn = kn_over_e * e;
   js.shear.ks = js.normal.kn / 2.5;
   s.measure_points = {{1.0, 1.5}, {1.0, 0.5}};
@@ -385,6 +399,102 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
     return status;
   });
   return r;
+}
+
+// ---- a wave crossing a joint (solver/joint_wave.h) -----------------------------------------
+// The bar of data/joint_wave.json at mesh size h and time step Δt. The error is the RMS of the
+// transmitted displacement history against the closed form, relative to its peak; the table's
+// value column is the peak particle velocity after the joint.
+Row joint_wave(const std::string& setting, double h, double dt) {
+  nmm::solve::JointWaveSetup w;
+  w.h = h;
+  w.dt = dt;
+  Row r;
+  r.case_name = "joint_wave";
+  r.setting = setting;
+  r.value = setting == "mesh_size" ? h : dt;
+  r.value_text = "h = " + num(h, "%.6g") + " m, Δt = " + num(dt) + " s";
+  const nmm::solve::JointWaveClosedForm cf(w);
+  r.exact = cf.transmitted_peak() / cf.impedance();
+  const SceneDef s = nmm::solve::joint_wave_scene(w);
+  r.out = timed_run(s, "joint wave", [&](nmm::solve::TimeStepper& st, Outcome& o) {
+    const nmm::solve::JointWaveHistory hist =
+        nmm::solve::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
+    const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+    o.computed = e.peak_velocity;
+    o.own_error = e.after_rms;
+    return hist.status;
+  });
+  return r;
+}
+
+// The wave against the closed form in detail, for τ = 2 ms (kn = 1.37 GPa/m) and 0.5 ms
+// (5.48 GPa/m) at h = 0.5 and 0.25 m (--quick: 0.5 m), Δt = 25 µs: joint_wave_tables.md (the
+// read-off of solver/joint_wave.h: RMS of the displacement histories, half-rise time and peak
+// particle velocity after the joint) and joint_wave.svg (particle velocity before and after the
+// joint at h = 0.5 m, the runs as dots against the closed form as lines).
+void write_wave_outputs(const std::string& out, bool quick) {
+  nmm::PlotSpec spec{"A half-sine pulse crossing a joint: nmm (dots) against the "
+                     "displacement-discontinuity model (lines)",
+                     "time, ms", "particle velocity, m/s", false, false, {}};
+  std::ostringstream md;
+  md << "<!-- made by nmm-study" << (quick ? " --quick" : "") << " -->\n\n"
+     << "### joint_wave: the runs against the closed form\n\n"
+     << "| run | incident alone, RMS | incident + reflected, RMS | transmitted, RMS | "
+        "half-rise, ms (closed form) | half-rise error, ms | peak velocity, mm/s (closed form) | "
+        "peak velocity error |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  const std::vector<std::pair<double, std::string>> joints = {{1.37e9, "#1f77b4"},
+                                                             {5.48e9, "#d62728"}};
+  for (std::size_t j = 0; j < joints.size(); ++j)
+    for (double h : quick ? std::vector<double>{0.5} : std::vector<double>{0.5, 0.25}) {
+      nmm::solve::JointWaveSetup w;
+      w.kn = joints[j].first;
+      w.h = h;
+      const nmm::solve::JointWaveClosedForm cf(w);
+      const SceneDef s = nmm::solve::joint_wave_scene(w);
+      const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
+      const nmm::solve::JointWaveHistory hist = nmm::solve::run_joint_wave(m, s);
+      if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
+      const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+      md << "| τ = " << num(1e3 * cf.tau(), "%.2g") << " ms (kn = " << num(1e-9 * w.kn, "%.3g")
+         << " GPa/m), h = " << num(h) << " m, Δt = " << num(1e6 * w.dt) << " µs | "
+         << num(100 * e.incident_rms, "%.2f") << " % | " << num(100 * e.before_rms, "%.2f") << " % | "
+         << num(100 * e.after_rms, "%.2f") << " % | "
+         << num(1e3 * (e.half_rise_exact + e.half_rise), "%.3f") << " ("
+         << num(1e3 * e.half_rise_exact, "%.3f") << ") | " << num(1e3 * e.half_rise, "%+.3f") << " | "
+         << num(1e3 * e.peak_velocity, "%.1f") << " (" << num(1e3 * e.peak_velocity_exact, "%.1f")
+         << ") | " << num(100 * e.peak_velocity_error(), "%+.2f") << " % |\n";
+      if (h != 0.5) continue;
+      const std::string tau = "τ = " + num(1e3 * cf.tau(), "%.2g") + " ms";
+      const std::string kn = "kn = " + num(1e-9 * w.kn, "%.3g") + " GPa/m";
+      auto add_point = [&](double x, const std::vector<double>& u, const std::string& where,
+                           const std::string& colour) {
+        nmm::PlotSeries run{"nmm, " + where + ", " + kn, {}, {}, colour, false, true};
+        nmm::PlotSeries exact{"closed form, " + where + ", " + tau, {}, {}, colour, true, false};
+        for (std::size_t k = 1; k < hist.time.size(); ++k) {
+          const double t = 0.5 * (hist.time[k] + hist.time[k - 1]);
+          if (t > cf.valid_until(x)) break;
+          if (k % 2 == 0) {
+            exact.x.push_back(1e3 * t);
+            exact.y.push_back(cf.velocity(x, t));
+          }
+          if (k % 8 == 0) {  // every 8th step: the dots stay apart
+            run.x.push_back(1e3 * t);
+            run.y.push_back((u[k] - u[k - 1]) / (hist.time[k] - hist.time[k - 1]));
+          }
+        }
+        spec.series.push_back(exact);
+        spec.series.push_back(run);
+      };
+      // Before the joint: the incident wave, the same for both joints, and the reflection off
+      // the softer one (drawn once).
+      if (j == 0)
+        add_point(w.before_x, hist.before, "x = " + num(w.before_x) + " m (incident, reflected)",
+                  "#7f7f7f");
+      add_point(w.after_x, hist.after, "x = " + num(w.after_x) + " m (transmitted)", joints[j].second);
+    }
+  nmm::write_svg_plot(spec, out + "/joint_wave.svg");
+  nmm::write_file_atomically(out + "/joint_wave_tables.md", md.str());
 }
 
 // ---- outputs -------------------------------------------------------------------------------
@@ -404,6 +514,7 @@ std::string unit_of(const std::string& case_name) {
          : case_name == "sliding_block" ? "slide, m"
          : case_name == "bandis_barton" ? "closure, mm"
          : case_name == "tight_joint"   ? "shortening, mm"
+         : case_name == "joint_wave"    ? "peak particle velocity after the joint, mm/s"
                                         : "slip, mm";
 }
 
@@ -439,7 +550,9 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     md << "\n### " << c << "\n\nexact: " << num(shown(c, first->exact), "%.6g") << " ("
        << unit_of(c) << ")\n\n"
        << "| setting | run | " << unit_of(c) << " | "
-       << (c == "kirsch" ? "hoop RMS error along the wall" : "signed error")
+       << (c == "kirsch"       ? "hoop RMS error along the wall"
+           : c == "joint_wave" ? "transmitted u RMS error"
+                               : "signed error")
        << " | wall s (mesh + run) | unknowns | steps | step cuts | contact solves |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Row& r : rows) {
@@ -524,11 +637,13 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
       {{"bandis_barton", "contact_model"}, "closure model"},
       {{"hyperbolic_shear", "contact_model"}, "shear model"},
       {{"tight_joint", "penalty"}, "tight joint kn"},
+      {{"joint_wave", "mesh_size"}, "joint wave h"},
+      {{"joint_wave", "time_step"}, "joint wave Δt"},
   };
   const std::vector<std::string> colours = {"#1f77b4", "#393b79", "#6b6ecf", "#d62728", "#ff7f0e",
                                             "#2ca02c", "#9467bd", "#17becf", "#8c564b", "#e377c2",
                                             "#7f7f7f", "#bcbd22", "#e7ba52", "#ad494a",
-                                            "#637939", "#843c39"};
+                                            "#637939", "#000000", "#c51b8a"};
   nmm::PlotSpec spec{"Error against wall time, cheapest setting first",
                      "wall time, s (log)", "relative error (log)", true, true, {}};
   for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -556,7 +671,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> only;
   app.add_option("--only", only,
                  "run only these cases (cantilever, kirsch, sliding_block, bandis_barton, "
-                 "hyperbolic_shear, tight_joint)");
+                 "hyperbolic_shear, tight_joint, joint_wave)");
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-study"); status >= 0)
     return status;
   try {
@@ -627,6 +742,12 @@ int main(int argc, char** argv) {
     }
     if (want("tight_joint"))
       for (double k : quick ? V{1, 20, 1000} : V{1, 5, 20, 100, 1000, 1e4}) add(tight_joint(joint, k));
+
+    if (want("joint_wave")) {
+      for (double h : quick ? V{0.5} : V{1, 0.5, 0.25}) add(joint_wave("mesh_size", h, 2.5e-5));
+      for (double dt : quick ? V{} : V{1e-4, 5e-5, 2.5e-5, 1.25e-5}) add(joint_wave("time_step", 0.5, dt));
+      write_wave_outputs(out, quick);
+    }
 
     nmm::write_file_atomically(out + "/accuracy_time.csv", csv_text(rows));
     write_plot(rows, out + "/accuracy_time.svg");

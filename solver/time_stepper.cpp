@@ -146,6 +146,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
   indicator_ = EquilibriumIndicator(mesh, scene, space_);
   contacts_.use_space(space_);
+  contacts_.set_elastic_predictor(!step_inertia());
   elem_mat_.resize(ne);
   for (std::size_t e = 0; e < ne; ++e) {
     const std::int32_t body = mesh.element_body[e];
@@ -1076,8 +1077,13 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["max_penetration"] = s_.max_penetration;
   summary["max_contacts_at_closure_cap"] = s_.max_capped;
   const ContactSet::Events& ev = contacts_.events;
+  const ContactSet::JointStresses joint = contacts_.joint_stresses();
   summary["contacts"] = {{"at_end", contacts_.contacts().size()},
                          {"closed_at_end", contacts_.closed_count()},
+                         // The joint at the end: closed length (m), largest stresses (Pa).
+                         {"closed_length_at_end", joint.closed_length},
+                         {"max_normal_stress_at_end", joint.max_normal_stress},
+                         {"max_shear_stress_at_end", joint.max_shear_stress},
                          {"pairs_tested", contacts_.detection_stats().pairs_tested},
                          // State changes in all iterations (attempts that were cut included):
                          // many "settled" ones mean contacts chattering at zero gap or slip.

@@ -24,8 +24,10 @@ nlohmann::json base_scene(const std::string& name, double dip, double phi_deg, d
                       {{"friction_deg", phi_deg},
                        {"cohesion", cohesion},
                        {"tensile_strength", 0},
-                       {"normal", {{"model", "constant"}, {"kn", 1e11}, {"kni", 2e10}, {"vm", 2e-4}}},
-                       {"shear", {{"model", "constant"}, {"ks", 4e10}, {"ksi", 1e10}, {"rf", 0.9}}}}}};
+                       // Constant joint stiffness in Pa/m, kn = 10·E/h (limit equilibrium has a
+                       // rigid plane: any stiff joint will do), ks = kn/2.5; as data/planar_slide.json.
+                       {"normal", {{"model", "constant"}, {"kn", 2e11}, {"kni", 2e10}, {"vm", 2e-4}}},
+                       {"shear", {{"model", "constant"}, {"ks", 8e10}, {"ksi", 1e10}, {"rf", 0.9}}}}}};
   s["interface_set"] = "plane";
   s["mesh"] = {{"size", 0.5}};
   const double dt = 2e-3;

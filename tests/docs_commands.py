@@ -59,6 +59,9 @@ SKIP = [
      "runs the profile on a single-node Slurm when run as root"),
     ("fuzzing.md", r"^build/bin/fuzz_cli --seed 3 --scenes 15000 ",
      "the release fuzzing run takes hours; CTest fuzz.cli_short runs the short one"),
+    ("fuzzing.md", r"^bash tests/fuzz/libfuzzer\.sh --campaign ",
+     "a random campaign of 10 minutes per target, different on every run; .ci/run replays the "
+     "fixed seed inputs with a fixed seed (the deterministic form of the same script)"),
     ("guide.md", r"^bash \.ci/setup",
      "installs Debian packages (root, network) and builds: the build this test runs in"),
     ("guide.md", r"--profile workflow/profiles/slurm",

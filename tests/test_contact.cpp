@@ -17,7 +17,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
-// Penalty 20·E (Shi recommends 10 to 100·E): kn = 2e11 N/m, ks = kn/2.5 with E = 10 GPa.
+// DDA's point penalty 20·E (model "penalty"; Shi recommends 10 to 100·E): kn = 2e11 N/m per contact
+// point, ks = kn/2.5 with E = 10 GPa.
 SceneDef contact_scene(double h, double friction_deg) { return test::interface_scene(h, friction_deg); }
 
 using test::box;

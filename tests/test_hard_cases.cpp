@@ -50,13 +50,16 @@ constexpr double kE = 1e10;  // Pa, the rock's Young's modulus
 // these cases then fail.
 constexpr double kRestSpeed = 1e-5;
 
-// A frictional interface (φ = 30°) with kn = factor·E·(1 m), ks = kn/2.5.
+// A frictional interface (φ = 30°) with DDA's point penalty kn = factor·E·(1 m) per contact point
+// (model "penalty": the cases are stated in Shi's multiples of E), ks = kn/2.5.
 SceneDef contact_scene(double h, double kn_factor) {
   SceneDef s;
   s.materials.push_back({"rock", 2650, kE, 0.25});
   JointSetDef js;
   js.name = "interface";
   js.friction_deg = 30;
+  js.normal.model = NormalModel::penalty;
+  js.shear.model = ShearModel::penalty;
   js.normal.kn = kn_factor * kE;
   js.shear.ks = js.normal.kn / 2.5;
   s.joint_sets.push_back(js);

@@ -426,6 +426,8 @@ TEST(RockSetups, BlockOnInclineUnderSineBaseAccelerationFollowsNewmark) {
   JointSetDef js;
   js.name = "interface";
   js.friction_deg = 30;
+  js.normal.model = NormalModel::penalty;  // DDA's 20·E point penalty, as the sliding-block problems
+  js.shear.model = ShearModel::penalty;
   js.normal.kn = 2e11;
   js.shear.ks = 8e10;
   s.joint_sets = {js};

@@ -28,10 +28,12 @@ const char* const kInterfaceExample = R"({
   "joint_sets": {
     "bedding": {
       "friction_deg": 20, "cohesion": 0, "tensile_strength": 0,          // Pa
-      "normal": { "model": "constant", "kn": 5e11 },                     // N/m per contact point
+      "normal": { "model": "constant", "kn": 5e10 },                     // Pa/m: stress per closure
       //    or { "model": "bandis_barton", "kni": 1.5e10, "vm": 2.3e-4 } // Pa/m, m
-      "shear":  { "model": "constant", "ks": 2e11 }                      // N/m per contact point
+      //    or { "model": "penalty", "kn": 5e11 }                        // DDA's point penalty, N/m per contact point
+      "shear":  { "model": "constant", "ks": 2e10 }                      // Pa/m: stress per shear displacement
       //    or { "model": "hyperbolic", "ksi": 1e10, "rf": 0.9 }         // Pa/m, –
+      //    or { "model": "penalty", "ks": 2e11 }                        // N/m per contact point
     }
   },
   "bodies": [ { "material": "rock",
@@ -67,9 +69,9 @@ TEST(Scene, InterfaceExampleParsesIntoEveryField) {
   EXPECT_EQ(js.cohesion, 0);
   EXPECT_EQ(js.tensile_strength, 0);
   EXPECT_EQ(js.normal.model, NormalModel::constant);
-  EXPECT_EQ(js.normal.kn, 5e11);
+  EXPECT_EQ(js.normal.kn, 5e10);
   EXPECT_EQ(js.shear.model, ShearModel::constant);
-  EXPECT_EQ(js.shear.ks, 2e11);
+  EXPECT_EQ(js.shear.ks, 2e10);
 
   ASSERT_EQ(s.bodies.size(), 1u);
   EXPECT_EQ(s.bodies[0].material, 0);
@@ -183,6 +185,22 @@ TEST(Scene, LargeMeshSizeIsFine) {
   EXPECT_EQ(s.mesh_size, 1e7);
 }
 
+// "penalty" is DDA's point spring (N/m per contact point); "constant" the joint's stiffness (Pa/m).
+TEST(Scene, PenaltyIsANormalAndShearModel) {
+  const SceneDef s = parse_scene(R"({
+    "materials": { "rock": { "density": 2650, "young": 1e10, "poisson": 0.25 } },
+    "joint_sets": { "dda": { "friction_deg": 30, "normal": { "model": "penalty", "kn": 2e11 },
+                             "shear": { "model": "penalty", "ks": 8e10 } } },
+    "bodies": [ { "material": "rock", "outer": [[0,0],[1,0],[0,1]] } ],
+    "mesh": { "size": 0.5 }
+  })",
+                                 "penalty.json");
+  EXPECT_EQ(s.joint_sets[0].normal.model, NormalModel::penalty);
+  EXPECT_EQ(s.joint_sets[0].normal.kn, 2e11);
+  EXPECT_EQ(s.joint_sets[0].shear.model, ShearModel::penalty);
+  EXPECT_EQ(s.joint_sets[0].shear.ks, 8e10);
+}
+
 // ---- bad scenes ---------------------------------------------------------------------------------
 
 // A valid scene that the table below breaks, one mistake at a time, with a JSON merge patch.
@@ -259,10 +277,15 @@ const BadCase kBadCases[] = {
      "unknown key \"rff\" (allowed: ks, ksi, model, rf)"},
     {R"({"joint_sets": {"bedding": {"normal": {"model": "linear"}}}})",
      "/joint_sets/bedding/normal/model",
-     "unknown normal model \"linear\" (known: constant, bandis_barton)"},
+     "unknown normal model \"linear\" (known: constant, bandis_barton, penalty)"},
     {R"({"joint_sets": {"bedding": {"shear": {"model": "mohr"}}}})",
      "/joint_sets/bedding/shear/model",
-     "unknown shear model \"mohr\" (known: constant, hyperbolic)"},
+     "unknown shear model \"mohr\" (known: constant, hyperbolic, penalty)"},
+    // DDA's point penalty: a stiffness, in (0, 1e17] N/m, and the shear needs ks.
+    {R"({"joint_sets": {"bedding": {"normal": {"model": "penalty", "kn": -1}}}})",
+     "/joint_sets/bedding/normal/kn", "must be in (0, 1e+17] (got -1)"},
+    {R"({"joint_sets": {"bedding": {"shear": {"model": "penalty", "ks": null}}}})",
+     "/joint_sets/bedding/shear", "missing required key \"ks\""},
     {R"({"joint_sets": {"bedding": {"normal": {"model": null}}}})", "/joint_sets/bedding/normal",
      "missing required key \"model\""},
     // Names that must refer to something defined.
