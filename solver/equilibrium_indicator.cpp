@@ -37,7 +37,7 @@
 //   dynamic: at_rest when the largest velocity < 1e-4 m/s, as UDEC users judge a dynamic run.
 //            The ratio is reported but not judged: in a dynamic run it is the inertia of the
 //            elastic vibration the scheme keeps (R ≈ m ω v: data/jointed_slope.json at 1 s rings
-//            at 3e-5 m/s with a ratio of 1.5e-3, an amplitude v/ω of a few 1e-7 m), which says
+//            at 7.7e-5 m/s with a ratio of 1.3e-4, an amplitude v/ω below 1e-6 m), which says
 //            nothing about whether blocks still move. A block sliding at constant speed has no
 //            unbalanced force but is moving: the velocity catches it. Why 1e-4 m/s: it is the
 //            velocity an unbalanced ratio at UDEC's limit (a ≈ 1e-5 g) builds up in 1 s, and
