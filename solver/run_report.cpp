@@ -285,6 +285,21 @@ ReportFiles make_run_report(const std::string& dir) {
           "</span>, simulated time " + format_engineering(number_at("simulated_time"), "s") +
           " in " + summary_cell(summary.value("steps_completed", nlohmann::json(0)), "").first +
           " steps, wall " + format_engineering(number_at("wall_seconds"), "s") + "</p>\n";
+  // The equilibrium verdict beside the status, with the figure it was judged by (solver.md,
+  // Equilibrium indicators): "ok" says the run reached its end, not that it is at rest.
+  if (const auto eq = summary.find("equilibrium"); eq != summary.end() && eq->is_object()) {
+    const std::string verdict = eq->value("verdict", std::string());
+    const bool by_velocity = eq->value("criterion", std::string()).rfind("max_velocity", 0) == 0;
+    const double figure = eq->value(by_velocity ? "max_velocity_m_s" : "max_unbalanced_ratio", 0.0);
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.2g", figure);
+    if (!verdict.empty())
+      html += "<p>equilibrium: <span class=\"" + std::string(verdict == "at_rest" ? "ok" : "bad") +
+              "\">" + (verdict == "at_rest" ? "at rest" : xml_escape(verdict)) + "</span> (" +
+              (by_velocity ? "largest velocity " + format_engineering(figure, "m/s")
+                           : "max unbalanced force ratio " + std::string(ratio)) +
+              ")</p>\n";
+  }
   if (status_is_failure(status)) {
     html += "<p class=\"bad\">" + xml_escape(status) + "</p>\n";
     // The likely cause needs the run's mesh and scene; a folder whose mesh has moved gets the

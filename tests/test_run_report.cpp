@@ -106,7 +106,11 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
                                            "contacts": {"pairs_tested": 3694546},
                                            "timings": {"solves": 0.000123},
                                            "max_penetration": 3.16e-6,
-                                           "effects": ["elasticity", "gravity"]})";
+                                           "effects": ["elasticity", "gravity"],
+                                           "equilibrium": {"verdict": "moving",
+                                             "criterion": "max_velocity_m_s < 0.0001",
+                                             "max_velocity_m_s": 0.0823,
+                                             "max_unbalanced_ratio": 1.1}})";
   std::ofstream(dir / "history.csv") << "step,time,point,x,y,ux,uy\n0,0,0,1,1,0,0\n"
                                         "1,0.001,0,1,0.999,0,-0.001\n2,0.002,0,1,0.998,0,-0.002\n";
   write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3, 0.2, 0.01, 0.3},
@@ -138,6 +142,10 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
   EXPECT_NE(html.str().find("<tr><th>gravity</th><td class=\"n\">-6 J/m</td></tr>"), std::string::npos)
       << html.str();
   EXPECT_NE(html.str().find("simulated time 2 ms in 2 steps, wall 5.58 s"), std::string::npos);
+  // The verdict beside the status, by the figure its criterion names (a dynamic run: velocity).
+  EXPECT_NE(html.str().find("equilibrium: <span class=\"bad\">moving</span> (largest velocity 82.3 mm/s)"),
+            std::string::npos)
+      << html.str();
   EXPECT_NE(html.str().find("<th class=\"group\" colspan=\"2\">contacts</th>"), std::string::npos);
   EXPECT_NE(html.str().find("<th class=\"sub\">pairs tested</th><td class=\"n\">3\u202f694\u202f546</td>"),
             std::string::npos);
