@@ -61,10 +61,13 @@ done
 # Address-space randomisation off: with it on, the coverage of the first inputs differs by a
 # feature now and then (something in the instrumented code depends on where the heap or the
 # libraries land), and the whole run takes another path. Without it a replay repeats exactly.
-norandom=(setarch "$(uname -m)" -R)
+# The same for the environment: clang's libFuzzer instrumentation on Linux counts stack depth
+# as coverage, and the depth a frame reaches shifts with where the stack starts, which moves
+# with the size of the environment (CI=true alone changed a replay's new units 1534 -> 1445).
+norandom=(env -i PATH=/usr/bin:/bin setarch "$(uname -m)" -R)
 if [ $mode = replay ] && ! "${norandom[@]}" true 2>/dev/null; then
   echo "libfuzzer.sh: setarch -R is not permitted here; the replay may differ between runs" >&2
-  norandom=()
+  norandom=(env -i PATH=/usr/bin:/bin)
 fi
 [ $mode = campaign ] && norandom=()
 
