@@ -1,5 +1,5 @@
 // Definition of a generated (stochastic) joint set: what a `joint_sets.NAME.generate` block says
-// (issue 14). Plain data; the sampling itself lives in preprocess/joint_network.h.
+//. Plain data; the sampling itself lives in preprocess/joint_network.h.
 //
 // Model (2D traces): a set has a mean orientation θ̄ (degrees, counter-clockwise from +x, the
 // trace direction; 180° periodic), a dispersion (von Mises κ on the doubled angle, or a uniform

@@ -1,5 +1,5 @@
 // The tolerances of contact detection and of the contact springs, in one place with the reason
-// for each (issue 11). Lengths are relative to the mesh size h (what the geometry of one element
+// for each. Lengths are relative to the mesh size h (what the geometry of one element
 // is measured in) or to the model half-size w0 (Shi's scale for displacements and gaps); the
 // rest are cosines and fractions. The convergence tolerances of the step's contact problem
 // (residual, friction fixed point) belong to the solve: solver/contact_solve.cpp.

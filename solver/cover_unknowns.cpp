@@ -1,4 +1,4 @@
-// Sliver covers share the unknowns of a neighbour (issue 6: joints passing next to mesh nodes).
+// Sliver covers share the unknowns of a neighbour (joints passing next to mesh nodes).
 //
 // A joint passing a distance t inside the edge of a mathematical cover's star leaves, on the far
 // side, a physical cover whose support is a strip of width t along the star's edge, where its
