@@ -1,4 +1,4 @@
-// A compressive half-sine pulse crossing one joint of constant springs (solver/joint_wave.h):
+// A compressive half-sine pulse crossing one joint of constant springs (studies/joint_wave.h):
 // the incident and transmitted waves against the displacement-discontinuity model's closed form
 // (Schoenberg 1980; Pyrak-Nolte, Myer & Cook 1990), for joint time constants τ = Z/(2kn) of
 // 2 ms and 0.5 ms, at two mesh sizes. Joint springs counted per contact point instead of per

@@ -148,7 +148,7 @@ TEST(RockSetups, InsituStressOnRollersStaysStill) {
   }
 }
 
-// Kirsch (solver/kirsch_opening.h: the scene, the closed form and the wall read-off), quarter
+// Kirsch (studies/kirsch_opening.h: the scene, the closed form and the wall read-off), quarter
 // model with rollers, outer sides at b = 20a loaded by the in-situ traction, the core a second
 // body excavated at the start of a static run and released at once.
 struct KirschErrors {

@@ -15,11 +15,11 @@
 //  tight_joint       the same specimen with penalty springs standing for a tight joint: the
 //                    shortening across it against the intact rock's σn·(1 m)/E; penalty kn.
 //  kirsch            a circular opening excavated under K0 = 0.5 in-situ stress
-//                    (solver/kirsch_opening.h), the hoop stress along the wall against Kirsch
+//                    (studies/kirsch_opening.h), the hoop stress along the wall against Kirsch
 //                    (RMS over the wall points, relative to its peak); mesh size at cover order
 //                    n = 0, 1, 2.
 //  joint_wave        a 1 MPa half-sine pulse crossing one joint of constant springs (kn =
-//                    1.37 GPa/m, τ = 2 ms; solver/joint_wave.h, data/joint_wave.json): the
+//                    1.37 GPa/m, τ = 2 ms; studies/joint_wave.h, data/joint_wave.json): the
 //                    transmitted displacement history against the displacement-discontinuity
 //                    model (RMS relative to its peak), the peak particle velocity shown; mesh
 //                    size, time step. Also writes OUTDIR/joint_wave_tables.md (the read-off of
@@ -255,7 +255,7 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
   return r;
 }
 
-// ---- Kirsch opening (solver/kirsch_opening.h) -------------------------------------------------
+// ---- Kirsch opening (studies/kirsch_opening.h) -------------------------------------------------
 // K0 = 0.5, b = 20a, the core excavated at the start of one static step. The error is the RMS
 // of the hoop stress along the wall against Kirsch, relative to its peak (3p_y − p_x = 25 MPa):
 // each wall element's stress field at the ends of its wall edges, the same read-off at every
@@ -401,7 +401,7 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   return r;
 }
 
-// ---- a wave crossing a joint (solver/joint_wave.h) -----------------------------------------
+// ---- a wave crossing a joint (studies/joint_wave.h) -----------------------------------------
 // The bar of data/joint_wave.json at mesh size h and time step Δt. The error is the RMS of the
 // transmitted displacement history against the closed form, relative to its peak; the table's
 // value column is the peak particle velocity after the joint.
@@ -430,7 +430,7 @@ Row joint_wave(const std::string& setting, double h, double dt) {
 
 // The wave against the closed form in detail, for τ = 2 ms (kn = 1.37 GPa/m) and 0.5 ms
 // (5.48 GPa/m) at h = 0.5 and 0.25 m (--quick: 0.5 m), Δt = 25 µs: joint_wave_tables.md (the
-// read-off of solver/joint_wave.h: RMS of the displacement histories, half-rise time and peak
+// read-off of studies/joint_wave.h: RMS of the displacement histories, half-rise time and peak
 // particle velocity after the joint) and joint_wave.svg (particle velocity before and after the
 // joint at h = 0.5 m, the runs as dots against the closed form as lines).
 void write_wave_outputs(const std::string& out, bool quick) {
