@@ -33,7 +33,8 @@
 
 #include "bench_common.h"
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "brick_wall.h"
+#include "scene_pieces.h"
 #include "time_stepper.h"
 
 namespace {
@@ -63,7 +64,7 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   js.normal.kn = 2e11;  // Pa/m (constant joint stiffness, 20·E/h at h = 1 m)
   js.shear.ks = 8e10;   // Pa/m
   s.joint_sets.push_back(js);
-  s.bodies.push_back(nmm::test::box(0, 0, side, side));
+  s.bodies.push_back(nmm::reference::box(0, 0, side, side));
   s.mesh_size = h;
   s.has_gravity = o.gravity;
   s.gravity = {0, o.gravity ? -9.81 : 0.0};
@@ -75,7 +76,7 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   for (int i = 0; i < o.loads; ++i)
     s.loads.push_back({{0.1 + (side - 0.2) * i / std::max(o.loads - 1, 1), side - 0.1}, {1e3, -1e4}});
   if (o.joint_outside) s.joints.push_back({0, {{-5, 0}, {-5, side}}});
-  if (o.far_body) s.bodies.push_back(nmm::test::box(side + 50, 0, side + 51, 1));
+  if (o.far_body) s.bodies.push_back(nmm::reference::box(side + 50, 0, side + 51, 1));
   if (side_out) *side_out = side;
   return s;
 }
@@ -319,7 +320,7 @@ int main(int argc, char** argv) {
   write(csv, c1);
   {
     const int n = quick ? 5 : 10;
-    const nmm::SceneDef s = nmm::test::brick_wall(n, true);  // the wall of contact_bench
+    const nmm::SceneDef s = nmm::reference::brick_wall(n, true);  // the wall of contact_bench
     char name[64];
     std::snprintf(name, sizeof name, "brick wall N = %d", n);
     Timed wall(s, "c", name, quick ? 10 : 20);

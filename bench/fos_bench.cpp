@@ -3,7 +3,7 @@
 //
 //   fos_bench [--csv FILE] [--repeats N]
 //
-// Problem: the block on a 30° plane with φ = 35° (studies/fos_reference.h; F = 1.2128), trials of
+// Problem: the block on a 30° plane with φ = 35° (reference/slides.h; F = 1.2128), trials of
 // 0.4 s (200 steps). For each worker count k ∈ {1, 2} and tolerance tol ∈ {0.1, 0.01, 0.001} it
 // runs nmm-fos (threads engine; every trial is an nmm-solve process) and records the wall time,
 // the number of trials and rounds, the error against the closed form, and the trials spent in the
@@ -25,7 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "fos_reference.h"
+#include "slides.h"
 
 namespace fs = std::filesystem;
 
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   }
   const fs::path work = fs::temp_directory_path() / ("fos_bench_" + std::to_string(getpid()));
   fs::create_directories(work);
-  const auto ref = nmm::studies::block_on_plane(30, 35);
+  const auto ref = nmm::reference::block_on_plane(30, 35);
   std::ofstream(work / "scene.json") << ref.scene.dump(1);
   const std::string mesh = (work / "scene.nmm").string();
   if (std::system((std::string(NMM_PREPROCESS) + " " + (work / "scene.json").string() + " -o " + mesh +

@@ -4,7 +4,7 @@
 //
 //   matrix_bench [--sizes 10,20,30,50] [--reps 3] [--csv FILE]
 //
-// For each staggered brick wall of N × N bricks (tests/scene_builders.h, the wall of
+// For each staggered brick wall of N × N bricks (reference/brick_wall.h, the wall of
 // contact_bench) the wall settles 3 static steps, so that its pattern holds the contact coupling
 // of a settling wall (one 12 × 12 block per element pair that has had a contact: docs/contact.md,
 // "Sparse pattern"; until issue 11's speed work also every pair within the search distance, which
@@ -38,7 +38,7 @@
 
 #include "bench_common.h"
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "brick_wall.h"
 #include "time_stepper.h"
 
 namespace {
@@ -92,7 +92,7 @@ Ordered factorise(const Sparse& a, int ordering, int reps) {
 
 // The wall's outline as one continuum: base and bricks' extent [0, n + ½] × [0, n/2], no joints.
 nmm::SceneDef monolith(int n, double h) {
-  nmm::SceneDef s = nmm::test::brick_wall(n, false);
+  nmm::SceneDef s = nmm::reference::brick_wall(n, false);
   s.name = "monolith " + std::to_string(n);
   s.bodies.clear();
   nmm::BodyDef b;
@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
   } orderings[] = {{"amd", CHOLMOD_AMD}, {"metis", CHOLMOD_METIS}, {"nesdis", CHOLMOD_NESDIS}, {"auto", -1}, {"amd+metis", -2}};
   for (int n : sizes) {
     // The wall, after 3 static steps.
-    const nmm::SceneDef wall = nmm::test::brick_wall(n, false);
+    const nmm::SceneDef wall = nmm::reference::brick_wall(n, false);
     const nmm::Mesh wm = nmm::pre::build_mesh(wall, "wall");
     nmm::solve::TimeStepper st(wm, wall, "wall");
     st.set_threads(1);

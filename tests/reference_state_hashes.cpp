@@ -11,41 +11,21 @@
 
 #include <nlohmann/json.hpp>
 
+#include "brick_wall.h"
+#include "cantilever.h"
 #include "cover_cutter.h"
 #include "error.h"
-#include "fos_reference.h"
 #include "joint_specimen.h"
-#include "joint_wave.h"
-#include "kirsch_opening.h"
+#include "kirsch.h"
 #include "scene.h"
-#include "scene_builders.h"
+#include "slides.h"
+#include "sliding_block.h"
 #include "time_stepper.h"
+#include "wave_bar.h"
 
 namespace {
 
 using nmm::SceneDef;
-
-// The cantilever of tests/test_solver_physics.cpp and nmm-study: L = 10 m, H = 1 m, clamped by
-// fixed points every h/2 along x = 0, P = 1e5 N down at (L, H/2), one static step.
-SceneDef cantilever(double h, int order) {
-  const double L = 10, H = 1, P = 1e5;
-  SceneDef s;
-  s.materials.push_back({"rock", 2500, 1e10, 0.25});
-  nmm::BodyDef b;
-  b.material = 0;
-  b.outer = {{0, 0}, {L, 0}, {L, H}, {0, H}};
-  s.bodies.push_back(b);
-  s.mesh_size = h;
-  s.plane = nmm::PlaneKind::stress;
-  const int n = static_cast<int>(std::ceil(H / (0.5 * h)));
-  for (int i = 0; i <= n; ++i) s.fixed_points.push_back({0, H * i / n});
-  s.loads.push_back({{L, H / 2}, {0, -P}});
-  s.measure_points.push_back({L, H / 2});
-  s.solver.dynamic = false;
-  s.solver.static_mode = nmm::StaticMode::equilibrium;
-  s.solver.cover_order = order;
-  return s;
-}
 
 // Runs `steps` steps of the scene's own Δt (one step of 1 s for a static scene) and prints the
 // line; a run that stops early prints its status instead of ok.
@@ -76,33 +56,37 @@ int main(int argc, char** argv) {
   }
   const std::string data = argv[1];
   try {
-    using namespace nmm;
-    run("sliding_block_tilted", test::sliding_block_tilted(30, 20), 100);
-    run("sliding_block_tilted_n1", test::sliding_block_tilted(30, 20, 0.5, 1), 20);
-    run("sliding_block_incline", test::sliding_block_incline(30, 20), 50);
-    run("sliding_block_incline_margin_n1", test::sliding_block_incline(30, 20, 0.5, 1, 1.5), 20);
-    run("brick_wall_3_dynamic", test::brick_wall(3, true), 20);
-    run("brick_wall_3_static", test::brick_wall(3, false), 5);
+    using namespace nmm::reference;
+    run("sliding_block_tilted", sliding_block_tilted(30, 20), 100);
+    run("sliding_block_tilted_dt2e-3_kn5E", sliding_block_tilted(30, 20, 0.5, 0, 2e-3, 5), 50);
+    run("sliding_block_tilted_n1", sliding_block_tilted(30, 20, 0.5, 1), 20);
+    run("sliding_block_incline", sliding_block_incline(30, 20), 50);
+    run("sliding_block_incline_margin_n1", sliding_block_incline(30, 20, 0.5, 1, 1.5), 20);
+    run("brick_wall_3_dynamic", brick_wall(3, true), 20);
+    run("brick_wall_3_static", brick_wall(3, false), 5);
     run("cantilever", cantilever(0.5, 0), 1);
     run("cantilever_n1", cantilever(0.5, 1), 1);
     {
-      solve::KirschSetup k;
+      KirschSetup k;
       k.h = 0.4;
       k.k0 = 0.5;
       k.b_over_a = 8;
-      SceneDef s = solve::kirsch_scene(k);
+      SceneDef s = kirsch_scene(k);
       run("kirsch", s, 1);
     }
     {
       const std::string path = data + "/single_joint.json";
-      SceneDef s = scene_from_json(parse_json_text(read_text_file(path), path), path);
-      solve::load_joint_specimen(s, 5e6, 2e6);
+      SceneDef s = nmm::scene_from_json(nmm::parse_json_text(nmm::read_text_file(path), path), path);
+      load_joint_specimen(s, 5e6, 2e6);
       run("joint_specimen", s, 20);
+      SceneDef laws = joint_specimen_scene(path);
+      load_joint_specimen(laws, 5e6, 2e6);
+      run("joint_specimen_laws", laws, 20);
     }
-    run("block_on_plane", from_json(studies::block_on_plane(30, 35).scene, "block_on_plane"), 20);
+    run("block_on_plane", from_json(block_on_plane(30, 35).scene, "block_on_plane"), 20);
     run("planar_slide",
-        from_json(studies::planar_slide(5, 60, 30, 5, 25, 1e4).scene, "planar_slide"), 20);
-    run("wave_bar", solve::joint_wave_scene(solve::JointWaveSetup{}), 40);
+        from_json(planar_slide(5, 60, 30, 5, 25, 1e4).scene, "planar_slide"), 20);
+    run("wave_bar", joint_wave_scene(JointWaveSetup{}), 40);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "reference_state_hashes: %s\n", e.what());
     return 2;

@@ -12,7 +12,8 @@ Check (CTest state_hashes, reading the runs the data.NAME.solve tests made):
 Regenerate the table (runs every scene itself, minutes), from the repository's root:
   python3 tests/state_hashes.py build --write
 A change that moves results on purpose (a new contact solve, say) regenerates the table in the
-same commit and says why there.
+same commit and says why there. The state includes the SHA-256 of the mesh's embedded scene
+text, so editing a data/ scene, even a comment in it, moves its hash too: regenerate, and say so.
 """
 import argparse
 import json

@@ -1,4 +1,4 @@
-// nmm-fos against closed-form factors of safety (studies/fos_reference.h, docs/physics.md §5),
+// nmm-fos against closed-form factors of safety (reference/slides.h, docs/physics.md §5),
 // the search's narrowing on its own, and nmm-fos's bad-input contract. The tools run as programs
 // (their command-line contract); trials are tiny (a few hundred elements, 0.4 s of motion).
 #include <gtest/gtest.h>
@@ -14,13 +14,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "fos_reference.h"
+#include "slides.h"
 #include "png_copy.h"
 #include "result_picture.h"
 #include "strength_reduction.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;
+using nmm::reference::block_on_plane;
+using nmm::reference::planar_slide;
+using nmm::reference::ReferenceSlide;
 
 namespace {
 
@@ -219,7 +222,7 @@ TEST(FosPlanarSlide, MatchesHoekBrayDry) {
 
 // The same with cohesion (Hoek-Bray F = 1.253): the scene holds the base rigidly and keeps the
 // plane's cohesion after slip (residual_cohesion = cohesion), as the closed form assumes
-// (studies/fos_reference.h says what each of the two did to F when missing: 0.90, 1.01).
+// (reference/slides.h says what each of the two did to F when missing: 0.90, 1.01).
 TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
   const ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4);
   const fs::path dir = work_dir("planar_slide");
@@ -235,7 +238,7 @@ TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
 // --settle: one run with the joints intact first, every trial restarting from its checkpoint.
 // The plastic wedge gives the same F; the brittle one (residual_cohesion 0) lies between the
 // friction-only factor and the plastic one — brittle cohesion fails progressively from the
-// plane's ends (studies/fos_reference.h), and no reduction of strength can raise F.
+// plane's ends (reference/slides.h), and no reduction of strength can raise F.
 TEST(FosPlanarSlide, SettleIntactThenReduce) {
   const ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4);
   const double friction_only = std::tan(25 * M_PI / 180) / std::tan(30 * M_PI / 180);

@@ -34,7 +34,7 @@
 #include <vector>
 
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "scene_pieces.h"
 #include "element_integration.h"
 #include "time_stepper.h"
 
@@ -71,9 +71,9 @@ SceneDef contact_scene(double h, double kn_factor) {
   return s;
 }
 
-using test::box;
+using reference::box;
 
-using test::held_along;
+using reference::held_along;
 
 bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });

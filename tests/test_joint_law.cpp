@@ -8,7 +8,7 @@
 
 #include "cover_cutter.h"
 #include "joint_law.h"
-#include "joint_specimen.h"
+#include "joint_specimen_run.h"
 #include "scene.h"
 #include "time_stepper.h"
 
@@ -138,7 +138,7 @@ SceneDef joint_scene(double sigma_n, double tau, double h) {
   top.outer = {{0, 1}, {2, 1}, {2, 2}, {0, 2}};
   s.bodies = {base, top};
   for (double x = 0.05; x < 2; x += 0.1) s.fixed_points.push_back({x, 0.02});
-  load_joint_specimen(s, sigma_n, tau);
+  reference::load_joint_specimen(s, sigma_n, tau);
   s.measure_points = {{1.0, 1.0001}, {1.0, 0.9999}};
   s.solver.time_step = 1e-3;
   s.solver.dynamic_factor = 0;  // quasi-static: settles to equilibrium

@@ -1,13 +1,14 @@
 // Reference slides with a known factor of safety (formulas in the header).
-#include "fos_reference.h"
+#include "slides.h"
 
 #include <cmath>
 #include <vector>
 
-namespace nmm::studies {
+#include "math_constants.h"
+
+namespace nmm::reference {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;          // m/s²
 constexpr double kDensity = 2500;    // kg/m³
 double rad(double d) { return d * kPi / 180; }
@@ -107,4 +108,4 @@ ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, do
   return r;
 }
 
-}  // namespace nmm::studies
+}  // namespace nmm::reference
