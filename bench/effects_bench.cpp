@@ -21,7 +21,6 @@
 // one round. Nothing here fails on a timing. Results: bench/results/effects_bench.csv, read in
 // docs/performance.md.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -36,11 +35,9 @@
 #include "brick_wall.h"
 #include "scene_pieces.h"
 #include "time_stepper.h"
+#include "stopwatch.h"
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // A square body of about `unknowns` unknowns (h = 1 m, as solver_bench), under gravity,
 // dynamic, held by fixed points along its bottom.
@@ -116,8 +113,8 @@ class Timed {
   // Steps that are not timed in the batches; the first, which includes CHOLMOD's symbolic
   // analysis, is timed on its own (first_step()).
   void warm_up(int n) {
-    const auto w0 = Clock::now();
-    if (n > 0 && advance(1)) first_step_ = since(w0);
+    const nmm::Stopwatch w0;
+    if (n > 0 && advance(1)) first_step_ = w0.seconds();
     advance(n - 1);
   }
   double first_step() const { return first_step_; }
@@ -127,9 +124,9 @@ class Timed {
     if (r_.status != "ok") return 0;
     const nmm::solve::StepTimings t0 = st_.timings();
     const std::size_t it0 = st_.open_close_iterations(), cut0 = st_.time_step_cuts();
-    const auto w0 = Clock::now();
+    const nmm::Stopwatch w0;
     if (!advance(r_.steps)) return 0;
-    const double n = r_.steps, wall = since(w0) / n;
+    const double n = r_.steps, wall = w0.seconds() / n;
     const nmm::solve::StepTimings& t1 = st_.timings();
     if (wall < r_.step) {
       r_.step = wall;

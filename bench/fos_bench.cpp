@@ -15,7 +15,6 @@
 // bench/results/fos_bench.csv, read in docs/fos-and-sweeps.md.
 #include <sys/wait.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -26,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slides.h"
+#include "stopwatch.h"
 
 namespace fs = std::filesystem;
 
@@ -59,14 +59,14 @@ int main(int argc, char** argv) {
       nlohmann::json j;
       for (int r = 0; r < repeats; ++r) {
         const fs::path o = work / ("k" + std::to_string(k) + "_" + std::to_string(r) + "_" + std::to_string(tol));
-        const auto t0 = std::chrono::steady_clock::now();
+        const nmm::Stopwatch t0;
         const std::string cmd = std::string(NMM_FOS) + " " + mesh + " -o " + o.string() + " --workers " +
                                 std::to_string(k) + " --tol " + std::to_string(tol) + " > /dev/null 2>&1";
         if (std::system(cmd.c_str()) != 0) {
           std::fprintf(stderr, "fos_bench: nmm-fos failed: %s\n", cmd.c_str());
           return 1;
         }
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double s = t0.seconds();
         if (s < best) {
           best = s;
           std::ifstream in(o / "fos.json");

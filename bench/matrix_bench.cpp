@@ -26,7 +26,6 @@
 // Counts (nonzeros, flops) do not depend on the machine or its load; times do (the CSV carries
 // the load average at each row). Run with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1: one core.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -40,11 +39,10 @@
 #include "cover_cutter.h"
 #include "brick_wall.h"
 #include "time_stepper.h"
+#include "stopwatch.h"
 
 namespace {
-using Clock = std::chrono::steady_clock;
 using Sparse = nmm::solve::SystemMatrix::Sparse;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Ordered {
   double factor_nnz = 0, flops = 0, analyse_ms = 0, factor_ms = 0;
@@ -71,12 +69,12 @@ Ordered factorise(const Sparse& a, int ordering, int reps) {
       c.method[1].ordering = CHOLMOD_METIS;
       c.postorder = 1;
     }
-    const auto t0 = Clock::now();
+    const nmm::Stopwatch t0;
     llt.analyzePattern(a);
-    const double analyse = since(t0);
-    const auto t1 = Clock::now();
+    const double analyse = t0.seconds();
+    const nmm::Stopwatch t1;
     llt.factorize(a);
-    const double fact = since(t1);
+    const double fact = t1.seconds();
     r.ok = llt.info() == Eigen::Success;
     r.factor_nnz = c.lnz;
     r.flops = c.fl;

@@ -26,6 +26,7 @@
 #include "error.h"
 #include "joint_specimen.h"
 #include "joint_specimen_run.h"
+#include "math_constants.h"
 #include "scene.h"
 #include "svg_plot.h"
 #include "time_stepper.h"
@@ -34,7 +35,7 @@
 namespace {
 
 using nmm::SceneDef;
-constexpr double kPi = 3.14159265358979323846;
+using nmm::kPi;
 
 // Closure and slip (m) of the single-joint scene under σn and τ (Pa) after `seconds`.
 std::pair<double, double> joint_response(SceneDef s, const nmm::Mesh& m, double sigma, double tau,

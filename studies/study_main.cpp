@@ -41,7 +41,6 @@
 #include <filesystem>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -66,16 +65,13 @@
 #include "svg_plot.h"
 #include "time_stepper.h"
 #include "vtk_writer.h"
+#include "stopwatch.h"
+#include "math_constants.h"
 
 namespace {
 
 using nmm::SceneDef;
-using Clock = std::chrono::steady_clock;
-constexpr double kPi = 3.14159265358979323846;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using nmm::kPi;
 
 std::string num(double v, const char* f = "%.4g") {
   char b[48];
@@ -83,10 +79,16 @@ std::string num(double v, const char* f = "%.4g") {
   return b;
 }
 
+// How a run ended: with a finite value to compare; stopped or failed (the reason says why); or
+// not run because the solver does not support the setting (a cover order it refuses with an
+// input error at /solver/cover_order), which is no failure of the study.
+enum class RunStatus { ok, failed, not_available };
+
 // What one run gives: the computed value (or why it has none) and what it cost.
 struct Outcome {
-  bool ok = false;
-  std::string reason;      // why not, when !ok
+  RunStatus status = RunStatus::failed;
+  std::string reason;      // why not, when status is not ok
+  bool ok() const { return status == RunStatus::ok; }
   double computed = 0;     // the quantity compared with the closed form
   double mesh_seconds = 0;  // cover cutting
   double run_seconds = 0;   // TimeStepper construction and stepping
@@ -116,35 +118,35 @@ struct Row {
 Outcome timed_run_once(const SceneDef& s, const std::string& name,
                        const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
   Outcome o;
-  const auto t0 = Clock::now();
+  const nmm::Stopwatch t0;
   const nmm::Mesh m = nmm::pre::build_mesh(s, name);
-  o.mesh_seconds = seconds_since(t0);
-  const auto t1 = Clock::now();
+  o.mesh_seconds = t0.seconds();
+  const nmm::Stopwatch t1;
   try {
     std::unique_ptr<nmm::solve::TimeStepper> st;
     try {
       st = std::make_unique<nmm::solve::TimeStepper>(m, s, name);
     } catch (const nmm::InputError& e) {
-      // What the solver does not support at this cover order yet (its input error names
+      // What the solver does not support at this cover order yet (its input error's place is
       // /solver/cover_order): not available, not a failure of the study.
-      const std::string what = e.what();
-      const std::size_t at = what.find("/solver/cover_order");
-      if (s.solver.cover_order == 0 || at == std::string::npos) throw;
-      o.reason = "not available at this cover order: " + what.substr(at);
-      o.run_seconds = seconds_since(t1);
+      if (s.solver.cover_order == 0 || e.where().rfind("/solver/cover_order", 0) != 0) throw;
+      o.status = RunStatus::not_available;
+      o.reason = "not available at this cover order: " + e.where() + ": " + e.message();
+      o.run_seconds = t1.seconds();
       return o;
     }
     o.unknowns = st->unknowns();
     const std::string status = body(*st, o);
     o.cuts = st->time_step_cuts();
     o.iterations = st->open_close_iterations();
-    o.ok = status == "ok" && std::isfinite(o.computed);
-    o.reason = status != "ok" ? status : (o.ok ? "" : "result is not a finite number");
+    const bool finite = std::isfinite(o.computed);
+    o.status = status == "ok" && finite ? RunStatus::ok : RunStatus::failed;
+    o.reason = status != "ok" ? status : (finite ? "" : "result is not a finite number");
   } catch (const nmm::RunError& e) {
-    o.ok = false;
+    o.status = RunStatus::failed;
     o.reason = e.what();
   }
-  o.run_seconds = seconds_since(t1);
+  o.run_seconds = t1.seconds();
   return o;
 }
 
@@ -154,7 +156,7 @@ Outcome timed_run_once(const SceneDef& s, const std::string& name,
 Outcome timed_run(const SceneDef& s, const std::string& name,
                   const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
   Outcome best = timed_run_once(s, name, body);
-  if (best.reason.rfind("not available", 0) == 0) return best;  // nothing to time
+  if (best.status == RunStatus::not_available) return best;  // nothing to time
   double spent = best.mesh_seconds + best.run_seconds;
   for (int runs = 1; runs < 25 && (runs < 3 || spent < 0.5); ++runs) {
     const Outcome o = timed_run_once(s, name, body);
@@ -451,7 +453,7 @@ std::string csv_text(const std::vector<Row>& rows) {
   std::ostringstream os;
   os << "case,setting,value,error,wall_seconds\n";
   for (const Row& r : rows)
-    if (r.out.ok)
+    if (r.out.ok())
       os << r.case_name << "," << r.setting << "," << num(r.value, "%.6g") << ","
          << num(r.error(), "%.6e") << "," << num(r.wall(), "%.4f") << "\n";
   return os.str();
@@ -507,13 +509,13 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     for (const Row& r : rows) {
       if (r.case_name != c) continue;
       md << "| " << r.setting << " | " << r.value_text << " | ";
-      if (r.out.ok && std::isfinite(r.out.own_error))
+      if (r.out.ok() && std::isfinite(r.out.own_error))
         md << num(shown(c, r.out.computed), "%.6g") << " | " << num(100 * r.out.own_error, "%.3f") << " %";
-      else if (r.out.ok)
+      else if (r.out.ok())
         md << num(shown(c, r.out.computed), "%.6g") << " | "
            << num(100 * (r.out.computed - r.exact) / std::abs(r.exact), "%+.3f") << " %";
       else
-        md << (r.out.reason.rfind("not available", 0) == 0 ? "not available" : "did not complete") << " | –";
+        md << (r.out.status == RunStatus::not_available ? "not available" : "did not complete") << " | –";
       md << " | " << num(r.wall(), "%.4f") << " (" << num(r.out.mesh_seconds, "%.4f") << " + "
          << num(r.out.run_seconds, "%.4f") << ") | " << r.out.unknowns << " | " << r.out.steps
          << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
@@ -527,7 +529,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     for (const std::string& sw : sweeps) {
       const Row *cheap = nullptr, *dear = nullptr;
       for (const Row& r : rows) {
-        if (r.case_name != c || r.setting != sw || !r.out.ok) continue;
+        if (r.case_name != c || r.setting != sw || !r.out.ok()) continue;
         if (!cheap || r.wall() < cheap->wall()) cheap = &r;
         if (!dear || r.wall() > dear->wall()) dear = &r;
       }
@@ -536,7 +538,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
         // Within timing noise (docs/accuracy.md): which run is "costliest" would be chance.
         const Row* best = cheap;
         for (const Row& r : rows)
-          if (r.case_name == c && r.setting == sw && r.out.ok && r.error() < best->error()) best = &r;
+          if (r.case_name == c && r.setting == sw && r.out.ok() && r.error() < best->error()) best = &r;
         md << "- " << sw << ": the cost does not depend on it (" << num(cheap->wall(), "%.3f")
            << "–" << num(dear->wall(), "%.3f") << " s, within timing noise); the most accurate run is "
            << best->value_text << ": " << num(100 * best->error(), "%.3f") << " %.\n";
@@ -546,7 +548,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     }
     const Row *cheap = nullptr, *dear = nullptr;
     for (const Row& r : rows) {
-      if (r.case_name != c || !r.out.ok) continue;
+      if (r.case_name != c || !r.out.ok()) continue;
       if (!cheap || r.wall() < cheap->wall()) cheap = &r;
       if (!dear || r.wall() > dear->wall()) dear = &r;
     }
@@ -555,7 +557,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
   }
   std::ostringstream failed;
   for (const Row& r : rows)
-    if (!r.out.ok)
+    if (!r.out.ok())
       failed << "| " << r.case_name << " | " << r.value_text << " | " << num(r.wall(), "%.3f")
              << " | " << r.out.reason << " |\n";
   md << "\n### Runs that did not complete (not in the CSV or the picture)\n\n";
@@ -598,7 +600,7 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
   for (std::size_t i = 0; i < curves.size(); ++i) {
     nmm::PlotSeries ser{curves[i].second, {}, {}, colours[i % colours.size()], true, true};
     for (const Row& r : rows)
-      if (r.out.ok && r.case_name == curves[i].first.first && r.setting == curves[i].first.second) {
+      if (r.out.ok() && r.case_name == curves[i].first.first && r.setting == curves[i].first.second) {
         ser.x.push_back(r.wall());
         ser.y.push_back(r.error());
       }
@@ -636,7 +638,7 @@ int main(int argc, char** argv) {
     auto add = [&rows](Row r) {
       std::fprintf(stderr, "%-16s %-14s %-52s %s  %.3f s\n", r.case_name.c_str(), r.setting.c_str(),
                    r.value_text.c_str(),
-                   r.out.ok ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason.c_str(),
+                   r.out.ok() ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason.c_str(),
                    r.wall());
       rows.push_back(std::move(r));
     };

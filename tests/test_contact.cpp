@@ -7,6 +7,7 @@
 
 #include "cover_cutter.h"
 #include "energy.h"
+#include "math_constants.h"
 #include "resting_block_run.h"
 #include "scene_pieces.h"
 #include "time_stepper.h"
@@ -14,7 +15,6 @@
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
 // DDA's point penalty 20·E (model "penalty"; Shi recommends 10 to 100·E): kn = 2e11 N/m per contact

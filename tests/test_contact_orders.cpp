@@ -16,6 +16,7 @@
 
 #include "cover_cutter.h"
 #include "energy.h"
+#include "math_constants.h"
 #include "resting_block_run.h"
 #include "scene_pieces.h"
 #include "sliding_block.h"
@@ -24,7 +25,6 @@
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
 using reference::box;

@@ -18,6 +18,7 @@
 #include "png_copy.h"
 #include "result_picture.h"
 #include "strength_reduction.h"
+#include "math_constants.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;
@@ -114,7 +115,7 @@ TEST(FosSearch, ReductionDividesTanPhiCohesionAndTension) {
   const auto sets = reduction_sets(s, 2.0);
   ASSERT_EQ(sets.size(), 3u);
   const double phi = std::stod(sets[0].substr(sets[0].find('=') + 1));
-  EXPECT_NEAR(std::tan(phi * M_PI / 180), std::tan(40 * M_PI / 180) / 2, 1e-12);
+  EXPECT_NEAR(std::tan(phi * nmm::kPi / 180), std::tan(40 * nmm::kPi / 180) / 2, 1e-12);
   EXPECT_EQ(sets[1], "joint_sets.a.cohesion=50000");
   EXPECT_EQ(sets[2], "joint_sets.a.tensile_strength=10000");
   // A residual cohesion is reduced with the cohesion (it may not exceed it).
@@ -241,7 +242,7 @@ TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
 // plane's ends (reference/slides.h), and no reduction of strength can raise F.
 TEST(FosPlanarSlide, SettleIntactThenReduce) {
   const ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4);
-  const double friction_only = std::tan(25 * M_PI / 180) / std::tan(30 * M_PI / 180);
+  const double friction_only = std::tan(25 * nmm::kPi / 180) / std::tan(30 * nmm::kPi / 180);
   const fs::path dir = work_dir("planar_slide_settle");
   const std::string mesh = mesh_of(ref.scene, dir);
   const nlohmann::json p = fos_json(mesh, dir / "plastic", "--tol 0.01 --workers 2 --settle 200");

@@ -37,11 +37,11 @@
 #include "scene_pieces.h"
 #include "element_integration.h"
 #include "time_stepper.h"
+#include "math_constants.h"
 
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 constexpr double kE = 1e10;  // Pa, the rock's Young's modulus
 // m/s: a body at rest moves slower than this. The damped scheme (Newmark β = 0.6) leaves resting

@@ -9,13 +9,12 @@
 #include "cover_cutter.h"
 #include "joint_law.h"
 #include "joint_specimen_run.h"
+#include "math_constants.h"
 #include "scene.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 ContactLaw bb_law() {
   ContactLaw law;

@@ -11,6 +11,7 @@
 
 #include "cantilever.h"
 #include "kirsch.h"
+#include "math_constants.h"
 #include "slides.h"
 #include "sliding_block.h"
 #include "wave_bar.h"
@@ -47,12 +48,12 @@ TEST(Reference, SlidingBlockScenes) {
   EXPECT_DOUBLE_EQ(s.joint_sets[0].normal.kn, 5e10);  // kn = 5·E per contact point
   EXPECT_DOUBLE_EQ(s.joint_sets[0].shear.ks, 2e10);   // ks = kn/2.5
   EXPECT_DOUBLE_EQ(s.solver.time_step, 2e-3);
-  EXPECT_NEAR(std::atan2(s.gravity.x, -s.gravity.y) * 180 / 3.14159265358979323846, 30, 1e-12);
+  EXPECT_NEAR(std::atan2(s.gravity.x, -s.gravity.y) * 180 / nmm::kPi, 30, 1e-12);
   // The incline: the block's bottom edge lies on the 30° line through (0, 0.144338).
   const SceneDef in = sliding_block_incline(30, 20);
   for (int i = 0; i < 2; ++i) {
     const Vec2 p = in.bodies[1].outer[i];
-    EXPECT_NEAR(p.y - 0.144338, p.x * std::tan(30 * 3.14159265358979323846 / 180), 1e-12);
+    EXPECT_NEAR(p.y - 0.144338, p.x * std::tan(30 * nmm::kPi / 180), 1e-12);
   }
 }
 
@@ -70,7 +71,7 @@ TEST(Reference, KirschWall) {
   // crown for K0 = 0.5; far away the field stress.
   const double py = kKirschPressure, px = 0.5 * py;
   EXPECT_NEAR(kirsch_hoop(px, py, kKirschRadius, 0), 25e6, 1e-6);
-  EXPECT_NEAR(kirsch_hoop(px, py, kKirschRadius, 3.14159265358979323846 / 2), 5e6, 1e-6);
+  EXPECT_NEAR(kirsch_hoop(px, py, kKirschRadius, nmm::kPi / 2), 5e6, 1e-6);
   EXPECT_NEAR(kirsch_hoop(px, py, 1e4, 0), py, 1);  // a²/r² = 1e-8: 0.075 Pa off
   // Hydrostatic: u_r = p a²/(2 G r), whatever ν.
   const double G = kKirschYoung / (2 * (1 + kKirschPoisson));
@@ -85,8 +86,8 @@ TEST(Reference, PlanarSlideHoekBray) {
   EXPECT_NEAR(r.plane_length, 5.774, 5e-4);
   EXPECT_NEAR(r.weight, 259.1e3, 50);
   // Block on a plane: F = tan φ / tan α.
-  EXPECT_NEAR(block_on_plane(30, 35).fos, std::tan(35 * 3.14159265358979323846 / 180) /
-                                              std::tan(30 * 3.14159265358979323846 / 180), 1e-12);
+  EXPECT_NEAR(block_on_plane(30, 35).fos, std::tan(35 * nmm::kPi / 180) /
+                                              std::tan(30 * nmm::kPi / 180), 1e-12);
 }
 
 TEST(Reference, WaveBarFinalDisplacement) {
@@ -94,7 +95,7 @@ TEST(Reference, WaveBarFinalDisplacement) {
   // displacement after the joint at its end, which the pulse has passed by then.
   const JointWaveSetup w;
   const JointWaveClosedForm cf(w);
-  EXPECT_NEAR(cf.final_displacement(), 2 * w.pressure * w.duration / (3.14159265358979323846 * cf.impedance()), 1e-15);
+  EXPECT_NEAR(cf.final_displacement(), 2 * w.pressure * w.duration / (nmm::kPi * cf.impedance()), 1e-15);
   const double t_end = joint_wave_scene(w).solver.steps * w.dt;
   EXPECT_NEAR(promised("joint_wave.json", "ux 1"), cf.displacement(w.after_x, t_end),
               0.03 * cf.final_displacement());

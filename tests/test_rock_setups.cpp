@@ -16,13 +16,13 @@
 #include "scene_pieces.h"
 #include "time_stepper.h"
 #include "time_table.h"
+#include "math_constants.h"
 
 #include <fstream>
 
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 using reference::kirsch_radial_displacement;
 using reference::KirschSetup;
 using reference::kKirschPoisson;
