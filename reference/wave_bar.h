@@ -2,7 +2,7 @@
 // 1980, J. Acoust. Soc. Am. 68(5); Pyrak-Nolte, Myer & Cook 1990, J. Geophys. Res. 95(B6)) in
 // closed form and the bar that reproduces it (what is read off a run: studies/joint_wave.h). Built
 // here once and used by tests/test_joint_wave.cpp, nmm-study (case joint_wave;
-// docs/joint-studies.md) and data/joint_wave.json (the same scene as a file).
+// docs/joint-studies.md) and data/joint_wave.json (the same scene as a file); docs/physics.md §5.
 //
 // The bar (uniaxial strain: rollers hold y on the top and bottom faces), compression positive:
 //
