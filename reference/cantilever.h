@@ -18,6 +18,13 @@ constexpr double kCantileverLoad = 1e5;      ///< N/m, P (down)
 constexpr double kCantileverYoung = 1e10;    ///< Pa, E
 constexpr double kCantileverPoisson = 0.25;  ///< –, ν
 
+/// A beam of length L and depth H (m) along x from the origin, at mesh size h (m): the rock
+/// (ρ = 2500 kg/m³, E = 10 GPa, ν = 0.25), plane stress; no supports, loads or settings.
+SceneDef beam(double length, double depth, double h);
+
+/// Clamps the beam's end x = 0 by fixed points every h/2 over its depth H.
+void clamp_left_end(SceneDef& s, double depth, double h);
+
 /// The scene at mesh size h (m) and cover order `order`: clamped by fixed points every h/2
 /// along x = 0, P down at (L, H/2), measure point 0 there; static equilibrium (K d = F, one
 /// step of 1 s gives the elastic answer).

@@ -84,12 +84,7 @@ int main(int argc, char** argv) {
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-joint-study"); status >= 0)
     return status;
   try {
-    {  // the output folder is made here; if that fails, the probe below names the problem
-      std::error_code ec;
-      std::filesystem::create_directories(out, ec);
-    }
-    nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
-    std::remove((out + "/.probe").c_str());
+    nmm::prepare_output_folder(out);  // fails early on a bad folder
     std::ostringstream md;
 
     // ---- (a) the constitutive curves through the solver ------------------------------------

@@ -626,12 +626,7 @@ int main(int argc, char** argv) {
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-study"); status >= 0)
     return status;
   try {
-    {  // the output folder is made here; if that fails, the probe below names the problem
-      std::error_code ec;
-      std::filesystem::create_directories(out, ec);
-    }
-    nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
-    std::remove((out + "/.probe").c_str());
+    nmm::prepare_output_folder(out);  // fails early on a bad folder
     const SceneDef joint = single_joint_scene(data + "/single_joint.json");
 
     std::vector<Row> rows;
