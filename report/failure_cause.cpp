@@ -7,7 +7,7 @@
 #include "number_format.h"
 #include "scene_checks.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 
 bool status_is_failure(const std::string& status) {
   return !(status.empty() || status == "ok" || status == "interrupted" ||
@@ -51,4 +51,4 @@ std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const 
   return "";
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -17,7 +17,7 @@
 #include "mesh.h"
 #include "scene.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 
 /// False for statuses of runs that did not stop on a failure ("ok", "interrupted", "step N": a
 /// frame before the end, nmm-report --frame), true for every other status (the failure's reason).
@@ -26,4 +26,4 @@ bool status_is_failure(const std::string& status);
 /// The likely cause of a stopped run, one or two sentences; "" when the status is no failure.
 std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const std::string& status);
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

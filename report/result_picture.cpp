@@ -12,7 +12,7 @@
 #include "svg_plot.h"
 #include "svg_writer.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 namespace {
 
 std::string number(double v) {
@@ -388,4 +388,4 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   return svg.str(0.03, 1400);
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -21,7 +21,7 @@
 #include "atomic_file.h"
 #include "xml_text.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 namespace fs = std::filesystem;
 namespace {
 
@@ -339,4 +339,4 @@ ReportFiles make_run_report(const std::string& dir) {
   return files;
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -3,10 +3,10 @@
 
 #include "time_stepper.h"
 
-namespace nmm::solve {
+namespace nmm::studies {
 
 JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, double seconds) {
-  TimeStepper st(mesh, scene, "single joint");
+  solve::TimeStepper st(mesh, scene, "single joint");
   JointSpecimenResult r;
   r.status = st.run_until(seconds, [](std::int64_t) {});
   const auto a = st.displacement_at(st.measure_points()[0]);
@@ -16,4 +16,4 @@ JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, 
   return r;
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::studies

@@ -9,7 +9,7 @@
 #include "mesh.h"
 #include "scene.h"
 
-namespace nmm::solve {
+namespace nmm::studies {
 
 struct JointSpecimenResult {
   double closure = 0;  ///< m, vertical jump across the joint (below − above), > 0 closing
@@ -21,4 +21,4 @@ struct JointSpecimenResult {
 /// and 1 (below).
 JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, double seconds);
 
-}  // namespace nmm::solve
+}  // namespace nmm::studies

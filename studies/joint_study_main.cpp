@@ -41,7 +41,7 @@ using nmm::kPi;
 std::pair<double, double> joint_response(SceneDef s, const nmm::Mesh& m, double sigma, double tau,
                                          double seconds, std::string* status) {
   nmm::reference::load_joint_specimen(s, sigma, tau);
-  const nmm::solve::JointSpecimenResult r = nmm::solve::run_joint_specimen(m, s, seconds);
+  const nmm::studies::JointSpecimenResult r = nmm::studies::run_joint_specimen(m, s, seconds);
   *status = r.status;
   return {r.closure, r.slip};
 }

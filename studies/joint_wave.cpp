@@ -6,14 +6,14 @@
 
 #include "time_stepper.h"
 
-namespace nmm::solve {
+namespace nmm::studies {
 
 JointWaveHistory run_joint_wave(const Mesh& mesh, const SceneDef& scene) {
-  TimeStepper st(mesh, scene, scene.name);
+  solve::TimeStepper st(mesh, scene, scene.name);
   return run_joint_wave(st, scene, [](std::int64_t) {});
 }
 
-JointWaveHistory run_joint_wave(TimeStepper& st, const SceneDef& scene,
+JointWaveHistory run_joint_wave(solve::TimeStepper& st, const SceneDef& scene,
                                 const std::function<void(std::int64_t)>& on_step) {
   JointWaveHistory h;
   auto sample = [&]() {
@@ -65,4 +65,4 @@ JointWaveErrors joint_wave_errors(const reference::JointWaveSetup& s, const Join
   return e;
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::studies

@@ -19,8 +19,10 @@
 #include "wave_bar.h"
 
 namespace nmm::solve {
-
 class TimeStepper;
+}  // namespace nmm::solve
+
+namespace nmm::studies {
 
 /// The histories a run records: time and the x displacement at both measure points, one row
 /// per step (row 0 at t = 0).
@@ -34,7 +36,7 @@ struct JointWaveHistory {
 /// Runs the scene (from reference::joint_wave_scene or the data file) on its mesh to its last step.
 JointWaveHistory run_joint_wave(const Mesh& mesh, const SceneDef& scene);
 /// The same on a stepper made for it (nmm-study times it); on_step(n) after the n-th step.
-JointWaveHistory run_joint_wave(TimeStepper& st, const SceneDef& scene,
+JointWaveHistory run_joint_wave(solve::TimeStepper& st, const SceneDef& scene,
                                 const std::function<void(std::int64_t)>& on_step);
 
 /// The run against the closed form (read-off above).
@@ -52,4 +54,4 @@ struct JointWaveErrors {
 };
 JointWaveErrors joint_wave_errors(const reference::JointWaveSetup& s, const JointWaveHistory& h);
 
-}  // namespace nmm::solve
+}  // namespace nmm::studies

@@ -8,7 +8,7 @@
 
 #include "time_stepper.h"
 
-namespace nmm::solve {
+namespace nmm::studies {
 
 using reference::kirsch_hoop;
 using reference::kirsch_radial_displacement;
@@ -26,7 +26,7 @@ double hoop_of(const std::array<double, 3>& s, double th) {
 }
 }  // namespace
 
-KirschWall kirsch_wall(const reference::KirschSetup& k, const Mesh& m, const TimeStepper& st) {
+KirschWall kirsch_wall(const reference::KirschSetup& k, const Mesh& m, const solve::TimeStepper& st) {
   const double a = kKirschRadius, py = kKirschPressure, px = k.k0 * py, nu = kKirschPoisson;
   const double G = kKirschYoung / (2 * (1 + nu)), P = 0.5 * (px + py), Q = 0.5 * (px - py);
   const double hoop_max = std::max(std::abs(2 * P - 4 * Q), std::abs(2 * P + 4 * Q));
@@ -90,4 +90,4 @@ KirschWall kirsch_wall(const reference::KirschSetup& k, const Mesh& m, const Tim
   return out;
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::studies

@@ -9,8 +9,10 @@
 #include "mesh.h"
 
 namespace nmm::solve {
-
 class TimeStepper;
+}  // namespace nmm::solve
+
+namespace nmm::studies {
 
 /// What is read off a solved model along the wall, against the closed form.
 struct KirschWall {
@@ -31,6 +33,6 @@ struct KirschWall {
 };
 
 /// Reads the wall of a solved Kirsch model (mesh and stepper of reference::kirsch_scene(k)).
-KirschWall kirsch_wall(const reference::KirschSetup& k, const Mesh& mesh, const TimeStepper& st);
+KirschWall kirsch_wall(const reference::KirschSetup& k, const Mesh& mesh, const solve::TimeStepper& st);
 
-}  // namespace nmm::solve
+}  // namespace nmm::studies

@@ -241,7 +241,7 @@ Row kirsch(double h, int order) {
   r.out = timed_run(s, "kirsch", [&k](nmm::solve::TimeStepper& st, Outcome& o) {
     st.step(1.0);
     o.steps = 1;
-    const nmm::solve::KirschWall w = nmm::solve::kirsch_wall(k, st.mesh(), st);
+    const nmm::studies::KirschWall w = nmm::studies::kirsch_wall(k, st.mesh(), st);
     o.computed = w.side_wall_hoop;
     o.own_error = w.hoop_wall;
     return std::string("ok");
@@ -369,9 +369,9 @@ Row joint_wave(const std::string& setting, double h, double dt) {
   r.exact = cf.transmitted_peak() / cf.impedance();
   const SceneDef s = nmm::reference::joint_wave_scene(w);
   r.out = timed_run(s, "joint wave", [&](nmm::solve::TimeStepper& st, Outcome& o) {
-    const nmm::solve::JointWaveHistory hist =
-        nmm::solve::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
-    const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+    const nmm::studies::JointWaveHistory hist =
+        nmm::studies::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
+    const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
     o.computed = e.peak_velocity;
     o.own_error = e.after_rms;
     return hist.status;
@@ -404,9 +404,9 @@ void write_wave_outputs(const std::string& out, bool quick) {
       const nmm::reference::JointWaveClosedForm cf(w);
       const SceneDef s = nmm::reference::joint_wave_scene(w);
       const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
-      const nmm::solve::JointWaveHistory hist = nmm::solve::run_joint_wave(m, s);
+      const nmm::studies::JointWaveHistory hist = nmm::studies::run_joint_wave(m, s);
       if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
-      const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+      const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
       md << "| τ = " << num(1e3 * cf.tau(), "%.2g") << " ms (kn = " << num(1e-9 * w.kn, "%.3g")
          << " GPa/m), h = " << num(h) << " m, Δt = " << num(1e6 * w.dt) << " µs | "
          << num(100 * e.incident_rms, "%.2f") << " % | " << num(100 * e.before_rms, "%.2f") << " % | "

@@ -136,7 +136,7 @@ void expect_mechanism_like_result(const fs::path& out, const nlohmann::json& fos
   const std::string svg = text.str();
   std::string bands, viridis;
   std::size_t at = 0;
-  for (int i = 0; i < 40; ++i) viridis += nmm::solve::colour_map((i + 0.5) / 40) + " ";
+  for (int i = 0; i < 40; ++i) viridis += nmm::report::colour_map((i + 0.5) / 40) + " ";
   // The bar's bands are the only filled <rect>s without a stroke after the white background.
   for (at = svg.find("<rect ", svg.find("<rect ") + 1); at != std::string::npos; at = svg.find("<rect ", at + 1)) {
     const std::size_t f = svg.find("fill=\"", at), end = svg.find('>', at);
@@ -144,7 +144,7 @@ void expect_mechanism_like_result(const fs::path& out, const nlohmann::json& fos
     if (svg.find("stroke=\"none\"", at) > end) continue;
     bands += svg.substr(f + 6, 7) + " ";
   }
-  EXPECT_EQ(bands, viridis) << "mechanism.svg's colour bar is not result.svg's map (" << nmm::solve::kColourMapName << ")";
+  EXPECT_EQ(bands, viridis) << "mechanism.svg's colour bar is not result.svg's map (" << nmm::report::kColourMapName << ")";
   for (const char* t : {">failing mechanism at F = ", ">|u| (mm)<", ">x (m)<", ">y (m)<", ">scale bar "})
     EXPECT_NE(svg.find(t), std::string::npos) << t;
   EXPECT_EQ(fos.contains("mechanism_png"), nmm::png_converter_available());

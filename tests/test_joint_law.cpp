@@ -148,7 +148,7 @@ SceneDef joint_scene(double sigma_n, double tau, double h) {
 JointResult load_joint(double sigma_n, double tau, double seconds) {
   const SceneDef s = joint_scene(sigma_n, tau, 0.25);
   const Mesh m = pre::build_mesh(s, "joint");
-  const JointSpecimenResult sr = run_joint_specimen(m, s, seconds);
+  const studies::JointSpecimenResult sr = studies::run_joint_specimen(m, s, seconds);
   JointResult r;
   r.status = sr.status;
   r.closure = sr.closure;

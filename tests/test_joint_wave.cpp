@@ -21,6 +21,10 @@ using reference::joint_wave_kn_for_tau;
 using reference::joint_wave_scene;
 using reference::JointWaveClosedForm;
 using reference::JointWaveSetup;
+using studies::joint_wave_errors;
+using studies::JointWaveErrors;
+using studies::JointWaveHistory;
+using studies::run_joint_wave;
 
 // The closed form against itself: the filter equation τσ_t' + σ_t = σ_i holds, the integrals
 // are the integrals, and the joint keeps none of the pulse.

@@ -28,6 +28,8 @@ using reference::KirschSetup;
 using reference::kKirschPoisson;
 using reference::kKirschPressure;
 using reference::kKirschYoung;
+using studies::kirsch_wall;
+using studies::KirschWall;
 
 SceneDef rock_scene(double h) {
   SceneDef s;
