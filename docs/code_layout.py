@@ -56,6 +56,9 @@ INTRO = """Where the code lives, layer by layer (an arrow only ever points down 
   read-offs) and nmm-fos and nmm-sweep (the tools driven as programs).
 - `tests/`, `bench/`: on top of everything.
 
+CTest `layers` (tests/check_layers.py) fails on an #include or a library link that points up
+this list.
+
 A move between folders must not change a result. CTest `state_hashes` compares summary.json's
 `state_hash` (SHA-256 of the run state, the contact history and the mesh, which includes the
 scene file's text) of every data/ scene, run as CTest runs it, and of 15 short reference-problem
