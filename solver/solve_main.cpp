@@ -176,13 +176,14 @@ int main(int argc, char** argv) {
         std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
                   << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";
     }
-    if (status == "interrupted") {
+    const nmm::report::RunEnd end = nmm::report::run_end(status);
+    if (end == nmm::report::RunEnd::interrupted) {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
                 << " steps at t = " << stepper.time() << " s (" << verdict
                 << "); history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
       return nmm::solve::kExitInterrupted;
     }
-    if (status != "ok") {
+    if (end != nmm::report::RunEnd::ok) {
       const std::string cause = nmm::report::likely_failure_cause(mesh, run.scene, status);
       std::cerr << "nmm-solve: stopped after " << summary["steps_completed"].get<long long>()
                 << " steps: " << status << (cause.empty() ? "" : "; likely cause: " + cause)

@@ -186,6 +186,18 @@ TEST(Pictures, AFailedRunsReasonIsWrappedUnderThePicture) {
   EXPECT_EQ(draw(coarse, 0.3, 0, "step 30", 0).find("stopped"), std::string::npos);
 }
 
+TEST(Pictures, RunEndFromStatus) {
+  using report::RunEnd;
+  EXPECT_EQ(report::run_end("ok"), RunEnd::ok);
+  EXPECT_EQ(report::run_end("interrupted"), RunEnd::interrupted);
+  EXPECT_EQ(report::run_end("step 30"), RunEnd::frame);
+  EXPECT_EQ(report::run_end(""), RunEnd::unknown);
+  EXPECT_EQ(report::run_end("not positive definite at step 4"), RunEnd::failed);
+  EXPECT_EQ(report::run_end("okay"), RunEnd::failed);  // only the exact word is success
+  EXPECT_TRUE(report::status_is_failure("unknown"));
+  EXPECT_FALSE(report::status_is_failure("step 1"));
+}
+
 TEST(Pictures, WordsWrapToTheWidth) {
   EXPECT_EQ(wrap_words("aa bb cc dd", 5), (std::vector<std::string>{"aa bb", "cc dd"}));
   EXPECT_EQ(wrap_words("aaaaaaa b", 5), (std::vector<std::string>{"aaaaaaa", "b"}));
