@@ -8,14 +8,13 @@
 
 #include "cover_cutter.h"
 #include "joint_law.h"
-#include "joint_specimen.h"
+#include "joint_specimen_run.h"
+#include "math_constants.h"
 #include "scene.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 ContactLaw bb_law() {
   ContactLaw law;
@@ -138,7 +137,7 @@ SceneDef joint_scene(double sigma_n, double tau, double h) {
   top.outer = {{0, 1}, {2, 1}, {2, 2}, {0, 2}};
   s.bodies = {base, top};
   for (double x = 0.05; x < 2; x += 0.1) s.fixed_points.push_back({x, 0.02});
-  load_joint_specimen(s, sigma_n, tau);
+  reference::load_joint_specimen(s, sigma_n, tau);
   s.measure_points = {{1.0, 1.0001}, {1.0, 0.9999}};
   s.solver.time_step = 1e-3;
   s.solver.dynamic_factor = 0;  // quasi-static: settles to equilibrium
@@ -149,7 +148,7 @@ SceneDef joint_scene(double sigma_n, double tau, double h) {
 JointResult load_joint(double sigma_n, double tau, double seconds) {
   const SceneDef s = joint_scene(sigma_n, tau, 0.25);
   const Mesh m = pre::build_mesh(s, "joint");
-  const JointSpecimenResult sr = run_joint_specimen(m, s, seconds);
+  const studies::JointSpecimenResult sr = studies::run_joint_specimen(m, s, seconds);
   JointResult r;
   r.status = sr.status;
   r.closure = sr.closure;

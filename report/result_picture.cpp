@@ -8,10 +8,11 @@
 #include <stdexcept>
 
 #include "failure_cause.h"
+#include "math_constants.h"
 #include "svg_plot.h"
 #include "svg_writer.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 namespace {
 
 std::string number(double v) {
@@ -380,11 +381,11 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   if (scene.has_gravity && scene.gravity.x != 0) {
     char g[96];
     std::snprintf(g, sizeof g, "; gravity %.3g° from −y (model axes)",
-                  std::atan2(std::abs(scene.gravity.x), -scene.gravity.y) * 180 / M_PI);
+                  std::atan2(std::abs(scene.gravity.x), -scene.gravity.y) * 180 / nmm::kPi);
     marks += g;
   }
   svg.text({xmin, ly}, marks + excavated_note, 0.8 * font, "#333333");
   return svg.str(0.03, 1400);
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report
