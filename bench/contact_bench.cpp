@@ -1,11 +1,12 @@
 // Contact cost: staggered brick walls of N × N blocks settling under gravity on a held base,
-// in DDA static mode and dynamic, the reference problem of tests/scene_builders.h.
+// in DDA static mode and dynamic, the reference problem of reference/brick_wall.h.
 //
 //   contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE]
 //   contact_bench --trace N --sizes 10 [--dynamic] [--peer]   per-step counts of N steps
 //   contact_bench --peer [--sizes 10,20,30] [--steps 100] [--csv FILE]
-//       the DDA peer's walls (bench/peer_wall.h), static and dynamic, the first STEPS steps
-//       timed whole: what bench/ntdda_compare.sh sets beside the DDA code's time
+//       [--mesh H]  the DDA code's walls (reference/brick_wall.h peer_wall), static and dynamic,
+//       the first STEPS steps timed whole: what bench/ntdda_compare.sh sets beside the DDA
+//       code's time
 //
 // Bricks 1 m × 0.5 m, odd rows shifted by half a brick, all touching their neighbours (one
 // interface set, penalty 2e11 N/m, φ = 35°), mesh size 0.5 m, Δt = 1e-3 s. Each wall takes 5
@@ -25,18 +26,16 @@
 #include <Eigen/CholmodSupport>
 
 #include "bench_common.h"
-#include "peer_wall.h"
+#include "brick_wall.h"
 #include "cover_cutter.h"
-#include "scene_builders.h"  // the brick wall, the same scene the static-analysis test uses
+#include "stopwatch.h"
 #include "time_stepper.h"
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // A long run of one wall, one line per step: where a settling wall's work goes as it settles.
 int trace_run(int n, bool dynamic, bool peer, int steps) {
-  const nmm::SceneDef s = peer ? nmm::bench::peer_wall(n, n, dynamic) : nmm::test::brick_wall(n, dynamic);
+  const nmm::SceneDef s = peer ? nmm::reference::peer_wall(n, n, dynamic) : nmm::reference::brick_wall(n, dynamic);
   const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
   nmm::solve::TimeStepper st(m, s, "bench");
   std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
@@ -45,10 +44,10 @@ int trace_run(int n, bool dynamic, bool peer, int steps) {
   nmm::solve::StepTimings ta = st.timings();
   std::size_t cuts = st.time_step_cuts();
   for (int k = 1; k <= steps; ++k) {
-    const auto w0 = Clock::now();
+    const nmm::Stopwatch w0;
     const double c0 = nmm::bench::thread_cpu_seconds();
     const std::string status = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
-    const double ms = 1e3 * since(w0), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
+    const double ms = 1e3 * w0.seconds(), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
     const nmm::solve::ContactSolveStats& b = st.contact_solve_stats();
     const nmm::solve::StepTimings& tb = st.timings();
     std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f\n", k, b.newton - a.newton,
@@ -94,15 +93,15 @@ int trace_run(int n, bool dynamic, bool peer, int steps) {
 }
 // The peer's walls: the first `steps` steps timed whole (thread CPU), as the DDA code's
 // ms_per_step covers its whole analysis.
-int peer_run(const std::vector<int>& sizes, int steps, const std::string& csv_path) {
+int peer_run(const std::vector<int>& sizes, int steps, double h, const std::string& csv_path) {
   const char* header =
-      "mode,wall_n,blocks,unknowns,contacts,steps,cpu_ms_per_step,solves_per_step,"
+      "mode,wall_n,mesh_size,blocks,unknowns,contacts,steps,cpu_ms_per_step,solves_per_step,"
       "factorisations_per_step,cg_per_step,friction_updates_per_step,detection_ms_per_step,"
       "factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average\n";
   std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (const bool dynamic : {false, true}) {
     for (int n : sizes) {
-      const nmm::SceneDef s = nmm::bench::peer_wall(n, n, dynamic);
+      const nmm::SceneDef s = nmm::reference::peer_wall(n, n, dynamic, h);
       const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
       nmm::solve::TimeStepper st(m, s, "bench");
       std::int64_t done = 0;
@@ -112,8 +111,8 @@ int peer_run(const std::vector<int>& sizes, int steps, const std::string& csv_pa
       const nmm::solve::ContactSolveStats& cs = st.contact_solve_stats();
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(done, 1));
       char line[600];
-      std::snprintf(line, sizeof line, "%s,%d,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f\n",
-                    dynamic ? "dynamic" : "static", n, m.block_count(), st.unknowns(),
+      std::snprintf(line, sizeof line, "%s,%d,%g,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f\n",
+                    dynamic ? "dynamic" : "static", n, h, m.block_count(), st.unknowns(),
                     st.contacts().contacts().size(), static_cast<long long>(done), 1e3 * cpu * per,
                     static_cast<double>(cs.newton) * per, static_cast<double>(cs.factorisations) * per,
                     static_cast<double>(cs.cg_iterations) * per, static_cast<double>(cs.strength_updates) * per,
@@ -135,6 +134,7 @@ int main(int argc, char** argv) {
   int trace_steps = 0;
   bool trace_dynamic = false, peer = false;
   int peer_steps = 100;
+  double peer_mesh = 0.5;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) sizes = {5, 10};
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
@@ -142,14 +142,15 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--dynamic")) trace_dynamic = true;
     else if (!std::strcmp(argv[i], "--peer")) peer = true;
     else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) peer_steps = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc) peer_mesh = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
-      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer] | --peer [--sizes 10,20,30] [--steps 100] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--csv FILE]\n");
       return 2;
     }
   }
   if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps);
-  if (peer) return peer_run(sizes, peer_steps, csv_path);
+  if (peer) return peer_run(sizes, peer_steps, peer_mesh, csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"
       "factorisation_ms,solves_ms,update_ms,iterations_per_step,factorisations_per_step,"
@@ -157,7 +158,7 @@ int main(int argc, char** argv) {
   std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (const bool dynamic : {false, true}) {
     for (int n : sizes) {
-      const nmm::SceneDef s = nmm::test::brick_wall(n, dynamic);
+      const nmm::SceneDef s = nmm::reference::brick_wall(n, dynamic);
       const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
       nmm::solve::TimeStepper st(m, s, "bench");
       std::string status = st.run_until(5e-3, [](std::int64_t) {});
@@ -165,10 +166,10 @@ int main(int argc, char** argv) {
       const std::size_t it0 = st.open_close_iterations(), cuts0 = st.time_step_cuts();
       std::int64_t steps = 0;
       const double timed = n > 30 ? 10e-3 : 20e-3;
-      const auto w0 = Clock::now();
+      const nmm::Stopwatch w0;
       const double c0 = nmm::bench::thread_cpu_seconds();
       if (status == "ok") status = st.run_until(5e-3 + timed, [&](std::int64_t) { ++steps; });
-      const double wall = since(w0), cpu = nmm::bench::thread_cpu_seconds() - c0;
+      const double wall = w0.seconds(), cpu = nmm::bench::thread_cpu_seconds() - c0;
       const nmm::solve::StepTimings& t1 = st.timings();
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(steps, 1));
       const double k = 1e3 * per;

@@ -160,7 +160,7 @@ struct SolverDef {
   /// –, in [1e-12, 1e-2]: the contact solve accepts a step when no unknown is out of balance by
   /// more than this fraction of the largest contact force, and friction strengths follow the
   /// normal forces to within the same force (docs/contact.md "Tolerance and error")
-  double contact_tolerance = 1e-5;
+  double contact_tolerance = 1e-4;
 };
 
 struct SceneDef {

@@ -23,4 +23,38 @@ SceneDef brick_wall(int n, bool dynamic) {
   return s;
 }
 
+SceneDef peer_wall(int nx, int ny, bool dynamic, double h) {
+  SceneDef s;
+  s.name = "peer wall " + std::to_string(nx) + " x " + std::to_string(ny);
+  const double e = 1e7;
+  s.materials.push_back({"rock", 2500, e, 0.25});
+  JointSetDef js;
+  js.name = "mortar";
+  js.friction_deg = 30;
+  js.normal.model = NormalModel::penalty;
+  js.shear.model = ShearModel::penalty;
+  js.normal.kn = 50 * e;
+  js.shear.ks = 50 * e / 2.5;
+  s.joint_sets.push_back(js);
+  s.interface_set = 0;
+  s.mesh_size = h;
+  s.has_gravity = true;
+  s.gravity = {0, -9.81};
+  s.bodies.push_back(box(-1, -1, nx + 1, 0));
+  s.fixed_points = {{-0.5, -0.5}, {0.5 * nx, -0.5}, {nx + 0.5, -0.5}};
+  for (int row = 0; row < ny; ++row) {
+    const double y0 = 0.5 * row, y1 = y0 + 0.5;
+    double x = 0;
+    if (row % 2) {
+      s.bodies.push_back(box(0, y0, 0.5, y1));
+      x = 0.5;
+    }
+    for (; x + 1 <= nx + 1e-9; x += 1) s.bodies.push_back(box(x, y0, x + 1, y1));
+    if (x < nx - 1e-9) s.bodies.push_back(box(x, y0, nx, y1));
+  }
+  s.solver.time_step = 1e-3;
+  s.solver.dynamic = dynamic;
+  return s;
+}
+
 }  // namespace nmm::reference

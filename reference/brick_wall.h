@@ -16,4 +16,14 @@ namespace nmm::reference {
 /// 0.5 m; gravity; Δt = 1e-3 s. `dynamic`: false gives the static (DDA) analysis.
 SceneDef brick_wall(int n, bool dynamic);
 
+/// The wall exactly as the DDA code compared with (docs/performance.md "Against a DDA code") is
+/// given it by its wall generator, so both are timed on one problem: a rectangle nx m ×
+/// ny·0.5 m cut by bed joints every 0.5 m and head joints every 1 m, odd rows offset by half a
+/// brick (ending in two half bricks): nx·ny + ⌊ny/2⌋ blocks, on a base block (−1, −1)–(nx + 1, 0)
+/// held by three fixed points at y = −0.5 (x = −0.5, nx/2, nx + 0.5); E = 10 MPa, ν = 0.25,
+/// ρ = 2500 kg/m³, gravity 9.81 m/s²; DDA's point penalty kn = 50·E·(1 m) = 5e8 N/m per contact
+/// point, ks = kn/2.5, φ = 30°, no cohesion or tension; Δt = 1e-3 s; mesh size `h` (m; 0.5 gives
+/// about 22 unknowns per brick, the DDA code has 6).
+SceneDef peer_wall(int nx, int ny, bool dynamic, double h = 0.5);
+
 }  // namespace nmm::reference

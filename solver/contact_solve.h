@@ -24,7 +24,7 @@ struct ContactSolveStats {
   /// N, the largest force tolerance F_tol an accepted step used: no unknown was out of balance by
   /// more, no contact force off its law by more (contact_solve.cpp "Tolerance")
   double max_force_tolerance = 0;
-  /// m, the largest F_tol / kn over the closed contacts of an accepted step: how far the
+  /// m, the largest F_tol / kn over the contacts carrying more than F_tol: how far the
   /// tolerance may leave a contact from where its spring would put it
   double max_gap_error = 0;
   double factorisation_seconds = 0, cg_seconds = 0, line_search_seconds = 0;

@@ -1101,7 +1101,6 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
                               {"cg_runs_over_budget", solve_stats_.cg_aborted},
                               {"factorisations", solve_stats_.factorisations},
                               {"friction_updates", solve_stats_.strength_updates},
-                              {"friction_unsettled_steps", solve_stats_.unsettled},
                               // What the tolerance allows (contact_solve.cpp, docs/contact.md).
                               {"tolerance", scene_.solver.contact_tolerance},
                               {"max_force_tolerance_N", solve_stats_.max_force_tolerance},

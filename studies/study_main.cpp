@@ -194,9 +194,11 @@ Row cantilever(double h, int order = 0) {
 // ---- sliding block -------------------------------------------------------------------------
 // Flat 12 m × 1 m base held by fixed points every 0.25 m along y = 0.1, a 2 m × 1 m block on it,
 // gravity tilted by 30°, φ = 20°, h = 0.5, ks = kn/2.5, 1 s (tests/test_contact.cpp).
-Row sliding_block(const std::string& setting, double dt, double kn_over_e, int order = 0) {
+Row sliding_block(const std::string& setting, double dt, double kn_over_e, int order = 0,
+                  double contact_tolerance = nmm::SolverDef{}.contact_tolerance) {
   const double alpha_deg = 30, phi_deg = 20, t = 1.0;
-  const SceneDef s = nmm::reference::sliding_block_tilted(alpha_deg, phi_deg, 0.5, order, dt, kn_over_e);
+  SceneDef s = nmm::reference::sliding_block_tilted(alpha_deg, phi_deg, 0.5, order, dt, kn_over_e);
+  s.solver.contact_tolerance = contact_tolerance;
   Row r;
   r.case_name = "sliding_block";
   r.setting = setting;
@@ -204,11 +206,14 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
     r.value = dt;
   } else if (setting == "cover_order") {
     r.value = order;
+  } else if (setting == "contact_tolerance") {
+    r.value = contact_tolerance;
   } else {
     r.value = kn_over_e;
   }
   r.value_text = "Δt = " + num(dt) + " s, kn = " + num(kn_over_e) + "·E" +
-                 (setting == "cover_order" ? ", n = " + std::to_string(order) : "");
+                 (setting == "cover_order" ? ", n = " + std::to_string(order) : "") +
+                 (setting == "contact_tolerance" ? ", τ = " + num(contact_tolerance) : "");
   r.exact = nmm::reference::sliding_distance(alpha_deg, phi_deg, t);
   r.out = timed_run(s, "sliding block", [t](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, t, o);
@@ -582,6 +587,7 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
       {{"sliding_block", "cover_order"}, "block n = 0, 1, 2"},
       {{"sliding_block", "time_step"}, "block Δt"},
       {{"sliding_block", "penalty"}, "block kn"},
+      {{"sliding_block", "contact_tolerance"}, "block τ"},
       {{"bandis_barton", "mesh_size"}, "closure h"},
       {{"bandis_barton", "settling_time"}, "closure t"},
       {{"hyperbolic_shear", "mesh_size"}, "shear h"},
@@ -594,7 +600,7 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
   const std::vector<std::string> colours = {"#1f77b4", "#393b79", "#6b6ecf", "#d62728", "#ff7f0e",
                                             "#2ca02c", "#9467bd", "#17becf", "#8c564b", "#e377c2",
                                             "#7f7f7f", "#bcbd22", "#e7ba52", "#ad494a",
-                                            "#637939", "#000000", "#c51b8a"};
+                                            "#637939", "#000000", "#c51b8a", "#fd8d3c"};
   nmm::PlotSpec spec{"Error against wall time, cheapest setting first",
                      "wall time, s (log)", "relative error (log)", true, true, {}};
   for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -663,6 +669,9 @@ int main(int argc, char** argv) {
       // The order axis on a joint case: the same block at n = 0, 1, 2 (h = 0.5, Δt = 1 ms).
       for (int n : quick ? std::vector<int>{1} : std::vector<int>{0, 1, 2})
         add(sliding_block("cover_order", 1e-3, 20, n));
+      // The contact solve's force tolerance (solver.contact_tolerance; docs/contact.md).
+      for (double tau : quick ? V{1e-3, 1e-5} : V{1e-3, 1e-4, 1e-5, 1e-6, 1e-8, 1e-10})
+        add(sliding_block("contact_tolerance", 1e-3, 20, 0, tau));
     }
 
     const double dt0 = joint.solver.time_step, h0 = joint.mesh_size;

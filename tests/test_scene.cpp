@@ -395,6 +395,8 @@ const BadCase kBadCases[] = {
     {R"({"solver": {"history_every": 0}})", "/solver/history_every", "must be >= 1 (got 0)"},
     {R"({"solver": {"stop_at_ratio": 0}})", "/solver/stop_at_ratio", "must be in (0, 1) (got 0)"},
     {R"({"solver": {"stop_at_ratio": 1}})", "/solver/stop_at_ratio", "must be in (0, 1) (got 1)"},
+    {R"({"solver": {"contact_tolerance": 0}})", "/solver/contact_tolerance", "must be in [1e-12, 0.01] (got 0)"},
+    {R"({"solver": {"contact_tolerance": 0.1}})", "/solver/contact_tolerance", "must be in [1e-12, 0.01] (got 0.1)"},
     {R"({"solver": {"max_displacement_ratio": 1}})", "/solver/max_displacement_ratio",
      "must be in (0, 1) (got 1)"},
     // At 1/3 an element could have all three covers tied (its weights sum to 1).

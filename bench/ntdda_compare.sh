@@ -1,0 +1,45 @@
+#!/bin/sh
+# nmm beside a DDA code (ntdda, open 2D DDA in C) on the same staggered brick walls, static and
+# dynamic, the first 100 steps, CPU per step on one thread each (docs/performance.md "Against a
+# DDA code"). Not part of CI: the DDA side is a program you build yourself, outside this
+# repository, from its public sources; give its runner and its wall generator:
+#
+#   NTDDA_RUN=/path/to/ntdda_run GEN_WALL=/path/to/gen_wall.py sh bench/ntdda_compare.sh [SIZES]
+#
+# NTDDA_RUN is called as `ntdda_run WALL.geo WALL.ana` and prints a line
+# `NTDDA blocks=… ms_per_step=…` on stderr; GEN_WALL writes those files for an NX × NY wall
+# (`gen_wall.py OUTDIR NX NY --steps S`; E = 10 MPa, penalty 50·E, φ = 30°, Δt = 1 ms), which
+# this script switches to SI units and, for the static rows, to static analysis. The nmm side is
+# reference/brick_wall.h peer_wall (the same wall, mesh size 0.5 m) run by contact_bench --peer.
+# SIZES: wall sizes, default "10 20 30". Writes bench/results/peer_compare.csv (one row per wall
+# and mode: both codes' ms per step, nmm's counts) from the repository root, after building.
+set -e
+cd "$(dirname "$0")/.."
+: "${NTDDA_RUN:?set NTDDA_RUN to the DDA code's runner}"
+: "${GEN_WALL:?set GEN_WALL to the wall generator}"
+SIZES=${1:-"10 20 30"}
+STEPS=100
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+out=bench/results/peer_compare.csv
+echo "date,mode,wall_n,ntdda_blocks,ntdda_ms_per_step,nmm_blocks,nmm_unknowns,nmm_ms_per_step,ratio,nmm_solves_per_step,nmm_factorisations_per_step,nmm_cg_per_step,nmm_detection_ms_per_step,nmm_cuts,load_average" > "$out"
+for n in $SIZES; do
+  build/bin/contact_bench --peer --sizes "$n" --steps $STEPS --csv "$work/nmm_$n.csv" > /dev/null
+  for mode in static dynamic; do
+    d="$work/$mode$n"
+    python3 "$GEN_WALL" "$d" "$n" "$n" --steps $STEPS > /dev/null
+    sed -i 's|<Unitmass> 2.5 </Unitmass> <Unitweight> 24.525 </Unitweight>|<Unitmass> 2500 </Unitmass> <Unitweight> 24525 </Unitweight>|' "$d/wall.ana"
+    [ "$mode" = static ] && sed -i 's|<Analysistype type="dynamic"/>|<Analysistype type="static"/>|' "$d/wall.ana"
+    line=$(cd "$d" && ulimit -f 1000000 && timeout 600 "$NTDDA_RUN" wall.geo wall.ana 2>&1 | grep '^NTDDA' || true)
+    nt_blocks=$(echo "$line" | sed -n 's/.*blocks=\([0-9]*\).*/\1/p')
+    nt_ms=$(echo "$line" | sed -n 's/.*ms_per_step=\([0-9.]*\).*/\1/p')
+    # contact_bench --peer: mode,wall_n,mesh_size,blocks,unknowns,contacts,steps,cpu_ms_per_step,
+    # solves_per_step,factorisations_per_step,cg_per_step,friction_updates_per_step,
+    # detection_ms_per_step,factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average
+    grep "^$mode," "$work/nmm_$n.csv" | awk -F, -v d="$(date +%F)" -v nb="$nt_blocks" -v nm="$nt_ms" '{
+      ratio = (nm > 0) ? sprintf("%.1f", $8 / nm) : "";
+      printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", d, $1, $2, nb, (nm == "" ? "crashed" : nm), $4, $5, $8, ratio, $9, $10, $11, $13, $16, $18 }' >> "$out"
+  done
+done
+cat "$out"
