@@ -79,8 +79,6 @@ SKIP = [
      "benchmark of minutes (30 x 30 wall, 3 repetitions)"),
     ("performance.md", r"^NTDDA_RUN=/path/to/ntdda_run ",
      "needs a DDA runner built by hand outside the repository (its header says how it is called)"),
-    ("performance.md", r"contact_bench --peer --sizes 10,20,30$",
-     "benchmark of minutes (30 x 30 walls, static and dynamic, 100 steps each)"),
 ]
 
 # (page, regex, replacement, reason): applied to the logical command before it runs.
