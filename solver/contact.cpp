@@ -80,6 +80,10 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
     law.cohesion = js.cohesion;
     law.residual_cohesion = js.residual_cohesion;
     law.tensile = js.tensile_strength;
+    law.hysteresis = js.normal.hysteresis;
+    if (js.shear.model == ShearModel::barton_bandis)
+      law.bb = {js.shear.jrc, js.shear.jcs, js.friction_deg,
+                peak_shear_displacement(js.shear.jrc, js.shear.length)};
     laws_.push_back(law);
   }
   for (const JointDef& j : scene.joints) joint_law_.push_back(j.set);
@@ -185,13 +189,16 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
       c.normal_force = o.normal_force;
       c.friction_normal = o.normal_force;
       c.shear_el = o.shear_el;
+      c.joint = o.joint;
     }
     // A closed contact whose gap is now positive has separated (or has moved onto an edge it
     // does not touch): it starts the step open. Kept closed, its spring would pull the faces
     // together with kn·gap — glue — and, closing the gap within the solve, never show tension.
     // A bond (unbroken, with tensile strength) holds its faces in tension: it stays closed.
     const bool bond = !c.broken && laws_[c.law].tensile > 0;
-    if (c.state != ContactState::open && f.gap > eps_ && !bond) c.state = ContactState::open;
+    // The gap is net of the joint's dilation (Barton–Bandis): sheared asperities hold the faces
+    // apart by it, so the normal spring closes at gap = dilation.
+    if (c.state != ContactState::open && f.gap - c.joint.dilation > eps_ && !bond) c.state = ContactState::open;
     c.start_state = c.state;
     now.push_back(c);
   }
@@ -237,8 +244,8 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
         cn[lb] = -phi_b[a] * n_dir[sd];
         cs[lb] = -phi_b[a] * t_dir[sd];
       }
-    c.gap0 = c.at.gap;
-    c.gap = c.at.gap;
+    c.gap0 = c.at.gap - c.joint.dilation;
+    c.gap = c.gap0;
     c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
     c.length = lengths[i];
   }
@@ -248,13 +255,14 @@ std::vector<std::string> ContactSet::effects() const {
   if (!active_) return {};
   std::vector<int> used = joint_law_;
   if (interface_used_) used.push_back(interface_law_);
-  bool friction = false, cohesion = false, tension = false, bb = false, hyp = false;
+  bool friction = false, cohesion = false, tension = false, bb = false, hyp = false, bbs = false;
   for (int l : used) {
     friction |= laws_[l].tan_phi > 0;
     cohesion |= laws_[l].cohesion > 0;
     tension |= laws_[l].tensile > 0;
     bb |= laws_[l].normal == NormalModel::bandis_barton;
     hyp |= laws_[l].shear == ShearModel::hyperbolic;
+    bbs |= laws_[l].shear == ShearModel::barton_bandis;
   }
   std::vector<std::string> e{"contact"};
   if (friction) e.push_back("friction");
@@ -262,6 +270,7 @@ std::vector<std::string> ContactSet::effects() const {
   if (tension) e.push_back("tension");
   if (bb) e.push_back("bandis_barton");
   if (hyp) e.push_back("hyperbolic");
+  if (bbs) e.push_back("barton_bandis_shear");
   return e;
 }
 
@@ -311,12 +320,12 @@ Spring normal_at(const ContactLaw& law, const Contact& c, double g, double skin)
     return {k0 * closure, k0, false};
   }
   if (closure >= skin) {
-    const SpringState s = normal_spring(law, closure, c.length);
+    const SpringState s = normal_spring(law, closure, c.length, c.joint.closure_max);
     return {s.force, s.stiffness, s.capped};
   }
   if (closure <= -skin) return {};
   const double e = (closure + skin) * (closure + skin) / (4 * skin);
-  const SpringState s = normal_spring(law, e, c.length);
+  const SpringState s = normal_spring(law, e, c.length, c.joint.closure_max);
   return {s.force, s.stiffness * (closure + skin) / (2 * skin), false};
 }
 
@@ -354,7 +363,7 @@ void ContactSet::start_strengths() {
     const bool closed = c.start_state != ContactState::open;
     c.bonded = closed && !c.broken && law.tensile > 0;
     c.friction_normal = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken) : 0.0;
+    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken, c.joint.travel) : 0.0;
     // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
     // sticks until the fixed point has its normal force.
     if (!closed && elastic_predictor_ && c.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
@@ -474,7 +483,7 @@ int ContactSet::update_strengths(double force_floor) {
     // sliding block then ends 0.17–0.31 % off Coulomb's answer, because its normal forces shift
     // between its corners as it slides.)
     const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    double s = closed ? shear_strength(law, n, c.length, c.broken) : 0.0;
+    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint.travel) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
     const double moved = std::abs(s - c.strength);
     if (!std::isfinite(c.strength)) {
@@ -515,6 +524,10 @@ void ContactSet::settle_states() {
 void ContactSet::end_step() {
   for (Contact& c : contacts_) {
     const ContactLaw& law = laws_[c.law];
+    // The joint law's memory follows the accepted step (a closed contact's shear travel and
+    // dilation, its largest closure).
+    if (c.state != ContactState::open)
+      c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, c.shear - c.shear0, -c.gap);
     if (c.state == ContactState::open) {
       c.shear_el = 0;
     } else if (c.state == ContactState::locked) {
@@ -528,9 +541,15 @@ void ContactSet::end_step() {
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
-                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force};
+                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint};
   }
   rows_accepted_ = true;
+}
+
+double ContactSet::max_dilation() const {
+  double v = 0;
+  for (const ContactHistory& h : history_) v = std::max(v, h.joint.dilation);
+  return v;
 }
 
 double ContactSet::max_penetration() const {

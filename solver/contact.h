@@ -39,6 +39,7 @@ struct ContactHistory {
   std::int8_t slip_sign = 0; ///< direction of sliding along the edge (±1, 0 never slid)
   double shear_el = 0;       ///< m, elastic shear of the shear spring (return mapping)
   double normal_force = 0;   ///< N, compression > 0: the next step's first friction strength
+  JointMemory joint;         ///< the joint law's own history (travel, dilation, largest closure)
 };
 
 /// One contact of the step being solved: rebuilt by every begin_step() from the detection and
@@ -60,6 +61,8 @@ struct Contact {
   double shear_el = 0;       ///< m, elastic shear of the shear spring at the start of the step
                              ///< (at its end after end_step())
   int slip_sign = 0;         ///< direction of sliding along the edge (±1)
+  JointMemory joint;         ///< the joint law's history at the start of the step (at its end
+                             ///< after end_step()); the gap below is net of joint.dilation
   // The inner solve's working values.
   double friction_normal = 0;  ///< N, normal force the shear strength of the inner solve uses
   double strength = 0;       ///< N, shear strength of the inner solve (tanφ·N + c·L, 0 if open)
@@ -69,7 +72,8 @@ struct Contact {
   double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
   // The last solve (output and diagnostics).
   double normal_force = 0;   ///< N, compression > 0
-  double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
+  double gap = 0;            ///< m, gap after the last solve (< 0: penetration), net of the
+                             ///< joint's dilation (the faces stand apart by it at gap 0)
   double shear = 0;          ///< m, trial elastic shear after the last solve (shear_el + slip)
   double shear_force = 0;    ///< N
   double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
@@ -181,6 +185,9 @@ class ContactSet {
   };
   Events events;
 
+  /// Largest dilation a contact carries (Barton–Bandis), m: its faces stand apart by it, so
+  /// contact detection must look that much farther.
+  double max_dilation() const;
   /// Largest penetration of the contacts after the last solve, m.
   double max_penetration() const;
   std::size_t closed_count() const;
