@@ -181,6 +181,11 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
         while (at >= 0 && history_[at].block != block_a) at = history_next_[at];
       }
     }
+    // A joint's memory belongs to the joint surface (contact.h nearby_joint_memory()): a contact
+    // that is new or was open takes that of the nearest closed contact of the same two blocks.
+    const bool memory = laws_[c.law].shear == ShearModel::barton_bandis || laws_[c.law].hysteresis;
+    if (memory && (at < 0 || history_[at].state == ContactState::open))
+      c.joint = nearby_joint_memory(xy, f.vertex, block_a, block_b, at >= 0 ? history_[at].joint : JointMemory{});
     if (at >= 0) {
       const ContactHistory& o = history_[at];
       c.state = o.state;
@@ -189,7 +194,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
       c.normal_force = o.normal_force;
       c.friction_normal = o.normal_force;
       c.shear_el = o.shear_el;
-      c.joint = o.joint;
+      if (!memory || o.state != ContactState::open) c.joint = o.joint;
     }
     // A closed contact whose gap is now positive has separated (or has moved onto an edge it
     // does not touch): it starts the step open. Kept closed, its spring would pull the faces
@@ -249,6 +254,34 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
     c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
     c.length = lengths[i];
   }
+}
+
+JointMemory ContactSet::nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex,
+                                            std::int32_t block_a, std::int32_t block_b,
+                                            JointMemory own_memory) const {
+  // A joint's memory (shear travel, dilation, largest closure) belongs to the joint surface, not
+  // to the contact that happens to carry a point of it. A contact that opens stops advancing its
+  // own (it carries no load to ride the asperities with), and a new one (a corner coming onto the
+  // joint, or a joint point passing to the other face's vertex once the faces have slid by more
+  // than a vertex spacing) has none: either would stand open, held apart by its neighbours'
+  // dilation, and never close again. Measured on a 2 m joint sheared to 0.9·τp: the last 0.4 m
+  // of it stayed open from 0.7 mm of travel on, and the rest carried the load. Such a contact
+  // takes the memory of the nearest closed contact between the same two blocks within a mesh
+  // size (its own if there is none).
+  JointMemory best = own_memory;
+  double best_d = topo_.mesh_size;
+  const double px = xy[2 * vertex], py = xy[2 * vertex + 1];
+  for (const ContactHistory& h : history_) {
+    if (h.state == ContactState::open) continue;
+    const std::int32_t own = topo_.block_of[topo_.element_of[h.vertex]];
+    if (!((own == block_a && h.block == block_b) || (own == block_b && h.block == block_a))) continue;
+    const double d = std::hypot(xy[2 * h.vertex] - px, xy[2 * h.vertex + 1] - py);
+    if (d < best_d) {
+      best_d = d;
+      best = h.joint;
+    }
+  }
+  return best;
 }
 
 std::vector<std::string> ContactSet::effects() const {

@@ -205,6 +205,11 @@ class ContactSet {
   const DetectionStats& detection_stats() const { return stats_; }
 
  private:
+  /// The joint memory of the nearest closed contact of the last accepted step between the same
+  /// two blocks within a mesh size of vertex (own_memory if none): for a new or open contact.
+  JointMemory nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex, std::int32_t block_a,
+                                  std::int32_t block_b, JointMemory own_memory) const;
+
   const Mesh& mesh_;
   const CoverSpace* space_ = nullptr;  // unknowns of each element
   int row_ = 0;                        // unknowns per contact row: 2 × element_dofs()

@@ -17,7 +17,7 @@
 //   the joint unloads and reloads along the tangent there (ours; Bandis, Lumsden & Barton 1983
 //   measured unloading curves much stiffer than loading, with a permanent set):
 //     σn = max(0, σmax − kt·(δmax − δ)),  σmax = σn(δmax),  kt = Kni/(1 − δmax/Vm)²
-//   so the joint keeps the permanent closure δmax − σmax/kt = δmax·(1 − δmax/Vm) at zero stress,
+//   so the joint keeps the permanent closure δmax − σmax/kt = δmax²/Vm at zero stress,
 //   and loading beyond δmax continues on the virgin curve (force and tangent continuous there).
 // Shear, hyperbolic (Kulhawy 1975; Duncan–Chang form), elastic shear u ≥ 0, strength
 // τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact (c → the residual cohesion c_r once
