@@ -114,6 +114,13 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   }
 }
 
+std::int32_t ContactSet::joint_of(const ContactCandidate& f) const {
+  std::int32_t joint = mesh_.loop_edge_joint[f.edge];
+  if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
+  if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
+  return joint;
+}
+
 ClosedContacts ContactSet::closed_contacts() const {
   ClosedContacts closed;
   for (const ContactHistory& h : history_)
@@ -154,9 +161,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
     if (!removed_.empty() && (removed_[f.elem_a] || removed_[f.elem_b])) continue;  // excavated
     Contact c;
     c.at = f;
-    std::int32_t joint = mesh_.loop_edge_joint[f.edge];
-    if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
-    if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
+    const std::int32_t joint = joint_of(f);
     c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
     const std::int32_t block_a = topo_.block_of[f.elem_a], block_b = topo_.block_of[f.elem_b];
     std::int32_t at = history_at_[f.vertex];

@@ -99,6 +99,9 @@ class ContactSet {
   /// "contact", and "friction", "cohesion", "tension" when a law in use has them.
   std::vector<std::string> effects() const;
   const std::vector<ContactLaw>& laws() const { return laws_; }
+  /// The joint a contact lies on: that of the edge P faces, else of an edge at P; -1: none (a
+  /// body boundary). Its joint set is the contact's law.
+  std::int32_t joint_of(const ContactCandidate& at) const;
   /// The contacts of the step being solved, or of the last step taken.
   const std::vector<Contact>& contacts() const { return contacts_; }
   /// What the last accepted step left for the next (one entry per contact of accepted()).

@@ -153,4 +153,13 @@ JointMemory advance_joint_memory(const ContactLaw& law, JointMemory m, double no
   return m;
 }
 
+JointLawOutput joint_law_output(const ContactLaw& law, double normal_force, double length,
+                                const JointMemory& memory) {
+  JointLawOutput o;
+  if (law.shear != ShearModel::barton_bandis || !(length > 0)) return o;
+  o.jrc_mob = barton_bandis_state(law.bb, std::max(normal_force, 0.0) / length, memory.travel).jrc_mob;
+  o.dilation = memory.dilation;
+  return o;
+}
+
 }  // namespace nmm::solve

@@ -40,6 +40,14 @@ struct JointMemory {
 JointMemory advance_joint_memory(const ContactLaw& law, JointMemory m, double normal_force,
                                  double length, double step_shear, double closure);
 
+/// What the joint law's state shows in the output (contacts.csv).
+struct JointLawOutput {
+  double jrc_mob = 0;   ///< –, mobilised JRC (Barton–Bandis shear; 0 for the other laws)
+  double dilation = 0;  ///< m, opening from shearing (Barton–Bandis; 0 for the other laws)
+};
+JointLawOutput joint_law_output(const ContactLaw& law, double normal_force, double length,
+                                const JointMemory& memory);
+
 /// Force and tangent stiffness of a contact spring at one state.
 struct SpringState {
   double force = 0;      ///< N, compression (normal) or shear force, along the displacement

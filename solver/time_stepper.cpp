@@ -1011,9 +1011,11 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
       std::vector<ContactSample> rows;
       for (const Contact& c : contacts_.contacts()) {
         if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
-        rows.push_back({s_.loop_xy[2 * c.at.vertex], s_.loop_xy[2 * c.at.vertex + 1],
-                        static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
-                        c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge});
+        const double x = s_.loop_xy[2 * c.at.vertex], y = s_.loop_xy[2 * c.at.vertex + 1];
+        const JointLawOutput j = joint_law_output(contacts_.laws()[c.law], c.normal_force, c.length, c.joint);
+        rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
+                        c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
+                        water_.pressure_at(contacts_.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
       }
       out.add_contacts(s, s_.time, rows);
     }
