@@ -427,7 +427,7 @@ ShearLawDef read_shear_law(const Reader& r) {
   const std::size_t model =
       r["model"].as_choice({"constant", "hyperbolic", "penalty", "barton_bandis"}, "shear model");
   // Every model's parameters may be given side by side (runs switch models with --set).
-  r.check_keys({"model", "ks", "ksi", "rf", "jrc", "jcs", "length", "lab_length"}, "");
+  r.check_keys({"model", "ks", "ksi", "rf", "jrc", "jcs", "length", "lab_length", "strength_factor"}, "");
   if (r.has("ks")) law.ks = r.number("ks", kStiffness);
   if (model == 0 || model == 2) {
     law.model = model == 0 ? ShearModel::constant : ShearModel::penalty;
@@ -443,6 +443,8 @@ ShearLawDef read_shear_law(const Reader& r) {
     law.jcs = r.number("jcs", kStrength);
     law.length = r.number("length", interval(0, false, kMaxCoordinate, true));
     law.lab_length = r.optional_number("lab_length", 0, interval(0, false, kMaxCoordinate, true));
+    // Strength reduction (nmm-fos): τ = σn·tan(φr + JRC_mob·log10(JCS/σn)) / F at every σn.
+    law.strength_factor = r.optional_number("strength_factor", 1, interval(1e-3, true, 1e3, true));
     if (law.lab_length > 0) {
       const double ratio = law.length / law.lab_length, jrc0 = law.jrc;
       law.jrc = jrc0 * std::pow(ratio, -0.02 * jrc0);

@@ -75,6 +75,7 @@ struct ShearLawDef {
   double jcs = 0;         ///< Pa, joint wall compressive strength JCS_n at the joint length
   double length = 0;      ///< m, joint (block) length L_n: peak displacement δp = L_n/500·(JRC_n/L_n)^0.33
   double lab_length = 0;  ///< m, L_0 of the sample JRC and JCS were measured on (0: no scale correction)
+  double strength_factor = 1;  ///< –, the frictional strength is divided by it (strength reduction, nmm-fos)
 };
 
 struct JointSetDef {

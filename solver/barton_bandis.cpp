@@ -18,6 +18,8 @@
 // Guards (ours): σn ≥ JCS gives log10(JCS/σn) ≤ 0, taken as 0 (no roughness: τ = σn·tan φr); at
 // very low σn the log grows without bound, and Barton (1976) limits φr + JRC·log10(JCS/σn) to
 // 70°: the friction angle and so the dilation angle (its half roughness term) are capped there.
+// Strength reduction (nmm-fos) divides τ by F at every σn and travel (the SRM of a nonlinear
+// criterion: τ_F(σn) = τ(σn)/F); the dilation, a kinematic property of the asperities, is kept.
 // The law is explicit in a step: δ and v advance at the end of each accepted step from the
 // step's shear |Δu| (advance_barton_bandis); within a step the strength uses the δ at its start.
 #include "barton_bandis.h"
@@ -67,7 +69,7 @@ BartonBandisState barton_bandis_state(const BartonBandis& law, double sigma_n, d
 
 double barton_bandis_strength(const BartonBandis& law, double sigma_n, double travel) {
   if (!(sigma_n > 0)) return 0.0;
-  return sigma_n * std::tan(rad(barton_bandis_state(law, sigma_n, travel).friction_deg));
+  return sigma_n * std::tan(rad(barton_bandis_state(law, sigma_n, travel).friction_deg)) / law.strength_factor;
 }
 
 JointTravel advance_barton_bandis(const BartonBandis& law, JointTravel now, double sigma_n,

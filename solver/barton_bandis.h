@@ -11,6 +11,7 @@ struct BartonBandis {
   double jcs = 0;        ///< Pa, JCS_n
   double phi_r_deg = 0;  ///< degrees, residual friction angle φr
   double peak_slip = 0;  ///< m, δp: shear travel at the peak strength
+  double strength_factor = 1;  ///< –, the strength is divided by it (strength reduction); dilation is not
 };
 
 /// δp = (L/500)·(JRC/L)^0.33 (L in m, δp in m; Barton & Bandis 1982): the peak shear displacement
@@ -31,7 +32,8 @@ struct BartonBandisState {
 };
 BartonBandisState barton_bandis_state(const BartonBandis& law, double sigma_n, double travel);
 
-/// Shear strength (Pa) at normal stress σn (Pa) and travel δ (m): σn·tan(friction_deg); 0 for σn ≤ 0.
+/// Shear strength (Pa) at normal stress σn (Pa) and travel δ (m): σn·tan(friction_deg)/F (F the
+/// strength factor, 1 but in strength reduction); 0 for σn ≤ 0.
 double barton_bandis_strength(const BartonBandis& law, double sigma_n, double travel);
 
 /// Travel and dilation after a step that sheared the joint by |Δu| (m) at normal stress σn (Pa):

@@ -83,7 +83,7 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
     law.hysteresis = js.normal.hysteresis;
     if (js.shear.model == ShearModel::barton_bandis)
       law.bb = {js.shear.jrc, js.shear.jcs, js.friction_deg,
-                peak_shear_displacement(js.shear.jrc, js.shear.length)};
+                peak_shear_displacement(js.shear.jrc, js.shear.length), js.shear.strength_factor};
     laws_.push_back(law);
   }
   for (const JointDef& j : scene.joints) joint_law_.push_back(j.set);

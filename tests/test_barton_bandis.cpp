@@ -85,6 +85,12 @@ TEST(BartonBandis, StrengthFromZeroThroughPeakToResidual) {
   EXPECT_NEAR(barton_bandis_state(law, 1, dp).friction_deg, 70, 1e-12);
   EXPECT_NEAR(barton_bandis_strength(law, 200e6, dp), 200e6 * std::tan(rad(30)), 1);
   EXPECT_EQ(barton_bandis_strength(law, -1e6, dp), 0.0);
+  // Strength reduction divides τ at every σn and travel; the dilation is kept.
+  BartonBandis reduced = law;
+  reduced.strength_factor = 1.6;
+  for (double r : {0.2, 1.0, 3.0})
+    EXPECT_NEAR(barton_bandis_strength(reduced, sn, r * dp), barton_bandis_strength(law, sn, r * dp) / 1.6, 1e-6);
+  EXPECT_EQ(barton_bandis_state(reduced, sn, dp).dilation_deg, barton_bandis_state(law, sn, dp).dilation_deg);
 }
 
 TEST(BartonBandis, DilationAngleAndTravel) {

@@ -120,6 +120,11 @@ TEST(FosSearch, ReductionDividesTanPhiCohesionAndTension) {
   ASSERT_EQ(r.size(), 4u);
   EXPECT_EQ(r[3], "joint_sets.a.residual_cohesion=20000");
   EXPECT_THROW(set_strengths(scene, {"nosuch"}, "scene"), std::exception);
+  // A Barton–Bandis set: the whole τ(σn) divided, through its shear.strength_factor (φr kept).
+  scene["joint_sets"]["a"]["shear"] = {{"model", "barton_bandis"}, {"strength_factor", 1.5}};
+  const auto bb = reduction_sets(set_strengths(scene, {"a"}, "scene"), 2.0);
+  EXPECT_EQ(bb[0], "joint_sets.a.shear.strength_factor=3");
+  EXPECT_EQ(bb[1], "joint_sets.a.cohesion=50000");
 }
 
 // mechanism.svg is drawn as result.svg: the same colour map (the colour bar's 40 bands are

@@ -274,7 +274,7 @@ const BadCase kBadCases[] = {
     {R"({"joint_sets": {"bedding": {"normal": {"kn_i": 1e10}}}})", "/joint_sets/bedding/normal/kn_i",
      "unknown key \"kn_i\" (allowed: hysteresis, jcs, jrc, kn, kni, model, ucs, vm)"},
     {R"({"joint_sets": {"fault": {"shear": {"rff": 0.9}}}})", "/joint_sets/fault/shear/rff",
-     "unknown key \"rff\" (allowed: jcs, jrc, ks, ksi, lab_length, length, model, rf)"},
+     "unknown key \"rff\" (allowed: jcs, jrc, ks, ksi, lab_length, length, model, rf, strength_factor)"},
     {R"({"joint_sets": {"bedding": {"normal": {"model": "linear"}}}})",
      "/joint_sets/bedding/normal/model",
      "unknown normal model \"linear\" (known: constant, bandis_barton, penalty)"},
