@@ -201,6 +201,44 @@ TEST(Scene, PenaltyIsANormalAndShearModel) {
   EXPECT_EQ(s.joint_sets[0].shear.ks, 8e10);
 }
 
+// Barton–Bandis shear, the closure's hysteresis and the water keys (docs/interface.md).
+TEST(Scene, BartonBandisShearHysteresisAndWater) {
+  const SceneDef s = parse_scene(R"({
+    "gravity": [0, -9.81],
+    "materials": { "rock": { "density": 2650, "young": 1e10, "poisson": 0.25 } },
+    "joint_sets": { "rough": { "friction_deg": 28,
+        "normal": { "model": "bandis_barton", "kni": 1.5e10, "vm": 2e-4, "hysteresis": true },
+        "shear": { "model": "barton_bandis", "ks": 1e11, "jrc": 8, "jcs": 6e7, "length": 2,
+                   "strength_factor": 1.25 } } },
+    "bodies": [ { "material": "rock", "outer": [[0,0],[4,0],[4,4],[0,4]] } ],
+    "joints": [ { "set": "rough", "points": [[0,1],[4,2]] }, { "set": "rough", "points": [[2,0],[2,4]] } ],
+    "mesh": { "size": 0.5 },
+    "water": { "density": 1020, "phreatic": [[4, 3], [0, 2.5]],
+               "joints": [ { "joint": 1, "fill_depth": 1.5 }, { "joint": 0, "pressure": [[0, 1e4], [3, 2e4]] } ] }
+  })",
+                                 "bb.json");
+  const JointSetDef& j = s.joint_sets[0];
+  EXPECT_TRUE(j.normal.hysteresis);
+  EXPECT_EQ(j.shear.model, ShearModel::barton_bandis);
+  EXPECT_EQ(j.shear.jrc, 8);
+  EXPECT_EQ(j.shear.jcs, 6e7);
+  EXPECT_EQ(j.shear.length, 2);
+  EXPECT_EQ(j.shear.lab_length, 0);  // no scale correction
+  EXPECT_EQ(j.shear.strength_factor, 1.25);
+  ASSERT_TRUE(s.water.present);
+  EXPECT_EQ(s.water.density, 1020);
+  ASSERT_EQ(s.water.phreatic.size(), 2u);  // either direction across gravity
+  ASSERT_EQ(s.water.joints.size(), 2u);
+  EXPECT_EQ(s.water.joints[0].joint, 1);
+  EXPECT_EQ(s.water.joints[0].fill_depth, 1.5);
+  EXPECT_EQ(s.water.joints[1].fill_depth, -1);
+  EXPECT_EQ(s.water.joints[1].at, (std::vector<double>{0, 3}));
+  EXPECT_EQ(s.water.joints[1].pressure, (std::vector<double>{1e4, 2e4}));
+  const SceneDef dry = parse_scene(R"({"materials": {"r": {"density": 1, "young": 1, "poisson": 0}},
+    "bodies": [{"material": "r", "outer": [[0,0],[1,0],[0,1]]}], "mesh": {"size": 0.5}})", "dry.json");
+  EXPECT_FALSE(dry.water.present);
+}
+
 // ---- bad scenes ---------------------------------------------------------------------------------
 
 // A valid scene that the table below breaks, one mistake at a time, with a JSON merge patch.
