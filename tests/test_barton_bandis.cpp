@@ -155,8 +155,6 @@ TEST(BartonBandis, ClosureHysteresisUnloadsAlongTheTangent) {
 // loads along the joint. `cns`: the top face is held in y by springs of k (Pa/m per unit length:
 // solver.support_stiffness), a constant-normal-stiffness boundary.
 SceneDef shear_box(double sigma_n, double tau, double cns_k) {
-  SceneDef s;
-  s.materials.push_back({"rock", 2650, 5e11, 0.25});
   JointSetDef js;
   js.name = "joint";
   js.friction_deg = kPhiR;
@@ -167,24 +165,11 @@ SceneDef shear_box(double sigma_n, double tau, double cns_k) {
   js.shear.jrc = kJrc;
   js.shear.jcs = kJcs;
   js.shear.length = kLength;
-  s.joint_sets.push_back(js);
-  s.interface_set = 0;
-  s.mesh_size = 0.25;
-  s.plane = PlaneKind::stress;
-  BodyDef base, top;
-  base.material = top.material = 0;
-  base.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
-  top.outer = {{0, 1}, {2, 1}, {2, 2}, {0, 2}};
-  s.bodies = {base, top};
-  for (double x = 0.05; x < 2; x += 0.1) s.fixed_points.push_back({x, 0.02});
+  // Δt = 1 ms (the specimen's): the strength follows the travel from step to step (explicit),
+  // and a quasi-static step moves the block by its out-of-balance force times βΔt²/M; below
+  // ~3 ms that stays a contraction on the steep pre-peak curve (docs/contact.md).
+  SceneDef s = joint_specimen_scene(js, 5e11, 0.25);
   load_joint_specimen(s, sigma_n, tau);
-  s.measure_points = {{1.0, 1.0001}, {1.0, 0.9999}};
-  // Δt = 1 ms: the strength follows the travel from step to step (explicit), and a quasi-static
-  // step moves the block by its out-of-balance force times βΔt²/M; below ~3 ms that stays a
-  // contraction on the steep pre-peak curve (docs/contact.md, "Barton–Bandis shear").
-  s.solver.time_step = 1e-3;
-  s.solver.dynamic_factor = 0;  // quasi-static: every step from rest
-  s.solver.max_displacement_ratio = 0.01;
   if (cns_k > 0) {
     s.supports.push_back({{{0, 2}, {2, 2}}, false, true});
     s.solver.support_stiffness = cns_k;
@@ -192,32 +177,9 @@ SceneDef shear_box(double sigma_n, double tau, double cns_k) {
   return s;
 }
 
-struct ShearResult {
-  std::string status;
-  double slip = 0;     ///< m, horizontal jump across the joint
-  double opening = 0;  ///< m, vertical jump (above − below)
-  double sigma_n = 0;  ///< Pa, the joint's mean effective normal stress (Σ N / 2 m)
-  double travel = 0;   ///< m, the largest shear travel a closed contact carries
-};
-
-ShearResult shear(double sigma_n, double tau, double cns_k, double seconds) {
+JointSpecimenResult shear(double sigma_n, double tau, double cns_k, double seconds) {
   const SceneDef s = shear_box(sigma_n, tau, cns_k);
-  const Mesh mesh = pre::build_mesh(s, "shear box");
-  TimeStepper st(mesh, s, "shear box");
-  ShearResult r;
-  r.status = st.run_until(seconds, [](std::int64_t) {});
-  const auto a = st.displacement_at(st.measure_points()[0]);
-  const auto b = st.displacement_at(st.measure_points()[1]);
-  r.slip = a[0] - b[0];
-  r.opening = a[1] - b[1];
-  double n = 0;
-  for (const Contact& c : st.contacts().accepted())
-    if (c.state != ContactState::open) {
-      n += c.normal_force;
-      r.travel = std::max(r.travel, c.joint.travel);
-    }
-  r.sigma_n = n / 2.0;
-  return r;
+  return run_joint_specimen(pre::build_mesh(s, "shear box"), s, seconds);
 }
 
 // Where a joint sheared by a constant τ comes to rest: the travel δ at which the strength
@@ -251,18 +213,18 @@ TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
   const double sn = 1e6, tau_p = sn * std::tan(rad(kPhiR + kJrc * 2)), dp = peak_shear_displacement(kJrc, kLength);
   for (double frac : {0.6, 0.9}) {
     const Rest want = rest_of(sn, frac * tau_p, 0);
-    const ShearResult r = shear(sn, frac * tau_p, 0, 2.0);
+    const JointSpecimenResult r = shear(sn, frac * tau_p, 0, 2.0);
     ASSERT_EQ(r.status, "ok");
-    const double opening = r.opening + sn / 1e12;  // net of the spring's 1 µm closure
+    const double opening = sn / 1e12 - r.closure;  // net of the springs' 1 µm closure
     std::printf("CNL τ = %.0f %% τp: travel %.4f mm (Barton %.4f), slip %.4f mm, opening %.4f mm "
                 "(Barton %.4f), σn %.4f MPa\n", 100 * frac, r.travel * 1e3, want.travel * 1e3,
-                r.slip * 1e3, opening * 1e3, want.dilation * 1e3, r.sigma_n / 1e6);
+                r.slip * 1e3, opening * 1e3, want.dilation * 1e3, r.normal_stress / 1e6);
     EXPECT_NEAR(r.slip, want.travel, 0.02 * want.travel);
     EXPECT_NEAR(r.travel, want.travel, 0.02 * want.travel);
     EXPECT_NEAR(opening, want.dilation, 0.03 * want.dilation);
-    EXPECT_NEAR(r.sigma_n, sn, 0.01 * sn);  // constant normal stress
+    EXPECT_NEAR(r.normal_stress, sn, 0.01 * sn);  // constant normal stress
   }
-  const ShearResult a = shear(sn, 1.05 * tau_p, 0, 1.0), b = shear(sn, 1.05 * tau_p, 0, 1.5);
+  const JointSpecimenResult a = shear(sn, 1.05 * tau_p, 0, 1.0), b = shear(sn, 1.05 * tau_p, 0, 1.5);
   std::printf("CNL τ = 105 %% τp: slip %.3f mm at 1 s, %.3f mm at 1.5 s (δp %.3f mm)\n", a.slip * 1e3,
               b.slip * 1e3, dp * 1e3);
   EXPECT_GT(a.slip, 2 * dp);
@@ -279,19 +241,19 @@ TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
 TEST(BartonBandisSolver, ShearAgainstConstantNormalStiffness) {
   const double sn = 1e6, k_springs = 5e9, tau_p = sn * std::tan(rad(kPhiR + kJrc * 2));
   const double k = 1 / (1 / k_springs + 1.98 / 5e11);
-  const ShearResult at0 = shear(sn, 0, k_springs, 0.5);  // normal load only: what the springs leave the joint
+  const JointSpecimenResult at0 = shear(sn, 0, k_springs, 0.5);  // normal load only: what the springs leave the joint
   ASSERT_EQ(at0.status, "ok");
   const double tau = 0.9 * tau_p;
-  const Rest want = rest_of(at0.sigma_n, tau, k);
-  const ShearResult r = shear(sn, tau, k_springs, 2.0);
+  const Rest want = rest_of(at0.normal_stress, tau, k);
+  const JointSpecimenResult r = shear(sn, tau, k_springs, 2.0);
   ASSERT_EQ(r.status, "ok");
-  const double dv = r.opening - at0.opening;
+  const double dv = at0.closure - r.closure;  // the opening the shear added
   std::printf("CNS k = %.0e Pa/m, τ = 90 %% τp: σn %.4f -> %.4f MPa (k·Δv %.4f MPa; Barton %.4f), "
-              "travel %.4f mm (Barton %.4f), Δv %.4f mm (Barton %.4f)\n", k, at0.sigma_n / 1e6,
-              r.sigma_n / 1e6, k * dv / 1e6, want.sigma_n / 1e6, r.travel * 1e3, want.travel * 1e3,
+              "travel %.4f mm (Barton %.4f), Δv %.4f mm (Barton %.4f)\n", k, at0.normal_stress / 1e6,
+              r.normal_stress / 1e6, k * dv / 1e6, want.sigma_n / 1e6, r.travel * 1e3, want.travel * 1e3,
               dv * 1e3, want.dilation * 1e3);
-  EXPECT_NEAR(r.sigma_n - at0.sigma_n, k * dv, 0.02 * k * dv);
-  EXPECT_NEAR(r.sigma_n, want.sigma_n, 0.02 * (want.sigma_n - at0.sigma_n));
+  EXPECT_NEAR(r.normal_stress - at0.normal_stress, k * dv, 0.02 * k * dv);
+  EXPECT_NEAR(r.normal_stress, want.sigma_n, 0.02 * (want.sigma_n - at0.normal_stress));
   EXPECT_NEAR(dv, want.dilation, 0.03 * want.dilation);
   EXPECT_NEAR(r.travel, want.travel, 0.02 * want.travel);
   EXPECT_LT(want.travel, rest_of(sn, tau, 0).travel);  // stiffer boundary, shorter travel
