@@ -109,6 +109,7 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   if (interface_used_) used.push_back(interface_law_);
   for (int l : used) {
     nonlinear_ |= laws_[l].normal == NormalModel::bandis_barton || !linear_shear(laws_[l]);
+    memory_laws_ |= laws_[l].shear == ShearModel::barton_bandis || laws_[l].hysteresis;
     if (laws_[l].normal == NormalModel::bandis_barton)
       topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
   }
@@ -153,6 +154,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
   // The last accepted step's rows stay readable (accepted()) while this attempt rebuilds its own
   // in the other vector: no copies.
   if (rows_accepted_) std::swap(accepted_, contacts_);
+  if (memory_laws_) index_closed_memory(xy);
   rows_accepted_ = false;
   std::vector<Contact>& now = contacts_;
   now.clear();
@@ -274,19 +276,40 @@ JointMemory ContactSet::nearby_joint_memory(const std::vector<double>& xy, std::
   // takes the memory of the nearest closed contact between the same two blocks within a mesh
   // size (its own if there is none).
   JointMemory best = own_memory;
-  double best_d = topo_.mesh_size;
+  const double h = topo_.mesh_size;
+  double best_d = h;
+  std::int64_t best_at = -1;
   const double px = xy[2 * vertex], py = xy[2 * vertex + 1];
-  for (const ContactHistory& h : history_) {
-    if (h.state == ContactState::open) continue;
-    const std::int32_t own = topo_.block_of[topo_.element_of[h.vertex]];
-    if (!((own == block_a && h.block == block_b) || (own == block_b && h.block == block_a))) continue;
-    const double d = std::hypot(xy[2 * h.vertex] - px, xy[2 * h.vertex + 1] - py);
-    if (d < best_d) {
-      best_d = d;
-      best = h.joint;
+  const auto cx = static_cast<std::int64_t>(std::floor(px / h)), cy = static_cast<std::int64_t>(std::floor(py / h));
+  for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
+    for (std::int64_t j = cy - 1; j <= cy + 1; ++j) {
+      auto k = std::lower_bound(memory_cells_.begin(), memory_cells_.end(), std::array<std::int64_t, 3>{i, j, -1});
+      for (; k != memory_cells_.end() && (*k)[0] == i && (*k)[1] == j; ++k) {
+        const ContactHistory& e = history_[static_cast<std::size_t>((*k)[2])];
+        const std::int32_t own = topo_.block_of[topo_.element_of[e.vertex]];
+        if (!((own == block_a && e.block == block_b) || (own == block_b && e.block == block_a))) continue;
+        const double d = std::hypot(xy[2 * e.vertex] - px, xy[2 * e.vertex + 1] - py);
+        if (d < best_d || (d == best_d && (*k)[2] < best_at)) {  // ties: the first in the history
+          best_d = d;
+          best_at = (*k)[2];
+          best = e.joint;
+        }
+      }
     }
-  }
   return best;
+}
+
+void ContactSet::index_closed_memory(const std::vector<double>& xy) {
+  const double h = topo_.mesh_size;
+  memory_cells_.clear();
+  for (std::size_t i = 0; i < history_.size(); ++i) {
+    const ContactHistory& e = history_[i];
+    if (e.state == ContactState::open) continue;
+    memory_cells_.push_back({static_cast<std::int64_t>(std::floor(xy[2 * e.vertex] / h)),
+                             static_cast<std::int64_t>(std::floor(xy[2 * e.vertex + 1] / h)),
+                             static_cast<std::int64_t>(i)});
+  }
+  std::sort(memory_cells_.begin(), memory_cells_.end());
 }
 
 std::vector<std::string> ContactSet::effects() const {

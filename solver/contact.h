@@ -210,8 +210,11 @@ class ContactSet {
  private:
   /// The joint memory of the nearest closed contact of the last accepted step between the same
   /// two blocks within a mesh size of vertex (own_memory if none): for a new or open contact.
+  /// Looks in memory_cells_ (index_closed_memory()).
   JointMemory nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex, std::int32_t block_a,
                                   std::int32_t block_b, JointMemory own_memory) const;
+  /// Files the closed history entries by mesh-size cell of their vertex's position (xy).
+  void index_closed_memory(const std::vector<double>& xy);
 
   const Mesh& mesh_;
   const CoverSpace* space_ = nullptr;  // unknowns of each element
@@ -225,6 +228,9 @@ class ContactSet {
   int interface_law_ = 0;
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
   bool nonlinear_ = false;       // a law in use is not a constant spring
+  bool memory_laws_ = false;     // a law carries a joint memory (Barton–Bandis shear, hysteresis)
+  // (cell x, cell y, history index) of the closed history entries, sorted: nearby_joint_memory()'s
+  std::vector<std::array<std::int64_t, 3>> memory_cells_;
   bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve
   bool active_ = false;
   std::vector<Contact> contacts_;   // this step's, being iterated
