@@ -265,6 +265,41 @@ TEST(BartonBandisSolver, ShearAgainstConstantNormalStiffness) {
 namespace nmm::solve {
 namespace {
 
+// The closure hysteresis through the solver: the specimen loaded to σ1 = 5 MPa, then unloaded to
+// 0.4·σ1 (the loads follow a time table). With hysteresis the joint reopens only along the
+// tangent at its largest closure, δ = δmax − 0.6·σ1/kt; without, it retraces the curve to
+// δ(2 MPa). Kni 15.35 GPa/m, Vm 0.227 mm (JRC 10, JCS 100 MPa, σc 150 MPa).
+TEST(BartonBandisSolver, ClosureHysteresisThroughTheSolver) {
+  const double kni = 15.35e9, vm = 0.227e-3, s1 = 5e6, s2 = 0.4 * s1;
+  auto run = [&](bool hysteresis) {
+    JointSetDef js;
+    js.name = "joint";
+    js.friction_deg = 30;
+    js.normal.model = NormalModel::bandis_barton;
+    js.normal.kni = kni;
+    js.normal.vm = vm;
+    js.normal.hysteresis = hysteresis;
+    js.shear.model = ShearModel::constant;
+    js.shear.ks = 1e10;
+    SceneDef s = joint_specimen_scene(js, 5e11, 0.25);
+    load_joint_specimen(s, s1, 0);
+    TimeTable unload;
+    unload.time = {0.3, 0.4};
+    unload.value = {1.0, 0.4};
+    s.load_tables.assign(s.loads.size(), unload);
+    const JointSpecimenResult r = run_joint_specimen(pre::build_mesh(s, "hysteresis"), s, 0.7);
+    EXPECT_EQ(r.status, "ok");
+    return r.closure;
+  };
+  const double dmax = s1 * vm / (kni * vm + s1), kt = kni / std::pow(1 - dmax / vm, 2);
+  const double with = run(true), without = run(false);
+  const double want_with = dmax - (s1 - s2) / kt, want_without = s2 * vm / (kni * vm + s2);
+  std::printf("unloaded 5 -> 2 MPa: closure %.4e m with hysteresis (tangent line %.4e), %.4e m "
+              "without (curve %.4e); largest closure %.4e m\n", with, want_with, without, want_without, dmax);
+  EXPECT_NEAR(with, want_with, 0.02 * want_with);
+  EXPECT_NEAR(without, want_without, 0.02 * want_without);
+}
+
 // The joint memory (travel, dilation, largest closure) is part of the contact history: a run
 // restarted from a checkpoint taken while the joint dilates ends bitwise where the straight run
 // does, and one that lost the memory would not (the dilation holds the faces apart).
