@@ -25,7 +25,8 @@ struct ContactSample {
   double x, y;             ///< m, the contact vertex
   int state;               ///< 0 open, 1 locked, 2 sliding
   int law;                 ///< joint set index (or the default interface's, last)
-  double closure;          ///< m, −gap (> 0: the faces overlap by this much)
+  double closure;          ///< m, −gap (> 0: the faces overlap by this much), the normal spring's:
+                           ///< net of a Barton–Bandis joint's dilation (faces apart by dilation − closure)
   double shear;            ///< m, elastic shear of the shear spring
   double normal_force;     ///< N, compression
   double shear_force;      ///< N
