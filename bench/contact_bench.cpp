@@ -2,7 +2,10 @@
 // in DDA static mode and dynamic, the reference problem of tests/scene_builders.h.
 //
 //   contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE]
-//   contact_bench --trace N --sizes 10 [--dynamic]    per-step counts of N steps (a long run)
+//   contact_bench --trace N --sizes 10 [--dynamic] [--peer]   per-step counts of N steps
+//   contact_bench --peer [--sizes 10,20,30] [--steps 100] [--csv FILE]
+//       the DDA peer's walls (bench/peer_wall.h), static and dynamic, the first STEPS steps
+//       timed whole: what bench/ntdda_compare.sh sets beside the DDA code's time
 //
 // Bricks 1 m × 0.5 m, odd rows shifted by half a brick, all touching their neighbours (one
 // interface set, penalty 2e11 N/m, φ = 35°), mesh size 0.5 m, Δt = 1e-3 s. Each wall takes 5
@@ -22,6 +25,7 @@
 #include <Eigen/CholmodSupport>
 
 #include "bench_common.h"
+#include "peer_wall.h"
 #include "cover_cutter.h"
 #include "scene_builders.h"  // the brick wall, the same scene the static-analysis test uses
 #include "time_stepper.h"
@@ -31,11 +35,11 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // A long run of one wall, one line per step: where a settling wall's work goes as it settles.
-int trace_run(int n, bool dynamic, int steps) {
-  const nmm::SceneDef s = nmm::test::brick_wall(n, dynamic);
+int trace_run(int n, bool dynamic, bool peer, int steps) {
+  const nmm::SceneDef s = peer ? nmm::bench::peer_wall(n, n, dynamic) : nmm::test::brick_wall(n, dynamic);
   const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
   nmm::solve::TimeStepper st(m, s, "bench");
-  std::printf("step,newton,friction_rounds,cg,factorisations,cg_over_budget,cg_skipped,unsettled,cuts,ms,"
+  std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
               "factorisation_ms,cg_ms,detection_ms,cpu_ms\n");
   nmm::solve::ContactSolveStats a = st.contact_solve_stats();
   nmm::solve::StepTimings ta = st.timings();
@@ -47,9 +51,9 @@ int trace_run(int n, bool dynamic, int steps) {
     const double ms = 1e3 * since(w0), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
     const nmm::solve::ContactSolveStats& b = st.contact_solve_stats();
     const nmm::solve::StepTimings& tb = st.timings();
-    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f\n", k, b.newton - a.newton,
-                b.strength_rounds - a.strength_rounds, b.cg_iterations - a.cg_iterations,
-                b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.cg_skipped - a.cg_skipped, b.unsettled - a.unsettled,
+    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f\n", k, b.newton - a.newton,
+                b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
+                b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
                 st.time_step_cuts() - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
                 1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms);
     std::fflush(stdout);
@@ -88,25 +92,64 @@ int trace_run(int n, bool dynamic, int steps) {
               1e3 * f_best, 1e3 * s_best, f_best / s_best);
   return 0;
 }
+// The peer's walls: the first `steps` steps timed whole (thread CPU), as the DDA code's
+// ms_per_step covers its whole analysis.
+int peer_run(const std::vector<int>& sizes, int steps, const std::string& csv_path) {
+  const char* header =
+      "mode,wall_n,blocks,unknowns,contacts,steps,cpu_ms_per_step,solves_per_step,"
+      "factorisations_per_step,cg_per_step,friction_updates_per_step,detection_ms_per_step,"
+      "factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average\n";
+  std::ofstream csv = nmm::bench::start_csv(csv_path, header);
+  for (const bool dynamic : {false, true}) {
+    for (int n : sizes) {
+      const nmm::SceneDef s = nmm::bench::peer_wall(n, n, dynamic);
+      const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
+      nmm::solve::TimeStepper st(m, s, "bench");
+      std::int64_t done = 0;
+      const double c0 = nmm::bench::thread_cpu_seconds();
+      const std::string status = st.run_until(steps * s.solver.time_step, [&](std::int64_t) { ++done; });
+      const double cpu = nmm::bench::thread_cpu_seconds() - c0;
+      const nmm::solve::ContactSolveStats& cs = st.contact_solve_stats();
+      const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(done, 1));
+      char line[600];
+      std::snprintf(line, sizeof line, "%s,%d,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f\n",
+                    dynamic ? "dynamic" : "static", n, m.block_count(), st.unknowns(),
+                    st.contacts().contacts().size(), static_cast<long long>(done), 1e3 * cpu * per,
+                    static_cast<double>(cs.newton) * per, static_cast<double>(cs.factorisations) * per,
+                    static_cast<double>(cs.cg_iterations) * per, static_cast<double>(cs.strength_updates) * per,
+                    1e3 * st.timings().contact_detection * per, 1e3 * cs.factorisation_seconds * per,
+                    1e3 * cs.cg_seconds * per, st.time_step_cuts(), status == "ok" ? "ok" : status.c_str(),
+                    nmm::bench::load_average());
+      csv << line;
+      std::fputs(line, stdout);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 30, 50};
   std::string csv_path = "contact_bench.csv";
   int trace_steps = 0;
-  bool trace_dynamic = false;
+  bool trace_dynamic = false, peer = false;
+  int peer_steps = 100;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) sizes = {5, 10};
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
     else if (!std::strcmp(argv[i], "--trace") && i + 1 < argc) trace_steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--dynamic")) trace_dynamic = true;
+    else if (!std::strcmp(argv[i], "--peer")) peer = true;
+    else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) peer_steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
-      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic]\n");
+      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer] | --peer [--sizes 10,20,30] [--steps 100] [--csv FILE]\n");
       return 2;
     }
   }
-  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, trace_steps);
+  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps);
+  if (peer) return peer_run(sizes, peer_steps, csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"
       "factorisation_ms,solves_ms,update_ms,iterations_per_step,factorisations_per_step,"

@@ -20,7 +20,7 @@
 #include "contact_detection.h"
 #include "bench_common.h"
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "brick_wall.h"
 #include "time_stepper.h"
 
 int main(int argc, char** argv) {
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
       "contacts,near_pairs,fastest_ms,median_ms,us_per_edge,load_average\n";
   std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (int n : sizes) {
-    const nmm::SceneDef s = nmm::test::brick_wall(n, false);
+    const nmm::SceneDef s = nmm::reference::brick_wall(n, false);
     const nmm::Mesh m = nmm::pre::build_mesh(s, "wall");
     nmm::solve::TimeStepper st(m, s, "wall");
     st.set_threads(1);

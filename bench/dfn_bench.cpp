@@ -16,7 +16,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -30,13 +29,9 @@
 #include "mesh_file.h"
 #include "scene.h"
 #include "scene_geometry.h"
+#include "stopwatch.h"
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 std::string scene_text(int joints, double h) {
   const double p21 = 0.5 * joints * 8.0 / 40000.0;
@@ -75,26 +70,26 @@ struct Row {
 Row run_case(int target, double h, const std::string& mesh_path) {
   Row r;
   const std::string text = scene_text(target, h);
-  auto t = Clock::now();
+  nmm::Stopwatch t;
   nmm::SceneDef scene = nmm::parse_scene(text, "bench");
   const nlohmann::json doc = nmm::parse_json_text(text, "bench");
   const nlohmann::json expanded = nmm::pre::explicit_scene(doc, scene);
   const std::string explicit_text = expanded.dump(1) + "\n";
   scene = nmm::scene_from_json(expanded, "bench (generated joints)");
-  r.generation = since(t);
+  r.generation = t.seconds();
   r.joints = static_cast<long>(scene.joints.size());
-  t = Clock::now();
+  t.restart();
   nmm::pre::check_scene_geometry(scene, "bench");
-  r.checks = since(t);
-  t = Clock::now();
+  r.checks = t.seconds();
+  t.restart();
   nmm::Mesh mesh = nmm::pre::build_mesh(scene, "bench", &r.cut);
-  r.cutting = since(t);
+  r.cutting = t.seconds();
   mesh.scene_file = "bench";
   mesh.scene_text = explicit_text;
   mesh.scene_sha256 = nmm::sha256(explicit_text);
-  t = Clock::now();
+  t.restart();
   nmm::write_mesh_file(mesh, mesh_path);
-  r.writing = since(t);
+  r.writing = t.seconds();
   r.triangles = static_cast<long>(mesh.triangle_count());
   r.elements = static_cast<long>(mesh.element_count());
   r.covers = static_cast<long>(mesh.cover_count());

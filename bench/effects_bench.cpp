@@ -21,7 +21,6 @@
 // one round. Nothing here fails on a timing. Results: bench/results/effects_bench.csv, read in
 // docs/performance.md.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -33,13 +32,12 @@
 
 #include "bench_common.h"
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "brick_wall.h"
+#include "scene_pieces.h"
 #include "time_stepper.h"
+#include "stopwatch.h"
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // A square body of about `unknowns` unknowns (h = 1 m, as solver_bench), under gravity,
 // dynamic, held by fixed points along its bottom.
@@ -63,7 +61,7 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   js.normal.kn = 2e11;  // Pa/m (constant joint stiffness, 20·E/h at h = 1 m)
   js.shear.ks = 8e10;   // Pa/m
   s.joint_sets.push_back(js);
-  s.bodies.push_back(nmm::test::box(0, 0, side, side));
+  s.bodies.push_back(nmm::reference::box(0, 0, side, side));
   s.mesh_size = h;
   s.has_gravity = o.gravity;
   s.gravity = {0, o.gravity ? -9.81 : 0.0};
@@ -75,7 +73,7 @@ nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   for (int i = 0; i < o.loads; ++i)
     s.loads.push_back({{0.1 + (side - 0.2) * i / std::max(o.loads - 1, 1), side - 0.1}, {1e3, -1e4}});
   if (o.joint_outside) s.joints.push_back({0, {{-5, 0}, {-5, side}}});
-  if (o.far_body) s.bodies.push_back(nmm::test::box(side + 50, 0, side + 51, 1));
+  if (o.far_body) s.bodies.push_back(nmm::reference::box(side + 50, 0, side + 51, 1));
   if (side_out) *side_out = side;
   return s;
 }
@@ -115,8 +113,8 @@ class Timed {
   // Steps that are not timed in the batches; the first, which includes CHOLMOD's symbolic
   // analysis, is timed on its own (first_step()).
   void warm_up(int n) {
-    const auto w0 = Clock::now();
-    if (n > 0 && advance(1)) first_step_ = since(w0);
+    const nmm::Stopwatch w0;
+    if (n > 0 && advance(1)) first_step_ = w0.seconds();
     advance(n - 1);
   }
   double first_step() const { return first_step_; }
@@ -126,9 +124,9 @@ class Timed {
     if (r_.status != "ok") return 0;
     const nmm::solve::StepTimings t0 = st_.timings();
     const std::size_t it0 = st_.open_close_iterations(), cut0 = st_.time_step_cuts();
-    const auto w0 = Clock::now();
+    const nmm::Stopwatch w0;
     if (!advance(r_.steps)) return 0;
-    const double n = r_.steps, wall = since(w0) / n;
+    const double n = r_.steps, wall = w0.seconds() / n;
     const nmm::solve::StepTimings& t1 = st_.timings();
     if (wall < r_.step) {
       r_.step = wall;
@@ -319,7 +317,7 @@ int main(int argc, char** argv) {
   write(csv, c1);
   {
     const int n = quick ? 5 : 10;
-    const nmm::SceneDef s = nmm::test::brick_wall(n, true);  // the wall of contact_bench
+    const nmm::SceneDef s = nmm::reference::brick_wall(n, true);  // the wall of contact_bench
     char name[64];
     std::snprintf(name, sizeof name, "brick wall N = %d", n);
     Timed wall(s, "c", name, quick ? 10 : 20);

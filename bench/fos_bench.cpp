@@ -3,7 +3,7 @@
 //
 //   fos_bench [--csv FILE] [--repeats N]
 //
-// Problem: the block on a 30° plane with φ = 35° (studies/fos_reference.h; F = 1.2128), trials of
+// Problem: the block on a 30° plane with φ = 35° (reference/slides.h; F = 1.2128), trials of
 // 0.4 s (200 steps). For each worker count k ∈ {1, 2} and tolerance tol ∈ {0.1, 0.01, 0.001} it
 // runs nmm-fos (threads engine; every trial is an nmm-solve process) and records the wall time,
 // the number of trials and rounds, the error against the closed form, and the trials spent in the
@@ -15,7 +15,6 @@
 // bench/results/fos_bench.csv, read in docs/fos-and-sweeps.md.
 #include <sys/wait.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -25,7 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "fos_reference.h"
+#include "slides.h"
+#include "stopwatch.h"
 
 namespace fs = std::filesystem;
 
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   }
   const fs::path work = fs::temp_directory_path() / ("fos_bench_" + std::to_string(getpid()));
   fs::create_directories(work);
-  const auto ref = nmm::studies::block_on_plane(30, 35);
+  const auto ref = nmm::reference::block_on_plane(30, 35);
   std::ofstream(work / "scene.json") << ref.scene.dump(1);
   const std::string mesh = (work / "scene.nmm").string();
   if (std::system((std::string(NMM_PREPROCESS) + " " + (work / "scene.json").string() + " -o " + mesh +
@@ -59,14 +59,14 @@ int main(int argc, char** argv) {
       nlohmann::json j;
       for (int r = 0; r < repeats; ++r) {
         const fs::path o = work / ("k" + std::to_string(k) + "_" + std::to_string(r) + "_" + std::to_string(tol));
-        const auto t0 = std::chrono::steady_clock::now();
+        const nmm::Stopwatch t0;
         const std::string cmd = std::string(NMM_FOS) + " " + mesh + " -o " + o.string() + " --workers " +
                                 std::to_string(k) + " --tol " + std::to_string(tol) + " > /dev/null 2>&1";
         if (std::system(cmd.c_str()) != 0) {
           std::fprintf(stderr, "fos_bench: nmm-fos failed: %s\n", cmd.c_str());
           return 1;
         }
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double s = t0.seconds();
         if (s < best) {
           best = s;
           std::ifstream in(o / "fos.json");

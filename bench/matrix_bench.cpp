@@ -4,7 +4,7 @@
 //
 //   matrix_bench [--sizes 10,20,30,50] [--reps 3] [--csv FILE]
 //
-// For each staggered brick wall of N × N bricks (tests/scene_builders.h, the wall of
+// For each staggered brick wall of N × N bricks (reference/brick_wall.h, the wall of
 // contact_bench) the wall settles 3 static steps, so that its pattern holds the contact coupling
 // of a settling wall (one 12 × 12 block per element pair that has had a contact: docs/contact.md,
 // "Sparse pattern"; until issue 11's speed work also every pair within the search distance, which
@@ -26,7 +26,6 @@
 // Counts (nonzeros, flops) do not depend on the machine or its load; times do (the CSV carries
 // the load average at each row). Run with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1: one core.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -38,13 +37,12 @@
 
 #include "bench_common.h"
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "brick_wall.h"
 #include "time_stepper.h"
+#include "stopwatch.h"
 
 namespace {
-using Clock = std::chrono::steady_clock;
 using Sparse = nmm::solve::SystemMatrix::Sparse;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Ordered {
   double factor_nnz = 0, flops = 0, analyse_ms = 0, factor_ms = 0;
@@ -71,12 +69,12 @@ Ordered factorise(const Sparse& a, int ordering, int reps) {
       c.method[1].ordering = CHOLMOD_METIS;
       c.postorder = 1;
     }
-    const auto t0 = Clock::now();
+    const nmm::Stopwatch t0;
     llt.analyzePattern(a);
-    const double analyse = since(t0);
-    const auto t1 = Clock::now();
+    const double analyse = t0.seconds();
+    const nmm::Stopwatch t1;
     llt.factorize(a);
-    const double fact = since(t1);
+    const double fact = t1.seconds();
     r.ok = llt.info() == Eigen::Success;
     r.factor_nnz = c.lnz;
     r.flops = c.fl;
@@ -92,7 +90,7 @@ Ordered factorise(const Sparse& a, int ordering, int reps) {
 
 // The wall's outline as one continuum: base and bricks' extent [0, n + ½] × [0, n/2], no joints.
 nmm::SceneDef monolith(int n, double h) {
-  nmm::SceneDef s = nmm::test::brick_wall(n, false);
+  nmm::SceneDef s = nmm::reference::brick_wall(n, false);
   s.name = "monolith " + std::to_string(n);
   s.bodies.clear();
   nmm::BodyDef b;
@@ -128,7 +126,7 @@ int main(int argc, char** argv) {
   } orderings[] = {{"amd", CHOLMOD_AMD}, {"metis", CHOLMOD_METIS}, {"nesdis", CHOLMOD_NESDIS}, {"auto", -1}, {"amd+metis", -2}};
   for (int n : sizes) {
     // The wall, after 3 static steps.
-    const nmm::SceneDef wall = nmm::test::brick_wall(n, false);
+    const nmm::SceneDef wall = nmm::reference::brick_wall(n, false);
     const nmm::Mesh wm = nmm::pre::build_mesh(wall, "wall");
     nmm::solve::TimeStepper st(wm, wall, "wall");
     st.set_threads(1);

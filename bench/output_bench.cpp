@@ -24,7 +24,6 @@
 // recorded, since the machine is shared. Nothing fails on a timing.
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -37,13 +36,12 @@
 #include "bench_common.h"
 #include "cover_cutter.h"
 #include "output_writer.h"
+#include "stopwatch.h"
 #include "time_stepper.h"
 #include "vtk_writer.h"
 #include "vtu_compressed.h"
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 namespace fs = std::filesystem;
 }  // namespace
 
@@ -132,13 +130,13 @@ int main(int argc, char** argv) {
   const nmm::solve::FrameFields fields{&st.loop_xy(), &st.state().loop_u, &stress};
   double writer_seconds = 0;
   for (int round = 0; round < kRounds; ++round) {
-    const auto w0 = Clock::now();
+    const nmm::Stopwatch w0;
     for (int f = round * frames / kRounds; f < (round + 1) * frames / kRounds; ++f)
       out.write_frame(f, f * 1e-3, mesh, fields);
-    writer_seconds += since(w0);
+    writer_seconds += w0.seconds();
     for (std::size_t i = 0; i < kVariants; ++i) {
       const Variant& v = variants[i];
-      const auto t0 = Clock::now();
+      const nmm::Stopwatch t0;
       for (int f = round * frames / kRounds; f < (round + 1) * frames / kRounds; ++f) {
         const nmm::PolygonGrid grid = frame_grid(v.cached ? cached : nmm::mesh_to_grid(mesh));
         const std::string data = nmm::vtu_compressed(grid, v.level);
@@ -148,7 +146,7 @@ int main(int argc, char** argv) {
         pvd[i] += "    <DataSet timestep=\"" + std::to_string(f) + "\" file=\"frames/frame_" + std::to_string(f) + ".vtu\"/>\n";
         nmm::write_file_atomically((dir / "frames.pvd").string(), "<VTKFile>\n" + pvd[i] + "</VTKFile>\n", sync);
       }
-      seconds[i] += since(t0);
+      seconds[i] += t0.seconds();
     }
   }
   for (std::size_t i = 0; i < kVariants; ++i) row(variants[i].name, frames, seconds[i], written[i], ",,");

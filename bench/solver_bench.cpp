@@ -12,7 +12,6 @@
 #include <Eigen/CholmodSupport>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -22,11 +21,10 @@
 
 #include "bench_common.h"
 #include "cover_cutter.h"
+#include "stopwatch.h"
 #include "time_stepper.h"
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -64,9 +62,9 @@ int main(int argc, char** argv) {
     st.step(dt);  // warm-up, with the symbolic analysis
     const nmm::solve::StepTimings t0 = st.timings();
     const int steps = 5;
-    const auto w0 = Clock::now();
+    const nmm::Stopwatch w0;
     for (int i = 0; i < steps; ++i) st.step(dt);
-    const double step_s = since(w0) / steps;
+    const double step_s = w0.seconds() / steps;
     const nmm::solve::StepTimings& t1 = st.timings();
 
     using Llt = Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Lower>;
@@ -75,10 +73,10 @@ int main(int argc, char** argv) {
     llt.analyzePattern(k);
     double ref = 1e300;
     for (int r = 0; r < 3; ++r) {
-      const auto r0 = Clock::now();
+      const nmm::Stopwatch r0;
       llt.factorize(k);
       const Eigen::VectorXd x = llt.solve(st.rhs());
-      ref = std::min(ref, since(r0));
+      ref = std::min(ref, r0.seconds());
       if (llt.info() != Eigen::Success || !std::isfinite(x.norm())) return 1;
     }
     char line[512];

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <filesystem>
 #include <system_error>
 
 #include "error.h"
@@ -57,6 +58,15 @@ void write_file_atomically(const std::string& path, const std::string& contents,
     (void)::fsync(dfd);
     ::close(dfd);
   }
+}
+
+void prepare_output_folder(const std::string& dir) {
+  {  // if this fails, the probe below names the problem
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+  }
+  write_file_atomically(dir + "/.probe", "");
+  std::remove((dir + "/.probe").c_str());
 }
 
 }  // namespace nmm

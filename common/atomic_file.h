@@ -24,4 +24,9 @@ enum class Durability {
 void write_file_atomically(const std::string& path, const std::string& contents,
                            Durability durability = Durability::synced);
 
+/// Makes the output folder `dir` (and its parents) and proves it writable by writing and removing
+/// a probe file in it, so that a tool fails on a bad folder before its work, not after: the
+/// InputError names the probe's path and why it could not be written.
+void prepare_output_folder(const std::string& dir);
+
 }  // namespace nmm

@@ -602,7 +602,8 @@ SolverDef read_solver(const Reader& r) {
   r.check_keys({"time_step", "steps", "dynamic", "dynamic_factor", "newmark_beta",
                 "max_displacement_ratio", "output_every", "fixed_point_stiffness",
                 "sliver_cover_weight", "checkpoint_every", "support_stiffness", "static_mode",
-                "excavation_steps", "cover_order", "history_every", "stop_at_ratio"});
+                "excavation_steps", "cover_order", "history_every", "stop_at_ratio",
+                "contact_tolerance"});
   SolverDef s;  // defaults from scene.h
   s.time_step = r.optional_number("time_step", s.time_step, interval(kMinTimeStep, true, kMaxTimeStep, true));
   s.steps = r.optional_integer("steps", s.steps, 0);
@@ -627,6 +628,8 @@ SolverDef read_solver(const Reader& r) {
   s.support_stiffness = r.optional_number("support_stiffness", s.support_stiffness,
                                           interval(0, true, kMaxSpringStiffness, true));
   s.excavation_steps = r.optional_integer("excavation_steps", s.excavation_steps, 1);
+  s.contact_tolerance =
+      r.optional_number("contact_tolerance", s.contact_tolerance, interval(1e-12, true, 1e-2, true));
   s.cover_order = static_cast<int>(r.optional_integer("cover_order", s.cover_order, 0));
   if (s.cover_order > 2) r["cover_order"].fail("cover_order must be 0, 1 or 2");
   return s;

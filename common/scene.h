@@ -166,6 +166,10 @@ struct SolverDef {
   /// cover), 1 linear (6), 2 quadratic (12); a choice of the run, not of the mesh
   /// (docs/higher-order-covers.md)
   int cover_order = 0;
+  /// –, in [1e-12, 1e-2]: the contact solve accepts a step when no unknown is out of balance by
+  /// more than this fraction of the largest contact force, and friction strengths follow the
+  /// normal forces to within the same force (docs/contact.md "Tolerance and error")
+  double contact_tolerance = 1e-5;
 };
 
 /// Water in the joints: a pressure p (Pa) on both faces of every joint (and on every body

@@ -1,6 +1,7 @@
 // Scene usability checks: see scene_checks.h.
 //
-// Point in polygon: even–odd ray casting; a point within `tol` of an edge counts as inside.
+// Point in polygon: even–odd ray casting (ring_geometry.h); a point within `tol` of an edge
+// counts as inside.
 // Segment–body: some part of segment ab lies in the body iff an end lies in it or ab crosses
 // one of its boundary edges (outer or hole) — a crossing puts points on both sides, one of
 // them inside.
@@ -11,6 +12,7 @@
 #include <cstdio>
 
 #include "error.h"
+#include "ring_geometry.h"
 
 namespace nmm {
 namespace {
@@ -28,30 +30,12 @@ bool on_ring(const Ring& r, Vec2 p, double tol) {
   return false;
 }
 
-bool inside_ring(const Ring& r, Vec2 p) {
-  bool in = false;
-  for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
-    const Vec2 a = r[i], b = r[j];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x) in = !in;
-  }
-  return in;
-}
-
 double cross(Vec2 o, Vec2 a, Vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
 bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   const double d1 = cross(c, d, a), d2 = cross(c, d, b), d3 = cross(a, b, c), d4 = cross(a, b, d);
   return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 &&
          d4 != 0;
-}
-
-double ring_area(const Ring& r) {
-  double a = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    const Vec2 p = r[i], q = r[(i + 1) % r.size()];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return 0.5 * std::abs(a);
 }
 
 double ring_perimeter(const Ring& r) {
@@ -80,9 +64,9 @@ std::string coords(Vec2 p) {
 
 bool point_in_body(const BodyDef& body, Vec2 p, double tol) {
   if (on_ring(body.outer, p, tol)) return true;
-  if (!inside_ring(body.outer, p)) return false;
+  if (!point_in_ring(body.outer, p)) return false;
   for (const Ring& h : body.holes)
-    if (!on_ring(h, p, tol) && inside_ring(h, p)) return false;
+    if (!on_ring(h, p, tol) && point_in_ring(h, p)) return false;
   return true;
 }
 

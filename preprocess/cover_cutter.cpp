@@ -36,7 +36,6 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -47,6 +46,7 @@
 #include "error.h"
 #include "lattice.h"
 #include "nmm_version.h"
+#include "stopwatch.h"
 
 namespace nmm::pre {
 
@@ -69,10 +69,6 @@ using Dcel       = CGAL::Arr_face_extended_dcel<Traits, std::int32_t>;
 using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 using Halfedge_handle = Arrangement::Halfedge_const_handle;
 using Face_handle     = Arrangement::Face_const_handle;
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 bool lex_less(const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
@@ -504,15 +500,15 @@ Mesh Cutter::extract() {
 
 Mesh Cutter::run(CutTimings* timings) {
   CutTimings t;
-  auto t0 = std::chrono::steady_clock::now();
+  nmm::Stopwatch t0;
   raw_ = make_raw_mesh(scene_);
-  t.mesh_generation = seconds_since(t0);
+  t.mesh_generation = t0.seconds();
 
-  t0 = std::chrono::steady_clock::now();
+  t0.restart();
   insert_curves();
-  t.arrangement = seconds_since(t0);
+  t.arrangement = t0.seconds();
 
-  t0 = std::chrono::steady_clock::now();
+  t0.restart();
   number_faces();
   label_faces();
   const std::size_t faces_before = lab_.faces.size();
@@ -520,11 +516,11 @@ Mesh Cutter::run(CutTimings* timings) {
   // Bridges never split a face, so the labels carry over unchanged.
   if (arr_.number_of_faces() != faces_before)
     throw std::logic_error("cover cutter: a hole bridge split a face");
-  t.labelling = seconds_since(t0);
+  t.labelling = t0.seconds();
 
-  t0 = std::chrono::steady_clock::now();
+  t0.restart();
   Mesh mesh = extract();
-  t.covers = seconds_since(t0);
+  t.covers = t0.seconds();
   if (timings) *timings = t;
   return mesh;
 }

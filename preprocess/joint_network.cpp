@@ -13,11 +13,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "math_constants.h"
+#include "ring_geometry.h"
+
 namespace nmm::pre {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::uint64_t splitmix64(std::uint64_t& x) {
   std::uint64_t z = (x += 0x9e3779b97f4a7c15ULL);
@@ -31,19 +32,6 @@ std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); 
 double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}; }
-
-bool point_in_polygon(Vec2 p, const Ring& poly) {
-  bool inside = false;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2 a = poly[i], b = poly[j];
-    if ((a.y > p.y) != (b.y > p.y)) {
-      const double x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
-      if (p.x < x) inside = !inside;
-    }
-  }
-  return inside;
-}
 
 /// Parameter s in [0, 1] along a–b where it crosses c–d, or -1 if it does not.
 double segment_crossing(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
@@ -313,7 +301,7 @@ std::vector<std::pair<Vec2, Vec2>> clip_segment_to_polygon(Vec2 a, Vec2 b, const
   double start = -1;
   for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
     if (ts[i + 1] - ts[i] <= 0) continue;
-    const bool in = point_in_polygon(lerp(a, b, 0.5 * (ts[i] + ts[i + 1])), poly);
+    const bool in = point_in_ring(poly, lerp(a, b, 0.5 * (ts[i] + ts[i + 1])));
     if (in && start < 0) start = ts[i];
     if (!in && start >= 0) {
       out.emplace_back(lerp(a, b, start), lerp(a, b, ts[i]));

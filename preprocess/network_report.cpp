@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "joint_network.h"
+#include "math_constants.h"
 #include "svg_plot.h"
 #include "svg_writer.h"
 
@@ -13,7 +14,6 @@ namespace nmm::pre {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kScanlines = 50;
 constexpr int kRoseBins = 18;  // 10° each over [0°, 180°)
 

@@ -4,7 +4,6 @@
 // atomically. Bad input of any kind: one line on stderr, exit status 2, no output file.
 #include <CLI/CLI.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -24,7 +23,9 @@
 #include "nmm_version.h"
 #include "scene.h"
 #include "scene_checks.h"
+#include "ring_geometry.h"
 #include "scene_geometry.h"
+#include "stopwatch.h"
 
 namespace {
 
@@ -58,7 +59,7 @@ int main(int argc, char** argv) {
     return status;
 
   try {
-    const auto t0 = std::chrono::steady_clock::now();
+    const nmm::Stopwatch t0;
     const std::string scene_file = scene_path;
     std::string text = nmm::read_text_file(scene_path);
     nlohmann::json base;
@@ -96,14 +97,7 @@ int main(int argc, char** argv) {
       std::cerr << w << "\n";
     // Triangles of side h covering the bodies' bounding area: the cost driver of the cut.
     double area = 0;
-    for (const nmm::BodyDef& b : scene.bodies) {
-      double a = 0;
-      for (std::size_t i = 0; i < b.outer.size(); ++i) {
-        const nmm::Vec2 p = b.outer[i], q = b.outer[(i + 1) % b.outer.size()];
-        a += p.x * q.y - q.x * p.y;
-      }
-      area += 0.5 * std::abs(a);
-    }
+    for (const nmm::BodyDef& b : scene.bodies) area += nmm::ring_area(b.outer);
     const double triangles = area / (0.4330127 * scene.mesh_size * scene.mesh_size);
     if (triangles >= kWarnFrom)
       std::fprintf(stderr,
@@ -123,13 +117,11 @@ int main(int argc, char** argv) {
     mesh.scene_file = scene_file;
     mesh.scene_text = text;
     mesh.scene_sha256 = nmm::sha256(text);
-    const auto t1 = std::chrono::steady_clock::now();
+    const nmm::Stopwatch t1;
     nmm::write_mesh_file(mesh, out_path);
     if (!export_path.empty()) nmm::write_file_atomically(export_path, text);
-    const double write_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    const double total_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double write_s = t1.seconds();
+    const double total_s = t0.seconds();
     if (!quiet)
       std::printf("%s: %zu nodes, %zu triangles, %zu physical covers, %zu manifold elements, "
                   "%zu blocks, area %.9g m²\n",

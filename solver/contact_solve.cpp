@@ -17,20 +17,43 @@
 // which is non-increasing in α because Π is convex (an exact line search: a regula falsi on a
 // monotone, piecewise smooth function). Every accepted α lowers Π, so contact states cannot
 // cycle; a convex piecewise-quadratic Π is minimised in finitely many Newton steps once the
-// active set is right, and the loop stops on the residual, ‖r‖ ≤ 1e-10·(‖b‖ + the largest
-// contact force) — not on "no contact changed state": a contact touching at zero gap may show
-// either state at round-off level without moving the residual, so it cannot keep a step
-// iterating. Any symmetric positive definite H gives a descent direction, so H may also be
-// shaped (a contact within ε of touching gets its spring's tangent) without losing this.
+// active set is right. Any symmetric positive definite H gives a descent direction, so H may also
+// be shaped (a contact within ε of touching gets its spring's tangent) without losing this.
 //
-// Linear solves: H differs from the matrix P of the last factorisation by the springs that
+// Tolerance (docs/contact.md "Tolerance and error"). The step is accepted when
+//     ‖r‖∞ ≤ F_tol = τ · max_c max(|N_c|, |T_c|)      (τ: solver.contact_tolerance, 1e-5)
+// (floored at 1e-12·‖b‖∞, round-off) and no friction strength is off by more than
+// max(0.1 % of itself, F_tol). Not "no contact changed state": a contact touching at zero gap may
+// show either state without moving a force by more than its spring times the gap, and once that
+// is below F_tol it cannot keep a step iterating — the tolerance is the hysteresis of the
+// open–close iteration, in forces rather than in a band of penetration: a contact may carry a
+// force it should not, or lack one it should, of at most F_tol, and every unknown is in balance
+// within F_tol. The error this leaves in a step's displacement is at most ‖H⁻¹‖·F_tol·√n and in
+// practice F_tol over the stiffness the unknown is held by; it does not accumulate as Δt → 0
+// faster than the step count times that (measured on the reference problems: docs/contact.md).
+//
+// Friction. S = tanφ·N + c·L needs the normal force. Each of the first kMergedUpdates Newton
+// iterates updates every strength from its own N (the friction state lags one iterate, as in
+// DDA's open–close passes, instead of a round of full solves per update); for fixed strengths
+// each iteration lowers the convex Π_S. Should the step need more iterates, strengths are
+// updated only at an iterate in balance (a round of the fixed point per update, each round a
+// convex problem solved to the tolerance), and after kMaxStrengthRounds rounds the step keeps
+// the strengths it has (counted: summary.json contact_solve.friction_unsettled_steps).
+// Cohesion and tensile bonds break for good when exceeded, so they change at most once per
+// contact and step.
+//
+// Linear solves. H differs from the matrix P of the last factorisation by the springs that
 // switched and, from one step to the next, by the small change of A with the geometry. Conjugate
-// gradients preconditioned by P converge in at most r + 1 iterations when H − P has rank r, so a
-// few switched contacts cost a few factor solves instead of a factorisation, and a settled
-// system needs no factorisation at all. Each CG run gets a budget of iterations worth one
-// factorisation (cg_budget: from the factor's flops and nonzeros, capped by a measurement; not
-// from clocks, so a run is the same on every machine): when it is spent, H is factorised
-// (P ← H) and the direction solved directly.
+// gradients preconditioned by P converge in at most r + 1 iterations when H − P has rank r, and
+// far fewer when the switched springs are alike (their eigenvalues of P⁻¹H cluster), so a few
+// switched contacts cost a few factor solves instead of a factorisation, and a settled system
+// needs no factorisation at all. Each CG run gets a budget of iterations worth one factorisation
+// (cg_budget: from the factor's flops and nonzeros, capped by a measurement; not from clocks, so
+// a run is the same on every machine): when it is spent, H is factorised (P ← H) and the
+// direction solved directly. CG is tried whatever the number of switched springs: predicting
+// from that number (rank r against the budget) refactorised 4× as often as needed, since CG
+// converged in 2–10 iterations where r was in the thousands (bench/contact_bench --peer,
+// docs/performance.md).
 //
 // The system matrix's pattern holds the element pairs that have had a contact (every step adds
 // its contacts' pairs: time_stepper.cpp update_pattern). Should a contact's pair be missing,
@@ -39,19 +62,6 @@
 //
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
 // next direction comes from a new factorisation, which the following runs then reuse.
-//
-// The rank of H − P is known before a run: the factorisation keeps a note of the springs it was
-// made with (per contact: its vertex, element pair and tangents kn, ks), and r counts the spring
-// terms kn·cn cnᵀ, ks·cs csᵀ that appeared, vanished, moved to another element pair or changed
-// by more than kSpringChange since. (What is left — A's change with the geometry between steps,
-// smaller tangent changes — is a perturbation of P⁻¹H close to the identity, which CG removes in
-// a few iterations.) When r + 1 exceeds the budget the run would spend it and fail, so H is
-// factorised at once and the run is not tried.
-//
-// Friction strength S = tanφ·N + c·L needs the normal force: a fixed point on N around the
-// convex solve (start: the N the contact ended the last step with), repeated while a strength at
-// or near its limit moves by more than 0.1 %. Cohesion and tensile bonds break for good when
-// exceeded, so they change at most once per contact and step.
 #include "contact_solve.h"
 
 #include <algorithm>
@@ -68,12 +78,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-constexpr int kMaxNewton = 60;        // Newton iterations per inner solve
-constexpr int kMaxStrengthRounds = 12;  // friction fixed point rounds per step
-constexpr double kResidualTolerance = 1e-10;
-// A strength change below this fraction of the largest contact force is settled: on contacts
-// that barely touch (N ≈ 0) a 0.1 % change is nothing the blocks feel.
-constexpr double kStrengthFloor = 1e-6;
+constexpr int kMaxNewton = 60;             // Newton iterations per step
+constexpr int kMergedUpdates = 8;          // iterates whose strengths follow their own N
+constexpr int kMaxStrengthRounds = 12;     // strength updates at balance before the step keeps them
+constexpr double kRoundOff = 1e-12;        // the tolerance's floor, × ‖b‖∞
 
 // CG iterations worth one numeric factorisation. From flops: a factorisation's over one
 // iteration's (a factor solve pair, a product with the matrix, the contacts' rows). Measured
@@ -90,65 +98,6 @@ int cg_budget(const SystemMatrix& k, std::size_t contacts) {
   const double per_iteration = 4.0 * k.factor_nonzeros() + 4.0 * static_cast<double>(k.nonzeros()) +
                                100.0 * static_cast<double>(contacts);
   return static_cast<int>(std::clamp(k.factor_flops() / per_iteration, 3.0, kMaxFactorisationInCgIterations));
-}
-
-// A spring term whose tangent changed by more than this fraction since the factorisation counts
-// in the rank of H − P (an eigenvalue of P⁻¹H moved far from 1); below it, a cluster near 1.
-constexpr double kSpringChange = 0.25;
-
-// The note of a factorisation: per contact with a spring, (vertex, element A, element B, kn, ks),
-// sorted by vertex.
-constexpr int kNoteStride = 5;
-std::vector<double> spring_note(const ContactSet& contacts) {
-  std::vector<std::size_t> order;
-  const auto& cs = contacts.contacts();
-  for (std::size_t i = 0; i < cs.size(); ++i)
-    if ((cs[i].kn_now != 0 || cs[i].ks_now != 0) && cs[i].group >= 0) order.push_back(i);  // in the matrix
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return cs[a].at.vertex < cs[b].at.vertex || (cs[a].at.vertex == cs[b].at.vertex && cs[a].at.elem_b < cs[b].at.elem_b);
-  });
-  std::vector<double> note;
-  note.reserve(kNoteStride * order.size());
-  for (std::size_t i : order)
-    note.insert(note.end(), {static_cast<double>(cs[i].at.vertex), static_cast<double>(cs[i].at.elem_a),
-                             static_cast<double>(cs[i].at.elem_b), cs[i].kn_now, cs[i].ks_now});
-  return note;
-}
-
-// r: spring terms in which the current tangents differ from the factorisation's note.
-int changed_springs(const std::vector<double>& note, const ContactSet& contacts) {
-  const std::size_t m = note.size() / kNoteStride;
-  std::vector<char> matched(m, 0);
-  const auto differs = [](double a, double b) {
-    return std::abs(a - b) > kSpringChange * std::max(std::abs(a), std::abs(b));
-  };
-  int r = 0;
-  // The note entry of (vertex, element A, element B), m if none (entries are sorted by vertex).
-  const auto entry = [&](double vertex, double elem_a, double elem_b) {
-    std::size_t lo = 0, hi = m;
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi) / 2;
-      if (note[kNoteStride * mid] < vertex) lo = mid + 1;
-      else hi = mid;
-    }
-    for (std::size_t k = lo; k < m && note[kNoteStride * k] == vertex; ++k)
-      if (note[kNoteStride * k + 1] == elem_a && note[kNoteStride * k + 2] == elem_b) return k;
-    return m;
-  };
-  for (const Contact& c : contacts.contacts()) {
-    std::size_t k = entry(c.at.vertex, c.at.elem_a, c.at.elem_b);
-    // Made with the other face's vertex at this point: the same spring rows (contact.h mirror).
-    if (k == m && c.mirror >= 0) k = entry(c.mirror, c.at.elem_b, c.at.elem_a);
-    if (k < m) {
-      matched[k] = 1;
-      r += differs(c.kn_now, note[kNoteStride * k + 3]) + differs(c.ks_now, note[kNoteStride * k + 4]);
-    } else {
-      r += (c.kn_now != 0) + (c.ks_now != 0);
-    }
-  }
-  for (std::size_t k = 0; k < m; ++k)
-    if (!matched[k]) r += (note[kNoteStride * k + 3] != 0) + (note[kNoteStride * k + 4] != 0);
-  return r;
 }
 
 // y = H v.
@@ -232,127 +181,137 @@ double line_search(const F& psi, double psi0, double tol) {
 }
 }  // namespace
 
-std::string solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
-                               Eigen::VectorXd& d, ContactSolveStats& stats) {
-  // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction round on stderr.
+ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
+                                       double tau, Eigen::VectorXd& d, ContactSolveStats& stats) {
+  using Status = ContactSolveOutcome::Status;
+  // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
   static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
   const Eigen::Index n = b.size();
   d.setZero(n);
   Eigen::VectorXd ra = b;  // b − A d, kept up to date without a product per iteration
   Eigen::VectorXd r(n), delta(n), adelta(n);
-  const double b_norm = b.norm();
+  const double floor = kRoundOff * b.lpNorm<Eigen::Infinity>() + std::numeric_limits<double>::min();
   contacts.start_strengths();
-  bool refresh = false;  // factorise H for the next direction
-  for (int round = 0;; ++round) {
-    if (round > 0) ++stats.strength_rounds;
-    double last_r = std::numeric_limits<double>::infinity();
-    bool last_full_cg = false;  // the last step was a full (α = 1) step along a CG direction
-    for (int it = 0;; ++it) {
-      r = ra;
-      contacts.forces_at(d, r);
-      const double tol = kResidualTolerance * (b_norm + contacts.force_scale()) +
-                         std::numeric_limits<double>::min();
-      const double r_norm = r.norm();
-      if (r_norm <= tol) break;
-      // A full Newton step that did not halve the residual: no contact changed its spring along
-      // it (else α < 1), so the direction was not H⁻¹r — CG's recursive residual drifted from the
-      // true one (ill-conditioned H, e.g. higher cover orders). The next direction is solved
-      // directly.
-      if (last_full_cg && r_norm > 0.5 * last_r) refresh = true;
-      last_r = r_norm;
-      if (it >= kMaxNewton)
-        return "the contact solve did not converge in " + std::to_string(kMaxNewton) +
-               " Newton iterations (residual " + std::to_string(r_norm / tol) + " × its tolerance)";
-      ++stats.newton;
-      // Direction: CG on the reused factorisation, or a new factorisation of H.
-      bool solved = false;
-      const int budget = cg_budget(system, contacts.contacts().size());
-      int rank = -1;  // of H − P, from the factorisation's note (-1: no factorisation to reuse)
-      if (system.has_factor() && !refresh) {
-        rank = changed_springs(system.factor_note(), contacts);
-        if (rank + 1 > budget) {
-          ++stats.cg_skipped;
-          refresh = true;
+  bool refresh = false;       // factorise H for the next direction
+  int rounds = 0;             // strength updates at an iterate in balance
+  double last_r = std::numeric_limits<double>::infinity();
+  bool last_full_cg = false;  // the last step was a full (α = 1) step along a CG direction
+  double tol = floor, r_norm = 0;
+  // r ← the residual at d, with its ∞-norm and the tolerance (which follows the contact forces).
+  const auto evaluate = [&]() {
+    r = ra;
+    contacts.forces_at(d, r);
+    tol = std::max(tau * contacts.force_scale(), floor);
+    r_norm = r.lpNorm<Eigen::Infinity>();
+  };
+  for (int it = 0;; ++it) {
+    evaluate();
+    // Friction strengths follow this iterate's normal forces (not at the first, whose N are the
+    // last step's, already in the strengths) for the first kMergedUpdates iterates; after that,
+    // only once the iterate is in balance (a round of the fixed point per update), so a strength
+    // swinging between two values cannot keep Newton from converging.
+    const bool merged = it > 0 && it <= kMergedUpdates;
+    if (merged || r_norm <= tol) {
+      const int moved = contacts.update_strengths(tol);
+      if (trace) std::fprintf(stderr, "it %d strengths moved %d\n", it, moved);
+      if (moved == 0 && r_norm <= tol) break;
+      if (moved > 0) {
+        ++stats.strength_updates;
+        if (r_norm <= tol && ++rounds >= kMaxStrengthRounds) {
+          ++stats.unsettled;  // the fixed point still moves: the step keeps these strengths
+          break;
         }
+        evaluate();
       }
-      if (system.has_factor() && !refresh) {
-        const auto t0 = Clock::now();
-        const long before = stats.cg_iterations;
-        solved = pcg(system, contacts, r, std::max(1e-6 * r_norm, 0.3 * tol), budget, delta, stats);
-        // A run that needed more than half its budget says the factorisation is far from H: the
-        // next direction is cheaper from a new one (which later runs reuse) than from another
-        // long CG run.
-        refresh = solved && 2 * (stats.cg_iterations - before) > budget;
-        stats.cg_seconds += since(t0);
+    }
+    if (r_norm <= tol) continue;  // the strengths moved without moving a force beyond the tolerance
+    // A full Newton step that did not halve the residual: no contact changed its spring along
+    // it (else α < 1), so the direction was not H⁻¹r — CG's recursive residual drifted from the
+    // true one (ill-conditioned H, e.g. higher cover orders). The next direction is solved
+    // directly.
+    if (last_full_cg && r_norm > 0.5 * last_r) refresh = true;
+    last_r = r_norm;
+    if (it >= kMaxNewton)
+      return {Status::not_converged, "the contact solve did not converge in " + std::to_string(kMaxNewton) +
+                                         " Newton iterations (residual " + std::to_string(r_norm / tol) +
+                                         " × its tolerance)"};
+    ++stats.newton;
+    // Direction: CG on the reused factorisation, or a new factorisation of H. CG's target in the
+    // 2-norm bounds the ∞-norm.
+    bool solved = false;
+    const int budget = cg_budget(system, contacts.contacts().size());
+    const double cg_target = std::max(1e-6 * r.norm(), 0.3 * tol);
+    if (system.has_factor() && !refresh) {
+      const auto t0 = Clock::now();
+      const long before = stats.cg_iterations;
+      solved = pcg(system, contacts, r, cg_target, budget, delta, stats);
+      // A run that needed more than half its budget says the factorisation is far from H: the
+      // next direction is cheaper from a new one (which later runs reuse) than from another
+      // long CG run.
+      refresh = solved && 2 * (stats.cg_iterations - before) > budget;
+      stats.cg_seconds += since(t0);
+    } else {
+      refresh = false;
+    }
+    if (!solved) {
+      const auto t0 = Clock::now();
+      system.restore();
+      contacts.add_tangents(system);
+      const bool ok = system.factorize();
+      ++stats.factorisations;
+      stats.factorisation_seconds += since(t0);
+      if (!ok) return {Status::not_positive_definite, "the system matrix is not positive definite"};
+      const std::size_t outside = contacts.springs_outside_pattern();
+      if (outside == 0) {
+        delta = system.solve(r);
+        // The exact solve leaves r's round-off null component amplified by 1/ε in δ (zero field,
+        // but rᵀδ then gives the line search a false slope): remove it.
+        system.remove_null_part(delta);
       } else {
-        refresh = false;
-      }
-      if (!solved) {
-        const auto t0 = Clock::now();
-        system.restore();
-        contacts.add_tangents(system);
-        const bool ok = system.factorize();
-        ++stats.factorisations;
-        stats.factorisation_seconds += since(t0);
-        if (!ok) return "not positive definite";
-        system.set_factor_note(spring_note(contacts));
-        const std::size_t outside = contacts.springs_outside_pattern();
-        if (outside == 0) {
+        // Springs of pairs not in the pattern are not in the factorisation: H − P has rank
+        // `outside`, which CG resolves in about as many iterations. Should it not, P's own
+        // direction P⁻¹r is still one of descent (P is symmetric positive definite).
+        const auto t2 = Clock::now();
+        const int cap = std::max(budget, 2 * static_cast<int>(outside) + 10);
+        if (!pcg(system, contacts, r, cg_target, cap, delta, stats)) {
           delta = system.solve(r);
-          // The exact solve leaves r's round-off null component amplified by 1/ε in δ (zero field,
-          // but rᵀδ then gives the line search a false slope): remove it.
           system.remove_null_part(delta);
-        } else {
-          // Springs of pairs not in the pattern are not in the factorisation: H − P has rank
-          // `outside`, which CG resolves in about as many iterations. Should it not, P's own
-          // direction P⁻¹r is still one of descent (P is symmetric positive definite).
-          const auto t2 = Clock::now();
-          const int cap = std::max(budget, 2 * static_cast<int>(outside) + 10);
-          if (!pcg(system, contacts, r, std::max(1e-6 * r_norm, 0.3 * tol), cap, delta, stats)) {
-            delta = system.solve(r);
-            system.remove_null_part(delta);
-          }
-          stats.cg_seconds += since(t2);
         }
+        stats.cg_seconds += since(t2);
       }
-      if (!delta.allFinite()) return "the contact solve produced a displacement that is not finite";
-      // Exact line search on ψ(α) = r(d + αδ)ᵀδ.
-      const auto t1 = Clock::now();
-      system.saved_times(delta, adelta);
-      const double ra_delta = ra.dot(delta), q = delta.dot(adelta);
-      contacts.set_direction(delta);
-      const auto psi = [&](double alpha) {
-        return ra_delta - alpha * q + contacts.directional_force(alpha);
-      };
-      const double psi0 = psi(0.0);
-      if (!(psi0 > 0)) {
-        // Not a descent direction: only round-off at a converged point does this.
-        system.drop_factor();
-        if (r_norm <= 1e3 * tol) break;
-        continue;
-      }
-      const double alpha = line_search(psi, psi0, 1e-8 * psi0);
-      last_full_cg = solved && alpha == 1.0;
-      if (trace)
-        std::fprintf(stderr, "round %d it %d r/tol %.3e solved_cg %d alpha %.6g psi1 %.3e cg %ld fac %ld rank %d budget %d\n",
-                     round, it, r_norm / tol, solved ? 1 : 0, alpha, psi(1.0) / psi0, stats.cg_iterations,
-                     stats.factorisations, rank, budget);
-      stats.line_search_seconds += since(t1);
-      d.noalias() += alpha * delta;
-      ra.noalias() -= alpha * adelta;
     }
-    const int moved = contacts.update_strengths(kStrengthFloor * contacts.force_scale());
-    if (trace) std::fprintf(stderr, "strengths moved %d\n", moved);
-    if (moved == 0) break;
-    if (round + 1 >= kMaxStrengthRounds) {
-      ++stats.unsettled;
-      r = ra;
-      contacts.forces_at(d, r);
-      break;
+    if (!delta.allFinite())
+      return {Status::not_finite, "the contact solve produced a displacement that is not finite"};
+    // Exact line search on ψ(α) = r(d + αδ)ᵀδ.
+    const auto t1 = Clock::now();
+    system.saved_times(delta, adelta);
+    const double ra_delta = ra.dot(delta), q = delta.dot(adelta);
+    contacts.set_direction(delta);
+    const auto psi = [&](double alpha) { return ra_delta - alpha * q + contacts.directional_force(alpha); };
+    const double psi0 = psi(0.0);
+    if (!(psi0 > 0)) {
+      // Not a descent direction: only round-off at a converged point does this.
+      system.drop_factor();
+      if (r_norm <= 1e3 * tol) break;
+      continue;
     }
+    const double alpha = line_search(psi, psi0, 1e-8 * psi0);
+    last_full_cg = solved && alpha == 1.0;
+    if (trace)
+      std::fprintf(stderr, "it %d r/tol %.3e solved_cg %d alpha %.6g psi1 %.3e cg %ld fac %ld budget %d\n", it,
+                   r_norm / tol, solved ? 1 : 0, alpha, psi(1.0) / psi0, stats.cg_iterations, stats.factorisations,
+                   budget);
+    stats.line_search_seconds += since(t1);
+    d.noalias() += alpha * delta;
+    ra.noalias() -= alpha * adelta;
   }
   contacts.settle_states();
-  return "";
+  stats.max_force_tolerance = std::max(stats.max_force_tolerance, tol);
+  double kn_min = std::numeric_limits<double>::infinity();
+  for (const Contact& c : contacts.contacts())
+    if (c.kn_now > 0) kn_min = std::min(kn_min, c.kn_now);
+  if (std::isfinite(kn_min)) stats.max_gap_error = std::max(stats.max_gap_error, tol / kn_min);
+  return {};
 }
 
 }  // namespace nmm::solve

@@ -77,8 +77,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-solve"); status >= 0)
     return status;
-  nmm::solve::PictureField field;
-  if (!nmm::solve::parse_picture_field(field_name, field)) {
+  nmm::report::PictureField field;
+  if (!nmm::report::parse_picture_field(field_name, field)) {
     std::cerr << "nmm-solve: --picture-field: '" << field_name
               << "' is not one of displacement, sxx, syy, sxy\n";
     return nmm::kExitBadInput;
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
     nmm::solve::EnergyMeter energy(mesh, run.scene, stepper.fixed_point_stiffness(),
                                    stepper.support_stiffness(), &stepper.space());
     energy.after_step(stepper.state(), stepper.contacts().contacts(), true);
-    std::vector<nmm::solve::StepRecord> effort;
+    std::vector<nmm::report::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;
     double t_prev = t_start;
     stepper.set_progress([&](std::int64_t n, double t) {
@@ -145,12 +145,12 @@ int main(int argc, char** argv) {
     progress.finish(stepper.step_count(), stepper.time(), status,
                     status + ", " + verdict +
                         (summary["stopped_by"] == "stop_at_ratio" ? ", stopped by stop_at_ratio" : ""));
-    nmm::solve::write_run_history(out_dir, effort);
+    nmm::report::write_run_history(out_dir, effort);
     energy.keep_last();
     energy.write_csv(out_dir);
 
     if (pictures) {
-      nmm::solve::PictureState state;
+      nmm::report::PictureState state;
       state.time = stepper.time();
       state.status = status;
       state.loop_xy = &stepper.loop_xy();
@@ -170,20 +170,21 @@ int main(int argc, char** argv) {
       state.exaggeration = exaggerate;
       state.excavated_body = stepper.state().body_removed;
       nmm::write_file_atomically(out_dir + "/result.svg",
-                                 nmm::solve::result_svg(mesh, run.scene, state, field));
-      const nmm::solve::ReportFiles files = nmm::solve::make_run_report(out_dir);
+                                 nmm::report::result_svg(mesh, run.scene, state, field));
+      const nmm::report::ReportFiles files = nmm::report::make_run_report(out_dir);
       if (!quiet)
         std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
                   << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";
     }
-    if (status == "interrupted") {
+    const nmm::report::RunEnd end = nmm::report::run_end(status);
+    if (end == nmm::report::RunEnd::interrupted) {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
                 << " steps at t = " << stepper.time() << " s (" << verdict
                 << "); history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
       return nmm::solve::kExitInterrupted;
     }
-    if (status != "ok") {
-      const std::string cause = nmm::solve::likely_failure_cause(mesh, run.scene, status);
+    if (end != nmm::report::RunEnd::ok) {
+      const std::string cause = nmm::report::likely_failure_cause(mesh, run.scene, status);
       std::cerr << "nmm-solve: stopped after " << summary["steps_completed"].get<long long>()
                 << " steps: " << status << (cause.empty() ? "" : "; likely cause: " + cause)
                 << "; equilibrium at the last step: " << verdict << "\n";

@@ -137,7 +137,6 @@ bool SystemMatrix::factorize() {
     }
   }
   llt_.factorize(k_);
-  factor_note_.clear();
   failed_unknown_ = -1;
   has_factor_ = llt_.info() == Eigen::Success;
   // The matrix factorised, perturbation included: a restart refactorises exactly it (bitwise).
@@ -160,7 +159,6 @@ std::string SystemMatrix::factor_source() const {
   w.put_vector(std::vector<int>(factored_.outerIndexPtr(), factored_.outerIndexPtr() + n + 1));
   w.put_vector(std::vector<int>(factored_.innerIndexPtr(), factored_.innerIndexPtr() + nnz));
   w.put_vector(std::vector<double>(factored_.valuePtr(), factored_.valuePtr() + nnz));
-  if (!factor_note_.empty()) w.put_vector(factor_note_);  // optional: older checkpoints have none
   return w.take();
 }
 
@@ -175,6 +173,7 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
     if (nnz < n || nnz > n * n) return false;
     inner = r.get_vector<int>(static_cast<std::size_t>(nnz), "rows");
     values = r.get_vector<double>(static_cast<std::size_t>(nnz), "values");
+    // Older checkpoints end with a note on the springs factorised (no longer used): skipped.
     if (!r.at_end()) note = r.get_vector<double>(SIZE_MAX, "note");
     r.expect_end();
   } catch (const InputError&) {
@@ -211,7 +210,6 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
     factored_ = std::move(m);
     set_perturbation();
   }
-  factor_note_ = has_factor_ ? std::move(note) : std::vector<double>();
   return has_factor_;
 }
 

@@ -71,12 +71,6 @@ class SystemMatrix {
   bool has_factor() const { return has_factor_; }
   /// Forgets the factorisation (the next solve must factorise first).
   void drop_factor() { has_factor_ = false; }
-  /// What the caller noted about the matrix of the current factorisation (the contact solve: the
-  /// springs in it, contact_solve.cpp). factorize() clears it; factor_source() keeps it, so a
-  /// restarted run knows its preconditioner as the straight run did.
-  void set_factor_note(std::vector<double> note) { factor_note_ = std::move(note); }
-  const std::vector<double>& factor_note() const { return factor_note_; }
-
   /// The matrix the current factorisation was made from (pattern and values) as bytes, empty
   /// without one: a checkpoint keeps it so that a restarted run preconditions with the same
   /// factorisation as the straight run (bitwise equal results).
@@ -112,7 +106,6 @@ class SystemMatrix {
   std::vector<std::int32_t> slots_;  // [m² per group] value index of entry (i, j), -1 above diagonal
   std::vector<double> saved_;
   Sparse factored_;  // the matrix of the current factorisation
-  std::vector<double> factor_note_;  // the caller's note on it (set_factor_note)
   std::vector<std::int32_t> diag_;   // [n] value index of each diagonal entry
   Llt llt_;
   bool analysed_ = false;

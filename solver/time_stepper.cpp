@@ -815,7 +815,8 @@ std::string TimeStepper::attempt(double dt) {
     timings_.solves += since(t0);
   } else {
     const ContactSolveStats before = solve_stats_;
-    const std::string why = solve_contact_step(system_, contacts_, rhs_base_, d, solve_stats_);
+    const ContactSolveOutcome outcome =
+        solve_contact_step(system_, contacts_, rhs_base_, scene_.solver.contact_tolerance, d, solve_stats_);
     timings_.factorisations += solve_stats_.factorisations - before.factorisations;
     timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
     timings_.solves_count += solve_stats_.cg_iterations - before.cg_iterations +
@@ -824,8 +825,9 @@ std::string TimeStepper::attempt(double dt) {
                        solve_stats_.line_search_seconds - before.line_search_seconds;
     s_.iterations += static_cast<std::uint64_t>(solve_stats_.newton - before.newton);
     s_.friction_unsettled += static_cast<std::uint64_t>(solve_stats_.unsettled - before.unsettled);
-    if (why == "not positive definite") throw RunError(not_positive_definite());
-    if (!why.empty()) return why;
+    if (outcome.status == ContactSolveOutcome::Status::not_positive_definite)
+      throw RunError(not_positive_definite());
+    if (!outcome.ok()) return outcome.reason;
   }
   for (Eigen::Index i = 0; i < d.size(); ++i)
     if (!std::isfinite(d[i]))
@@ -950,6 +952,8 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
       return e.what();
     }
     if (!why.empty()) {
+      static const bool trace = std::getenv("NMM_TRACE_CUTS") != nullptr;
+      if (trace) std::fprintf(stderr, "cut at t = %.9g: %s\n", s_.time, why.c_str());
       ++s_.cuts;
       dt = 0.3 * h;
       if (dt < dt_floor) {
@@ -1099,9 +1103,13 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["contact_solve"] = {{"newton_iterations", solve_stats_.newton},
                               {"cg_iterations", solve_stats_.cg_iterations},
                               {"cg_runs_over_budget", solve_stats_.cg_aborted},
-                              {"cg_runs_skipped", solve_stats_.cg_skipped},
                               {"factorisations", solve_stats_.factorisations},
-                              {"friction_rounds", solve_stats_.strength_rounds}};
+                              {"friction_updates", solve_stats_.strength_updates},
+                              {"friction_unsettled_steps", solve_stats_.unsettled},
+                              // What the tolerance allows (contact_solve.cpp, docs/contact.md).
+                              {"tolerance", scene_.solver.contact_tolerance},
+                              {"max_force_tolerance_N", solve_stats_.max_force_tolerance},
+                              {"max_gap_error_m", solve_stats_.max_gap_error}};
   summary["matrix"] = {{"unknowns", unknowns()},
                        {"nonzeros_lower", system_.nonzeros()},
                        {"factor_nonzeros", system_.factor_nonzeros()},

@@ -9,12 +9,12 @@ namespace nmm::studies {
 
 void write_mechanism_svg(const std::string& run_dir, const std::string& title,
                          const std::string& svg_path) {
-  solve::RedrawOptions options;
+  report::RedrawOptions options;
   options.title = title;
   options.field = "displacement";  // the mechanism is a displacement picture, whatever the run drew
   std::string svg;
   try {
-    svg = solve::redraw_result_svg(run_dir, options);
+    svg = report::redraw_result_svg(run_dir, options);
   } catch (const InputError& e) {
     // The trial's folder is the study's own output, not the user's input: a run fault.
     throw RunError(std::string("mechanism picture of ") + run_dir + ": " + e.what());

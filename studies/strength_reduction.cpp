@@ -6,11 +6,11 @@
 #include <cstdio>
 
 #include "error.h"
+#include "math_constants.h"
 
 namespace nmm::studies {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 std::string number(double v) {
   char buf[64];

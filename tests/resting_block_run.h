@@ -15,7 +15,7 @@
 
 #include "cover_cutter.h"
 #include "energy.h"
-#include "scene_builders.h"
+#include "scene_pieces.h"
 #include "time_stepper.h"
 
 namespace nmm::test {
@@ -31,9 +31,9 @@ struct RestingBlockRun {
 };
 
 inline RestingBlockRun resting_block_two_seconds(int order) {
-  SceneDef s = interface_scene(0.5, 30, order);
-  s.bodies = {box(0, 0, 6, 1), box(2, 1, 4, 2)};
-  s.fixed_points = held_along(0.1, 5.9, 0.1);
+  SceneDef s = reference::interface_scene(0.5, 30, order);
+  s.bodies = {reference::box(0, 0, 6, 1), reference::box(2, 1, 4, 2)};
+  s.fixed_points = reference::held_along(0.1, 5.9, 0.1);
   s.measure_points = {{3, 1.5}};
   const Mesh m = pre::build_mesh(s, "rest");
   solve::TimeStepper st(m, s, "rest");

@@ -13,6 +13,7 @@
 #include "cover_cutter.h"
 #include "joint_law.h"
 #include "joint_specimen.h"
+#include "joint_specimen_run.h"
 #include "scene.h"
 #include "time_stepper.h"
 
@@ -168,8 +169,8 @@ SceneDef shear_box(double sigma_n, double tau, double cns_k) {
   // Δt = 1 ms (the specimen's): the strength follows the travel from step to step (explicit),
   // and a quasi-static step moves the block by its out-of-balance force times βΔt²/M; below
   // ~3 ms that stays a contraction on the steep pre-peak curve (docs/contact.md).
-  SceneDef s = joint_specimen_scene(js, 5e11, 0.25);
-  load_joint_specimen(s, sigma_n, tau);
+  SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
+  reference::load_joint_specimen(s, sigma_n, tau);
   if (cns_k > 0) {
     s.supports.push_back({{{0, 2}, {2, 2}}, false, true});
     s.solver.support_stiffness = cns_k;
@@ -177,9 +178,9 @@ SceneDef shear_box(double sigma_n, double tau, double cns_k) {
   return s;
 }
 
-JointSpecimenResult shear(double sigma_n, double tau, double cns_k, double seconds) {
+studies::JointSpecimenResult shear(double sigma_n, double tau, double cns_k, double seconds) {
   const SceneDef s = shear_box(sigma_n, tau, cns_k);
-  return run_joint_specimen(pre::build_mesh(s, "shear box"), s, seconds);
+  return studies::run_joint_specimen(pre::build_mesh(s, "shear box"), s, seconds);
 }
 
 // Where a joint sheared by a constant τ comes to rest: the travel δ at which the strength
@@ -213,7 +214,7 @@ TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
   const double sn = 1e6, tau_p = sn * std::tan(rad(kPhiR + kJrc * 2)), dp = peak_shear_displacement(kJrc, kLength);
   for (double frac : {0.6, 0.9}) {
     const Rest want = rest_of(sn, frac * tau_p, 0);
-    const JointSpecimenResult r = shear(sn, frac * tau_p, 0, 2.0);
+    const studies::JointSpecimenResult r = shear(sn, frac * tau_p, 0, 2.0);
     ASSERT_EQ(r.status, "ok");
     const double opening = sn / 1e12 - r.closure;  // net of the springs' 1 µm closure
     std::printf("CNL τ = %.0f %% τp: travel %.4f mm (Barton %.4f), slip %.4f mm, opening %.4f mm "
@@ -224,7 +225,7 @@ TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
     EXPECT_NEAR(opening, want.dilation, 0.03 * want.dilation);
     EXPECT_NEAR(r.normal_stress, sn, 0.01 * sn);  // constant normal stress
   }
-  const JointSpecimenResult a = shear(sn, 1.05 * tau_p, 0, 1.0), b = shear(sn, 1.05 * tau_p, 0, 1.5);
+  const studies::JointSpecimenResult a = shear(sn, 1.05 * tau_p, 0, 1.0), b = shear(sn, 1.05 * tau_p, 0, 1.5);
   std::printf("CNL τ = 105 %% τp: slip %.3f mm at 1 s, %.3f mm at 1.5 s (δp %.3f mm)\n", a.slip * 1e3,
               b.slip * 1e3, dp * 1e3);
   EXPECT_GT(a.slip, 2 * dp);
@@ -241,11 +242,11 @@ TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
 TEST(BartonBandisSolver, ShearAgainstConstantNormalStiffness) {
   const double sn = 1e6, k_springs = 5e9, tau_p = sn * std::tan(rad(kPhiR + kJrc * 2));
   const double k = 1 / (1 / k_springs + 1.98 / 5e11);
-  const JointSpecimenResult at0 = shear(sn, 0, k_springs, 0.5);  // normal load only: what the springs leave the joint
+  const studies::JointSpecimenResult at0 = shear(sn, 0, k_springs, 0.5);  // normal load only: what the springs leave the joint
   ASSERT_EQ(at0.status, "ok");
   const double tau = 0.9 * tau_p;
   const Rest want = rest_of(at0.normal_stress, tau, k);
-  const JointSpecimenResult r = shear(sn, tau, k_springs, 2.0);
+  const studies::JointSpecimenResult r = shear(sn, tau, k_springs, 2.0);
   ASSERT_EQ(r.status, "ok");
   const double dv = at0.closure - r.closure;  // the opening the shear added
   std::printf("CNS k = %.0e Pa/m, τ = 90 %% τp: σn %.4f -> %.4f MPa (k·Δv %.4f MPa; Barton %.4f), "
@@ -281,13 +282,13 @@ TEST(BartonBandisSolver, ClosureHysteresisThroughTheSolver) {
     js.normal.hysteresis = hysteresis;
     js.shear.model = ShearModel::constant;
     js.shear.ks = 1e10;
-    SceneDef s = joint_specimen_scene(js, 5e11, 0.25);
-    load_joint_specimen(s, s1, 0);
+    SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
+    reference::load_joint_specimen(s, s1, 0);
     TimeTable unload;
     unload.time = {0.3, 0.4};
     unload.value = {1.0, 0.4};
     s.load_tables.assign(s.loads.size(), unload);
-    const JointSpecimenResult r = run_joint_specimen(pre::build_mesh(s, "hysteresis"), s, 0.7);
+    const studies::JointSpecimenResult r = studies::run_joint_specimen(pre::build_mesh(s, "hysteresis"), s, 0.7);
     EXPECT_EQ(r.status, "ok");
     return r.closure;
   };

@@ -7,23 +7,23 @@
 
 #include "cover_cutter.h"
 #include "energy.h"
+#include "math_constants.h"
 #include "resting_block_run.h"
-#include "scene_builders.h"
+#include "scene_pieces.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
 // DDA's point penalty 20·E (model "penalty"; Shi recommends 10 to 100·E): kn = 2e11 N/m per contact
 // point, ks = kn/2.5 with E = 10 GPa.
-SceneDef contact_scene(double h, double friction_deg) { return test::interface_scene(h, friction_deg); }
+SceneDef contact_scene(double h, double friction_deg) { return reference::interface_scene(h, friction_deg); }
 
-using test::box;
+using reference::box;
 
-using test::held_along;
+using reference::held_along;
 
 // Runs to time t; returns the status.
 std::string run_to(TimeStepper& st, double t) {

@@ -3,7 +3,7 @@
 // elements' unknowns (docs/contact.md "Contact unknowns at cover order n"). Checked here:
 // - the rows reproduce (u_A(P) − u_B(P0))·n and ·t of any polynomial field the order represents
 //   (a row built from the weights alone, the n = 0 rows, fails this at n ≥ 1);
-// - the reference problems of tests/scene_builders.h at n = 1 (and n = 2 where affordable) give
+// - the reference problems of reference/ at n = 1 (and n = 2 where affordable) give
 //   what they give at n = 0: the block slides by ½g(sin α − cos α tan φ)t² within 0.1 % with
 //   tilted gravity and on a real incline, holds at φ = α + 5°, falls freely and lands, rests
 //   with bounded energy; a sliver cover beside a joint stays tied and at rest; a restart with
@@ -16,21 +16,22 @@
 
 #include "cover_cutter.h"
 #include "energy.h"
+#include "math_constants.h"
 #include "resting_block_run.h"
-#include "scene_builders.h"
+#include "scene_pieces.h"
+#include "sliding_block.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
-using test::box;
-using test::held_along;
-using test::interface_scene;
-using test::sliding_block_incline;
-using test::sliding_block_tilted;
+using reference::box;
+using reference::held_along;
+using reference::interface_scene;
+using reference::sliding_block_incline;
+using reference::sliding_block_tilted;
 
 double slide_distance(double alpha_deg, double phi_deg, double t) {
   const double a = alpha_deg * kPi / 180, p = phi_deg * kPi / 180;

@@ -27,13 +27,13 @@
 
 #include "cover_cutter.h"
 #include "joint_law.h"
+#include "math_constants.h"
 #include "scene.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kY = 0.9437;          // m, the joint's line
 constexpr double kSigma = 1e6;         // Pa, normal stress on the joint (compression)
 constexpr double kFrictionDeg = 30;

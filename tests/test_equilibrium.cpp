@@ -12,18 +12,12 @@
 #include <vector>
 
 #include "cover_cutter.h"
+#include "math_constants.h"
+#include "ring_geometry.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-double polygon_area(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) a += p[j].x * p[i].y - p[i].x * p[j].y;
-  return 0.5 * std::abs(a);
-}
 
 // The block on a 30° incline of friction φ, data/block_on_incline.json (its base 100 times
 // stiffer than the block, so that the base does not ring and the block's motion is all there
@@ -52,8 +46,8 @@ Incline incline(double friction_deg, bool dynamic) {
   c.mesh = pre::build_mesh(c.scene, "incline");
   const double a = 30 * kPi / 180, phi = friction_deg * kPi / 180;
   c.accel = std::max(0.0, 9.81 * (std::sin(a) - std::cos(a) * std::tan(phi)));
-  const double block = polygon_area(c.scene.bodies[1].outer);
-  c.block_fraction = block / (block + polygon_area(c.scene.bodies[0].outer));
+  const double block = ring_area(c.scene.bodies[1].outer);
+  c.block_fraction = block / (block + ring_area(c.scene.bodies[0].outer));
   EXPECT_NEAR(block, 2.0, 1e-5) << "m², the 2 m × 1 m block";
   return c;
 }

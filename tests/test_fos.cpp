@@ -1,4 +1,4 @@
-// nmm-fos against closed-form factors of safety (studies/fos_reference.h, docs/physics.md §5),
+// nmm-fos against closed-form factors of safety (reference/slides.h, docs/physics.md §5),
 // the search's narrowing on its own, and nmm-fos's bad-input contract. The tools run as programs
 // (their command-line contract); trials are tiny (a few hundred elements, 0.4 s of motion).
 #include <gtest/gtest.h>
@@ -14,13 +14,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "fos_reference.h"
+#include "slides.h"
 #include "png_copy.h"
 #include "result_picture.h"
 #include "strength_reduction.h"
+#include "math_constants.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;
+using nmm::reference::block_on_plane;
+using nmm::reference::planar_slide;
+using nmm::reference::ReferenceSlide;
 
 namespace {
 
@@ -111,7 +115,7 @@ TEST(FosSearch, ReductionDividesTanPhiCohesionAndTension) {
   const auto sets = reduction_sets(s, 2.0);
   ASSERT_EQ(sets.size(), 3u);
   const double phi = std::stod(sets[0].substr(sets[0].find('=') + 1));
-  EXPECT_NEAR(std::tan(phi * M_PI / 180), std::tan(40 * M_PI / 180) / 2, 1e-12);
+  EXPECT_NEAR(std::tan(phi * nmm::kPi / 180), std::tan(40 * nmm::kPi / 180) / 2, 1e-12);
   EXPECT_EQ(sets[1], "joint_sets.a.cohesion=50000");
   EXPECT_EQ(sets[2], "joint_sets.a.tensile_strength=10000");
   // A residual cohesion is reduced with the cohesion (it may not exceed it).
@@ -137,7 +141,7 @@ void expect_mechanism_like_result(const fs::path& out, const nlohmann::json& fos
   const std::string svg = text.str();
   std::string bands, viridis;
   std::size_t at = 0;
-  for (int i = 0; i < 40; ++i) viridis += nmm::solve::colour_map((i + 0.5) / 40) + " ";
+  for (int i = 0; i < 40; ++i) viridis += nmm::report::colour_map((i + 0.5) / 40) + " ";
   // The bar's bands are the only filled <rect>s without a stroke after the white background.
   for (at = svg.find("<rect ", svg.find("<rect ") + 1); at != std::string::npos; at = svg.find("<rect ", at + 1)) {
     const std::size_t f = svg.find("fill=\"", at), end = svg.find('>', at);
@@ -145,7 +149,7 @@ void expect_mechanism_like_result(const fs::path& out, const nlohmann::json& fos
     if (svg.find("stroke=\"none\"", at) > end) continue;
     bands += svg.substr(f + 6, 7) + " ";
   }
-  EXPECT_EQ(bands, viridis) << "mechanism.svg's colour bar is not result.svg's map (" << nmm::solve::kColourMapName << ")";
+  EXPECT_EQ(bands, viridis) << "mechanism.svg's colour bar is not result.svg's map (" << nmm::report::kColourMapName << ")";
   for (const char* t : {">failing mechanism at F = ", ">|u| (mm)<", ">x (m)<", ">y (m)<", ">scale bar "})
     EXPECT_NE(svg.find(t), std::string::npos) << t;
   EXPECT_EQ(fos.contains("mechanism_png"), nmm::png_converter_available());
@@ -224,7 +228,7 @@ TEST(FosPlanarSlide, MatchesHoekBrayDry) {
 
 // The same with cohesion (Hoek-Bray F = 1.253): the scene holds the base rigidly and keeps the
 // plane's cohesion after slip (residual_cohesion = cohesion), as the closed form assumes
-// (studies/fos_reference.h says what each of the two did to F when missing: 0.90, 1.01).
+// (reference/slides.h says what each of the two did to F when missing: 0.90, 1.01).
 TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
   const ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4);
   const fs::path dir = work_dir("planar_slide");
@@ -238,7 +242,7 @@ TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
 }
 
 // Water in the tension crack and on the plane (Hoek & Bray's crack filled to z_w, draining at the
-// toe; studies/fos_reference.h): the water is a load, so strength reduction keeps it while it
+// toe; reference/slides.h): the water is a load, so strength reduction keeps it while it
 // divides c and tan φ. Three depths up to a full crack, each within 3 % of the closed form
 // (F = 1.159, 1.027, 0.871: the full crack fails the slope).
 TEST(FosPlanarSlide, MatchesHoekBrayAtThreeWaterDepths) {
@@ -259,10 +263,10 @@ TEST(FosPlanarSlide, MatchesHoekBrayAtThreeWaterDepths) {
 // --settle: one run with the joints intact first, every trial restarting from its checkpoint.
 // The plastic wedge gives the same F; the brittle one (residual_cohesion 0) lies between the
 // friction-only factor and the plastic one — brittle cohesion fails progressively from the
-// plane's ends (studies/fos_reference.h), and no reduction of strength can raise F.
+// plane's ends (reference/slides.h), and no reduction of strength can raise F.
 TEST(FosPlanarSlide, SettleIntactThenReduce) {
   const ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4);
-  const double friction_only = std::tan(25 * M_PI / 180) / std::tan(30 * M_PI / 180);
+  const double friction_only = std::tan(25 * nmm::kPi / 180) / std::tan(30 * nmm::kPi / 180);
   const fs::path dir = work_dir("planar_slide_settle");
   const std::string mesh = mesh_of(ref.scene, dir);
   const nlohmann::json p = fos_json(mesh, dir / "plastic", "--tol 0.01 --workers 2 --settle 200");

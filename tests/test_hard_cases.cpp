@@ -34,14 +34,14 @@
 #include <vector>
 
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "scene_pieces.h"
 #include "element_integration.h"
 #include "time_stepper.h"
+#include "math_constants.h"
 
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 constexpr double kE = 1e10;  // Pa, the rock's Young's modulus
 // m/s: a body at rest moves slower than this. The damped scheme (Newmark β = 0.6) leaves resting
@@ -71,9 +71,9 @@ SceneDef contact_scene(double h, double kn_factor) {
   return s;
 }
 
-using test::box;
+using reference::box;
 
-using test::held_along;
+using reference::held_along;
 
 bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });

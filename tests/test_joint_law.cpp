@@ -8,14 +8,13 @@
 
 #include "cover_cutter.h"
 #include "joint_law.h"
-#include "joint_specimen.h"
+#include "joint_specimen_run.h"
+#include "math_constants.h"
 #include "scene.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 ContactLaw bb_law() {
   ContactLaw law;
@@ -126,15 +125,15 @@ SceneDef joint_scene(double sigma_n, double tau, double h) {
   js.shear.model = ShearModel::hyperbolic;
   js.shear.ksi = 1e10;
   js.shear.rf = 0.9;
-  SceneDef s = joint_specimen_scene(js, 5e11, h);
-  load_joint_specimen(s, sigma_n, tau);
+  SceneDef s = reference::joint_specimen_scene(js, 5e11, h);
+  reference::load_joint_specimen(s, sigma_n, tau);
   return s;
 }
 
 JointResult load_joint(double sigma_n, double tau, double seconds) {
   const SceneDef s = joint_scene(sigma_n, tau, 0.25);
   const Mesh m = pre::build_mesh(s, "joint");
-  const JointSpecimenResult sr = run_joint_specimen(m, s, seconds);
+  const studies::JointSpecimenResult sr = studies::run_joint_specimen(m, s, seconds);
   JointResult r;
   r.status = sr.status;
   r.closure = sr.closure;

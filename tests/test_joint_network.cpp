@@ -7,11 +7,10 @@
 #include <cmath>
 
 #include "joint_network.h"
+#include "math_constants.h"
 
 namespace nmm::pre {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Ring square(double side) { return {{0, 0}, {side, 0}, {side, side}, {0, side}}; }
 

@@ -1,6 +1,6 @@
-// A compressive half-sine pulse crossing one joint of constant springs (solver/joint_wave.h):
-// the incident and transmitted waves against the displacement-discontinuity model's closed form
-// (Schoenberg 1980; Pyrak-Nolte, Myer & Cook 1990), for joint time constants τ = Z/(2kn) of
+// A compressive half-sine pulse crossing one joint of constant springs (reference/wave_bar.h;
+// the read-off: studies/joint_wave.h): the incident and transmitted waves against the
+// displacement-discontinuity model's closed form (Schoenberg 1980; Pyrak-Nolte, Myer & Cook 1990), for joint time constants τ = Z/(2kn) of
 // 2 ms and 0.5 ms, at two mesh sizes. Joint springs counted per contact point instead of per
 // metre of joint make the joint several times stiffer, and the transmitted wave arrives early
 // and too sharp: this test fails on that.
@@ -16,6 +16,15 @@
 
 namespace nmm::solve {
 namespace {
+
+using reference::joint_wave_kn_for_tau;
+using reference::joint_wave_scene;
+using reference::JointWaveClosedForm;
+using reference::JointWaveSetup;
+using studies::joint_wave_errors;
+using studies::JointWaveErrors;
+using studies::JointWaveHistory;
+using studies::run_joint_wave;
 
 // The closed form against itself: the filter equation τσ_t' + σ_t = σ_i holds, the integrals
 // are the integrals, and the joint keeps none of the pulse.

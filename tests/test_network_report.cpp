@@ -10,6 +10,7 @@
 #include <string>
 
 #include "joint_network.h"
+#include "math_constants.h"
 #include "network_report.h"
 
 namespace nmm::pre {
@@ -34,7 +35,7 @@ SceneDef parallel_scene() {
   s.joint_sets[0].name = "a";
   s.joint_sets[1].name = "b";
   for (int k = 1; k <= 9; ++k) s.joints.push_back({0, {{0, 5.0 * k}, {100, 5.0 * k}}});
-  const double c = std::cos(35 * M_PI / 180), sn = std::sin(35 * M_PI / 180);
+  const double c = std::cos(35 * nmm::kPi / 180), sn = std::sin(35 * nmm::kPi / 180);
   for (int k = 1; k <= 5; ++k) {
     const Vec2 o{10.0 + 15 * k, 20};
     s.joints.push_back({1, {o, {o.x + 2.0 * k * c, o.y + 2.0 * k * sn}}});

@@ -72,14 +72,14 @@ std::string draw(const Mesh& m, double ux, double uy, const std::string& status,
                  std::vector<double>* xy_out = nullptr) {
   std::vector<double> xy = m.loop_xy, stress(3, 0.0);
   xy[4] += ux, xy[5] += uy, xy[6] += ux, xy[7] += uy;
-  solve::PictureState st;
+  report::PictureState st;
   st.time = 0.5;
   st.status = status;
   st.loop_xy = &xy;
   st.stress = &stress;
   st.exaggeration = factor;
   if (xy_out) *xy_out = xy;
-  return solve::result_svg(m, one_block_scene(), st, solve::PictureField::displacement);
+  return report::result_svg(m, one_block_scene(), st, report::PictureField::displacement);
 }
 
 TEST(Pictures, RoundTicksScaleBarsAndFactors) {
@@ -92,12 +92,12 @@ TEST(Pictures, RoundTicksScaleBarsAndFactors) {
   EXPECT_DOUBLE_EQ(round_down_125(1000), 1000.0);
   EXPECT_DOUBLE_EQ(round_down_125(19.99), 10.0);
   // Automatic exaggeration: the largest displacement drawn as about 5 % of the model.
-  EXPECT_EQ(solve::automatic_exaggeration(1e-4, 10), 5000);  // 0.05·10 / 1e-4 = 5000
-  EXPECT_EQ(solve::automatic_exaggeration(3e-4, 10), 1000);  // 1667 → 1000
-  EXPECT_EQ(solve::automatic_exaggeration(0.2, 10), 1);      // 2 % of the model: true scale
-  EXPECT_EQ(solve::automatic_exaggeration(0.1, 10), 1);      // exactly 1 %: true scale
-  EXPECT_EQ(solve::automatic_exaggeration(0, 10), 1);
-  EXPECT_EQ(solve::automatic_exaggeration(1e-12, 10), 1);    // round-off is not magnified
+  EXPECT_EQ(report::automatic_exaggeration(1e-4, 10), 5000);  // 0.05·10 / 1e-4 = 5000
+  EXPECT_EQ(report::automatic_exaggeration(3e-4, 10), 1000);  // 1667 → 1000
+  EXPECT_EQ(report::automatic_exaggeration(0.2, 10), 1);      // 2 % of the model: true scale
+  EXPECT_EQ(report::automatic_exaggeration(0.1, 10), 1);      // exactly 1 %: true scale
+  EXPECT_EQ(report::automatic_exaggeration(0, 10), 1);
+  EXPECT_EQ(report::automatic_exaggeration(1e-12, 10), 1);    // round-off is not magnified
 }
 
 TEST(Pictures, ResultHasAxesInMetresAndAScaleBar) {
@@ -171,19 +171,31 @@ TEST(Pictures, AFailedRunsReasonIsWrappedUnderThePicture) {
     return std::regex_search(doc, mm, vb) ? std::stod(mm[3]) : -1.0;
   };
   EXPECT_DOUBLE_EQ(width(svg), width(draw(coarse, 0.3, 0, "ok", 0)));
-  const std::string cause = solve::likely_failure_cause(coarse, one_block_scene(), reason);
+  const std::string cause = report::likely_failure_cause(coarse, one_block_scene(), reason);
   EXPECT_NE(cause.find("mesh size 10 m against body 0, 10 m wide and 4 m high: the mesh is "
                        "coarser than the body"),
             std::string::npos)
       << cause;
   EXPECT_NE(svg.find("likely cause: mesh size 10 m"), std::string::npos);
   // A mesh finer than the body: the cause follows the kind of failure.
-  EXPECT_NE(solve::likely_failure_cause(one_block(0.5), one_block_scene(), reason)
+  EXPECT_NE(report::likely_failure_cause(one_block(0.5), one_block_scene(), reason)
                 .find("a block moved farther in one step than contacts can follow"),
             std::string::npos);
-  EXPECT_EQ(solve::likely_failure_cause(coarse, one_block_scene(), "ok"), "");
+  EXPECT_EQ(report::likely_failure_cause(coarse, one_block_scene(), "ok"), "");
   EXPECT_EQ(draw(coarse, 0.3, 0, "ok", 0).find("likely cause"), std::string::npos);
   EXPECT_EQ(draw(coarse, 0.3, 0, "step 30", 0).find("stopped"), std::string::npos);
+}
+
+TEST(Pictures, RunEndFromStatus) {
+  using report::RunEnd;
+  EXPECT_EQ(report::run_end("ok"), RunEnd::ok);
+  EXPECT_EQ(report::run_end("interrupted"), RunEnd::interrupted);
+  EXPECT_EQ(report::run_end("step 30"), RunEnd::frame);
+  EXPECT_EQ(report::run_end(""), RunEnd::unknown);
+  EXPECT_EQ(report::run_end("not positive definite at step 4"), RunEnd::failed);
+  EXPECT_EQ(report::run_end("okay"), RunEnd::failed);  // only the exact word is success
+  EXPECT_TRUE(report::status_is_failure("unknown"));
+  EXPECT_FALSE(report::status_is_failure("step 1"));
 }
 
 TEST(Pictures, WordsWrapToTheWidth) {
@@ -256,11 +268,11 @@ TEST(Pictures, AMechanismThatCannotBeDrawnIsARunErrorAndNoFile) {
 }
 
 TEST(Pictures, ColourMapIsViridis) {
-  EXPECT_STREQ(solve::kColourMapName, "viridis");
-  EXPECT_EQ(solve::colour_map(0), "#440154");
-  EXPECT_EQ(solve::colour_map(0.5), "#21918c");
-  EXPECT_EQ(solve::colour_map(1), "#fde725");
-  EXPECT_EQ(solve::colour_map(NAN), "#440154");
+  EXPECT_STREQ(report::kColourMapName, "viridis");
+  EXPECT_EQ(report::colour_map(0), "#440154");
+  EXPECT_EQ(report::colour_map(0.5), "#21918c");
+  EXPECT_EQ(report::colour_map(1), "#fde725");
+  EXPECT_EQ(report::colour_map(NAN), "#440154");
 }
 
 }  // namespace

@@ -12,16 +12,24 @@
 #include "cover_cutter.h"
 #include "error.h"
 #include "kirsch_opening.h"
-#include "scene_builders.h"
+#include "kirsch.h"
+#include "scene_pieces.h"
 #include "time_stepper.h"
 #include "time_table.h"
+#include "math_constants.h"
 
 #include <fstream>
 
 namespace nmm::solve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using reference::kirsch_radial_displacement;
+using reference::KirschSetup;
+using reference::kKirschPoisson;
+using reference::kKirschPressure;
+using reference::kKirschYoung;
+using studies::kirsch_wall;
+using studies::KirschWall;
 
 SceneDef rock_scene(double h) {
   SceneDef s;
@@ -52,7 +60,7 @@ TEST(RockSetups, PlateOnRollersUnderTractionCarriesTheUniformStressExactly) {
   // the top and −1.5 MPa on the right side: every element, cut or not, must carry σxx = −1.5 MPa,
   // σyy = −4 MPa, τ = 0 to round-off (the rollers' penalty gives way uniformly: a rigid shift).
   SceneDef s = rock_scene(0.37);
-  s.bodies = {test::box(0, 0, 3, 2)};
+  s.bodies = {reference::box(0, 0, 3, 2)};
   s.supports = {support({{0, 2}, {0, 0}}, true, false), support({{0, 0}, {3, 0}}, false, true)};
   s.tractions = {traction({{0, 2}, {3, 2}}, -4e6, 0), traction({{3, 0}, {3, 2}}, -1.5e6, 0)};
   s.solver.dynamic = false;
@@ -75,7 +83,7 @@ TEST(RockSetups, PlateOnRollersUnderTractionCarriesTheUniformStressExactly) {
 // gradient and K0 = 0.5, tractions from the field all round.
 SceneDef insitu_box(double h) {
   SceneDef s = rock_scene(h);
-  s.bodies = {test::box(0, 0, 10, 8)};
+  s.bodies = {reference::box(0, 0, 10, 8)};
   s.has_gravity = true;
   s.gravity = {0, -9.81};
   s.insitu_stress.present = true;
@@ -148,8 +156,8 @@ TEST(RockSetups, InsituStressOnRollersStaysStill) {
   }
 }
 
-// Kirsch (solver/kirsch_opening.h: the scene, the closed form and the wall read-off), quarter
-// model with rollers, outer sides at b = 20a loaded by the in-situ traction, the core a second
+// Kirsch (reference/kirsch.h: the scene and the closed form; studies/kirsch_opening.h: the
+// wall read-off), quarter model with rollers, outer sides at b = 20a loaded by the in-situ traction, the core a second
 // body excavated at the start of a static run and released at once.
 struct KirschErrors {
   double hoop = 0;    ///< RMS error of σθ at the centroids of the wall elements / max |σθ(a)|
@@ -162,7 +170,7 @@ SceneDef kirsch_scene(double h, double k0, double b_over_a) {
   k.h = h;
   k.k0 = k0;
   k.b_over_a = b_over_a;
-  return nmm::solve::kirsch_scene(k);
+  return reference::kirsch_scene(k);
 }
 
 KirschErrors kirsch_case(double h, double k0, double b_over_a) {
@@ -170,7 +178,7 @@ KirschErrors kirsch_case(double h, double k0, double b_over_a) {
   k.h = h;
   k.k0 = k0;
   k.b_over_a = b_over_a;
-  const SceneDef s = nmm::solve::kirsch_scene(k);
+  const SceneDef s = reference::kirsch_scene(k);
   const Mesh m = pre::build_mesh(s, "kirsch");
   TimeStepper st(m, s, "kirsch");
   st.step(1.0);
@@ -434,8 +442,8 @@ TEST(RockSetups, BlockOnInclineUnderSineBaseAccelerationFollowsNewmark) {
   s.interface_set = 0;
   s.has_gravity = true;
   s.gravity = {g * std::sin(alpha), -g * std::cos(alpha)};  // downslope is +x
-  s.bodies = {test::box(0, 0, 12, 1), test::box(1, 1, 3, 2)};
-  s.fixed_points = test::held_along(0.1, 11.9, 0.1);
+  s.bodies = {reference::box(0, 0, 12, 1), reference::box(1, 1, 3, 2)};
+  s.fixed_points = reference::held_along(0.1, 11.9, 0.1);
   s.measure_points = {{2, 1.5}, {2, 0.5}};
   s.base_acceleration_x = table;
   s.solver.time_step = 1e-3;

@@ -15,10 +15,11 @@
 #include "result_picture.h"
 #include "run_report.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 namespace {
 
 namespace fs = std::filesystem;
+using solve::ProgressLine;
 
 std::string read_all(std::FILE* f) {
   std::rewind(f);
@@ -167,4 +168,4 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
 }
 
 }  // namespace
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cantilever.h"
 #include "cover_cutter.h"
 #include "error.h"
 #include "time_stepper.h"
@@ -12,29 +13,14 @@
 namespace nmm::solve {
 namespace {
 
-SceneDef beam_scene(double L, double H, double h) {
-  SceneDef s;
-  s.materials.push_back({"rock", 2500, 1e10, 0.25});
-  BodyDef b;
-  b.material = 0;
-  b.outer = {{0, 0}, {L, 0}, {L, H}, {0, H}};
-  s.bodies.push_back(b);
-  s.mesh_size = h;
-  s.plane = PlaneKind::stress;
-  return s;
-}
-
-// The right-hand end of a clamped cantilever: fixed points every h/2 along x = 0.
-void clamp_left_end(SceneDef& s, double H, double h) {
-  const int n = static_cast<int>(std::ceil(H / (0.5 * h)));
-  for (int i = 0; i <= n; ++i) s.fixed_points.push_back({0, H * i / n});
-}
+using reference::beam;
+using reference::clamp_left_end;
 
 TEST(SolverPhysics, PatchTestUniformStressIsExact) {
   // A pentagon cut at odd angles by the mesh, and a linear displacement field u = E·x imposed on
   // every cover: each element must carry exactly σ = D·ε, and every cover away from the boundary
   // must be in equilibrium (no net internal force), cut elements included.
-  SceneDef s = beam_scene(1, 1, 0.15);
+  SceneDef s = beam(1, 1, 0.15);
   s.bodies[0].outer = {{0.03, 0.01}, {1.71, 0.13}, {1.93, 1.07}, {0.87, 1.61}, {-0.21, 0.93}};
   s.plane = PlaneKind::strain;
   s.solver.dynamic = false;  // no inertia: the residual is the internal force alone
@@ -75,22 +61,15 @@ TEST(SolverPhysics, PatchTestUniformStressIsExact) {
   EXPECT_GT(interior, 20);
 }
 
+// The cantilever of reference/cantilever.h at mesh size h: tip deflection's error against
+// Timoshenko's.
 double cantilever_tip_error(double h, double* tip_out = nullptr, int order = 0) {
-  const double L = 10, H = 1, P = 1e5;
-  SceneDef s = beam_scene(L, H, h);
-  s.solver.cover_order = order;
-  clamp_left_end(s, H, h);
-  s.loads.push_back({{L, H / 2}, {0, -P}});
-  s.measure_points.push_back({L, H / 2});
-  s.solver.dynamic = false;
-  s.solver.static_mode = StaticMode::equilibrium;  // a continuum held by fixed points: one step
+  const SceneDef s = reference::cantilever(h, order);
   const Mesh m = pre::build_mesh(s, "cantilever");
   TimeStepper st(m, s, "cantilever");
   st.step(1.0);
   const double tip = -st.displacement_at(st.measure_points()[0])[1];
-  const MaterialDef& mat = s.materials[0];
-  const double I = H * H * H / 12, G = mat.young / (2 * (1 + mat.poisson));
-  const double theory = P * L * L * L / (3 * mat.young * I) + P * L / (5.0 / 6.0 * G * H);
+  const double theory = reference::timoshenko_tip_deflection();
   if (tip_out) *tip_out = tip;
   return (tip - theory) / theory;
 }
@@ -129,7 +108,7 @@ TEST(SolverPhysics, CantileverAtCoverOrderOne) {
 // measured at (L, H/2). Returns the error against Timoshenko.
 double cantilever_traction_error(double h, int order, double* tip_out = nullptr) {
   const double L = 10, H = 1, P = 1e5;
-  SceneDef s = beam_scene(L, H, h);
+  SceneDef s = beam(L, H, h);
   s.solver.cover_order = order;
   s.supports.push_back({{{0, -0.1}, {0, H + 0.1}}, true, true});
   TractionDef t;
@@ -176,7 +155,7 @@ TEST(SolverPhysics, CantileverWithEndTractionAcrossOrders) {
 TEST(SolverPhysics, FreeFallIsExact) {
   // An unconstrained body under gravity: Shi's scheme integrates constant acceleration exactly,
   // s = ½ g t², v = g t, with no strain.
-  SceneDef s = beam_scene(2, 1, 0.4);
+  SceneDef s = beam(2, 1, 0.4);
   s.has_gravity = true;
   s.gravity = {0, -9.81};
   s.measure_points.push_back({1, 0.5});
@@ -201,7 +180,7 @@ TEST(SolverPhysics, CantileverFirstPeriodMatchesBeamTheory) {
   // Tip load applied suddenly: the tip oscillates about its static deflection in (mostly) the
   // first mode. Euler–Bernoulli: ω1 = (1.8751)²·√(EI / (ρ A L⁴)).
   const double L = 10, H = 1, h = 0.125;
-  SceneDef s = beam_scene(L, H, h);
+  SceneDef s = beam(L, H, h);
   clamp_left_end(s, H, h);
   s.loads.push_back({{L, H / 2}, {0, -1e5}});
   s.measure_points.push_back({L, H / 2});
@@ -234,7 +213,7 @@ TEST(SolverPhysics, CantileverFirstPeriodMatchesBeamTheory) {
 }
 
 TEST(SolverPhysics, StaticRunWithoutSupportStopsWithReason) {
-  SceneDef s = beam_scene(2, 1, 0.4);
+  SceneDef s = beam(2, 1, 0.4);
   s.solver.dynamic = false;
   s.solver.static_mode = StaticMode::equilibrium;  // K d = F: no mass term to hold it
   s.fixed_points.push_back({0, 0});
@@ -250,7 +229,7 @@ TEST(SolverPhysics, StaticRunWithoutSupportStopsWithReason) {
 }
 
 TEST(SolverPhysics, PointOutsideTheBodyIsBadInput) {
-  SceneDef s = beam_scene(2, 1, 0.4);
+  SceneDef s = beam(2, 1, 0.4);
   s.fixed_points.push_back({5, 5});
   const Mesh m = pre::build_mesh(s, "t");
   try {
@@ -262,7 +241,7 @@ TEST(SolverPhysics, PointOutsideTheBodyIsBadInput) {
 }
 
 TEST(SolverPhysics, SymbolicAnalysisOnlyOnce) {
-  SceneDef s = beam_scene(2, 1, 0.4);
+  SceneDef s = beam(2, 1, 0.4);
   s.has_gravity = true;
   s.gravity = {0, -9.81};
   const Mesh m = pre::build_mesh(s, "t");

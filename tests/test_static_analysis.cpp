@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "cover_cutter.h"
-#include "scene_builders.h"
+#include "brick_wall.h"
+#include "scene_pieces.h"
 #include "time_stepper.h"
 
 namespace nmm::solve {
@@ -21,7 +22,7 @@ TEST(StaticAnalysis, BrickWallSettlesInDdaStaticMode) {
   // step stopped with "not positive definite" (bricks held only by contacts, no mass term).
   // The wall settles onto its contacts within the first steps; afterwards its top barely
   // moves, and no bed joint opens.
-  SceneDef s = test::brick_wall(10, false);
+  SceneDef s = reference::brick_wall(10, false);
   s.measure_points = {{5.0, 4.75}, {1.25, 4.75}, {9.25, 4.75}};
   const Mesh m = pre::build_mesh(s, "wall");
   TimeStepper st(m, s, "wall");
@@ -68,8 +69,8 @@ TEST(StaticAnalysis, BrickWallSettlesInDdaStaticMode) {
 TEST(StaticAnalysis, EquilibriumModeStillNeedsFixedPoints) {
   // K d = F has no mass term: a brick held by nothing (1 m above the base, no contact) is free,
   // and the solve says so instead of returning garbage.
-  SceneDef s = test::brick_wall(1, false);
-  s.bodies[1] = test::box(0, 1, 1, 1.5);
+  SceneDef s = reference::brick_wall(1, false);
+  s.bodies[1] = reference::box(0, 1, 1, 1.5);
   s.solver.static_mode = StaticMode::equilibrium;
   const Mesh m = pre::build_mesh(s, "drop");
   TimeStepper st(m, s, "drop");
@@ -82,7 +83,7 @@ TEST(StaticAnalysis, EquilibriumModeHoldsBricksOnTheirTouchingContacts) {
   // their contacts stick (the elastic predictor, contact.h set_elastic_predictor), then friction
   // takes its strength from the normal force. Before, no contact was closed at the start, the
   // shear springs had no strength, and this wall stopped with "not positive definite".
-  SceneDef s = test::brick_wall(2, false);
+  SceneDef s = reference::brick_wall(2, false);
   s.solver.static_mode = StaticMode::equilibrium;
   s.measure_points = {{1.0, 0.99}};
   const Mesh m = pre::build_mesh(s, "wall");
@@ -105,8 +106,8 @@ TEST(StaticAnalysis, EquilibriumModeHoldsBricksOnTheirTouchingContacts) {
 TEST(StaticAnalysis, FreeBlockFallsAtMostHalfGDtSquaredPerStep) {
   // A brick alone above the base, static DDA: each step starts from rest, so under gravity it
   // moves by exactly ½·g·Δt² per step (the inertia term, no velocity carried) until it lands.
-  SceneDef s = test::brick_wall(1, false);
-  s.bodies[1] = test::box(0, 1, 1, 1.5);  // 1 m above the base
+  SceneDef s = reference::brick_wall(1, false);
+  s.bodies[1] = reference::box(0, 1, 1, 1.5);  // 1 m above the base
   s.measure_points = {{0.5, 1.25}};
   const Mesh m = pre::build_mesh(s, "drop");
   TimeStepper st(m, s, "drop");

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "math_constants.h"
 #include "png_copy.h"
 #include "sweep.h"
 
@@ -108,8 +109,8 @@ TEST(Sweep, InclineFrictionThroughSnakemakeAndThreads) {
     u[r.at("variant")][std::stoi(r.at("joint_sets.interface.friction_deg"))] = {
         std::stod(r.at("history.ux.p0")), std::stod(r.at("history.uy.p0"))};
   }
-  const double g = 9.81, a = M_PI / 6;
-  auto accel = [&](double phi) { return g * (std::sin(a) - std::cos(a) * std::tan(phi * M_PI / 180)); };
+  const double g = 9.81, a = nmm::kPi / 6;
+  auto accel = [&](double phi) { return g * (std::sin(a) - std::cos(a) * std::tan(phi * nmm::kPi / 180)); };
   for (const std::string model : {"springs", "joint-laws"}) {
     ASSERT_EQ(u[model].size(), 3u) << model;
     // Slip relative to the held block (φ = 40°), which removes the base's own sag.

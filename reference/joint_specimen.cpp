@@ -1,10 +1,32 @@
+// The single-joint specimen: scene and loading (joint_specimen.h).
 #include "joint_specimen.h"
 
-#include <algorithm>
+#include <nlohmann/json.hpp>
 
-#include "time_stepper.h"
+#include "error.h"
 
-namespace nmm::solve {
+namespace nmm::reference {
+
+SceneDef scene_with_joint_laws(const std::string& path) {
+  nlohmann::json doc = parse_json_text(read_text_file(path), path);
+  if (!doc.is_object() || !doc.contains("joint_sets") || !doc["joint_sets"].is_object())
+    throw InputError(path, "/joint_sets", "a joint study needs the scene's joint sets (an object)");
+  for (auto& [name, js] : doc["joint_sets"].items()) {
+    js["normal"]["model"] = "bandis_barton";
+    js["shear"]["model"] = "hyperbolic";
+  }
+  return scene_from_json(doc, path);
+}
+
+SceneDef joint_specimen_scene(const std::string& path) {
+  SceneDef s = scene_with_joint_laws(path);
+  if (s.joint_sets.size() != 1)
+    throw InputError(path, "/joint_sets", "the single-joint study needs exactly one joint set");
+  if (s.measure_points.size() != 2)
+    throw InputError(path, "/measure_points",
+                     "the single-joint study needs two points, just above and below the joint");
+  return s;
+}
 
 SceneDef joint_specimen_scene(const JointSetDef& joint, double young, double h) {
   SceneDef s;
@@ -37,22 +59,4 @@ void load_joint_specimen(SceneDef& s, double sigma_n, double tau) {
     for (int i = 0; i < 10; ++i) s.loads.push_back({{0.1 + 0.2 * i, 1.02}, {tau * 2.0 / 10, 0}});
 }
 
-JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, double seconds) {
-  TimeStepper st(mesh, scene, "single joint");
-  JointSpecimenResult r;
-  r.status = st.run_until(seconds, [](std::int64_t) {});
-  const auto a = st.displacement_at(st.measure_points()[0]);
-  const auto b = st.displacement_at(st.measure_points()[1]);
-  r.closure = b[1] - a[1];
-  r.slip = a[0] - b[0];
-  double n = 0;
-  for (const Contact& c : st.contacts().accepted())
-    if (c.state != ContactState::open) {
-      n += c.normal_force;
-      r.travel = std::max(r.travel, c.joint.travel);
-    }
-  r.normal_stress = n / 2.0;
-  return r;
-}
-
-}  // namespace nmm::solve
+}  // namespace nmm::reference

@@ -38,7 +38,7 @@
 #include "mesh.h"
 #include "scene.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 
 /// What colours the elements.
 enum class PictureField { displacement, stress_xx, stress_yy, stress_xy };
@@ -97,4 +97,4 @@ double weighted_quantile(const std::vector<double>& values, const std::vector<do
 std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureState& state,
                        PictureField field);
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

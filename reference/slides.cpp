@@ -1,13 +1,15 @@
 // Reference slides with a known factor of safety (formulas in the header).
-#include "fos_reference.h"
+#include "slides.h"
 
 #include <cmath>
 #include <vector>
 
-namespace nmm::studies {
+#include "math_constants.h"
+#include "ring_geometry.h"
+
+namespace nmm::reference {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;          // m/s²
 constexpr double kDensity = 2500;    // kg/m³
 constexpr double kWaterDensity = 1000;  // kg/m³
@@ -71,13 +73,9 @@ ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, do
   // The wedge in the real frame: toe, crack base, crack top, crest.
   const std::vector<std::pair<double, double>> real = {
       {0, 0}, {crack_x, crack_x * std::tan(pp)}, {crack_x, height}, {height / std::tan(pf), height}};
-  double area = 0;
-  for (std::size_t i = 0; i < real.size(); ++i) {
-    const auto& p = real[i];
-    const auto& q = real[(i + 1) % real.size()];
-    area += 0.5 * (p.first * q.second - q.first * p.second);
-  }
-  r.weight = kDensity * kG * area;
+  Ring outline;
+  for (const auto& [x, y] : real) outline.push_back({x, y});
+  r.weight = kDensity * kG * ring_area(outline);
   r.plane_length = crack_x / std::cos(pp);
   const double gamma_w = kWaterDensity * kG, zw = water_depth;
   r.uplift = 0.5 * gamma_w * zw * r.plane_length;
@@ -120,4 +118,4 @@ ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, do
   return r;
 }
 
-}  // namespace nmm::studies
+}  // namespace nmm::reference

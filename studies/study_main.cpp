@@ -15,11 +15,11 @@
 //  tight_joint       the same specimen with penalty springs standing for a tight joint: the
 //                    shortening across it against the intact rock's σn·(1 m)/E; penalty kn.
 //  kirsch            a circular opening excavated under K0 = 0.5 in-situ stress
-//                    (solver/kirsch_opening.h), the hoop stress along the wall against Kirsch
+//                    (reference/kirsch.h), the hoop stress along the wall against Kirsch
 //                    (RMS over the wall points, relative to its peak); mesh size at cover order
 //                    n = 0, 1, 2.
 //  joint_wave        a 1 MPa half-sine pulse crossing one joint of constant springs (kn =
-//                    1.37 GPa/m, τ = 2 ms; solver/joint_wave.h, data/joint_wave.json): the
+//                    1.37 GPa/m, τ = 2 ms; reference/wave_bar.h, data/joint_wave.json): the
 //                    transmitted displacement history against the displacement-discontinuity
 //                    model (RMS relative to its peak), the peak particle velocity shown; mesh
 //                    size, time step. Also writes OUTDIR/joint_wave_tables.md (the read-off of
@@ -41,7 +41,6 @@
 #include <filesystem>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -56,24 +55,23 @@
 #include "command_line.h"
 #include "cover_cutter.h"
 #include "error.h"
+#include "cantilever.h"
 #include "joint_specimen.h"
+#include "joint_specimen_run.h"
 #include "joint_wave.h"
 #include "kirsch_opening.h"
+#include "sliding_block.h"
 #include "scene.h"
 #include "svg_plot.h"
 #include "time_stepper.h"
 #include "vtk_writer.h"
+#include "stopwatch.h"
+#include "math_constants.h"
 
 namespace {
 
 using nmm::SceneDef;
-using Clock = std::chrono::steady_clock;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kG = 9.81;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using nmm::kPi;
 
 std::string num(double v, const char* f = "%.4g") {
   char b[48];
@@ -81,10 +79,16 @@ std::string num(double v, const char* f = "%.4g") {
   return b;
 }
 
+// How a run ended: with a finite value to compare; stopped or failed (the reason says why); or
+// not run because the solver does not support the setting (a cover order it refuses with an
+// input error at /solver/cover_order), which is no failure of the study.
+enum class RunStatus { ok, failed, not_available };
+
 // What one run gives: the computed value (or why it has none) and what it cost.
 struct Outcome {
-  bool ok = false;
-  std::string reason;      // why not, when !ok
+  RunStatus status = RunStatus::failed;
+  std::string reason;      // why not, when status is not ok
+  bool ok() const { return status == RunStatus::ok; }
   double computed = 0;     // the quantity compared with the closed form
   double mesh_seconds = 0;  // cover cutting
   double run_seconds = 0;   // TimeStepper construction and stepping
@@ -114,35 +118,35 @@ struct Row {
 Outcome timed_run_once(const SceneDef& s, const std::string& name,
                        const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
   Outcome o;
-  const auto t0 = Clock::now();
+  const nmm::Stopwatch t0;
   const nmm::Mesh m = nmm::pre::build_mesh(s, name);
-  o.mesh_seconds = seconds_since(t0);
-  const auto t1 = Clock::now();
+  o.mesh_seconds = t0.seconds();
+  const nmm::Stopwatch t1;
   try {
     std::unique_ptr<nmm::solve::TimeStepper> st;
     try {
       st = std::make_unique<nmm::solve::TimeStepper>(m, s, name);
     } catch (const nmm::InputError& e) {
-      // What the solver does not support at this cover order yet (its input error names
+      // What the solver does not support at this cover order yet (its input error's place is
       // /solver/cover_order): not available, not a failure of the study.
-      const std::string what = e.what();
-      const std::size_t at = what.find("/solver/cover_order");
-      if (s.solver.cover_order == 0 || at == std::string::npos) throw;
-      o.reason = "not available at this cover order: " + what.substr(at);
-      o.run_seconds = seconds_since(t1);
+      if (s.solver.cover_order == 0 || e.where().rfind("/solver/cover_order", 0) != 0) throw;
+      o.status = RunStatus::not_available;
+      o.reason = "not available at this cover order: " + e.where() + ": " + e.message();
+      o.run_seconds = t1.seconds();
       return o;
     }
     o.unknowns = st->unknowns();
     const std::string status = body(*st, o);
     o.cuts = st->time_step_cuts();
     o.iterations = st->open_close_iterations();
-    o.ok = status == "ok" && std::isfinite(o.computed);
-    o.reason = status != "ok" ? status : (o.ok ? "" : "result is not a finite number");
+    const bool finite = std::isfinite(o.computed);
+    o.status = status == "ok" && finite ? RunStatus::ok : RunStatus::failed;
+    o.reason = status != "ok" ? status : (finite ? "" : "result is not a finite number");
   } catch (const nmm::RunError& e) {
-    o.ok = false;
+    o.status = RunStatus::failed;
     o.reason = e.what();
   }
-  o.run_seconds = seconds_since(t1);
+  o.run_seconds = t1.seconds();
   return o;
 }
 
@@ -152,7 +156,7 @@ Outcome timed_run_once(const SceneDef& s, const std::string& name,
 Outcome timed_run(const SceneDef& s, const std::string& name,
                   const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
   Outcome best = timed_run_once(s, name, body);
-  if (best.reason.rfind("not available", 0) == 0) return best;  // nothing to time
+  if (best.status == RunStatus::not_available) return best;  // nothing to time
   double spent = best.mesh_seconds + best.run_seconds;
   for (int runs = 1; runs < 25 && (runs < 3 || spent < 0.5); ++runs) {
     const Outcome o = timed_run_once(s, name, body);
@@ -170,30 +174,14 @@ std::string run_steps(nmm::solve::TimeStepper& st, double t_end, Outcome& o) {
 // L = 10, H = 1, E = 10 GPa, ν = 0.25, plane stress, clamped by fixed points every h/2 along
 // x = 0, P = 1e5 N down at (L, H/2), one static step (tests/test_solver_physics.cpp).
 Row cantilever(double h, int order = 0) {
-  const double L = 10, H = 1, P = 1e5;
-  SceneDef s;
-  s.materials.push_back({"rock", 2500, 1e10, 0.25});
-  nmm::BodyDef b;
-  b.material = 0;
-  b.outer = {{0, 0}, {L, 0}, {L, H}, {0, H}};
-  s.bodies.push_back(b);
-  s.mesh_size = h;
-  s.plane = nmm::PlaneKind::stress;
-  const int n = static_cast<int>(std::ceil(H / (0.5 * h)));
-  for (int i = 0; i <= n; ++i) s.fixed_points.push_back({0, H * i / n});
-  s.loads.push_back({{L, H / 2}, {0, -P}});
-  s.measure_points.push_back({L, H / 2});
-  s.solver.dynamic = false;
-  s.solver.static_mode = nmm::StaticMode::equilibrium;  // the beam's equilibrium in one step
-  s.solver.cover_order = order;
-  const double E = 1e10, nu = 0.25, I = H * H * H / 12, G = E / (2 * (1 + nu));
+  const SceneDef s = nmm::reference::cantilever(h, order);
   Row r;
   r.case_name = "cantilever";
   // Cover order n ≥ 1 is its own sweep over h (docs/higher-order-covers.md).
   r.setting = order == 0 ? "mesh_size" : "mesh_size_n" + std::to_string(order);
   r.value = h;
   r.value_text = "h = " + num(h, "%.6g") + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
-  r.exact = P * L * L * L / (3 * E * I) + P * L / (5.0 / 6.0 * G * H);
+  r.exact = nmm::reference::timoshenko_tip_deflection();
   r.out = timed_run(s, "cantilever", [](nmm::solve::TimeStepper& st, Outcome& o) {
     st.step(1.0);
     o.steps = 1;
@@ -207,33 +195,8 @@ Row cantilever(double h, int order = 0) {
 // Flat 12 m × 1 m base held by fixed points every 0.25 m along y = 0.1, a 2 m × 1 m block on it,
 // gravity tilted by 30°, φ = 20°, h = 0.5, ks = kn/2.5, 1 s (tests/test_contact.cpp).
 Row sliding_block(const std::string& setting, double dt, double kn_over_e, int order = 0) {
-  const double E = 1e10, alpha = 30 * kPi / 180, phi = 20 * kPi / 180, t = 1.0;
-  SceneDef s;
-  s.materials.push_back({"rock", 2650, E, 0.25});
-  nmm::JointSetDef js;
-  js.name = "interface";
-  js.friction_deg = 20;
-  // DDA's point penalty (N/m per contact point), stated in Shi's multiples of E as DDA codes do.
-  js.normal.model = nmm::NormalModel::penalty;
-  js.shear.model = nmm::ShearModel::penalty;
-  js.normal.kn = kn_over_e * E;
-  js.shear.ks = kn_over_e * E / 2.5;
-  s.joint_sets.push_back(js);
-  s.interface_set = 0;
-  s.mesh_size = 0.5;
-  s.has_gravity = true;
-  s.gravity = {kG * std::sin(alpha), -kG * std::cos(alpha)};
-  s.solver.time_step = dt;
-  s.solver.cover_order = order;
-  auto box = [](double x0, double y0, double x1, double y1) {
-    nmm::BodyDef b;
-    b.material = 0;
-    b.outer = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-    return b;
-  };
-  s.bodies = {box(0, 0, 12, 1), box(1, 1, 3, 2)};
-  for (double x = 0.1; x <= 11.9 + 1e-9; x += 0.25) s.fixed_points.push_back({x, 0.1});
-  s.measure_points = {{2, 1.5}};
+  const double alpha_deg = 30, phi_deg = 20, t = 1.0;
+  const SceneDef s = nmm::reference::sliding_block_tilted(alpha_deg, phi_deg, 0.5, order, dt, kn_over_e);
   Row r;
   r.case_name = "sliding_block";
   r.setting = setting;
@@ -246,7 +209,7 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
   }
   r.value_text = "Δt = " + num(dt) + " s, kn = " + num(kn_over_e) + "·E" +
                  (setting == "cover_order" ? ", n = " + std::to_string(order) : "");
-  r.exact = 0.5 * kG * (std::sin(alpha) - std::cos(alpha) * std::tan(phi)) * t * t;
+  r.exact = nmm::reference::sliding_distance(alpha_deg, phi_deg, t);
   r.out = timed_run(s, "sliding block", [t](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, t, o);
     o.computed = st.displacement_at(st.measure_points()[0])[0];
@@ -255,13 +218,13 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
   return r;
 }
 
-// ---- Kirsch opening (solver/kirsch_opening.h) -------------------------------------------------
+// ---- Kirsch opening (reference/kirsch.h, studies/kirsch_opening.h) ---------------------------------------------
 // K0 = 0.5, b = 20a, the core excavated at the start of one static step. The error is the RMS
 // of the hoop stress along the wall against Kirsch, relative to its peak (3p_y − p_x = 25 MPa):
 // each wall element's stress field at the ends of its wall edges, the same read-off at every
 // order (what the VTU frames show). The table's value column is σθ at the side wall (a, 0).
 Row kirsch(double h, int order) {
-  nmm::solve::KirschSetup k;
+  nmm::reference::KirschSetup k;
   k.h = h;
   k.k0 = 0.5;
   k.b_over_a = 20;
@@ -271,14 +234,14 @@ Row kirsch(double h, int order) {
   r.setting = order == 0 ? "mesh_size" : "mesh_size_n" + std::to_string(order);
   r.value = h;
   r.value_text = "h = " + num(h, "%.6g") + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
-  r.exact = nmm::solve::kirsch_hoop(k.k0 * nmm::solve::kKirschPressure, nmm::solve::kKirschPressure,
-                                     nmm::solve::kKirschRadius, 0);
-  const SceneDef s = nmm::solve::kirsch_scene(k);
+  r.exact = nmm::reference::kirsch_hoop(k.k0 * nmm::reference::kKirschPressure, nmm::reference::kKirschPressure,
+                                     nmm::reference::kKirschRadius, 0);
+  const SceneDef s = nmm::reference::kirsch_scene(k);
   // The read-off needs the mesh: kept from the timed run (build_mesh is deterministic).
   r.out = timed_run(s, "kirsch", [&k](nmm::solve::TimeStepper& st, Outcome& o) {
     st.step(1.0);
     o.steps = 1;
-    const nmm::solve::KirschWall w = nmm::solve::kirsch_wall(k, st.mesh(), st);
+    const nmm::studies::KirschWall w = nmm::studies::kirsch_wall(k, st.mesh(), st);
     o.computed = w.side_wall_hoop;
     o.own_error = w.hoop_wall;
     return std::string("ok");
@@ -288,31 +251,19 @@ Row kirsch(double h, int order) {
 
 // ---- single joint (data/single_joint.json) --------------------------------------------------
 SceneDef single_joint_scene(const std::string& path) {
-  // Parsed with the joint laws selected, so Kni and Vm are derived from JRC, JCS and σc.
-  nlohmann::json doc = nmm::parse_json_text(nmm::read_text_file(path), path);
-  if (!doc.is_object() || !doc.contains("joint_sets") || !doc["joint_sets"].is_object() ||
-      doc["joint_sets"].size() != 1)
-    throw nmm::InputError(path, "/joint_sets", "the single-joint study needs exactly one joint set");
-  for (auto& [name, js] : doc["joint_sets"].items()) {
-    js["normal"]["model"] = "bandis_barton";
-    js["shear"]["model"] = "hyperbolic";
-  }
-  SceneDef s = nmm::scene_from_json(doc, path);
+  SceneDef s = nmm::reference::joint_specimen_scene(path);
   // ν = 0: the closed forms assume the same stress all along the joint. With the file's ν = 0.25
   // the blocks' Poisson expansion, held at the base, makes the joint's stress uneven (5.018 MPa
   // at the middle, 4.963 MPa at the ends, h = 0.25) and the closure settled 0.15 % high at every
   // mesh size: a floor of the problem that no setting moves (docs/accuracy.md).
   for (nmm::MaterialDef& m : s.materials) m.poisson = 0;
-  if (s.measure_points.size() != 2)
-    throw nmm::InputError(path, "/measure_points",
-                          "the single-joint study needs two points, just above and below the joint");
   return s;
 }
 
-// The single-joint specimen loaded as everywhere else (joint_specimen.h); closure or slip at the
+// The single-joint specimen loaded as everywhere else (reference/joint_specimen.h); closure or slip at the
 // joint's middle.
 Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool want_slip) {
-  nmm::solve::load_joint_specimen(s, sigma, tau);
+  nmm::reference::load_joint_specimen(s, sigma, tau);
   return timed_run(s, "single joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, seconds, o);
     const auto a = st.displacement_at(st.measure_points()[0]);
@@ -392,7 +343,7 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   r.value = kn_over_e;
   r.value_text = "kn = " + num(kn_over_e) + "·E, h = " + num(s.mesh_size, "%.6g") + " m, 0.3 s";
   r.exact = sigma * 1.0 / e;
-  nmm::solve::load_joint_specimen(s, sigma, 0);
+  nmm::reference::load_joint_specimen(s, sigma, 0);
   r.out = timed_run(s, "tight joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, 0.3, o);
     o.computed = st.displacement_at(st.measure_points()[1])[1] - st.displacement_at(st.measure_points()[0])[1];
@@ -401,12 +352,12 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   return r;
 }
 
-// ---- a wave crossing a joint (solver/joint_wave.h) -----------------------------------------
+// ---- a wave crossing a joint (reference/wave_bar.h) -----------------------------------------
 // The bar of data/joint_wave.json at mesh size h and time step Δt. The error is the RMS of the
 // transmitted displacement history against the closed form, relative to its peak; the table's
 // value column is the peak particle velocity after the joint.
 Row joint_wave(const std::string& setting, double h, double dt) {
-  nmm::solve::JointWaveSetup w;
+  nmm::reference::JointWaveSetup w;
   w.h = h;
   w.dt = dt;
   Row r;
@@ -414,13 +365,13 @@ Row joint_wave(const std::string& setting, double h, double dt) {
   r.setting = setting;
   r.value = setting == "mesh_size" ? h : dt;
   r.value_text = "h = " + num(h, "%.6g") + " m, Δt = " + num(dt) + " s";
-  const nmm::solve::JointWaveClosedForm cf(w);
+  const nmm::reference::JointWaveClosedForm cf(w);
   r.exact = cf.transmitted_peak() / cf.impedance();
-  const SceneDef s = nmm::solve::joint_wave_scene(w);
+  const SceneDef s = nmm::reference::joint_wave_scene(w);
   r.out = timed_run(s, "joint wave", [&](nmm::solve::TimeStepper& st, Outcome& o) {
-    const nmm::solve::JointWaveHistory hist =
-        nmm::solve::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
-    const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+    const nmm::studies::JointWaveHistory hist =
+        nmm::studies::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
+    const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
     o.computed = e.peak_velocity;
     o.own_error = e.after_rms;
     return hist.status;
@@ -430,7 +381,7 @@ Row joint_wave(const std::string& setting, double h, double dt) {
 
 // The wave against the closed form in detail, for τ = 2 ms (kn = 1.37 GPa/m) and 0.5 ms
 // (5.48 GPa/m) at h = 0.5 and 0.25 m (--quick: 0.5 m), Δt = 25 µs: joint_wave_tables.md (the
-// read-off of solver/joint_wave.h: RMS of the displacement histories, half-rise time and peak
+// read-off of studies/joint_wave.h: RMS of the displacement histories, half-rise time and peak
 // particle velocity after the joint) and joint_wave.svg (particle velocity before and after the
 // joint at h = 0.5 m, the runs as dots against the closed form as lines).
 void write_wave_outputs(const std::string& out, bool quick) {
@@ -447,15 +398,15 @@ void write_wave_outputs(const std::string& out, bool quick) {
                                                              {5.48e9, "#d62728"}};
   for (std::size_t j = 0; j < joints.size(); ++j)
     for (double h : quick ? std::vector<double>{0.5} : std::vector<double>{0.5, 0.25}) {
-      nmm::solve::JointWaveSetup w;
+      nmm::reference::JointWaveSetup w;
       w.kn = joints[j].first;
       w.h = h;
-      const nmm::solve::JointWaveClosedForm cf(w);
-      const SceneDef s = nmm::solve::joint_wave_scene(w);
+      const nmm::reference::JointWaveClosedForm cf(w);
+      const SceneDef s = nmm::reference::joint_wave_scene(w);
       const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
-      const nmm::solve::JointWaveHistory hist = nmm::solve::run_joint_wave(m, s);
+      const nmm::studies::JointWaveHistory hist = nmm::studies::run_joint_wave(m, s);
       if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
-      const nmm::solve::JointWaveErrors e = nmm::solve::joint_wave_errors(w, hist);
+      const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
       md << "| τ = " << num(1e3 * cf.tau(), "%.2g") << " ms (kn = " << num(1e-9 * w.kn, "%.3g")
          << " GPa/m), h = " << num(h) << " m, Δt = " << num(1e6 * w.dt) << " µs | "
          << num(100 * e.incident_rms, "%.2f") << " % | " << num(100 * e.before_rms, "%.2f") << " % | "
@@ -502,7 +453,7 @@ std::string csv_text(const std::vector<Row>& rows) {
   std::ostringstream os;
   os << "case,setting,value,error,wall_seconds\n";
   for (const Row& r : rows)
-    if (r.out.ok)
+    if (r.out.ok())
       os << r.case_name << "," << r.setting << "," << num(r.value, "%.6g") << ","
          << num(r.error(), "%.6e") << "," << num(r.wall(), "%.4f") << "\n";
   return os.str();
@@ -558,13 +509,13 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     for (const Row& r : rows) {
       if (r.case_name != c) continue;
       md << "| " << r.setting << " | " << r.value_text << " | ";
-      if (r.out.ok && std::isfinite(r.out.own_error))
+      if (r.out.ok() && std::isfinite(r.out.own_error))
         md << num(shown(c, r.out.computed), "%.6g") << " | " << num(100 * r.out.own_error, "%.3f") << " %";
-      else if (r.out.ok)
+      else if (r.out.ok())
         md << num(shown(c, r.out.computed), "%.6g") << " | "
            << num(100 * (r.out.computed - r.exact) / std::abs(r.exact), "%+.3f") << " %";
       else
-        md << (r.out.reason.rfind("not available", 0) == 0 ? "not available" : "did not complete") << " | –";
+        md << (r.out.status == RunStatus::not_available ? "not available" : "did not complete") << " | –";
       md << " | " << num(r.wall(), "%.4f") << " (" << num(r.out.mesh_seconds, "%.4f") << " + "
          << num(r.out.run_seconds, "%.4f") << ") | " << r.out.unknowns << " | " << r.out.steps
          << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
@@ -578,7 +529,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     for (const std::string& sw : sweeps) {
       const Row *cheap = nullptr, *dear = nullptr;
       for (const Row& r : rows) {
-        if (r.case_name != c || r.setting != sw || !r.out.ok) continue;
+        if (r.case_name != c || r.setting != sw || !r.out.ok()) continue;
         if (!cheap || r.wall() < cheap->wall()) cheap = &r;
         if (!dear || r.wall() > dear->wall()) dear = &r;
       }
@@ -587,7 +538,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
         // Within timing noise (docs/accuracy.md): which run is "costliest" would be chance.
         const Row* best = cheap;
         for (const Row& r : rows)
-          if (r.case_name == c && r.setting == sw && r.out.ok && r.error() < best->error()) best = &r;
+          if (r.case_name == c && r.setting == sw && r.out.ok() && r.error() < best->error()) best = &r;
         md << "- " << sw << ": the cost does not depend on it (" << num(cheap->wall(), "%.3f")
            << "–" << num(dear->wall(), "%.3f") << " s, within timing noise); the most accurate run is "
            << best->value_text << ": " << num(100 * best->error(), "%.3f") << " %.\n";
@@ -597,7 +548,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
     }
     const Row *cheap = nullptr, *dear = nullptr;
     for (const Row& r : rows) {
-      if (r.case_name != c || !r.out.ok) continue;
+      if (r.case_name != c || !r.out.ok()) continue;
       if (!cheap || r.wall() < cheap->wall()) cheap = &r;
       if (!dear || r.wall() > dear->wall()) dear = &r;
     }
@@ -606,7 +557,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
   }
   std::ostringstream failed;
   for (const Row& r : rows)
-    if (!r.out.ok)
+    if (!r.out.ok())
       failed << "| " << r.case_name << " | " << r.value_text << " | " << num(r.wall(), "%.3f")
              << " | " << r.out.reason << " |\n";
   md << "\n### Runs that did not complete (not in the CSV or the picture)\n\n";
@@ -649,7 +600,7 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
   for (std::size_t i = 0; i < curves.size(); ++i) {
     nmm::PlotSeries ser{curves[i].second, {}, {}, colours[i % colours.size()], true, true};
     for (const Row& r : rows)
-      if (r.out.ok && r.case_name == curves[i].first.first && r.setting == curves[i].first.second) {
+      if (r.out.ok() && r.case_name == curves[i].first.first && r.setting == curves[i].first.second) {
         ser.x.push_back(r.wall());
         ser.y.push_back(r.error());
       }
@@ -675,19 +626,14 @@ int main(int argc, char** argv) {
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-study"); status >= 0)
     return status;
   try {
-    {  // the output folder is made here; if that fails, the probe below names the problem
-      std::error_code ec;
-      std::filesystem::create_directories(out, ec);
-    }
-    nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
-    std::remove((out + "/.probe").c_str());
+    nmm::prepare_output_folder(out);  // fails early on a bad folder
     const SceneDef joint = single_joint_scene(data + "/single_joint.json");
 
     std::vector<Row> rows;
     auto add = [&rows](Row r) {
       std::fprintf(stderr, "%-16s %-14s %-52s %s  %.3f s\n", r.case_name.c_str(), r.setting.c_str(),
                    r.value_text.c_str(),
-                   r.out.ok ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason.c_str(),
+                   r.out.ok() ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason.c_str(),
                    r.wall());
       rows.push_back(std::move(r));
     };

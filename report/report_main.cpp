@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   bool quiet = false;
   app.add_option("outdir", dir, "output folder of nmm-solve")->required();
   app.add_flag("-q,--quiet", quiet, "do not list the files written");
-  nmm::solve::RedrawOptions redraw;
+  nmm::report::RedrawOptions redraw;
   app.add_option("--frame", redraw.frame_step,
                  "draw result.svg from the frame of this step (frames/frame_<step>.vtu); default: the last")
       ->check(CLI::NonNegativeNumber);
@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     // Not a run folder at all: make_run_report says so in its one line.
     if (std::filesystem::exists(std::filesystem::path(dir) / "summary.json") || must_draw) {
       try {
-        const nmm::solve::RedrawInfo info = nmm::solve::redraw_result(dir, redraw);
+        const nmm::report::RedrawInfo info = nmm::report::redraw_result(dir, redraw);
         drawn = "result.svg (step " + std::to_string(info.step) + ", " +
                 std::to_string(info.polygons) + " elements, " + std::to_string(info.contacts) +
                 " closed contacts)";
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
         std::cerr << "nmm-report: warning: result.svg not redrawn: " << e.what() << "\n";
       }
     }
-    const nmm::solve::ReportFiles files = nmm::solve::make_run_report(dir);
+    const nmm::report::ReportFiles files = nmm::report::make_run_report(dir);
     if (!quiet) {
       std::cout << "nmm-report: wrote";
       if (!drawn.empty()) std::cout << ' ' << drawn;

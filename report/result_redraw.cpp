@@ -24,7 +24,7 @@
 #include "vtk_writer.h"
 #include "vtu_reader.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 namespace fs = std::filesystem;
 
 namespace {
@@ -87,7 +87,7 @@ RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_g
   if (inputs.contains("set") && inputs["set"].is_array())
     for (const auto& s : inputs["set"])
       if (s.is_string()) sets.push_back(s.get<std::string>());
-  r.scene = make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
+  r.scene = solve::make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
   return r;
 }
 
@@ -213,4 +213,4 @@ RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options) {
   return info;
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -7,11 +7,14 @@
 #include "number_format.h"
 #include "scene_checks.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 
-bool status_is_failure(const std::string& status) {
-  return !(status.empty() || status == "ok" || status == "interrupted" ||
-           status.rfind("step ", 0) == 0);
+RunEnd run_end(const std::string& status) {
+  if (status.empty()) return RunEnd::unknown;
+  if (status == "ok") return RunEnd::ok;
+  if (status == "interrupted") return RunEnd::interrupted;
+  if (status.rfind("step ", 0) == 0) return RunEnd::frame;
+  return RunEnd::failed;
 }
 
 std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const std::string& status) {
@@ -51,4 +54,4 @@ std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const 
   return "";
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -21,7 +21,7 @@
 #include "atomic_file.h"
 #include "xml_text.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 namespace fs = std::filesystem;
 namespace {
 
@@ -274,14 +274,15 @@ ReportFiles make_run_report(const std::string& dir) {
       "td.n{text-align:right;white-space:nowrap}th.group{background:#eee}th.sub{padding-left:1.5em}"
       ".bad{color:#b00;font-weight:bold}.ok{color:#070;font-weight:bold}</style></head><body>\n";
   const std::string status = summary.value("status", std::string("unknown"));
-  const bool finished = status == "ok";
+  const RunEnd end = run_end(status);
+  const bool finished = end == RunEnd::ok;
   auto number_at = [&](const char* key) {
     const auto it = summary.find(key);
     return it != summary.end() && it->is_number() ? it->get<double>() : 0.0;
   };
   html += "<h1>nmm run report</h1>\n<p>status: <span class=\"" +
           std::string(finished ? "ok" : "bad") + "\">" +
-          (finished || status == "interrupted" ? xml_escape(status) : std::string("stopped")) +
+          (finished || end == RunEnd::interrupted ? xml_escape(status) : std::string("stopped")) +
           "</span>, simulated time " + format_engineering(number_at("simulated_time"), "s") +
           " in " + summary_cell(summary.value("steps_completed", nlohmann::json(0)), "").first +
           " steps, wall " + format_engineering(number_at("wall_seconds"), "s") + "</p>\n";
@@ -339,4 +340,4 @@ ReportFiles make_run_report(const std::string& dir) {
   return files;
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

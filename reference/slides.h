@@ -1,5 +1,6 @@
-// Reference problems with a closed-form factor of safety (docs/physics.md §5), as scene
-// documents, shared by the tests, the benchmark and the examples.
+// Reference slides with a closed-form factor of safety (docs/physics.md §5), as scene documents,
+// shared by the tests (tests/test_fos.cpp), the benchmark (bench/fos_bench.cpp) and the examples
+// (data/planar_slide.json is the planar slide as a file).
 //
 // Block on a plane: a block resting on a plane dipping α, joint friction φ, no cohesion:
 //   F = tan φ / tan α.
@@ -35,7 +36,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace nmm::studies {
+namespace nmm::reference {
 
 struct ReferenceSlide {
   nlohmann::json scene;  ///< scene document (a measure point on the sliding body)
@@ -57,4 +58,4 @@ ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, do
                             double phi_deg, double cohesion, double duration = 0.4,
                             bool plastic = true, double water_depth = 0);
 
-}  // namespace nmm::studies
+}  // namespace nmm::reference

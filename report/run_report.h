@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace nmm::solve {
+namespace nmm::report {
 
 /// One accepted step's solver effort (run_history.csv).
 struct StepRecord {
@@ -58,4 +58,4 @@ struct ReportFiles {
 /// when summary.json or history.csv is missing or unreadable.
 ReportFiles make_run_report(const std::string& dir);
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -25,6 +25,8 @@
 #include "cover_cutter.h"
 #include "error.h"
 #include "joint_specimen.h"
+#include "joint_specimen_run.h"
+#include "math_constants.h"
 #include "scene.h"
 #include "svg_plot.h"
 #include "time_stepper.h"
@@ -33,13 +35,13 @@
 namespace {
 
 using nmm::SceneDef;
-constexpr double kPi = 3.14159265358979323846;
+using nmm::kPi;
 
 // Closure and slip (m) of the single-joint scene under σn and τ (Pa) after `seconds`.
 std::pair<double, double> joint_response(SceneDef s, const nmm::Mesh& m, double sigma, double tau,
                                          double seconds, std::string* status) {
-  nmm::solve::load_joint_specimen(s, sigma, tau);
-  const nmm::solve::JointSpecimenResult r = nmm::solve::run_joint_specimen(m, s, seconds);
+  nmm::reference::load_joint_specimen(s, sigma, tau);
+  const nmm::studies::JointSpecimenResult r = nmm::studies::run_joint_specimen(m, s, seconds);
   *status = r.status;
   return {r.closure, r.slip};
 }
@@ -70,16 +72,6 @@ std::string num(double v, const char* f = "%.4g") {
   return b;
 }
 
-SceneDef with_laws_parsed(const std::string& path) {
-  // Parse once with the joint laws selected, so kni/vm are derived from JRC, JCS, UCS.
-  nlohmann::json doc = nmm::parse_json_text(nmm::read_text_file(path), path);
-  for (auto& [name, js] : doc["joint_sets"].items()) {
-    js["normal"]["model"] = "bandis_barton";
-    js["shear"]["model"] = "hyperbolic";
-  }
-  return nmm::scene_from_json(doc, path);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,16 +84,11 @@ int main(int argc, char** argv) {
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-joint-study"); status >= 0)
     return status;
   try {
-    {  // the output folder is made here; if that fails, the probe below names the problem
-      std::error_code ec;
-      std::filesystem::create_directories(out, ec);
-    }
-    nmm::write_file_atomically(out + "/.probe", "");  // fails early on a bad folder
-    std::remove((out + "/.probe").c_str());
+    nmm::prepare_output_folder(out);  // fails early on a bad folder
     std::ostringstream md;
 
     // ---- (a) the constitutive curves through the solver ------------------------------------
-    const SceneDef joint = with_laws_parsed(data + "/single_joint.json");
+    const SceneDef joint = nmm::reference::joint_specimen_scene(data + "/single_joint.json");
     const nmm::Mesh jm = nmm::pre::build_mesh(joint, data + "/single_joint.json");
     const auto& law = joint.joint_sets[0];
     const double kni = law.normal.kni, vm = law.normal.vm, ksi = law.shear.ksi, rf = law.shear.rf;
@@ -184,7 +171,7 @@ int main(int argc, char** argv) {
 
     // ---- (c) a jointed tunnel: the spread of contact stiffness -----------------------------
     md << "\n### (c) Tunnel in jointed rock: contact stiffness, constant against joint laws\n\n";
-    SceneDef tun = with_laws_parsed(data + "/tunnel.json");
+    SceneDef tun = nmm::reference::scene_with_joint_laws(data + "/tunnel.json");
     tun.solver.steps = quick ? 10 : 100;
     const nmm::Mesh tm = nmm::pre::build_mesh(tun, data + "/tunnel.json");
     std::ostringstream kcsv;  // written atomically at the end

@@ -1,8 +1,9 @@
 // The Kirsch opening, the rock-engineering reference problem (docs/physics.md §5; Brady & Brown,
 // "Rock Mechanics for Underground Mining", §7.2): a circular opening of radius a excavated in
-// elastic rock under far-field compression p_x, p_y. Built here once and used by
+// elastic rock under far-field compression p_x, p_y: the scene and the closed form. Used by
 // tests/test_rock_setups.cpp (excavation against Kirsch at each cover order) and nmm-study (the
-// order axis on the accuracy-against-time chart, docs/accuracy.md).
+// order axis on the accuracy-against-time chart, docs/accuracy.md); studies/kirsch_opening.h
+// reads a solved model's wall against it.
 //
 // Closed form (compression positive, θ from x, P = (p_x + p_y)/2, Q = (p_x − p_y)/2):
 //   σr  = P(1 − a²/r²) + Q(1 − 4a²/r² + 3a⁴/r⁴)cos2θ
@@ -22,14 +23,9 @@
 // body with a free opening under the same initial stress: the same K d = F, without contacts.
 #pragma once
 
-#include <cstddef>
-
-#include "mesh.h"
 #include "scene.h"
 
-namespace nmm::solve {
-
-class TimeStepper;
+namespace nmm::reference {
 
 struct KirschSetup {
   double h = 0.2;          ///< m, mesh size
@@ -52,25 +48,4 @@ double kirsch_hoop(double px, double py, double r, double theta);
 /// Kirsch's inward radial displacement (m) at (r, θ), plane strain with G and ν.
 double kirsch_radial_displacement(double px, double py, double g, double nu, double r, double theta);
 
-/// What is read off a solved model along the wall, against the closed form.
-struct KirschWall {
-  /// RMS error of σθ at the wall points, relative to max |σθ(a)|: each wall element's stress
-  /// field evaluated at the ends of its wall edges (the VTU's vertex_stress at n ≥ 1, the element
-  /// stress at n = 0), against σθ(a, θ) there.
-  double hoop_wall = 0;
-  /// The same with each wall element's mean stress at its centroid against σθ at the centroid
-  /// (docs/solver.md's earlier read-off, kind to constant-stress elements).
-  double hoop_centroid = 0;
-  /// σθ (Pa, compression positive) at the side wall (a, 0), where it peaks for K0 < 3, from the
-  /// element(s) with a wall vertex there, and Kirsch's value there.
-  double side_wall_hoop = 0, side_wall_exact = 0;
-  /// RMS error of u_r at the wall vertices (θ strictly between 0 and 90°), relative to
-  /// max |u_r(a)|.
-  double radial = 0;
-  std::size_t wall_points = 0;  ///< (element, wall vertex) samples behind hoop_wall
-};
-
-/// Reads the wall of a solved Kirsch model (mesh and stepper of kirsch_scene(k)).
-KirschWall kirsch_wall(const KirschSetup& k, const Mesh& mesh, const TimeStepper& st);
-
-}  // namespace nmm::solve
+}  // namespace nmm::reference

@@ -19,7 +19,7 @@
 #include "result_picture.h"
 #include "scene.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 
 struct RedrawOptions {
   std::int64_t frame_step = -1;  ///< step number of the frame (frames/frame_<step>.vtu); -1: last
@@ -65,4 +65,4 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
 /// the mesh or the frame cannot be used: a frame of another mesh, a step without a frame, ...
 RedrawInfo redraw_result(const std::string& dir, const RedrawOptions& options);
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

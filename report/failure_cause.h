@@ -17,13 +17,23 @@
 #include "mesh.h"
 #include "scene.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 
-/// False for statuses of runs that did not stop on a failure ("ok", "interrupted", "step N": a
-/// frame before the end, nmm-report --frame), true for every other status (the failure's reason).
-bool status_is_failure(const std::string& status);
+/// How a run ended, read from its status (summary.json's "status", the stepper's result): the
+/// status is text for the files and the user, this is what code branches on.
+enum class RunEnd {
+  unknown,      ///< no status
+  ok,           ///< "ok": reached its end
+  interrupted,  ///< "interrupted": Ctrl-C, results kept
+  frame,        ///< "step N": a frame before the end (nmm-report --frame)
+  failed,       ///< any other status: the failure's reason
+};
+RunEnd run_end(const std::string& status);
+
+/// False for statuses of runs that did not stop on a failure, true for every other status.
+inline bool status_is_failure(const std::string& status) { return run_end(status) == RunEnd::failed; }
 
 /// The likely cause of a stopped run, one or two sentences; "" when the status is no failure.
 std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const std::string& status);
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -9,10 +9,11 @@
 
 #include "failure_cause.h"
 #include "joint_water.h"
+#include "math_constants.h"
 #include "svg_plot.h"
 #include "svg_writer.h"
 
-namespace nmm::solve {
+namespace nmm::report {
 namespace {
 
 std::string number(double v) {
@@ -212,13 +213,13 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   const std::string joint_colour = state.contacts_known ? "#8b0000" : "#888888";
   // Water (joint_water.h): each wet face drawn as a wide cyan band under its state colour, by
   // the pressure at its middle: five bands from light (low) to dark (the largest pressure).
-  const JointWater water(mesh, scene);
+  const solve::JointWater water(mesh, scene);
   double water_max = 0;
   if (water.active()) {
     static const char* const kCyans[] = {"#b8f0ff", "#66dcff", "#00bfe6", "#008fb3", "#005f73"};
     std::vector<std::pair<double, std::pair<Vec2, Vec2>>> wet;
     for (std::size_t i = 0; i < water.edges().size(); ++i) {
-      const BoundaryEdge& be = water.edges()[i];
+      const solve::BoundaryEdge& be = water.edges()[i];
       if (gone[static_cast<std::size_t>(be.element)]) continue;
       const double p = water.pressure_at(water.edge_joint()[i], 0.5 * (xy[2 * be.vertex] + xy[2 * be.next]),
                                          0.5 * (xy[2 * be.vertex + 1] + xy[2 * be.next + 1]));
@@ -404,11 +405,11 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   if (scene.has_gravity && scene.gravity.x != 0) {
     char g[96];
     std::snprintf(g, sizeof g, "; gravity %.3g° from −y (model axes)",
-                  std::atan2(std::abs(scene.gravity.x), -scene.gravity.y) * 180 / M_PI);
+                  std::atan2(std::abs(scene.gravity.x), -scene.gravity.y) * 180 / nmm::kPi);
     marks += g;
   }
   svg.text({xmin, ly}, marks + excavated_note, 0.8 * font, "#333333");
   return svg.str(0.03, 1400);
 }
 
-}  // namespace nmm::solve
+}  // namespace nmm::report

@@ -1,0 +1,23 @@
+// Plane geometry of rings (ring_geometry.h has the formulas).
+#include "ring_geometry.h"
+
+#include <cmath>
+
+namespace nmm {
+
+bool point_in_ring(const Ring& ring, Vec2 p) {
+  bool inside = false;
+  const std::size_t n = ring.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2 a = ring[i], b = ring[j];
+    if ((a.y > p.y) != (b.y > p.y)) {
+      const double x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+      if (p.x < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+double ring_area(const Ring& ring) { return std::abs(ring_signed_area(ring)); }
+
+}  // namespace nmm

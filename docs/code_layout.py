@@ -1,0 +1,150 @@
+#!/usr/bin/env python3
+"""Writes docs/code-layout.md: the source tree measured before and after a change of layout.
+
+  python3 docs/code_layout.py BEFORE_REV > docs/code-layout.md
+
+BEFORE_REV is a git revision (the tree before); "after" is the working tree. Measured for each
+with Universal Ctags (function extents, public methods) and the #include lines: files and lines
+per folder, the largest functions, the public methods of the main types, and the include graph
+between folders (an arrow A -> B: a file in A includes a header that lives in B).
+"""
+import collections
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+FOLDERS = ["common", "preprocess", "solver", "report", "reference", "studies", "tests", "bench"]
+MAIN_TYPES = ["TimeStepper", "ContactSet", "EnergyMeter", "CoverSpace", "OutputWriter", "SystemMatrix"]
+
+
+def sources(tree):
+    for folder in FOLDERS:
+        d = tree / folder
+        if d.is_dir():
+            for f in sorted(d.rglob("*")):
+                if f.suffix in (".h", ".cpp") and f.is_file():
+                    yield folder, f
+
+
+def ctags(tree, files, kinds):
+    out = subprocess.run(["ctags", "-o", "-", "--c++-kinds=" + kinds, "--fields=+neaK",
+                          "--language-force=C++"] + [str(f.relative_to(tree)) for f in files],
+                         cwd=tree, capture_output=True, text=True, check=True).stdout
+    for line in out.splitlines():
+        parts = line.split("\t")
+        fields = dict(p.split(":", 1) for p in parts[3:] if ":" in p)
+        yield parts[0], parts[1], fields
+
+
+INTRO = """Where the code lives, layer by layer (an arrow only ever points down this list):
+
+- `common/`: the data model, scene and mesh files, writers; no CGAL, no solver.
+- `reference/`: the reference problems, each a scene and its closed form (sliding block,
+  cantilever, Kirsch, joint specimen, wave bar, brick wall, block on a plane, planar slide);
+  needs `common/` only, and is used by the tests, the benches, the studies and the data/ checks.
+- `preprocess/`: cover cutting with CGAL, nmm-preprocess and nmm-inspect.
+- `solver/`: the kernel (time stepping, contact, joint laws, frames, checkpoints; the library
+  nmm_solver, which includes nothing but `common/`) and nmm-solve, whose main
+  (solver/solve_main.cpp) is the one file here that reaches up, into `report/`, for `--pictures`
+  and the run's report; no CGAL, nothing from `preprocess/`.
+- `report/`: what is drawn and written about a run (result picture, likely cause of a stop, the
+  run's report, redraw), nmm-report and nmm-history-plot.
+- `studies/`: nmm-study and nmm-joint-study (reference problems run in process, with their
+  read-offs) and nmm-fos and nmm-sweep (the tools driven as programs).
+- `tests/`, `bench/`: on top of everything.
+
+CTest `layers` (tests/check_layers.py) fails on an #include or a library link that points up
+this list.
+
+A move between folders must not change a result. CTest `state_hashes` compares summary.json's
+`state_hash` (SHA-256 of the run state, the contact history and the mesh, which includes the
+scene file's text) of every data/ scene, run as CTest runs it, and of 15 short reference-problem
+runs against the table tests/state_hashes.txt, bit for bit. A change that moves results on
+purpose regenerates the table in the same commit and says why (a minute of runs):
+```
+python3 tests/state_hashes.py build --write
+```
+
+"""
+
+
+def measure(tree):
+    files = list(sources(tree))
+    per_folder = collections.OrderedDict((f, [0, 0]) for f in FOLDERS)
+    where = {}
+    for folder, f in files:
+        per_folder[folder][0] += 1
+        per_folder[folder][1] += len(f.read_text(errors="replace").splitlines())
+        where.setdefault(f.name, folder)
+    functions = []
+    for name, path, fields in ctags(tree, [f for _, f in files if f.suffix == ".cpp"], "f"):
+        if "line" in fields and "end" in fields:
+            scope = fields.get("class", fields.get("struct", "")).split("::")[-1]
+            scope = scope + "::" if scope else ""
+            functions.append((int(fields["end"]) - int(fields["line"]) + 1, path, scope + name))
+    functions.sort(key=lambda t: (-t[0], t[1], t[2]))
+    methods = collections.defaultdict(set)
+    for name, path, fields in ctags(tree, [f for _, f in files if f.suffix == ".h"], "pf"):
+        cls = fields.get("class", "").split("::")[-1]
+        if cls in MAIN_TYPES and fields.get("access") == "public":
+            methods[cls].add(name)
+    edges = collections.Counter()
+    inc = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+    for folder, f in files:
+        for line in f.read_text(errors="replace").splitlines():
+            m = inc.match(line)
+            if m:
+                target = where.get(pathlib.Path(m.group(1)).name)
+                if target and target != folder:
+                    edges[(folder, target)] += 1
+    return per_folder, functions, methods, edges
+
+
+def tree_of(rev, tmp):
+    subprocess.run(f"git -C {ROOT} archive {rev} | tar -x -C {tmp}", shell=True, check=True)
+    return pathlib.Path(tmp)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    rev = sys.argv[1]
+    short = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", rev],
+                           capture_output=True, text=True, check=True).stdout.strip()
+    with tempfile.TemporaryDirectory() as tmp:
+        before = measure(tree_of(rev, tmp))
+    after = measure(ROOT)
+    w = sys.stdout.write
+    w("# Code layout, before and after\n\n")
+    w(INTRO)
+    w(f"The source tree measured at {short} (before) and now (after). Regenerate from the "
+      f"repository's root (needs Universal Ctags and the git history):\n```\npython3 docs/code_layout.py {short} > docs/code-layout.md\n```\n\n")
+    w("## Files and lines per folder\n\n| folder | files before | lines before | files after | lines after |\n|---|---|---|---|---|\n")
+    for folder in FOLDERS:
+        b, a = before[0][folder], after[0][folder]
+        w(f"| {folder}/ | {b[0]} | {b[1]:,} | {a[0]} | {a[1]:,} |\n")
+    tb = [sum(v[i] for v in before[0].values()) for i in (0, 1)]
+    ta = [sum(v[i] for v in after[0].values()) for i in (0, 1)]
+    w(f"| all | {tb[0]} | {tb[1]:,} | {ta[0]} | {ta[1]:,} |\n\n")
+    for label, m in (("before", before), ("after", after)):
+        fns = m[1]
+        w(f"## The largest functions, {label}\n\n{len(fns)} functions in .cpp files, "
+          f"{sum(1 for n, _, _ in fns if n > 150)} over 150 lines.\n\n| lines | function | file |\n|---|---|---|\n")
+        for n, path, name in fns[:10]:
+            w(f"| {n} | `{name}` | {path} |\n")
+        w("\n")
+    w("## Public methods of the main types\n\n| type | before | after |\n|---|---|---|\n")
+    for t in MAIN_TYPES:
+        w(f"| `{t}` | {len(before[2][t])} | {len(after[2][t])} |\n")
+    w("\n## Include graph between folders\n\nAn arrow A → B: files in A include headers that "
+      "live in B (count of #include lines).\n\n| arrow | before | after |\n|---|---|---|\n")
+    for e in sorted(set(before[3]) | set(after[3]), key=lambda e: (FOLDERS.index(e[0]), FOLDERS.index(e[1]))):
+        w(f"| {e[0]}/ → {e[1]}/ | {before[3].get(e, 0)} | {after[3].get(e, 0)} |\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""The folders are layers (docs/code-layout.md); an #include may only point down:
+
+  common/      -> (nothing)
+  reference/   -> common/
+  preprocess/  -> common/
+  solver/      -> common/            (solve_main.cpp, nmm-solve's main, also -> report/)
+  report/      -> common/, solver/
+  studies/     -> common/, reference/, preprocess/, solver/, report/
+  tests/, bench/: anything
+
+Resolves each #include "x.h" to the folder holding x.h and prints every include that points
+elsewhere; likewise every library a folder's CMakeLists.txt links (target_link_libraries of
+its nmm_* targets) that belongs to a folder above. Exit status 1 if there is one.
+Usage: check_layers.py [SOURCE_DIR]
+"""
+import pathlib
+import re
+import sys
+
+ALLOWED = {
+    "common": set(),
+    "reference": {"common"},
+    "preprocess": {"common"},
+    "solver": {"common"},
+    "report": {"common", "solver"},
+    "studies": {"common", "reference", "preprocess", "solver", "report"},
+}
+EXCEPTIONS = {("solver/solve_main.cpp", "report")}  # nmm-solve draws its pictures and report
+
+
+def main():
+    root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).parent.parent)
+    where = {}
+    for folder in ALLOWED:
+        for f in (root / folder).rglob("*.h"):
+            where.setdefault(f.name, folder)
+    include = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+    bad = 0
+    for folder, allowed in ALLOWED.items():
+        for f in sorted((root / folder).rglob("*")):
+            if f.suffix not in (".h", ".cpp"):
+                continue
+            rel = f.relative_to(root).as_posix()
+            for n, line in enumerate(f.read_text(errors="replace").splitlines(), 1):
+                m = include.match(line)
+                if not m:
+                    continue
+                target = where.get(pathlib.Path(m.group(1)).name)
+                if target and target != folder and target not in allowed and (rel, target) not in EXCEPTIONS:
+                    print(f"{rel}:{n}: includes {m.group(1)} from {target}/, above {folder}/")
+                    bad += 1
+    library = {"nmm_common": "common", "nmm_reference": "reference", "nmm_preprocess": "preprocess",
+               "nmm_joint_network": "preprocess", "nmm_solver": "solver", "nmm_report": "report",
+               "nmm_studies": "studies"}
+    link = re.compile(r"target_link_libraries\((\w+)([^)]*)\)", re.S)
+    for folder, allowed in ALLOWED.items():
+        cmake = root / folder / "CMakeLists.txt"
+        for m in link.finditer(cmake.read_text()):
+            if library.get(m.group(1)) != folder:
+                continue  # the folder's programs (nmm-solve links nmm_report, as its main includes it)
+            for dep in re.findall(r"nmm_\w+", m.group(2)):
+                target = library.get(dep)
+                if target and target != folder and target not in allowed:
+                    print(f"{folder}/CMakeLists.txt: {m.group(1)} links {dep} from {target}/, above {folder}/")
+                    bad += 1
+    print(f"{bad} includes and links against the layers")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

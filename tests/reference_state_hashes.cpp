@@ -1,0 +1,95 @@
+// Prints the state hash (summary.json's state_hash: SHA-256 of the run state, the contact history
+// and the mesh) of every reference problem after a short run of its own, one line each:
+//   reference.NAME STEPS HASH
+// tests/state_hashes.py compares these lines (with the data/ scenes' hashes) against the table
+// tests/state_hashes.txt: a change of layout must leave every one of them bit for bit.
+// Each run is short (a few steps, or the problem's one static step): long enough that the
+// scene's geometry, materials, joints, loads and supports all reach the state.
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "brick_wall.h"
+#include "cantilever.h"
+#include "cover_cutter.h"
+#include "error.h"
+#include "joint_specimen.h"
+#include "kirsch.h"
+#include "scene.h"
+#include "slides.h"
+#include "sliding_block.h"
+#include "time_stepper.h"
+#include "wave_bar.h"
+
+namespace {
+
+using nmm::SceneDef;
+
+// Runs `steps` steps of the scene's own Δt (one step of 1 s for a static scene) and prints the
+// line; a run that stops early prints its status instead of ok.
+void run(const std::string& name, const SceneDef& s, int steps) {
+  const nmm::Mesh m = nmm::pre::build_mesh(s, name);
+  nmm::solve::TimeStepper st(m, s, name);
+  std::string status = "ok";
+  if (!s.solver.dynamic && s.solver.static_mode == nmm::StaticMode::equilibrium) {
+    for (int i = 0; i < steps; ++i) st.step(1.0);
+  } else {
+    status = st.run_until(steps * s.solver.time_step, [](std::int64_t) {});
+  }
+  std::printf("reference.%s %d %s%s%s\n", name.c_str(), steps, st.state_hash().c_str(),
+              status == "ok" ? "" : " ", status == "ok" ? "" : status.c_str());
+  std::fflush(stdout);
+}
+
+SceneDef from_json(const nlohmann::json& doc, const std::string& name) {
+  return nmm::scene_from_json(doc, name);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: reference_state_hashes DATA_DIR (the repository's data/)\n");
+    return 2;
+  }
+  const std::string data = argv[1];
+  try {
+    using namespace nmm::reference;
+    run("sliding_block_tilted", sliding_block_tilted(30, 20), 100);
+    run("sliding_block_tilted_dt2e-3_kn5E", sliding_block_tilted(30, 20, 0.5, 0, 2e-3, 5), 50);
+    run("sliding_block_tilted_n1", sliding_block_tilted(30, 20, 0.5, 1), 20);
+    run("sliding_block_incline", sliding_block_incline(30, 20), 50);
+    run("sliding_block_incline_margin_n1", sliding_block_incline(30, 20, 0.5, 1, 1.5), 20);
+    run("brick_wall_3_dynamic", brick_wall(3, true), 20);
+    run("brick_wall_3_static", brick_wall(3, false), 5);
+    run("cantilever", cantilever(0.5, 0), 1);
+    run("cantilever_n1", cantilever(0.5, 1), 1);
+    {
+      KirschSetup k;
+      k.h = 0.4;
+      k.k0 = 0.5;
+      k.b_over_a = 8;
+      SceneDef s = kirsch_scene(k);
+      run("kirsch", s, 1);
+    }
+    {
+      const std::string path = data + "/single_joint.json";
+      SceneDef s = nmm::scene_from_json(nmm::parse_json_text(nmm::read_text_file(path), path), path);
+      load_joint_specimen(s, 5e6, 2e6);
+      run("joint_specimen", s, 20);
+      SceneDef laws = joint_specimen_scene(path);
+      load_joint_specimen(laws, 5e6, 2e6);
+      run("joint_specimen_laws", laws, 20);
+    }
+    run("block_on_plane", from_json(block_on_plane(30, 35).scene, "block_on_plane"), 20);
+    run("planar_slide",
+        from_json(planar_slide(5, 60, 30, 5, 25, 1e4).scene, "planar_slide"), 20);
+    run("wave_bar", joint_wave_scene(JointWaveSetup{}), 40);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "reference_state_hashes: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
