@@ -381,7 +381,9 @@ NormalLawDef read_normal_law(const Reader& r) {
   const std::size_t model = r["model"].as_choice({"constant", "bandis_barton", "penalty"}, "normal model");
   // A joint set may hold the parameters of both models, so that a run can switch models with
   // --set joint_sets.NAME.normal.model=... on the same mesh; the model picks which are needed.
-  r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs"}, "");
+  r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs", "hysteresis"}, "");
+  // Used by the bandis_barton closure only (kept, like kni and vm, when a run switches models).
+  if (r.has("hysteresis")) law.hysteresis = r["hysteresis"].as_bool();
   if (r.has("kn")) law.kn = r.number("kn", kStiffness);
   if (model == 0 || model == 2) {
     law.model = model == 0 ? NormalModel::constant : NormalModel::penalty;
@@ -422,12 +424,32 @@ ShearLawDef read_shear_law(const Reader& r) {
   r.expect_object();
   ShearLawDef law;
   // constant: ks in Pa/m (per unit joint length); penalty: DDA's ks in N/m per contact point.
-  const std::size_t model = r["model"].as_choice({"constant", "hyperbolic", "penalty"}, "shear model");
-  r.check_keys({"model", "ks", "ksi", "rf"}, "");  // both models' parameters may be given
+  const std::size_t model =
+      r["model"].as_choice({"constant", "hyperbolic", "penalty", "barton_bandis"}, "shear model");
+  // Every model's parameters may be given side by side (runs switch models with --set).
+  r.check_keys({"model", "ks", "ksi", "rf", "jrc", "jcs", "length", "lab_length", "strength_factor"}, "");
   if (r.has("ks")) law.ks = r.number("ks", kStiffness);
   if (model == 0 || model == 2) {
     law.model = model == 0 ? ShearModel::constant : ShearModel::penalty;
     law.ks = r.number("ks", kStiffness);
+  } else if (model == 3) {
+    // Barton–Bandis shear (solver/barton_bandis.h): the elastic spring ks (Pa/m), JRC and JCS,
+    // the joint length L_n for the peak displacement, and — if JRC and JCS were measured on a
+    // sample of length L_0 — Bandis' scale corrections (Barton & Bandis 1982):
+    //   JRC_n = JRC_0·(L_n/L_0)^(−0.02·JRC_0),   JCS_n = JCS_0·(L_n/L_0)^(−0.03·JRC_0)
+    law.model = ShearModel::barton_bandis;
+    law.ks = r.number("ks", kStiffness);
+    law.jrc = r.number("jrc", interval(0, true, 20, true));
+    law.jcs = r.number("jcs", kStrength);
+    law.length = r.number("length", interval(0, false, kMaxCoordinate, true));
+    law.lab_length = r.optional_number("lab_length", 0, interval(0, false, kMaxCoordinate, true));
+    // Strength reduction (nmm-fos): τ = σn·tan(φr + JRC_mob·log10(JCS/σn)) / F at every σn.
+    law.strength_factor = r.optional_number("strength_factor", 1, interval(1e-3, true, 1e3, true));
+    if (law.lab_length > 0) {
+      const double ratio = law.length / law.lab_length, jrc0 = law.jrc;
+      law.jrc = jrc0 * std::pow(ratio, -0.02 * jrc0);
+      law.jcs = law.jcs * std::pow(ratio, -0.03 * jrc0);
+    }
   } else {
     law.model = ShearModel::hyperbolic;
     law.ksi = r.number("ksi", kStiffness);
@@ -710,6 +732,71 @@ std::vector<TractionDef> read_tractions(const Reader& r) {
   return out;
 }
 
+/// water: {density, phreatic: polyline, joints: [{joint, pressure | fill_depth}]} (WaterDef).
+/// Hydrostatic pressure needs gravity; the phreatic surface must be a single-valued function
+/// of the position across gravity (its points in strictly monotone order across it).
+WaterDef read_water(const Reader& r, const SceneDef& scene) {
+  r.check_keys({"density", "phreatic", "joints"});
+  WaterDef w;
+  w.present = true;
+  w.density = r.optional_number("density", 1000, interval(0, false, kMaxDensity, true));
+  const double g = scene.has_gravity ? std::hypot(scene.gravity.x, scene.gravity.y) : 0.0;
+  if (const auto ph = r.optional("phreatic")) {
+    if (!(g > 0)) ph->fail("a phreatic surface needs gravity (the pressure is ρw·g·depth)");
+    w.phreatic = ph->as_point_list(2, /*closed=*/false, "a phreatic surface");
+    // Position across gravity: s = x·(−gy) + y·gx over |g| (gravity pointing down: s = x).
+    auto across = [&](const Vec2& p) { return (-p.x * scene.gravity.y + p.y * scene.gravity.x) / g; };
+    const double dir = across(w.phreatic[1]) - across(w.phreatic[0]);
+    for (std::size_t i = 1; i < w.phreatic.size(); ++i) {
+      const double step = across(w.phreatic[i]) - across(w.phreatic[i - 1]);
+      if (!(step * dir > 0))
+        (*ph)[i].fail("the phreatic surface turns back across gravity here (it must give one water "
+                      "level at each position)");
+    }
+  }
+  if (const auto js = r.optional("joints")) {
+    js->expect_array();
+    std::vector<char> seen(scene.joints.size(), 0);
+    for (std::size_t i = 0; i < js->size(); ++i) {
+      const Reader e = (*js)[i];
+      e.check_keys({"joint", "pressure", "fill_depth"});
+      JointWaterDef d;
+      const std::int64_t j = e["joint"].as_integer(0);
+      if (j >= static_cast<std::int64_t>(scene.joints.size()))
+        e["joint"].fail("no joint " + std::to_string(j) + " (the scene has " +
+                        std::to_string(scene.joints.size()) + ")");
+      if (seen[static_cast<std::size_t>(j)]++)
+        e["joint"].fail("joint " + std::to_string(j) + " is given water twice");
+      d.joint = static_cast<int>(j);
+      if (e.has("pressure") == e.has("fill_depth"))
+        e.fail("give either \"pressure\" (Pa, or a table [[distance along the joint, Pa], ...]) or "
+               "\"fill_depth\" (m), not both");
+      const Range pressure = interval(0, true, kMaxStrength, true);
+      if (e.has("fill_depth")) {
+        if (!(g > 0)) e["fill_depth"].fail("fill_depth needs gravity (the pressure is ρw·g·depth)");
+        d.fill_depth = e.number("fill_depth", interval(0, true, kMaxCoordinate, true));
+      } else if (e["pressure"].value().is_number()) {
+        d.at.push_back(0);
+        d.pressure.push_back(e.number("pressure", pressure));
+      } else {
+        const Reader t = e["pressure"];
+        t.expect_array();
+        if (t.size() == 0) t.fail("a pressure table needs at least one row [distance, Pa]");
+        for (std::size_t k = 0; k < t.size(); ++k) {
+          const Vec2 row = t[k].as_pair("a row [distance along the joint (m), pressure (Pa)]");
+          t[k][0].as_number(interval(0, true, kMaxCoordinate, true));
+          t[k][1].as_number(pressure);
+          if (!d.at.empty() && !(row.x > d.at.back())) t[k][0].fail("distances must increase strictly");
+          d.at.push_back(row.x);
+          d.pressure.push_back(row.y);
+        }
+      }
+      w.joints.push_back(std::move(d));
+    }
+  }
+  return w;
+}
+
 /// insitu_stress: {sxx, syy, sxy, y_ref, gradient: [gxx, gyy, gxy]} or the overburden shortcut
 /// {k0, y_ref, density (default: the first material's), syy (at y_ref, default 0), g (default
 /// |gravity|, else 9.81)}: σyy = syy − ρ·g·(y_ref − y), σxx = k0·σyy, σxy = 0.
@@ -872,7 +959,7 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   const Reader root(doc, file, "");
   root.check_keys({"name", "gravity", "plane", "materials", "joint_sets", "bodies", "joints",
                    "interface_set", "mesh", "fixed_points", "loads", "measure_points", "solver",
-                   "supports", "tractions", "insitu_stress", "excavate", "base_acceleration"});
+                   "supports", "tractions", "insitu_stress", "excavate", "base_acceleration", "water"});
   SceneDef scene;
 
   if (root.has("name")) scene.name = root["name"].as_string();
@@ -971,6 +1058,7 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
     if (const auto t = r->optional("x")) scene.base_acceleration_x = read_time_table(*t);
     if (const auto t = r->optional("y")) scene.base_acceleration_y = read_time_table(*t);
   }
+  if (const auto r = root.optional("water")) scene.water = read_water(*r, scene);
   return scene;
 }
 

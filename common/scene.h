@@ -52,6 +52,7 @@ struct NormalLawDef {
   double kn = 0;   ///< Pa/m (constant model) or N/m per contact point (penalty)
   double kni = 0;  ///< Pa/m, initial normal stiffness (Bandis–Barton)
   double vm = 0;   ///< m, maximum closure (Bandis–Barton)
+  bool hysteresis = false;  ///< Bandis–Barton: unload and reload along the tangent at the largest closure
   // Given instead of kni and vm, these derive them (Barton–Bandis empirical relations):
   double jrc = 0;       ///< –, joint roughness coefficient (0 if not given)
   double jcs = 0;       ///< Pa, joint wall compressive strength
@@ -60,13 +61,21 @@ struct NormalLawDef {
 };
 
 /// constant: ks in Pa/m (shear stress per unit shear displacement); hyperbolic: the curve (Pa/m,
-/// –); penalty: DDA's point spring, ks in N/m per contact point.
-enum class ShearModel { constant, hyperbolic, penalty };
+/// –); penalty: DDA's point spring, ks in N/m per contact point; barton_bandis: Barton's peak
+/// strength, mobilised roughness and dilation (solver/barton_bandis.h) on an elastic spring ks
+/// in Pa/m, the joint set's friction_deg being the residual friction angle φr.
+enum class ShearModel { constant, hyperbolic, penalty, barton_bandis };
 struct ShearLawDef {
   ShearModel model = ShearModel::constant;
-  double ks = 0;   ///< Pa/m (constant model) or N/m per contact point (penalty)
+  double ks = 0;   ///< Pa/m (constant and barton_bandis) or N/m per contact point (penalty)
   double ksi = 0;  ///< Pa/m, initial shear stiffness (hyperbolic)
   double rf = 0;   ///< –, failure ratio in (0, 1] (hyperbolic)
+  // Barton–Bandis shear (field scale after the scale corrections when lab_length is given):
+  double jrc = 0;         ///< –, joint roughness coefficient JRC_n at the joint length
+  double jcs = 0;         ///< Pa, joint wall compressive strength JCS_n at the joint length
+  double length = 0;      ///< m, joint (block) length L_n: peak displacement δp = L_n/500·(JRC_n/L_n)^0.33
+  double lab_length = 0;  ///< m, L_0 of the sample JRC and JCS were measured on (0: no scale correction)
+  double strength_factor = 1;  ///< –, the frictional strength is divided by it (strength reduction, nmm-fos)
 };
 
 struct JointSetDef {
@@ -163,6 +172,21 @@ struct SolverDef {
   double contact_tolerance = 1e-4;
 };
 
+/// Water in the joints: a pressure p (Pa) on both faces of every joint (and on every body
+/// boundary) below the phreatic surface, or from a per-joint entry (solver/joint_water.h).
+struct JointWaterDef {
+  int joint = -1;               ///< index into SceneDef::joints
+  std::vector<double> at;       ///< m, distance along the joint from its first point (table rows)
+  std::vector<double> pressure; ///< Pa, ≥ 0, one per row of `at` (one row: uniform)
+  double fill_depth = -1;       ///< m, ≥ 0: filled from its lowest point to this height (hydrostatic); −1: the table
+};
+struct WaterDef {
+  bool present = false;            ///< "water" given
+  double density = 1000;           ///< kg/m³, ρw (γw = ρw·|g|)
+  std::vector<Vec2> phreatic;      ///< m, water table polyline (empty: none), single-valued across gravity
+  std::vector<JointWaterDef> joints;  ///< per-joint pressures, replacing the phreatic surface on those joints
+};
+
 struct SceneDef {
   std::string name;                     ///< free text, "" if absent
   bool has_gravity = false;             ///< "gravity" present
@@ -184,6 +208,7 @@ struct SceneDef {
   std::vector<int> excavate;         ///< bodies removed at the start of this run
   TimeTable base_acceleration_x;     ///< m/s², ground acceleration in x over time; empty: none
   TimeTable base_acceleration_y;     ///< m/s², in y
+  WaterDef water;                    ///< water pressure in the joints (absent: dry)
   SolverDef solver;
 };
 

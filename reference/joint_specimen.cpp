@@ -28,6 +28,26 @@ SceneDef joint_specimen_scene(const std::string& path) {
   return s;
 }
 
+SceneDef joint_specimen_scene(const JointSetDef& joint, double young, double h) {
+  SceneDef s;
+  s.materials.push_back({"rock", 2650, young, 0.25});
+  s.joint_sets.push_back(joint);
+  s.interface_set = 0;
+  s.mesh_size = h;
+  s.plane = PlaneKind::stress;
+  BodyDef base, top;
+  base.material = top.material = 0;
+  base.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  top.outer = {{0, 1}, {2, 1}, {2, 2}, {0, 2}};
+  s.bodies = {base, top};
+  for (double x = 0.05; x < 2; x += 0.1) s.fixed_points.push_back({x, 0.02});
+  s.measure_points = {{1.0, 1.0001}, {1.0, 0.9999}};
+  s.solver.time_step = 1e-3;
+  s.solver.dynamic_factor = 0;  // quasi-static: settles to equilibrium
+  s.solver.max_displacement_ratio = 0.01;
+  return s;
+}
+
 void load_joint_specimen(SceneDef& s, double sigma_n, double tau) {
   s.loads.clear();
   const int n = 20;

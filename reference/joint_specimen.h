@@ -21,6 +21,12 @@ SceneDef scene_with_joint_laws(const std::string& path);
 /// measure points, just above and below the joint (InputError naming the key otherwise).
 SceneDef joint_specimen_scene(const std::string& path);
 
+/// The specimen built from one joint set (the joint between the blocks, the scene's interface
+/// set), without loads: rock of Young's modulus E (Pa; ν 0.25, 2650 kg/m³, plane stress), mesh
+/// size h (m), the base held along its bottom (fixed points at y = 0.02), measure points 0.1 mm
+/// above and below the joint's middle, quasi-static steps (dynamic factor 0) of 1 ms.
+SceneDef joint_specimen_scene(const JointSetDef& joint, double young, double h);
+
 /// Replaces the scene's loads: normal stress σn (Pa) by 21 point loads on the 2 m top face (end
 /// points half), and shear stress τ (Pa) by 10 point loads along the joint 2 cm above it (as a
 /// shear box loads the whole face, with no overturning moment).

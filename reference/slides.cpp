@@ -12,6 +12,7 @@ namespace nmm::reference {
 namespace {
 constexpr double kG = 9.81;          // m/s²
 constexpr double kDensity = 2500;    // kg/m³
+constexpr double kWaterDensity = 1000;  // kg/m³
 double rad(double d) { return d * kPi / 180; }
 
 // The common scene: material, joint set "plane", solver settings for a short trial.
@@ -65,7 +66,8 @@ ReferenceSlide block_on_plane(double alpha_deg, double phi_deg, double duration)
 }
 
 ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, double crack_x,
-                            double phi_deg, double cohesion, double duration, bool plastic) {
+                            double phi_deg, double cohesion, double duration, bool plastic,
+                            double water_depth) {
   ReferenceSlide r;
   const double pf = rad(face_deg), pp = rad(plane_deg);
   // The wedge in the real frame: toe, crack base, crack top, crest.
@@ -75,8 +77,12 @@ ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, do
   for (const auto& [x, y] : real) outline.push_back({x, y});
   r.weight = kDensity * kG * ring_area(outline);
   r.plane_length = crack_x / std::cos(pp);
-  r.fos = (cohesion * r.plane_length + r.weight * std::cos(pp) * std::tan(rad(phi_deg))) /
-          (r.weight * std::sin(pp));
+  const double gamma_w = kWaterDensity * kG, zw = water_depth;
+  r.uplift = 0.5 * gamma_w * zw * r.plane_length;
+  r.crack_thrust = 0.5 * gamma_w * zw * zw;
+  r.fos = (cohesion * r.plane_length +
+           (r.weight * std::cos(pp) - r.uplift - r.crack_thrust * std::sin(pp)) * std::tan(rad(phi_deg))) /
+          (r.weight * std::sin(pp) + r.crack_thrust * std::cos(pp));
   // Plane frame, mirrored so that the wedge slides towards +x: turn by −ψ_p about the toe,
   // mirror x, put the toe at (x0, y0) with 4 m of base ahead of it. y0 = 1.1 keeps the plane off
   // the mesh lattice's node rows.
@@ -90,6 +96,13 @@ ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, do
   r.scene["bodies"] = {{{"material", "rock"}, {"outer", ring({{0, 0}, {right, 0}, {right, y0}, {0, y0}})}},
                        {{"material", "rock"}, {"outer", ring(wedge)}}};
   if (plastic) r.scene["joint_sets"]["plane"]["residual_cohesion"] = cohesion;
+  if (zw > 0) {
+    // The water table from the level in the crack (z_w above its foot, against gravity) straight
+    // down to the toe: the crack face and the plane are wet, the slope face above it dry.
+    const double up[2] = {-std::sin(pp), std::cos(pp)};  // against the turned gravity
+    r.scene["water"] = {{"density", kWaterDensity},
+                        {"phreatic", ring({{1 + zw * up[0], y0 + zw * up[1]}, {x0, y0}})}};
+  }
   // A rigid foundation: fixed points on a 0.5 m grid over the base body (see the header).
   nlohmann::json fixed = nlohmann::json::array();
   for (double x = 0.25; x < right - 0.1; x += 0.5)

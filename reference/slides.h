@@ -9,6 +9,13 @@
 // from the top surface down to the plane at distance x_c from the toe. With plane length A (per
 // unit width) and wedge weight W:
 //   F = (c·A + W cos ψ_p tan φ) / (W sin ψ_p).
+// With the tension crack filled to a depth z_w and the water draining along the plane to the
+// toe (Hoek & Bray's standard case: pressure γw·z_w at the crack's foot falling linearly to 0 at
+// the toe), the water pushes on the wedge's back with V = ½·γw·z_w² and lifts it off the plane
+// with U = ½·γw·z_w·A:
+//   F = (c·A + (W cos ψ_p − U − V sin ψ_p) tan φ) / (W sin ψ_p + V cos ψ_p).
+// The scene gives this water as a phreatic surface, the straight line from the water level in
+// the crack to the toe: hydrostatic below it, it is exactly the pressures above on both faces.
 // Both are modelled in the frame of the plane: the plane is horizontal (no slivers where a
 // dipping surface would cross the mesh lattice at a shallow angle) and gravity is turned by the
 // dip, g = (−g sin ψ, −g cos ψ): the same mechanics. The block or wedge is a body of its own
@@ -36,6 +43,8 @@ struct ReferenceSlide {
   double fos = 0;        ///< closed-form factor of safety
   double weight = 0;     ///< N per m, W
   double plane_length = 0;  ///< m, A
+  double uplift = 0;        ///< N per m, U (water on the plane)
+  double crack_thrust = 0;  ///< N per m, V (water in the tension crack)
 };
 
 /// A 3 m × 0.5 m block on a plane dipping alpha_deg, friction phi_deg; trial of `duration` s.
@@ -44,8 +53,9 @@ ReferenceSlide block_on_plane(double alpha_deg, double phi_deg, double duration 
 /// Hoek & Bray planar slide: height H, face ψ_f, plane ψ_p, crack at x_c from the toe (must lie
 /// behind the crest: x_c > H cot ψ_f), friction φ, cohesion c (Pa). `plastic`: the plane keeps c
 /// after slip (residual_cohesion = c, the closed form's assumption); false: brittle.
+/// `water_depth` z_w > 0: the crack filled to z_w, draining at the toe (the scene's "water").
 ReferenceSlide planar_slide(double height, double face_deg, double plane_deg, double crack_x,
                             double phi_deg, double cohesion, double duration = 0.4,
-                            bool plastic = true);
+                            bool plastic = true, double water_depth = 0);
 
 }  // namespace nmm::reference

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "failure_cause.h"
+#include "joint_water.h"
 #include "math_constants.h"
 #include "svg_plot.h"
 #include "svg_writer.h"
@@ -210,6 +211,25 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     }
   }
   const std::string joint_colour = state.contacts_known ? "#8b0000" : "#888888";
+  // Water (joint_water.h): each wet face drawn as a wide cyan band under its state colour, by
+  // the pressure at its middle: five bands from light (low) to dark (the largest pressure).
+  const solve::JointWater water(mesh, scene);
+  double water_max = 0;
+  if (water.active()) {
+    static const char* const kCyans[] = {"#b8f0ff", "#66dcff", "#00bfe6", "#008fb3", "#005f73"};
+    std::vector<std::pair<double, std::pair<Vec2, Vec2>>> wet;
+    for (std::size_t i = 0; i < water.edges().size(); ++i) {
+      const solve::BoundaryEdge& be = water.edges()[i];
+      if (gone[static_cast<std::size_t>(be.element)]) continue;
+      const double p = water.pressure_at(water.edge_joint()[i], 0.5 * (xy[2 * be.vertex] + xy[2 * be.next]),
+                                         0.5 * (xy[2 * be.vertex + 1] + xy[2 * be.next + 1]));
+      if (p > 0) wet.push_back({p, {at(be.vertex), at(be.next)}});
+      water_max = std::max(water_max, p);
+    }
+    std::vector<std::pair<Vec2, Vec2>> band[5];
+    for (const auto& [p, seg] : wet) band[std::min(4, static_cast<int>(5 * p / water_max))].push_back(seg);
+    for (int k = 0; k < 5; ++k) svg.segments(band[k], {"none", kCyans[k], 7 * line, 0, 1});
+  }
   svg.segments(excavated, {"none", "#999999", line, 6 * line, 1});
   svg.segments(bounds, {"none", "#000000", 1.5 * line, 0, 1});
   svg.segments(joints, {"none", joint_colour, 1.2 * line, 0, 1});
@@ -365,6 +385,10 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   } else {
     entry("#888888", 1.2 * line,
           "joints: contact state not recorded at this step (contacts.csv sampled, --contacts-every)");
+  }
+  if (water_max > 0) {
+    std::snprintf(buf, sizeof buf, "water pressure: light to dark cyan, up to %.3g kPa", water_max / 1e3);
+    entry("#00bfe6", 7 * line, buf);
   }
   ly -= 1.4 * font;
   std::string excavated_note;

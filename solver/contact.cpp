@@ -80,6 +80,10 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
     law.cohesion = js.cohesion;
     law.residual_cohesion = js.residual_cohesion;
     law.tensile = js.tensile_strength;
+    law.hysteresis = js.normal.hysteresis;
+    if (js.shear.model == ShearModel::barton_bandis)
+      law.bb = {js.shear.jrc, js.shear.jcs, js.friction_deg,
+                peak_shear_displacement(js.shear.jrc, js.shear.length), js.shear.strength_factor};
     laws_.push_back(law);
   }
   for (const JointDef& j : scene.joints) joint_law_.push_back(j.set);
@@ -105,9 +109,17 @@ ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::strin
   if (interface_used_) used.push_back(interface_law_);
   for (int l : used) {
     nonlinear_ |= laws_[l].normal == NormalModel::bandis_barton || !linear_shear(laws_[l]);
+    memory_laws_ |= laws_[l].shear == ShearModel::barton_bandis || laws_[l].hysteresis;
     if (laws_[l].normal == NormalModel::bandis_barton)
       topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
   }
+}
+
+std::int32_t ContactSet::joint_of(const ContactCandidate& f) const {
+  std::int32_t joint = mesh_.loop_edge_joint[f.edge];
+  if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
+  if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
+  return joint;
 }
 
 ClosedContacts ContactSet::closed_contacts() const {
@@ -142,6 +154,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
   // The last accepted step's rows stay readable (accepted()) while this attempt rebuilds its own
   // in the other vector: no copies.
   if (rows_accepted_) std::swap(accepted_, contacts_);
+  if (memory_laws_) index_closed_memory(xy);
   rows_accepted_ = false;
   std::vector<Contact>& now = contacts_;
   now.clear();
@@ -150,9 +163,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
     if (!removed_.empty() && (removed_[f.elem_a] || removed_[f.elem_b])) continue;  // excavated
     Contact c;
     c.at = f;
-    std::int32_t joint = mesh_.loop_edge_joint[f.edge];
-    if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
-    if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
+    const std::int32_t joint = joint_of(f);
     c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
     const std::int32_t block_a = topo_.block_of[f.elem_a], block_b = topo_.block_of[f.elem_b];
     std::int32_t at = history_at_[f.vertex];
@@ -177,6 +188,11 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
         while (at >= 0 && history_[at].block != block_a) at = history_next_[at];
       }
     }
+    // A joint's memory belongs to the joint surface (contact.h nearby_joint_memory()): a contact
+    // that is new or was open takes that of the nearest closed contact of the same two blocks.
+    const bool memory = laws_[c.law].shear == ShearModel::barton_bandis || laws_[c.law].hysteresis;
+    if (memory && (at < 0 || history_[at].state == ContactState::open))
+      c.joint = nearby_joint_memory(xy, f.vertex, block_a, block_b, at >= 0 ? history_[at].joint : JointMemory{});
     if (at >= 0) {
       const ContactHistory& o = history_[at];
       c.state = o.state;
@@ -185,13 +201,16 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
       c.normal_force = o.normal_force;
       c.friction_normal = o.normal_force;
       c.shear_el = o.shear_el;
+      if (!memory || o.state != ContactState::open) c.joint = o.joint;
     }
     // A closed contact whose gap is now positive has separated (or has moved onto an edge it
     // does not touch): it starts the step open. Kept closed, its spring would pull the faces
     // together with kn·gap — glue — and, closing the gap within the solve, never show tension.
     // A bond (unbroken, with tensile strength) holds its faces in tension: it stays closed.
     const bool bond = !c.broken && laws_[c.law].tensile > 0;
-    if (c.state != ContactState::open && f.gap > eps_ && !bond) c.state = ContactState::open;
+    // The gap is net of the joint's dilation (Barton–Bandis): sheared asperities hold the faces
+    // apart by it, so the normal spring closes at gap = dilation.
+    if (c.state != ContactState::open && f.gap - c.joint.dilation > eps_ && !bond) c.state = ContactState::open;
     c.start_state = c.state;
     now.push_back(c);
   }
@@ -237,24 +256,74 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
         cn[lb] = -phi_b[a] * n_dir[sd];
         cs[lb] = -phi_b[a] * t_dir[sd];
       }
-    c.gap0 = c.at.gap;
-    c.gap = c.at.gap;
+    c.gap0 = c.at.gap - c.joint.dilation;
+    c.gap = c.gap0;
     c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
     c.length = lengths[i];
   }
+}
+
+JointMemory ContactSet::nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex,
+                                            std::int32_t block_a, std::int32_t block_b,
+                                            JointMemory own_memory) const {
+  // A joint's memory (shear travel, dilation, largest closure) belongs to the joint surface, not
+  // to the contact that happens to carry a point of it. A contact that opens stops advancing its
+  // own (it carries no load to ride the asperities with), and a new one (a corner coming onto the
+  // joint, or a joint point passing to the other face's vertex once the faces have slid by more
+  // than a vertex spacing) has none: either would stand open, held apart by its neighbours'
+  // dilation, and never close again. Measured on a 2 m joint sheared to 0.9·τp: the last 0.4 m
+  // of it stayed open from 0.7 mm of travel on, and the rest carried the load. Such a contact
+  // takes the memory of the nearest closed contact between the same two blocks within a mesh
+  // size (its own if there is none).
+  JointMemory best = own_memory;
+  const double h = topo_.mesh_size;
+  double best_d = h;
+  std::int64_t best_at = -1;
+  const double px = xy[2 * vertex], py = xy[2 * vertex + 1];
+  const auto cx = static_cast<std::int64_t>(std::floor(px / h)), cy = static_cast<std::int64_t>(std::floor(py / h));
+  for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
+    for (std::int64_t j = cy - 1; j <= cy + 1; ++j) {
+      auto k = std::lower_bound(memory_cells_.begin(), memory_cells_.end(), std::array<std::int64_t, 3>{i, j, -1});
+      for (; k != memory_cells_.end() && (*k)[0] == i && (*k)[1] == j; ++k) {
+        const ContactHistory& e = history_[static_cast<std::size_t>((*k)[2])];
+        const std::int32_t own = topo_.block_of[topo_.element_of[e.vertex]];
+        if (!((own == block_a && e.block == block_b) || (own == block_b && e.block == block_a))) continue;
+        const double d = std::hypot(xy[2 * e.vertex] - px, xy[2 * e.vertex + 1] - py);
+        if (d < best_d || (d == best_d && (*k)[2] < best_at)) {  // ties: the first in the history
+          best_d = d;
+          best_at = (*k)[2];
+          best = e.joint;
+        }
+      }
+    }
+  return best;
+}
+
+void ContactSet::index_closed_memory(const std::vector<double>& xy) {
+  const double h = topo_.mesh_size;
+  memory_cells_.clear();
+  for (std::size_t i = 0; i < history_.size(); ++i) {
+    const ContactHistory& e = history_[i];
+    if (e.state == ContactState::open) continue;
+    memory_cells_.push_back({static_cast<std::int64_t>(std::floor(xy[2 * e.vertex] / h)),
+                             static_cast<std::int64_t>(std::floor(xy[2 * e.vertex + 1] / h)),
+                             static_cast<std::int64_t>(i)});
+  }
+  std::sort(memory_cells_.begin(), memory_cells_.end());
 }
 
 std::vector<std::string> ContactSet::effects() const {
   if (!active_) return {};
   std::vector<int> used = joint_law_;
   if (interface_used_) used.push_back(interface_law_);
-  bool friction = false, cohesion = false, tension = false, bb = false, hyp = false;
+  bool friction = false, cohesion = false, tension = false, bb = false, hyp = false, bbs = false;
   for (int l : used) {
     friction |= laws_[l].tan_phi > 0;
     cohesion |= laws_[l].cohesion > 0;
     tension |= laws_[l].tensile > 0;
     bb |= laws_[l].normal == NormalModel::bandis_barton;
     hyp |= laws_[l].shear == ShearModel::hyperbolic;
+    bbs |= laws_[l].shear == ShearModel::barton_bandis;
   }
   std::vector<std::string> e{"contact"};
   if (friction) e.push_back("friction");
@@ -262,6 +331,7 @@ std::vector<std::string> ContactSet::effects() const {
   if (tension) e.push_back("tension");
   if (bb) e.push_back("bandis_barton");
   if (hyp) e.push_back("hyperbolic");
+  if (bbs) e.push_back("barton_bandis_shear");
   return e;
 }
 
@@ -311,12 +381,12 @@ Spring normal_at(const ContactLaw& law, const Contact& c, double g, double skin)
     return {k0 * closure, k0, false};
   }
   if (closure >= skin) {
-    const SpringState s = normal_spring(law, closure, c.length);
+    const SpringState s = normal_spring(law, closure, c.length, c.joint.closure_max);
     return {s.force, s.stiffness, s.capped};
   }
   if (closure <= -skin) return {};
   const double e = (closure + skin) * (closure + skin) / (4 * skin);
-  const SpringState s = normal_spring(law, e, c.length);
+  const SpringState s = normal_spring(law, e, c.length, c.joint.closure_max);
   return {s.force, s.stiffness * (closure + skin) / (2 * skin), false};
 }
 
@@ -354,7 +424,7 @@ void ContactSet::start_strengths() {
     const bool closed = c.start_state != ContactState::open;
     c.bonded = closed && !c.broken && law.tensile > 0;
     c.friction_normal = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken) : 0.0;
+    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken, c.joint.travel) : 0.0;
     // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
     // sticks until the fixed point has its normal force.
     if (!closed && elastic_predictor_ && c.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
@@ -474,7 +544,7 @@ int ContactSet::update_strengths(double force_floor) {
     // sliding block then ends 0.17–0.31 % off Coulomb's answer, because its normal forces shift
     // between its corners as it slides.)
     const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    double s = closed ? shear_strength(law, n, c.length, c.broken) : 0.0;
+    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint.travel) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
     const double moved = std::abs(s - c.strength);
     if (!std::isfinite(c.strength)) {
@@ -515,6 +585,10 @@ void ContactSet::settle_states() {
 void ContactSet::end_step() {
   for (Contact& c : contacts_) {
     const ContactLaw& law = laws_[c.law];
+    // The joint law's memory follows the accepted step (a closed contact's shear travel and
+    // dilation, its largest closure).
+    if (c.state != ContactState::open)
+      c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, c.shear - c.shear0, -c.gap);
     if (c.state == ContactState::open) {
       c.shear_el = 0;
     } else if (c.state == ContactState::locked) {
@@ -528,9 +602,15 @@ void ContactSet::end_step() {
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
-                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force};
+                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint};
   }
   rows_accepted_ = true;
+}
+
+double ContactSet::max_dilation() const {
+  double v = 0;
+  for (const ContactHistory& h : history_) v = std::max(v, h.joint.dilation);
+  return v;
 }
 
 double ContactSet::max_penetration() const {

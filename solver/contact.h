@@ -39,6 +39,7 @@ struct ContactHistory {
   std::int8_t slip_sign = 0; ///< direction of sliding along the edge (±1, 0 never slid)
   double shear_el = 0;       ///< m, elastic shear of the shear spring (return mapping)
   double normal_force = 0;   ///< N, compression > 0: the next step's first friction strength
+  JointMemory joint;         ///< the joint law's own history (travel, dilation, largest closure)
 };
 
 /// One contact of the step being solved: rebuilt by every begin_step() from the detection and
@@ -60,6 +61,8 @@ struct Contact {
   double shear_el = 0;       ///< m, elastic shear of the shear spring at the start of the step
                              ///< (at its end after end_step())
   int slip_sign = 0;         ///< direction of sliding along the edge (±1)
+  JointMemory joint;         ///< the joint law's history at the start of the step (at its end
+                             ///< after end_step()); the gap below is net of joint.dilation
   // The inner solve's working values.
   double friction_normal = 0;  ///< N, normal force the shear strength of the inner solve uses
   double strength = 0;       ///< N, shear strength of the inner solve (tanφ·N + c·L, 0 if open)
@@ -69,7 +72,8 @@ struct Contact {
   double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
   // The last solve (output and diagnostics).
   double normal_force = 0;   ///< N, compression > 0
-  double gap = 0;            ///< m, gap after the last solve (< 0: penetration)
+  double gap = 0;            ///< m, gap after the last solve (< 0: penetration), net of the
+                             ///< joint's dilation (the faces stand apart by it at gap 0)
   double shear = 0;          ///< m, trial elastic shear after the last solve (shear_el + slip)
   double shear_force = 0;    ///< N
   double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
@@ -95,6 +99,9 @@ class ContactSet {
   /// "contact", and "friction", "cohesion", "tension" when a law in use has them.
   std::vector<std::string> effects() const;
   const std::vector<ContactLaw>& laws() const { return laws_; }
+  /// The joint a contact lies on: that of the edge P faces, else of an edge at P; -1: none (a
+  /// body boundary). Its joint set is the contact's law.
+  std::int32_t joint_of(const ContactCandidate& at) const;
   /// The contacts of the step being solved, or of the last step taken.
   const std::vector<Contact>& contacts() const { return contacts_; }
   /// What the last accepted step left for the next (one entry per contact of accepted()).
@@ -181,6 +188,9 @@ class ContactSet {
   };
   Events events;
 
+  /// Largest dilation a contact carries (Barton–Bandis), m: its faces stand apart by it, so
+  /// contact detection must look that much farther.
+  double max_dilation() const;
   /// Largest penetration of the contacts after the last solve, m.
   double max_penetration() const;
   std::size_t closed_count() const;
@@ -198,6 +208,14 @@ class ContactSet {
   const DetectionStats& detection_stats() const { return stats_; }
 
  private:
+  /// The joint memory of the nearest closed contact of the last accepted step between the same
+  /// two blocks within a mesh size of vertex (own_memory if none): for a new or open contact.
+  /// Looks in memory_cells_ (index_closed_memory()).
+  JointMemory nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex, std::int32_t block_a,
+                                  std::int32_t block_b, JointMemory own_memory) const;
+  /// Files the closed history entries by mesh-size cell of their vertex's position (xy).
+  void index_closed_memory(const std::vector<double>& xy);
+
   const Mesh& mesh_;
   const CoverSpace* space_ = nullptr;  // unknowns of each element
   int row_ = 0;                        // unknowns per contact row: 2 × element_dofs()
@@ -210,6 +228,9 @@ class ContactSet {
   int interface_law_ = 0;
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
   bool nonlinear_ = false;       // a law in use is not a constant spring
+  bool memory_laws_ = false;     // a law carries a joint memory (Barton–Bandis shear, hysteresis)
+  // (cell x, cell y, history index) of the closed history entries, sorted: nearby_joint_memory()'s
+  std::vector<std::array<std::int64_t, 3>> memory_cells_;
   bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve
   bool active_ = false;
   std::vector<Contact> contacts_;   // this step's, being iterated

@@ -1,8 +1,9 @@
-// Contact history <-> bytes (contact_history.h). Layout 2: u32 layout, u64 count, then per
+// Contact history <-> bytes (contact_history.h). Layout 3: u32 layout, u64 count, then per
 // contact of the last accepted step, in this order: where it was — vertex, edge, elements A and
 // B (i32), ω and the gap at detection (f64), law (i32), tributary length (f64); what lasts from
 // one step to the next (ContactHistory; its block is element B's) — state (u8), broken (u8),
-// elastic shear (f64), slip direction (i32), normal force (f64); and what the last solve left
+// elastic shear (f64), slip direction (i32), normal force (f64), the joint law's memory (shear
+// travel, dilation, largest closure: f64); and what the last solve left
 // for output: gap, shear, shear force, tangent normal and shear stiffness (f64), capped (u8).
 // What a step rebuilds (unknowns, cn, cs, gap0, strengths, coupling groups) is not saved:
 // begin_step() makes it again from the geometry and the history, bitwise as in the straight run.
@@ -16,7 +17,7 @@
 namespace nmm::solve {
 
 namespace {
-constexpr std::uint32_t kContactLayout = 2;
+constexpr std::uint32_t kContactLayout = 3;
 }
 
 std::string save_contact_history(const ContactSet& contacts) {
@@ -44,6 +45,9 @@ std::string save_contact_history(const ContactSet& contacts) {
     w.put(h.shear_el);
     w.put<std::int32_t>(h.slip_sign);
     w.put(h.normal_force);
+    w.put(h.joint.travel);
+    w.put(h.joint.dilation);
+    w.put(h.joint.closure_max);
     w.put(c.gap);
     w.put(c.shear);
     w.put(c.shear_force);
@@ -104,6 +108,9 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     c.slip_sign = r.get<std::int32_t>();
     if (c.slip_sign < -1 || c.slip_sign > 1) r.fail("slip direction out of range");
     c.normal_force = finite(r.get<double>());
+    c.joint.travel = finite(r.get<double>());
+    c.joint.dilation = finite(r.get<double>());
+    c.joint.closure_max = finite(r.get<double>());
     c.gap = finite(r.get<double>());
     c.shear = finite(r.get<double>());
     c.shear_force = finite(r.get<double>());
@@ -111,7 +118,7 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     c.ks_now = finite(r.get<double>());
     c.capped = flag(r.get<std::uint8_t>());
     hs.push_back({c.at.vertex, mesh.element_block[c.at.elem_b], c.state, c.broken,
-                  static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force});
+                  static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint});
     cs.push_back(c);
   }
   r.expect_end();

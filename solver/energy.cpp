@@ -15,7 +15,7 @@ namespace nmm::solve {
 EnergyMeter::EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
                          double support_stiffness, const CoverSpace* space)
     : mesh_(mesh), scene_(scene), space_(space && space->order() > 0 ? space : nullptr),
-      fixed_k_(fixed_point_stiffness), support_k_(support_stiffness) {
+      fixed_k_(fixed_point_stiffness), support_k_(support_stiffness), water_(mesh, scene) {
   for (std::size_t i = 0; i < scene.supports.size(); ++i)
     for (const BoundaryEdge& e : edges_under(mesh, scene.supports[i].points, "scene",
                                              "/supports/" + std::to_string(i) + "/points"))
@@ -147,9 +147,9 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     for (const Contact& c : contacts)
       if (c.state == ContactState::sliding)
         friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
-    load_work_ += traction_work(s) + shaking_work(s);
+    load_work_ += traction_work(s) + shaking_work(s) + water_work(s);
   }
-  if (!traction_edges_.empty()) prev_loop_u_ = s.loop_u;
+  if (!traction_edges_.empty() || water_.active()) prev_loop_u_ = s.loop_u;
   if (shaking_) centroids(s, prev_cx_, prev_cy_);
   load_x_.resize(s.loads.size());
   load_y_.resize(s.loads.size());
@@ -220,6 +220,35 @@ double EnergyMeter::traction_work(const RunState& s) const {
         }
       }
     }
+  }
+  return w;
+}
+
+double EnergyMeter::water_work(const RunState& s) const {
+  // ∫ −p·n·Δu ds on each wet face, per piece where p is linear (joint_water.h): the two-point
+  // Gauss rule is exact for p times the linear Δu.
+  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
+  if (!water_.active() || prev_loop_u_.size() != s.loop_u.size()) return 0;
+  double w = 0;
+  for (std::size_t i = 0; i < water_.edges().size(); ++i) {
+    const BoundaryEdge& be = water_.edges()[i];
+    if (removed(s, be.element)) continue;
+    const int joint = water_.edge_joint()[i];
+    const double* a = s.loop_xy.data() + 2 * be.vertex;
+    const double* b = s.loop_xy.data() + 2 * be.next;
+    const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
+    if (!(len > 0)) continue;
+    const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
+    for (const auto& [t0, t1] : water_.linear_pieces(joint, a, b))
+      for (double xi : kGauss) {
+        const double t = t0 + xi * (t1 - t0);
+        const double p = water_.pressure_at(joint, a[0] + t * dx, a[1] + t * dy);
+        for (int d = 0; d < 2; ++d) {
+          const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
+          const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
+          w += 0.5 * (t1 - t0) * len * (-p) * (d == 0 ? nx : ny) * ((1 - t) * du_a + t * du_b);
+        }
+      }
   }
   return w;
 }

@@ -20,6 +20,8 @@
 //                  constant springs, the secant energy for nonlinear laws)
 //   load_work  W = Σ_steps [Σ_loads f(t_n+1)·(p_n+1 − p_n)       work of the external loads since
 //                  + Σ_traction edges ∫ t(t_n+1)·Δu ds           the start of this run: point loads,
+//                  + Σ_wet faces ∫ −p·n·Δu ds                    (water in the joints, joint_water.h:
+//                                                                exact on each linear piece of p)
 //                  + Σ_e ρ_e A0_e b(t_n+1)·Δc_e]                 tractions (t = normal·n + shear·s,
 //                  or σ_insitu·n; two-point Gauss, exact for the linear Δu) and the body force of
 //                  base shaking b = −a_base; each at the step's end time, as the implicit step
@@ -43,6 +45,7 @@
 #include "contact.h"
 #include "cover_space.h"
 #include "elasticity.h"
+#include "joint_water.h"
 #include "mesh.h"
 #include "run_state.h"
 #include "scene.h"
@@ -89,6 +92,7 @@ class EnergyMeter {
   void centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const;
   double traction_work(const RunState& s) const;  // J/m, since the previous call
   double shaking_work(const RunState& s) const;   // J/m, since the previous call
+  double water_work(const RunState& s) const;     // J/m, since the previous call
 
   const Mesh& mesh_;
   const SceneDef& scene_;
@@ -102,6 +106,7 @@ class EnergyMeter {
   };
   std::vector<HeldEdge> held_;  // supported edges
   std::vector<std::vector<BoundaryEdge>> traction_edges_;  // [traction] edges under it
+  JointWater water_;  // water pressure on the joint faces and boundaries
   std::vector<double> prev_loop_u_;  // [2·v] m, loop displacements at the previous call
   std::vector<double> prev_cx_, prev_cy_;  // [me] m, centroids at the previous call (shaking)
   bool shaking_ = false;  // a base acceleration table is given

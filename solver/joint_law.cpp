@@ -12,7 +12,13 @@
 //   stays finite and monotonic (the contact is reported as capped). In tension (δ < 0) the
 //   spring uses Kni·L, and opens beyond the tensile strength as with a constant spring.
 //   Unloading retraces the loading curve: closure is nonlinear elastic here (real joints show
-//   hysteresis between load cycles, which the first-cycle law does not describe).
+//   hysteresis between load cycles, which the first-cycle law does not describe) — unless the
+//   joint set asks for hysteresis: below the largest closure so far δmax (the contact's memory)
+//   the joint unloads and reloads along the tangent there (ours; Bandis, Lumsden & Barton 1983
+//   measured unloading curves much stiffer than loading, with a permanent set):
+//     σn = max(0, σmax − kt·(δmax − δ)),  σmax = σn(δmax),  kt = Kni/(1 − δmax/Vm)²
+//   so the joint keeps the permanent closure δmax − σmax/kt = δmax²/Vm at zero stress,
+//   and loading beyond δmax continues on the virgin curve (force and tangent continuous there).
 // Shear, hyperbolic (Kulhawy 1975; Duncan–Chang form), elastic shear u ≥ 0, strength
 // τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact (c → the residual cohesion c_r once
 // the contact is broken: it slid or opened; c_r = 0 unless the joint set gives one):
@@ -22,6 +28,9 @@
 //   u = τf/(Ksi(1 − Rf)) (for Rf = 1 only asymptotically: slip then comes from the limit check
 //   at 99.9 % of T_f). Guards: ks ≥ 1e-3·Ksi·L; with no strength (τf = 0) there is no shear
 //   force and no division: the contact slides. Unloading (u shrinking) follows the same curve.
+// Barton–Bandis (barton_bandis.cpp): an elastic spring ks (Pa/m, like the constant law) capped at
+//   L·σn·tan(φr + JRC_mob(δ)·log10(JCS/σn)), σn = N/L the effective normal stress and δ the
+//   contact's shear travel; its dilation enters the normal spring through the contact's gap.
 // Constant (a joint stiffness, like the laws above): σn = kn·δ, τ = ks·u with kn, ks in Pa/m;
 //   force kn·L·δ, stiffness kn·L. A joint closes by σn/kn whatever the mesh size, because the
 //   tributary lengths of the contacts along it add up to its length.
@@ -35,7 +44,7 @@
 
 namespace nmm::solve {
 
-SpringState normal_spring(const ContactLaw& law, double closure, double length) {
+SpringState normal_spring(const ContactLaw& law, double closure, double length, double closure_max) {
   SpringState s;
   if (law.normal != NormalModel::bandis_barton) {
     s.stiffness = initial_normal_stiffness(law, length);
@@ -49,6 +58,13 @@ SpringState normal_spring(const ContactLaw& law, double closure, double length) 
     return s;
   }
   const double cap = 0.99 * law.vm;
+  if (law.hysteresis && closure < closure_max) {  // the unloading / reloading line
+    const SpringState top = normal_spring(law, closure_max, length);
+    s.force = top.force - top.stiffness * (closure_max - closure);
+    s.stiffness = top.stiffness;
+    if (s.force <= 0) s = SpringState{};
+    return s;
+  }
   const double d = std::min(closure, cap);
   const double r = 1.0 - d / law.vm;
   s.force = k0 * d / r;
@@ -69,14 +85,20 @@ double initial_normal_stiffness(const ContactLaw& law, double length) {
   return law.kni * length;
 }
 
-double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken) {
+double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken,
+                      double travel) {
   const double c = broken ? law.residual_cohesion : law.cohesion;
-  return std::max(0.0, law.tan_phi * std::max(normal_force, 0.0) + c * length);
+  const double n = std::max(normal_force, 0.0);
+  const double friction = law.shear == ShearModel::barton_bandis && length > 0
+                              ? length * barton_bandis_strength(law.bb, n / length, travel)
+                              : law.tan_phi * n;
+  return std::max(0.0, friction + c * length);
 }
 
 double initial_shear_stiffness(const ContactLaw& law, double length) {
   switch (law.shear) {
-    case ShearModel::constant: return law.ks * length;
+    case ShearModel::constant:
+    case ShearModel::barton_bandis: return law.ks * length;
     case ShearModel::penalty: return law.ks;
     case ShearModel::hyperbolic: break;
   }
@@ -112,6 +134,32 @@ double shear_at_force(const ContactLaw& law, double force, double strength, doub
   if (!(strength > 0)) return 0;
   const double t = std::min(f, 0.999 * strength / std::max(law.rf, 1e-12));
   return t / (k0 * (1.0 - law.rf * t / strength));
+}
+
+}  // namespace nmm::solve
+
+namespace nmm::solve {
+
+JointMemory advance_joint_memory(const ContactLaw& law, JointMemory m, double normal_force,
+                                 double length, double step_shear, double closure) {
+  if (law.normal == NormalModel::bandis_barton && law.hysteresis)
+    m.closure_max = std::max(m.closure_max, closure);
+  if (law.shear == ShearModel::barton_bandis && length > 0) {
+    const JointTravel t = advance_barton_bandis(law.bb, {m.travel, m.dilation},
+                                                std::max(normal_force, 0.0) / length, step_shear);
+    m.travel = t.travel;
+    m.dilation = t.dilation;
+  }
+  return m;
+}
+
+JointLawOutput joint_law_output(const ContactLaw& law, double normal_force, double length,
+                                const JointMemory& memory) {
+  JointLawOutput o;
+  if (law.shear != ShearModel::barton_bandis || !(length > 0)) return o;
+  o.jrc_mob = barton_bandis_state(law.bb, std::max(normal_force, 0.0) / length, memory.travel).jrc_mob;
+  o.dilation = memory.dilation;
+  return o;
 }
 
 }  // namespace nmm::solve

@@ -4,6 +4,7 @@
 // equations and the mapping onto contact points.
 #pragma once
 
+#include "barton_bandis.h"
 #include "scene.h"
 
 namespace nmm::solve {
@@ -15,6 +16,7 @@ struct ContactLaw {
   double kn = 0;        ///< Pa/m (constant normal) or N/m per contact point (penalty)
   double kni = 0;       ///< Pa/m, initial normal stiffness (Bandis–Barton)
   double vm = 0;        ///< m, maximum closure (Bandis–Barton)
+  bool hysteresis = false;  ///< Bandis–Barton: unload and reload along the tangent at the largest closure
   double ks = 0;        ///< Pa/m (constant shear) or N/m per contact point (penalty)
   double ksi = 0;       ///< Pa/m, initial shear stiffness (hyperbolic)
   double rf = 1;        ///< –, failure ratio (hyperbolic)
@@ -22,7 +24,29 @@ struct ContactLaw {
   double cohesion = 0;  ///< Pa
   double residual_cohesion = 0;  ///< Pa, cohesion of a broken contact (0: brittle)
   double tensile = 0;   ///< Pa, tensile strength
+  BartonBandis bb;      ///< Barton–Bandis shear strength and dilation (shear == barton_bandis)
 };
+
+/// What a joint law remembers of a contact's past, carried from step to step with the contact
+/// (ContactHistory) and saved in checkpoints.
+struct JointMemory {
+  double travel = 0;       ///< m, δ: shear travel so far, either direction (Barton–Bandis)
+  double dilation = 0;     ///< m, v: opening from shearing over the asperities (Barton–Bandis)
+  double closure_max = 0;  ///< m, largest closure so far (Bandis–Barton hysteresis)
+};
+
+/// The memory after an accepted step in which a closed contact carried the normal force N (N,
+/// effective: the spring's), sheared by Δu (m) and ended at closure δ (m), tributary length L.
+JointMemory advance_joint_memory(const ContactLaw& law, JointMemory m, double normal_force,
+                                 double length, double step_shear, double closure);
+
+/// What the joint law's state shows in the output (contacts.csv).
+struct JointLawOutput {
+  double jrc_mob = 0;   ///< –, mobilised JRC (Barton–Bandis shear; 0 for the other laws)
+  double dilation = 0;  ///< m, opening from shearing (Barton–Bandis; 0 for the other laws)
+};
+JointLawOutput joint_law_output(const ContactLaw& law, double normal_force, double length,
+                                const JointMemory& memory);
 
 /// Force and tangent stiffness of a contact spring at one state.
 struct SpringState {
@@ -31,15 +55,18 @@ struct SpringState {
   bool capped = false;   ///< the closure was held below Vm (Bandis–Barton)
 };
 
-/// Normal spring at closure δ ≥ 0 (m) for a contact of tributary length L (m).
-SpringState normal_spring(const ContactLaw& law, double closure, double length);
+/// Normal spring at closure δ ≥ 0 (m) for a contact of tributary length L (m) whose largest
+/// closure so far is δmax (m; used by the Bandis–Barton hysteresis only).
+SpringState normal_spring(const ContactLaw& law, double closure, double length, double closure_max = 0);
 
 /// Normal stiffness used in tension and for judging opening (N/m): kn·L, Kni·L, or the penalty kn.
 double initial_normal_stiffness(const ContactLaw& law, double length);
 
 /// Shear strength of a contact, N: tanφ·N + c·L, with the residual cohesion c_r in place of c once
-/// the contact is broken (it slid or opened; c_r = 0 by default: brittle).
-double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken);
+/// the contact is broken (it slid or opened; c_r = 0 by default: brittle). A Barton–Bandis joint
+/// has L·τ(σn = N/L, δ) + c·L instead of tanφ·N, with δ (m) the contact's shear travel so far.
+double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken,
+                      double travel = 0);
 
 /// True if the shear spring is linear (constant or penalty): its force is ks·s up to the strength.
 bool linear_shear(const ContactLaw& law);

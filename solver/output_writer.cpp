@@ -220,7 +220,9 @@ void OutputWriter::add_contacts(std::int64_t step, double time,
     }
     rows += ',' + std::to_string(c.vertex) + ',' + std::to_string(c.edge);
     // The joint's stresses, Pa: the forces over the contact's tributary length.
-    for (double v : {c.normal_force / c.length, c.shear_force / c.length}) {
+    // Then the water and the Barton–Bandis state: the springs carry the effective stress.
+    for (double v : {c.normal_force / c.length, c.shear_force / c.length, c.pressure,
+                     c.normal_force / c.length, c.jrc_mob, c.dilation}) {
       rows += ',';
       append_double(rows, v);
     }
@@ -235,7 +237,8 @@ void OutputWriter::flush_history() {
   if (!contacts_.empty()) {
     const std::string csv =
         "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
-        "kn,ks,length,vertex,edge,normal_stress,shear_stress\n" + contacts_;
+        "kn,ks,length,vertex,edge,normal_stress,shear_stress,pressure,effective_normal_stress,"
+        "jrc_mob,dilation\n" + contacts_;
     if (contacts_gzip_)
       write_file_atomically(join_path(dir_, "contacts.csv.gz"), gzip_compress(csv));
     else

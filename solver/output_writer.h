@@ -25,7 +25,8 @@ struct ContactSample {
   double x, y;             ///< m, the contact vertex
   int state;               ///< 0 open, 1 locked, 2 sliding
   int law;                 ///< joint set index (or the default interface's, last)
-  double closure;          ///< m, −gap (> 0: the faces overlap by this much)
+  double closure;          ///< m, −gap (> 0: the faces overlap by this much), the normal spring's:
+                           ///< net of a Barton–Bandis joint's dilation (faces apart by dilation − closure)
   double shear;            ///< m, elastic shear of the shear spring
   double normal_force;     ///< N, compression
   double shear_force;      ///< N
@@ -33,6 +34,9 @@ struct ContactSample {
   double length;           ///< m, tributary joint length
   int vertex;              ///< loop vertex P of the contact (Mesh::loop_xy index)
   int edge;                ///< first loop vertex of the edge P faces (edge → next vertex)
+  double pressure = 0;     ///< Pa, water pressure in the joint at the contact (joint_water.h)
+  double jrc_mob = 0;      ///< –, mobilised JRC (Barton–Bandis shear; 0 for the other laws)
+  double dilation = 0;     ///< m, the joint's opening from shearing (Barton–Bandis; else 0)
 };
 
 /// What a frame shows: the element loops in their current position.
@@ -82,8 +86,10 @@ class OutputWriter {
 
   /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, and
   /// contacts.csv ("step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,
-  /// length,vertex,edge,normal_stress,shear_stress": forces in N, stiffnesses N/m, the tributary
-  /// length in m and the joint stresses N/L, T/L in Pa) if any contact rows were added.
+  /// length,vertex,edge,normal_stress,shear_stress,pressure,effective_normal_stress,jrc_mob,
+  /// dilation": forces in N, stiffnesses N/m, the tributary length in m, the joint stresses N/L,
+  /// T/L in Pa — N/L being the effective normal stress, repeated by name — the water pressure in
+  /// Pa, the mobilised JRC and the dilation in m) if any contact rows were added.
   void flush_history();
 
   /// Writes summary.json (pretty-printed), with the run's inputs (set_run_inputs) as "inputs".

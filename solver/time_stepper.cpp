@@ -125,7 +125,7 @@ std::string fmt_point(double x, double y) {
 }  // namespace
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
-    : mesh_(mesh), scene_(scene), scene_name_(scene_name), contacts_(mesh, scene, scene_name) {
+    : mesh_(mesh), scene_(scene), scene_name_(scene_name), water_(mesh, scene), contacts_(mesh, scene, scene_name) {
   // The mesh file's dofs_per_cover describes the mesh as cut (constant covers, 2); the order of
   // the cover functions is the run's choice (solver.cover_order, docs/higher-order-covers.md).
   if (mesh.dofs_per_cover != 2)
@@ -248,6 +248,7 @@ std::vector<std::string> TimeStepper::effects() const {
   if (!s_.fixed.empty()) e.push_back("fixed_points");
   if (!scene_.supports.empty()) e.push_back("supports");
   if (!scene_.tractions.empty()) e.push_back("tractions");
+  if (water_.active()) e.push_back("water");
   if (scene_.insitu_stress.present) e.push_back("insitu_stress");
   if (!scene_.base_acceleration_x.empty() || !scene_.base_acceleration_y.empty())
     e.push_back("base_acceleration");
@@ -627,6 +628,7 @@ void TimeStepper::assemble_boundary(double t_end) {
       add_force(be.element, f, factor);
     }
   }
+  add_water_forces(water_, xy, removed_elem_, frame_of, add_force);
   for (const InterfaceEdge& ie : interface_edges_) {
     const BoundaryEdge& be = ie.edge;
     if (removed_elem_[be.element]) continue;
@@ -773,7 +775,7 @@ std::string TimeStepper::attempt(double dt) {
     const double g2w0 = scene_.solver.max_displacement_ratio * w0_;
     contacts_.begin_step(
         s_.loop_xy, [this](std::size_t e, double x, double y, double* out) { shape_values(e, x, y, out); },
-        2.5 * g2w0, kContactTolerances.new_depth * mesh_.mesh_size, w0_);
+        2.5 * g2w0 + contacts_.max_dilation(), kContactTolerances.new_depth * mesh_.mesh_size, w0_);
     update_pattern();
   }
   timings_.contact_detection = contacts_.detection_seconds();
@@ -1013,9 +1015,11 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
       std::vector<ContactSample> rows;
       for (const Contact& c : contacts_.contacts()) {
         if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
-        rows.push_back({s_.loop_xy[2 * c.at.vertex], s_.loop_xy[2 * c.at.vertex + 1],
-                        static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
-                        c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge});
+        const double x = s_.loop_xy[2 * c.at.vertex], y = s_.loop_xy[2 * c.at.vertex + 1];
+        const JointLawOutput j = joint_law_output(contacts_.laws()[c.law], c.normal_force, c.length, c.joint);
+        rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
+                        c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
+                        water_.pressure_at(contacts_.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
       }
       out.add_contacts(s, s_.time, rows);
     }

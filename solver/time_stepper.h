@@ -16,6 +16,7 @@
 #include "cover_unknowns.h"
 #include "elasticity.h"
 #include "equilibrium_indicator.h"
+#include "joint_water.h"
 #include "mesh.h"
 #include "boundary_conditions.h"
 #include "output_writer.h"
@@ -98,6 +99,8 @@ class TimeStepper {
   const Mesh& mesh() const { return mesh_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
+  /// Water in the joints (joint_water.h): the pressure on a face, for output.
+  const JointWater& water() const { return water_; }
   std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }
   /// What the contact solves of the run have cost so far (summary.json "contact_solve").
   const ContactSolveStats& contact_solve_stats() const { return solve_stats_; }
@@ -175,6 +178,7 @@ class TimeStepper {
   std::vector<std::vector<BoundaryEdge>> support_edges_;   // [support] edges under it
   std::vector<std::vector<BoundaryEdge>> traction_edges_;  // [traction] edges under it
   std::vector<InterfaceEdge> interface_edges_;  // faces between bodies (in-situ traction)
+  JointWater water_;                            // water pressure on joint faces and boundaries
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   std::vector<ElementFrame> frame_;  // [me]

@@ -14,6 +14,8 @@ namespace nmm::studies {
 struct JointSpecimenResult {
   double closure = 0;  ///< m, vertical jump across the joint (below − above), > 0 closing
   double slip = 0;     ///< m, horizontal jump (above − below)
+  double normal_stress = 0;  ///< Pa, mean effective normal stress over the 2 m joint (Σ N / 2 m)
+  double travel = 0;   ///< m, the largest shear travel a closed contact remembers (Barton–Bandis)
   std::string status;  ///< "ok" or why the run stopped
 };
 

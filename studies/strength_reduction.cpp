@@ -42,6 +42,7 @@ std::vector<SetStrength> set_strengths(const nlohmann::json& scene,
     s.tensile_strength = js.value("tensile_strength", 0.0);
     s.residual_cohesion = js.value("residual_cohesion", 0.0);
     s.shear_model = js.contains("shear") ? js["shear"].value("model", "constant") : "constant";
+    if (js.contains("shear")) s.strength_factor = js["shear"].value("strength_factor", 1.0);
     out.push_back(s);
   }
   return out;
@@ -51,7 +52,10 @@ std::vector<std::string> reduction_sets(const std::vector<SetStrength>& sets, do
   std::vector<std::string> out;
   for (const SetStrength& s : sets) {
     const std::string p = "joint_sets." + s.name + ".";
-    out.push_back(p + "friction_deg=" + number(std::atan(s.tan_phi / factor) * 180 / kPi));
+    if (s.shear_model == "barton_bandis")  // the whole τ(σn), roughness included (header)
+      out.push_back(p + "shear.strength_factor=" + number(s.strength_factor * factor));
+    else
+      out.push_back(p + "friction_deg=" + number(std::atan(s.tan_phi / factor) * 180 / kPi));
     out.push_back(p + "cohesion=" + number(s.cohesion / factor));
     out.push_back(p + "tensile_strength=" + number(s.tensile_strength / factor));
     // The residual cohesion is strength too (and may not exceed the reduced cohesion).

@@ -5,6 +5,9 @@
 //   tan φ_F = tan φ / F,   c_F = c / F,   T_F = T / F,   c_r,F = c_r / F
 // (friction angle, cohesion, tensile strength, residual cohesion; docs/fos-and-sweeps.md), so the Mohr–Coulomb strength
 // τf = c + σn·tan φ becomes τf / F at every σn. The seed's joint laws use the same strength: the
+// Barton–Bandis shear law has τ = σn·tan(φr + JRC_mob·log10(JCS/σn)), where dividing tan φr would
+// leave the roughness whole: its shear.strength_factor = F divides the whole τ instead (with its
+// friction_deg, φr, kept; the dilation is kinematic and kept too). The
 // hyperbolic shear law τ = us / (1/Ksi + Rf·us/τf) takes the reduced τf, so its tangent stiffness
 // ks = Ksi·(1 − Rf·τ/τf)² follows it — the initial stiffness Ksi is unchanged, the curve bends
 // over sooner and reaches the lower asymptote τf/(F·Rf). Bandis–Barton normal closure has no
@@ -34,7 +37,8 @@ struct SetStrength {
   double cohesion = 0;          ///< Pa
   double tensile_strength = 0;  ///< Pa
   double residual_cohesion = 0;  ///< Pa, cohesion kept after failure (0: brittle)
-  std::string shear_model;      ///< "constant" or "hyperbolic" (reported only)
+  std::string shear_model;      ///< "constant", "hyperbolic", "penalty" or "barton_bandis"
+  double strength_factor = 1;   ///< –, a Barton–Bandis set's own shear.strength_factor
 };
 
 /// The strengths of `sets` (empty = every joint set) in a scene document (after the user's

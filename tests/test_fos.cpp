@@ -124,6 +124,11 @@ TEST(FosSearch, ReductionDividesTanPhiCohesionAndTension) {
   ASSERT_EQ(r.size(), 4u);
   EXPECT_EQ(r[3], "joint_sets.a.residual_cohesion=20000");
   EXPECT_THROW(set_strengths(scene, {"nosuch"}, "scene"), std::exception);
+  // A Barton–Bandis set: the whole τ(σn) divided, through its shear.strength_factor (φr kept).
+  scene["joint_sets"]["a"]["shear"] = {{"model", "barton_bandis"}, {"strength_factor", 1.5}};
+  const auto bb = reduction_sets(set_strengths(scene, {"a"}, "scene"), 2.0);
+  EXPECT_EQ(bb[0], "joint_sets.a.shear.strength_factor=3");
+  EXPECT_EQ(bb[1], "joint_sets.a.cohesion=50000");
 }
 
 // mechanism.svg is drawn as result.svg: the same colour map (the colour bar's 40 bands are
@@ -234,6 +239,25 @@ TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
   std::printf("planar slide: W = %.0f N/m, A = %.3f m, F = %.4f, Hoek-Bray %.4f, error %.2f %%\n",
               ref.weight, ref.plane_length, f, ref.fos, 100 * (f / ref.fos - 1));
   EXPECT_NEAR(f, ref.fos, 0.03 * ref.fos);
+}
+
+// Water in the tension crack and on the plane (Hoek & Bray's crack filled to z_w, draining at the
+// toe; reference/slides.h): the water is a load, so strength reduction keeps it while it
+// divides c and tan φ. Three depths up to a full crack, each within 3 % of the closed form
+// (F = 1.159, 1.027, 0.871: the full crack fails the slope).
+TEST(FosPlanarSlide, MatchesHoekBrayAtThreeWaterDepths) {
+  const double crack_depth = 5 - 5 * std::tan(30 * M_PI / 180);
+  for (double zw : {0.7, 1.4, crack_depth}) {
+    const ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4, 0.4, true, zw);
+    const fs::path dir = work_dir("planar_slide_water_" + std::to_string(int(zw * 1000)));
+    const std::string mesh = mesh_of(ref.scene, dir);
+    const nlohmann::json j = fos_json(mesh, dir / "fos", "--tol 0.01 --workers 2");
+    ASSERT_FALSE(j["fos"].is_null()) << j.dump();
+    const double f = j["fos"].get<double>();
+    std::printf("planar slide, crack water %.3f m: U = %.0f N/m, V = %.0f N/m, F = %.4f, Hoek-Bray %.4f, "
+                "error %.2f %%\n", zw, ref.uplift, ref.crack_thrust, f, ref.fos, 100 * (f / ref.fos - 1));
+    EXPECT_NEAR(f, ref.fos, 0.03 * ref.fos);
+  }
 }
 
 // --settle: one run with the joints intact first, every trial restarting from its checkpoint.

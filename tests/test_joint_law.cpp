@@ -114,10 +114,8 @@ struct JointResult {
 };
 
 SceneDef joint_scene(double sigma_n, double tau, double h) {
-  SceneDef s;
   // Rock far stiffer than the joint (500 GPa): the closed forms are about the joint alone, and
   // the point loads' own local deformation must not reach the measuring points.
-  s.materials.push_back({"rock", 2650, 5e11, 0.25});
   JointSetDef js;
   js.name = "joint";
   js.friction_deg = 30;
@@ -127,21 +125,8 @@ SceneDef joint_scene(double sigma_n, double tau, double h) {
   js.shear.model = ShearModel::hyperbolic;
   js.shear.ksi = 1e10;
   js.shear.rf = 0.9;
-  s.joint_sets.push_back(js);
-  s.interface_set = 0;
-  s.mesh_size = h;
-  s.plane = PlaneKind::stress;
-  BodyDef base, top;
-  base.material = top.material = 0;
-  base.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
-  top.outer = {{0, 1}, {2, 1}, {2, 2}, {0, 2}};
-  s.bodies = {base, top};
-  for (double x = 0.05; x < 2; x += 0.1) s.fixed_points.push_back({x, 0.02});
+  SceneDef s = reference::joint_specimen_scene(js, 5e11, h);
   reference::load_joint_specimen(s, sigma_n, tau);
-  s.measure_points = {{1.0, 1.0001}, {1.0, 0.9999}};
-  s.solver.time_step = 1e-3;
-  s.solver.dynamic_factor = 0;  // quasi-static: settles to equilibrium
-  s.solver.max_displacement_ratio = 0.01;
   return s;
 }
 

@@ -201,6 +201,44 @@ TEST(Scene, PenaltyIsANormalAndShearModel) {
   EXPECT_EQ(s.joint_sets[0].shear.ks, 8e10);
 }
 
+// Barton–Bandis shear, the closure's hysteresis and the water keys (docs/interface.md).
+TEST(Scene, BartonBandisShearHysteresisAndWater) {
+  const SceneDef s = parse_scene(R"({
+    "gravity": [0, -9.81],
+    "materials": { "rock": { "density": 2650, "young": 1e10, "poisson": 0.25 } },
+    "joint_sets": { "rough": { "friction_deg": 28,
+        "normal": { "model": "bandis_barton", "kni": 1.5e10, "vm": 2e-4, "hysteresis": true },
+        "shear": { "model": "barton_bandis", "ks": 1e11, "jrc": 8, "jcs": 6e7, "length": 2,
+                   "strength_factor": 1.25 } } },
+    "bodies": [ { "material": "rock", "outer": [[0,0],[4,0],[4,4],[0,4]] } ],
+    "joints": [ { "set": "rough", "points": [[0,1],[4,2]] }, { "set": "rough", "points": [[2,0],[2,4]] } ],
+    "mesh": { "size": 0.5 },
+    "water": { "density": 1020, "phreatic": [[4, 3], [0, 2.5]],
+               "joints": [ { "joint": 1, "fill_depth": 1.5 }, { "joint": 0, "pressure": [[0, 1e4], [3, 2e4]] } ] }
+  })",
+                                 "bb.json");
+  const JointSetDef& j = s.joint_sets[0];
+  EXPECT_TRUE(j.normal.hysteresis);
+  EXPECT_EQ(j.shear.model, ShearModel::barton_bandis);
+  EXPECT_EQ(j.shear.jrc, 8);
+  EXPECT_EQ(j.shear.jcs, 6e7);
+  EXPECT_EQ(j.shear.length, 2);
+  EXPECT_EQ(j.shear.lab_length, 0);  // no scale correction
+  EXPECT_EQ(j.shear.strength_factor, 1.25);
+  ASSERT_TRUE(s.water.present);
+  EXPECT_EQ(s.water.density, 1020);
+  ASSERT_EQ(s.water.phreatic.size(), 2u);  // either direction across gravity
+  ASSERT_EQ(s.water.joints.size(), 2u);
+  EXPECT_EQ(s.water.joints[0].joint, 1);
+  EXPECT_EQ(s.water.joints[0].fill_depth, 1.5);
+  EXPECT_EQ(s.water.joints[1].fill_depth, -1);
+  EXPECT_EQ(s.water.joints[1].at, (std::vector<double>{0, 3}));
+  EXPECT_EQ(s.water.joints[1].pressure, (std::vector<double>{1e4, 2e4}));
+  const SceneDef dry = parse_scene(R"({"materials": {"r": {"density": 1, "young": 1, "poisson": 0}},
+    "bodies": [{"material": "r", "outer": [[0,0],[1,0],[0,1]]}], "mesh": {"size": 0.5}})", "dry.json");
+  EXPECT_FALSE(dry.water.present);
+}
+
 // ---- bad scenes ---------------------------------------------------------------------------------
 
 // A valid scene that the table below breaks, one mistake at a time, with a JSON merge patch.
@@ -258,7 +296,7 @@ const BadCase kBadCases[] = {
     {R"({"meshh": {"size": 1}})", "/meshh",
      "unknown key \"meshh\" (allowed: base_acceleration, bodies, excavate, fixed_points, gravity, "
      "insitu_stress, interface_set, joint_sets, joints, loads, materials, measure_points, mesh, "
-     "name, plane, solver, supports, tractions)"},
+     "name, plane, solver, supports, tractions, water)"},
     {R"({"joint_sets": {"bedding": {"fricton_deg": 20}}})", "/joint_sets/bedding/fricton_deg",
      "unknown key \"fricton_deg\" (allowed: cohesion, friction_deg, generate, generated_from, "
      "normal, residual_cohesion, shear, tensile_strength)"},
@@ -272,15 +310,44 @@ const BadCase kBadCases[] = {
      "unknown key \"moment\""},
     // Both models' parameters may stand side by side (runs switch models); typos still fail.
     {R"({"joint_sets": {"bedding": {"normal": {"kn_i": 1e10}}}})", "/joint_sets/bedding/normal/kn_i",
-     "unknown key \"kn_i\" (allowed: jcs, jrc, kn, kni, model, ucs, vm)"},
+     "unknown key \"kn_i\" (allowed: hysteresis, jcs, jrc, kn, kni, model, ucs, vm)"},
     {R"({"joint_sets": {"fault": {"shear": {"rff": 0.9}}}})", "/joint_sets/fault/shear/rff",
-     "unknown key \"rff\" (allowed: ks, ksi, model, rf)"},
+     "unknown key \"rff\" (allowed: jcs, jrc, ks, ksi, lab_length, length, model, rf, strength_factor)"},
     {R"({"joint_sets": {"bedding": {"normal": {"model": "linear"}}}})",
      "/joint_sets/bedding/normal/model",
      "unknown normal model \"linear\" (known: constant, bandis_barton, penalty)"},
     {R"({"joint_sets": {"bedding": {"shear": {"model": "mohr"}}}})",
      "/joint_sets/bedding/shear/model",
-     "unknown shear model \"mohr\" (known: constant, hyperbolic, penalty)"},
+     "unknown shear model \"mohr\" (known: constant, hyperbolic, penalty, barton_bandis)"},
+    // Barton–Bandis shear: JRC in [0, 20], JCS > 0, the joint length for δp, the spring ks.
+    {R"({"joint_sets": {"fault": {"shear": {"model": "barton_bandis", "ks": 1e10, "jrc": 25, "jcs": 1e8, "length": 1}}}})",
+     "/joint_sets/fault/shear/jrc", "must be in [0, 20] (got 25)"},
+    {R"({"joint_sets": {"fault": {"shear": {"model": "barton_bandis", "ks": 1e10, "jrc": 10, "jcs": 1e8}}}})",
+     "/joint_sets/fault/shear", "missing required key \"length\""},
+    {R"({"joint_sets": {"fault": {"shear": {"model": "barton_bandis", "ks": 1e10, "jrc": 10, "jcs": 0, "length": 1}}}})",
+     "/joint_sets/fault/shear/jcs", "must be in (0, 1e+11] (got 0)"},
+    {R"({"joint_sets": {"fault": {"normal": {"hysteresis": "yes"}}}})", "/joint_sets/fault/normal/hysteresis",
+     "expected true or false, got a string"},
+    // Water: hydrostatic pressure needs gravity; one water level per position; joints by index.
+    {R"({"water": {"phreatic": [[0, 4], [10, 3]]}})", "/water/phreatic",
+     "a phreatic surface needs gravity"},
+    {R"({"gravity": [0, -9.81], "water": {"phreatic": [[0, 4], [5, 3], [4, 2]]}})", "/water/phreatic/2",
+     "the phreatic surface turns back across gravity here"},
+    {R"({"gravity": [0, -9.81], "water": {"joints": [{"joint": 2, "pressure": 1e5}]}})", "/water/joints/0/joint",
+     "no joint 2 (the scene has 2)"},
+    {R"({"gravity": [0, -9.81], "water": {"joints": [{"joint": 0, "pressure": 1e5, "fill_depth": 1}]}})",
+     "/water/joints/0", "give either \"pressure\""},
+    {R"({"gravity": [0, -9.81], "water": {"joints": [{"joint": 0, "pressure": -1}]}})",
+     "/water/joints/0/pressure", "must be in [0, 1e+11] (got -1)"},
+    {R"({"gravity": [0, -9.81], "water": {"joints": [{"joint": 0, "pressure": [[0, 1e5], [0, 2e5]]}]}})",
+     "/water/joints/0/pressure/1/0", "distances must increase strictly"},
+    {R"({"gravity": [0, -9.81], "water": {"joints": [{"joint": 1, "fill_depth": 1}, {"joint": 1, "pressure": 0}]}})",
+     "/water/joints/1/joint", "joint 1 is given water twice"},
+    {R"({"water": {"joints": [{"joint": 1, "fill_depth": 1}]}})", "/water/joints/0/fill_depth",
+     "fill_depth needs gravity"},
+    {R"({"gravity": [0, -9.81], "water": {"density": 0}})", "/water/density", "must be in (0, 1e+05] (got 0)"},
+    {R"({"gravity": [0, -9.81], "water": {"phreatc": []}})", "/water/phreatc",
+     "unknown key \"phreatc\" (allowed: density, joints, phreatic)"},
     // DDA's point penalty: a stiffness, in (0, 1e17] N/m, and the shear needs ks.
     {R"({"joint_sets": {"bedding": {"normal": {"model": "penalty", "kn": -1}}}})",
      "/joint_sets/bedding/normal/kn", "must be in (0, 1e+17] (got -1)"},

@@ -1,0 +1,84 @@
+// Barton–Bandis shear (docs/physics.md §4, "Shear: Barton–Bandis").
+//
+// Peak strength (Barton & Choubey 1977), effective normal stress σn, residual friction angle φr:
+//     τp = σn·tan(φr + JRC·log10(JCS/σn))
+// Mobilised roughness (Barton 1982, the dimensionless "JRC_mob" model): along the shear travel δ
+// the roughness term JRC·log10(JCS/σn) is scaled by JRC_mob/JRC_p from a table of δ/δp:
+//     δ/δp          0        0.3   0.6   1    2     4    10   25   100
+//     JRC_mob/JRC_p −φr/i    0     0.75  1    0.85  0.7  0.5  0.4  0
+//     τ(δ) = σn·tan(φr + JRC_mob·log10(JCS/σn))
+// so τ starts at 0 (the first row cancels φr), reaches τp at δp, and falls to the residual
+// σn·tan φr at 100·δp. Linear interpolation between rows; 0 beyond 100·δp (residual).
+// Peak displacement (Barton & Bandis 1982; Barton, Bandis & Bakhtar 1985), L and δp in m:
+//     δp = (L/500)·(JRC/L)^0.33
+// Dilation (Barton & Choubey 1977; Barton 1982): the mobilised dilation angle
+//     d_n,mob = ½·JRC_mob·log10(JCS/σn)
+// opens the joint by dv = tan(d_n,mob)·dδ. Before δ/δp = 0.3 JRC_mob < 0: no dilation (held at 0,
+// not contraction; Barton's model starts dilating at 0.3·δp).
+// Guards (ours): σn ≥ JCS gives log10(JCS/σn) ≤ 0, taken as 0 (no roughness: τ = σn·tan φr); at
+// very low σn the log grows without bound, and Barton (1976) limits φr + JRC·log10(JCS/σn) to
+// 70°: the friction angle and so the dilation angle (its half roughness term) are capped there.
+// Strength reduction (nmm-fos) divides τ by F at every σn and travel (the SRM of a nonlinear
+// criterion: τ_F(σn) = τ(σn)/F); the dilation, a kinematic property of the asperities, is kept.
+// The law is explicit in a step: δ and v advance at the end of each accepted step from the
+// step's shear |Δu| (advance_barton_bandis); within a step the strength uses the δ at its start.
+#include "barton_bandis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace nmm::solve {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMaxFrictionDeg = 70;  // Barton (1976): φr + JRC·log10(JCS/σn) ≤ 70°
+double rad(double deg) { return deg * kPi / 180; }
+// Barton (1982), δ/δp → JRC_mob/JRC_p; the first row's value is −φr/i (filled in at use).
+constexpr double kRatio[] = {0, 0.3, 0.6, 1, 2, 4, 10, 25, 100};
+constexpr double kJrc[] = {0, 0, 0.75, 1, 0.85, 0.7, 0.5, 0.4, 0};
+}  // namespace
+
+double peak_shear_displacement(double jrc, double length) {
+  return length / 500.0 * std::pow(jrc / length, 0.33);
+}
+
+double mobilised_jrc_ratio(double travel_ratio, double phi_r_deg, double i_deg) {
+  if (!(i_deg > 0)) return 1.0;
+  const double r = std::max(travel_ratio, 0.0);
+  constexpr std::size_t n = std::size(kRatio);
+  if (r >= kRatio[n - 1]) return 0.0;
+  std::size_t k = 1;
+  while (r > kRatio[k]) ++k;
+  const double y0 = k == 1 ? -phi_r_deg / i_deg : kJrc[k - 1];
+  const double t = (r - kRatio[k - 1]) / (kRatio[k] - kRatio[k - 1]);
+  return y0 + t * (kJrc[k] - y0);
+}
+
+BartonBandisState barton_bandis_state(const BartonBandis& law, double sigma_n, double travel) {
+  BartonBandisState s;
+  const double log_term = sigma_n > 0 ? std::max(std::log10(law.jcs / sigma_n), 0.0) : 0.0;
+  const double i_peak = law.jrc * log_term;  // degrees
+  const double ratio = law.peak_slip > 0 ? travel / law.peak_slip : 0.0;
+  s.jrc_mob = law.jrc * mobilised_jrc_ratio(ratio, law.phi_r_deg, i_peak);
+  const double roughness = std::min(s.jrc_mob * log_term, kMaxFrictionDeg - law.phi_r_deg);
+  s.friction_deg = std::clamp(law.phi_r_deg + roughness, 0.0, kMaxFrictionDeg);
+  s.dilation_deg = std::max(0.5 * roughness, 0.0);
+  return s;
+}
+
+double barton_bandis_strength(const BartonBandis& law, double sigma_n, double travel) {
+  if (!(sigma_n > 0)) return 0.0;
+  return sigma_n * std::tan(rad(barton_bandis_state(law, sigma_n, travel).friction_deg)) / law.strength_factor;
+}
+
+JointTravel advance_barton_bandis(const BartonBandis& law, JointTravel now, double sigma_n,
+                                  double step_shear) {
+  const double du = std::abs(step_shear);
+  const BartonBandisState mid = barton_bandis_state(law, sigma_n, now.travel + 0.5 * du);
+  now.dilation += std::tan(rad(mid.dilation_deg)) * du;
+  now.travel += du;
+  return now;
+}
+
+}  // namespace nmm::solve
