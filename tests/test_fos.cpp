@@ -243,8 +243,9 @@ TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
 
 // Water in the tension crack and on the plane (Hoek & Bray's crack filled to z_w, draining at the
 // toe; reference/slides.h): the water is a load, so strength reduction keeps it while it
-// divides c and tan φ. Three depths up to a full crack, each within 3 % of the closed form
-// (F = 1.159, 1.027, 0.871: the full crack fails the slope).
+// divides c and tan φ. Three depths up to a full crack, each within 2 % of the closed form
+// (F = 1.159, 1.027, 0.871: the full crack fails the slope; measured −0.05, −0.05, −0.42 %, the
+// search's own bracket being 1 %).
 TEST(FosPlanarSlide, MatchesHoekBrayAtThreeWaterDepths) {
   const double crack_depth = 5 - 5 * std::tan(30 * M_PI / 180);
   for (double zw : {0.7, 1.4, crack_depth}) {
@@ -256,7 +257,7 @@ TEST(FosPlanarSlide, MatchesHoekBrayAtThreeWaterDepths) {
     const double f = j["fos"].get<double>();
     std::printf("planar slide, crack water %.3f m: U = %.0f N/m, V = %.0f N/m, F = %.4f, Hoek-Bray %.4f, "
                 "error %.2f %%\n", zw, ref.uplift, ref.crack_thrust, f, ref.fos, 100 * (f / ref.fos - 1));
-    EXPECT_NEAR(f, ref.fos, 0.03 * ref.fos);
+    EXPECT_NEAR(f, ref.fos, 0.02 * ref.fos);
   }
 }
 
