@@ -155,10 +155,10 @@ TEST(BartonBandis, ClosureHysteresisUnloadsAlongTheTangent) {
 // travel and opening are the law's. Normal stress σn by loads on the top face; shear stress τ by
 // loads along the joint. `cns`: the top face is held in y by springs of k (Pa/m per unit length:
 // solver.support_stiffness), a constant-normal-stiffness boundary.
-SceneDef shear_box(double sigma_n, double tau, double cns_k) {
+SceneDef shear_box(double sigma_n, double tau, double cns_k, double phi_r = kPhiR) {
   JointSetDef js;
   js.name = "joint";
-  js.friction_deg = kPhiR;
+  js.friction_deg = phi_r;
   js.normal.model = NormalModel::constant;
   js.normal.kn = 1e12;
   js.shear.model = ShearModel::barton_bandis;
@@ -178,8 +178,9 @@ SceneDef shear_box(double sigma_n, double tau, double cns_k) {
   return s;
 }
 
-studies::JointSpecimenResult shear(double sigma_n, double tau, double cns_k, double seconds) {
-  const SceneDef s = shear_box(sigma_n, tau, cns_k);
+studies::JointSpecimenResult shear(double sigma_n, double tau, double cns_k, double seconds,
+                                   double phi_r = kPhiR) {
+  const SceneDef s = shear_box(sigma_n, tau, cns_k, phi_r);
   return studies::run_joint_specimen(pre::build_mesh(s, "shear box"), s, seconds);
 }
 
@@ -188,13 +189,13 @@ studies::JointSpecimenResult shear(double sigma_n, double tau, double cns_k, dou
 struct Rest {
   double travel = 0, dilation = 0, sigma_n = 0;
 };
-Rest rest_of(double sigma_n0, double tau, double k) {
+Rest rest_of(double sigma_n0, double tau, double k, double phi_r = kPhiR) {
   const double dp = peak_shear_displacement(kJrc, kLength), step = dp * 1e-5;
   Rest r;
   for (double d = 0; d < dp; d += step) {
     const double sn = sigma_n0 + k * r.dilation, log_term = std::log10(kJcs / sn);
-    const double jrc_mob = kJrc * table_ratio(d / dp, kPhiR, kJrc * log_term);
-    if (sn * std::tan(rad(kPhiR + jrc_mob * log_term)) >= tau) {
+    const double jrc_mob = kJrc * table_ratio(d / dp, phi_r, kJrc * log_term);
+    if (sn * std::tan(rad(phi_r + jrc_mob * log_term)) >= tau) {
       r.travel = d;
       r.sigma_n = sn;
       return r;
@@ -230,6 +231,32 @@ TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
               b.slip * 1e3, dp * 1e3);
   EXPECT_GT(a.slip, 2 * dp);
   EXPECT_GT(b.slip, a.slip + dp) << "past the peak it keeps sliding";
+}
+
+// Barton's series (JRC 10, JCS 100 MPa, φr 25°) at σn = 0.5, 2 and 5 MPa, force-controlled: at
+// 0.99·τp the joint comes to rest where Barton's table puts it, just short of δp (travel within
+// 2 %, opening within 3 % of the integrated dilation); at 1.01·τp it keeps sliding. So the
+// solver's peak strength is Barton's τp = σn·tan(JRC·log10(JCS/σn) + φr) within 1 %, at each
+// stress.
+TEST(BartonBandisSolver, PeakStrengthAtThreeNormalStresses) {
+  const double phi_r = 25, dp = peak_shear_displacement(kJrc, kLength);
+  for (double sn : {0.5e6, 2e6, 5e6}) {
+    const double tau_p = sn * std::tan(rad(phi_r + kJrc * std::log10(kJcs / sn)));
+    const Rest want = rest_of(sn, 0.99 * tau_p, 0, phi_r);
+    const studies::JointSpecimenResult r = shear(sn, 0.99 * tau_p, 0, 2.0, phi_r);
+    ASSERT_EQ(r.status, "ok");
+    const double opening = sn / 1e12 - r.closure;  // net of the springs' closure
+    const studies::JointSpecimenResult a = shear(sn, 1.01 * tau_p, 0, 1.0, phi_r);
+    const studies::JointSpecimenResult b = shear(sn, 1.01 * tau_p, 0, 1.5, phi_r);
+    std::printf("σn %.1f MPa, τp %.4f MPa: at 0.99·τp travel %.4f mm (Barton %.4f, δp %.4f), opening "
+                "%.4f mm (Barton %.4f); at 1.01·τp slip %.3f mm at 1 s, %.3f mm at 1.5 s\n",
+                sn / 1e6, tau_p / 1e6, r.travel * 1e3, want.travel * 1e3, dp * 1e3, opening * 1e3,
+                want.dilation * 1e3, a.slip * 1e3, b.slip * 1e3);
+    EXPECT_GT(want.travel, 0.5 * dp);  // a rest before the peak exists
+    EXPECT_NEAR(r.travel, want.travel, 0.02 * want.travel);
+    EXPECT_NEAR(opening, want.dilation, 0.03 * want.dilation);
+    EXPECT_GT(b.slip, a.slip + dp) << "past the peak it keeps sliding";
+  }
 }
 
 // Constant normal stiffness: the boundary's springs k turn the dilation into normal stress,
