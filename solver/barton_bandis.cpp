@@ -28,10 +28,11 @@
 #include <cmath>
 #include <iterator>
 
+#include "math_constants.h"
+
 namespace nmm::solve {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxFrictionDeg = 70;  // Barton (1976): φr + JRC·log10(JCS/σn) ≤ 70°
 double rad(double deg) { return deg * kPi / 180; }
 // Barton (1982), δ/δp → JRC_mob/JRC_p; the first row's value is −φr/i (filled in at use).

@@ -50,12 +50,12 @@
 
 #include "contact_tolerances.h"
 #include "error.h"
+#include "math_constants.h"
 #include "tributary_length.h"
 
 namespace nmm::solve {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 /// –, the default interface's kn = this × E_max / h (Pa/m).
 constexpr double kDefaultInterfaceStiffness = 20.0;
 }

@@ -47,6 +47,7 @@
 #include "contact_detection.h"
 
 #include "contact_tolerances.h"
+#include "math_constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -186,7 +187,7 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
       }
       const bool flat = dirs.size() == 2 &&
                         dirs[0].first * dirs[1].first + dirs[0].second * dirs[1].second <
-                            -std::cos(kContactTolerances.flat_turn_deg * 3.14159265358979323846 / 180.0);
+                            -std::cos(kContactTolerances.flat_turn_deg * kPi / 180.0);
       if (flat)
         for (std::int32_t v : vs) t.corner[v] = 0;
     }
