@@ -24,22 +24,15 @@ SceneDef brick_wall(int n, bool dynamic) {
 }
 
 SceneDef peer_wall(int nx, int ny, bool dynamic, double h) {
-  SceneDef s;
-  s.name = "peer wall " + std::to_string(nx) + " x " + std::to_string(ny);
+  // The contact problems' scene pieces with the DDA code's rock and penalty: E = 10 MPa,
+  // ρ = 2500 kg/m³, kn = 50·E·(1 m), ks = kn/2.5, φ = 30°.
   const double e = 1e7;
-  s.materials.push_back({"rock", 2500, e, 0.25});
-  JointSetDef js;
-  js.name = "mortar";
-  js.friction_deg = 30;
-  js.normal.model = NormalModel::penalty;
-  js.shear.model = ShearModel::penalty;
-  js.normal.kn = 50 * e;
-  js.shear.ks = 50 * e / 2.5;
-  s.joint_sets.push_back(js);
-  s.interface_set = 0;
-  s.mesh_size = h;
-  s.has_gravity = true;
-  s.gravity = {0, -9.81};
+  SceneDef s = interface_scene(h, 30);
+  s.name = "peer wall " + std::to_string(nx) + " x " + std::to_string(ny);
+  s.materials[0] = {"rock", 2500, e, 0.25};
+  s.joint_sets[0].name = "mortar";
+  s.joint_sets[0].normal.kn = 50 * e;
+  s.joint_sets[0].shear.ks = 50 * e / 2.5;
   s.bodies.push_back(box(-1, -1, nx + 1, 0));
   s.fixed_points = {{-0.5, -0.5}, {0.5 * nx, -0.5}, {nx + 0.5, -0.5}};
   for (int row = 0; row < ny; ++row) {
@@ -52,7 +45,6 @@ SceneDef peer_wall(int nx, int ny, bool dynamic, double h) {
     for (; x + 1 <= nx + 1e-9; x += 1) s.bodies.push_back(box(x, y0, x + 1, y1));
     if (x < nx - 1e-9) s.bodies.push_back(box(x, y0, nx, y1));
   }
-  s.solver.time_step = 1e-3;
   s.solver.dynamic = dynamic;
   return s;
 }
