@@ -700,12 +700,17 @@ std::vector<SupportDef> read_supports(const Reader& r) {
   std::vector<SupportDef> out;
   for (std::size_t i = 0; i < r.size(); ++i) {
     const Reader s = r[i];
-    s.check_keys({"points", "fix"});
+    s.check_keys({"points", "fix", "velocity"});
     SupportDef d;
     d.points = s["points"].as_point_list(2, false, "a support");
     const std::size_t fix = s["fix"].as_choice({"x", "y", "xy"}, "fix direction");
     d.fix_x = fix != 1;
     d.fix_y = fix != 0;
+    if (const auto v = s.optional("velocity")) {
+      d.velocity = v->as_pair("a velocity [vx, vy] in m/s");
+      if ((!d.fix_x && d.velocity.x != 0) || (!d.fix_y && d.velocity.y != 0))
+        v->fail("a support moves only in the directions it holds (fix)");
+    }
     out.push_back(std::move(d));
   }
   return out;

@@ -117,6 +117,9 @@ struct SupportDef {
   std::vector<Vec2> points;  ///< polyline, >= 2 points, m
   bool fix_x = false;        ///< held in x
   bool fix_y = false;        ///< held in y
+  /// m/s, the held position moves at this velocity from t = 0 (UDEC's `boundary xvelocity`):
+  /// held at u = velocity·t in its held directions; zero in a free direction. 0: held in place
+  Vec2 velocity;
 };
 
 /// Traction on the body boundary under a polyline (solver/boundary_conditions.h).

@@ -11,6 +11,8 @@
 
 #include "barton_bandis.h"
 #include "cover_cutter.h"
+#include "direct_shear.h"
+#include "direct_shear_run.h"
 #include "joint_law.h"
 #include "joint_specimen.h"
 #include "joint_specimen_run.h"
@@ -172,7 +174,7 @@ SceneDef shear_box(double sigma_n, double tau, double cns_k, double phi_r = kPhi
   SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
   reference::load_joint_specimen(s, sigma_n, tau);
   if (cns_k > 0) {
-    s.supports.push_back({{{0, 2}, {2, 2}}, false, true});
+    s.supports.push_back({{{0, 2}, {2, 2}}, false, true, {}});
     s.solver.support_stiffness = cns_k;
   }
   return s;
@@ -359,6 +361,84 @@ TEST(BartonBandisSolver, RestartCarriesTheJointMemoryBitwise) {
               straight.state_hash().substr(0, 12).c_str(), second.state_hash().substr(0, 12).c_str());
   EXPECT_EQ(second.state_hash(), straight.state_hash());
   EXPECT_NE(first.state_hash(), straight.state_hash());
+}
+
+}  // namespace
+}  // namespace nmm::solve
+
+namespace nmm::solve {
+namespace {
+
+// Displacement-controlled direct shear through and past the peak (reference/direct_shear.h):
+// Barton's series (JRC 10, JCS 100 MPa, φr 25°, a 1 m joint: δp = 4.276 mm) at σn = 0.5, 2 and
+// 5 MPa, the upper block pushed at δp/250 per 1 ms step to 10·δp. Against Barton's model written
+// out in reference/direct_shear.cpp: the peak strength within 1 % of τp, the slip at the peak
+// within 2 % of δp, the dilation angle there within 2 % of d_mob = ½·JRC·log10(JCS/σn) and the
+// opening within 3 % of ∫ tan d_mob dδ (as the force-controlled tests above); τ along the whole
+// curve (pre-peak rise, peak, softening to half the roughness at 10·δp) within 2 % of τ(δ) at
+// sampled points. Measured (2026-11-25): peak −0.02/−0.05/−0.21 %, its slip +0.55/+0.45/+0.89 %
+// (the strength follows the travel one step late: δp/250 = 0.4 %), dilation angle −1.0/−0.4/
+// +0.9 %, opening −1.0/+0.4/+2.1 %, the curve within 0.98 % (largest on the steep pre-peak rise,
+// one step behind; within 0.05 % past 1.2·δp). The stresses are over the faces' overlap
+// (2 m − slip): by 10·δp the upper block overhangs by 2 %.
+TEST(BartonBandisSolver, DirectShearUnderDisplacementControl) {
+  const double phi_r = 25, dp = peak_shear_displacement(kJrc, kLength), kn = 1e12;
+  const reference::BartonJoint model{kJrc, kJcs, phi_r, dp};
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = phi_r;
+  js.normal.model = NormalModel::constant;
+  js.normal.kn = kn;
+  js.shear.model = ShearModel::barton_bandis;
+  js.shear.ks = 1e12;
+  js.shear.jrc = kJrc;
+  js.shear.jcs = kJcs;
+  js.shear.length = kLength;
+  for (double sn : {0.5e6, 2e6, 5e6}) {
+    const SceneDef s = reference::direct_shear_scene(js, sn, dp / 0.25);
+    const studies::DirectShearRun run =
+        studies::run_direct_shear(pre::build_mesh(s, "direct shear"), s, 2500, 1);
+    ASSERT_EQ(run.status, "ok");
+    const auto& v = run.samples;
+    // The peak: the largest shear stress, and the slip where it stands.
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i].shear_stress > v[k].shear_stress) k = i;
+    const double tau_p = barton_shear_stress(model, v[k].normal_stress, dp);
+    const double d_mob = 0.5 * kJrc * std::log10(kJcs / sn);
+    // Dilation angle at the peak: the opening's slope over the samples within ±2 % of δp.
+    std::size_t a = k, b = k;
+    while (a > 0 && v[a - 1].slip > 0.98 * dp) --a;
+    while (b + 1 < v.size() && v[b + 1].slip < 1.02 * dp) ++b;
+    const double slope = (v[a].closure - v[b].closure) / (v[b].slip - v[a].slip);
+    const double angle = std::atan(slope) * 180 / kPi;
+    const double opening = sn / kn - v[k].closure;
+    const double want_opening = reference::barton_opening(model, sn, v[k].slip);
+    std::printf("σn %.1f MPa: peak τ %.4f MPa (Barton %.4f, %+.2f %%) at slip %.4f mm (δp %.4f, "
+                "%+.2f %%); dilation angle %.3f° (d_mob %.3f°), opening %.4f mm (Barton %.4f)\n",
+                sn / 1e6, v[k].shear_stress / 1e6, tau_p / 1e6, 100 * (v[k].shear_stress / tau_p - 1),
+                v[k].slip * 1e3, dp * 1e3, 100 * (v[k].slip / dp - 1), angle, d_mob, opening * 1e3,
+                want_opening * 1e3);
+    EXPECT_NEAR(v[k].shear_stress, tau_p, 0.01 * tau_p);
+    EXPECT_NEAR(v[k].slip, dp, 0.02 * dp);
+    EXPECT_NEAR(angle, d_mob, 0.02 * d_mob);
+    EXPECT_NEAR(opening, want_opening, 0.03 * want_opening);
+    // The curve at sampled slips (linear between readings 0.4 % of δp apart).
+    double worst = 0;
+    for (double r : {0.45, 0.5, 0.6, 0.8, 0.9, 1.0, 1.2, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 9.8}) {
+      std::size_t i = 1;
+      while (i + 1 < v.size() && v[i].slip < r * dp) ++i;
+      const double t = (r * dp - v[i - 1].slip) / (v[i].slip - v[i - 1].slip);
+      const double tau = v[i - 1].shear_stress + t * (v[i].shear_stress - v[i - 1].shear_stress);
+      const double sn_i = v[i - 1].normal_stress + t * (v[i].normal_stress - v[i - 1].normal_stress);
+      const double want = barton_shear_stress(model, sn_i, r * dp);
+      worst = std::max(worst, std::abs(tau / want - 1));
+      EXPECT_NEAR(tau, want, 0.02 * want) << "σn " << sn << " at δ/δp " << r;
+    }
+    std::printf("  τ–δ curve from 0.45 to 9.8·δp: largest error %.2f %%; at 9.8·δp τ %.4f MPa "
+                "(residual σn·tan φr %.4f)\n", 100 * worst, v.back().shear_stress / 1e6,
+                sn * std::tan(rad(phi_r)) / 1e6);
+  }
 }
 
 }  // namespace

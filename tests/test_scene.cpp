@@ -382,6 +382,8 @@ const BadCase kBadCases[] = {
     {R"({"joint_sets": {"bedding": {"friction_deg": null}}})", "/joint_sets/bedding",
      "missing required key \"friction_deg\""},
     {R"({"loads": [{"point": [1,1]}]})", "/loads/0", "missing required key \"force\""},
+    {R"({"supports": [{"points": [[0,0],[1,0]], "fix": "y", "velocity": [0.1, 0]}]})",
+     "/supports/0/velocity", "a support moves only in the directions it holds (fix)"},
     {R"({"materials": null})", "top level", "missing required key \"materials\""},
     {R"({"bodies": []})", "/bodies", "at least one body is required"},
     {R"({"materials": {"rock": null, "soil": null}})", "/materials",
