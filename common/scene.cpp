@@ -381,9 +381,20 @@ NormalLawDef read_normal_law(const Reader& r) {
   const std::size_t model = r["model"].as_choice({"constant", "bandis_barton", "penalty"}, "normal model");
   // A joint set may hold the parameters of both models, so that a run can switch models with
   // --set joint_sets.NAME.normal.model=... on the same mesh; the model picks which are needed.
-  r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs", "hysteresis"}, "");
+  r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs", "hysteresis", "reload"}, "");
   // Used by the bandis_barton closure only (kept, like kni and vm, when a run switches models).
   if (r.has("hysteresis")) law.hysteresis = r["hysteresis"].as_bool();
+  if (const auto reload = r.optional("reload")) {
+    // Bandis' later load cycles: a hyperbola of their own (joint_law.cpp), which needs the
+    // largest closure the hysteresis remembers.
+    reload->expect_object();
+    reload->check_keys({"kni", "vm"}, "");
+    law.reload_kni = reload->number("kni", kStiffness);
+    law.reload_vm = reload->number("vm", interval(0, false, kMaxClosure, true));
+    if (r.has("hysteresis") && !law.hysteresis)
+      r["hysteresis"].fail("the reloading cycle (reload) needs the hysteresis: true or leave it out");
+    law.hysteresis = true;
+  }
   if (r.has("kn")) law.kn = r.number("kn", kStiffness);
   if (model == 0 || model == 2) {
     law.model = model == 0 ? NormalModel::constant : NormalModel::penalty;
