@@ -509,6 +509,12 @@ TEST(BartonBandisSolver, ClosureCyclesFollowBandisCurves) {
   EXPECT_NEAR(normal_spring(law, dmax * (1 - 1e-9), L, dmax).force, 5e6 * L, 1e-3 * 5e6 * L);
   EXPECT_NEAR(normal_spring(law, dmax * (1 + 1e-9), L, dmax).force, 5e6 * L, 1e-3 * 5e6 * L);
   EXPECT_NEAR(normal_spring(law, dmax - 5e6 * vm2 / (kni2 * vm2 + 5e6), L, dmax).force, 0.0, 1e-6);
+  // Loaded past the virgin curve's cap (0.99·Vm): still continuous at δmax, the stiffness
+  // bounded by the later curve's own guard, Kni2·L/0.01².
+  const double deep = 0.995 * vm, f_deep = normal_spring(law, deep, L).force;
+  EXPECT_NEAR(normal_spring(law, deep * (1 - 1e-12), L, deep).force, f_deep, 1e-6 * f_deep);
+  EXPECT_LE(normal_spring(law, deep * (1 - 1e-12), L, deep).stiffness, kni2 * L / 1e-4 * (1 + 1e-9));
+  EXPECT_TRUE(normal_spring(law, deep * (1 - 1e-12), L, deep).capped);
   law.reload_kni = 0.1 * kni;
   law.reload_vm = 10 * vm;
   EXPECT_NEAR(normal_spring(law, dmax * (1 - 1e-9), L, dmax).force, 5e6 * L, 1e-3 * 5e6 * L);
