@@ -30,15 +30,8 @@ constexpr double kJrc = 10, kJcs = 100e6, kPhiR = 30, kLength = 1;
 
 BartonBandis worked_law() { return {kJrc, kJcs, kPhiR, peak_shear_displacement(kJrc, kLength)}; }
 
-// Barton (1982), written out again here (not read from the code under test).
-double table_ratio(double r, double phi_r, double i) {
-  const double x[] = {0, 0.3, 0.6, 1, 2, 4, 10, 25, 100};
-  const double y[] = {-phi_r / i, 0, 0.75, 1, 0.85, 0.7, 0.5, 0.4, 0};
-  if (r >= 100) return 0;
-  int k = 1;
-  while (r > x[k]) ++k;
-  return y[k - 1] + (r - x[k - 1]) / (x[k] - x[k - 1]) * (y[k] - y[k - 1]);
-}
+// Barton (1982), written out apart from the code under test: reference/direct_shear.h.
+double table_ratio(double r, double phi_r, double i) { return reference::barton_jrc_ratio(r, phi_r, i); }
 
 TEST(BartonBandis, PeakDisplacementAndScaleCorrections) {
   // δp = (1/500)·10^0.33 m.
@@ -298,18 +291,25 @@ namespace {
 // 0.4·σ1 (the loads follow a time table). With hysteresis the joint reopens only along the
 // tangent at its largest closure, δ = δmax − 0.6·σ1/kt; without, it retraces the curve to
 // δ(2 MPa). Kni 15.35 GPa/m, Vm 0.227 mm (JRC 10, JCS 100 MPa, σc 150 MPa).
+// A joint of Bandis–Barton closure (Kni Pa/m, Vm m) and a constant shear spring, for the closure
+// tests below.
+JointSetDef closure_joint(double kni, double vm, bool hysteresis) {
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = 30;
+  js.normal.model = NormalModel::bandis_barton;
+  js.normal.kni = kni;
+  js.normal.vm = vm;
+  js.normal.hysteresis = hysteresis;
+  js.shear.model = ShearModel::constant;
+  js.shear.ks = 1e10;
+  return js;
+}
+
 TEST(BartonBandisSolver, ClosureHysteresisThroughTheSolver) {
   const double kni = 15.35e9, vm = 0.227e-3, s1 = 5e6, s2 = 0.4 * s1;
   auto run = [&](bool hysteresis) {
-    JointSetDef js;
-    js.name = "joint";
-    js.friction_deg = 30;
-    js.normal.model = NormalModel::bandis_barton;
-    js.normal.kni = kni;
-    js.normal.vm = vm;
-    js.normal.hysteresis = hysteresis;
-    js.shear.model = ShearModel::constant;
-    js.shear.ks = 1e10;
+    const JointSetDef js = closure_joint(kni, vm, hysteresis);
     SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
     reference::load_joint_specimen(s, s1, 0);
     TimeTable unload;
@@ -461,17 +461,9 @@ namespace {
 TEST(BartonBandisSolver, ClosureCyclesFollowBandisCurves) {
   const double kni = 15.35e9, vm = 0.227e-3, kni2 = 3 * kni, vm2 = 0.110e-3, top = 8e6;
   const std::vector<double> target = {1e6, 2.5e6, 5e6, 3e6, 1e6, 0.3e6, 1e6, 3e6, 5e6, 8e6, 4e6, 1e6};
-  JointSetDef js;
-  js.name = "joint";
-  js.friction_deg = 30;
-  js.normal.model = NormalModel::bandis_barton;
-  js.normal.kni = kni;
-  js.normal.vm = vm;
-  js.normal.hysteresis = true;
+  JointSetDef js = closure_joint(kni, vm, true);
   js.normal.reload_kni = kni2;
   js.normal.reload_vm = vm2;
-  js.shear.model = ShearModel::constant;
-  js.shear.ks = 1e10;
   SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
   reference::load_joint_specimen(s, top, 0);
   std::string status;
