@@ -197,9 +197,11 @@ int main(int argc, char** argv) {
       const nmm::studies::DirectShearRun run =
           nmm::studies::run_direct_shear(nmm::pre::build_mesh(s, "direct shear"), s, shear_steps, 1);
       const char* name = model ? "full model" : "seed's law";
-      for (const auto& r : run.samples) {
+      for (std::size_t i = 0; i < run.samples.size(); i += 5) {  // every 0.1 mm
+        const auto& r = run.samples[i];
         dcsv << (model ? "full" : "seed") << "," << r.slip << "," << r.shear_stress << ","
              << r.normal_stress << "," << r.closure << "\n";
+        if (i % 25 != 0) continue;  // markers every 0.5 mm
         (model ? df : dh).x.push_back(r.slip * 1e3);
         (model ? df : dh).y.push_back(r.shear_stress / 1e6);
       }
