@@ -562,12 +562,17 @@ void TimeStepper::assemble_boundary(double t_end) {
   const double* xy = s_.loop_xy.data();
   for (std::size_t i = 0; i < support_edges_.size(); ++i) {
     const SupportDef& sd = scene_.supports[i];
+    // A moving support holds its edges at u = velocity·t at the end of the step: the spring
+    // sees the displacement less that.
+    const double held[2] = {sd.velocity.x * t_end, sd.velocity.y * t_end};
     for (const BoundaryEdge& be : support_edges_[i]) {
       if (removed_elem_[be.element]) continue;
       k.setZero();
       std::vector<double> f(static_cast<std::size_t>(nd), 0.0);
-      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next,
-                   s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, sd.fix_x,
+      const double* u0 = s_.loop_u.data() + 2 * be.vertex;
+      const double* u1 = s_.loop_u.data() + 2 * be.next;
+      const double ua[2] = {u0[0] - held[0], u0[1] - held[1]}, ub[2] = {u1[0] - held[0], u1[1] - held[1]};
+      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next, ua, ub, sd.fix_x,
                    sd.fix_y, support_k_, k.data(), f.data());
       system_.add_group(be.element, k.data());
       add_force(be.element, f, 1.0);
