@@ -287,10 +287,6 @@ TEST(BartonBandisSolver, ShearAgainstConstantNormalStiffness) {
 namespace nmm::solve {
 namespace {
 
-// The closure hysteresis through the solver: the specimen loaded to σ1 = 5 MPa, then unloaded to
-// 0.4·σ1 (the loads follow a time table). With hysteresis the joint reopens only along the
-// tangent at its largest closure, δ = δmax − 0.6·σ1/kt; without, it retraces the curve to
-// δ(2 MPa). Kni 15.35 GPa/m, Vm 0.227 mm (JRC 10, JCS 100 MPa, σc 150 MPa).
 // A joint of Bandis–Barton closure (Kni Pa/m, Vm m) and a constant shear spring, for the closure
 // tests below.
 JointSetDef closure_joint(double kni, double vm, bool hysteresis) {
@@ -306,6 +302,10 @@ JointSetDef closure_joint(double kni, double vm, bool hysteresis) {
   return js;
 }
 
+// The closure hysteresis through the solver: the specimen loaded to σ1 = 5 MPa, then unloaded to
+// 0.4·σ1 (the loads follow a time table). With hysteresis the joint reopens only along the
+// tangent at its largest closure, δ = δmax − 0.6·σ1/kt; without, it retraces the curve to
+// δ(2 MPa). Kni 15.35 GPa/m, Vm 0.227 mm (JRC 10, JCS 100 MPa, σc 150 MPa).
 TEST(BartonBandisSolver, ClosureHysteresisThroughTheSolver) {
   const double kni = 15.35e9, vm = 0.227e-3, s1 = 5e6, s2 = 0.4 * s1;
   auto run = [&](bool hysteresis) {
