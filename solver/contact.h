@@ -15,6 +15,7 @@
 #include "element_integration.h"
 #include "joint_law.h"
 #include "mesh.h"
+#include "model.h"
 #include "scene.h"
 #include "system_matrix.h"
 
@@ -84,7 +85,8 @@ struct Contact {
 /// All contacts of a run.
 class ContactSet {
  public:
-  ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
+  /// The contacts of `model`'s run (its laws; the model must outlive this set).
+  explicit ContactSet(const Model& model);
 
   bool active() const { return active_; }
   /// The approximation space of the run (unknowns of each element; it must outlive this set).
@@ -223,8 +225,8 @@ class ContactSet {
   std::vector<double> cn_, cs_;        // [contact · row_] –, gap and slip per unit unknown
   mutable Eigen::MatrixXd block_;      // add_tangents()' scratch
   ContactTopology topo_;
-  std::vector<ContactLaw> laws_;
-  std::vector<int> joint_law_;  // [joint] law index
+  const std::vector<ContactLaw>& laws_;  // the model's (model.h)
+  const std::vector<int>& joint_law_;    // [joint] law index
   int interface_law_ = 0;
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
   bool nonlinear_ = false;       // a law in use is not a constant spring

@@ -118,8 +118,7 @@ int main(int argc, char** argv) {
     const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
     nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
     // Energy terms after every step, a row per output step (energy.h, energy.csv).
-    nmm::solve::EnergyMeter energy(mesh, run.scene, stepper.fixed_point_stiffness(),
-                                   stepper.support_stiffness(), &stepper.space());
+    nmm::solve::EnergyMeter energy(stepper.model(), &stepper.space());
     energy.after_step(stepper.state(), stepper.contacts().contacts(), true);
     std::vector<nmm::report::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;

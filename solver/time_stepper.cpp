@@ -71,6 +71,7 @@
 #include "excavation.h"
 #include "insitu_stress.h"
 #include "number_format.h"
+#include "ring_geometry.h"
 #include "time_table.h"
 #include "nmm_version.h"
 
@@ -81,16 +82,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// Crossing-number test; slits and bridges are walked both ways and cancel.
-bool in_loop(const double* xy, std::size_t n, double x, double y) {
-  bool inside = false;
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
-    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) inside = !inside;
-  }
-  return inside;
 }
 
 double dist_to_loop(const double* xy, std::size_t n, double x, double y) {
@@ -105,17 +96,6 @@ double dist_to_loop(const double* xy, std::size_t n, double x, double y) {
   return best;
 }
 
-// Whether two faces can ever touch: joints, or more than one block that the scene does not
-// excavate at the start (an opening cut out of a single unjointed block leaves none).
-bool contacts_can_arise(const Mesh& mesh, const SceneDef& scene) {
-  if (!scene.joints.empty()) return true;
-  std::size_t kept = 0;
-  for (std::size_t b = 0; b < mesh.block_count(); ++b)
-    if (std::find(scene.excavate.begin(), scene.excavate.end(), mesh.block_body[b]) == scene.excavate.end())
-      ++kept;
-  return kept > 1;
-}
-
 std::string fmt_point(double x, double y) {
   std::ostringstream os;
   os << "(" << x << ", " << y << ")";
@@ -125,35 +105,13 @@ std::string fmt_point(double x, double y) {
 }  // namespace
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
-    : mesh_(mesh), scene_(scene), scene_name_(scene_name), water_(mesh, scene), contacts_(mesh, scene, scene_name) {
-  // The mesh file's dofs_per_cover describes the mesh as cut (constant covers, 2); the order of
-  // the cover functions is the run's choice (solver.cover_order, docs/higher-order-covers.md).
-  if (mesh.dofs_per_cover != 2)
-    throw InputError(scene_name, "", "the mesh file says " + std::to_string(mesh.dofs_per_cover) +
-                                         " unknowns per physical cover; meshes hold 2 (the cover "
-                                         "order is chosen per run: solver.cover_order)");
+    : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name),
+      contacts_(model_) {
   const std::size_t ne = mesh.element_count(), nc = mesh.cover_count();
-  double e_max = 0;
-  for (const MaterialDef& m : scene.materials) {
-    material_d_.push_back(elasticity_matrix(m, scene.plane));
-    e_max = std::max(e_max, m.young);
-  }
-  fixed_k_ = scene.solver.fixed_point_stiffness > 0 ? scene.solver.fixed_point_stiffness
-                                                    : 100.0 * e_max;
-  support_k_ = scene.solver.support_stiffness > 0 ? scene.solver.support_stiffness
-                                                  : 100.0 * e_max / mesh.mesh_size;
-  pin_k_ = std::max(e_max, 1.0);
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
   indicator_ = EquilibriumIndicator(mesh, scene, space_);
   contacts_.use_space(space_);
   contacts_.set_elastic_predictor(!step_inertia());
-  elem_mat_.resize(ne);
-  for (std::size_t e = 0; e < ne; ++e) {
-    const std::int32_t body = mesh.element_body[e];
-    if (body < 0 || static_cast<std::size_t>(body) >= scene.bodies.size())
-      throw InputError(scene_name, "/bodies", "the mesh has more bodies than its scene");
-    elem_mat_[e] = scene.bodies[body].material;
-  }
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
   if (space_.order() > 0) {
     std::vector<int> reg;
@@ -179,16 +137,8 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   frame_.resize(ne);
   s_.body_removed.assign(scene.bodies.size(), 0);
   s_.body_removed_at.assign(scene.bodies.size(), -1);
-  if (scene.insitu_stress.present) {
+  if (scene.insitu_stress.present)
     apply_insitu_stress(scene.insitu_stress, mesh, space_.order(), space_.scale(), s_.stress);
-    interface_edges_ = interface_edges(mesh, scene);
-  }
-  for (std::size_t i = 0; i < scene.supports.size(); ++i)
-    support_edges_.push_back(edges_under(mesh, scene.supports[i].points, scene_name,
-                                         "/supports/" + std::to_string(i) + "/points"));
-  for (std::size_t i = 0; i < scene.tractions.size(); ++i)
-    traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, scene_name,
-                                          "/tractions/" + std::to_string(i) + "/points"));
 
   // Points: the element that contains each one, else the nearest within 1e-6·h (a point on a
   // boundary), else bad input.
@@ -198,7 +148,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
     for (std::size_t e = 0; e < ne; ++e) {
       const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
       const double* xy = mesh.loop_xy.data() + 2 * b;
-      if (in_loop(xy, n, p.x, p.y)) return TrackedPoint{static_cast<std::int32_t>(e), p.x, p.y, p.x, p.y};
+      if (point_in_loop(xy, n, p.x, p.y)) return TrackedPoint{static_cast<std::int32_t>(e), p.x, p.y, p.x, p.y};
       const double d = dist_to_loop(xy, n, p.x, p.y);
       if (d < best_d) {
         best_d = d;
@@ -215,16 +165,6 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
     s_.loads.push_back(locate(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point"));
   for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
     s_.measure.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
-
-  // w0: half the model size, the scale of Shi's displacement ratio and contact tolerances.
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (std::size_t i = 0; i < s_.loop_xy.size(); i += 2) {
-    x0 = std::min(x0, s_.loop_xy[i]);
-    x1 = std::max(x1, s_.loop_xy[i]);
-    y0 = std::min(y0, s_.loop_xy[i + 1]);
-    y1 = std::max(y1, s_.loop_xy[i + 1]);
-  }
-  w0_ = 0.5 * std::max(x1 - x0, y1 - y0);
 
   // Fixed points and loads couple only the covers of their element: the element pattern holds
   // until contacts couple pairs of elements (update_pattern).
@@ -248,7 +188,7 @@ std::vector<std::string> TimeStepper::effects() const {
   if (!s_.fixed.empty()) e.push_back("fixed_points");
   if (!scene_.supports.empty()) e.push_back("supports");
   if (!scene_.tractions.empty()) e.push_back("tractions");
-  if (water_.active()) e.push_back("water");
+  if (model_.water().active()) e.push_back("water");
   if (scene_.insitu_stress.present) e.push_back("insitu_stress");
   if (!scene_.base_acceleration_x.empty() || !scene_.base_acceleration_y.empty())
     e.push_back("base_acceleration");
@@ -264,7 +204,7 @@ void TimeStepper::check_static_support() const {
   std::vector<int> held(mesh_.block_count(), 0);
   for (const TrackedPoint& p : s_.fixed) ++held[mesh_.element_block[p.element]];
   // A support along an edge holds what two points would (the system says so if it does not).
-  for (const auto& edges : support_edges_)
+  for (const auto& edges : model_.support_edges())
     for (const BoundaryEdge& be : edges) held[mesh_.element_block[be.element]] += 2;
   for (std::size_t b = 0; b < held.size(); ++b) {
     if (held[b] >= 2 || s_.body_removed[mesh_.block_body[b]]) continue;
@@ -426,7 +366,7 @@ void TimeStepper::assemble(double dt) {
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
     const int* g = space_.element_unknowns(e);
     if (removed_elem_[e]) {  // excavated: its covers' unknowns are held at zero
-      k = pin_k_ * Eigen::MatrixXd::Identity(nd, nd);
+      k = model_.pin_stiffness() * Eigen::MatrixXd::Identity(nd, nd);
       system_.add_group(e, k.data());
       continue;
     }
@@ -438,11 +378,11 @@ void TimeStepper::assemble(double dt) {
       const ElementFrame& f = frame_[e];
       const PolygonMoments pm = polygon_moments(s_.loop_xy.data() + 2 * lb, n, f.ox, f.oy);
       const Mat36 B = strain_matrix(f.w);
-      const Mat3& D = material_d_[elem_mat_[e]];
+      const Mat3& D = model_.elasticity(e);
       Mat6 k6 = pm.a * (B.transpose() * D * B);
       const Vec3 sigma(s_.stress[3 * e], s_.stress[3 * e + 1], s_.stress[3 * e + 2]);
       Vec6 f6 = -pm.a * (B.transpose() * sigma);
-      const double rho = scene_.materials[elem_mat_[e]].density;
+      const double rho = model_.density(e);
       if (gravity)
         for (int i = 0; i < 3; ++i) {
           const double iw = integral_w(f.w, pm, i);
@@ -466,7 +406,7 @@ void TimeStepper::assemble(double dt) {
     const ElementBasis& eb = basis(e);
     const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * lb, n, eb.ox, eb.oy, eb.h,
                                                2 * space_.order() + 2);
-    const Mat3& D = material_d_[elem_mat_[e]];
+    const Mat3& D = model_.elasticity(e);
     for (std::size_t t = 0; t < T; ++t)
       for (int r = 0; r < 3; ++r) sig[r].c[t] = s_.stress[3 * (T * e + t) + r];
     k.setZero();
@@ -490,7 +430,7 @@ void TimeStepper::assemble(double dt) {
       for (int sd = 0; sd < 2; ++sd)
         for (int i = 0; i < 2; ++i) fe[2 * a + sd] -= integral(*da[i], sig[kRow[sd][i]], m);
     }
-    const double rho = scene_.materials[elem_mat_[e]].density;
+    const double rho = model_.density(e);
     if (gravity)
       for (int a = 0; a < nf; ++a) {
         const double ia = integral(eb.phi[a], m);
@@ -523,14 +463,14 @@ void TimeStepper::assemble(double dt) {
     k.setZero();
     for (int a = 0; a < nf; ++a)
       for (int bb = 0; bb < nf; ++bb) {
-        k(2 * a, 2 * bb) = fixed_k_ * phi[a] * phi[bb];
-        k(2 * a + 1, 2 * bb + 1) = fixed_k_ * phi[a] * phi[bb];
+        k(2 * a, 2 * bb) = model_.fixed_point_stiffness() * phi[a] * phi[bb];
+        k(2 * a + 1, 2 * bb + 1) = model_.fixed_point_stiffness() * phi[a] * phi[bb];
       }
     system_.add_group(p.element, k.data());
     const int* g = space_.element_unknowns(p.element);
     for (int a = 0; a < nf; ++a) {
-      rhs_[g[2 * a]] -= fixed_k_ * phi[a] * (p.x - p.x0);
-      rhs_[g[2 * a + 1]] -= fixed_k_ * phi[a] * (p.y - p.y0);
+      rhs_[g[2 * a]] -= model_.fixed_point_stiffness() * phi[a] * (p.x - p.x0);
+      rhs_[g[2 * a + 1]] -= model_.fixed_point_stiffness() * phi[a] * (p.y - p.y0);
     }
   }
   for (std::size_t l = 0; l < s_.loads.size(); ++l) {
@@ -560,15 +500,15 @@ void TimeStepper::assemble_boundary(double t_end) {
     for (int i = 0; i < nd; ++i) rhs_[g[i]] += factor * f[i];
   };
   const double* xy = s_.loop_xy.data();
-  for (std::size_t i = 0; i < support_edges_.size(); ++i) {
+  for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
     const SupportDef& sd = scene_.supports[i];
-    for (const BoundaryEdge& be : support_edges_[i]) {
+    for (const BoundaryEdge& be : model_.support_edges()[i]) {
       if (removed_elem_[be.element]) continue;
       k.setZero();
       std::vector<double> f(static_cast<std::size_t>(nd), 0.0);
       edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next,
                    s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, sd.fix_x,
-                   sd.fix_y, support_k_, k.data(), f.data());
+                   sd.fix_y, model_.support_stiffness(), k.data(), f.data());
       system_.add_group(be.element, k.data());
       add_force(be.element, f, 1.0);
     }
@@ -589,9 +529,9 @@ void TimeStepper::assemble_boundary(double t_end) {
   // directions) as a locked-in force, so that a model in in-situ equilibrium on rollers does not
   // first have to move by σ/k_s to load its springs; the springs carry only what changes.
   if (insitu.present)
-    for (std::size_t i = 0; i < support_edges_.size(); ++i) {
+    for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
       const SupportDef& sd = scene_.supports[i];
-      for (const BoundaryEdge& be : support_edges_[i]) {
+      for (const BoundaryEdge& be : model_.support_edges()[i]) {
         if (removed_elem_[be.element]) continue;
         const double* a = xy + 2 * be.vertex;
         const double* b = xy + 2 * be.next;
@@ -605,10 +545,10 @@ void TimeStepper::assemble_boundary(double t_end) {
         add_force(be.element, f, 1.0);
       }
     }
-  for (std::size_t i = 0; i < traction_edges_.size(); ++i) {
+  for (std::size_t i = 0; i < model_.traction_edges().size(); ++i) {
     const TractionDef& td = scene_.tractions[i];
     const double factor = table_value(td.table, t_end);
-    for (const BoundaryEdge& be : traction_edges_[i]) {
+    for (const BoundaryEdge& be : model_.traction_edges()[i]) {
       if (removed_elem_[be.element]) continue;
       const double* a = xy + 2 * be.vertex;
       const double* b = xy + 2 * be.next;
@@ -628,8 +568,8 @@ void TimeStepper::assemble_boundary(double t_end) {
       add_force(be.element, f, factor);
     }
   }
-  add_water_forces(water_, xy, removed_elem_, frame_of, add_force);
-  for (const InterfaceEdge& ie : interface_edges_) {
+  add_water_forces(model_.water(), xy, removed_elem_, frame_of, add_force);
+  for (const InterfaceEdge& ie : model_.interface_edges()) {
     const BoundaryEdge& be = ie.edge;
     if (removed_elem_[be.element]) continue;
     const double factor = interface_traction_factor(s_, ie.other_body, scene_.solver.excavation_steps);
@@ -657,7 +597,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
       // n = 0 specialised (constant strain; the first-order code path, see assemble()).
       const ElementFrame& f = frame_[e];
       const Vec6 de6 = Eigen::Map<const Vec6>(de.data());
-      const Vec3 ds = material_d_[elem_mat_[e]] * (strain_matrix(f.w) * de6);
+      const Vec3 ds = model_.elasticity(e) * (strain_matrix(f.w) * de6);
       for (int i = 0; i < 3; ++i) s_.stress[3 * e + i] += ds[i];
       for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
         const double x = s_.loop_xy[2 * v] - f.ox, y = s_.loop_xy[2 * v + 1] - f.oy;
@@ -684,7 +624,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
         eps[1].c[t] += eb.dy[a].c[t] * de[2 * a + 1];
         eps[2].c[t] += eb.dy[a].c[t] * de[2 * a] + eb.dx[a].c[t] * de[2 * a + 1];
       }
-    const Mat3& D = material_d_[elem_mat_[e]];
+    const Mat3& D = model_.elasticity(e);
     for (std::size_t t = 0; t < T; ++t) {
       const Vec3 ds = D * Vec3(eps[0].c[t], eps[1].c[t], eps[2].c[t]);
       for (int r = 0; r < 3; ++r) s_.stress[3 * (T * e + t) + r] += ds[r];
@@ -765,17 +705,17 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
 std::string TimeStepper::attempt(double dt) {
   // Where no two faces can touch (an opening excavated from one unjointed block), the plain
   // solve: no contact detection, no contact problem.
-  const bool contact = contacts_.active() && contacts_can_arise(mesh_, scene_);
+  const bool contact = contacts_.active() && model_.contacts_can_arise();
   if (!step_inertia() && !contact) check_static_support();
   auto t0 = Clock::now();
   compute_frames();
   timings_.assembly += since(t0);
   if (contact) {
     // Search distance: 2.5 × the displacement a step may make (Shi: g2·w0 per step, cut at 2×).
-    const double g2w0 = scene_.solver.max_displacement_ratio * w0_;
+    const double g2w0 = scene_.solver.max_displacement_ratio * model_.w0();
     contacts_.begin_step(
         s_.loop_xy, [this](std::size_t e, double x, double y, double* out) { shape_values(e, x, y, out); },
-        2.5 * g2w0 + contacts_.max_dilation(), kContactTolerances.new_depth * mesh_.mesh_size, w0_);
+        2.5 * g2w0 + contacts_.max_dilation(), kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
     update_pattern();
   }
   timings_.contact_detection = contacts_.detection_seconds();
@@ -836,14 +776,14 @@ std::string TimeStepper::attempt(double dt) {
   if (contact) {
     // Shi's step control: a step may move no cover more than 2·g2·w0 (contacts farther than the
     // search distance would be missed), nor leave a penetration deeper than g2·w0.
-    const double limit = scene_.solver.max_displacement_ratio * w0_;
+    const double limit = scene_.solver.max_displacement_ratio * model_.w0();
     const double dmax = d.cwiseAbs().maxCoeff();
     // An equilibrium increment does not shrink with Δt (no inertia): the limit applies to runs
     // with the inertia term (dynamic and DDA static).
     // The reason names w0 in words: users coming from UDEC do not know DDA's symbol. The value
     // and its limit get the digits that tell them apart (6e-06 against 6e-06 would puzzle).
     const std::string ratio = format_rough(scene_.solver.max_displacement_ratio, 3);
-    const std::string w0 = format_rough(w0_, 3) + " m";
+    const std::string w0 = format_rough(model_.w0(), 3) + " m";
     auto apart = [](double value, double bound) {
       int digits = 3;
       while (digits < 9 && format_rough(value, digits) == format_rough(bound, digits)) ++digits;
@@ -895,8 +835,8 @@ void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool cont
     b.balance = contact ? &kd : &rhs_;
   }
   b.applied_sum = applied_force_sum(scene_, s_, t_end, std::hypot(bx, by),
-                                    indicator_.active_mass(s_.body_removed), traction_edges_,
-                                    interface_edges_, removed_elem_);
+                                    indicator_.active_mass(s_.body_removed), model_.traction_edges(),
+                                    model_.interface_edges(), removed_elem_);
   b.stress = &s_.stress;
   b.stress_terms = stress_terms();
   balance_ = indicator_.measure(b, s_.body_removed);
@@ -1019,7 +959,7 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
         const JointLawOutput j = joint_law_output(contacts_.laws()[c.law], c.normal_force, c.length, c.joint);
         rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
                         c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
-                        water_.pressure_at(contacts_.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
+                        model_.water().pressure_at(contacts_.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
       }
       out.add_contacts(s, s_.time, rows);
     }
@@ -1131,8 +1071,8 @@ nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
   summary["symbolic_analyses"] = system_.analyses();
   summary["time_step"] = sv.time_step;
   summary["max_step_displacement"] = s_.max_step_displacement;
-  summary["fixed_point_stiffness"] = fixed_k_;
-  if (!scene_.supports.empty()) summary["support_stiffness"] = support_k_;
+  summary["fixed_point_stiffness"] = model_.fixed_point_stiffness();
+  if (!scene_.supports.empty()) summary["support_stiffness"] = model_.support_stiffness();
   summary["tool_version"] = NMM_VERSION;
   out.write_summary(summary);
   return summary;
@@ -1152,7 +1092,7 @@ void TimeStepper::write_checkpoint(const std::string& path) const {
   // With contact the factorisation lives on from step to step (a preconditioner): the checkpoint
   // keeps its matrix so that a restart continues bitwise as the straight run.
   write_state_file(path, s_, contact_history(), mesh_,
-                   contacts_.active() && contacts_can_arise(mesh_, scene_) ? system_.factor_source()
+                   contacts_.active() && model_.contacts_can_arise() ? system_.factor_source()
                                                                            : std::string());
 }
 

@@ -18,6 +18,7 @@
 #include "equilibrium_indicator.h"
 #include "joint_water.h"
 #include "mesh.h"
+#include "model.h"
 #include "boundary_conditions.h"
 #include "output_writer.h"
 #include "run_state.h"
@@ -45,6 +46,9 @@ class TimeStepper {
   /// path, e.g. /fixed_points/2, for a point outside every body), builds the sparsity pattern.
   /// `scene_name` names the scene in such errors.
   TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
+  // The contacts hold the model and the space by reference: a stepper stays where it was built.
+  TimeStepper(const TimeStepper&) = delete;
+  TimeStepper& operator=(const TimeStepper&) = delete;
 
   /// Runs all steps, writing history, frames and the summary into `out`. Returns the summary
   /// (also written). `progress`: a progress line on stderr.
@@ -100,15 +104,18 @@ class TimeStepper {
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
   /// Water in the joints (joint_water.h): the pressure on a face, for output.
-  const JointWater& water() const { return water_; }
+  const JointWater& water() const { return model_.water(); }
   std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }
   /// What the contact solves of the run have cost so far (summary.json "contact_solve").
   const ContactSolveStats& contact_solve_stats() const { return solve_stats_; }
   std::size_t time_step_cuts() const { return static_cast<std::size_t>(s_.cuts); }
   double max_penetration() const { return s_.max_penetration; }
-  double model_half_size() const { return w0_; }
-  double fixed_point_stiffness() const { return fixed_k_; }  ///< N/m (energy.h)
-  double support_stiffness() const { return support_k_; }    ///< N/m² (energy.h)
+  double model_half_size() const { return model_.w0(); }
+  double fixed_point_stiffness() const { return model_.fixed_point_stiffness(); }  ///< N/m
+  double support_stiffness() const { return model_.support_stiffness(); }          ///< N/m²
+  /// What the run derived once from the mesh and the scene (model.h): shared with the energy
+  /// meter (energy.h) and the contacts.
+  const Model& model() const { return model_; }
   /// The system of the last step (for benchmarks comparing against a bare factorisation).
   const SystemMatrix& system() const { return system_; }
   const Eigen::VectorXd& rhs() const { return rhs_; }
@@ -148,9 +155,7 @@ class TimeStepper {
   /// update() moves the state on.
   void measure_balance(const Eigen::VectorXd& d, double dt, bool contact);
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
-  bool step_inertia() const {
-    return scene_.solver.dynamic || scene_.solver.static_mode == StaticMode::dda;
-  }
+  bool step_inertia() const { return model_.step_inertia(); }
   void build_pattern_with_pairs();
   /// The shape functions of element e in its current frame, in a scratch object reused by the
   /// next call (no allocation per element).
@@ -167,18 +172,10 @@ class TimeStepper {
   const Mesh& mesh_;
   const SceneDef& scene_;
   std::string scene_name_;
-  std::vector<Mat3> material_d_;        // [material] elasticity matrix, Pa
-  std::vector<std::int32_t> elem_mat_;  // [me] material index
+  Model model_;                         // derived once from mesh and scene (model.h)
   CoverSpace space_;                    // order, unknowns of each cover and element, shapes
   mutable ElementBasis basis_scratch_;  // basis()'s result
-  double fixed_k_ = 0;                  // N/m, penalty stiffness of a fixed point
-  double support_k_ = 0;                // N/m², penalty stiffness of a support per unit length
-  double pin_k_ = 0;                    // N/m, holds the unknowns of excavated covers at zero
   RunState s_;                          // everything a step carries to the next
-  std::vector<std::vector<BoundaryEdge>> support_edges_;   // [support] edges under it
-  std::vector<std::vector<BoundaryEdge>> traction_edges_;  // [traction] edges under it
-  std::vector<InterfaceEdge> interface_edges_;  // faces between bodies (in-situ traction)
-  JointWater water_;                            // water pressure on joint faces and boundaries
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   std::vector<ElementFrame> frame_;  // [me]
@@ -188,7 +185,6 @@ class TimeStepper {
   // Contact and step control.
   ContactSet contacts_;
   Eigen::VectorXd rhs_base_;     // right-hand side without contacts
-  double w0_ = 0;                // m, half the model size
   std::function<bool()> stop_check_;                     // interrupt.h
   std::function<void(std::int64_t, double)> progress_;  // progress.h
   ContactSolveStats solve_stats_;
