@@ -37,6 +37,7 @@
 #include "progress.h"
 #include "result_picture.h"
 #include "run_config.h"
+#include "run_driver.h"
 #include "run_report.h"
 #include "time_stepper.h"
 #include "atomic_file.h"
@@ -123,22 +124,32 @@ int main(int argc, char** argv) {
     std::vector<nmm::report::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;
     double t_prev = t_start;
-    stepper.set_progress([&](std::int64_t n, double t) {
+    // After every accepted step, in this order: the run history's row (run_history.csv), the
+    // energy terms, the progress line (the frames and the checkpoint come first: run_driver.h).
+    nmm::solve::StepFunction run_history([&](const nmm::solve::TimeStepper& st, std::int64_t, bool) {
+      const double t = st.time();
       // Step numbers as history.csv counts them: after --restart they go on from the checkpoint's.
-      const std::int64_t step = stepper.step_count();
-      const nmm::solve::EquilibriumSample& eq = stepper.equilibrium();
-      effort.push_back({step, t, t - t_prev,
-                        static_cast<std::int64_t>(stepper.open_close_iterations() - iterations),
-                        static_cast<std::int64_t>(stepper.time_step_cuts() - cuts),
-                        static_cast<std::int64_t>(stepper.contacts().closed_count()),
+      const nmm::solve::EquilibriumSample& eq = st.equilibrium();
+      effort.push_back({st.step_count(), t, t - t_prev,
+                        static_cast<std::int64_t>(st.open_close_iterations() - iterations),
+                        static_cast<std::int64_t>(st.time_step_cuts() - cuts),
+                        static_cast<std::int64_t>(st.contacts().closed_count()),
                         eq.max_ratio, eq.mean_ratio, eq.max_velocity});
-      energy.after_step(stepper.state(), stepper.contacts().contacts(), n % sv.output_every == 0);
-      iterations = stepper.open_close_iterations();
-      cuts = stepper.time_step_cuts();
+      iterations = st.open_close_iterations();
+      cuts = st.time_step_cuts();
       t_prev = t;
-      progress.update(step, t);
     });
-    const nlohmann::json summary = stepper.run(out, false);
+    nmm::solve::StepFunction energy_terms([&](const nmm::solve::TimeStepper& st, std::int64_t n, bool) {
+      energy.after_step(st.state(), st.contacts().contacts(), n % sv.output_every == 0);
+    });
+    nmm::solve::StepFunction progress_line([&](const nmm::solve::TimeStepper& st, std::int64_t, bool) {
+      progress.update(st.step_count(), st.time());
+    });
+    nmm::solve::RunDriver driver(stepper, out);
+    driver.add(run_history);
+    driver.add(energy_terms);
+    driver.add(progress_line);
+    const nlohmann::json summary = driver.run();
     const std::string status = summary["status"].get<std::string>();
     const std::string verdict = nmm::solve::equilibrium_line(summary["equilibrium"]);
     progress.finish(stepper.step_count(), stepper.time(), status,

@@ -56,7 +56,6 @@
 #include "time_stepper.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -67,22 +66,16 @@
 #include "contact_solve.h"
 #include "contact_tolerances.h"
 #include "solver_threads.h"
+#include "stopwatch.h"
 #include "error.h"
 #include "excavation.h"
 #include "insitu_stress.h"
-#include "number_format.h"
 #include "ring_geometry.h"
 #include "time_table.h"
-#include "nmm_version.h"
 
 namespace nmm::solve {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 double dist_to_loop(const double* xy, std::size_t n, double x, double y) {
   double best = std::numeric_limits<double>::infinity();
@@ -106,7 +99,7 @@ std::string fmt_point(double x, double y) {
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
     : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name),
-      contacts_(model_) {
+      control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_) {
   const std::size_t ne = mesh.element_count(), nc = mesh.cover_count();
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
   indicator_ = EquilibriumIndicator(mesh, scene, space_);
@@ -707,25 +700,24 @@ std::string TimeStepper::attempt(double dt) {
   // solve: no contact detection, no contact problem.
   const bool contact = contacts_.active() && model_.contacts_can_arise();
   if (!step_inertia() && !contact) check_static_support();
-  auto t0 = Clock::now();
+  Stopwatch watch;
   compute_frames();
-  timings_.assembly += since(t0);
+  timings_.assembly += watch.seconds();
   if (contact) {
-    // Search distance: 2.5 × the displacement a step may make (Shi: g2·w0 per step, cut at 2×).
-    const double g2w0 = scene_.solver.max_displacement_ratio * model_.w0();
     contacts_.begin_step(
         s_.loop_xy, [this](std::size_t e, double x, double y, double* out) { shape_values(e, x, y, out); },
-        2.5 * g2w0 + contacts_.max_dilation(), kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
+        control_.search_distance() + contacts_.max_dilation(),
+        kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
     update_pattern();
   }
   timings_.contact_detection = contacts_.detection_seconds();
-  t0 = Clock::now();
+  watch.restart();
   assemble(dt);
   if (contact) {
     system_.save();
     rhs_base_ = rhs_;
   }
-  timings_.assembly += since(t0);
+  timings_.assembly += watch.seconds();
 
   // Without contact: one factorisation and solve. With contact: the step's convex contact
   // problem (contact_solve.cpp), Newton iterations on a reused factorisation.
@@ -744,15 +736,15 @@ std::string TimeStepper::attempt(double dt) {
     return os.str();
   };
   if (!contact) {
-    t0 = Clock::now();
+    watch.restart();
     const bool ok = system_.factorize();
     ++timings_.factorisations;
-    timings_.factorisation += since(t0);
+    timings_.factorisation += watch.seconds();
     if (!ok) throw RunError(not_positive_definite());
-    t0 = Clock::now();
+    watch.restart();
     d = system_.solve(rhs_);
     ++timings_.solves_count;
-    timings_.solves += since(t0);
+    timings_.solves += watch.seconds();
   } else {
     const ContactSolveStats before = solve_stats_;
     const ContactSolveOutcome outcome =
@@ -774,41 +766,17 @@ std::string TimeStepper::attempt(double dt) {
       throw RunError("the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
                      " is not a finite number at t = " + std::to_string(s_.time) + " s");
   if (contact) {
-    // Shi's step control: a step may move no cover more than 2·g2·w0 (contacts farther than the
-    // search distance would be missed), nor leave a penetration deeper than g2·w0.
-    const double limit = scene_.solver.max_displacement_ratio * model_.w0();
-    const double dmax = d.cwiseAbs().maxCoeff();
-    // An equilibrium increment does not shrink with Δt (no inertia): the limit applies to runs
-    // with the inertia term (dynamic and DDA static).
-    // The reason names w0 in words: users coming from UDEC do not know DDA's symbol. The value
-    // and its limit get the digits that tell them apart (6e-06 against 6e-06 would puzzle).
-    const std::string ratio = format_rough(scene_.solver.max_displacement_ratio, 3);
-    const std::string w0 = format_rough(model_.w0(), 3) + " m";
-    auto apart = [](double value, double bound) {
-      int digits = 3;
-      while (digits < 9 && format_rough(value, digits) == format_rough(bound, digits)) ++digits;
-      return std::make_pair(format_rough(value, digits), format_rough(bound, digits));
-    };
-    if (step_inertia() && dmax > 2 * limit) {
-      const auto [moved, allowed] = apart(dmax, 2 * limit);
-      return "one step moved a cover by " + moved + " m, more than the " + allowed +
-             " m a step may move (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
-             ", w0 being half the model size as in DDA)";
-    }
-    if (contacts_.max_penetration() > limit) {
-      const auto [depth, allowed] = apart(contacts_.max_penetration(), limit);
-      return "a contact penetrated " + depth + " m, more than the " + allowed +
-             " m allowed (max_displacement_ratio " + ratio + " × w0 " + w0 +
-             ", w0 being half the model size as in DDA)";
-    }
+    const std::string why =
+        control_.rejection(d.cwiseAbs().maxCoeff(), contacts_.max_penetration(), step_inertia());
+    if (!why.empty()) return why;
     contacts_.end_step();
     s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());
     s_.max_capped = std::max(s_.max_capped, contacts_.capped_count());
   }
-  t0 = Clock::now();
+  watch.restart();
   measure_balance(d, dt, contact);
   update(d, dt);
-  timings_.geometry_update += since(t0);
+  timings_.geometry_update += watch.seconds();
   s_.time += dt;
   ++s_.step;
   return "";
@@ -862,29 +830,17 @@ std::array<double, 2> TimeStepper::displacement_at(const TrackedPoint& p) const 
   return {p.x - p.x0, p.y - p.y0};
 }
 
-std::vector<MeasureSample> TimeStepper::sample_measure_points() const {
-  std::vector<MeasureSample> s;
-  for (const TrackedPoint& p : s_.measure) s.push_back({p.x, p.y, p.x - p.x0, p.y - p.y0});
-  return s;
-}
-
 std::string TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step) {
-  // Without contact every step has the full length time_step. With contact, Shi's step control:
-  // a step that fails (iteration not converged, displacement or penetration too large) is redone
-  // with Δt × 0.3; after a success Δt grows by at most × 1.3 back towards time_step. Below
-  // time_step × 1e-3 the run stops (exit status 3).
+  // Attempts under Shi's step control (step_control.h): without contact nothing is rejected and
+  // every step has the full length time_step.
   const SolverDef& sv = scene_.solver;
-  const double dt_floor = 1e-3 * sv.time_step;
-  double dt = std::min(s_.dt, sv.time_step);
+  control_ = StepControl(sv, model_.w0(), s_.dt);
   std::int64_t done = 0;
   stopped_at_ratio_ = false;
-  while (s_.time < t_end - 1e-9 * sv.time_step) {
+  while (!control_.done(s_.time, t_end)) {
     // Between steps only, so an interrupted run stops in a consistent state.
     if (stop_check_ && stop_check_()) return "interrupted";
-    // The last step is cut to end at t_end, unless it is within round-off of a full step: then
-    // a run of 2N steps and N + N from a checkpoint take the same steps, bitwise.
-    const double left = t_end - s_.time;
-    const double h = left < dt * (1 - 1e-9) ? left : dt;
+    const double h = control_.next(s_.time, t_end);
     std::string why;
     try {
       why = attempt(h);
@@ -895,17 +851,16 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
       static const bool trace = std::getenv("NMM_TRACE_CUTS") != nullptr;
       if (trace) std::fprintf(stderr, "cut at t = %.9g: %s\n", s_.time, why.c_str());
       ++s_.cuts;
-      dt = 0.3 * h;
-      if (dt < dt_floor) {
+      if (!control_.cut(h)) {
         std::ostringstream os;
-        os << "time step cut below its floor (" << dt_floor << " s) at t = " << s_.time
+        os << "time step cut below its floor (" << control_.floor() << " s) at t = " << s_.time
            << " s because " << why;
         return os.str();
       }
       continue;
     }
-    dt = std::min(1.3 * dt, sv.time_step);
-    s_.dt = dt;
+    control_.accept();
+    s_.dt = control_.dt();
     // UDEC's `solve ratio`: the run has reached equilibrium (equilibrium_indicator.cpp).
     stopped_at_ratio_ = sv.stop_at_ratio > 0 && balance_.max_ratio < sv.stop_at_ratio &&
                         (!sv.dynamic || balance_.max_velocity < RestCriterion::kVelocity);
@@ -913,169 +868,6 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
     if (stopped_at_ratio_) return "ok";
   }
   return "ok";
-}
-
-nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
-  const auto wall0 = Clock::now();
-  const SolverDef& sv = scene_.solver;
-  const std::int64_t step0 = s_.step;  // steps before this run (a restart continues from them)
-  const std::string checkpoint = out.dir() + "/checkpoint.nmmstate";
-  // history.csv rows every history_every steps, frames (and contacts.csv) every output_every:
-  // a history at every step costs no frame.
-  const std::int64_t history_every = sv.history_every > 0 ? sv.history_every : sv.output_every;
-  std::int64_t last_history = -1;
-  auto history = [&](std::int64_t n) {
-    if (n == last_history) return;
-    const auto t0 = Clock::now();
-    out.add_history(step0 + n, s_.time, sample_measure_points());
-    last_history = n;
-    timings_.output += since(t0);
-  };
-  auto output = [&](std::int64_t n) {
-    const std::int64_t s = step0 + n;
-    history(n);
-    const auto t0 = Clock::now();
-    FrameFields fields;
-    fields.loop_xy = &s_.loop_xy;
-    fields.loop_u = &s_.loop_u;
-    const std::vector<double> mean = mean_stress();  // n = 0: the element stresses themselves
-    fields.stress = &mean;
-    std::vector<double> at_vertex;
-    if (space_.order() > 0) {
-      at_vertex.resize(s_.loop_xy.size() / 2 * 3);
-      for (std::size_t e = 0; e < mesh_.element_count(); ++e)
-        for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
-          const auto sg = stress_at(e, s_.loop_xy[2 * v], s_.loop_xy[2 * v + 1]);
-          for (int r = 0; r < 3; ++r) at_vertex[3 * static_cast<std::size_t>(v) + r] = sg[r];
-        }
-      fields.vertex_stress = &at_vertex;
-    }
-    out.write_frame(s, s_.time, mesh_, fields);
-    if (contacts_.active()) {
-      std::vector<ContactSample> rows;
-      for (const Contact& c : contacts_.contacts()) {
-        if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
-        const double x = s_.loop_xy[2 * c.at.vertex], y = s_.loop_xy[2 * c.at.vertex + 1];
-        const JointLawOutput j = joint_law_output(contacts_.laws()[c.law], c.normal_force, c.length, c.joint);
-        rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
-                        c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
-                        model_.water().pressure_at(contacts_.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
-      }
-      out.add_contacts(s, s_.time, rows);
-    }
-    timings_.output += since(t0);
-  };
-  output(0);
-  std::int64_t done = 0;
-  const double t_start = s_.time;
-  const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
-  const std::string status = run_until(t_end, [&](std::int64_t n) {
-    done = n;
-    const bool last = s_.time >= t_end - 1e-9 * sv.time_step || stopped_at_ratio_;
-    if (n % sv.output_every == 0 || last) output(n);
-    else if (n % history_every == 0) history(n);
-    if (sv.checkpoint_every > 0 && n % sv.checkpoint_every == 0) {
-      const auto t0 = Clock::now();
-      write_checkpoint(checkpoint);
-      timings_.output += since(t0);
-    }
-    if (progress_) progress_(n, s_.time);
-    if (progress && n % 10 == 0) {
-      std::fprintf(stderr, "\rstep %lld  t = %.6g / %.6g s  cuts %zu", static_cast<long long>(n),
-                   s_.time, t_end, s_.cuts);
-      std::fflush(stderr);
-    }
-  });
-  if (progress) std::fprintf(stderr, "\n");
-  if (status != "ok" && done % sv.output_every != 0) output(done);  // the last good state
-  const auto t0 = Clock::now();
-  write_checkpoint(checkpoint);  // after the last completed step, also when it stopped early
-  out.flush_history();
-  timings_.output += since(t0);
-
-  nlohmann::json summary;
-  summary["status"] = status;
-  // Why the run ended: all its steps, solver.stop_at_ratio met, an interrupt, or an error
-  // (status then says which).
-  summary["stopped_by"] = status == "interrupted" ? "interrupt"
-                          : status != "ok"        ? "error"
-                          : stopped_at_ratio_     ? "stop_at_ratio"
-                                                  : "steps";
-  summary["equilibrium"] = equilibrium_verdict(balance_, sv.dynamic);
-  if (sv.stop_at_ratio > 0) summary["equilibrium"]["stop_at_ratio"] = sv.stop_at_ratio;
-  summary["steps_completed"] = done;
-  summary["first_step"] = step0;  // steps before this run (a restart from a checkpoint)
-  summary["step"] = s_.step;      // steps since step 0 of the first run
-  summary["state_hash"] = state_hash();
-  summary["simulated_time"] = s_.time;
-  summary["wall_seconds"] = since(wall0);
-  summary["effects"] = effects();
-  // Bodies removed by excavation so far (cumulative across restarts) and the step each went:
-  // nmm-report leaves them out of a redrawn frame as nmm-solve --pictures does.
-  summary["excavated_bodies"] = nlohmann::json::array();
-  for (std::size_t b = 0; b < s_.body_removed.size(); ++b)
-    if (s_.body_removed[b])
-      summary["excavated_bodies"].push_back({{"body", b}, {"step", s_.body_removed_at[b]}});
-  summary["analysis"] = scene_.solver.dynamic                                ? "dynamic"
-                        : scene_.solver.static_mode == StaticMode::dda ? "static_dda"
-                                                                       : "static_equilibrium";
-  summary["open_close_iterations"] = s_.iterations;
-  summary["time_step_cuts"] = s_.cuts;
-  summary["steps_with_unsettled_friction"] = s_.friction_unsettled;
-  summary["max_penetration"] = s_.max_penetration;
-  summary["max_contacts_at_closure_cap"] = s_.max_capped;
-  const ContactSet::Events& ev = contacts_.events;
-  const ContactSet::JointStresses joint = contacts_.joint_stresses();
-  summary["contacts"] = {{"at_end", contacts_.contacts().size()},
-                         {"closed_at_end", contacts_.closed_count()},
-                         // The joint at the end: closed length (m), largest stresses (Pa).
-                         {"closed_length_at_end", joint.closed_length},
-                         {"max_normal_stress_at_end", joint.max_normal_stress},
-                         {"max_shear_stress_at_end", joint.max_shear_stress},
-                         {"pairs_tested", contacts_.detection_stats().pairs_tested},
-                         // State changes in all iterations (attempts that were cut included):
-                         // many "settled" ones mean contacts chattering at zero gap or slip.
-                         {"closings", ev.closed},
-                         {"openings", ev.opened},
-                         {"slips", ev.slid},
-                         {"sticks", ev.stuck},
-                         {"bonds_broken", ev.broken}};
-  summary["contact_solve"] = {{"newton_iterations", solve_stats_.newton},
-                              {"cg_iterations", solve_stats_.cg_iterations},
-                              {"cg_runs_over_budget", solve_stats_.cg_aborted},
-                              {"factorisations", solve_stats_.factorisations},
-                              {"friction_updates", solve_stats_.strength_updates},
-                              // What the tolerance allows (contact_solve.cpp, docs/contact.md).
-                              {"tolerance", scene_.solver.contact_tolerance},
-                              {"max_force_tolerance_N", solve_stats_.max_force_tolerance},
-                              {"max_gap_error_m", solve_stats_.max_gap_error}};
-  summary["matrix"] = {{"unknowns", unknowns()},
-                       {"nonzeros_lower", system_.nonzeros()},
-                       {"factor_nonzeros", system_.factor_nonzeros()},
-                       {"factor_flops", system_.factor_flops()},
-                       {"ordering", system_.ordering()},
-                       {"factorisations", timings_.factorisations}};
-  summary["timings"] = {{"contact_detection", timings_.contact_detection},
-                        {"assembly", timings_.assembly},
-                        {"factorisation", timings_.factorisation},
-                        {"solves", timings_.solves},
-                        {"geometry_update", timings_.geometry_update},
-                        {"output", timings_.output}};
-  summary["unknowns"] = unknowns();
-  summary["threads"] = threads_;
-  summary["physical_covers"] = mesh_.cover_count();
-  summary["tied_sliver_covers"] = space_.ties().tied;
-  summary["cover_order"] = space_.order();
-  summary["dofs_per_cover"] = space_.dofs_per_cover();
-  summary["manifold_elements"] = mesh_.element_count();
-  summary["symbolic_analyses"] = system_.analyses();
-  summary["time_step"] = sv.time_step;
-  summary["max_step_displacement"] = s_.max_step_displacement;
-  summary["fixed_point_stiffness"] = model_.fixed_point_stiffness();
-  if (!scene_.supports.empty()) summary["support_stiffness"] = model_.support_stiffness();
-  summary["tool_version"] = NMM_VERSION;
-  out.write_summary(summary);
-  return summary;
 }
 
 }  // namespace nmm::solve

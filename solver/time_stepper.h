@@ -7,8 +7,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "element_integration.h"
 #include "contact.h"
 #include "contact_solve.h"
@@ -20,9 +18,9 @@
 #include "mesh.h"
 #include "model.h"
 #include "boundary_conditions.h"
-#include "output_writer.h"
 #include "run_state.h"
 #include "scene.h"
+#include "step_control.h"
 #include "system_matrix.h"
 
 namespace nmm::solve {
@@ -50,17 +48,13 @@ class TimeStepper {
   TimeStepper(const TimeStepper&) = delete;
   TimeStepper& operator=(const TimeStepper&) = delete;
 
-  /// Runs all steps, writing history, frames and the summary into `out`. Returns the summary
-  /// (also written). `progress`: a progress line on stderr.
-  nlohmann::json run(OutputWriter& out, bool progress);
-
   /// Asked before every step: true stops the run with status "interrupted" (interrupt.h).
   void set_stop_check(std::function<bool()> f) { stop_check_ = std::move(f); }
-  /// Called after every accepted step with (step, simulated time in s) (progress.h).
-  void set_progress(std::function<void(std::int64_t, double)> f) { progress_ = std::move(f); }
   /// Threads of the factorisation's dense kernels (solver_threads.h); 0: the default for the
   /// problem size (one thread below 150k unknowns).
   void set_threads(int threads);
+  /// Threads the factorisation uses (summary.json "threads").
+  int threads() const { return threads_; }
 
   // ---- state, for tests ------------------------------------------------------------------
   /// One step of length dt. Throws RunError when it cannot be taken.
@@ -149,7 +143,6 @@ class TimeStepper {
   void assemble(double dt);
   void update_pattern();
   void update(const Eigen::VectorXd& d, double dt);
-  std::vector<MeasureSample> sample_measure_points() const;
   void check_static_support() const;
   /// The equilibrium indicators of the step just solved (increment d of length dt), before
   /// update() moves the state on.
@@ -173,6 +166,7 @@ class TimeStepper {
   const SceneDef& scene_;
   std::string scene_name_;
   Model model_;                         // derived once from mesh and scene (model.h)
+  StepControl control_;                 // Shi's step control (step_control.h)
   CoverSpace space_;                    // order, unknowns of each cover and element, shapes
   mutable ElementBasis basis_scratch_;  // basis()'s result
   RunState s_;                          // everything a step carries to the next
@@ -186,7 +180,6 @@ class TimeStepper {
   ContactSet contacts_;
   Eigen::VectorXd rhs_base_;     // right-hand side without contacts
   std::function<bool()> stop_check_;                     // interrupt.h
-  std::function<void(std::int64_t, double)> progress_;  // progress.h
   ContactSolveStats solve_stats_;
   int threads_ = 1;  // what the contact solves cost (contact_solve.h)
   EquilibriumIndicator indicator_;  // lumped cover masses (derived from the mesh: no run state)
