@@ -87,7 +87,7 @@ ClosedContacts ContactSet::closed_contacts() const {
   return closed;
 }
 
-void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& shapes, double d0,
+void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& config, double d0,
                             double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
   closed_ = closed_contacts();
@@ -194,8 +194,8 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
     const double l = std::hypot(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
     const double p0x = xy[2 * q2] + c.at.omega * dx, p0y = xy[2 * q2 + 1] + c.at.omega * dy;
-    shapes(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
-    shapes(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
+    config.shape_values(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
+    config.shape_values(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
     const int* ga = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_a));
     const int* gb = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_b));
     int* dof = dofs_.data() + i * static_cast<std::size_t>(row_);

@@ -37,28 +37,22 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
   r.time = s.time;
   const double gx = scene_.has_gravity ? scene_.gravity.x : 0.0;
   const double gy = scene_.has_gravity ? scene_.gravity.y : 0.0;
+  // The state's own configuration (its cover positions, not those of the step's start).
+  Configuration config(mesh_, space_);
+  config.place(s.cover_xy);
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    const std::int32_t body = mesh_.element_body[e];
-    if (static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body]) continue;
+    if (removed(s, static_cast<std::int32_t>(e))) continue;
     const double density = model_.density(e);
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    const double ox = s.cover_xy[2 * ec[0]], oy = s.cover_xy[2 * ec[0] + 1];
-    const double p[6] = {0, 0, s.cover_xy[2 * ec[1]] - ox, s.cover_xy[2 * ec[1] + 1] - oy,
-                         s.cover_xy[2 * ec[2]] - ox, s.cover_xy[2 * ec[2] + 1] - oy};
+    const double ox = config.frame(e).ox, oy = config.frame(e).oy;
     const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
-    const TriangleWeights w = triangle_weights(p);
+    const TriangleWeights& w = config.frame(e).w;
     if (space_ && w.twice_area > 0) {
       // Cover order n ≥ 1: the velocity field and the stress polynomial, integrated exactly.
       const int P = space_->terms(), nf = 3 * P, order = space_->order();
       const std::size_t dpc = static_cast<std::size_t>(space_->dofs_per_cover());
-      double centre[6];
-      for (int k = 0; k < 3; ++k) {
-        const int mc = space_->basis_cover(ec[k]);
-        centre[2 * k] = s.cover_xy[2 * mc];
-        centre[2 * k + 1] = s.cover_xy[2 * mc + 1];
-      }
-      space_->element_basis(ox, oy, w, centre, basis_);
+      const ElementBasis& basis = config.basis(e);
       const MonomialMoments mm = monomial_moments(s.loop_xy.data() + 2 * b, n, ox, oy,
                                                   space_->scale(), 2 * order + 2);
       if (!s.velocity.empty()) {
@@ -67,9 +61,9 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
         for (int a = 0; a < nf; ++a) {
           // v of term j of the element's cover k (its own copy, equal to its master's)
           const std::size_t va = dpc * static_cast<std::size_t>(ec[a / P]) + 2 * static_cast<std::size_t>(a % P);
-          for (int i = 0; i < basis_.phi[a].size(); ++i) {
-            vx.c[i] += basis_.phi[a].c[i] * s.velocity[va];
-            vy.c[i] += basis_.phi[a].c[i] * s.velocity[va + 1];
+          for (int i = 0; i < basis.phi[a].size(); ++i) {
+            vx.c[i] += basis.phi[a].c[i] * s.velocity[va];
+            vy.c[i] += basis.phi[a].c[i] * s.velocity[va + 1];
           }
         }
         r.kinetic += 0.5 * density * (integral(vx, vx, mm) + integral(vy, vy, mm));

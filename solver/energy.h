@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "boundary_conditions.h"
+#include "configuration.h"
 #include "contact.h"
 #include "cover_space.h"
 #include "elasticity.h"
@@ -111,7 +112,6 @@ class EnergyMeter {
   EnergyRow last_;
   std::int64_t last_kept_step_ = -1;
   std::vector<EnergyRow> rows_;
-  mutable ElementBasis basis_;  // scratch of state_terms at n ≥ 1
 };
 
 }  // namespace nmm::solve

@@ -102,6 +102,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
       control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_) {
   const std::size_t ne = mesh.element_count(), nc = mesh.cover_count();
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
+  config_ = Configuration(mesh, &space_);
   indicator_ = EquilibriumIndicator(mesh, scene, space_);
   contacts_.use_space(space_);
   contacts_.set_elastic_predictor(!step_inertia());
@@ -127,7 +128,6 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   s_.stress.assign(3 * stress_terms() * ne, 0.0);
   s_.loop_xy = mesh.loop_xy;
   s_.loop_u.assign(s_.loop_xy.size(), 0.0);
-  frame_.resize(ne);
   s_.body_removed.assign(scene.bodies.size(), 0);
   s_.body_removed_at.assign(scene.bodies.size(), -1);
   if (scene.insitu_stress.present)
@@ -216,41 +216,10 @@ void TimeStepper::check_static_support() const {
 }
 
 void TimeStepper::compute_frames() {
-  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    // Each cover's own node, also for a tied cover (its weight function is its own).
-    const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    ElementFrame& f = frame_[e];
-    const int c0 = ec[0], c1 = ec[1], c2 = ec[2];
-    f.ox = s_.cover_xy[2 * c0];
-    f.oy = s_.cover_xy[2 * c0 + 1];
-    const double p[6] = {0, 0, s_.cover_xy[2 * c1] - f.ox, s_.cover_xy[2 * c1 + 1] - f.oy,
-                         s_.cover_xy[2 * c2] - f.ox, s_.cover_xy[2 * c2 + 1] - f.oy};
-    f.w = triangle_weights(p);
-    if (!(f.w.twice_area > 0))
-      throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
-                     std::to_string(s_.time) + " s (displacements too large for the time step)");
-  }
-}
-
-const ElementBasis& TimeStepper::basis(std::size_t e) const {
-  const std::int32_t* ec = &mesh_.element_covers[3 * e];
-  double centre[6];
-  for (int k = 0; k < 3; ++k) {
-    const int m = space_.basis_cover(ec[k]);
-    centre[2 * k] = s_.cover_xy[2 * m];
-    centre[2 * k + 1] = s_.cover_xy[2 * m + 1];
-  }
-  space_.element_basis(frame_[e].ox, frame_[e].oy, frame_[e].w, centre, basis_scratch_);
-  return basis_scratch_;
-}
-
-void TimeStepper::shape_values(std::size_t e, double x, double y, double* out) const {
-  if (space_.order() == 0) {  // the weights themselves, with the first-order code's round-off
-    const ElementFrame& f = frame_[e];
-    for (int k = 0; k < 3; ++k) out[k] = f.w.at(k, x - f.ox, y - f.oy);
-    return;
-  }
-  basis(e).values(x, y, out);
+  const std::int64_t e = config_.place(s_.cover_xy);
+  if (e >= 0)
+    throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
+                   std::to_string(s_.time) + " s (displacements too large for the time step)");
 }
 
 std::vector<double> TimeStepper::mean_stress() const {
@@ -368,7 +337,7 @@ void TimeStepper::assemble(double dt) {
     if (space_.order() == 0) {
       // n = 0: the same integrals specialised to constant strain (K_e = A·BᵀDB, no polynomial
       // algebra): the first-order code path, for its speed and its round-off.
-      const ElementFrame& f = frame_[e];
+      const ElementFrame& f = config_.frame(e);
       const PolygonMoments pm = polygon_moments(s_.loop_xy.data() + 2 * lb, n, f.ox, f.oy);
       const Mat36 B = strain_matrix(f.w);
       const Mat3& D = model_.elasticity(e);
@@ -396,7 +365,7 @@ void TimeStepper::assemble(double dt) {
       for (int i = 0; i < 6; ++i) rhs_[g[i]] += f6[i];
       continue;
     }
-    const ElementBasis& eb = basis(e);
+    const ElementBasis& eb = config_.basis(e);
     const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * lb, n, eb.ox, eb.oy, eb.h,
                                                2 * space_.order() + 2);
     const Mat3& D = model_.elasticity(e);
@@ -452,7 +421,7 @@ void TimeStepper::assemble(double dt) {
   // Fixed points: penalty springs back to where they started.
   std::vector<double> phi(static_cast<std::size_t>(nf));
   for (const TrackedPoint& p : s_.fixed) {
-    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
+    config_.shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
     k.setZero();
     for (int a = 0; a < nf; ++a)
       for (int bb = 0; bb < nf; ++bb) {
@@ -471,7 +440,7 @@ void TimeStepper::assemble(double dt) {
     const int* g = space_.element_unknowns(p.element);
     const double factor =
         l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], t_end) : 1.0;
-    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
+    config_.shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
     for (int a = 0; a < nf; ++a) {
       rhs_[g[2 * a]] += phi[a] * factor * scene_.loads[l].force.x;
       rhs_[g[2 * a + 1]] += phi[a] * factor * scene_.loads[l].force.y;
@@ -484,9 +453,9 @@ void TimeStepper::assemble_boundary(double t_end) {
   // Supports, tractions and the in-situ traction of faces between bodies (boundary_conditions.h).
   const int nd = space_.element_dofs();
   Eigen::MatrixXd k(nd, nd);
-  // The edge's element basis lives in basis()'s scratch until the next call.
+  // The edge's element basis lives in the configuration's scratch until the next call.
   auto frame_of = [&](std::int32_t e) {
-    return EdgeFrame{&basis(static_cast<std::size_t>(e)), space_.order() + 2};
+    return EdgeFrame{&config_.basis(static_cast<std::size_t>(e)), space_.order() + 2};
   };
   auto add_force = [&](std::int32_t e, const std::vector<double>& f, double factor) {
     const int* g = space_.element_unknowns(static_cast<std::size_t>(e));
@@ -588,7 +557,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
     for (int i = 0; i < nd; ++i) de[i] = d[g[i]];
     if (space_.order() == 0) {
       // n = 0 specialised (constant strain; the first-order code path, see assemble()).
-      const ElementFrame& f = frame_[e];
+      const ElementFrame& f = config_.frame(e);
       const Vec6 de6 = Eigen::Map<const Vec6>(de.data());
       const Vec3 ds = model_.elasticity(e) * (strain_matrix(f.w) * de6);
       for (int i = 0; i < 3; ++i) s_.stress[3 * e + i] += ds[i];
@@ -607,7 +576,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
       }
       continue;
     }
-    const ElementBasis& eb = basis(e);
+    const ElementBasis& eb = config_.basis(e);
     // Δσ = D·B·d: strain polynomials of degree n, then D per coefficient.
     Poly eps[3];
     for (int r = 0; r < 3; ++r) eps[r].degree = space_.order();
@@ -638,7 +607,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   auto move = [&](std::vector<TrackedPoint>& pts) {
     for (TrackedPoint& p : pts) {
       const int* g = space_.element_unknowns(p.element);
-      shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
+      config_.shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
       double ux = 0, uy = 0;
       for (int a = 0; a < nf; ++a) {
         ux += phi[a] * d[g[2 * a]];
@@ -705,7 +674,7 @@ std::string TimeStepper::attempt(double dt) {
   timings_.assembly += watch.seconds();
   if (contact) {
     contacts_.begin_step(
-        s_.loop_xy, [this](std::size_t e, double x, double y, double* out) { shape_values(e, x, y, out); },
+        s_.loop_xy, config_,
         control_.search_distance() + contacts_.max_dilation(),
         kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
     update_pattern();

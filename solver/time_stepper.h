@@ -9,6 +9,7 @@
 
 #include "element_integration.h"
 #include "contact.h"
+#include "configuration.h"
 #include "contact_solve.h"
 #include "cover_space.h"
 #include "cover_unknowns.h"
@@ -93,6 +94,8 @@ class TimeStepper {
   const CoverUnknowns& cover_unknowns() const { return space_.ties(); }
   /// The approximation space: order, unknowns per cover, shape functions (cover_space.h).
   const CoverSpace& space() const { return space_; }
+  /// The space placed on the cover positions at the start of the last step (configuration.h).
+  const Configuration& configuration() const { return config_; }
   /// The mesh the run steps on.
   const Mesh& mesh() const { return mesh_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
@@ -150,11 +153,6 @@ class TimeStepper {
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
   bool step_inertia() const { return model_.step_inertia(); }
   void build_pattern_with_pairs();
-  /// The shape functions of element e in its current frame, in a scratch object reused by the
-  /// next call (no allocation per element).
-  const ElementBasis& basis(std::size_t e) const;
-  /// The element's shape function values at (x, y) into out[0 .. element_dofs()/2).
-  void shape_values(std::size_t e, double x, double y, double* out) const;
   /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
   std::size_t stress_terms() const { return static_cast<std::size_t>(space_.terms()); }
   /// ε of the regularised factorisation (system_matrix.h), relative to each diagonal entry.
@@ -168,11 +166,10 @@ class TimeStepper {
   Model model_;                         // derived once from mesh and scene (model.h)
   StepControl control_;                 // Shi's step control (step_control.h)
   CoverSpace space_;                    // order, unknowns of each cover and element, shapes
-  mutable ElementBasis basis_scratch_;  // basis()'s result
+  Configuration config_;                // the space on the step's cover positions: frames, bases
   RunState s_;                          // everything a step carries to the next
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
-  std::vector<ElementFrame> frame_;  // [me]
   Eigen::VectorXd rhs_;
   SystemMatrix system_;
   StepTimings timings_;
