@@ -65,7 +65,7 @@ class FrameOutput : public StepObserver {
       const JointLawOutput j = joint_law_output(contacts.laws()[c.law], c.normal_force, c.length, c.joint);
       rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
                       c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
-                      st.water().pressure_at(contacts.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
+                      st.model().water().pressure_at(contacts.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
     }
     out_.add_contacts(step, s.time, rows);
   }

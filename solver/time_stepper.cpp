@@ -70,6 +70,7 @@
 #include "error.h"
 #include "excavation.h"
 #include "insitu_stress.h"
+#include "integrators.h"
 #include "ring_geometry.h"
 #include "time_table.h"
 
@@ -293,38 +294,25 @@ void TimeStepper::build_pattern_with_pairs() {
 }
 
 void TimeStepper::assemble(double dt) {
+  // The terms are integrators.h's; only the effects the scene calls for are assembled.
   const bool dynamic = step_inertia();  // the matrix has the inertia term
-  // Body force per unit mass: gravity, and −a_base(t) for a shaken base (the model moves
-  // relative to its base, which the supports and fixed points hold).
   const double t_end = s_.time + dt;
-  const double bx = (scene_.has_gravity ? scene_.gravity.x : 0.0) -
-                    table_value(scene_.base_acceleration_x, t_end, 0.0);
-  const double by = (scene_.has_gravity ? scene_.gravity.y : 0.0) -
-                    table_value(scene_.base_acceleration_y, t_end, 0.0);
+  const auto [bx, by] = body_force_per_mass(scene_, t_end);
   const bool gravity = bx != 0 || by != 0;
   // Until one step has given the acceleration, a0 is unknown: that step takes β = ½, for which
   // a0 drops out, so constant acceleration is exact from the first step on.
   // A static step starts from rest: β = ½ (Shi's 2M/Δt²), a0 and v0 drop out.
   const double beta = s_.accel_known && scene_.solver.dynamic ? scene_.solver.newmark_beta : 0.5;
-  const double mass_k = dynamic ? 1.0 / (beta * dt * dt) : 0.0;  // on d
-  const double mass_v = dynamic ? 1.0 / (beta * dt) : 0.0;        // on v0
-  const double mass_a = dynamic ? 1.0 / (2 * beta) - 1.0 : 0.0;   // on a0
+  InertiaCoefficients inertia;
+  if (dynamic) inertia = {1.0 / (beta * dt * dt), 1.0 / (beta * dt), 1.0 / (2 * beta) - 1.0};
   system_.set_zero();
   rhs_.setZero();
-  // Element matrices from the polynomial shape functions, integrated exactly (cover_space.h,
-  // element_integration.h). With B_{a,s} = Σ_i ∂_iφ_a·E_{s,i} (E picks the strain row: u_x → εxx,
-  // u_y → γxy, v_x → γxy, v_y → εyy):
-  //   K(2a+s, 2b+t) = Σ_ij D(r(s,i), r(t,j)) ∫ ∂_iφ_a ∂_jφ_b dA
-  //   F_int(2a+s)   = Σ_i ∫ ∂_iφ_a σ_r(s,i) dA        (σ a polynomial of degree n)
-  //   M(a, b)       = ρ ∫ φ_a φ_b dA,   F_grav(2a+s) = ρ b_s ∫ φ_a dA
-  const int nd = space_.element_dofs(), nf = nd / 2;
+  const int nd = space_.element_dofs();
   const std::size_t T = stress_terms();
-  static constexpr int kRow[2][2] = {{0, 2}, {2, 1}};  // strain row of (direction s, derivative i)
   Eigen::MatrixXd k(nd, nd);
   Eigen::VectorXd fe(nd);
-  std::vector<double> mass(static_cast<std::size_t>(nf) * nf);
-  Poly sig[3];
-  for (int r = 0; r < 3; ++r) sig[r].degree = space_.order();
+  Mat6 k6;
+  Vec6 f6;
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
     const int* g = space_.element_unknowns(e);
     if (removed_elem_[e]) {  // excavated: its covers' unknowns are held at zero
@@ -333,217 +321,28 @@ void TimeStepper::assemble(double dt) {
       continue;
     }
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    const std::size_t lb = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - lb;
-    if (space_.order() == 0) {
-      // n = 0: the same integrals specialised to constant strain (K_e = A·BᵀDB, no polynomial
-      // algebra): the first-order code path, for its speed and its round-off.
-      const ElementFrame& f = config_.frame(e);
-      const PolygonMoments pm = polygon_moments(s_.loop_xy.data() + 2 * lb, n, f.ox, f.oy);
-      const Mat36 B = strain_matrix(f.w);
-      const Mat3& D = model_.elasticity(e);
-      Mat6 k6 = pm.a * (B.transpose() * D * B);
-      const Vec3 sigma(s_.stress[3 * e], s_.stress[3 * e + 1], s_.stress[3 * e + 2]);
-      Vec6 f6 = -pm.a * (B.transpose() * sigma);
-      const double rho = model_.density(e);
-      if (gravity)
-        for (int i = 0; i < 3; ++i) {
-          const double iw = integral_w(f.w, pm, i);
-          f6[2 * i] += rho * bx * iw;
-          f6[2 * i + 1] += rho * by * iw;
-        }
-      if (dynamic)
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) {
-            const double mij = rho * integral_ww(f.w, pm, i, j);
-            k6(2 * i, 2 * j) += mass_k * mij;
-            k6(2 * i + 1, 2 * j + 1) += mass_k * mij;
-            const int cj = 2 * ec[j];
-            f6[2 * i] += mij * (mass_v * s_.velocity[cj] + mass_a * s_.accel[cj]);
-            f6[2 * i + 1] += mij * (mass_v * s_.velocity[cj + 1] + mass_a * s_.accel[cj + 1]);
-          }
+    const ElementGeometry geo = element_geometry(config_, mesh_, s_.loop_xy, e);
+    const double rho = model_.density(e);
+    const double* sigma = s_.stress.data() + 3 * T * e;
+    if (space_.order() == 0) {  // constant strain: the 6×6 fast paths
+      integrators::elasticity(geo, model_.elasticity(e), k6);
+      integrators::initial_stress(geo, sigma, f6);
+      if (gravity) integrators::body_force(geo, rho, bx, by, f6);
+      if (dynamic) integrators::inertia(geo, rho, inertia, ec, s_, k6, f6);
       system_.add_group(e, k6.data());
       for (int i = 0; i < 6; ++i) rhs_[g[i]] += f6[i];
       continue;
     }
-    const ElementBasis& eb = config_.basis(e);
-    const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * lb, n, eb.ox, eb.oy, eb.h,
-                                               2 * space_.order() + 2);
-    const Mat3& D = model_.elasticity(e);
-    for (std::size_t t = 0; t < T; ++t)
-      for (int r = 0; r < 3; ++r) sig[r].c[t] = s_.stress[3 * (T * e + t) + r];
     k.setZero();
-    fe.setZero();
-    for (int a = 0; a < nf; ++a) {
-      const Poly* da[2] = {&eb.dx[a], &eb.dy[a]};
-      for (int bb = a; bb < nf; ++bb) {
-        const Poly* db[2] = {&eb.dx[bb], &eb.dy[bb]};
-        double G[2][2];
-        for (int i = 0; i < 2; ++i)
-          for (int j = 0; j < 2; ++j) G[i][j] = integral(*da[i], *db[j], m);
-        for (int sd = 0; sd < 2; ++sd)
-          for (int td = 0; td < 2; ++td) {
-            double v = 0;
-            for (int i = 0; i < 2; ++i)
-              for (int j = 0; j < 2; ++j) v += D(kRow[sd][i], kRow[td][j]) * G[i][j];
-            k(2 * a + sd, 2 * bb + td) = v;
-            k(2 * bb + td, 2 * a + sd) = v;
-          }
-      }
-      for (int sd = 0; sd < 2; ++sd)
-        for (int i = 0; i < 2; ++i) fe[2 * a + sd] -= integral(*da[i], sig[kRow[sd][i]], m);
-    }
-    const double rho = model_.density(e);
-    if (gravity)
-      for (int a = 0; a < nf; ++a) {
-        const double ia = integral(eb.phi[a], m);
-        fe[2 * a] += rho * bx * ia;
-        fe[2 * a + 1] += rho * by * ia;
-      }
-    if (dynamic) {
-      const int P = space_.terms();
-      const std::size_t dpc = static_cast<std::size_t>(space_.dofs_per_cover());
-      for (int a = 0; a < nf; ++a)
-        for (int bb = a; bb < nf; ++bb) mass[a * nf + bb] = mass[bb * nf + a] = rho * integral(eb.phi[a], eb.phi[bb], m);
-      for (int a = 0; a < nf; ++a)
-        for (int bb = 0; bb < nf; ++bb) {
-          const double mab = mass[a * nf + bb];
-          k(2 * a, 2 * bb) += mass_k * mab;
-          k(2 * a + 1, 2 * bb + 1) += mass_k * mab;
-          // v0, a0 of term j of the element's cover kb (its own copy, equal to its master's)
-          const std::size_t vb = dpc * static_cast<std::size_t>(ec[bb / P]) + 2 * static_cast<std::size_t>(bb % P);
-          fe[2 * a] += mab * (mass_v * s_.velocity[vb] + mass_a * s_.accel[vb]);
-          fe[2 * a + 1] += mab * (mass_v * s_.velocity[vb + 1] + mass_a * s_.accel[vb + 1]);
-        }
-    }
+    integrators::elasticity(geo, model_.elasticity(e), k);
+    integrators::initial_stress(geo, sigma, fe);
+    if (gravity) integrators::body_force(geo, rho, bx, by, fe);
+    if (dynamic) integrators::inertia(geo, rho, inertia, ec, s_, space_.terms(), k, fe);
     system_.add_group(e, k.data());
     for (int i = 0; i < nd; ++i) rhs_[g[i]] += fe[i];
   }
-  // Fixed points: penalty springs back to where they started.
-  std::vector<double> phi(static_cast<std::size_t>(nf));
-  for (const TrackedPoint& p : s_.fixed) {
-    config_.shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
-    k.setZero();
-    for (int a = 0; a < nf; ++a)
-      for (int bb = 0; bb < nf; ++bb) {
-        k(2 * a, 2 * bb) = model_.fixed_point_stiffness() * phi[a] * phi[bb];
-        k(2 * a + 1, 2 * bb + 1) = model_.fixed_point_stiffness() * phi[a] * phi[bb];
-      }
-    system_.add_group(p.element, k.data());
-    const int* g = space_.element_unknowns(p.element);
-    for (int a = 0; a < nf; ++a) {
-      rhs_[g[2 * a]] -= model_.fixed_point_stiffness() * phi[a] * (p.x - p.x0);
-      rhs_[g[2 * a + 1]] -= model_.fixed_point_stiffness() * phi[a] * (p.y - p.y0);
-    }
-  }
-  for (std::size_t l = 0; l < s_.loads.size(); ++l) {
-    const TrackedPoint& p = s_.loads[l];
-    const int* g = space_.element_unknowns(p.element);
-    const double factor =
-        l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], t_end) : 1.0;
-    config_.shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
-    for (int a = 0; a < nf; ++a) {
-      rhs_[g[2 * a]] += phi[a] * factor * scene_.loads[l].force.x;
-      rhs_[g[2 * a + 1]] += phi[a] * factor * scene_.loads[l].force.y;
-    }
-  }
-  assemble_boundary(t_end);
-}
-
-void TimeStepper::assemble_boundary(double t_end) {
-  // Supports, tractions and the in-situ traction of faces between bodies (boundary_conditions.h).
-  const int nd = space_.element_dofs();
-  Eigen::MatrixXd k(nd, nd);
-  // The edge's element basis lives in the configuration's scratch until the next call.
-  auto frame_of = [&](std::int32_t e) {
-    return EdgeFrame{&config_.basis(static_cast<std::size_t>(e)), space_.order() + 2};
-  };
-  auto add_force = [&](std::int32_t e, const std::vector<double>& f, double factor) {
-    const int* g = space_.element_unknowns(static_cast<std::size_t>(e));
-    for (int i = 0; i < nd; ++i) rhs_[g[i]] += factor * f[i];
-  };
-  const double* xy = s_.loop_xy.data();
-  for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
-    const SupportDef& sd = scene_.supports[i];
-    for (const BoundaryEdge& be : model_.support_edges()[i]) {
-      if (removed_elem_[be.element]) continue;
-      k.setZero();
-      std::vector<double> f(static_cast<std::size_t>(nd), 0.0);
-      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next,
-                   s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, sd.fix_x,
-                   sd.fix_y, model_.support_stiffness(), k.data(), f.data());
-      system_.add_group(be.element, k.data());
-      add_force(be.element, f, 1.0);
-    }
-  }
-  const InsituStressDef& insitu = scene_.insitu_stress;
-  // The in-situ field at a point's position in the mesh as cut (x − u); σ·n with n current.
-  auto insitu_traction = [&](const double* ua, const double* ub, const double* a, const double* b) {
-    return [=, &insitu](double x, double y, double nx, double ny, double* t) {
-      const double len2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
-      const double xi = len2 > 0 ? ((x - a[0]) * (b[0] - a[0]) + (y - a[1]) * (b[1] - a[1])) / len2 : 0;
-      const double y0 = y - ((1 - xi) * ua[1] + xi * ub[1]);
-      const auto sg = insitu_stress_at(insitu, x, y0);
-      t[0] = sg[0] * nx + sg[2] * ny;
-      t[1] = sg[2] * nx + sg[1] * ny;
-    };
-  };
-  // Supports start carrying the in-situ stress's reaction (σ_insitu·n in their held
-  // directions) as a locked-in force, so that a model in in-situ equilibrium on rollers does not
-  // first have to move by σ/k_s to load its springs; the springs carry only what changes.
-  if (insitu.present)
-    for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
-      const SupportDef& sd = scene_.supports[i];
-      for (const BoundaryEdge& be : model_.support_edges()[i]) {
-        if (removed_elem_[be.element]) continue;
-        const double* a = xy + 2 * be.vertex;
-        const double* b = xy + 2 * be.next;
-        std::vector<double> f = edge_traction_forces(
-            frame_of(be.element), a, b,
-            insitu_traction(s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, a, b));
-        for (int c = 0; c < nd / 2; ++c) {
-          if (!sd.fix_x) f[2 * c] = 0;
-          if (!sd.fix_y) f[2 * c + 1] = 0;
-        }
-        add_force(be.element, f, 1.0);
-      }
-    }
-  for (std::size_t i = 0; i < model_.traction_edges().size(); ++i) {
-    const TractionDef& td = scene_.tractions[i];
-    const double factor = table_value(td.table, t_end);
-    for (const BoundaryEdge& be : model_.traction_edges()[i]) {
-      if (removed_elem_[be.element]) continue;
-      const double* a = xy + 2 * be.vertex;
-      const double* b = xy + 2 * be.next;
-      std::vector<double> f;
-      if (td.from_insitu) {
-        f = edge_traction_forces(frame_of(be.element), a, b,
-                                 insitu_traction(s_.loop_u.data() + 2 * be.vertex,
-                                                 s_.loop_u.data() + 2 * be.next, a, b));
-      } else {
-        const double sn = td.normal, ss = td.shear, sx = be.sx, sy = be.sy;
-        f = edge_traction_forces(frame_of(be.element), a, b,
-                                 [=](double, double, double nx, double ny, double* t) {
-                                   t[0] = sn * nx + ss * sx;
-                                   t[1] = sn * ny + ss * sy;
-                                 });
-      }
-      add_force(be.element, f, factor);
-    }
-  }
-  add_water_forces(model_.water(), xy, removed_elem_, frame_of, add_force);
-  for (const InterfaceEdge& ie : model_.interface_edges()) {
-    const BoundaryEdge& be = ie.edge;
-    if (removed_elem_[be.element]) continue;
-    const double factor = interface_traction_factor(s_, ie.other_body, scene_.solver.excavation_steps);
-    if (factor == 0) continue;
-    const double* a = xy + 2 * be.vertex;
-    const double* b = xy + 2 * be.next;
-    add_force(be.element,
-              edge_traction_forces(frame_of(be.element), a, b,
-                                   insitu_traction(s_.loop_u.data() + 2 * be.vertex,
-                                                   s_.loop_u.data() + 2 * be.next, a, b)),
-              factor);
-  }
+  point_terms(model_, config_, s_, t_end, system_, rhs_);
+  edge_terms(model_, config_, s_, removed_elem_, t_end, system_, rhs_);
 }
 
 void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
@@ -754,10 +553,7 @@ std::string TimeStepper::attempt(double dt) {
 void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool contact) {
   // The same body force, β and loads as the step's assembly (assemble()), at the step's end.
   const double t_end = s_.time + dt;
-  const double bx = (scene_.has_gravity ? scene_.gravity.x : 0.0) -
-                    table_value(scene_.base_acceleration_x, t_end, 0.0);
-  const double by = (scene_.has_gravity ? scene_.gravity.y : 0.0) -
-                    table_value(scene_.base_acceleration_y, t_end, 0.0);
+  const auto [bx, by] = body_force_per_mass(scene_, t_end);
   StepBalance b;
   b.d = &d;
   b.v0 = &s_.velocity;

@@ -100,18 +100,13 @@ class TimeStepper {
   const Mesh& mesh() const { return mesh_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
-  /// Water in the joints (joint_water.h): the pressure on a face, for output.
-  const JointWater& water() const { return model_.water(); }
   std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }
   /// What the contact solves of the run have cost so far (summary.json "contact_solve").
   const ContactSolveStats& contact_solve_stats() const { return solve_stats_; }
   std::size_t time_step_cuts() const { return static_cast<std::size_t>(s_.cuts); }
   double max_penetration() const { return s_.max_penetration; }
-  double model_half_size() const { return model_.w0(); }
-  double fixed_point_stiffness() const { return model_.fixed_point_stiffness(); }  ///< N/m
-  double support_stiffness() const { return model_.support_stiffness(); }          ///< N/m²
-  /// What the run derived once from the mesh and the scene (model.h): shared with the energy
-  /// meter (energy.h) and the contacts.
+  /// What the run derived once from the mesh and the scene (model.h: penalty stiffnesses, w0,
+  /// water...): shared with the energy meter (energy.h) and the contacts.
   const Model& model() const { return model_; }
   /// The system of the last step (for benchmarks comparing against a bare factorisation).
   const SystemMatrix& system() const { return system_; }
@@ -158,7 +153,6 @@ class TimeStepper {
   /// ε of the regularised factorisation (system_matrix.h), relative to each diagonal entry.
   static constexpr double kRegularisation = 1e-10;
   void apply_removed();
-  void assemble_boundary(double t_end);
 
   const Mesh& mesh_;
   const SceneDef& scene_;
