@@ -11,9 +11,12 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "cover_space.h"
 #include "element_integration.h"
 #include "mesh.h"
+#include "run_state.h"
 
 namespace nmm::solve {
 
@@ -42,6 +45,14 @@ class Configuration {
   /// weights themselves at order 0 (with the first-order code's round-off).
   void shape_values(std::size_t e, double x, double y, double* out) const;
   const CoverSpace& space() const { return *space_; }
+
+  /// Moves tracked points by the displacement increment d (the space's unknowns) of their
+  /// element, evaluated in this configuration.
+  void move_points(const Eigen::VectorXd& d, std::vector<TrackedPoint>& points) const;
+  /// Moves the cover nodes cover_xy ([2·c] m, the positions place() was given) by their cover
+  /// function at the node: its constant term for an untied cover (the basis is centred there); a
+  /// tied cover evaluates its master's polynomial.
+  void move_cover_nodes(const Eigen::VectorXd& d, std::vector<double>& cover_xy) const;
 
  private:
   const Mesh* mesh_ = nullptr;

@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 #include "error.h"
 #include "math_constants.h"
+#include "ring_geometry.h"
 
 namespace nmm::solve {
 
@@ -91,6 +94,35 @@ Model::Model(const Mesh& mesh, const SceneDef& scene, const std::string& scene_n
   for (std::size_t i = 0; i < scene.tractions.size(); ++i)
     traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, scene_name,
                                           "/tractions/" + std::to_string(i) + "/points"));
+
+  // Points: the element that contains each one, else the nearest within 1e-6·h (a point on a
+  // boundary), else bad input.
+  auto locate = [&](const Vec2& p, const std::string& path) {
+    std::int32_t best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 0; e < ne; ++e) {
+      const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
+      const double* xy = mesh.loop_xy.data() + 2 * b;
+      if (point_in_loop(xy, n, p.x, p.y)) return TrackedPoint{static_cast<std::int32_t>(e), p.x, p.y, p.x, p.y};
+      const double d = distance_to_loop(xy, n, p.x, p.y);
+      if (d < best_d) {
+        best_d = d;
+        best = static_cast<std::int32_t>(e);
+      }
+    }
+    if (best < 0 || best_d > 1e-6 * mesh.mesh_size) {
+      std::ostringstream os;
+      os << "point (" << p.x << ", " << p.y << ") lies outside every body";
+      throw InputError(scene_name, path, os.str());
+    }
+    return TrackedPoint{best, p.x, p.y, p.x, p.y};
+  };
+  for (std::size_t i = 0; i < scene.fixed_points.size(); ++i)
+    fixed_.push_back(locate(scene.fixed_points[i], "/fixed_points/" + std::to_string(i)));
+  for (std::size_t i = 0; i < scene.loads.size(); ++i)
+    loads_.push_back(locate(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point"));
+  for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
+    measure_.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
 
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (std::size_t i = 0; i < mesh.loop_xy.size(); i += 2) {

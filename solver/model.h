@@ -30,6 +30,7 @@
 #include "joint_law.h"
 #include "joint_water.h"
 #include "mesh.h"
+#include "run_state.h"
 #include "scene.h"
 
 namespace nmm::solve {
@@ -54,7 +55,8 @@ struct PenaltyDefaults {
 class Model {
  public:
   /// Derives the model; InputError naming `scene_name` and the scene path for a mesh its scene
-  /// does not describe (more bodies than the scene, a support polyline on no boundary edge...).
+  /// does not describe (more bodies than the scene, a support polyline on no boundary edge, a
+  /// point outside every body...).
   Model(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
 
   const Mesh& mesh() const { return mesh_; }
@@ -101,6 +103,13 @@ class Model {
   /// Water pressure on joint faces and boundaries.
   const JointWater& water() const { return water_; }
 
+  // ---- points ----------------------------------------------------------------------------
+  /// The scene's fixed points, load points and measure points where they start: each in the
+  /// element that contains it, else the nearest within 1e-6·h (a point on a boundary).
+  const std::vector<TrackedPoint>& fixed_points() const { return fixed_; }
+  const std::vector<TrackedPoint>& load_points() const { return loads_; }
+  const std::vector<TrackedPoint>& measure_points() const { return measure_; }
+
   // ---- scales and the kind of step -------------------------------------------------------
   /// m, half the model size (the larger side of the mesh's bounding box, halved).
   double w0() const { return w0_; }
@@ -128,6 +137,7 @@ class Model {
   std::vector<std::vector<BoundaryEdge>> support_edges_;
   std::vector<std::vector<BoundaryEdge>> traction_edges_;
   std::vector<InterfaceEdge> interface_edges_;
+  std::vector<TrackedPoint> fixed_, loads_, measure_;
   double w0_ = 0;                   // m
 };
 

@@ -20,15 +20,9 @@
 // damps: its amplification matrix [[1 − 1/β, 1 − 1/(2β)], [−1/β, 1 − 1/(2β)]] has spectral
 // radius 0.41 at β = 0.6 (the default, near the minimum), while constant acceleration is still
 // integrated exactly (free fall, a sliding block) and slow vibrations barely feel it.
-//   K_e     = A_e Bᵀ D B                    (elasticity.cpp)
-//   M_e     = ρ ∫ Nᵀ N dA                   consistent mass: ρ ∫ w_k w_l dA per direction
-//   F_int,e = A_e Bᵀ σ_e                    stress carried from earlier steps (initial stress)
-//   F_grav  = ρ (g − a_base(t)) ∫ w_k dA    only with gravity or a base acceleration (time table)
-//   F_load  = w_k(p)·f                      point load f at p, only with loads
-//   fixed point p (started at P): penalty spring k_f, K += k_f NᵀN, F −= k_f Nᵀ (p − P)
-//   supports, tractions, in-situ traction on faces between bodies: boundary_conditions.h
-//   (edge integrals, exact by two-point Gauss); in-situ stress in σ before step 1:
-//   insitu_stress.h; excavated bodies: excavation.h (their covers pinned, K += k_pin I).
+// K, M, F_int and the loads are integrators.h's, one integrator per term (elasticity, initial
+// stress, body force, inertia, fixed points and loads, edges); in-situ stress in σ before step 1:
+// insitu_stress.h; excavated bodies: excavation.h (their covers pinned, K += k_pin I).
 // Everything carried from step to step is in RunState s_ (run_state.h) and the contact history:
 // a checkpoint of both continues a run bitwise exactly (--restart).
 // All integrals are exact simplex integrals over the element polygon (element_integration.cpp).
@@ -36,9 +30,7 @@
 // the displacement field (geometry update: large displacement over many small steps). The stress
 // is not rotated with the element: rotations per step are small (Shi's DDA does the same).
 //
-// Fixed-point stiffness: solver.fixed_point_stiffness, or by default 100·E_max·(1 m) N/m per unit
-// thickness. Under a reaction R, a fixed point gives way by R/k_f: with E = 10 GPa that is 1 µm
-// for 1 MN. Stiffer springs make the matrix worse conditioned for no gain in the result.
+// Penalty stiffnesses (fixed points, supports, the default interface): model.h.
 //
 // Static analysis is DDA's (Shi 1988): every step starts from rest (v0 = a0 = 0) but keeps the
 // inertia term 2M/Δt² (β = ½) in its matrix. A block held only by contacts is then well posed
@@ -77,18 +69,6 @@
 namespace nmm::solve {
 
 namespace {
-
-double dist_to_loop(const double* xy, std::size_t n, double x, double y) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const double ax = xy[2 * j], ay = xy[2 * j + 1], bx = xy[2 * i], by = xy[2 * i + 1];
-    const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
-    double t = l2 > 0 ? ((x - ax) * dx + (y - ay) * dy) / l2 : 0;
-    t = std::clamp(t, 0.0, 1.0);
-    best = std::min(best, std::hypot(ax + t * dx - x, ay + t * dy - y));
-  }
-  return best;
-}
 
 std::string fmt_point(double x, double y) {
   std::ostringstream os;
@@ -134,31 +114,9 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   if (scene.insitu_stress.present)
     apply_insitu_stress(scene.insitu_stress, mesh, space_.order(), space_.scale(), s_.stress);
 
-  // Points: the element that contains each one, else the nearest within 1e-6·h (a point on a
-  // boundary), else bad input.
-  auto locate = [&](const Vec2& p, const std::string& path) {
-    std::int32_t best = -1;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t e = 0; e < ne; ++e) {
-      const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
-      const double* xy = mesh.loop_xy.data() + 2 * b;
-      if (point_in_loop(xy, n, p.x, p.y)) return TrackedPoint{static_cast<std::int32_t>(e), p.x, p.y, p.x, p.y};
-      const double d = dist_to_loop(xy, n, p.x, p.y);
-      if (d < best_d) {
-        best_d = d;
-        best = static_cast<std::int32_t>(e);
-      }
-    }
-    if (best < 0 || best_d > 1e-6 * mesh.mesh_size)
-      throw InputError(scene_name, path, "point " + fmt_point(p.x, p.y) + " lies outside every body");
-    return TrackedPoint{best, p.x, p.y, p.x, p.y};
-  };
-  for (std::size_t i = 0; i < scene.fixed_points.size(); ++i)
-    s_.fixed.push_back(locate(scene.fixed_points[i], "/fixed_points/" + std::to_string(i)));
-  for (std::size_t i = 0; i < scene.loads.size(); ++i)
-    s_.loads.push_back(locate(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point"));
-  for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
-    s_.measure.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
+  s_.fixed = model_.fixed_points();
+  s_.loads = model_.load_points();
+  s_.measure = model_.measure_points();
 
   // Fixed points and loads couple only the covers of their element: the element pattern holds
   // until contacts couple pairs of elements (update_pattern).
@@ -403,47 +361,9 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
       s_.loop_u[2 * v + 1] += uy;
     }
   }
-  auto move = [&](std::vector<TrackedPoint>& pts) {
-    for (TrackedPoint& p : pts) {
-      const int* g = space_.element_unknowns(p.element);
-      config_.shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
-      double ux = 0, uy = 0;
-      for (int a = 0; a < nf; ++a) {
-        ux += phi[a] * d[g[2 * a]];
-        uy += phi[a] * d[g[2 * a + 1]];
-      }
-      p.x += ux;
-      p.y += uy;
-    }
-  };
-  move(s_.fixed);
-  move(s_.loads);
-  move(s_.measure);
-  // Cover nodes move by their cover function at the node: its constant term for an untied
-  // cover (the basis is centred there); a tied cover evaluates its master's polynomial.
-  const int P = space_.terms();
-  const std::size_t nc = mesh_.cover_count();
-  std::vector<double> node_d(2 * nc, 0.0);
-  for (std::size_t c = 0; c < nc; ++c) {
-    const int first = space_.first_unknown(c);
-    const int mc = space_.basis_cover(c);
-    if (mc == static_cast<int>(c) || P == 1) {
-      node_d[2 * c] = d[first];
-      node_d[2 * c + 1] = d[first + 1];
-      continue;
-    }
-    const double xi = (s_.cover_xy[2 * c] - s_.cover_xy[2 * mc]) / space_.scale();
-    const double eta = (s_.cover_xy[2 * c + 1] - s_.cover_xy[2 * mc + 1]) / space_.scale();
-    for (int j = 0; j < P; ++j) {
-      Poly pj;
-      pj.degree = kMonomials.p[j] + kMonomials.q[j];
-      pj.c[j] = 1;
-      const double pv = pj(xi, eta);
-      node_d[2 * c] += pv * d[first + 2 * j];
-      node_d[2 * c + 1] += pv * d[first + 2 * j + 1];
-    }
-  }
-  for (std::size_t i = 0; i < s_.cover_xy.size(); ++i) s_.cover_xy[i] += node_d[i];
+  for (std::vector<TrackedPoint>* points : {&s_.fixed, &s_.loads, &s_.measure})
+    config_.move_points(d, *points);
+  config_.move_cover_nodes(d, s_.cover_xy);
   const bool dynamic = scene_.solver.dynamic;
   const double beta = s_.accel_known ? scene_.solver.newmark_beta : 0.5;
   const double k = scene_.solver.dynamic_factor;
