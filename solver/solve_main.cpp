@@ -42,6 +42,38 @@
 #include "time_stepper.h"
 #include "atomic_file.h"
 
+namespace {
+
+// --pictures: result.svg of the last state (result_picture.h) and the run's report
+// (run_report.h).
+nmm::report::ReportFiles write_pictures(const nmm::solve::TimeStepper& stepper, const nmm::SceneDef& scene,
+                                        const std::string& status, const std::string& out_dir,
+                                        double exaggerate, nmm::report::PictureField field) {
+  nmm::report::PictureState state;
+  state.time = stepper.time();
+  state.status = status;
+  state.loop_xy = &stepper.loop_xy();
+  const std::vector<double> mean_stress = stepper.mean_stress();  // [3·me] at any order
+  state.stress = &mean_stress;
+  for (const nmm::solve::Contact& c : stepper.contacts().contacts())
+    if (c.state != nmm::solve::ContactState::open)
+      state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex], stepper.loop_xy()[2 * c.at.vertex + 1],
+                                static_cast<int>(c.state), c.at.vertex, c.at.edge});
+  for (const nmm::solve::TrackedPoint& p : stepper.measure_points()) {
+    state.measure_points.push_back({p.x, p.y});
+    // x − (x − x0): what nmm-report computes from history.csv (x, ux), so its redraw of an
+    // exaggerated picture is this one byte for byte.
+    state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
+  }
+  state.exaggeration = exaggerate;
+  state.excavated_body = stepper.state().body_removed;
+  nmm::write_file_atomically(out_dir + "/result.svg",
+                             nmm::report::result_svg(stepper.mesh(), scene, state, field));
+  return nmm::report::make_run_report(out_dir);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
   std::string mesh_path, out_dir, config_path, restart_path, field_name = "displacement";
@@ -160,28 +192,8 @@ int main(int argc, char** argv) {
     energy.write_csv(out_dir);
 
     if (pictures) {
-      nmm::report::PictureState state;
-      state.time = stepper.time();
-      state.status = status;
-      state.loop_xy = &stepper.loop_xy();
-      const std::vector<double> mean_stress = stepper.mean_stress();  // [3·me] at any order
-      state.stress = &mean_stress;
-      for (const nmm::solve::Contact& c : stepper.contacts().contacts())
-        if (c.state != nmm::solve::ContactState::open)
-          state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex],
-                                    stepper.loop_xy()[2 * c.at.vertex + 1],
-                                    static_cast<int>(c.state), c.at.vertex, c.at.edge});
-      for (const nmm::solve::TrackedPoint& p : stepper.measure_points()) {
-        state.measure_points.push_back({p.x, p.y});
-        // x − (x − x0): what nmm-report computes from history.csv (x, ux), so its redraw of an
-        // exaggerated picture is this one byte for byte.
-        state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
-      }
-      state.exaggeration = exaggerate;
-      state.excavated_body = stepper.state().body_removed;
-      nmm::write_file_atomically(out_dir + "/result.svg",
-                                 nmm::report::result_svg(mesh, run.scene, state, field));
-      const nmm::report::ReportFiles files = nmm::report::make_run_report(out_dir);
+      const nmm::report::ReportFiles files =
+          write_pictures(stepper, run.scene, status, out_dir, exaggerate, field);
       if (!quiet)
         std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
                   << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";

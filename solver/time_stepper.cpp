@@ -181,39 +181,6 @@ void TimeStepper::compute_frames() {
                    std::to_string(s_.time) + " s (displacements too large for the time step)");
 }
 
-std::vector<double> TimeStepper::mean_stress() const {
-  const std::size_t T = stress_terms(), ne = mesh_.element_count();
-  if (T == 1) return s_.stress;
-  std::vector<double> out(3 * ne, 0.0);
-  for (std::size_t e = 0; e < ne; ++e) {
-    // The stress polynomial's origin is the element's first cover node, where it is now.
-    const std::int32_t c0 = mesh_.element_covers[3 * e];
-    const double ox = s_.cover_xy[2 * c0], oy = s_.cover_xy[2 * c0 + 1];
-    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
-    const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * b, n, ox, oy,
-                                               space_.scale(), space_.order());
-    if (!(m.m[0] > 0)) continue;
-    for (std::size_t t = 0; t < T; ++t)
-      for (int r = 0; r < 3; ++r) out[3 * e + r] += s_.stress[3 * (T * e + t) + r] * m.m[t] / m.m[0];
-  }
-  return out;
-}
-
-std::array<double, 3> TimeStepper::stress_at(std::size_t e, double x, double y) const {
-  const std::size_t T = stress_terms();
-  std::array<double, 3> out{};
-  const std::int32_t c0 = mesh_.element_covers[3 * e];
-  const double ox = s_.cover_xy[2 * c0], oy = s_.cover_xy[2 * c0 + 1];
-  for (std::size_t t = 0; t < T; ++t) {
-    Poly p;
-    p.degree = kMonomials.p[t] + kMonomials.q[t];
-    p.c[t] = 1;
-    const double v = p((x - ox) / space_.scale(), (y - oy) / space_.scale());
-    for (int r = 0; r < 3; ++r) out[r] += s_.stress[3 * (T * e + t) + r] * v;
-  }
-  return out;
-}
-
 void TimeStepper::update_pattern() {
   // Elements, then one coupling group per pair of elements with a contact (open or closed: all
   // the step's contacts can close within it). The pattern only grows: pairs that part keep their

@@ -22,6 +22,7 @@
 #include "run_state.h"
 #include "scene.h"
 #include "step_control.h"
+#include "stress_field.h"
 #include "system_matrix.h"
 
 namespace nmm::solve {
@@ -74,9 +75,11 @@ class TimeStepper {
   /// stress in the element's scaled frame coordinates (n = 0: the element's constant stress)
   const std::vector<double>& stress() const { return s_.stress; }
   /// [3·me] Pa, the mean stress of each element (∫σ dA / A; n = 0: stress() itself)
-  std::vector<double> mean_stress() const;
+  std::vector<double> mean_stress() const { return solve::mean_stress(mesh_, space_, s_); }
   /// Stress (Pa, σxx σyy τxy) of element e at the point (x, y) of its current configuration.
-  std::array<double, 3> stress_at(std::size_t e, double x, double y) const;
+  std::array<double, 3> stress_at(std::size_t e, double x, double y) const {
+    return solve::stress_at(mesh_, space_, s_, e, x, y);
+  }
   const std::vector<double>& loop_xy() const { return s_.loop_xy; }              ///< [2·v] m
   const std::vector<TrackedPoint>& measure_points() const { return s_.measure; }
   /// Displacement of a point (x, y) of element e in its current configuration, m.
