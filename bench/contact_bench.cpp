@@ -4,9 +4,11 @@
 //   contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE]
 //   contact_bench --trace N --sizes 10 [--dynamic] [--peer]   per-step counts of N steps
 //   contact_bench --peer [--sizes 10,20,30] [--steps 100] [--csv FILE]
-//       [--mesh H]  the DDA code's walls (reference/brick_wall.h peer_wall), static and dynamic,
-//       the first STEPS steps timed whole: what bench/ntdda_compare.sh sets beside the DDA
-//       code's time
+//       [--mesh H] [--contact-tolerance T] [--threads N]
+//       the DDA code's walls (reference/brick_wall.h peer_wall), static and dynamic, the first
+//       STEPS steps timed whole: what bench/ntdda_compare.sh sets beside the DDA code's time.
+//       T overrides solver.contact_tolerance; N solver threads (default 1, 0: nmm-solve's
+//       default); the CSV gives this thread's CPU time and the wall-clock time per step.
 //
 // Bricks 1 m × 0.5 m, odd rows shifted by half a brick, all touching their neighbours (one
 // interface set, penalty 2e11 N/m, φ = 35°), mesh size 0.5 m, Δt = 1e-3 s. Each wall takes 5
@@ -29,6 +31,7 @@
 #include "brick_wall.h"
 #include "cover_cutter.h"
 #include "stopwatch.h"
+#include "solver_threads.h"
 #include "time_stepper.h"
 
 namespace {
@@ -93,32 +96,39 @@ int trace_run(int n, bool dynamic, bool peer, int steps) {
 }
 // The peer's walls: the first `steps` steps timed whole (thread CPU), as the DDA code's
 // ms_per_step covers its whole analysis.
-int peer_run(const std::vector<int>& sizes, int steps, double h, const std::string& csv_path) {
+int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int threads, const std::string& csv_path) {
   const char* header =
       "mode,wall_n,mesh_size,blocks,unknowns,contacts,steps,cpu_ms_per_step,solves_per_step,"
       "factorisations_per_step,cg_per_step,friction_updates_per_step,detection_ms_per_step,"
-      "factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average\n";
+      "factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average,threads,wall_ms_per_step\n";
   std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (const bool dynamic : {false, true}) {
     for (int n : sizes) {
-      const nmm::SceneDef s = nmm::reference::peer_wall(n, n, dynamic, h);
+      nmm::SceneDef s = nmm::reference::peer_wall(n, n, dynamic, h);
+      if (tau > 0) s.solver.contact_tolerance = tau;
       const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
       nmm::solve::TimeStepper st(m, s, "bench");
+      st.set_threads(threads);
       std::int64_t done = 0;
+      // CPU time of this thread (what one-thread runs compare on a shared machine) and wall-clock
+      // time (what more threads save: their work is not this thread's CPU time).
       const double c0 = nmm::bench::thread_cpu_seconds();
+      const auto w0 = std::chrono::steady_clock::now();
       const std::string status = st.run_until(steps * s.solver.time_step, [&](std::int64_t) { ++done; });
       const double cpu = nmm::bench::thread_cpu_seconds() - c0;
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
       const nmm::solve::ContactSolveStats& cs = st.contact_solve_stats();
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(done, 1));
       char line[600];
-      std::snprintf(line, sizeof line, "%s,%d,%g,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f\n",
+      std::snprintf(line, sizeof line, "%s,%d,%g,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f,%d,%.3f\n",
                     dynamic ? "dynamic" : "static", n, h, m.block_count(), st.unknowns(),
                     st.contacts().contacts().size(), static_cast<long long>(done), 1e3 * cpu * per,
                     static_cast<double>(cs.newton) * per, static_cast<double>(cs.factorisations) * per,
                     static_cast<double>(cs.cg_iterations) * per, static_cast<double>(cs.strength_updates) * per,
                     1e3 * st.timings().contact_detection * per, 1e3 * cs.factorisation_seconds * per,
                     1e3 * cs.cg_seconds * per, st.time_step_cuts(), status == "ok" ? "ok" : status.c_str(),
-                    nmm::bench::load_average());
+                    nmm::bench::load_average(),
+                    threads > 0 ? threads : nmm::solve::default_solver_threads(st.unknowns()), 1e3 * wall * per);
       csv << line;
       std::fputs(line, stdout);
       std::fflush(stdout);
@@ -134,7 +144,8 @@ int main(int argc, char** argv) {
   int trace_steps = 0;
   bool trace_dynamic = false, peer = false;
   int peer_steps = 100;
-  double peer_mesh = 0.5;
+  double peer_mesh = 0.5, peer_tau = 0;
+  int peer_threads = 1;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) sizes = {5, 10};
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
@@ -143,14 +154,16 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--peer")) peer = true;
     else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) peer_steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc) peer_mesh = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--contact-tolerance") && i + 1 < argc) peer_tau = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) peer_threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
-      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--contact-tolerance T] [--threads N] [--csv FILE]\n");
       return 2;
     }
   }
   if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps);
-  if (peer) return peer_run(sizes, peer_steps, peer_mesh, csv_path);
+  if (peer) return peer_run(sizes, peer_steps, peer_mesh, peer_tau, peer_threads, csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"
       "factorisation_ms,solves_ms,update_ms,iterations_per_step,factorisations_per_step,"

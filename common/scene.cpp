@@ -381,9 +381,20 @@ NormalLawDef read_normal_law(const Reader& r) {
   const std::size_t model = r["model"].as_choice({"constant", "bandis_barton", "penalty"}, "normal model");
   // A joint set may hold the parameters of both models, so that a run can switch models with
   // --set joint_sets.NAME.normal.model=... on the same mesh; the model picks which are needed.
-  r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs", "hysteresis"}, "");
+  r.check_keys({"model", "kn", "kni", "vm", "jrc", "jcs", "ucs", "hysteresis", "reload"}, "");
   // Used by the bandis_barton closure only (kept, like kni and vm, when a run switches models).
   if (r.has("hysteresis")) law.hysteresis = r["hysteresis"].as_bool();
+  if (const auto reload = r.optional("reload")) {
+    // Bandis' later load cycles: a hyperbola of their own (joint_law.cpp), which needs the
+    // largest closure the hysteresis remembers.
+    reload->expect_object();
+    reload->check_keys({"kni", "vm"}, "");
+    law.reload_kni = reload->number("kni", kStiffness);
+    law.reload_vm = reload->number("vm", interval(0, false, kMaxClosure, true));
+    if (r.has("hysteresis") && !law.hysteresis)
+      r["hysteresis"].fail("the reloading cycle (reload) needs the hysteresis: true or leave it out");
+    law.hysteresis = true;
+  }
   if (r.has("kn")) law.kn = r.number("kn", kStiffness);
   if (model == 0 || model == 2) {
     law.model = model == 0 ? NormalModel::constant : NormalModel::penalty;
@@ -700,12 +711,17 @@ std::vector<SupportDef> read_supports(const Reader& r) {
   std::vector<SupportDef> out;
   for (std::size_t i = 0; i < r.size(); ++i) {
     const Reader s = r[i];
-    s.check_keys({"points", "fix"});
+    s.check_keys({"points", "fix", "velocity"});
     SupportDef d;
     d.points = s["points"].as_point_list(2, false, "a support");
     const std::size_t fix = s["fix"].as_choice({"x", "y", "xy"}, "fix direction");
     d.fix_x = fix != 1;
     d.fix_y = fix != 0;
+    if (const auto v = s.optional("velocity")) {
+      d.velocity = v->as_pair("a velocity [vx, vy] in m/s");
+      if ((!d.fix_x && d.velocity.x != 0) || (!d.fix_y && d.velocity.y != 0))
+        v->fail("a support moves only in the directions it holds (fix)");
+    }
     out.push_back(std::move(d));
   }
   return out;

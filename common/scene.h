@@ -53,6 +53,11 @@ struct NormalLawDef {
   double kni = 0;  ///< Pa/m, initial normal stiffness (Bandis–Barton)
   double vm = 0;   ///< m, maximum closure (Bandis–Barton)
   bool hysteresis = false;  ///< Bandis–Barton: unload and reload along the tangent at the largest closure
+  /// Bandis–Barton cycles ("reload"): below the largest closure the joint unloads and reloads on
+  /// the reloading cycle's hyperbola, initial stiffness reload_kni (Pa/m) and maximum closure
+  /// reload_vm (m), from the permanent closure (0: not given; then `hysteresis` is the tangent)
+  double reload_kni = 0;
+  double reload_vm = 0;
   // Given instead of kni and vm, these derive them (Barton–Bandis empirical relations):
   double jrc = 0;       ///< –, joint roughness coefficient (0 if not given)
   double jcs = 0;       ///< Pa, joint wall compressive strength
@@ -117,6 +122,9 @@ struct SupportDef {
   std::vector<Vec2> points;  ///< polyline, >= 2 points, m
   bool fix_x = false;        ///< held in x
   bool fix_y = false;        ///< held in y
+  /// m/s, the held position moves at this velocity from t = 0 (UDEC's `boundary xvelocity`):
+  /// held at u = velocity·t in its held directions; zero in a free direction. 0: held in place
+  Vec2 velocity;
 };
 
 /// Traction on the body boundary under a polyline (solver/boundary_conditions.h).

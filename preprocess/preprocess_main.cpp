@@ -93,22 +93,34 @@ int main(int argc, char** argv) {
       }
     }
     nmm::pre::check_scene_geometry(scene, scene_path);
-    for (const std::string& w : nmm::check_scene_usability(scene, scene_path, !strict_joints))
-      std::cerr << w << "\n";
+    // The warnings go out once the cut has succeeded, so that a scene the cut refuses gets its
+    // one error line alone (bad input: one line on stderr); a large cut, which takes minutes,
+    // gives them at its start instead.
+    std::vector<std::string> warnings = nmm::check_scene_usability(scene, scene_path, !strict_joints);
+    auto flush_warnings = [&warnings] {
+      for (const std::string& w : warnings) std::cerr << w << "\n";
+      warnings.clear();
+    };
     // Triangles of side h covering the bodies' bounding area: the cost driver of the cut.
     double area = 0;
     for (const nmm::BodyDef& b : scene.bodies) area += nmm::ring_area(b.outer);
     const double triangles = area / (0.4330127 * scene.mesh_size * scene.mesh_size);
-    if (triangles >= kWarnFrom)
-      std::fprintf(stderr,
-                   "%s: /mesh/size: warning: about %.3g triangles at mesh size %g m: the cut takes "
-                   "minutes and the mesh file is large (docs/preprocess.md, Large meshes)\n",
-                   scene_path.c_str(), triangles, scene.mesh_size);
+    if (triangles >= kWarnFrom) {
+      char buf[300];
+      std::snprintf(buf, sizeof buf,
+                    "%s: /mesh/size: warning: about %.3g triangles at mesh size %g m: the cut takes "
+                    "minutes and the mesh file is large (docs/preprocess.md, Large meshes)",
+                    scene_path.c_str(), triangles, scene.mesh_size);
+      warnings.emplace_back(buf);
+    }
     const bool stages = triangles >= kStagesFrom;
-    if (stages)
+    if (stages) {
+      flush_warnings();
       std::fprintf(stderr, "nmm-preprocess: cutting covers (about %.3g triangles)...\n", triangles);
+    }
     nmm::pre::CutTimings cut;
     nmm::Mesh mesh = nmm::pre::build_mesh(scene, scene_path, &cut);
+    flush_warnings();
     if (stages)
       std::fprintf(stderr,
                    "nmm-preprocess: cut in %.1f s (arrangement %.1f s, covers %.1f s); writing %s...\n",

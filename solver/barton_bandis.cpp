@@ -20,8 +20,9 @@
 // 70°: the friction angle and so the dilation angle (its half roughness term) are capped there.
 // Strength reduction (nmm-fos) divides τ by F at every σn and travel (the SRM of a nonlinear
 // criterion: τ_F(σn) = τ(σn)/F); the dilation, a kinematic property of the asperities, is kept.
-// The law is explicit in a step: δ and v advance at the end of each accepted step from the
-// step's shear |Δu| (advance_barton_bandis); within a step the strength uses the δ at its start.
+// δ and v advance at the end of each accepted step from the step's shear |Δu|
+// (advance_barton_bandis); within a step the contact's strength uses δ + |Δu| of the solution so
+// far, the travel at the end of the step (solver/contact.cpp, the friction fixed point).
 #include "barton_bandis.h"
 
 #include <algorithm>

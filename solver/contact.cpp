@@ -365,6 +365,15 @@ Spring shear_at(const ContactLaw& law, const Contact& c, double s) {
   return {sp.force, sp.stiffness, false};
 }
 
+// Barton–Bandis: the travel at the end of the step, the memory's (at its start) plus the step's
+// shear so far. The strength follows it in the friction fixed point below, as it follows the
+// normal force of the solution (implicit in the step), so that the joint's τ and δ at the end of
+// a step lie on the mobilised curve. With the travel at the start of the step the strength
+// lagged the curve by one step: at δp/250 per step by up to 1 % on the pre-peak rise and 2 % at
+// 0.1·δp, where τ rises from zero; 4 % at the seed joint's δp/340 near the start
+// (tests/test_barton_bandis.cpp DirectShearUnderDisplacementControl, docs/joint-studies.md).
+double end_of_step_travel(const Contact& c) { return c.joint.travel + std::abs(c.shear - c.shear0); }
+
 // Sliding: the trial force reaches the strength (a hyperbola with Rf = 1 only approaches it:
 // 99.9 % counts as slip).
 bool slides(const ContactLaw& law, const Contact& c) {
@@ -500,7 +509,7 @@ int ContactSet::update_strengths(double force_floor) {
     // sliding block then ends 0.17–0.31 % off Coulomb's answer, because its normal forces shift
     // between its corners as it slides.)
     const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint.travel) : 0.0;
+    double s = closed ? shear_strength(law, n, c.length, c.broken, end_of_step_travel(c)) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
     const double moved = std::abs(s - c.strength);
     if (!std::isfinite(c.strength)) {

@@ -189,12 +189,17 @@ void edge_terms(const Model& model, const Configuration& config, const RunState&
   const double* xy = s.loop_xy.data();
   for (std::size_t i = 0; i < model.support_edges().size(); ++i) {
     const SupportDef& sd = scene.supports[i];
+    // A moving support holds its edges at u = velocity·t at the end of the step: the spring
+    // sees the displacement less that.
+    const double held[2] = {sd.velocity.x * t_end, sd.velocity.y * t_end};
     for (const BoundaryEdge& be : model.support_edges()[i]) {
       if (removed[be.element]) continue;
       k.setZero();
       std::vector<double> f(static_cast<std::size_t>(nd), 0.0);
-      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next,
-                   s.loop_u.data() + 2 * be.vertex, s.loop_u.data() + 2 * be.next, sd.fix_x,
+      const double* u0 = s.loop_u.data() + 2 * be.vertex;
+      const double* u1 = s.loop_u.data() + 2 * be.next;
+      const double ua[2] = {u0[0] - held[0], u0[1] - held[1]}, ub[2] = {u1[0] - held[0], u1[1] - held[1]};
+      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next, ua, ub, sd.fix_x,
                    sd.fix_y, model.support_stiffness(), k.data(), f.data());
       system.add_group(be.element, k.data());
       add_force(be.element, f, 1.0);

@@ -19,6 +19,18 @@
 //     σn = max(0, σmax − kt·(δmax − δ)),  σmax = σn(δmax),  kt = Kni/(1 − δmax/Vm)²
 //   so the joint keeps the permanent closure δmax − σmax/kt = δmax²/Vm at zero stress,
 //   and loading beyond δmax continues on the virgin curve (force and tangent continuous there).
+//   With the reloading cycle's parameters (Kni2, Vm2: "reload"), Bandis, Lumsden & Barton's
+//   (1983) cycle curves instead: each later cycle is a hyperbola of its own, measured from the
+//   permanent closure δ0 the earlier loading left,
+//     σn = Kni2·x / (1 − x/Vm2),  x = δ − δ0,   kn = Kni2·L/(1 − x/Vm2)²
+//   through the largest stress reached, σ(δmax) = σmax, which fixes the permanent closure:
+//     δ0 = δmax − σmax·Vm2/(Kni2·Vm2 + σmax)
+//   Unloading and reloading follow it (the narrow loop between them in each of Bandis' later
+//   cycles is left out); beyond δmax the virgin curve goes on (force continuous). A reloading
+//   curve softer than the first loading's secant (δ0 < 0) is taken from δ0 = 0 and scaled to
+//   σmax at δmax: no permanent closure. Guard as on the virgin curve: x held at 0.99·Vm2, the
+//   force linear beyond with the tangent there (δ0 found on the guarded curve, so the force
+//   stays continuous at δmax even after the virgin curve's cap).
 // Shear, hyperbolic (Kulhawy 1975; Duncan–Chang form), elastic shear u ≥ 0, strength
 // τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact (c → the residual cohesion c_r once
 // the contact is broken: it slid or opened; c_r = 0 unless the joint set gives one):
@@ -58,6 +70,26 @@ SpringState normal_spring(const ContactLaw& law, double closure, double length, 
     return s;
   }
   const double cap = 0.99 * law.vm;
+  if (law.hysteresis && closure < closure_max && law.reload_kni > 0) {  // Bandis' later cycles
+    const double smax = normal_spring(law, closure_max, length).force / length;  // Pa
+    const double k2 = law.reload_kni, v2 = law.reload_vm;
+    // The later cycles' curve with the virgin curve's guard: x held at 0.99·Vm2, linear beyond.
+    const double xc = 0.99 * v2, rc = 1 - xc / v2, scap = k2 * xc / rc, kcap = k2 / (rc * rc);
+    auto stress = [&](double x) { return x <= xc ? k2 * x / (1 - x / v2) : scap + kcap * (x - xc); };
+    const double xmax = smax <= scap ? smax * v2 / (k2 * v2 + smax) : xc + (smax - scap) / kcap;
+    double d0 = closure_max - xmax, scale = 1;
+    if (d0 < 0) {
+      d0 = 0;
+      scale = smax / stress(closure_max);
+    }
+    const double x = closure - d0;
+    if (x <= 0) return s;
+    const double r = 1 - std::min(x, xc) / v2;
+    s.force = scale * length * stress(x);
+    s.stiffness = scale * k2 * length / (r * r);
+    s.capped = x > xc;
+    return s;
+  }
   if (law.hysteresis && closure < closure_max) {  // the unloading / reloading line
     const SpringState top = normal_spring(law, closure_max, length);
     s.force = top.force - top.stiffness * (closure_max - closure);

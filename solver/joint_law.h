@@ -16,7 +16,9 @@ struct ContactLaw {
   double kn = 0;        ///< Pa/m (constant normal) or N/m per contact point (penalty)
   double kni = 0;       ///< Pa/m, initial normal stiffness (Bandis–Barton)
   double vm = 0;        ///< m, maximum closure (Bandis–Barton)
-  bool hysteresis = false;  ///< Bandis–Barton: unload and reload along the tangent at the largest closure
+  bool hysteresis = false;  ///< Bandis–Barton: unload and reload below the largest closure
+  double reload_kni = 0;    ///< Pa/m, the reloading cycle's Kni (0: the tangent at the largest closure)
+  double reload_vm = 0;     ///< m, the reloading cycle's Vm
   double ks = 0;        ///< Pa/m (constant shear) or N/m per contact point (penalty)
   double ksi = 0;       ///< Pa/m, initial shear stiffness (hyperbolic)
   double rf = 1;        ///< –, failure ratio (hyperbolic)

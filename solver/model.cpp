@@ -29,6 +29,8 @@ ContactLaw joint_set_law(const JointSetDef& js) {
   law.residual_cohesion = js.residual_cohesion;
   law.tensile = js.tensile_strength;
   law.hysteresis = js.normal.hysteresis;
+  law.reload_kni = js.normal.reload_kni;
+  law.reload_vm = js.normal.reload_vm;
   if (js.shear.model == ShearModel::barton_bandis)
     law.bb = {js.shear.jrc, js.shear.jcs, js.friction_deg,
               peak_shear_displacement(js.shear.jrc, js.shear.length), js.shear.strength_factor};

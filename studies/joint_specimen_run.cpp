@@ -25,4 +25,27 @@ JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, 
   return r;
 }
 
+std::vector<double> run_closure_cycles(const Mesh& mesh, SceneDef scene,
+                                       const std::vector<double>& targets, std::string* status) {
+  const double top = *std::max_element(targets.begin(), targets.end());
+  TimeTable cycles;
+  cycles.time = {0};
+  cycles.value = {0};
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    cycles.time.insert(cycles.time.end(), {0.15 * static_cast<double>(k) + 0.05, 0.15 * static_cast<double>(k) + 0.15});
+    cycles.value.insert(cycles.value.end(), {targets[k] / top, targets[k] / top});
+  }
+  scene.load_tables.assign(scene.loads.size(), cycles);
+  solve::TimeStepper st(mesh, scene, "closure cycles");
+  std::vector<double> closure;
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    *status = st.run_until(0.15 * static_cast<double>(k) + 0.15, [](std::int64_t) {});
+    if (*status != "ok") return {};
+    const auto a = st.displacement_at(st.measure_points()[0]);
+    const auto b = st.displacement_at(st.measure_points()[1]);
+    closure.push_back(b[1] - a[1]);
+  }
+  return closure;
+}
+
 }  // namespace nmm::studies

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "joint_specimen.h"
 #include "mesh.h"
@@ -22,5 +23,12 @@ struct JointSpecimenResult {
 /// Runs the loaded specimen for `seconds` and reads the jumps between measure points 0 (above)
 /// and 1 (below).
 JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, double seconds);
+
+/// Load cycles: the specimen's top loads (`scene`'s, which must be the specimen loaded to
+/// σ_top = max of `targets`) scaled by a time table to each normal stress of `targets` (Pa) in
+/// turn — a 50 ms ramp, then a 100 ms hold — and the closure (m) read at the end of each hold.
+/// Empty on a run that stops (the status in *status).
+std::vector<double> run_closure_cycles(const Mesh& mesh, SceneDef scene,
+                                       const std::vector<double>& targets, std::string* status);
 
 }  // namespace nmm::studies

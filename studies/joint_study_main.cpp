@@ -7,6 +7,10 @@
 //      joint laws: slip against load, and the load at which sliding sets in;
 //  (c) data/tunnel.json, constant springs against the joint laws: the spread of the contacts'
 //      normal and shear stiffness.
+// Beside the seed's laws, each study runs the full model too: Barton–Bandis shear (mobilised
+// roughness, peak, softening, dilation) on Bandis' closure with its load cycles (`reload`), and
+// (a) adds the joint sheared under displacement control through and past the peak, and a load
+// cycle of its closure.
 // Writes CSV, Markdown tables and SVG plots into OUTDIR. Exit status 2 on bad input.
 #include <CLI/CLI.hpp>
 
@@ -23,6 +27,8 @@
 #include "atomic_file.h"
 #include "command_line.h"
 #include "cover_cutter.h"
+#include "direct_shear.h"
+#include "direct_shear_run.h"
 #include "error.h"
 #include "joint_specimen.h"
 #include "joint_specimen_run.h"
@@ -57,6 +63,24 @@ void use_joint_laws(SceneDef& s) {
   for (auto& js : s.joint_sets) {
     js.normal.model = nmm::NormalModel::bandis_barton;
     js.shear.model = nmm::ShearModel::hyperbolic;
+  }
+}
+
+// The full model (docs/joint-studies.md): Bandis' closure with its later cycles (Kni2 = 3·Kni,
+// Vm2 = 0.485·Vm: stated, not derived; the Barton–Bandis relations give the first cycle only) and
+// Barton–Bandis shear on the joint set's JRC and JCS, φ taken as φr, ks = Ksi, for blocks of
+// length `block_length` (m).
+void use_full_model(SceneDef& s, double block_length) {
+  for (auto& js : s.joint_sets) {
+    js.normal.model = nmm::NormalModel::bandis_barton;
+    js.normal.hysteresis = true;
+    js.normal.reload_kni = 3 * js.normal.kni;
+    js.normal.reload_vm = 0.485 * js.normal.vm;
+    js.shear.model = nmm::ShearModel::barton_bandis;
+    js.shear.ks = js.shear.ksi;
+    js.shear.jrc = js.normal.jrc;
+    js.shear.jcs = js.normal.jcs;
+    js.shear.length = block_length;
   }
 }
 
@@ -145,28 +169,130 @@ int main(int argc, char** argv) {
                          "shear displacement us, mm", "τ, MPa", false, false, {ss_c, ss_s}},
                         out + "/joint_shear.svg");
 
+    // ---- (a) continued: the full model, sheared through the peak, and a closure cycle -------
+    SceneDef full = joint;
+    use_full_model(full, 2.0);
+    const auto& fl = full.joint_sets[0];
+    const nmm::reference::BartonJoint bj{fl.shear.jrc, fl.shear.jcs, fl.friction_deg,
+                                         2.0 / 500 * std::pow(fl.shear.jrc / 2.0, 0.33)};
+    const double dp = bj.peak_slip, tau_p = nmm::reference::barton_shear_stress(bj, sn, dp);
+    md << "\n### (a) continued: direct shear through the peak, seed's law and full model\n\n"
+       << "σn = 5 MPa held by the loads, the upper block pushed at " << num(dp / 0.34 * 1e3, "%.1f")
+       << " mm/s (δp/340 per 1 ms step). Full model: JRC " << fl.shear.jrc << ", JCS "
+       << fl.shear.jcs / 1e6 << " MPa, φr " << fl.friction_deg << "°, block length 2 m: δp = "
+       << num(dp * 1e3) << " mm, τp = " << num(tau_p / 1e6) << " MPa, d_mob at the peak "
+       << num(0.5 * fl.shear.jrc * std::log10(fl.shear.jcs / sn)) << "°; seed: τf = σn·tan φ = "
+       << num(tf / 1e6) << " MPa.\n\n"
+       << "| test | model | τ, solver | closed form | error | opening, solver | closed form |\n"
+       << "|---|---|---:|---:|---:|---:|---:|\n";
+    std::ostringstream dcsv;  // written atomically at the end
+    dcsv << "model,slip_m,shear_stress_pa,normal_stress_pa,closure_m\n";
+    nmm::PlotSeries dh{"seed's law (solver)", {}, {}, "#1f77b4", false, true},
+        df{"full model (solver)", {}, {}, "#d62728", false, true},
+        dhc{"hyperbola", {}, {}, "#1f77b4"}, dfc{"Barton's model", {}, {}, "#d62728"};
+    const int shear_steps = quick ? 600 : 2000;  // to 1.8·δp or 5.9·δp
+    const double closed0 = sn * vm / (kni * vm + sn);  // the closure under σn alone
+    for (int model = 0; model < 2; ++model) {
+      const SceneDef s = nmm::reference::direct_shear_scene(model ? fl : law, sn, dp / 0.34);
+      const nmm::studies::DirectShearRun run =
+          nmm::studies::run_direct_shear(nmm::pre::build_mesh(s, "direct shear"), s, shear_steps, 1);
+      const char* name = model ? "full model" : "seed's law";
+      for (std::size_t i = 0; i < run.samples.size(); i += 5) {  // every 0.1 mm
+        const auto& r = run.samples[i];
+        dcsv << (model ? "full" : "seed") << "," << r.slip << "," << r.shear_stress << ","
+             << r.normal_stress << "," << r.closure << "\n";
+        if (i % 25 != 0) continue;  // markers every 0.5 mm
+        (model ? df : dh).x.push_back(r.slip * 1e3);
+        (model ? df : dh).y.push_back(r.shear_stress / 1e6);
+      }
+      for (double d : {0.5e-3, 1e-3, 2e-3, dp, 10e-3, 20e-3, 40e-3}) {
+        if (d > run.samples.back().slip) continue;
+        std::size_t i = 1;
+        while (i + 1 < run.samples.size() && run.samples[i].slip < d) ++i;
+        const auto& a = run.samples[i - 1];
+        const auto& b = run.samples[i];
+        const double t = (d - a.slip) / (b.slip - a.slip);
+        const double tau = a.shear_stress + t * (b.shear_stress - a.shear_stress);
+        const double s_n = a.normal_stress + t * (b.normal_stress - a.normal_stress);
+        const double open = closed0 - (a.closure + t * (b.closure - a.closure));
+        const double tf_n = s_n * tanphi;  // over the overlap, as the solver's stresses
+        const double want = model ? nmm::reference::barton_shear_stress(bj, s_n, d)
+                                  : std::min(d / (1 / ksi + rf * d / tf_n), tf_n);
+        const std::string test = "δ " + (d == dp ? num(d * 1e3) + " mm (δp)" : num(d * 1e3) + " mm");
+        md << "| " << test << " | " << name << " | " << num(tau / 1e6) << " MPa | "
+           << num(want / 1e6) << " MPa | " << pct(tau / want - 1) << " | " << num(open * 1e3)
+           << " mm | "
+           << (model ? num(nmm::reference::barton_opening(bj, sn, d) * 1e3) + " mm" : std::string("0 mm"))
+           << " |\n";
+      }
+      if (run.status != "ok") md << "\n(" << name << ": the run stopped: " << run.status << ")\n";
+    }
+    const double d_end = std::max(dh.x.empty() ? 0.0 : dh.x.back(), df.x.empty() ? 0.0 : df.x.back()) * 1e-3;
+    for (int k = 0; k <= 200; ++k) {
+      const double d = d_end * k / 200;
+      dhc.x.push_back(d * 1e3);
+      dhc.y.push_back(std::min(d / (1 / ksi + rf * d / tf), tf) / 1e6);
+      dfc.x.push_back(d * 1e3);
+      dfc.y.push_back(nmm::reference::barton_shear_stress(bj, sn, d) / 1e6);
+    }
+    nmm::write_svg_plot({"Direct shear under displacement control, σn = 5 MPa: seed's law and full model",
+                         "shear displacement, mm", "τ, MPa", false, false, {dhc, dfc, dh, df}},
+                        out + "/direct_shear_models.svg");
+    // A closure cycle: the seed's closure retraces its curve; the full model's stays closed.
+    const std::vector<double> cyc = {5e6, 10e6, 5e6, 1e6, 0.5e6, 5e6, 10e6};
+    md << "\n### (a) continued: a closure cycle, seed's law and full model\n\n"
+       << "Full model: Kni2 = " << num(fl.normal.reload_kni / 1e9) << " GPa/m, Vm2 = "
+       << num(fl.normal.reload_vm * 1e3) << " mm for the later cycles.\n\n"
+       << "| test | closure, seed's law | closed form | closure, full model | closed form |\n"
+       << "|---|---:|---:|---:|---:|\n";
+    SceneDef seed_cycle = joint, full_cycle = full;
+    nmm::reference::load_joint_specimen(seed_cycle, 10e6, 0);
+    nmm::reference::load_joint_specimen(full_cycle, 10e6, 0);
+    std::string st1, st2;
+    const std::vector<double> c_seed = nmm::studies::run_closure_cycles(jm, seed_cycle, cyc, &st1);
+    const std::vector<double> c_full = nmm::studies::run_closure_cycles(jm, full_cycle, cyc, &st2);
+    if (c_seed.size() == cyc.size() && c_full.size() == cyc.size()) {
+      const double k2 = fl.normal.reload_kni, v2 = fl.normal.reload_vm;
+      double smax = 0;
+      for (std::size_t k = 0; k < cyc.size(); ++k) {
+        const double s = cyc[k], seed_want = s * vm / (kni * vm + s);
+        const bool virgin = s >= smax;
+        smax = std::max(smax, s);
+        const double d0 = smax * vm / (kni * vm + smax) - smax * v2 / (k2 * v2 + smax);
+        const double full_want = virgin ? seed_want : d0 + s * v2 / (k2 * v2 + s);
+        md << "| " << k + 1 << ": " << (k == 0 || cyc[k] > cyc[k - 1] ? "load to " : "unload to ")
+           << num(s / 1e6) << " MPa | " << num(c_seed[k] * 1e3) << " mm | " << num(seed_want * 1e3)
+           << " mm | " << num(c_full[k] * 1e3) << " mm | " << num(full_want * 1e3) << " mm |\n";
+      }
+    } else {
+      md << "\n(the cycle runs stopped: " << st1 << " / " << st2 << ")\n";
+    }
+
     // ---- (b) shear ramp past the strength: constant springs against the joint laws --------
     md << "\n### (b) Shear load ramped past the strength (σn = 5 MPa)\n\n"
-       << "| τ/τf | slip, constant springs | slip, joint laws |\n|---:|---:|---:|\n";
+       << "| τ/τf | slip, constant springs | slip, joint laws | slip, full model |\n|---:|---:|---:|---:|\n";
     SceneDef constant = joint;
     use_constant(constant);
     std::vector<double> ramp = quick ? std::vector<double>{0.5, 1.05}
                                      : std::vector<double>{0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.98, 1.02, 1.05, 1.1};
     nmm::PlotSeries rc{"constant springs", {}, {}, "#1f77b4", true, true},
-        rl{"joint laws", {}, {}, "#d62728", true, true};
+        rl{"joint laws", {}, {}, "#d62728", true, true}, rf_{"full model", {}, {}, "#2ca02c", true, true};
     std::ostringstream rcsv;  // written atomically at the end
-    rcsv << "tau_over_tf,slip_constant_m,slip_joint_laws_m\n";
+    rcsv << "tau_over_tf,slip_constant_m,slip_joint_laws_m,slip_full_model_m\n";
     for (double f : ramp) {
       std::string s1, s2;
       const double uc = joint_response(constant, jm, sn, f * tf, 0.3, &s1).second;
       const double ul = joint_response(joint, jm, sn, f * tf, 0.3, &s2).second;
-      rcsv << f << "," << uc << "," << ul << "\n";
-      md << "| " << f << " | " << num(uc * 1e3) << " mm | " << num(ul * 1e3) << " mm |\n";
+      const double uf = joint_response(full, jm, sn, f * tf, 0.3, &s2).second;
+      rcsv << f << "," << uc << "," << ul << "," << uf << "\n";
+      md << "| " << f << " | " << num(uc * 1e3) << " mm | " << num(ul * 1e3) << " mm | "
+         << num(uf * 1e3) << " mm |\n";
       rc.x.push_back(f), rc.y.push_back(std::max(uc, 1e-9) * 1e3);
       rl.x.push_back(f), rl.y.push_back(std::max(ul, 1e-9) * 1e3);
+      rf_.x.push_back(f), rf_.y.push_back(std::max(uf, 1e-9) * 1e3);
     }
     nmm::write_svg_plot({"Slip after 0.3 s under a shear load, σn = 5 MPa", "τ / τf",
-                         "slip, mm (log)", false, true, {rc, rl}},
+                         "slip, mm (log)", false, true, {rc, rl, rf_}},
                         out + "/shear_ramp.svg");
 
     // ---- (c) a jointed tunnel: the spread of contact stiffness -----------------------------
@@ -180,9 +306,10 @@ int main(int argc, char** argv) {
           "(min – median – max) | ks per metre, Pa/m (min – max) |\n|---|---:|---:|---:|---:|\n";
     nmm::PlotSeries scatter{"contacts (joint laws)", {}, {}, "#d62728", false, true};
     const double kni_t = tun.joint_sets[0].normal.kni, vm_t = tun.joint_sets[0].normal.vm;
-    for (int variant = 0; variant < 2; ++variant) {
+    const char* variants[] = {"constant springs", "joint laws", "full model"};
+    for (int variant = 0; variant < 3; ++variant) {
       SceneDef s = tun;
-      if (variant == 0) use_constant(s); else use_joint_laws(s);
+      if (variant == 0) use_constant(s); else if (variant == 1) use_joint_laws(s); else use_full_model(s, 1.0);
       nmm::solve::TimeStepper st(tm, s, "tunnel");
       const std::string status =
           st.run_until(static_cast<double>(s.solver.steps) * s.solver.time_step, [](std::int64_t) {});
@@ -190,7 +317,7 @@ int main(int argc, char** argv) {
       std::size_t i = 0;
       for (const auto& c : st.contacts().contacts()) {
         if (c.state == nmm::solve::ContactState::open) continue;
-        kcsv << (variant ? "joint_laws" : "constant") << "," << i++ << "," << -c.gap << ","
+        kcsv << (variant == 2 ? "full_model" : variant ? "joint_laws" : "constant") << "," << i++ << "," << -c.gap << ","
              << c.kn_now << "," << c.ks_now << "," << c.length << "\n";
         kn_point.push_back(c.kn_now);
         const double L = std::max(c.length, 1e-12);
@@ -203,7 +330,7 @@ int main(int argc, char** argv) {
       }
       for (auto* v : {&kn_point, &kn_m, &ks_m}) std::sort(v->begin(), v->end());
       if (kn_point.empty()) continue;
-      md << "| " << (variant ? "joint laws" : "constant springs") << " (" << status.substr(0, 2)
+      md << "| " << variants[variant] << " (" << status.substr(0, 2)
          << ") | " << kn_point.size() << " | " << num(kn_point.front()) << " – "
          << num(kn_point.back()) << " | "
          << num(kn_m.front()) + " – " + num(kn_m[kn_m.size() / 2]) + " – " + num(kn_m.back())
@@ -229,6 +356,7 @@ int main(int argc, char** argv) {
                         out + "/tunnel_stiffness.svg");
     nmm::write_file_atomically(out + "/joint_curves.csv", csv.str());
     nmm::write_file_atomically(out + "/shear_ramp.csv", rcsv.str());
+    nmm::write_file_atomically(out + "/direct_shear_models.csv", dcsv.str());
     nmm::write_file_atomically(out + "/tunnel_stiffness.csv", kcsv.str());
     nmm::write_file_atomically(out + "/joint_studies_tables.md", md.str());
     std::cout << md.str();

@@ -11,6 +11,8 @@
 
 #include "barton_bandis.h"
 #include "cover_cutter.h"
+#include "direct_shear.h"
+#include "direct_shear_run.h"
 #include "joint_law.h"
 #include "joint_specimen.h"
 #include "joint_specimen_run.h"
@@ -28,15 +30,8 @@ constexpr double kJrc = 10, kJcs = 100e6, kPhiR = 30, kLength = 1;
 
 BartonBandis worked_law() { return {kJrc, kJcs, kPhiR, peak_shear_displacement(kJrc, kLength)}; }
 
-// Barton (1982), written out again here (not read from the code under test).
-double table_ratio(double r, double phi_r, double i) {
-  const double x[] = {0, 0.3, 0.6, 1, 2, 4, 10, 25, 100};
-  const double y[] = {-phi_r / i, 0, 0.75, 1, 0.85, 0.7, 0.5, 0.4, 0};
-  if (r >= 100) return 0;
-  int k = 1;
-  while (r > x[k]) ++k;
-  return y[k - 1] + (r - x[k - 1]) / (x[k] - x[k - 1]) * (y[k] - y[k - 1]);
-}
+// Barton (1982), written out apart from the code under test: reference/direct_shear.h.
+double table_ratio(double r, double phi_r, double i) { return reference::barton_jrc_ratio(r, phi_r, i); }
 
 TEST(BartonBandis, PeakDisplacementAndScaleCorrections) {
   // δp = (1/500)·10^0.33 m.
@@ -166,13 +161,12 @@ SceneDef shear_box(double sigma_n, double tau, double cns_k, double phi_r = kPhi
   js.shear.jrc = kJrc;
   js.shear.jcs = kJcs;
   js.shear.length = kLength;
-  // Δt = 1 ms (the specimen's): the strength follows the travel from step to step (explicit),
-  // and a quasi-static step moves the block by its out-of-balance force times βΔt²/M; below
-  // ~3 ms that stays a contraction on the steep pre-peak curve (docs/contact.md).
+  // Δt = 1 ms (the specimen's): a quasi-static step moves the block by its out-of-balance force
+  // times βΔt²/M; small steps keep each step's shear small against δp (docs/contact.md).
   SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
   reference::load_joint_specimen(s, sigma_n, tau);
   if (cns_k > 0) {
-    s.supports.push_back({{{0, 2}, {2, 2}}, false, true});
+    s.supports.push_back({{{0, 2}, {2, 2}}, false, true, {}});
     s.solver.support_stiffness = cns_k;
   }
   return s;
@@ -297,18 +291,25 @@ namespace {
 // 0.4·σ1 (the loads follow a time table). With hysteresis the joint reopens only along the
 // tangent at its largest closure, δ = δmax − 0.6·σ1/kt; without, it retraces the curve to
 // δ(2 MPa). Kni 15.35 GPa/m, Vm 0.227 mm (JRC 10, JCS 100 MPa, σc 150 MPa).
+// A joint of Bandis–Barton closure (Kni Pa/m, Vm m) and a constant shear spring, for the closure
+// tests below.
+JointSetDef closure_joint(double kni, double vm, bool hysteresis) {
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = 30;
+  js.normal.model = NormalModel::bandis_barton;
+  js.normal.kni = kni;
+  js.normal.vm = vm;
+  js.normal.hysteresis = hysteresis;
+  js.shear.model = ShearModel::constant;
+  js.shear.ks = 1e10;
+  return js;
+}
+
 TEST(BartonBandisSolver, ClosureHysteresisThroughTheSolver) {
   const double kni = 15.35e9, vm = 0.227e-3, s1 = 5e6, s2 = 0.4 * s1;
   auto run = [&](bool hysteresis) {
-    JointSetDef js;
-    js.name = "joint";
-    js.friction_deg = 30;
-    js.normal.model = NormalModel::bandis_barton;
-    js.normal.kni = kni;
-    js.normal.vm = vm;
-    js.normal.hysteresis = hysteresis;
-    js.shear.model = ShearModel::constant;
-    js.shear.ks = 1e10;
+    const JointSetDef js = closure_joint(kni, vm, hysteresis);
     SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
     reference::load_joint_specimen(s, s1, 0);
     TimeTable unload;
@@ -359,6 +360,157 @@ TEST(BartonBandisSolver, RestartCarriesTheJointMemoryBitwise) {
               straight.state_hash().substr(0, 12).c_str(), second.state_hash().substr(0, 12).c_str());
   EXPECT_EQ(second.state_hash(), straight.state_hash());
   EXPECT_NE(first.state_hash(), straight.state_hash());
+}
+
+}  // namespace
+}  // namespace nmm::solve
+
+namespace nmm::solve {
+namespace {
+
+// Displacement-controlled direct shear through and past the peak (reference/direct_shear.h):
+// Barton's series (JRC 10, JCS 100 MPa, φr 25°, a 1 m joint: δp = 4.276 mm) at σn = 0.5, 2 and
+// 5 MPa, the upper block pushed at δp/250 per 1 ms step to 10·δp. Against Barton's model written
+// out in reference/direct_shear.cpp: the peak strength within 1 % of τp, the slip at the peak
+// within 2 % of δp, the dilation angle there within 2 % of d_mob = ½·JRC·log10(JCS/σn) and the
+// opening within 3 % of ∫ tan d_mob dδ (as the force-controlled tests above); τ along the whole
+// curve (pre-peak rise, peak, softening to half the roughness at 10·δp) within 2 % of τ(δ) at
+// sampled points from 0.1·δp (where τ rises from zero) to 9.8·δp. Measured (2026-11-25): peak
+// −0.02/−0.05/−0.21 %, its slip +0.15/+0.05/+0.49 % (readings δp/250 = 0.4 % apart), dilation
+// angle −1.0/−0.4/+0.9 %, opening −1.0/+0.4/+2.1 %, the curve within 0.18/0.42/0.62 % (within
+// 0.07 % past 1.2·δp). With the strength at the travel of the start of the step (before
+// contact.cpp's end_of_step_travel) it lagged one step: −2.0 % at 0.1·δp, up to −1 % on the rest
+// of the rise. The stresses are over the faces' overlap (2 m − slip): by 10·δp the upper block
+// overhangs by 2 %.
+TEST(BartonBandisSolver, DirectShearUnderDisplacementControl) {
+  const double phi_r = 25, dp = peak_shear_displacement(kJrc, kLength), kn = 1e12;
+  const reference::BartonJoint model{kJrc, kJcs, phi_r, dp};
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = phi_r;
+  js.normal.model = NormalModel::constant;
+  js.normal.kn = kn;
+  js.shear.model = ShearModel::barton_bandis;
+  js.shear.ks = 1e12;
+  js.shear.jrc = kJrc;
+  js.shear.jcs = kJcs;
+  js.shear.length = kLength;
+  for (double sn : {0.5e6, 2e6, 5e6}) {
+    const SceneDef s = reference::direct_shear_scene(js, sn, dp / 0.25);
+    const studies::DirectShearRun run =
+        studies::run_direct_shear(pre::build_mesh(s, "direct shear"), s, 2500, 1);
+    ASSERT_EQ(run.status, "ok");
+    const auto& v = run.samples;
+    // The peak: the largest shear stress, and the slip where it stands.
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i].shear_stress > v[k].shear_stress) k = i;
+    const double tau_p = barton_shear_stress(model, v[k].normal_stress, dp);
+    const double d_mob = 0.5 * kJrc * std::log10(kJcs / sn);
+    // Dilation angle at the peak: the opening's slope over the samples within ±2 % of δp.
+    std::size_t a = k, b = k;
+    while (a > 0 && v[a - 1].slip > 0.98 * dp) --a;
+    while (b + 1 < v.size() && v[b + 1].slip < 1.02 * dp) ++b;
+    const double slope = (v[a].closure - v[b].closure) / (v[b].slip - v[a].slip);
+    const double angle = std::atan(slope) * 180 / kPi;
+    const double opening = sn / kn - v[k].closure;
+    const double want_opening = reference::barton_opening(model, sn, v[k].slip);
+    std::printf("σn %.1f MPa: peak τ %.4f MPa (Barton %.4f, %+.2f %%) at slip %.4f mm (δp %.4f, "
+                "%+.2f %%); dilation angle %.3f° (d_mob %.3f°), opening %.4f mm (Barton %.4f)\n",
+                sn / 1e6, v[k].shear_stress / 1e6, tau_p / 1e6, 100 * (v[k].shear_stress / tau_p - 1),
+                v[k].slip * 1e3, dp * 1e3, 100 * (v[k].slip / dp - 1), angle, d_mob, opening * 1e3,
+                want_opening * 1e3);
+    EXPECT_NEAR(v[k].shear_stress, tau_p, 0.01 * tau_p);
+    EXPECT_NEAR(v[k].slip, dp, 0.02 * dp);
+    EXPECT_NEAR(angle, d_mob, 0.02 * d_mob);
+    EXPECT_NEAR(opening, want_opening, 0.03 * want_opening);
+    // The curve at sampled slips (linear between readings 0.4 % of δp apart).
+    double worst = 0;
+    for (double r : {0.1, 0.2, 0.3, 0.45, 0.5, 0.6, 0.8, 0.9, 1.0, 1.2, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 9.8}) {
+      std::size_t i = 1;
+      while (i + 1 < v.size() && v[i].slip < r * dp) ++i;
+      const double t = (r * dp - v[i - 1].slip) / (v[i].slip - v[i - 1].slip);
+      const double tau = v[i - 1].shear_stress + t * (v[i].shear_stress - v[i - 1].shear_stress);
+      const double sn_i = v[i - 1].normal_stress + t * (v[i].normal_stress - v[i - 1].normal_stress);
+      const double want = barton_shear_stress(model, sn_i, r * dp);
+      worst = std::max(worst, std::abs(tau / want - 1));
+      EXPECT_NEAR(tau, want, 0.02 * want) << "σn " << sn << " at δ/δp " << r;
+    }
+    std::printf("  τ–δ curve from 0.1 to 9.8·δp: largest error %.2f %%; at 9.8·δp τ %.4f MPa "
+                "(residual σn·tan φr %.4f)\n", 100 * worst, v.back().shear_stress / 1e6,
+                sn * std::tan(rad(phi_r)) / 1e6);
+  }
+}
+
+}  // namespace
+}  // namespace nmm::solve
+
+namespace nmm::solve {
+namespace {
+
+// Bandis' load cycles through the solver (the normal law's "reload" option): the single-joint
+// specimen loaded, unloaded and reloaded by a time table on its top loads, the closure read at
+// the end of each hold. The published curve forms (Bandis, Lumsden & Barton 1983), each cycle a
+// hyperbola σn = Kni·x/(1 − x/Vm) with its own Kni and Vm:
+//   first cycle (virgin): x = δ, Kni = 15.35 GPa/m, Vm = 0.227 mm (JRC 10, JCS 100 MPa, σc 150 MPa);
+//   later cycles: x = δ − δ0, Kni2 = 46.05 GPa/m (3·Kni: stiffer), Vm2 = 0.110 mm, from the
+//   permanent closure δ0 = δmax − σmax·Vm2/(Kni2·Vm2 + σmax) the largest load σmax left.
+// Loaded to 5 MPa (δmax 0.1338 mm, δ0 0.0792 mm), unloaded to 0.3 MPa, reloaded to 5 and on to
+// 8 MPa (the virgin curve again), unloaded to 1 MPa from there (a new δ0 0.0908 mm). Every
+// reading within 2 % of its cycle's curve.
+TEST(BartonBandisSolver, ClosureCyclesFollowBandisCurves) {
+  const double kni = 15.35e9, vm = 0.227e-3, kni2 = 3 * kni, vm2 = 0.110e-3, top = 8e6;
+  const std::vector<double> target = {1e6, 2.5e6, 5e6, 3e6, 1e6, 0.3e6, 1e6, 3e6, 5e6, 8e6, 4e6, 1e6};
+  JointSetDef js = closure_joint(kni, vm, true);
+  js.normal.reload_kni = kni2;
+  js.normal.reload_vm = vm2;
+  SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
+  reference::load_joint_specimen(s, top, 0);
+  std::string status;
+  const std::vector<double> closures = studies::run_closure_cycles(pre::build_mesh(s, "cycles"), s, target, &status);
+  ASSERT_EQ(status, "ok");
+  auto virgin = [&](double sn) { return sn * vm / (kni * vm + sn); };
+  double smax = 0;
+  for (std::size_t k = 0; k < target.size(); ++k) {
+    const double closure = closures[k], sn = target[k];
+    double want;
+    const char* cycle;
+    if (sn >= smax) {
+      smax = sn;
+      want = virgin(sn);
+      cycle = "virgin";
+    } else {
+      const double d0 = virgin(smax) - smax * vm2 / (kni2 * vm2 + smax);
+      want = d0 + sn * vm2 / (kni2 * vm2 + sn);
+      cycle = "later cycle";
+    }
+    std::printf("σn %.1f MPa (%s, σmax %.1f MPa): closure %.5f mm, Bandis %.5f mm (%+.2f %%)\n",
+                sn / 1e6, cycle, smax / 1e6, closure * 1e3, want * 1e3, 100 * (closure / want - 1));
+    EXPECT_NEAR(closure, want, 0.02 * want) << "σn " << sn << " after σmax " << smax;
+  }
+  // The law itself: force continuous at δmax on both sides; a reloading curve softer than the
+  // virgin secant keeps no permanent closure and is scaled to σmax at δmax.
+  ContactLaw law;
+  law.normal = NormalModel::bandis_barton;
+  law.kni = kni;
+  law.vm = vm;
+  law.hysteresis = true;
+  law.reload_kni = kni2;
+  law.reload_vm = vm2;
+  const double dmax = virgin(5e6), L = 0.5;
+  EXPECT_NEAR(normal_spring(law, dmax * (1 - 1e-9), L, dmax).force, 5e6 * L, 1e-3 * 5e6 * L);
+  EXPECT_NEAR(normal_spring(law, dmax * (1 + 1e-9), L, dmax).force, 5e6 * L, 1e-3 * 5e6 * L);
+  EXPECT_NEAR(normal_spring(law, dmax - 5e6 * vm2 / (kni2 * vm2 + 5e6), L, dmax).force, 0.0, 1e-6);
+  // Loaded past the virgin curve's cap (0.99·Vm): still continuous at δmax, the stiffness
+  // bounded by the later curve's own guard, Kni2·L/0.01².
+  const double deep = 0.995 * vm, f_deep = normal_spring(law, deep, L).force;
+  EXPECT_NEAR(normal_spring(law, deep * (1 - 1e-12), L, deep).force, f_deep, 1e-6 * f_deep);
+  EXPECT_LE(normal_spring(law, deep * (1 - 1e-12), L, deep).stiffness, kni2 * L / 1e-4 * (1 + 1e-9));
+  EXPECT_TRUE(normal_spring(law, deep * (1 - 1e-12), L, deep).capped);
+  law.reload_kni = 0.1 * kni;
+  law.reload_vm = 10 * vm;
+  EXPECT_NEAR(normal_spring(law, dmax * (1 - 1e-9), L, dmax).force, 5e6 * L, 1e-3 * 5e6 * L);
+  EXPECT_GT(normal_spring(law, 0.01 * dmax, L, dmax).force, 0.0);
 }
 
 }  // namespace

@@ -1,0 +1,32 @@
+// The displacement-controlled direct shear (reference/direct_shear.h: the scene and Barton's
+// closed form) run, and its τ–δ curve read off at regular times. Shared by nmm-joint-study and
+// tests/test_barton_bandis.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mesh.h"
+#include "scene.h"
+
+namespace nmm::studies {
+
+/// One reading of the shear box.
+struct DirectShearSample {
+  double time = 0;           ///< s
+  double slip = 0;           ///< m, horizontal jump across the joint (measure points 0 − 1)
+  double closure = 0;        ///< m, vertical jump (below − above), > 0 closing
+  double travel = 0;         ///< m, the mean shear travel the closed contacts remember
+  double shear_stress = 0;   ///< Pa, |Σ contact shear force| over the faces' overlap, 2 m − slip
+  double normal_stress = 0;  ///< Pa, Σ contact normal force over the overlap
+};
+
+struct DirectShearRun {
+  std::vector<DirectShearSample> samples;  ///< at every `every` steps' time, the first at t = 0
+  std::string status;                      ///< "ok" or why the run stopped
+};
+
+/// Runs the scene (1 ms steps) for `steps` steps, reading it every `every` steps.
+DirectShearRun run_direct_shear(const Mesh& mesh, const SceneDef& scene, int steps, int every);
+
+}  // namespace nmm::studies
