@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
     // The closed contacts of the last step, as the solver passes them.
     const nmm::solve::ClosedContacts closed = st.contacts().closed_contacts();
     // As time_stepper.cpp: search distance 2.5·g2·w0, new contacts at most 1e-3·h deep.
-    const double d0 = 2.5 * s.solver.max_displacement_ratio * st.model_half_size();
+    const double d0 = 2.5 * s.solver.max_displacement_ratio * st.model().w0();
     std::vector<double> times;
     std::size_t contacts = 0, near = 0;
     nmm::solve::DetectionStats stats;

@@ -36,6 +36,7 @@
 #include "bench_common.h"
 #include "cover_cutter.h"
 #include "output_writer.h"
+#include "run_driver.h"
 #include "stopwatch.h"
 #include "time_stepper.h"
 #include "vtk_writer.h"
@@ -165,7 +166,7 @@ int main(int argc, char** argv) {
     nmm::solve::TimeStepper runner(mesh, run_scene, scene_path);
     const fs::path run_dir = dir / ("run_" + std::to_string(every));
     nmm::solve::OutputWriter run_out(run_dir.string());
-    const nlohmann::json summary = runner.run(run_out, false);
+    const nlohmann::json summary = nmm::solve::run_to_end(runner, run_out);
     double bytes = 0;
     int n = 0;
     for (const auto& e : fs::directory_iterator(run_dir / "frames")) {

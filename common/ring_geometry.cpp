@@ -9,11 +9,7 @@ bool point_in_ring(const Ring& ring, Vec2 p) {
   bool inside = false;
   const std::size_t n = ring.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2 a = ring[i], b = ring[j];
-    if ((a.y > p.y) != (b.y > p.y)) {
-      const double x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
-      if (p.x < x) inside = !inside;
-    }
+    if (ray_crosses(ring[i].x, ring[i].y, ring[j].x, ring[j].y, p.x, p.y)) inside = !inside;
   }
   return inside;
 }

@@ -9,9 +9,43 @@
 // (ring_signed_area, scene.h) so the round-off scales with the ring's own size.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
 #include "scene.h"
 
 namespace nmm {
+
+/// Whether the ray from (px, py) along +x crosses the edge (ax, ay)–(bx, by) (the even–odd
+/// rule's test above): the one crossing test of point_in_ring, point_in_loop and the contact
+/// detection's walk around an element.
+inline bool ray_crosses(double ax, double ay, double bx, double by, double px, double py) {
+  return (ay > py) != (by > py) && px < ax + (py - ay) * (bx - ax) / (by - ay);
+}
+
+/// True when (x, y) lies inside the loop of n vertices xy[2i], xy[2i+1] (even–odd rule; slits
+/// and bridges, walked both ways, cancel).
+inline bool point_in_loop(const double* xy, std::size_t n, double x, double y) {
+  bool inside = false;
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+    if (ray_crosses(xy[2 * i], xy[2 * i + 1], xy[2 * j], xy[2 * j + 1], x, y)) inside = !inside;
+  return inside;
+}
+
+/// m, the distance from (x, y) to the nearest edge of the loop of n vertices xy[2i], xy[2i+1].
+inline double distance_to_loop(const double* xy, std::size_t n, double x, double y) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const double ax = xy[2 * j], ay = xy[2 * j + 1], bx = xy[2 * i], by = xy[2 * i + 1];
+    const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((x - ax) * dx + (y - ay) * dy) / l2 : 0;
+    t = std::clamp(t, 0.0, 1.0);
+    best = std::min(best, std::hypot(ax + t * dx - x, ay + t * dy - y));
+  }
+  return best;
+}
 
 /// True when p lies inside the ring (even–odd rule above).
 bool point_in_ring(const Ring& ring, Vec2 p);

@@ -17,7 +17,10 @@ import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 FOLDERS = ["common", "preprocess", "solver", "report", "reference", "studies", "tests", "bench"]
-MAIN_TYPES = ["TimeStepper", "ContactSet", "EnergyMeter", "CoverSpace", "OutputWriter", "SystemMatrix"]
+MAIN_TYPES = ["TimeStepper", "Model", "Configuration", "StepControl", "RunDriver", "ContactSet",
+              "EnergyMeter", "CoverSpace", "OutputWriter", "SystemMatrix"]
+# Types whose public methods are listed by name (the rest by count).
+LISTED_TYPES = ["TimeStepper", "Model"]
 
 
 def sources(tree):
@@ -59,6 +62,28 @@ INTRO = """Where the code lives, layer by layer (an arrow only ever points down 
 CTest `layers` (tests/check_layers.py) fails on an #include or a library link that points up
 this list.
 
+Inside `solver/`, a run of nmm-solve is a short pipeline, one file per stage:
+
+1. `model.*` (`Model`): what is derived once from the mesh and the scene: element materials and
+   their D matrices, the penalty defaults (100·E fixed points and supports, 20·E/h default
+   interface, each named with its reason), the contact laws, the boundary edge sets, the water
+   and w0. Shared by const reference by the stepping, the contacts and the energy meter.
+2. `configuration.*` (`Configuration`): the cover space placed on the covers' current nodes,
+   each element's frame and basis: what assembly, contact linearisation and the energy meter
+   evaluate shape functions with.
+3. `integrators.*`: one integrator per term of the step's system (elasticity, initial stress,
+   body force, inertia, fixed points and loads, edges), each with its order-0 fast path.
+4. `time_stepper.*` (`TimeStepper`): one step attempt (assemble, solve with or without
+   contacts, accept or reject, update the state), and `run_until`, the attempts under
+   `step_control.*` (`StepControl`: Shi's displacement-ratio rule, cuts and growth, constants
+   named with their reasons).
+5. `run_driver.*` (`RunDriver`): the run, calling observers after each accepted step (frames,
+   histories and contacts, checkpoint, and nmm-solve's run history, energy and progress line),
+   then writing summary.json (`run_summary.*`).
+
+Beside them: `stress_field.*` (the state's stress polynomials, their means and point values for
+frames and pictures) and `energy.*` (the energy meter, one of nmm-solve's observers).
+
 A move between folders must not change a result. CTest `state_hashes` compares summary.json's
 `state_hash` (SHA-256 of the run state, the contact history and the mesh, which includes the
 scene file's text) of every data/ scene, run as CTest runs it, and of 15 short reference-problem
@@ -75,10 +100,14 @@ def measure(tree):
     files = list(sources(tree))
     per_folder = collections.OrderedDict((f, [0, 0]) for f in FOLDERS)
     where = {}
+    solver_files = {}
     for folder, f in files:
+        lines = len(f.read_text(errors="replace").splitlines())
         per_folder[folder][0] += 1
-        per_folder[folder][1] += len(f.read_text(errors="replace").splitlines())
+        per_folder[folder][1] += lines
         where.setdefault(f.name, folder)
+        if folder == "solver":
+            solver_files[f.name] = lines
     functions = []
     for name, path, fields in ctags(tree, [f for _, f in files if f.suffix == ".cpp"], "f"):
         if "line" in fields and "end" in fields:
@@ -89,7 +118,7 @@ def measure(tree):
     methods = collections.defaultdict(set)
     for name, path, fields in ctags(tree, [f for _, f in files if f.suffix == ".h"], "pf"):
         cls = fields.get("class", "").split("::")[-1]
-        if cls in MAIN_TYPES and fields.get("access") == "public":
+        if cls in MAIN_TYPES and fields.get("access") == "public" and not name.startswith("operator"):
             methods[cls].add(name)
     edges = collections.Counter()
     inc = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
@@ -100,7 +129,7 @@ def measure(tree):
                 target = where.get(pathlib.Path(m.group(1)).name)
                 if target and target != folder:
                     edges[(folder, target)] += 1
-    return per_folder, functions, methods, edges
+    return per_folder, functions, methods, edges, solver_files
 
 
 def tree_of(rev, tmp):
@@ -138,7 +167,16 @@ def main():
         w("\n")
     w("## Public methods of the main types\n\n| type | before | after |\n|---|---|---|\n")
     for t in MAIN_TYPES:
-        w(f"| `{t}` | {len(before[2][t])} | {len(after[2][t])} |\n")
+        b = len(before[2][t]) if t in before[2] else "—"
+        w(f"| `{t}` | {b} | {len(after[2][t])} |\n")
+    for t in LISTED_TYPES:
+        w(f"\n`{t}`'s public methods after: " + ", ".join(f"`{m}`" for m in sorted(after[2][t])) + ".\n")
+    w("\n## Files of solver/ that changed\n\nLines per file (— : not there); the stepping core is "
+      "time_stepper.cpp.\n\n| file | lines before | lines after |\n|---|---|---|\n")
+    for name in sorted(set(before[4]) | set(after[4])):
+        b, a = before[4].get(name), after[4].get(name)
+        if b != a:
+            w(f"| {name} | {'—' if b is None else f'{b:,}'} | {'—' if a is None else f'{a:,}'} |\n")
     w("\n## Include graph between folders\n\nAn arrow A → B: files in A include headers that "
       "live in B (count of #include lines).\n\n| arrow | before | after |\n|---|---|---|\n")
     for e in sorted(set(before[3]) | set(after[3]), key=lambda e: (FOLDERS.index(e[0]), FOLDERS.index(e[1]))):

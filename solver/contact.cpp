@@ -50,63 +50,17 @@
 
 #include "contact_tolerances.h"
 #include "error.h"
-#include "math_constants.h"
 #include "tributary_length.h"
 
 namespace nmm::solve {
 
-namespace {
-/// –, the default interface's kn = this × E_max / h (Pa/m).
-constexpr double kDefaultInterfaceStiffness = 20.0;
-}
-
-ContactSet::ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
-    : mesh_(mesh) {
-  active_ = !scene.joints.empty() || mesh.block_count() > 1;
+ContactSet::ContactSet(const Model& model)
+    : mesh_(model.mesh()), laws_(model.contact_laws()), joint_law_(model.joint_laws()),
+      interface_law_(model.interface_law()) {
+  active_ = !model.scene().joints.empty() || mesh_.block_count() > 1;
   if (!active_) return;
-  topo_ = build_contact_topology(mesh);
-  (void)scene_name;
-  for (const JointSetDef& js : scene.joint_sets) {
-    ContactLaw law;
-    law.normal = js.normal.model;
-    law.kn = js.normal.kn;
-    law.kni = js.normal.kni;
-    law.vm = js.normal.vm;
-    law.shear = js.shear.model;
-    law.ks = js.shear.ks;
-    law.ksi = js.shear.ksi;
-    law.rf = js.shear.rf;
-    law.tan_phi = std::tan(js.friction_deg * kPi / 180.0);
-    law.cohesion = js.cohesion;
-    law.residual_cohesion = js.residual_cohesion;
-    law.tensile = js.tensile_strength;
-    law.hysteresis = js.normal.hysteresis;
-    law.reload_kni = js.normal.reload_kni;
-    law.reload_vm = js.normal.reload_vm;
-    if (js.shear.model == ShearModel::barton_bandis)
-      law.bb = {js.shear.jrc, js.shear.jcs, js.friction_deg,
-                peak_shear_displacement(js.shear.jrc, js.shear.length), js.shear.strength_factor};
-    laws_.push_back(law);
-  }
-  for (const JointDef& j : scene.joints) joint_law_.push_back(j.set);
-  interface_used_ = mesh.block_count() > 1;
-  if (scene.interface_set >= 0) {
-    interface_law_ = scene.interface_set;
-  } else {
-    double e_max = 0;
-    for (const MaterialDef& m : scene.materials) e_max = std::max(e_max, m.young);
-    // The default interface of touching bodies is numerical, not a joint: as stiff as the
-    // material over a twentieth of an element, kn = 20·E_max/h (Pa/m). A contact standing for
-    // a length h of face then has the spring 20·E·(1 m) of DDA's default penalty (Shi: 10–100·E),
-    // so the conditioning is that of the former point penalty, and the faces' overlap stays a
-    // small fraction of the elements' own deformation at every mesh size (it vanishes as h → 0,
-    // as rigid contact should). A scene with a real joint gives an interface_set.
-    ContactLaw law;
-    law.kn = kDefaultInterfaceStiffness * e_max / mesh.mesh_size;
-    law.ks = law.kn / 2.5;
-    laws_.push_back(law);
-    interface_law_ = static_cast<int>(laws_.size()) - 1;
-  }
+  topo_ = build_contact_topology(mesh_);
+  interface_used_ = mesh_.block_count() > 1;
   std::vector<int> used = joint_law_;
   if (interface_used_) used.push_back(interface_law_);
   for (int l : used) {
@@ -133,7 +87,7 @@ ClosedContacts ContactSet::closed_contacts() const {
   return closed;
 }
 
-void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& shapes, double d0,
+void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& config, double d0,
                             double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
   closed_ = closed_contacts();
@@ -240,8 +194,8 @@ void ContactSet::begin_step(const std::vector<double>& xy, const ShapeValues& sh
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
     const double l = std::hypot(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
     const double p0x = xy[2 * q2] + c.at.omega * dx, p0y = xy[2 * q2 + 1] + c.at.omega * dy;
-    shapes(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
-    shapes(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
+    config.shape_values(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
+    config.shape_values(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
     const int* ga = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_a));
     const int* gb = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_b));
     int* dof = dofs_.data() + i * static_cast<std::size_t>(row_);

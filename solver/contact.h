@@ -10,21 +10,17 @@
 
 #include <Eigen/Dense>
 
+#include "configuration.h"
 #include "contact_detection.h"
 #include "cover_space.h"
 #include "element_integration.h"
 #include "joint_law.h"
 #include "mesh.h"
+#include "model.h"
 #include "scene.h"
 #include "system_matrix.h"
 
 namespace nmm::solve {
-
-/// The element's triangle in the configuration at the start of a step.
-struct ElementFrame {
-  double ox = 0, oy = 0;  ///< m, origin: the node of its first cover
-  TriangleWeights w;      ///< weights relative to (ox, oy)
-};
 
 enum class ContactState : std::uint8_t { open, locked, sliding };
 
@@ -84,7 +80,8 @@ struct Contact {
 /// All contacts of a run.
 class ContactSet {
  public:
-  ContactSet(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
+  /// The contacts of `model`'s run (its laws; the model must outlive this set).
+  explicit ContactSet(const Model& model);
 
   bool active() const { return active_; }
   /// The approximation space of the run (unknowns of each element; it must outlive this set).
@@ -121,14 +118,11 @@ class ContactSet {
   /// [me] 1 for elements of excavated bodies: no contact is detected on them.
   void set_removed_elements(std::vector<std::uint8_t> removed) { removed_ = std::move(removed); }
 
-  /// The shape functions of element e at the point (x, y) (m) of the step's configuration into
-  /// out[0 .. element_dofs()/2): the full approximation (weights times cover polynomials).
-  using ShapeValues = std::function<void(std::size_t e, double x, double y, double* out)>;
-
   /// Detects contacts in the current configuration (search distance d0, new contacts at most
   /// `shallow` deep, m; model half-size w0), carries over the states of the previous step and
-  /// linearises each contact with the shape functions of its two elements.
-  void begin_step(const std::vector<double>& loop_xy, const ShapeValues& shapes, double d0,
+  /// linearises each contact with the shape functions of its two elements in the step's
+  /// configuration `config` (configuration.h).
+  void begin_step(const std::vector<double>& loop_xy, const Configuration& config, double d0,
                   double shallow, double w0);
 
   /// Element pairs of the step's contacts (open or closed), sorted and unique: the pairs the
@@ -223,8 +217,8 @@ class ContactSet {
   std::vector<double> cn_, cs_;        // [contact · row_] –, gap and slip per unit unknown
   mutable Eigen::MatrixXd block_;      // add_tangents()' scratch
   ContactTopology topo_;
-  std::vector<ContactLaw> laws_;
-  std::vector<int> joint_law_;  // [joint] law index
+  const std::vector<ContactLaw>& laws_;  // the model's (model.h)
+  const std::vector<int>& joint_law_;    // [joint] law index
   int interface_law_ = 0;
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
   bool nonlinear_ = false;       // a law in use is not a constant spring

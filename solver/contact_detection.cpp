@@ -48,6 +48,7 @@
 
 #include "contact_tolerances.h"
 #include "math_constants.h"
+#include "ring_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +86,7 @@ bool inside_element(const ContactTopology& t, const std::vector<double>& xy, std
   std::int32_t j = t.prev[first], i = first;
   do {
     const double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
-    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) in = !in;
+    if (ray_crosses(xi, yi, xj, yj, x, y)) in = !in;
     j = i;
     i = t.next[i];
   } while (i != first);

@@ -12,27 +12,17 @@
 
 namespace nmm::solve {
 
-EnergyMeter::EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
-                         double support_stiffness, const CoverSpace* space)
-    : mesh_(mesh), scene_(scene), space_(space && space->order() > 0 ? space : nullptr),
-      fixed_k_(fixed_point_stiffness), support_k_(support_stiffness), water_(mesh, scene) {
-  for (std::size_t i = 0; i < scene.supports.size(); ++i)
-    for (const BoundaryEdge& e : edges_under(mesh, scene.supports[i].points, "scene",
-                                             "/supports/" + std::to_string(i) + "/points"))
-      held_.push_back({e.element, e.vertex, e.next, scene.supports[i].fix_x, scene.supports[i].fix_y});
-  for (std::size_t i = 0; i < scene.tractions.size(); ++i)
-    traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, "scene",
-                                          "/tractions/" + std::to_string(i) + "/points"));
+EnergyMeter::EnergyMeter(const Model& model, const CoverSpace* space)
+    : model_(model), mesh_(model.mesh()), scene_(model.scene()),
+      space_(space && space->order() > 0 ? space : nullptr) {
+  const SceneDef& scene = scene_;
+  const Mesh& mesh = mesh_;
   shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
-  for (const MaterialDef& m : scene.materials)
-    compliance_.push_back(elasticity_matrix(m, scene.plane).inverse());
   const std::size_t ne = mesh.element_count();
-  elem_mat_.resize(ne);
   area0_.resize(ne);
   cx0_.resize(ne);
   cy0_.resize(ne);
   for (std::size_t e = 0; e < ne; ++e) {
-    elem_mat_[e] = scene.bodies[mesh.element_body[e]].material;
     const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(mesh.loop_xy.data() + 2 * b, n, 0, 0);
     area0_[e] = m.a;
@@ -47,28 +37,22 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
   r.time = s.time;
   const double gx = scene_.has_gravity ? scene_.gravity.x : 0.0;
   const double gy = scene_.has_gravity ? scene_.gravity.y : 0.0;
+  // The state's own configuration (its cover positions, not those of the step's start).
+  Configuration config(mesh_, space_);
+  config.place(s.cover_xy);
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    const std::int32_t body = mesh_.element_body[e];
-    if (static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body]) continue;
-    const MaterialDef& mat = scene_.materials[elem_mat_[e]];
+    if (removed(s, static_cast<std::int32_t>(e))) continue;
+    const double density = model_.density(e);
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    const double ox = s.cover_xy[2 * ec[0]], oy = s.cover_xy[2 * ec[0] + 1];
-    const double p[6] = {0, 0, s.cover_xy[2 * ec[1]] - ox, s.cover_xy[2 * ec[1] + 1] - oy,
-                         s.cover_xy[2 * ec[2]] - ox, s.cover_xy[2 * ec[2] + 1] - oy};
+    const double ox = config.frame(e).ox, oy = config.frame(e).oy;
     const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
-    const TriangleWeights w = triangle_weights(p);
+    const TriangleWeights& w = config.frame(e).w;
     if (space_ && w.twice_area > 0) {
       // Cover order n ≥ 1: the velocity field and the stress polynomial, integrated exactly.
       const int P = space_->terms(), nf = 3 * P, order = space_->order();
       const std::size_t dpc = static_cast<std::size_t>(space_->dofs_per_cover());
-      double centre[6];
-      for (int k = 0; k < 3; ++k) {
-        const int mc = space_->basis_cover(ec[k]);
-        centre[2 * k] = s.cover_xy[2 * mc];
-        centre[2 * k + 1] = s.cover_xy[2 * mc + 1];
-      }
-      space_->element_basis(ox, oy, w, centre, basis_);
+      const ElementBasis& basis = config.basis(e);
       const MonomialMoments mm = monomial_moments(s.loop_xy.data() + 2 * b, n, ox, oy,
                                                   space_->scale(), 2 * order + 2);
       if (!s.velocity.empty()) {
@@ -77,12 +61,12 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
         for (int a = 0; a < nf; ++a) {
           // v of term j of the element's cover k (its own copy, equal to its master's)
           const std::size_t va = dpc * static_cast<std::size_t>(ec[a / P]) + 2 * static_cast<std::size_t>(a % P);
-          for (int i = 0; i < basis_.phi[a].size(); ++i) {
-            vx.c[i] += basis_.phi[a].c[i] * s.velocity[va];
-            vy.c[i] += basis_.phi[a].c[i] * s.velocity[va + 1];
+          for (int i = 0; i < basis.phi[a].size(); ++i) {
+            vx.c[i] += basis.phi[a].c[i] * s.velocity[va];
+            vy.c[i] += basis.phi[a].c[i] * s.velocity[va + 1];
           }
         }
-        r.kinetic += 0.5 * mat.density * (integral(vx, vx, mm) + integral(vy, vy, mm));
+        r.kinetic += 0.5 * density * (integral(vx, vx, mm) + integral(vy, vy, mm));
       }
       const std::size_t T = static_cast<std::size_t>(P);
       Poly sig[3];
@@ -90,7 +74,7 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
         sig[q].degree = order;
         for (std::size_t t = 0; t < T; ++t) sig[q].c[t] = s.stress[3 * (T * e + t) + q];
       }
-      const Mat3& c = compliance_[elem_mat_[e]];
+      const Mat3& c = model_.compliance(e);
       for (int q = 0; q < 3; ++q)
         for (int l = 0; l < 3; ++l)
           if (c(q, l) != 0) r.strain += 0.5 * c(q, l) * integral(sig[q], sig[l], mm);
@@ -101,34 +85,35 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
           for (int l = 0; l < 3; ++l) {
             const double vv = s.velocity[2 * ec[k]] * s.velocity[2 * ec[l]] +
                               s.velocity[2 * ec[k] + 1] * s.velocity[2 * ec[l] + 1];
-            r.kinetic += 0.5 * mat.density * integral_ww(w, m, k, l) * vv;
+            r.kinetic += 0.5 * density * integral_ww(w, m, k, l) * vv;
           }
       // Strain: ½ A σᵀ D⁻¹ σ.
       const Vec3 sigma(s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
-      r.strain += 0.5 * m.a * sigma.dot(compliance_[elem_mat_[e]] * sigma);
+      r.strain += 0.5 * m.a * sigma.dot(model_.compliance(e) * sigma);
     }
     // Gravity: the centroid's drop, times the element's (conserved) mass.
     if (m.a != 0) {
       const double cx = ox + m.sx / m.a, cy = oy + m.sy / m.a;
-      r.gravity -= mat.density * area0_[e] * (gx * (cx - cx0_[e]) + gy * (cy - cy0_[e]));
+      r.gravity -= density * area0_[e] * (gx * (cx - cx0_[e]) + gy * (cy - cy0_[e]));
     }
   }
   for (const TrackedPoint& f : s.fixed) {
     const double dx = f.x - f.x0, dy = f.y - f.y0;
-    r.springs += 0.5 * fixed_k_ * (dx * dx + dy * dy);
+    r.springs += 0.5 * model_.fixed_point_stiffness() * (dx * dx + dy * dy);
   }
   // Supports: u linear along the edge, ∫ u² ds = L (ua² + ua·ub + ub²) / 3 per component.
-  for (const HeldEdge& h : held_) {
-    const std::int32_t body = mesh_.element_body[h.element];
-    if (static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body]) continue;
-    const double len = std::hypot(s.loop_xy[2 * h.b] - s.loop_xy[2 * h.a],
-                                  s.loop_xy[2 * h.b + 1] - s.loop_xy[2 * h.a + 1]);
-    for (int d = 0; d < 2; ++d) {
-      if (!(d == 0 ? h.x : h.y)) continue;
-      const double ua = s.loop_u[2 * h.a + d], ub = s.loop_u[2 * h.b + d];
-      r.springs += 0.5 * support_k_ * len * (ua * ua + ua * ub + ub * ub) / 3;
+  for (std::size_t i = 0; i < model_.support_edges().size(); ++i)
+    for (const BoundaryEdge& be : model_.support_edges()[i]) {
+      if (removed(s, be.element)) continue;
+      const std::int32_t a = be.vertex, b = be.next;
+      const double len = std::hypot(s.loop_xy[2 * b] - s.loop_xy[2 * a],
+                                    s.loop_xy[2 * b + 1] - s.loop_xy[2 * a + 1]);
+      for (int d = 0; d < 2; ++d) {
+        if (!(d == 0 ? scene_.supports[i].fix_x : scene_.supports[i].fix_y)) continue;
+        const double ua = s.loop_u[2 * a + d], ub = s.loop_u[2 * b + d];
+        r.springs += 0.5 * model_.support_stiffness() * len * (ua * ua + ua * ub + ub * ub) / 3;
+      }
     }
-  }
   for (const Contact& c : contacts)
     if (c.state != ContactState::open)
       r.springs += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
@@ -149,7 +134,7 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
         friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
     load_work_ += traction_work(s) + shaking_work(s) + water_work(s);
   }
-  if (!traction_edges_.empty() || water_.active()) prev_loop_u_ = s.loop_u;
+  if (!model_.traction_edges().empty() || model_.water().active()) prev_loop_u_ = s.loop_u;
   if (shaking_) centroids(s, prev_cx_, prev_cy_);
   load_x_.resize(s.loads.size());
   load_y_.resize(s.loads.size());
@@ -192,10 +177,10 @@ double EnergyMeter::traction_work(const RunState& s) const {
   static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
   double w = 0;
   if (prev_loop_u_.size() != s.loop_u.size()) return 0;
-  for (std::size_t i = 0; i < traction_edges_.size(); ++i) {
+  for (std::size_t i = 0; i < model_.traction_edges().size(); ++i) {
     const TractionDef& td = scene_.tractions[i];
     const double factor = table_value(td.table, s.time);
-    for (const BoundaryEdge& be : traction_edges_[i]) {
+    for (const BoundaryEdge& be : model_.traction_edges()[i]) {
       if (removed(s, be.element)) continue;
       const double* a = s.loop_xy.data() + 2 * be.vertex;
       const double* b = s.loop_xy.data() + 2 * be.next;
@@ -228,21 +213,22 @@ double EnergyMeter::water_work(const RunState& s) const {
   // ∫ −p·n·Δu ds on each wet face, per piece where p is linear (joint_water.h): the two-point
   // Gauss rule is exact for p times the linear Δu.
   static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
-  if (!water_.active() || prev_loop_u_.size() != s.loop_u.size()) return 0;
+  const JointWater& water = model_.water();
+  if (!water.active() || prev_loop_u_.size() != s.loop_u.size()) return 0;
   double w = 0;
-  for (std::size_t i = 0; i < water_.edges().size(); ++i) {
-    const BoundaryEdge& be = water_.edges()[i];
+  for (std::size_t i = 0; i < water.edges().size(); ++i) {
+    const BoundaryEdge& be = water.edges()[i];
     if (removed(s, be.element)) continue;
-    const int joint = water_.edge_joint()[i];
+    const int joint = water.edge_joint()[i];
     const double* a = s.loop_xy.data() + 2 * be.vertex;
     const double* b = s.loop_xy.data() + 2 * be.next;
     const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
     if (!(len > 0)) continue;
     const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
-    for (const auto& [t0, t1] : water_.linear_pieces(joint, a, b))
+    for (const auto& [t0, t1] : water.linear_pieces(joint, a, b))
       for (double xi : kGauss) {
         const double t = t0 + xi * (t1 - t0);
-        const double p = water_.pressure_at(joint, a[0] + t * dx, a[1] + t * dy);
+        const double p = water.pressure_at(joint, a[0] + t * dx, a[1] + t * dy);
         for (int d = 0; d < 2; ++d) {
           const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
           const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
@@ -262,8 +248,7 @@ double EnergyMeter::shaking_work(const RunState& s) const {
   double w = 0;
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
     if (removed(s, static_cast<std::int32_t>(e))) continue;
-    const double rho = scene_.materials[elem_mat_[e]].density;
-    w += rho * area0_[e] * (bx * (cx[e] - prev_cx_[e]) + by * (cy[e] - prev_cy_[e]));
+    w += model_.density(e) * area0_[e] * (bx * (cx[e] - prev_cx_[e]) + by * (cy[e] - prev_cy_[e]));
   }
   return w;
 }

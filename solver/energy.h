@@ -42,11 +42,13 @@
 #include <vector>
 
 #include "boundary_conditions.h"
+#include "configuration.h"
 #include "contact.h"
 #include "cover_space.h"
 #include "elasticity.h"
 #include "joint_water.h"
 #include "mesh.h"
+#include "model.h"
 #include "run_state.h"
 #include "scene.h"
 
@@ -66,11 +68,11 @@ struct EnergyRow {
 
 class EnergyMeter {
  public:
-  /// fixed_point_stiffness: N/m, support_stiffness: N/m², the run's penalty springs.
-  /// `space`: the run's approximation space (TimeStepper::space()); at cover order n ≥ 1 the
-  /// kinetic and strain energies integrate its shape functions and stress polynomials.
-  EnergyMeter(const Mesh& mesh, const SceneDef& scene, double fixed_point_stiffness,
-              double support_stiffness, const CoverSpace* space = nullptr);
+  /// `model`: the run's (TimeStepper::model(): materials, penalty springs, edge sets, water); it
+  /// must outlive the meter. `space`: the run's approximation space (TimeStepper::space()); at
+  /// cover order n ≥ 1 the kinetic and strain energies integrate its shape functions and stress
+  /// polynomials.
+  explicit EnergyMeter(const Model& model, const CoverSpace* space = nullptr);
 
   /// The state terms (K, U, V, S) of a state; the path terms stay 0.
   EnergyRow state_terms(const RunState& s, const std::vector<Contact>& contacts) const;
@@ -94,24 +96,13 @@ class EnergyMeter {
   double shaking_work(const RunState& s) const;   // J/m, since the previous call
   double water_work(const RunState& s) const;     // J/m, since the previous call
 
+  const Model& model_;
   const Mesh& mesh_;
   const SceneDef& scene_;
   const CoverSpace* space_;  // null or order 0: the constant-cover formulas
-  double fixed_k_;
-  double support_k_;
-  struct HeldEdge {
-    std::int32_t element;  // owning the edge
-    std::int32_t a, b;  // loop vertices of the edge's ends
-    bool x, y;          // held directions
-  };
-  std::vector<HeldEdge> held_;  // supported edges
-  std::vector<std::vector<BoundaryEdge>> traction_edges_;  // [traction] edges under it
-  JointWater water_;  // water pressure on the joint faces and boundaries
   std::vector<double> prev_loop_u_;  // [2·v] m, loop displacements at the previous call
   std::vector<double> prev_cx_, prev_cy_;  // [me] m, centroids at the previous call (shaking)
   bool shaking_ = false;  // a base acceleration table is given
-  std::vector<Mat3> compliance_;     // [material] D⁻¹, 1/Pa
-  std::vector<int> elem_mat_;        // [me] material
   std::vector<double> area0_;        // [me] m², initial area
   std::vector<double> cx0_, cy0_;    // [me] m, initial centroid
   std::vector<double> load_x_, load_y_;  // [load] m, position at the previous call
@@ -121,7 +112,6 @@ class EnergyMeter {
   EnergyRow last_;
   std::int64_t last_kept_step_ = -1;
   std::vector<EnergyRow> rows_;
-  mutable ElementBasis basis_;  // scratch of state_terms at n ≥ 1
 };
 
 }  // namespace nmm::solve

@@ -37,9 +37,42 @@
 #include "progress.h"
 #include "result_picture.h"
 #include "run_config.h"
+#include "run_driver.h"
 #include "run_report.h"
 #include "time_stepper.h"
 #include "atomic_file.h"
+
+namespace {
+
+// --pictures: result.svg of the last state (result_picture.h) and the run's report
+// (run_report.h).
+nmm::report::ReportFiles write_pictures(const nmm::solve::TimeStepper& stepper, const nmm::SceneDef& scene,
+                                        const std::string& status, const std::string& out_dir,
+                                        double exaggerate, nmm::report::PictureField field) {
+  nmm::report::PictureState state;
+  state.time = stepper.time();
+  state.status = status;
+  state.loop_xy = &stepper.loop_xy();
+  const std::vector<double> mean_stress = stepper.mean_stress();  // [3·me] at any order
+  state.stress = &mean_stress;
+  for (const nmm::solve::Contact& c : stepper.contacts().contacts())
+    if (c.state != nmm::solve::ContactState::open)
+      state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex], stepper.loop_xy()[2 * c.at.vertex + 1],
+                                static_cast<int>(c.state), c.at.vertex, c.at.edge});
+  for (const nmm::solve::TrackedPoint& p : stepper.measure_points()) {
+    state.measure_points.push_back({p.x, p.y});
+    // x − (x − x0): what nmm-report computes from history.csv (x, ux), so its redraw of an
+    // exaggerated picture is this one byte for byte.
+    state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
+  }
+  state.exaggeration = exaggerate;
+  state.excavated_body = stepper.state().body_removed;
+  nmm::write_file_atomically(out_dir + "/result.svg",
+                             nmm::report::result_svg(stepper.mesh(), scene, state, field));
+  return nmm::report::make_run_report(out_dir);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
@@ -118,28 +151,37 @@ int main(int argc, char** argv) {
     const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
     nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
     // Energy terms after every step, a row per output step (energy.h, energy.csv).
-    nmm::solve::EnergyMeter energy(mesh, run.scene, stepper.fixed_point_stiffness(),
-                                   stepper.support_stiffness(), &stepper.space());
+    nmm::solve::EnergyMeter energy(stepper.model(), &stepper.space());
     energy.after_step(stepper.state(), stepper.contacts().contacts(), true);
     std::vector<nmm::report::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;
     double t_prev = t_start;
-    stepper.set_progress([&](std::int64_t n, double t) {
+    // After every accepted step, in this order: the run history's row (run_history.csv), the
+    // energy terms, the progress line (the frames and the checkpoint come first: run_driver.h).
+    nmm::solve::StepFunction run_history([&](const nmm::solve::TimeStepper& st, std::int64_t, bool) {
+      const double t = st.time();
       // Step numbers as history.csv counts them: after --restart they go on from the checkpoint's.
-      const std::int64_t step = stepper.step_count();
-      const nmm::solve::EquilibriumSample& eq = stepper.equilibrium();
-      effort.push_back({step, t, t - t_prev,
-                        static_cast<std::int64_t>(stepper.open_close_iterations() - iterations),
-                        static_cast<std::int64_t>(stepper.time_step_cuts() - cuts),
-                        static_cast<std::int64_t>(stepper.contacts().closed_count()),
+      const nmm::solve::EquilibriumSample& eq = st.equilibrium();
+      effort.push_back({st.step_count(), t, t - t_prev,
+                        static_cast<std::int64_t>(st.open_close_iterations() - iterations),
+                        static_cast<std::int64_t>(st.time_step_cuts() - cuts),
+                        static_cast<std::int64_t>(st.contacts().closed_count()),
                         eq.max_ratio, eq.mean_ratio, eq.max_velocity});
-      energy.after_step(stepper.state(), stepper.contacts().contacts(), n % sv.output_every == 0);
-      iterations = stepper.open_close_iterations();
-      cuts = stepper.time_step_cuts();
+      iterations = st.open_close_iterations();
+      cuts = st.time_step_cuts();
       t_prev = t;
-      progress.update(step, t);
     });
-    const nlohmann::json summary = stepper.run(out, false);
+    nmm::solve::StepFunction energy_terms([&](const nmm::solve::TimeStepper& st, std::int64_t n, bool) {
+      energy.after_step(st.state(), st.contacts().contacts(), n % sv.output_every == 0);
+    });
+    nmm::solve::StepFunction progress_line([&](const nmm::solve::TimeStepper& st, std::int64_t, bool) {
+      progress.update(st.step_count(), st.time());
+    });
+    nmm::solve::RunDriver driver(stepper, out);
+    driver.add(run_history);
+    driver.add(energy_terms);
+    driver.add(progress_line);
+    const nlohmann::json summary = driver.run();
     const std::string status = summary["status"].get<std::string>();
     const std::string verdict = nmm::solve::equilibrium_line(summary["equilibrium"]);
     progress.finish(stepper.step_count(), stepper.time(), status,
@@ -150,28 +192,8 @@ int main(int argc, char** argv) {
     energy.write_csv(out_dir);
 
     if (pictures) {
-      nmm::report::PictureState state;
-      state.time = stepper.time();
-      state.status = status;
-      state.loop_xy = &stepper.loop_xy();
-      const std::vector<double> mean_stress = stepper.mean_stress();  // [3·me] at any order
-      state.stress = &mean_stress;
-      for (const nmm::solve::Contact& c : stepper.contacts().contacts())
-        if (c.state != nmm::solve::ContactState::open)
-          state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex],
-                                    stepper.loop_xy()[2 * c.at.vertex + 1],
-                                    static_cast<int>(c.state), c.at.vertex, c.at.edge});
-      for (const nmm::solve::TrackedPoint& p : stepper.measure_points()) {
-        state.measure_points.push_back({p.x, p.y});
-        // x − (x − x0): what nmm-report computes from history.csv (x, ux), so its redraw of an
-        // exaggerated picture is this one byte for byte.
-        state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
-      }
-      state.exaggeration = exaggerate;
-      state.excavated_body = stepper.state().body_removed;
-      nmm::write_file_atomically(out_dir + "/result.svg",
-                                 nmm::report::result_svg(mesh, run.scene, state, field));
-      const nmm::report::ReportFiles files = nmm::report::make_run_report(out_dir);
+      const nmm::report::ReportFiles files =
+          write_pictures(stepper, run.scene, status, out_dir, exaggerate, field);
       if (!quiet)
         std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
                   << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";

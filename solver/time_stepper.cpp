@@ -20,15 +20,9 @@
 // damps: its amplification matrix [[1 − 1/β, 1 − 1/(2β)], [−1/β, 1 − 1/(2β)]] has spectral
 // radius 0.41 at β = 0.6 (the default, near the minimum), while constant acceleration is still
 // integrated exactly (free fall, a sliding block) and slow vibrations barely feel it.
-//   K_e     = A_e Bᵀ D B                    (elasticity.cpp)
-//   M_e     = ρ ∫ Nᵀ N dA                   consistent mass: ρ ∫ w_k w_l dA per direction
-//   F_int,e = A_e Bᵀ σ_e                    stress carried from earlier steps (initial stress)
-//   F_grav  = ρ (g − a_base(t)) ∫ w_k dA    only with gravity or a base acceleration (time table)
-//   F_load  = w_k(p)·f                      point load f at p, only with loads
-//   fixed point p (started at P): penalty spring k_f, K += k_f NᵀN, F −= k_f Nᵀ (p − P)
-//   supports, tractions, in-situ traction on faces between bodies: boundary_conditions.h
-//   (edge integrals, exact by two-point Gauss); in-situ stress in σ before step 1:
-//   insitu_stress.h; excavated bodies: excavation.h (their covers pinned, K += k_pin I).
+// K, M, F_int and the loads are integrators.h's, one integrator per term (elasticity, initial
+// stress, body force, inertia, fixed points and loads, edges); in-situ stress in σ before step 1:
+// insitu_stress.h; excavated bodies: excavation.h (their covers pinned, K += k_pin I).
 // Everything carried from step to step is in RunState s_ (run_state.h) and the contact history:
 // a checkpoint of both continues a run bitwise exactly (--restart).
 // All integrals are exact simplex integrals over the element polygon (element_integration.cpp).
@@ -36,9 +30,7 @@
 // the displacement field (geometry update: large displacement over many small steps). The stress
 // is not rotated with the element: rotations per step are small (Shi's DDA does the same).
 //
-// Fixed-point stiffness: solver.fixed_point_stiffness, or by default 100·E_max·(1 m) N/m per unit
-// thickness. Under a reaction R, a fixed point gives way by R/k_f: with E = 10 GPa that is 1 µm
-// for 1 MN. Stiffer springs make the matrix worse conditioned for no gain in the result.
+// Penalty stiffnesses (fixed points, supports, the default interface): model.h.
 //
 // Static analysis is DDA's (Shi 1988): every step starts from rest (v0 = a0 = 0) but keeps the
 // inertia term 2M/Δt² (β = ½) in its matrix. A block held only by contacts is then well posed
@@ -56,7 +48,6 @@
 #include "time_stepper.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -67,54 +58,17 @@
 #include "contact_solve.h"
 #include "contact_tolerances.h"
 #include "solver_threads.h"
+#include "stopwatch.h"
 #include "error.h"
 #include "excavation.h"
 #include "insitu_stress.h"
-#include "number_format.h"
+#include "integrators.h"
+#include "ring_geometry.h"
 #include "time_table.h"
-#include "nmm_version.h"
 
 namespace nmm::solve {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// Crossing-number test; slits and bridges are walked both ways and cancel.
-bool in_loop(const double* xy, std::size_t n, double x, double y) {
-  bool inside = false;
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
-    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) inside = !inside;
-  }
-  return inside;
-}
-
-double dist_to_loop(const double* xy, std::size_t n, double x, double y) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const double ax = xy[2 * j], ay = xy[2 * j + 1], bx = xy[2 * i], by = xy[2 * i + 1];
-    const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
-    double t = l2 > 0 ? ((x - ax) * dx + (y - ay) * dy) / l2 : 0;
-    t = std::clamp(t, 0.0, 1.0);
-    best = std::min(best, std::hypot(ax + t * dx - x, ay + t * dy - y));
-  }
-  return best;
-}
-
-// Whether two faces can ever touch: joints, or more than one block that the scene does not
-// excavate at the start (an opening cut out of a single unjointed block leaves none).
-bool contacts_can_arise(const Mesh& mesh, const SceneDef& scene) {
-  if (!scene.joints.empty()) return true;
-  std::size_t kept = 0;
-  for (std::size_t b = 0; b < mesh.block_count(); ++b)
-    if (std::find(scene.excavate.begin(), scene.excavate.end(), mesh.block_body[b]) == scene.excavate.end())
-      ++kept;
-  return kept > 1;
-}
 
 std::string fmt_point(double x, double y) {
   std::ostringstream os;
@@ -125,35 +79,14 @@ std::string fmt_point(double x, double y) {
 }  // namespace
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
-    : mesh_(mesh), scene_(scene), scene_name_(scene_name), water_(mesh, scene), contacts_(mesh, scene, scene_name) {
-  // The mesh file's dofs_per_cover describes the mesh as cut (constant covers, 2); the order of
-  // the cover functions is the run's choice (solver.cover_order, docs/higher-order-covers.md).
-  if (mesh.dofs_per_cover != 2)
-    throw InputError(scene_name, "", "the mesh file says " + std::to_string(mesh.dofs_per_cover) +
-                                         " unknowns per physical cover; meshes hold 2 (the cover "
-                                         "order is chosen per run: solver.cover_order)");
+    : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name),
+      control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_) {
   const std::size_t ne = mesh.element_count(), nc = mesh.cover_count();
-  double e_max = 0;
-  for (const MaterialDef& m : scene.materials) {
-    material_d_.push_back(elasticity_matrix(m, scene.plane));
-    e_max = std::max(e_max, m.young);
-  }
-  fixed_k_ = scene.solver.fixed_point_stiffness > 0 ? scene.solver.fixed_point_stiffness
-                                                    : 100.0 * e_max;
-  support_k_ = scene.solver.support_stiffness > 0 ? scene.solver.support_stiffness
-                                                  : 100.0 * e_max / mesh.mesh_size;
-  pin_k_ = std::max(e_max, 1.0);
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
+  config_ = Configuration(mesh, &space_);
   indicator_ = EquilibriumIndicator(mesh, scene, space_);
   contacts_.use_space(space_);
   contacts_.set_elastic_predictor(!step_inertia());
-  elem_mat_.resize(ne);
-  for (std::size_t e = 0; e < ne; ++e) {
-    const std::int32_t body = mesh.element_body[e];
-    if (body < 0 || static_cast<std::size_t>(body) >= scene.bodies.size())
-      throw InputError(scene_name, "/bodies", "the mesh has more bodies than its scene");
-    elem_mat_[e] = scene.bodies[body].material;
-  }
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
   if (space_.order() > 0) {
     std::vector<int> reg;
@@ -176,55 +109,14 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   s_.stress.assign(3 * stress_terms() * ne, 0.0);
   s_.loop_xy = mesh.loop_xy;
   s_.loop_u.assign(s_.loop_xy.size(), 0.0);
-  frame_.resize(ne);
   s_.body_removed.assign(scene.bodies.size(), 0);
   s_.body_removed_at.assign(scene.bodies.size(), -1);
-  if (scene.insitu_stress.present) {
+  if (scene.insitu_stress.present)
     apply_insitu_stress(scene.insitu_stress, mesh, space_.order(), space_.scale(), s_.stress);
-    interface_edges_ = interface_edges(mesh, scene);
-  }
-  for (std::size_t i = 0; i < scene.supports.size(); ++i)
-    support_edges_.push_back(edges_under(mesh, scene.supports[i].points, scene_name,
-                                         "/supports/" + std::to_string(i) + "/points"));
-  for (std::size_t i = 0; i < scene.tractions.size(); ++i)
-    traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, scene_name,
-                                          "/tractions/" + std::to_string(i) + "/points"));
 
-  // Points: the element that contains each one, else the nearest within 1e-6·h (a point on a
-  // boundary), else bad input.
-  auto locate = [&](const Vec2& p, const std::string& path) {
-    std::int32_t best = -1;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t e = 0; e < ne; ++e) {
-      const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
-      const double* xy = mesh.loop_xy.data() + 2 * b;
-      if (in_loop(xy, n, p.x, p.y)) return TrackedPoint{static_cast<std::int32_t>(e), p.x, p.y, p.x, p.y};
-      const double d = dist_to_loop(xy, n, p.x, p.y);
-      if (d < best_d) {
-        best_d = d;
-        best = static_cast<std::int32_t>(e);
-      }
-    }
-    if (best < 0 || best_d > 1e-6 * mesh.mesh_size)
-      throw InputError(scene_name, path, "point " + fmt_point(p.x, p.y) + " lies outside every body");
-    return TrackedPoint{best, p.x, p.y, p.x, p.y};
-  };
-  for (std::size_t i = 0; i < scene.fixed_points.size(); ++i)
-    s_.fixed.push_back(locate(scene.fixed_points[i], "/fixed_points/" + std::to_string(i)));
-  for (std::size_t i = 0; i < scene.loads.size(); ++i)
-    s_.loads.push_back(locate(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point"));
-  for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
-    s_.measure.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
-
-  // w0: half the model size, the scale of Shi's displacement ratio and contact tolerances.
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (std::size_t i = 0; i < s_.loop_xy.size(); i += 2) {
-    x0 = std::min(x0, s_.loop_xy[i]);
-    x1 = std::max(x1, s_.loop_xy[i]);
-    y0 = std::min(y0, s_.loop_xy[i + 1]);
-    y1 = std::max(y1, s_.loop_xy[i + 1]);
-  }
-  w0_ = 0.5 * std::max(x1 - x0, y1 - y0);
+  s_.fixed = model_.fixed_points();
+  s_.loads = model_.load_points();
+  s_.measure = model_.measure_points();
 
   // Fixed points and loads couple only the covers of their element: the element pattern holds
   // until contacts couple pairs of elements (update_pattern).
@@ -248,7 +140,7 @@ std::vector<std::string> TimeStepper::effects() const {
   if (!s_.fixed.empty()) e.push_back("fixed_points");
   if (!scene_.supports.empty()) e.push_back("supports");
   if (!scene_.tractions.empty()) e.push_back("tractions");
-  if (water_.active()) e.push_back("water");
+  if (model_.water().active()) e.push_back("water");
   if (scene_.insitu_stress.present) e.push_back("insitu_stress");
   if (!scene_.base_acceleration_x.empty() || !scene_.base_acceleration_y.empty())
     e.push_back("base_acceleration");
@@ -264,7 +156,7 @@ void TimeStepper::check_static_support() const {
   std::vector<int> held(mesh_.block_count(), 0);
   for (const TrackedPoint& p : s_.fixed) ++held[mesh_.element_block[p.element]];
   // A support along an edge holds what two points would (the system says so if it does not).
-  for (const auto& edges : support_edges_)
+  for (const auto& edges : model_.support_edges())
     for (const BoundaryEdge& be : edges) held[mesh_.element_block[be.element]] += 2;
   for (std::size_t b = 0; b < held.size(); ++b) {
     if (held[b] >= 2 || s_.body_removed[mesh_.block_body[b]]) continue;
@@ -283,74 +175,10 @@ void TimeStepper::check_static_support() const {
 }
 
 void TimeStepper::compute_frames() {
-  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    // Each cover's own node, also for a tied cover (its weight function is its own).
-    const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    ElementFrame& f = frame_[e];
-    const int c0 = ec[0], c1 = ec[1], c2 = ec[2];
-    f.ox = s_.cover_xy[2 * c0];
-    f.oy = s_.cover_xy[2 * c0 + 1];
-    const double p[6] = {0, 0, s_.cover_xy[2 * c1] - f.ox, s_.cover_xy[2 * c1 + 1] - f.oy,
-                         s_.cover_xy[2 * c2] - f.ox, s_.cover_xy[2 * c2 + 1] - f.oy};
-    f.w = triangle_weights(p);
-    if (!(f.w.twice_area > 0))
-      throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
-                     std::to_string(s_.time) + " s (displacements too large for the time step)");
-  }
-}
-
-const ElementBasis& TimeStepper::basis(std::size_t e) const {
-  const std::int32_t* ec = &mesh_.element_covers[3 * e];
-  double centre[6];
-  for (int k = 0; k < 3; ++k) {
-    const int m = space_.basis_cover(ec[k]);
-    centre[2 * k] = s_.cover_xy[2 * m];
-    centre[2 * k + 1] = s_.cover_xy[2 * m + 1];
-  }
-  space_.element_basis(frame_[e].ox, frame_[e].oy, frame_[e].w, centre, basis_scratch_);
-  return basis_scratch_;
-}
-
-void TimeStepper::shape_values(std::size_t e, double x, double y, double* out) const {
-  if (space_.order() == 0) {  // the weights themselves, with the first-order code's round-off
-    const ElementFrame& f = frame_[e];
-    for (int k = 0; k < 3; ++k) out[k] = f.w.at(k, x - f.ox, y - f.oy);
-    return;
-  }
-  basis(e).values(x, y, out);
-}
-
-std::vector<double> TimeStepper::mean_stress() const {
-  const std::size_t T = stress_terms(), ne = mesh_.element_count();
-  if (T == 1) return s_.stress;
-  std::vector<double> out(3 * ne, 0.0);
-  for (std::size_t e = 0; e < ne; ++e) {
-    // The stress polynomial's origin is the element's first cover node, where it is now.
-    const std::int32_t c0 = mesh_.element_covers[3 * e];
-    const double ox = s_.cover_xy[2 * c0], oy = s_.cover_xy[2 * c0 + 1];
-    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
-    const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * b, n, ox, oy,
-                                               space_.scale(), space_.order());
-    if (!(m.m[0] > 0)) continue;
-    for (std::size_t t = 0; t < T; ++t)
-      for (int r = 0; r < 3; ++r) out[3 * e + r] += s_.stress[3 * (T * e + t) + r] * m.m[t] / m.m[0];
-  }
-  return out;
-}
-
-std::array<double, 3> TimeStepper::stress_at(std::size_t e, double x, double y) const {
-  const std::size_t T = stress_terms();
-  std::array<double, 3> out{};
-  const std::int32_t c0 = mesh_.element_covers[3 * e];
-  const double ox = s_.cover_xy[2 * c0], oy = s_.cover_xy[2 * c0 + 1];
-  for (std::size_t t = 0; t < T; ++t) {
-    Poly p;
-    p.degree = kMonomials.p[t] + kMonomials.q[t];
-    p.c[t] = 1;
-    const double v = p((x - ox) / space_.scale(), (y - oy) / space_.scale());
-    for (int r = 0; r < 3; ++r) out[r] += s_.stress[3 * (T * e + t) + r] * v;
-  }
-  return out;
+  const std::int64_t e = config_.place(s_.cover_xy);
+  if (e >= 0)
+    throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
+                   std::to_string(s_.time) + " s (displacements too large for the time step)");
 }
 
 void TimeStepper::update_pattern() {
@@ -391,262 +219,55 @@ void TimeStepper::build_pattern_with_pairs() {
 }
 
 void TimeStepper::assemble(double dt) {
+  // The terms are integrators.h's; only the effects the scene calls for are assembled.
   const bool dynamic = step_inertia();  // the matrix has the inertia term
-  // Body force per unit mass: gravity, and −a_base(t) for a shaken base (the model moves
-  // relative to its base, which the supports and fixed points hold).
   const double t_end = s_.time + dt;
-  const double bx = (scene_.has_gravity ? scene_.gravity.x : 0.0) -
-                    table_value(scene_.base_acceleration_x, t_end, 0.0);
-  const double by = (scene_.has_gravity ? scene_.gravity.y : 0.0) -
-                    table_value(scene_.base_acceleration_y, t_end, 0.0);
+  const auto [bx, by] = body_force_per_mass(scene_, t_end);
   const bool gravity = bx != 0 || by != 0;
   // Until one step has given the acceleration, a0 is unknown: that step takes β = ½, for which
   // a0 drops out, so constant acceleration is exact from the first step on.
   // A static step starts from rest: β = ½ (Shi's 2M/Δt²), a0 and v0 drop out.
   const double beta = s_.accel_known && scene_.solver.dynamic ? scene_.solver.newmark_beta : 0.5;
-  const double mass_k = dynamic ? 1.0 / (beta * dt * dt) : 0.0;  // on d
-  const double mass_v = dynamic ? 1.0 / (beta * dt) : 0.0;        // on v0
-  const double mass_a = dynamic ? 1.0 / (2 * beta) - 1.0 : 0.0;   // on a0
+  InertiaCoefficients inertia;
+  if (dynamic) inertia = {1.0 / (beta * dt * dt), 1.0 / (beta * dt), 1.0 / (2 * beta) - 1.0};
   system_.set_zero();
   rhs_.setZero();
-  // Element matrices from the polynomial shape functions, integrated exactly (cover_space.h,
-  // element_integration.h). With B_{a,s} = Σ_i ∂_iφ_a·E_{s,i} (E picks the strain row: u_x → εxx,
-  // u_y → γxy, v_x → γxy, v_y → εyy):
-  //   K(2a+s, 2b+t) = Σ_ij D(r(s,i), r(t,j)) ∫ ∂_iφ_a ∂_jφ_b dA
-  //   F_int(2a+s)   = Σ_i ∫ ∂_iφ_a σ_r(s,i) dA        (σ a polynomial of degree n)
-  //   M(a, b)       = ρ ∫ φ_a φ_b dA,   F_grav(2a+s) = ρ b_s ∫ φ_a dA
-  const int nd = space_.element_dofs(), nf = nd / 2;
+  const int nd = space_.element_dofs();
   const std::size_t T = stress_terms();
-  static constexpr int kRow[2][2] = {{0, 2}, {2, 1}};  // strain row of (direction s, derivative i)
   Eigen::MatrixXd k(nd, nd);
   Eigen::VectorXd fe(nd);
-  std::vector<double> mass(static_cast<std::size_t>(nf) * nf);
-  Poly sig[3];
-  for (int r = 0; r < 3; ++r) sig[r].degree = space_.order();
+  Mat6 k6;
+  Vec6 f6;
   for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
     const int* g = space_.element_unknowns(e);
     if (removed_elem_[e]) {  // excavated: its covers' unknowns are held at zero
-      k = pin_k_ * Eigen::MatrixXd::Identity(nd, nd);
+      k = model_.pin_stiffness() * Eigen::MatrixXd::Identity(nd, nd);
       system_.add_group(e, k.data());
       continue;
     }
     const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    const std::size_t lb = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - lb;
-    if (space_.order() == 0) {
-      // n = 0: the same integrals specialised to constant strain (K_e = A·BᵀDB, no polynomial
-      // algebra): the first-order code path, for its speed and its round-off.
-      const ElementFrame& f = frame_[e];
-      const PolygonMoments pm = polygon_moments(s_.loop_xy.data() + 2 * lb, n, f.ox, f.oy);
-      const Mat36 B = strain_matrix(f.w);
-      const Mat3& D = material_d_[elem_mat_[e]];
-      Mat6 k6 = pm.a * (B.transpose() * D * B);
-      const Vec3 sigma(s_.stress[3 * e], s_.stress[3 * e + 1], s_.stress[3 * e + 2]);
-      Vec6 f6 = -pm.a * (B.transpose() * sigma);
-      const double rho = scene_.materials[elem_mat_[e]].density;
-      if (gravity)
-        for (int i = 0; i < 3; ++i) {
-          const double iw = integral_w(f.w, pm, i);
-          f6[2 * i] += rho * bx * iw;
-          f6[2 * i + 1] += rho * by * iw;
-        }
-      if (dynamic)
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) {
-            const double mij = rho * integral_ww(f.w, pm, i, j);
-            k6(2 * i, 2 * j) += mass_k * mij;
-            k6(2 * i + 1, 2 * j + 1) += mass_k * mij;
-            const int cj = 2 * ec[j];
-            f6[2 * i] += mij * (mass_v * s_.velocity[cj] + mass_a * s_.accel[cj]);
-            f6[2 * i + 1] += mij * (mass_v * s_.velocity[cj + 1] + mass_a * s_.accel[cj + 1]);
-          }
+    const ElementGeometry geo = element_geometry(config_, mesh_, s_.loop_xy, e);
+    const double rho = model_.density(e);
+    const double* sigma = s_.stress.data() + 3 * T * e;
+    if (space_.order() == 0) {  // constant strain: the 6×6 fast paths
+      integrators::elasticity(geo, model_.elasticity(e), k6);
+      integrators::initial_stress(geo, sigma, f6);
+      if (gravity) integrators::body_force(geo, rho, bx, by, f6);
+      if (dynamic) integrators::inertia(geo, rho, inertia, ec, s_, k6, f6);
       system_.add_group(e, k6.data());
       for (int i = 0; i < 6; ++i) rhs_[g[i]] += f6[i];
       continue;
     }
-    const ElementBasis& eb = basis(e);
-    const MonomialMoments m = monomial_moments(s_.loop_xy.data() + 2 * lb, n, eb.ox, eb.oy, eb.h,
-                                               2 * space_.order() + 2);
-    const Mat3& D = material_d_[elem_mat_[e]];
-    for (std::size_t t = 0; t < T; ++t)
-      for (int r = 0; r < 3; ++r) sig[r].c[t] = s_.stress[3 * (T * e + t) + r];
     k.setZero();
-    fe.setZero();
-    for (int a = 0; a < nf; ++a) {
-      const Poly* da[2] = {&eb.dx[a], &eb.dy[a]};
-      for (int bb = a; bb < nf; ++bb) {
-        const Poly* db[2] = {&eb.dx[bb], &eb.dy[bb]};
-        double G[2][2];
-        for (int i = 0; i < 2; ++i)
-          for (int j = 0; j < 2; ++j) G[i][j] = integral(*da[i], *db[j], m);
-        for (int sd = 0; sd < 2; ++sd)
-          for (int td = 0; td < 2; ++td) {
-            double v = 0;
-            for (int i = 0; i < 2; ++i)
-              for (int j = 0; j < 2; ++j) v += D(kRow[sd][i], kRow[td][j]) * G[i][j];
-            k(2 * a + sd, 2 * bb + td) = v;
-            k(2 * bb + td, 2 * a + sd) = v;
-          }
-      }
-      for (int sd = 0; sd < 2; ++sd)
-        for (int i = 0; i < 2; ++i) fe[2 * a + sd] -= integral(*da[i], sig[kRow[sd][i]], m);
-    }
-    const double rho = scene_.materials[elem_mat_[e]].density;
-    if (gravity)
-      for (int a = 0; a < nf; ++a) {
-        const double ia = integral(eb.phi[a], m);
-        fe[2 * a] += rho * bx * ia;
-        fe[2 * a + 1] += rho * by * ia;
-      }
-    if (dynamic) {
-      const int P = space_.terms();
-      const std::size_t dpc = static_cast<std::size_t>(space_.dofs_per_cover());
-      for (int a = 0; a < nf; ++a)
-        for (int bb = a; bb < nf; ++bb) mass[a * nf + bb] = mass[bb * nf + a] = rho * integral(eb.phi[a], eb.phi[bb], m);
-      for (int a = 0; a < nf; ++a)
-        for (int bb = 0; bb < nf; ++bb) {
-          const double mab = mass[a * nf + bb];
-          k(2 * a, 2 * bb) += mass_k * mab;
-          k(2 * a + 1, 2 * bb + 1) += mass_k * mab;
-          // v0, a0 of term j of the element's cover kb (its own copy, equal to its master's)
-          const std::size_t vb = dpc * static_cast<std::size_t>(ec[bb / P]) + 2 * static_cast<std::size_t>(bb % P);
-          fe[2 * a] += mab * (mass_v * s_.velocity[vb] + mass_a * s_.accel[vb]);
-          fe[2 * a + 1] += mab * (mass_v * s_.velocity[vb + 1] + mass_a * s_.accel[vb + 1]);
-        }
-    }
+    integrators::elasticity(geo, model_.elasticity(e), k);
+    integrators::initial_stress(geo, sigma, fe);
+    if (gravity) integrators::body_force(geo, rho, bx, by, fe);
+    if (dynamic) integrators::inertia(geo, rho, inertia, ec, s_, space_.terms(), k, fe);
     system_.add_group(e, k.data());
     for (int i = 0; i < nd; ++i) rhs_[g[i]] += fe[i];
   }
-  // Fixed points: penalty springs back to where they started.
-  std::vector<double> phi(static_cast<std::size_t>(nf));
-  for (const TrackedPoint& p : s_.fixed) {
-    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
-    k.setZero();
-    for (int a = 0; a < nf; ++a)
-      for (int bb = 0; bb < nf; ++bb) {
-        k(2 * a, 2 * bb) = fixed_k_ * phi[a] * phi[bb];
-        k(2 * a + 1, 2 * bb + 1) = fixed_k_ * phi[a] * phi[bb];
-      }
-    system_.add_group(p.element, k.data());
-    const int* g = space_.element_unknowns(p.element);
-    for (int a = 0; a < nf; ++a) {
-      rhs_[g[2 * a]] -= fixed_k_ * phi[a] * (p.x - p.x0);
-      rhs_[g[2 * a + 1]] -= fixed_k_ * phi[a] * (p.y - p.y0);
-    }
-  }
-  for (std::size_t l = 0; l < s_.loads.size(); ++l) {
-    const TrackedPoint& p = s_.loads[l];
-    const int* g = space_.element_unknowns(p.element);
-    const double factor =
-        l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], t_end) : 1.0;
-    shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
-    for (int a = 0; a < nf; ++a) {
-      rhs_[g[2 * a]] += phi[a] * factor * scene_.loads[l].force.x;
-      rhs_[g[2 * a + 1]] += phi[a] * factor * scene_.loads[l].force.y;
-    }
-  }
-  assemble_boundary(t_end);
-}
-
-void TimeStepper::assemble_boundary(double t_end) {
-  // Supports, tractions and the in-situ traction of faces between bodies (boundary_conditions.h).
-  const int nd = space_.element_dofs();
-  Eigen::MatrixXd k(nd, nd);
-  // The edge's element basis lives in basis()'s scratch until the next call.
-  auto frame_of = [&](std::int32_t e) {
-    return EdgeFrame{&basis(static_cast<std::size_t>(e)), space_.order() + 2};
-  };
-  auto add_force = [&](std::int32_t e, const std::vector<double>& f, double factor) {
-    const int* g = space_.element_unknowns(static_cast<std::size_t>(e));
-    for (int i = 0; i < nd; ++i) rhs_[g[i]] += factor * f[i];
-  };
-  const double* xy = s_.loop_xy.data();
-  for (std::size_t i = 0; i < support_edges_.size(); ++i) {
-    const SupportDef& sd = scene_.supports[i];
-    // A moving support holds its edges at u = velocity·t at the end of the step: the spring
-    // sees the displacement less that.
-    const double held[2] = {sd.velocity.x * t_end, sd.velocity.y * t_end};
-    for (const BoundaryEdge& be : support_edges_[i]) {
-      if (removed_elem_[be.element]) continue;
-      k.setZero();
-      std::vector<double> f(static_cast<std::size_t>(nd), 0.0);
-      const double* u0 = s_.loop_u.data() + 2 * be.vertex;
-      const double* u1 = s_.loop_u.data() + 2 * be.next;
-      const double ua[2] = {u0[0] - held[0], u0[1] - held[1]}, ub[2] = {u1[0] - held[0], u1[1] - held[1]};
-      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next, ua, ub, sd.fix_x,
-                   sd.fix_y, support_k_, k.data(), f.data());
-      system_.add_group(be.element, k.data());
-      add_force(be.element, f, 1.0);
-    }
-  }
-  const InsituStressDef& insitu = scene_.insitu_stress;
-  // The in-situ field at a point's position in the mesh as cut (x − u); σ·n with n current.
-  auto insitu_traction = [&](const double* ua, const double* ub, const double* a, const double* b) {
-    return [=, &insitu](double x, double y, double nx, double ny, double* t) {
-      const double len2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
-      const double xi = len2 > 0 ? ((x - a[0]) * (b[0] - a[0]) + (y - a[1]) * (b[1] - a[1])) / len2 : 0;
-      const double y0 = y - ((1 - xi) * ua[1] + xi * ub[1]);
-      const auto sg = insitu_stress_at(insitu, x, y0);
-      t[0] = sg[0] * nx + sg[2] * ny;
-      t[1] = sg[2] * nx + sg[1] * ny;
-    };
-  };
-  // Supports start carrying the in-situ stress's reaction (σ_insitu·n in their held
-  // directions) as a locked-in force, so that a model in in-situ equilibrium on rollers does not
-  // first have to move by σ/k_s to load its springs; the springs carry only what changes.
-  if (insitu.present)
-    for (std::size_t i = 0; i < support_edges_.size(); ++i) {
-      const SupportDef& sd = scene_.supports[i];
-      for (const BoundaryEdge& be : support_edges_[i]) {
-        if (removed_elem_[be.element]) continue;
-        const double* a = xy + 2 * be.vertex;
-        const double* b = xy + 2 * be.next;
-        std::vector<double> f = edge_traction_forces(
-            frame_of(be.element), a, b,
-            insitu_traction(s_.loop_u.data() + 2 * be.vertex, s_.loop_u.data() + 2 * be.next, a, b));
-        for (int c = 0; c < nd / 2; ++c) {
-          if (!sd.fix_x) f[2 * c] = 0;
-          if (!sd.fix_y) f[2 * c + 1] = 0;
-        }
-        add_force(be.element, f, 1.0);
-      }
-    }
-  for (std::size_t i = 0; i < traction_edges_.size(); ++i) {
-    const TractionDef& td = scene_.tractions[i];
-    const double factor = table_value(td.table, t_end);
-    for (const BoundaryEdge& be : traction_edges_[i]) {
-      if (removed_elem_[be.element]) continue;
-      const double* a = xy + 2 * be.vertex;
-      const double* b = xy + 2 * be.next;
-      std::vector<double> f;
-      if (td.from_insitu) {
-        f = edge_traction_forces(frame_of(be.element), a, b,
-                                 insitu_traction(s_.loop_u.data() + 2 * be.vertex,
-                                                 s_.loop_u.data() + 2 * be.next, a, b));
-      } else {
-        const double sn = td.normal, ss = td.shear, sx = be.sx, sy = be.sy;
-        f = edge_traction_forces(frame_of(be.element), a, b,
-                                 [=](double, double, double nx, double ny, double* t) {
-                                   t[0] = sn * nx + ss * sx;
-                                   t[1] = sn * ny + ss * sy;
-                                 });
-      }
-      add_force(be.element, f, factor);
-    }
-  }
-  add_water_forces(water_, xy, removed_elem_, frame_of, add_force);
-  for (const InterfaceEdge& ie : interface_edges_) {
-    const BoundaryEdge& be = ie.edge;
-    if (removed_elem_[be.element]) continue;
-    const double factor = interface_traction_factor(s_, ie.other_body, scene_.solver.excavation_steps);
-    if (factor == 0) continue;
-    const double* a = xy + 2 * be.vertex;
-    const double* b = xy + 2 * be.next;
-    add_force(be.element,
-              edge_traction_forces(frame_of(be.element), a, b,
-                                   insitu_traction(s_.loop_u.data() + 2 * be.vertex,
-                                                   s_.loop_u.data() + 2 * be.next, a, b)),
-              factor);
-  }
+  point_terms(model_, config_, s_, t_end, system_, rhs_);
+  edge_terms(model_, config_, s_, removed_elem_, t_end, system_, rhs_);
 }
 
 void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
@@ -660,9 +281,9 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
     for (int i = 0; i < nd; ++i) de[i] = d[g[i]];
     if (space_.order() == 0) {
       // n = 0 specialised (constant strain; the first-order code path, see assemble()).
-      const ElementFrame& f = frame_[e];
+      const ElementFrame& f = config_.frame(e);
       const Vec6 de6 = Eigen::Map<const Vec6>(de.data());
-      const Vec3 ds = material_d_[elem_mat_[e]] * (strain_matrix(f.w) * de6);
+      const Vec3 ds = model_.elasticity(e) * (strain_matrix(f.w) * de6);
       for (int i = 0; i < 3; ++i) s_.stress[3 * e + i] += ds[i];
       for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
         const double x = s_.loop_xy[2 * v] - f.ox, y = s_.loop_xy[2 * v + 1] - f.oy;
@@ -679,7 +300,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
       }
       continue;
     }
-    const ElementBasis& eb = basis(e);
+    const ElementBasis& eb = config_.basis(e);
     // Δσ = D·B·d: strain polynomials of degree n, then D per coefficient.
     Poly eps[3];
     for (int r = 0; r < 3; ++r) eps[r].degree = space_.order();
@@ -689,7 +310,7 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
         eps[1].c[t] += eb.dy[a].c[t] * de[2 * a + 1];
         eps[2].c[t] += eb.dy[a].c[t] * de[2 * a] + eb.dx[a].c[t] * de[2 * a + 1];
       }
-    const Mat3& D = material_d_[elem_mat_[e]];
+    const Mat3& D = model_.elasticity(e);
     for (std::size_t t = 0; t < T; ++t) {
       const Vec3 ds = D * Vec3(eps[0].c[t], eps[1].c[t], eps[2].c[t]);
       for (int r = 0; r < 3; ++r) s_.stress[3 * (T * e + t) + r] += ds[r];
@@ -707,47 +328,9 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
       s_.loop_u[2 * v + 1] += uy;
     }
   }
-  auto move = [&](std::vector<TrackedPoint>& pts) {
-    for (TrackedPoint& p : pts) {
-      const int* g = space_.element_unknowns(p.element);
-      shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
-      double ux = 0, uy = 0;
-      for (int a = 0; a < nf; ++a) {
-        ux += phi[a] * d[g[2 * a]];
-        uy += phi[a] * d[g[2 * a + 1]];
-      }
-      p.x += ux;
-      p.y += uy;
-    }
-  };
-  move(s_.fixed);
-  move(s_.loads);
-  move(s_.measure);
-  // Cover nodes move by their cover function at the node: its constant term for an untied
-  // cover (the basis is centred there); a tied cover evaluates its master's polynomial.
-  const int P = space_.terms();
-  const std::size_t nc = mesh_.cover_count();
-  std::vector<double> node_d(2 * nc, 0.0);
-  for (std::size_t c = 0; c < nc; ++c) {
-    const int first = space_.first_unknown(c);
-    const int mc = space_.basis_cover(c);
-    if (mc == static_cast<int>(c) || P == 1) {
-      node_d[2 * c] = d[first];
-      node_d[2 * c + 1] = d[first + 1];
-      continue;
-    }
-    const double xi = (s_.cover_xy[2 * c] - s_.cover_xy[2 * mc]) / space_.scale();
-    const double eta = (s_.cover_xy[2 * c + 1] - s_.cover_xy[2 * mc + 1]) / space_.scale();
-    for (int j = 0; j < P; ++j) {
-      Poly pj;
-      pj.degree = kMonomials.p[j] + kMonomials.q[j];
-      pj.c[j] = 1;
-      const double pv = pj(xi, eta);
-      node_d[2 * c] += pv * d[first + 2 * j];
-      node_d[2 * c + 1] += pv * d[first + 2 * j + 1];
-    }
-  }
-  for (std::size_t i = 0; i < s_.cover_xy.size(); ++i) s_.cover_xy[i] += node_d[i];
+  for (std::vector<TrackedPoint>* points : {&s_.fixed, &s_.loads, &s_.measure})
+    config_.move_points(d, *points);
+  config_.move_cover_nodes(d, s_.cover_xy);
   const bool dynamic = scene_.solver.dynamic;
   const double beta = s_.accel_known ? scene_.solver.newmark_beta : 0.5;
   const double k = scene_.solver.dynamic_factor;
@@ -770,27 +353,26 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
 std::string TimeStepper::attempt(double dt) {
   // Where no two faces can touch (an opening excavated from one unjointed block), the plain
   // solve: no contact detection, no contact problem.
-  const bool contact = contacts_.active() && contacts_can_arise(mesh_, scene_);
+  const bool contact = contacts_.active() && model_.contacts_can_arise();
   if (!step_inertia() && !contact) check_static_support();
-  auto t0 = Clock::now();
+  Stopwatch watch;
   compute_frames();
-  timings_.assembly += since(t0);
+  timings_.assembly += watch.seconds();
   if (contact) {
-    // Search distance: 2.5 × the displacement a step may make (Shi: g2·w0 per step, cut at 2×).
-    const double g2w0 = scene_.solver.max_displacement_ratio * w0_;
     contacts_.begin_step(
-        s_.loop_xy, [this](std::size_t e, double x, double y, double* out) { shape_values(e, x, y, out); },
-        2.5 * g2w0 + contacts_.max_dilation(), kContactTolerances.new_depth * mesh_.mesh_size, w0_);
+        s_.loop_xy, config_,
+        control_.search_distance() + contacts_.max_dilation(),
+        kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
     update_pattern();
   }
   timings_.contact_detection = contacts_.detection_seconds();
-  t0 = Clock::now();
+  watch.restart();
   assemble(dt);
   if (contact) {
     system_.save();
     rhs_base_ = rhs_;
   }
-  timings_.assembly += since(t0);
+  timings_.assembly += watch.seconds();
 
   // Without contact: one factorisation and solve. With contact: the step's convex contact
   // problem (contact_solve.cpp), Newton iterations on a reused factorisation.
@@ -809,15 +391,15 @@ std::string TimeStepper::attempt(double dt) {
     return os.str();
   };
   if (!contact) {
-    t0 = Clock::now();
+    watch.restart();
     const bool ok = system_.factorize();
     ++timings_.factorisations;
-    timings_.factorisation += since(t0);
+    timings_.factorisation += watch.seconds();
     if (!ok) throw RunError(not_positive_definite());
-    t0 = Clock::now();
+    watch.restart();
     d = system_.solve(rhs_);
     ++timings_.solves_count;
-    timings_.solves += since(t0);
+    timings_.solves += watch.seconds();
   } else {
     const ContactSolveStats before = solve_stats_;
     const ContactSolveOutcome outcome =
@@ -839,41 +421,17 @@ std::string TimeStepper::attempt(double dt) {
       throw RunError("the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
                      " is not a finite number at t = " + std::to_string(s_.time) + " s");
   if (contact) {
-    // Shi's step control: a step may move no cover more than 2·g2·w0 (contacts farther than the
-    // search distance would be missed), nor leave a penetration deeper than g2·w0.
-    const double limit = scene_.solver.max_displacement_ratio * w0_;
-    const double dmax = d.cwiseAbs().maxCoeff();
-    // An equilibrium increment does not shrink with Δt (no inertia): the limit applies to runs
-    // with the inertia term (dynamic and DDA static).
-    // The reason names w0 in words: users coming from UDEC do not know DDA's symbol. The value
-    // and its limit get the digits that tell them apart (6e-06 against 6e-06 would puzzle).
-    const std::string ratio = format_rough(scene_.solver.max_displacement_ratio, 3);
-    const std::string w0 = format_rough(w0_, 3) + " m";
-    auto apart = [](double value, double bound) {
-      int digits = 3;
-      while (digits < 9 && format_rough(value, digits) == format_rough(bound, digits)) ++digits;
-      return std::make_pair(format_rough(value, digits), format_rough(bound, digits));
-    };
-    if (step_inertia() && dmax > 2 * limit) {
-      const auto [moved, allowed] = apart(dmax, 2 * limit);
-      return "one step moved a cover by " + moved + " m, more than the " + allowed +
-             " m a step may move (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
-             ", w0 being half the model size as in DDA)";
-    }
-    if (contacts_.max_penetration() > limit) {
-      const auto [depth, allowed] = apart(contacts_.max_penetration(), limit);
-      return "a contact penetrated " + depth + " m, more than the " + allowed +
-             " m allowed (max_displacement_ratio " + ratio + " × w0 " + w0 +
-             ", w0 being half the model size as in DDA)";
-    }
+    const std::string why =
+        control_.rejection(d.cwiseAbs().maxCoeff(), contacts_.max_penetration(), step_inertia());
+    if (!why.empty()) return why;
     contacts_.end_step();
     s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());
     s_.max_capped = std::max(s_.max_capped, contacts_.capped_count());
   }
-  t0 = Clock::now();
+  watch.restart();
   measure_balance(d, dt, contact);
   update(d, dt);
-  timings_.geometry_update += since(t0);
+  timings_.geometry_update += watch.seconds();
   s_.time += dt;
   ++s_.step;
   return "";
@@ -882,10 +440,7 @@ std::string TimeStepper::attempt(double dt) {
 void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool contact) {
   // The same body force, β and loads as the step's assembly (assemble()), at the step's end.
   const double t_end = s_.time + dt;
-  const double bx = (scene_.has_gravity ? scene_.gravity.x : 0.0) -
-                    table_value(scene_.base_acceleration_x, t_end, 0.0);
-  const double by = (scene_.has_gravity ? scene_.gravity.y : 0.0) -
-                    table_value(scene_.base_acceleration_y, t_end, 0.0);
+  const auto [bx, by] = body_force_per_mass(scene_, t_end);
   StepBalance b;
   b.d = &d;
   b.v0 = &s_.velocity;
@@ -900,8 +455,8 @@ void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool cont
     b.balance = contact ? &kd : &rhs_;
   }
   b.applied_sum = applied_force_sum(scene_, s_, t_end, std::hypot(bx, by),
-                                    indicator_.active_mass(s_.body_removed), traction_edges_,
-                                    interface_edges_, removed_elem_);
+                                    indicator_.active_mass(s_.body_removed), model_.traction_edges(),
+                                    model_.interface_edges(), removed_elem_);
   b.stress = &s_.stress;
   b.stress_terms = stress_terms();
   balance_ = indicator_.measure(b, s_.body_removed);
@@ -927,29 +482,17 @@ std::array<double, 2> TimeStepper::displacement_at(const TrackedPoint& p) const 
   return {p.x - p.x0, p.y - p.y0};
 }
 
-std::vector<MeasureSample> TimeStepper::sample_measure_points() const {
-  std::vector<MeasureSample> s;
-  for (const TrackedPoint& p : s_.measure) s.push_back({p.x, p.y, p.x - p.x0, p.y - p.y0});
-  return s;
-}
-
 std::string TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step) {
-  // Without contact every step has the full length time_step. With contact, Shi's step control:
-  // a step that fails (iteration not converged, displacement or penetration too large) is redone
-  // with Δt × 0.3; after a success Δt grows by at most × 1.3 back towards time_step. Below
-  // time_step × 1e-3 the run stops (exit status 3).
+  // Attempts under Shi's step control (step_control.h): without contact nothing is rejected and
+  // every step has the full length time_step.
   const SolverDef& sv = scene_.solver;
-  const double dt_floor = 1e-3 * sv.time_step;
-  double dt = std::min(s_.dt, sv.time_step);
+  control_ = StepControl(sv, model_.w0(), s_.dt);
   std::int64_t done = 0;
   stopped_at_ratio_ = false;
-  while (s_.time < t_end - 1e-9 * sv.time_step) {
+  while (!control_.done(s_.time, t_end)) {
     // Between steps only, so an interrupted run stops in a consistent state.
     if (stop_check_ && stop_check_()) return "interrupted";
-    // The last step is cut to end at t_end, unless it is within round-off of a full step: then
-    // a run of 2N steps and N + N from a checkpoint take the same steps, bitwise.
-    const double left = t_end - s_.time;
-    const double h = left < dt * (1 - 1e-9) ? left : dt;
+    const double h = control_.next(s_.time, t_end);
     std::string why;
     try {
       why = attempt(h);
@@ -960,17 +503,16 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
       static const bool trace = std::getenv("NMM_TRACE_CUTS") != nullptr;
       if (trace) std::fprintf(stderr, "cut at t = %.9g: %s\n", s_.time, why.c_str());
       ++s_.cuts;
-      dt = 0.3 * h;
-      if (dt < dt_floor) {
+      if (!control_.cut(h)) {
         std::ostringstream os;
-        os << "time step cut below its floor (" << dt_floor << " s) at t = " << s_.time
+        os << "time step cut below its floor (" << control_.floor() << " s) at t = " << s_.time
            << " s because " << why;
         return os.str();
       }
       continue;
     }
-    dt = std::min(1.3 * dt, sv.time_step);
-    s_.dt = dt;
+    control_.accept();
+    s_.dt = control_.dt();
     // UDEC's `solve ratio`: the run has reached equilibrium (equilibrium_indicator.cpp).
     stopped_at_ratio_ = sv.stop_at_ratio > 0 && balance_.max_ratio < sv.stop_at_ratio &&
                         (!sv.dynamic || balance_.max_velocity < RestCriterion::kVelocity);
@@ -978,169 +520,6 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
     if (stopped_at_ratio_) return "ok";
   }
   return "ok";
-}
-
-nlohmann::json TimeStepper::run(OutputWriter& out, bool progress) {
-  const auto wall0 = Clock::now();
-  const SolverDef& sv = scene_.solver;
-  const std::int64_t step0 = s_.step;  // steps before this run (a restart continues from them)
-  const std::string checkpoint = out.dir() + "/checkpoint.nmmstate";
-  // history.csv rows every history_every steps, frames (and contacts.csv) every output_every:
-  // a history at every step costs no frame.
-  const std::int64_t history_every = sv.history_every > 0 ? sv.history_every : sv.output_every;
-  std::int64_t last_history = -1;
-  auto history = [&](std::int64_t n) {
-    if (n == last_history) return;
-    const auto t0 = Clock::now();
-    out.add_history(step0 + n, s_.time, sample_measure_points());
-    last_history = n;
-    timings_.output += since(t0);
-  };
-  auto output = [&](std::int64_t n) {
-    const std::int64_t s = step0 + n;
-    history(n);
-    const auto t0 = Clock::now();
-    FrameFields fields;
-    fields.loop_xy = &s_.loop_xy;
-    fields.loop_u = &s_.loop_u;
-    const std::vector<double> mean = mean_stress();  // n = 0: the element stresses themselves
-    fields.stress = &mean;
-    std::vector<double> at_vertex;
-    if (space_.order() > 0) {
-      at_vertex.resize(s_.loop_xy.size() / 2 * 3);
-      for (std::size_t e = 0; e < mesh_.element_count(); ++e)
-        for (std::int32_t v = mesh_.element_loop_offset[e]; v < mesh_.element_loop_offset[e + 1]; ++v) {
-          const auto sg = stress_at(e, s_.loop_xy[2 * v], s_.loop_xy[2 * v + 1]);
-          for (int r = 0; r < 3; ++r) at_vertex[3 * static_cast<std::size_t>(v) + r] = sg[r];
-        }
-      fields.vertex_stress = &at_vertex;
-    }
-    out.write_frame(s, s_.time, mesh_, fields);
-    if (contacts_.active()) {
-      std::vector<ContactSample> rows;
-      for (const Contact& c : contacts_.contacts()) {
-        if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
-        const double x = s_.loop_xy[2 * c.at.vertex], y = s_.loop_xy[2 * c.at.vertex + 1];
-        const JointLawOutput j = joint_law_output(contacts_.laws()[c.law], c.normal_force, c.length, c.joint);
-        rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
-                        c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
-                        water_.pressure_at(contacts_.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
-      }
-      out.add_contacts(s, s_.time, rows);
-    }
-    timings_.output += since(t0);
-  };
-  output(0);
-  std::int64_t done = 0;
-  const double t_start = s_.time;
-  const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
-  const std::string status = run_until(t_end, [&](std::int64_t n) {
-    done = n;
-    const bool last = s_.time >= t_end - 1e-9 * sv.time_step || stopped_at_ratio_;
-    if (n % sv.output_every == 0 || last) output(n);
-    else if (n % history_every == 0) history(n);
-    if (sv.checkpoint_every > 0 && n % sv.checkpoint_every == 0) {
-      const auto t0 = Clock::now();
-      write_checkpoint(checkpoint);
-      timings_.output += since(t0);
-    }
-    if (progress_) progress_(n, s_.time);
-    if (progress && n % 10 == 0) {
-      std::fprintf(stderr, "\rstep %lld  t = %.6g / %.6g s  cuts %zu", static_cast<long long>(n),
-                   s_.time, t_end, s_.cuts);
-      std::fflush(stderr);
-    }
-  });
-  if (progress) std::fprintf(stderr, "\n");
-  if (status != "ok" && done % sv.output_every != 0) output(done);  // the last good state
-  const auto t0 = Clock::now();
-  write_checkpoint(checkpoint);  // after the last completed step, also when it stopped early
-  out.flush_history();
-  timings_.output += since(t0);
-
-  nlohmann::json summary;
-  summary["status"] = status;
-  // Why the run ended: all its steps, solver.stop_at_ratio met, an interrupt, or an error
-  // (status then says which).
-  summary["stopped_by"] = status == "interrupted" ? "interrupt"
-                          : status != "ok"        ? "error"
-                          : stopped_at_ratio_     ? "stop_at_ratio"
-                                                  : "steps";
-  summary["equilibrium"] = equilibrium_verdict(balance_, sv.dynamic);
-  if (sv.stop_at_ratio > 0) summary["equilibrium"]["stop_at_ratio"] = sv.stop_at_ratio;
-  summary["steps_completed"] = done;
-  summary["first_step"] = step0;  // steps before this run (a restart from a checkpoint)
-  summary["step"] = s_.step;      // steps since step 0 of the first run
-  summary["state_hash"] = state_hash();
-  summary["simulated_time"] = s_.time;
-  summary["wall_seconds"] = since(wall0);
-  summary["effects"] = effects();
-  // Bodies removed by excavation so far (cumulative across restarts) and the step each went:
-  // nmm-report leaves them out of a redrawn frame as nmm-solve --pictures does.
-  summary["excavated_bodies"] = nlohmann::json::array();
-  for (std::size_t b = 0; b < s_.body_removed.size(); ++b)
-    if (s_.body_removed[b])
-      summary["excavated_bodies"].push_back({{"body", b}, {"step", s_.body_removed_at[b]}});
-  summary["analysis"] = scene_.solver.dynamic                                ? "dynamic"
-                        : scene_.solver.static_mode == StaticMode::dda ? "static_dda"
-                                                                       : "static_equilibrium";
-  summary["open_close_iterations"] = s_.iterations;
-  summary["time_step_cuts"] = s_.cuts;
-  summary["steps_with_unsettled_friction"] = s_.friction_unsettled;
-  summary["max_penetration"] = s_.max_penetration;
-  summary["max_contacts_at_closure_cap"] = s_.max_capped;
-  const ContactSet::Events& ev = contacts_.events;
-  const ContactSet::JointStresses joint = contacts_.joint_stresses();
-  summary["contacts"] = {{"at_end", contacts_.contacts().size()},
-                         {"closed_at_end", contacts_.closed_count()},
-                         // The joint at the end: closed length (m), largest stresses (Pa).
-                         {"closed_length_at_end", joint.closed_length},
-                         {"max_normal_stress_at_end", joint.max_normal_stress},
-                         {"max_shear_stress_at_end", joint.max_shear_stress},
-                         {"pairs_tested", contacts_.detection_stats().pairs_tested},
-                         // State changes in all iterations (attempts that were cut included):
-                         // many "settled" ones mean contacts chattering at zero gap or slip.
-                         {"closings", ev.closed},
-                         {"openings", ev.opened},
-                         {"slips", ev.slid},
-                         {"sticks", ev.stuck},
-                         {"bonds_broken", ev.broken}};
-  summary["contact_solve"] = {{"newton_iterations", solve_stats_.newton},
-                              {"cg_iterations", solve_stats_.cg_iterations},
-                              {"cg_runs_over_budget", solve_stats_.cg_aborted},
-                              {"factorisations", solve_stats_.factorisations},
-                              {"friction_updates", solve_stats_.strength_updates},
-                              // What the tolerance allows (contact_solve.cpp, docs/contact.md).
-                              {"tolerance", scene_.solver.contact_tolerance},
-                              {"max_force_tolerance_N", solve_stats_.max_force_tolerance},
-                              {"max_gap_error_m", solve_stats_.max_gap_error}};
-  summary["matrix"] = {{"unknowns", unknowns()},
-                       {"nonzeros_lower", system_.nonzeros()},
-                       {"factor_nonzeros", system_.factor_nonzeros()},
-                       {"factor_flops", system_.factor_flops()},
-                       {"ordering", system_.ordering()},
-                       {"factorisations", timings_.factorisations}};
-  summary["timings"] = {{"contact_detection", timings_.contact_detection},
-                        {"assembly", timings_.assembly},
-                        {"factorisation", timings_.factorisation},
-                        {"solves", timings_.solves},
-                        {"geometry_update", timings_.geometry_update},
-                        {"output", timings_.output}};
-  summary["unknowns"] = unknowns();
-  summary["threads"] = threads_;
-  summary["physical_covers"] = mesh_.cover_count();
-  summary["tied_sliver_covers"] = space_.ties().tied;
-  summary["cover_order"] = space_.order();
-  summary["dofs_per_cover"] = space_.dofs_per_cover();
-  summary["manifold_elements"] = mesh_.element_count();
-  summary["symbolic_analyses"] = system_.analyses();
-  summary["time_step"] = sv.time_step;
-  summary["max_step_displacement"] = s_.max_step_displacement;
-  summary["fixed_point_stiffness"] = fixed_k_;
-  if (!scene_.supports.empty()) summary["support_stiffness"] = support_k_;
-  summary["tool_version"] = NMM_VERSION;
-  out.write_summary(summary);
-  return summary;
 }
 
 }  // namespace nmm::solve
@@ -1157,7 +536,7 @@ void TimeStepper::write_checkpoint(const std::string& path) const {
   // With contact the factorisation lives on from step to step (a preconditioner): the checkpoint
   // keeps its matrix so that a restart continues bitwise as the straight run.
   write_state_file(path, s_, contact_history(), mesh_,
-                   contacts_.active() && contacts_can_arise(mesh_, scene_) ? system_.factor_source()
+                   contacts_.active() && model_.contacts_can_arise() ? system_.factor_source()
                                                                            : std::string());
 }
 

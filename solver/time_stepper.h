@@ -7,10 +7,9 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "element_integration.h"
 #include "contact.h"
+#include "configuration.h"
 #include "contact_solve.h"
 #include "cover_space.h"
 #include "cover_unknowns.h"
@@ -18,10 +17,12 @@
 #include "equilibrium_indicator.h"
 #include "joint_water.h"
 #include "mesh.h"
+#include "model.h"
 #include "boundary_conditions.h"
-#include "output_writer.h"
 #include "run_state.h"
 #include "scene.h"
+#include "step_control.h"
+#include "stress_field.h"
 #include "system_matrix.h"
 
 namespace nmm::solve {
@@ -45,18 +46,17 @@ class TimeStepper {
   /// path, e.g. /fixed_points/2, for a point outside every body), builds the sparsity pattern.
   /// `scene_name` names the scene in such errors.
   TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
-
-  /// Runs all steps, writing history, frames and the summary into `out`. Returns the summary
-  /// (also written). `progress`: a progress line on stderr.
-  nlohmann::json run(OutputWriter& out, bool progress);
+  // The contacts hold the model and the space by reference: a stepper stays where it was built.
+  TimeStepper(const TimeStepper&) = delete;
+  TimeStepper& operator=(const TimeStepper&) = delete;
 
   /// Asked before every step: true stops the run with status "interrupted" (interrupt.h).
   void set_stop_check(std::function<bool()> f) { stop_check_ = std::move(f); }
-  /// Called after every accepted step with (step, simulated time in s) (progress.h).
-  void set_progress(std::function<void(std::int64_t, double)> f) { progress_ = std::move(f); }
   /// Threads of the factorisation's dense kernels (solver_threads.h); 0: the default for the
   /// problem size (one thread below 150k unknowns).
   void set_threads(int threads);
+  /// Threads the factorisation uses (summary.json "threads").
+  int threads() const { return threads_; }
 
   // ---- state, for tests ------------------------------------------------------------------
   /// One step of length dt. Throws RunError when it cannot be taken.
@@ -75,9 +75,11 @@ class TimeStepper {
   /// stress in the element's scaled frame coordinates (n = 0: the element's constant stress)
   const std::vector<double>& stress() const { return s_.stress; }
   /// [3·me] Pa, the mean stress of each element (∫σ dA / A; n = 0: stress() itself)
-  std::vector<double> mean_stress() const;
+  std::vector<double> mean_stress() const { return solve::mean_stress(mesh_, space_, s_); }
   /// Stress (Pa, σxx σyy τxy) of element e at the point (x, y) of its current configuration.
-  std::array<double, 3> stress_at(std::size_t e, double x, double y) const;
+  std::array<double, 3> stress_at(std::size_t e, double x, double y) const {
+    return solve::stress_at(mesh_, space_, s_, e, x, y);
+  }
   const std::vector<double>& loop_xy() const { return s_.loop_xy; }              ///< [2·v] m
   const std::vector<TrackedPoint>& measure_points() const { return s_.measure; }
   /// Displacement of a point (x, y) of element e in its current configuration, m.
@@ -95,20 +97,20 @@ class TimeStepper {
   const CoverUnknowns& cover_unknowns() const { return space_.ties(); }
   /// The approximation space: order, unknowns per cover, shape functions (cover_space.h).
   const CoverSpace& space() const { return space_; }
+  /// The space placed on the cover positions at the start of the last step (configuration.h).
+  const Configuration& configuration() const { return config_; }
   /// The mesh the run steps on.
   const Mesh& mesh() const { return mesh_; }
   std::size_t symbolic_analyses() const { return system_.analyses(); }
   const ContactSet& contacts() const { return contacts_; }
-  /// Water in the joints (joint_water.h): the pressure on a face, for output.
-  const JointWater& water() const { return water_; }
   std::size_t open_close_iterations() const { return static_cast<std::size_t>(s_.iterations); }
   /// What the contact solves of the run have cost so far (summary.json "contact_solve").
   const ContactSolveStats& contact_solve_stats() const { return solve_stats_; }
   std::size_t time_step_cuts() const { return static_cast<std::size_t>(s_.cuts); }
   double max_penetration() const { return s_.max_penetration; }
-  double model_half_size() const { return w0_; }
-  double fixed_point_stiffness() const { return fixed_k_; }  ///< N/m (energy.h)
-  double support_stiffness() const { return support_k_; }    ///< N/m² (energy.h)
+  /// What the run derived once from the mesh and the scene (model.h: penalty stiffnesses, w0,
+  /// water...): shared with the energy meter (energy.h) and the contacts.
+  const Model& model() const { return model_; }
   /// The system of the last step (for benchmarks comparing against a bare factorisation).
   const SystemMatrix& system() const { return system_; }
   const Eigen::VectorXd& rhs() const { return rhs_; }
@@ -142,55 +144,36 @@ class TimeStepper {
   void assemble(double dt);
   void update_pattern();
   void update(const Eigen::VectorXd& d, double dt);
-  std::vector<MeasureSample> sample_measure_points() const;
   void check_static_support() const;
   /// The equilibrium indicators of the step just solved (increment d of length dt), before
   /// update() moves the state on.
   void measure_balance(const Eigen::VectorXd& d, double dt, bool contact);
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
-  bool step_inertia() const {
-    return scene_.solver.dynamic || scene_.solver.static_mode == StaticMode::dda;
-  }
+  bool step_inertia() const { return model_.step_inertia(); }
   void build_pattern_with_pairs();
-  /// The shape functions of element e in its current frame, in a scratch object reused by the
-  /// next call (no allocation per element).
-  const ElementBasis& basis(std::size_t e) const;
-  /// The element's shape function values at (x, y) into out[0 .. element_dofs()/2).
-  void shape_values(std::size_t e, double x, double y, double* out) const;
   /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
   std::size_t stress_terms() const { return static_cast<std::size_t>(space_.terms()); }
   /// ε of the regularised factorisation (system_matrix.h), relative to each diagonal entry.
   static constexpr double kRegularisation = 1e-10;
   void apply_removed();
-  void assemble_boundary(double t_end);
 
   const Mesh& mesh_;
   const SceneDef& scene_;
   std::string scene_name_;
-  std::vector<Mat3> material_d_;        // [material] elasticity matrix, Pa
-  std::vector<std::int32_t> elem_mat_;  // [me] material index
+  Model model_;                         // derived once from mesh and scene (model.h)
+  StepControl control_;                 // Shi's step control (step_control.h)
   CoverSpace space_;                    // order, unknowns of each cover and element, shapes
-  mutable ElementBasis basis_scratch_;  // basis()'s result
-  double fixed_k_ = 0;                  // N/m, penalty stiffness of a fixed point
-  double support_k_ = 0;                // N/m², penalty stiffness of a support per unit length
-  double pin_k_ = 0;                    // N/m, holds the unknowns of excavated covers at zero
+  Configuration config_;                // the space on the step's cover positions: frames, bases
   RunState s_;                          // everything a step carries to the next
-  std::vector<std::vector<BoundaryEdge>> support_edges_;   // [support] edges under it
-  std::vector<std::vector<BoundaryEdge>> traction_edges_;  // [traction] edges under it
-  std::vector<InterfaceEdge> interface_edges_;  // faces between bodies (in-situ traction)
-  JointWater water_;                            // water pressure on joint faces and boundaries
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
-  std::vector<ElementFrame> frame_;  // [me]
   Eigen::VectorXd rhs_;
   SystemMatrix system_;
   StepTimings timings_;
   // Contact and step control.
   ContactSet contacts_;
   Eigen::VectorXd rhs_base_;     // right-hand side without contacts
-  double w0_ = 0;                // m, half the model size
   std::function<bool()> stop_check_;                     // interrupt.h
-  std::function<void(std::int64_t, double)> progress_;  // progress.h
   ContactSolveStats solve_stats_;
   int threads_ = 1;  // what the contact solves cost (contact_solve.h)
   EquilibriumIndicator indicator_;  // lumped cover masses (derived from the mesh: no run state)

@@ -37,7 +37,7 @@ inline RestingBlockRun resting_block_two_seconds(int order) {
   s.measure_points = {{3, 1.5}};
   const Mesh m = pre::build_mesh(s, "rest");
   solve::TimeStepper st(m, s, "rest");
-  solve::EnergyMeter meter(m, s, st.fixed_point_stiffness(), st.support_stiffness());
+  solve::EnergyMeter meter(st.model());
   meter.after_step(st.state(), st.contacts().contacts(), true);
   RestingBlockRun r;
   r.status = st.run_until(2.0, [&](std::int64_t) {

@@ -251,7 +251,7 @@ EnergyTrace wedge_energy(double dt, double kn, double t_end) {
   s.solver.time_step = dt;
   const Mesh m = pre::build_mesh(s, "wedge");
   TimeStepper st(m, s, "wedge");
-  EnergyMeter meter(m, s, st.fixed_point_stiffness(), st.support_stiffness());
+  EnergyMeter meter(st.model());
   meter.after_step(st.state(), st.contacts().contacts(), true);
   EnergyTrace e;
   e.status = st.run_until(t_end, [&](std::int64_t) {

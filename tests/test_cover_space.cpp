@@ -534,7 +534,7 @@ TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
     s.insitu_stress.gxx = 4e5;
     const Mesh m = pre::build_mesh(s, "energy");
     TimeStepper st(m, s, "energy");
-    EnergyMeter meter(m, s, st.fixed_point_stiffness(), st.support_stiffness(), &st.space());
+    EnergyMeter meter(st.model(), &st.space());
     const Mat3 C = elasticity_matrix(s.materials[0], s.plane).inverse();
     auto u_density = [&](double y) {  // ½ σᵀ C σ per unit area at height y
       const Vec3 sg(-3e6 + (1 - y) * 4e5, -5e6 + (1 - y) * -2.5e5, 1e6);
@@ -550,7 +550,7 @@ TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
     s.has_gravity = true;
     s.gravity = {0, -9.81};
     TimeStepper fall(m, s, "fall");
-    EnergyMeter fmeter(m, s, fall.fixed_point_stiffness(), fall.support_stiffness(), &fall.space());
+    EnergyMeter fmeter(fall.model(), &fall.space());
     for (int i = 0; i < 50; ++i) fall.step(0.02);
     const EnergyRow f = fmeter.state_terms(fall.state(), {});
     const double mass = 2500 * 2.0, v = 9.81 * 1.0;

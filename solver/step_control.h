@@ -1,0 +1,71 @@
+// Shi's step control (DDA, Shi 1988 ch. 6; docs/contact.md "Step control"): how long the next
+// attempt is, whether a solved attempt may be accepted, and how far contact detection looks.
+// The attempt itself (assembly, solve, update) is TimeStepper's; this decides around it.
+//
+// With g2 = solver.max_displacement_ratio and w0 half the model size (model.h):
+//   search distance   d0 = 2.5·g2·w0 (+ the largest joint dilation, contact.h)
+//   accept a step     max_i |d_i| ≤ 2·g2·w0   (runs with the inertia term: dynamic, DDA static)
+//                     max penetration ≤ g2·w0
+//   after a rejection Δt ← 0.3·Δt; the run stops when Δt < 1e-3·time_step
+//   after acceptance  Δt ← min(1.3·Δt, time_step)
+// Without contact every step has the full length time_step (nothing is ever rejected).
+#pragma once
+
+#include <string>
+
+#include "scene.h"
+
+namespace nmm::solve {
+
+class StepControl {
+ public:
+  /// –, a rejected step is redone this much shorter: short enough that one or two cuts cure a
+  /// contact the step overshot, not so short that a run crawls after a single bad step.
+  static constexpr double kCut = 0.3;
+  /// –, an accepted step's successor is at most this much longer (back towards time_step): the
+  /// cut's inverse would grow back in one step and likely fail again; 1.3 takes 4–5 steps.
+  static constexpr double kGrowth = 1.3;
+  /// –, the run stops when a cut takes Δt below this fraction of time_step: a step that small
+  /// still failing means the time step is not the cause (exit status 3 says why).
+  static constexpr double kFloor = 1e-3;
+  /// –, contact detection looks 2.5·g2·w0 far: past the 2·g2·w0 a step may move, so no contact
+  /// the step makes is missed.
+  static constexpr double kSearch = 2.5;
+  /// –, a step may move no cover more than 2·g2·w0 (contacts beyond the search distance would be
+  /// missed).
+  static constexpr double kMaxMove = 2.0;
+  /// –, relative to time_step: times this close count as equal (the last step of a run is cut
+  /// to end at t_end unless it is within round-off of a full step, so 2N steps and N + N from a
+  /// checkpoint take the same steps, bitwise).
+  static constexpr double kRoundOff = 1e-9;
+
+  /// `dt`: the step length to start with (the checkpoint's, else time_step), s.
+  StepControl(const SolverDef& solver, double w0, double dt);
+
+  /// m, how far contact detection looks for contacts a step can make (before dilation).
+  double search_distance() const { return kSearch * g2w0_; }
+  /// Whether the run has reached t_end (s) within round-off.
+  bool done(double t, double t_end) const { return !(t < t_end - kRoundOff * time_step_); }
+  /// s, the length of the next attempt from t: Δt, or what is left to t_end.
+  double next(double t, double t_end) const;
+  /// Why a solved attempt may not be accepted, "" if it may: the largest cover displacement
+  /// dmax (m; checked with the inertia term only: an equilibrium increment does not shrink with
+  /// Δt) and the deepest penetration (m).
+  std::string rejection(double dmax, double max_penetration, bool inertia) const;
+  /// After a rejected attempt of length h (s): false when the cut step is below the floor.
+  bool cut(double h);
+  /// After an accepted attempt: Δt grows back towards time_step.
+  void accept();
+  double dt() const { return dt_; }        ///< s, the current step length
+  double floor() const { return floor_; }  ///< s, the shortest step allowed
+
+ private:
+  double time_step_;  // s, solver.time_step
+  double ratio_;      // –, g2 = solver.max_displacement_ratio
+  double w0_;         // m
+  double g2w0_;       // m
+  double floor_;      // s
+  double dt_;         // s
+};
+
+}  // namespace nmm::solve
