@@ -31,7 +31,6 @@
 #include "brick_wall.h"
 #include "cover_cutter.h"
 #include "stopwatch.h"
-#include "solver_threads.h"
 #include "time_stepper.h"
 
 namespace {
@@ -128,7 +127,7 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
                     1e3 * st.timings().contact_detection * per, 1e3 * cs.factorisation_seconds * per,
                     1e3 * cs.cg_seconds * per, st.time_step_cuts(), status == "ok" ? "ok" : status.c_str(),
                     nmm::bench::load_average(),
-                    threads > 0 ? threads : nmm::solve::default_solver_threads(st.unknowns()), 1e3 * wall * per);
+                    st.threads(), 1e3 * wall * per);
       csv << line;
       std::fputs(line, stdout);
       std::fflush(stdout);
