@@ -27,11 +27,11 @@
 
 #include <Eigen/CholmodSupport>
 
-#include "bench_common.h"
-#include "brick_wall.h"
-#include "cover_cutter.h"
-#include "stopwatch.h"
-#include "time_stepper.h"
+#include "bench/bench_common.h"
+#include "reference/brick_wall.h"
+#include "preprocess/cover_cutter.h"
+#include "common/stopwatch.h"
+#include "solver/time_stepper.h"
 
 namespace {
 

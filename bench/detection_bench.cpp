@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "contact_detection.h"
-#include "bench_common.h"
-#include "cover_cutter.h"
-#include "brick_wall.h"
-#include "time_stepper.h"
+#include "solver/contact_detection.h"
+#include "bench/bench_common.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/brick_wall.h"
+#include "solver/time_stepper.h"
 
 int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 30, 50};

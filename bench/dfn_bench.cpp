@@ -24,12 +24,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cover_cutter.h"
-#include "joint_network.h"
-#include "mesh_file.h"
-#include "scene.h"
-#include "scene_geometry.h"
-#include "stopwatch.h"
+#include "preprocess/cover_cutter.h"
+#include "preprocess/joint_network.h"
+#include "common/mesh_file.h"
+#include "common/scene.h"
+#include "preprocess/scene_geometry.h"
+#include "common/stopwatch.h"
 
 namespace {
 

@@ -30,12 +30,12 @@
 #include <utility>
 #include <vector>
 
-#include "bench_common.h"
-#include "cover_cutter.h"
-#include "brick_wall.h"
-#include "scene_pieces.h"
-#include "time_stepper.h"
-#include "stopwatch.h"
+#include "bench/bench_common.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/brick_wall.h"
+#include "reference/scene_pieces.h"
+#include "solver/time_stepper.h"
+#include "common/stopwatch.h"
 
 namespace {
 

@@ -24,8 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "slides.h"
-#include "stopwatch.h"
+#include "reference/slides.h"
+#include "common/stopwatch.h"
 
 namespace fs = std::filesystem;
 

@@ -35,11 +35,11 @@
 
 #include <Eigen/CholmodSupport>
 
-#include "bench_common.h"
-#include "cover_cutter.h"
-#include "brick_wall.h"
-#include "time_stepper.h"
-#include "stopwatch.h"
+#include "bench/bench_common.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/brick_wall.h"
+#include "solver/time_stepper.h"
+#include "common/stopwatch.h"
 
 namespace {
 using Sparse = nmm::solve::SystemMatrix::Sparse;

@@ -32,15 +32,15 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
-#include "bench_common.h"
-#include "cover_cutter.h"
-#include "output_writer.h"
-#include "run_driver.h"
-#include "stopwatch.h"
-#include "time_stepper.h"
-#include "vtk_writer.h"
-#include "vtu_compressed.h"
+#include "common/atomic_file.h"
+#include "bench/bench_common.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/output_writer.h"
+#include "solver/run_driver.h"
+#include "common/stopwatch.h"
+#include "solver/time_stepper.h"
+#include "common/vtk_writer.h"
+#include "common/vtu_compressed.h"
 
 namespace {
 namespace fs = std::filesystem;

@@ -13,10 +13,10 @@
 #include <random>
 #include <string>
 
-#include "cover_cutter.h"
-#include "mesh.h"
-#include "scene.h"
-#include "stopwatch.h"
+#include "preprocess/cover_cutter.h"
+#include "common/mesh.h"
+#include "common/scene.h"
+#include "common/stopwatch.h"
 
 namespace {
 

@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "bench_common.h"
-#include "cover_cutter.h"
-#include "stopwatch.h"
-#include "time_stepper.h"
+#include "bench/bench_common.h"
+#include "preprocess/cover_cutter.h"
+#include "common/stopwatch.h"
+#include "solver/time_stepper.h"
 
 namespace {
 }  // namespace

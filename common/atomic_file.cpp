@@ -4,7 +4,7 @@
 // crash right after it could leave an empty file under the final name on some file systems. The
 // temporary sits in the target's folder so that rename() is atomic (no cross-device move); the
 // pid keeps two processes writing the same target from sharing a temporary file.
-#include "atomic_file.h"
+#include "common/atomic_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -15,7 +15,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm {
 

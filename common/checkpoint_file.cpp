@@ -1,5 +1,5 @@
 // The checkpoint container (checkpoint_file.h): header, section table, CRC-32 per section.
-#include "checkpoint_file.h"
+#include "common/checkpoint_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -12,10 +12,10 @@
 #include <set>
 #include <system_error>
 
-#include "atomic_file.h"
-#include "byte_fields.h"
-#include "crc32.h"
-#include "error.h"
+#include "common/atomic_file.h"
+#include "common/byte_fields.h"
+#include "common/crc32.h"
+#include "common/error.h"
 
 namespace nmm {
 

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <string>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm {
 

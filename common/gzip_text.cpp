@@ -1,13 +1,13 @@
 // gzip of whole files: see gzip_text.h. zlib's deflate with windowBits 15 + 16 writes the gzip
 // wrapper (header, CRC-32, length); inflate with 15 + 16 reads it and checks both, so a damaged
 // or truncated file is an error, never a silently short table.
-#include "gzip_text.h"
+#include "common/gzip_text.h"
 
 #include <zlib.h>
 
 #include <stdexcept>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm {
 

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "vec2.h"
+#include "common/vec2.h"
 
 namespace nmm {
 

@@ -1,13 +1,13 @@
 // `--set PATH=VALUE` on a JSON document (json_set.h); moved from solver/run_config.cpp.
-#include "json_set.h"
+#include "common/json_set.h"
 
 #include <charconv>
 #include <string>
 #include <system_error>
 #include <vector>
 
-#include "error.h"
-#include "scene.h"
+#include "common/error.h"
+#include "common/scene.h"
 
 namespace nmm {
 

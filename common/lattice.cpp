@@ -8,14 +8,14 @@
 // 3. Lattice index bounds x/h and y/dy as doubles, within ±kMaxLatticeCoordinate/h before they
 //    become integers; node coordinates (index·h) within ±kMaxLatticeCoordinate.
 // 4. Node count ni·nj fits int32 (node numbers are int32 in the mesh and the mesh file).
-#include "lattice.h"
+#include "common/lattice.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "number_format.h"
+#include "common/number_format.h"
 
 namespace nmm {
 

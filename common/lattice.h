@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm {
 

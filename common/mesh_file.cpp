@@ -5,7 +5,7 @@
 // allocated beyond the size of the file itself. Every byte of the file is covered either by a
 // CRC-32 (header + table, each section) or by the rule that padding is zero, so any single-bit
 // error is reported rather than silently accepted.
-#include "mesh_file.h"
+#include "common/mesh_file.h"
 
 #include <fcntl.h>
 #include <openssl/evp.h>
@@ -26,10 +26,10 @@
 #include <utility>
 #include <vector>
 
-#include "atomic_file.h"
-#include "byte_fields.h"
-#include "crc32.h"
-#include "error.h"
+#include "common/atomic_file.h"
+#include "common/byte_fields.h"
+#include "common/crc32.h"
+#include "common/error.h"
 
 namespace nmm {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "mesh.h"
+#include "common/mesh.h"
 
 namespace nmm {
 

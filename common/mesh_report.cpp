@@ -1,12 +1,12 @@
-#include "mesh_report.h"
+#include "common/mesh_report.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <string>
 
-#include "error.h"
-#include "mesh_file.h"
+#include "common/error.h"
+#include "common/mesh_file.h"
 
 namespace nmm {
 

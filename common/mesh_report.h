@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "mesh.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm {
 

@@ -1,5 +1,5 @@
 // PNG copies of SVG pictures: see png_copy.h.
-#include "png_copy.h"
+#include "common/png_copy.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -1,5 +1,5 @@
 // Plane geometry of rings (ring_geometry.h has the formulas).
-#include "ring_geometry.h"
+#include "common/ring_geometry.h"
 
 #include <cmath>
 

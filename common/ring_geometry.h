@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <limits>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm {
 

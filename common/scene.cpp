@@ -13,7 +13,7 @@
 //
 // The reading is done through `Reader`, a JSON value together with its file and path: each check
 // of a field is one call, and each call knows where to point when it fails.
-#include "scene.h"
+#include "common/scene.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -27,9 +27,9 @@
 #include <optional>
 #include <utility>
 
-#include "error.h"
-#include "lattice.h"
-#include "number_format.h"
+#include "common/error.h"
+#include "common/lattice.h"
+#include "common/number_format.h"
 
 namespace nmm {
 

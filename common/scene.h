@@ -16,8 +16,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "joint_generation.h"
-#include "vec2.h"
+#include "common/joint_generation.h"
+#include "common/vec2.h"
 
 namespace nmm {
 

@@ -5,14 +5,14 @@
 // Segment–body: some part of segment ab lies in the body iff an end lies in it or ab crosses
 // one of its boundary edges (outer or hole) — a crossing puts points on both sides, one of
 // them inside.
-#include "scene_checks.h"
+#include "common/scene_checks.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "error.h"
-#include "ring_geometry.h"
+#include "common/error.h"
+#include "common/ring_geometry.h"
 
 namespace nmm {
 namespace {

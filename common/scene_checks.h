@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm {
 

@@ -1,4 +1,4 @@
-#include "svg_plot.h"
+#include "common/svg_plot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <limits>
 
-#include "svg_writer.h"
-#include "atomic_file.h"
+#include "common/svg_writer.h"
+#include "common/atomic_file.h"
 
 namespace nmm {
 

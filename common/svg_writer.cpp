@@ -1,6 +1,6 @@
-#include "svg_writer.h"
+#include "common/svg_writer.h"
 
-#include "xml_text.h"
+#include "common/xml_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <string>
 #include <utility>
 
-#include "error.h"
-#include "atomic_file.h"
+#include "common/error.h"
+#include "common/atomic_file.h"
 
 namespace nmm {
 

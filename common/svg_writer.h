@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "mesh.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm {
 

@@ -1,5 +1,5 @@
 // Linear interpolation in a time table (time_table.h).
-#include "time_table.h"
+#include "common/time_table.h"
 
 #include <algorithm>
 #include <iterator>

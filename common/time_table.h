@@ -4,7 +4,7 @@
 //   f(t) = v_0 before the first row, v_last after the last (held, not extrapolated)
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm {
 

@@ -1,10 +1,10 @@
 // VTK writers. Formats: "VTK File Formats" (Kitware, VTK User's Guide 11th ed., ch. 19), the
 // XML UnstructuredGrid (version 0.1, ASCII) and the legacy "DataFile Version 3.0" layout, which
 // every VTK since 4.x, ParaView and meshio read.
-#include "vtk_writer.h"
+#include "common/vtk_writer.h"
 
-#include "atomic_file.h"
-#include "xml_text.h"
+#include "common/atomic_file.h"
+#include "common/xml_text.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -20,7 +20,7 @@
 #include <system_error>
 #include <utility>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm {
 

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
-#include "mesh.h"
+#include "common/atomic_file.h"
+#include "common/mesh.h"
 
 namespace nmm {
 

@@ -1,5 +1,5 @@
 // Binary zlib-compressed .vtu: see vtu_compressed.h.
-#include "vtu_compressed.h"
+#include "common/vtu_compressed.h"
 
 #include <zlib.h>
 
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "atomic_file.h"
-#include "xml_text.h"
+#include "common/atomic_file.h"
+#include "common/xml_text.h"
 
 namespace nmm {
 namespace {

@@ -14,8 +14,8 @@
 
 #include <string>
 
-#include "atomic_file.h"
-#include "vtk_writer.h"
+#include "common/atomic_file.h"
+#include "common/vtk_writer.h"
 
 namespace nmm {
 

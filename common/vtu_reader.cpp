@@ -5,7 +5,7 @@
 // the '_' that opens <AppendedData>, as VTK does; each array's compressed blocks are inflated
 // with zlib's uncompress into exactly the size the header announces, and a size that does not
 // match is an error rather than a silently short array.
-#include "vtu_reader.h"
+#include "common/vtu_reader.h"
 
 #include <zlib.h>
 
@@ -15,8 +15,8 @@
 #include <cstring>
 #include <map>
 
-#include "error.h"
-#include "scene.h"  // read_text_file
+#include "common/error.h"
+#include "common/scene.h"  // read_text_file
 
 namespace nmm {
 namespace {

@@ -15,7 +15,7 @@
 
 #include <string>
 
-#include "vtk_writer.h"
+#include "common/vtk_writer.h"
 
 namespace nmm {
 

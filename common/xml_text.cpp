@@ -1,4 +1,4 @@
-#include "xml_text.h"
+#include "common/xml_text.h"
 
 namespace nmm {
 

@@ -59,8 +59,10 @@ INTRO = """Where the code lives, layer by layer (an arrow only ever points down 
   read-offs) and nmm-fos and nmm-sweep (the tools driven as programs).
 - `tests/`, `bench/`: on top of everything.
 
+Every header is included by its path from the repository root (`#include "solver/model.h"`;
+the root is the one include directory), so each #include names the layer it reaches into.
 CTest `layers` (tests/check_layers.py) fails on an #include or a library link that points up
-this list.
+this list, or on a project header included by another path.
 
 Inside `solver/`, a run of nmm-solve is a short pipeline, one file per stage:
 

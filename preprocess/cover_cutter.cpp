@@ -27,7 +27,7 @@
 // 6. Coordinates go to double once, at output (CGAL::to_double of the exact point), so the same
 //    scene always gives the same bytes. Sliver elements (a joint passing 1e-9·h beside a node)
 //    are kept as they are: dropping or merging them would lose area or change the topology.
-#include "cover_cutter.h"
+#include "preprocess/cover_cutter.h"
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
 #include <CGAL/Arr_extended_dcel.h>
@@ -43,10 +43,10 @@
 #include <utility>
 #include <vector>
 
-#include "error.h"
-#include "lattice.h"
+#include "common/error.h"
+#include "common/lattice.h"
 #include "nmm_version.h"
-#include "stopwatch.h"
+#include "common/stopwatch.h"
 
 namespace nmm::pre {
 

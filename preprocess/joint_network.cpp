@@ -7,14 +7,14 @@
 // are thus generated too, so the expected length inside any part of the region is P21 · A: the
 // clipping (edge) bias of generating centres only inside the region, which would lose about
 // P21 · perimeter · E[L²]/(4 E[L]) of length, is removed (up to the 1e-4 tail beyond h).
-#include "joint_network.h"
+#include "preprocess/joint_network.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "math_constants.h"
-#include "ring_geometry.h"
+#include "common/math_constants.h"
+#include "common/ring_geometry.h"
 
 namespace nmm::pre {
 

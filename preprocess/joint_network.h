@@ -20,8 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "joint_generation.h"
-#include "scene.h"
+#include "common/joint_generation.h"
+#include "common/scene.h"
 
 namespace nmm::pre {
 

@@ -1,14 +1,14 @@
 // Joint network statistics and pictures; definitions at the top of network_report.h.
-#include "network_report.h"
+#include "preprocess/network_report.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "joint_network.h"
-#include "math_constants.h"
-#include "svg_plot.h"
-#include "svg_writer.h"
+#include "preprocess/joint_network.h"
+#include "common/math_constants.h"
+#include "common/svg_plot.h"
+#include "common/svg_writer.h"
 
 namespace nmm::pre {
 

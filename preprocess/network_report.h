@@ -24,8 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::pre {
 

@@ -12,20 +12,20 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.h"
-#include "cover_cutter.h"
-#include "joint_network.h"
-#include "json_set.h"
-#include "vtk_writer.h"
-#include "command_line.h"
-#include "error.h"
-#include "mesh_file.h"
+#include "common/atomic_file.h"
+#include "preprocess/cover_cutter.h"
+#include "preprocess/joint_network.h"
+#include "common/json_set.h"
+#include "common/vtk_writer.h"
+#include "common/command_line.h"
+#include "common/error.h"
+#include "common/mesh_file.h"
 #include "nmm_version.h"
-#include "scene.h"
-#include "scene_checks.h"
-#include "ring_geometry.h"
-#include "scene_geometry.h"
-#include "stopwatch.h"
+#include "common/scene.h"
+#include "common/scene_checks.h"
+#include "common/ring_geometry.h"
+#include "preprocess/scene_geometry.h"
+#include "common/stopwatch.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 // Rings with repeated points or all points on one line were already rejected by parse_scene().
 // Each ring is tested by sort-and-sweep over the edges' x-extents, so a long outline costs
 // about n·log n, not n².
-#include "scene_geometry.h"
+#include "preprocess/scene_geometry.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
@@ -16,7 +16,7 @@
 #include <sstream>
 #include <vector>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm::pre {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::pre {
 

@@ -1,9 +1,9 @@
 // The staggered brick wall (brick_wall.h).
-#include "brick_wall.h"
+#include "reference/brick_wall.h"
 
 #include <string>
 
-#include "scene_pieces.h"
+#include "reference/scene_pieces.h"
 
 namespace nmm::reference {
 

@@ -5,7 +5,7 @@
 // detection and effects benches.
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

@@ -1,5 +1,5 @@
 // The cantilever: scene and Timoshenko's tip deflection (cantilever.h has the equation).
-#include "cantilever.h"
+#include "reference/cantilever.h"
 
 #include <cmath>
 

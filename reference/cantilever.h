@@ -6,7 +6,7 @@
 // (tests/test_solver_physics.cpp; nmm-study's mesh-size and cover-order sweeps, docs/accuracy.md).
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

@@ -1,13 +1,13 @@
 // Displacement-controlled direct shear of a Barton–Bandis joint: scene and closed form
 // (direct_shear.h has the equations).
-#include "direct_shear.h"
+#include "reference/direct_shear.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 
-#include "joint_specimen.h"
-#include "math_constants.h"
+#include "reference/joint_specimen.h"
+#include "common/math_constants.h"
 
 namespace nmm::reference {
 

@@ -14,7 +14,7 @@
 // independent statement of the model. Used by tests/test_barton_bandis.cpp and nmm-joint-study.
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

@@ -1,9 +1,9 @@
 // The single-joint specimen: scene and loading (joint_specimen.h).
-#include "joint_specimen.h"
+#include "reference/joint_specimen.h"
 
 #include <nlohmann/json.hpp>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm::reference {
 

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

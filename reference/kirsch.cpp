@@ -1,10 +1,10 @@
 // The Kirsch opening: scene and closed form (kirsch.h has the equations).
-#include "kirsch.h"
+#include "reference/kirsch.h"
 
 #include <cmath>
 #include <vector>
 
-#include "math_constants.h"
+#include "common/math_constants.h"
 
 namespace nmm::reference {
 

@@ -23,7 +23,7 @@
 // body with a free opening under the same initial stress: the same K d = F, without contacts.
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

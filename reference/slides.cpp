@@ -1,11 +1,11 @@
 // Reference slides with a known factor of safety (formulas in the header).
-#include "slides.h"
+#include "reference/slides.h"
 
 #include <cmath>
 #include <vector>
 
-#include "math_constants.h"
-#include "ring_geometry.h"
+#include "common/math_constants.h"
+#include "common/ring_geometry.h"
 
 namespace nmm::reference {
 

@@ -1,10 +1,10 @@
 // The sliding block: scenes and closed form (sliding_block.h has the equation).
-#include "sliding_block.h"
+#include "reference/sliding_block.h"
 
 #include <cmath>
 
-#include "math_constants.h"
-#include "scene_pieces.h"
+#include "common/math_constants.h"
+#include "reference/scene_pieces.h"
 
 namespace nmm::reference {
 

@@ -7,7 +7,7 @@
 // tests, nmm-study (docs/accuracy.md) and the state-hash table (tests/state_hashes.txt).
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

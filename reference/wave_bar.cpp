@@ -1,10 +1,10 @@
 // A wave crossing one joint: closed form and scene (wave_bar.h has the equations).
-#include "wave_bar.h"
+#include "reference/wave_bar.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "math_constants.h"
+#include "common/math_constants.h"
 
 namespace nmm::reference {
 

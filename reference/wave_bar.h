@@ -35,7 +35,7 @@
 //   transmitted wave reflected at the far end, at (2L − x)/c.
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::reference {
 

@@ -1,11 +1,11 @@
 // The likely cause of a stopped run: see failure_cause.h.
-#include "failure_cause.h"
+#include "report/failure_cause.h"
 
 #include <algorithm>
 #include <string>
 
-#include "number_format.h"
-#include "scene_checks.h"
+#include "common/number_format.h"
+#include "common/scene_checks.h"
 
 namespace nmm::report {
 

@@ -14,8 +14,8 @@
 
 #include <string>
 
-#include "mesh.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::report {
 

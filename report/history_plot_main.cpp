@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "command_line.h"
-#include "error.h"
-#include "scene.h"
-#include "svg_plot.h"
+#include "common/command_line.h"
+#include "common/error.h"
+#include "common/scene.h"
+#include "common/svg_plot.h"
 
 namespace {
 

@@ -12,11 +12,11 @@
 #include <iostream>
 #include <string>
 
-#include "command_line.h"
-#include "error.h"
+#include "common/command_line.h"
+#include "common/error.h"
 #include "nmm_version.h"
-#include "result_redraw.h"
-#include "run_report.h"
+#include "report/result_redraw.h"
+#include "report/run_report.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"nmm-report: pictures and index.html of a finished nmm-solve run"};

@@ -1,5 +1,5 @@
 // result.svg: see result_picture.h.
-#include "result_picture.h"
+#include "report/result_picture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "failure_cause.h"
-#include "joint_water.h"
-#include "math_constants.h"
-#include "svg_plot.h"
-#include "svg_writer.h"
+#include "report/failure_cause.h"
+#include "solver/joint_water.h"
+#include "common/math_constants.h"
+#include "common/svg_plot.h"
+#include "common/svg_writer.h"
 
 namespace nmm::report {
 namespace {

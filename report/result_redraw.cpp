@@ -6,7 +6,7 @@
 // - The frame must be of this mesh: as many points as loop vertices and as many cells as
 //   manifold elements (a frame of another mesh would colour the wrong elements silently).
 // - A chosen step must have a frame; the error lists the first and last steps that do.
-#include "result_redraw.h"
+#include "report/result_redraw.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -15,14 +15,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.h"
-#include "error.h"
-#include "mesh_file.h"
-#include "run_config.h"
-#include "run_report.h"
-#include "scene.h"  // read_text_file
-#include "vtk_writer.h"
-#include "vtu_reader.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/mesh_file.h"
+#include "solver/run_config.h"
+#include "report/run_report.h"
+#include "common/scene.h"  // read_text_file
+#include "common/vtk_writer.h"
+#include "common/vtu_reader.h"
 
 namespace nmm::report {
 namespace fs = std::filesystem;

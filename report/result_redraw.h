@@ -15,9 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh.h"
-#include "result_picture.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "report/result_picture.h"
+#include "common/scene.h"
 
 namespace nmm::report {
 

@@ -1,5 +1,5 @@
 // Report of a run folder: see run_report.h.
-#include "run_report.h"
+#include "report/run_report.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,15 +11,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "error.h"
-#include "failure_cause.h"
-#include "gzip_text.h"
-#include "number_format.h"
-#include "png_copy.h"
-#include "result_redraw.h"
-#include "svg_plot.h"
-#include "atomic_file.h"
-#include "xml_text.h"
+#include "common/error.h"
+#include "report/failure_cause.h"
+#include "common/gzip_text.h"
+#include "common/number_format.h"
+#include "common/png_copy.h"
+#include "report/result_redraw.h"
+#include "common/svg_plot.h"
+#include "common/atomic_file.h"
+#include "common/xml_text.h"
 
 namespace nmm::report {
 namespace fs = std::filesystem;

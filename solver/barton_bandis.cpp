@@ -23,13 +23,13 @@
 // δ and v advance at the end of each accepted step from the step's shear |Δu|
 // (advance_barton_bandis); within a step the contact's strength uses δ + |Δu| of the solution so
 // far, the travel at the end of the step (solver/contact.cpp, the friction fixed point).
-#include "barton_bandis.h"
+#include "solver/barton_bandis.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 
-#include "math_constants.h"
+#include "common/math_constants.h"
 
 namespace nmm::solve {
 

@@ -1,12 +1,12 @@
 // Boundary edges under polylines, interface faces, and the exact edge integrals of supports
 // (boundary_conditions.h).
-#include "boundary_conditions.h"
+#include "solver/boundary_conditions.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm::solve {
 

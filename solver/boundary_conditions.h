@@ -28,10 +28,10 @@
 #include <string>
 #include <vector>
 
-#include "cover_space.h"
-#include "element_integration.h"
-#include "mesh.h"
-#include "scene.h"
+#include "solver/cover_space.h"
+#include "solver/element_integration.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

@@ -1,5 +1,5 @@
 // The configuration of a step: see configuration.h.
-#include "configuration.h"
+#include "solver/configuration.h"
 
 namespace nmm::solve {
 

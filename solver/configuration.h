@@ -13,10 +13,10 @@
 
 #include <Eigen/Dense>
 
-#include "cover_space.h"
-#include "element_integration.h"
-#include "mesh.h"
-#include "run_state.h"
+#include "solver/cover_space.h"
+#include "solver/element_integration.h"
+#include "common/mesh.h"
+#include "solver/run_state.h"
 
 namespace nmm::solve {
 

@@ -41,16 +41,16 @@
 // tributary length h gets DDA's point penalty 20·E·(1 m)), ks = kn/2.5, frictionless, no cohesion
 // or tension. (Shi's default point penalty is 50·E; within his recommended 10–100·E, 10–20·E is
 // where the open–close iteration here is accurate and settles quickly: see docs/contact.md.)
-#include "contact.h"
+#include "solver/contact.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "contact_tolerances.h"
-#include "error.h"
-#include "tributary_length.h"
+#include "solver/contact_tolerances.h"
+#include "common/error.h"
+#include "solver/tributary_length.h"
 
 namespace nmm::solve {
 

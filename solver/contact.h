@@ -10,15 +10,15 @@
 
 #include <Eigen/Dense>
 
-#include "configuration.h"
-#include "contact_detection.h"
-#include "cover_space.h"
-#include "element_integration.h"
-#include "joint_law.h"
-#include "mesh.h"
-#include "model.h"
-#include "scene.h"
-#include "system_matrix.h"
+#include "solver/configuration.h"
+#include "solver/contact_detection.h"
+#include "solver/cover_space.h"
+#include "solver/element_integration.h"
+#include "solver/joint_law.h"
+#include "common/mesh.h"
+#include "solver/model.h"
+#include "common/scene.h"
+#include "solver/system_matrix.h"
 
 namespace nmm::solve {
 

@@ -44,11 +44,11 @@
 // at the other (angle–angle: matching vertices on the two faces of a joint, a block corner
 // passing over a vertex of the surface it slides on), one point is one contact: the one that
 // was closed is kept, else the one of the lower vertex index.
-#include "contact_detection.h"
+#include "solver/contact_detection.h"
 
-#include "contact_tolerances.h"
-#include "math_constants.h"
-#include "ring_geometry.h"
+#include "solver/contact_tolerances.h"
+#include "common/math_constants.h"
+#include "common/ring_geometry.h"
 
 #include <algorithm>
 #include <cmath>

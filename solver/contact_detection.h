@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh.h"
+#include "common/mesh.h"
 
 namespace nmm::solve {
 

@@ -7,12 +7,12 @@
 // for output: gap, shear, shear force, tangent normal and shear stiffness (f64), capped (u8).
 // What a step rebuilds (unknowns, cn, cs, gap0, strengths, coupling groups) is not saved:
 // begin_step() makes it again from the geometry and the history, bitwise as in the straight run.
-#include "contact_history.h"
+#include "solver/contact_history.h"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "state_bytes.h"
+#include "solver/state_bytes.h"
 
 namespace nmm::solve {
 

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "contact.h"
+#include "solver/contact.h"
 
 namespace nmm::solve {
 

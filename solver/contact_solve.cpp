@@ -62,7 +62,7 @@
 //
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
 // next direction comes from a new factorisation, which the following runs then reuse.
-#include "contact_solve.h"
+#include "solver/contact_solve.h"
 
 #include <algorithm>
 #include <cmath>
@@ -71,7 +71,7 @@
 #include <limits>
 #include <vector>
 
-#include "stopwatch.h"
+#include "common/stopwatch.h"
 
 namespace nmm::solve {
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/Dense>
 
-#include "contact.h"
-#include "system_matrix.h"
+#include "solver/contact.h"
+#include "solver/system_matrix.h"
 
 namespace nmm::solve {
 

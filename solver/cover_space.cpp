@@ -5,7 +5,7 @@
 // and its basis term p_j((x − c_k)/h) = (ξ − ξ_k)^p (η − η_k)^q with (ξ_k, η_k) = (c_k − o)/h.
 // φ_kj = w_k·p_j, ∂φ/∂x = (1/h)·∂φ/∂ξ, ∂φ/∂y = (1/h)·∂φ/∂η: all exact polynomials, so every
 // element integral is an exact moment sum (element_integration.h).
-#include "cover_space.h"
+#include "solver/cover_space.h"
 
 #include <stdexcept>
 #include <string>

@@ -25,10 +25,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "cover_unknowns.h"
-#include "element_integration.h"
-#include "mesh.h"
-#include "polynomial.h"
+#include "solver/cover_unknowns.h"
+#include "solver/element_integration.h"
+#include "common/mesh.h"
+#include "solver/polynomial.h"
 
 namespace nmm::solve {
 

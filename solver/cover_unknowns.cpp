@@ -14,12 +14,12 @@
 // times the displacement difference across one element, in a strip of width ≤ min_weight·h.
 // Every element keeps a significant cover (its three weights sum to 1 > 3·min_weight), so a
 // master always exists. The slave keeps its own weight function and node (which moves by d_m).
-#include "cover_unknowns.h"
+#include "solver/cover_unknowns.h"
 
 #include <algorithm>
 #include <map>
 
-#include "element_integration.h"
+#include "solver/element_integration.h"
 
 namespace nmm::solve {
 

@@ -4,7 +4,7 @@
 // The displacement in an element is u = Σ_k w_k·u_k over its three covers, so
 //   B = [ b0 0 b1 0 b2 0 ; 0 c0 0 c1 0 c2 ; c0 b0 c1 b1 c2 b2 ]   (w_k = a_k + b_k x + c_k y)
 // and K_e = A_e·Bᵀ D B, with A_e the element polygon's area (not the triangle's).
-#include "elasticity.h"
+#include "solver/elasticity.h"
 
 namespace nmm::solve {
 

@@ -3,8 +3,8 @@
 
 #include <Eigen/Dense>
 
-#include "element_integration.h"
-#include "scene.h"
+#include "solver/element_integration.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

@@ -18,7 +18,7 @@
 // from ∫_simplex s^k t^l ds dt = k! l! / (k+l+2)!. The signed triangles of a CCW polygon sum to
 // the polygon (Green's theorem), convex or not. The degree-≤2 sums above are this formula's
 // first terms.
-#include "element_integration.h"
+#include "solver/element_integration.h"
 
 namespace nmm::solve {
 

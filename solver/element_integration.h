@@ -5,7 +5,7 @@
 #include <array>
 #include <cstddef>
 
-#include "polynomial.h"
+#include "solver/polynomial.h"
 
 namespace nmm::solve {
 

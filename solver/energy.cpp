@@ -1,14 +1,14 @@
 // Energy terms of a run: see energy.h for the formulas, docs/energy.md for their derivation.
-#include "energy.h"
+#include "solver/energy.h"
 
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 
-#include "element_integration.h"
-#include "insitu_stress.h"
-#include "time_table.h"
-#include "atomic_file.h"
+#include "solver/element_integration.h"
+#include "solver/insitu_stress.h"
+#include "common/time_table.h"
+#include "common/atomic_file.h"
 
 namespace nmm::solve {
 

@@ -41,16 +41,16 @@
 #include <string>
 #include <vector>
 
-#include "boundary_conditions.h"
-#include "configuration.h"
-#include "contact.h"
-#include "cover_space.h"
-#include "elasticity.h"
-#include "joint_water.h"
-#include "mesh.h"
-#include "model.h"
-#include "run_state.h"
-#include "scene.h"
+#include "solver/boundary_conditions.h"
+#include "solver/configuration.h"
+#include "solver/contact.h"
+#include "solver/cover_space.h"
+#include "solver/elasticity.h"
+#include "solver/joint_water.h"
+#include "common/mesh.h"
+#include "solver/model.h"
+#include "solver/run_state.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

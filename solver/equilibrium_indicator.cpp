@@ -43,16 +43,16 @@
 //            velocity an unbalanced ratio at UDEC's limit (a ≈ 1e-5 g) builds up in 1 s, and
 //            0.1 mm/s, below what slope monitoring resolves; the wedge sliding on a 30° incline
 //            (a = 1.8 m/s²) passes it within 60 µs of starting.
-#include "equilibrium_indicator.h"
+#include "solver/equilibrium_indicator.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "excavation.h"
-#include "insitu_stress.h"
-#include "time_table.h"
+#include "solver/excavation.h"
+#include "solver/insitu_stress.h"
+#include "common/time_table.h"
 
 namespace nmm::solve {
 

@@ -10,11 +10,11 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
-#include "boundary_conditions.h"
-#include "cover_space.h"
-#include "mesh.h"
-#include "run_state.h"
-#include "scene.h"
+#include "solver/boundary_conditions.h"
+#include "solver/cover_space.h"
+#include "common/mesh.h"
+#include "solver/run_state.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

@@ -1,5 +1,5 @@
 // Excavation: bodies drop out, their faces' locked-in traction is released (excavation.h).
-#include "excavation.h"
+#include "solver/excavation.h"
 
 #include <algorithm>
 

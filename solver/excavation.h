@@ -25,8 +25,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh.h"
-#include "run_state.h"
+#include "common/mesh.h"
+#include "solver/run_state.h"
 
 namespace nmm::solve {
 

@@ -1,9 +1,9 @@
 // In-situ stress field and its initialisation of the element stresses (insitu_stress.h).
-#include "insitu_stress.h"
+#include "solver/insitu_stress.h"
 
 #include <algorithm>
 
-#include "polynomial.h"
+#include "solver/polynomial.h"
 
 namespace nmm::solve {
 

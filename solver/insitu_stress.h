@@ -32,8 +32,8 @@
 #include <array>
 #include <vector>
 
-#include "mesh.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

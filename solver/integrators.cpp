@@ -1,9 +1,9 @@
 // The step's integrators: see integrators.h for the terms and their equations.
-#include "integrators.h"
+#include "solver/integrators.h"
 
-#include "excavation.h"
-#include "insitu_stress.h"
-#include "time_table.h"
+#include "solver/excavation.h"
+#include "solver/insitu_stress.h"
+#include "common/time_table.h"
 
 namespace nmm::solve {
 

@@ -22,12 +22,12 @@
 
 #include <Eigen/Dense>
 
-#include "configuration.h"
-#include "elasticity.h"
-#include "element_integration.h"
-#include "model.h"
-#include "run_state.h"
-#include "system_matrix.h"
+#include "solver/configuration.h"
+#include "solver/elasticity.h"
+#include "solver/element_integration.h"
+#include "solver/model.h"
+#include "solver/run_state.h"
+#include "solver/system_matrix.h"
 
 namespace nmm::solve {
 

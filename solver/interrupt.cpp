@@ -1,7 +1,7 @@
 // SIGINT/SIGTERM handling: see interrupt.h. A handler may only touch a volatile sig_atomic_t
 // and call async-signal-safe functions (signal() is one), so it sets the flag and restores the
 // default action; everything else happens between steps.
-#include "interrupt.h"
+#include "solver/interrupt.h"
 
 #include <csignal>
 

@@ -49,7 +49,7 @@
 // Penalty (Shi's DDA point spring): force = k·x, stiffness k (N/m per contact point). The joint's
 //   stiffness is then k times the contact points per metre of joint, which grows as 1/h: kept by
 //   name for DDA habits and comparisons with DDA codes.
-#include "joint_law.h"
+#include "solver/joint_law.h"
 
 #include <algorithm>
 #include <cmath>

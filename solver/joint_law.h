@@ -4,8 +4,8 @@
 // equations and the mapping onto contact points.
 #pragma once
 
-#include "barton_bandis.h"
-#include "scene.h"
+#include "solver/barton_bandis.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

@@ -16,7 +16,7 @@
 // face's current position. The two faces of a closed joint get equal and opposite forces, so
 // the contact spring between them carries σn − p: the effective normal stress of the friction
 // law (Terzaghi). Water is a load: strength reduction (nmm-fos) keeps it.
-#include "joint_water.h"
+#include "solver/joint_water.h"
 
 #include <algorithm>
 #include <cmath>

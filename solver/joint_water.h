@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "boundary_conditions.h"
-#include "mesh.h"
-#include "scene.h"
+#include "solver/boundary_conditions.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

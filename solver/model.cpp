@@ -1,14 +1,14 @@
 // The model derived once from the mesh and the scene: see model.h for what and why.
-#include "model.h"
+#include "solver/model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "error.h"
-#include "math_constants.h"
-#include "ring_geometry.h"
+#include "common/error.h"
+#include "common/math_constants.h"
+#include "common/ring_geometry.h"
 
 namespace nmm::solve {
 

@@ -25,13 +25,13 @@
 #include <string>
 #include <vector>
 
-#include "boundary_conditions.h"
-#include "elasticity.h"
-#include "joint_law.h"
-#include "joint_water.h"
-#include "mesh.h"
-#include "run_state.h"
-#include "scene.h"
+#include "solver/boundary_conditions.h"
+#include "solver/elasticity.h"
+#include "solver/joint_law.h"
+#include "solver/joint_water.h"
+#include "common/mesh.h"
+#include "solver/run_state.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

@@ -18,7 +18,7 @@
 //   animate them.
 // - frames.pvd is a VTK Collection (the ParaView data format for time series) listing every frame
 //   written so far with its time; writing the same step again replaces its entry.
-#include "output_writer.h"
+#include "solver/output_writer.h"
 
 #include <charconv>
 #include <cstdio>
@@ -30,11 +30,11 @@
 #include <utility>
 #include <vector>
 
-#include "atomic_file.h"
-#include "error.h"
-#include "gzip_text.h"
-#include "vtk_writer.h"
-#include "vtu_compressed.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/gzip_text.h"
+#include "common/vtk_writer.h"
+#include "common/vtu_compressed.h"
 
 namespace nmm::solve {
 

@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh.h"
-#include "vtk_writer.h"
+#include "common/mesh.h"
+#include "common/vtk_writer.h"
 
 namespace nmm::solve {
 

@@ -1,5 +1,5 @@
 // Progress line: see progress.h.
-#include "progress.h"
+#include "solver/progress.h"
 
 #include <unistd.h>
 

@@ -25,7 +25,7 @@
 //
 // Every mistake is an InputError (exit status 2): in the config file (file, line/column or
 // "top level"), in a --set ("--set", the PATH=VALUE text, what), or in the resulting scene.
-#include "run_config.h"
+#include "solver/run_config.h"
 
 #include <charconv>
 #include <string>
@@ -33,8 +33,8 @@
 #include <utility>
 #include <vector>
 
-#include "error.h"
-#include "json_set.h"
+#include "common/error.h"
+#include "common/json_set.h"
 
 namespace nmm::solve {
 

@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

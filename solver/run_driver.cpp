@@ -1,8 +1,8 @@
 // A run as a pipeline of the stepping core and observers: see run_driver.h.
-#include "run_driver.h"
+#include "solver/run_driver.h"
 
-#include "run_summary.h"
-#include "stopwatch.h"
+#include "solver/run_summary.h"
+#include "common/stopwatch.h"
 
 namespace nmm::solve {
 

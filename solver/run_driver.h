@@ -19,8 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "output_writer.h"
-#include "time_stepper.h"
+#include "solver/output_writer.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 

@@ -10,12 +10,12 @@
 //    not part of the state hash — it only makes a restart precondition as the straight run did)
 //   DIAG    counters for summary.json (not hashed)
 // Every vector carries its length, which must match the mesh; every index is range-checked.
-#include "run_state.h"
+#include "solver/run_state.h"
 
 #include <cmath>
 
-#include "mesh_file.h"
-#include "state_bytes.h"
+#include "common/mesh_file.h"
+#include "solver/state_bytes.h"
 
 namespace nmm::solve {
 

@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "checkpoint_file.h"
-#include "mesh.h"
+#include "common/checkpoint_file.h"
+#include "common/mesh.h"
 
 namespace nmm::solve {
 

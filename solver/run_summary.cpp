@@ -1,5 +1,5 @@
 // summary.json of a run: see run_summary.h.
-#include "run_summary.h"
+#include "solver/run_summary.h"
 
 #include "nmm_version.h"
 

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "time_stepper.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 

@@ -26,21 +26,21 @@
 #include <string>
 #include <vector>
 
-#include "command_line.h"
-#include "energy.h"
-#include "failure_cause.h"
-#include "error.h"
-#include "interrupt.h"
-#include "mesh_file.h"
+#include "common/command_line.h"
+#include "solver/energy.h"
+#include "report/failure_cause.h"
+#include "common/error.h"
+#include "solver/interrupt.h"
+#include "common/mesh_file.h"
 #include "nmm_version.h"
-#include "output_writer.h"
-#include "progress.h"
-#include "result_picture.h"
-#include "run_config.h"
-#include "run_driver.h"
-#include "run_report.h"
-#include "time_stepper.h"
-#include "atomic_file.h"
+#include "solver/output_writer.h"
+#include "solver/progress.h"
+#include "report/result_picture.h"
+#include "solver/run_config.h"
+#include "solver/run_driver.h"
+#include "report/run_report.h"
+#include "solver/time_stepper.h"
+#include "common/atomic_file.h"
 
 namespace {
 

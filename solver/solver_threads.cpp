@@ -1,4 +1,4 @@
-#include "solver_threads.h"
+#include "solver/solver_threads.h"
 
 #include <dlfcn.h>
 

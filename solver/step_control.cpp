@@ -1,10 +1,10 @@
 // Shi's step control: see step_control.h for the rules and their constants.
-#include "step_control.h"
+#include "solver/step_control.h"
 
 #include <algorithm>
 #include <utility>
 
-#include "number_format.h"
+#include "common/number_format.h"
 
 namespace nmm::solve {
 

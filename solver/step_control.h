@@ -13,7 +13,7 @@
 
 #include <string>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 

@@ -1,7 +1,7 @@
 // The stress field of a state: see stress_field.h.
-#include "stress_field.h"
+#include "solver/stress_field.h"
 
-#include "element_integration.h"
+#include "solver/element_integration.h"
 
 namespace nmm::solve {
 

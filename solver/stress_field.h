@@ -9,9 +9,9 @@
 #include <array>
 #include <vector>
 
-#include "cover_space.h"
-#include "mesh.h"
-#include "run_state.h"
+#include "solver/cover_space.h"
+#include "common/mesh.h"
+#include "solver/run_state.h"
 
 namespace nmm::solve {
 

@@ -1,11 +1,11 @@
-#include "system_matrix.h"
+#include "solver/system_matrix.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "error.h"
-#include "state_bytes.h"
+#include "common/error.h"
+#include "solver/state_bytes.h"
 
 namespace nmm::solve {
 

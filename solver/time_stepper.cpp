@@ -45,7 +45,7 @@
 //
 // Only the effects a scene calls for are computed: no mass in an equilibrium solve, no gravity
 // term without gravity, nothing for loads or fixed points that are not there.
-#include "time_stepper.h"
+#include "solver/time_stepper.h"
 
 #include <algorithm>
 #include <cmath>
@@ -54,17 +54,17 @@
 #include <limits>
 #include <sstream>
 
-#include "contact_history.h"
-#include "contact_solve.h"
-#include "contact_tolerances.h"
-#include "solver_threads.h"
-#include "stopwatch.h"
-#include "error.h"
-#include "excavation.h"
-#include "insitu_stress.h"
-#include "integrators.h"
-#include "ring_geometry.h"
-#include "time_table.h"
+#include "solver/contact_history.h"
+#include "solver/contact_solve.h"
+#include "solver/contact_tolerances.h"
+#include "solver/solver_threads.h"
+#include "common/stopwatch.h"
+#include "common/error.h"
+#include "solver/excavation.h"
+#include "solver/insitu_stress.h"
+#include "solver/integrators.h"
+#include "common/ring_geometry.h"
+#include "common/time_table.h"
 
 namespace nmm::solve {
 

@@ -25,7 +25,7 @@
 // to h between P's halves and the next contact's on the same joint is shared at its middle. A
 // contact with no length of its own (a bare corner touching a face) is a point: `corner_length`.
 // Checked by tests/test_contact_patch.cpp (the tributary lengths add up to the joint's length).
-#include "tributary_length.h"
+#include "solver/tributary_length.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@
 #include <limits>
 #include <unordered_map>
 
-#include "contact_tolerances.h"
+#include "solver/contact_tolerances.h"
 
 namespace nmm::solve {
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "contact_detection.h"
+#include "solver/contact_detection.h"
 
 namespace nmm::solve {
 

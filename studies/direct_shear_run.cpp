@@ -1,9 +1,9 @@
 // The displacement-controlled direct shear run and read-off (direct_shear_run.h).
-#include "direct_shear_run.h"
+#include "studies/direct_shear_run.h"
 
 #include <cmath>
 
-#include "time_stepper.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::studies {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "mesh.h"
-#include "scene.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::studies {
 

@@ -22,19 +22,19 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
-#include "command_line.h"
-#include "error.h"
-#include "job_runner.h"
-#include "mechanism_picture.h"
-#include "mesh_file.h"
+#include "common/atomic_file.h"
+#include "common/command_line.h"
+#include "common/error.h"
+#include "studies/job_runner.h"
+#include "studies/mechanism_picture.h"
+#include "common/mesh_file.h"
 #include "nmm_version.h"
-#include "png_copy.h"
-#include "run_config.h"
-#include "strength_reduction.h"
-#include "svg_plot.h"
-#include "trial_verdict.h"
-#include "vtk_writer.h"
+#include "common/png_copy.h"
+#include "solver/run_config.h"
+#include "studies/strength_reduction.h"
+#include "common/svg_plot.h"
+#include "studies/trial_verdict.h"
+#include "common/vtk_writer.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;

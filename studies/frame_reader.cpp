@@ -1,12 +1,12 @@
 // Frame reading (see the header).
-#include "frame_reader.h"
+#include "studies/frame_reader.h"
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm::studies {
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 // Runs jobs through run.sh files (see job_runner.h for the layout and why run.sh exits 0).
-#include "job_runner.h"
+#include "studies/job_runner.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -16,9 +16,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.h"
-#include "error.h"
-#include "vtk_writer.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/vtk_writer.h"
 
 extern char** environ;
 

@@ -1,9 +1,9 @@
 // The single-joint specimen's run and read-off (joint_specimen_run.h).
-#include "joint_specimen_run.h"
+#include "studies/joint_specimen_run.h"
 
 #include <algorithm>
 
-#include "time_stepper.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::studies {
 

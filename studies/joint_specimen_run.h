@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "joint_specimen.h"
-#include "mesh.h"
-#include "scene.h"
+#include "reference/joint_specimen.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::studies {
 

@@ -24,19 +24,19 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
-#include "command_line.h"
-#include "cover_cutter.h"
-#include "direct_shear.h"
-#include "direct_shear_run.h"
-#include "error.h"
-#include "joint_specimen.h"
-#include "joint_specimen_run.h"
-#include "math_constants.h"
-#include "scene.h"
-#include "svg_plot.h"
-#include "time_stepper.h"
-#include "vtk_writer.h"
+#include "common/atomic_file.h"
+#include "common/command_line.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/direct_shear.h"
+#include "studies/direct_shear_run.h"
+#include "common/error.h"
+#include "reference/joint_specimen.h"
+#include "studies/joint_specimen_run.h"
+#include "common/math_constants.h"
+#include "common/scene.h"
+#include "common/svg_plot.h"
+#include "solver/time_stepper.h"
+#include "common/vtk_writer.h"
 
 namespace {
 

@@ -1,10 +1,10 @@
 // A wave crossing one joint: the run and its read-off (joint_wave.h).
-#include "joint_wave.h"
+#include "studies/joint_wave.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "time_stepper.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::studies {
 

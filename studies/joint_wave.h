@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "mesh.h"
-#include "scene.h"
-#include "wave_bar.h"
+#include "common/mesh.h"
+#include "common/scene.h"
+#include "reference/wave_bar.h"
 
 namespace nmm::solve {
 class TimeStepper;

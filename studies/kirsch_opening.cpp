@@ -1,12 +1,12 @@
 // The Kirsch opening: the wall read-off (kirsch_opening.h).
-#include "kirsch_opening.h"
+#include "studies/kirsch_opening.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
-#include "time_stepper.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::studies {
 

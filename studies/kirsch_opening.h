@@ -5,8 +5,8 @@
 
 #include <cstddef>
 
-#include "kirsch.h"
-#include "mesh.h"
+#include "reference/kirsch.h"
+#include "common/mesh.h"
 
 namespace nmm::solve {
 class TimeStepper;

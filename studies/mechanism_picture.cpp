@@ -1,9 +1,9 @@
 // Mechanism picture of a trial run (see the header).
-#include "mechanism_picture.h"
+#include "studies/mechanism_picture.h"
 
-#include "atomic_file.h"
-#include "error.h"
-#include "result_redraw.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "report/result_redraw.h"
 
 namespace nmm::studies {
 

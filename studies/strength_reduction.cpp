@@ -1,12 +1,12 @@
 // Strength reduction and the bracket / k-section search (equations and rules in the header).
-#include "strength_reduction.h"
+#include "studies/strength_reduction.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "error.h"
-#include "math_constants.h"
+#include "common/error.h"
+#include "common/math_constants.h"
 
 namespace nmm::studies {
 

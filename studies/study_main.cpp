@@ -51,22 +51,22 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
-#include "command_line.h"
-#include "cover_cutter.h"
-#include "error.h"
-#include "cantilever.h"
-#include "joint_specimen.h"
-#include "joint_specimen_run.h"
-#include "joint_wave.h"
-#include "kirsch_opening.h"
-#include "sliding_block.h"
-#include "scene.h"
-#include "svg_plot.h"
-#include "time_stepper.h"
-#include "vtk_writer.h"
-#include "stopwatch.h"
-#include "math_constants.h"
+#include "common/atomic_file.h"
+#include "common/command_line.h"
+#include "preprocess/cover_cutter.h"
+#include "common/error.h"
+#include "reference/cantilever.h"
+#include "reference/joint_specimen.h"
+#include "studies/joint_specimen_run.h"
+#include "studies/joint_wave.h"
+#include "studies/kirsch_opening.h"
+#include "reference/sliding_block.h"
+#include "common/scene.h"
+#include "common/svg_plot.h"
+#include "solver/time_stepper.h"
+#include "common/vtk_writer.h"
+#include "common/stopwatch.h"
+#include "common/math_constants.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // Sweep expansion and collection (file format in the header).
-#include "sweep.h"
+#include "studies/sweep.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace nmm::studies {
 namespace fs = std::filesystem;

@@ -28,7 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "job_runner.h"
+#include "studies/job_runner.h"
 
 namespace nmm::studies {
 

@@ -14,15 +14,15 @@
 #include <filesystem>
 #include <iostream>
 
-#include "atomic_file.h"
-#include "command_line.h"
-#include "error.h"
-#include "job_runner.h"
+#include "common/atomic_file.h"
+#include "common/command_line.h"
+#include "common/error.h"
+#include "studies/job_runner.h"
 #include "nmm_version.h"
-#include "png_copy.h"
-#include "sweep.h"
-#include "sweep_picture.h"
-#include "vtk_writer.h"
+#include "common/png_copy.h"
+#include "studies/sweep.h"
+#include "studies/sweep_picture.h"
+#include "common/vtk_writer.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;

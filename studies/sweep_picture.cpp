@@ -1,5 +1,5 @@
 // sweep.svg: see sweep_picture.h.
-#include "sweep_picture.h"
+#include "studies/sweep_picture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "svg_plot.h"
+#include "common/svg_plot.h"
 
 namespace nmm::studies {
 

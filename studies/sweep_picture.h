@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "sweep.h"
+#include "studies/sweep.h"
 
 namespace nmm::studies {
 

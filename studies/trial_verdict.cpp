@@ -1,5 +1,5 @@
 // The stable / failing criterion (rules and why in the header).
-#include "trial_verdict.h"
+#include "studies/trial_verdict.h"
 
 #include <cmath>
 #include <cstdio>
@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "error.h"
-#include "frame_reader.h"
+#include "common/error.h"
+#include "studies/frame_reader.h"
 
 namespace nmm::studies {
 namespace fs = std::filesystem;

@@ -9,8 +9,10 @@
   studies/     -> common/, reference/, preprocess/, solver/, report/
   tests/, bench/: anything
 
-Resolves each #include "x.h" to the folder holding x.h and prints every include that points
-elsewhere; likewise every library a folder's CMakeLists.txt links (target_link_libraries of
+Every project header is included by its path from the repository root ("solver/model.h"),
+the one include directory, so an #include says which layer it reaches into. Resolves each
+#include to the folder holding the header and prints every include that points elsewhere or
+names a project header by another path; likewise every library a folder's CMakeLists.txt links (target_link_libraries of
 its nmm_* targets) that belongs to a folder above. Exit status 1 if there is one.
 Usage: check_layers.py [SOURCE_DIR]
 """
@@ -47,6 +49,9 @@ def main():
                 if not m:
                     continue
                 target = where.get(pathlib.Path(m.group(1)).name)
+                if target and not (root / m.group(1)).is_file():
+                    print(f"{rel}:{n}: includes {m.group(1)}: not by its path from the root")
+                    bad += 1
                 if target and target != folder and target not in allowed and (rel, target) not in EXCEPTIONS:
                     print(f"{rel}:{n}: includes {m.group(1)} from {target}/, above {folder}/")
                     bad += 1

@@ -11,17 +11,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "brick_wall.h"
-#include "cantilever.h"
-#include "cover_cutter.h"
-#include "error.h"
-#include "joint_specimen.h"
-#include "kirsch.h"
-#include "scene.h"
-#include "slides.h"
-#include "sliding_block.h"
-#include "time_stepper.h"
-#include "wave_bar.h"
+#include "reference/brick_wall.h"
+#include "reference/cantilever.h"
+#include "preprocess/cover_cutter.h"
+#include "common/error.h"
+#include "reference/joint_specimen.h"
+#include "reference/kirsch.h"
+#include "common/scene.h"
+#include "reference/slides.h"
+#include "reference/sliding_block.h"
+#include "solver/time_stepper.h"
+#include "reference/wave_bar.h"
 
 namespace {
 

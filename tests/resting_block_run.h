@@ -13,10 +13,10 @@
 
 #include <gtest/gtest.h>
 
-#include "cover_cutter.h"
-#include "energy.h"
-#include "scene_pieces.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/energy.h"
+#include "reference/scene_pieces.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::test {
 

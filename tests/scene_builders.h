@@ -3,9 +3,9 @@
 // include scene_pieces.h, sliding_block.h or brick_wall.h and use nmm::reference:: instead.
 #pragma once
 
-#include "brick_wall.h"
-#include "scene_pieces.h"
-#include "sliding_block.h"
+#include "reference/brick_wall.h"
+#include "reference/scene_pieces.h"
+#include "reference/sliding_block.h"
 
 namespace nmm::test {
 

@@ -9,15 +9,15 @@
 #include <cmath>
 #include <cstdio>
 
-#include "barton_bandis.h"
-#include "cover_cutter.h"
-#include "direct_shear.h"
-#include "direct_shear_run.h"
-#include "joint_law.h"
-#include "joint_specimen.h"
-#include "joint_specimen_run.h"
-#include "scene.h"
-#include "time_stepper.h"
+#include "solver/barton_bandis.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/direct_shear.h"
+#include "studies/direct_shear_run.h"
+#include "solver/joint_law.h"
+#include "reference/joint_specimen.h"
+#include "studies/joint_specimen_run.h"
+#include "common/scene.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "checkpoint_file.h"
-#include "error.h"
+#include "common/checkpoint_file.h"
+#include "common/error.h"
 
 namespace nmm {
 namespace {

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cover_cutter.h"
-#include "energy.h"
-#include "math_constants.h"
-#include "resting_block_run.h"
-#include "scene_pieces.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/energy.h"
+#include "common/math_constants.h"
+#include "tests/resting_block_run.h"
+#include "reference/scene_pieces.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -25,11 +25,11 @@
 #include <cstdio>
 #include <string>
 
-#include "cover_cutter.h"
-#include "joint_law.h"
-#include "math_constants.h"
-#include "scene.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/joint_law.h"
+#include "common/math_constants.h"
+#include "common/scene.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

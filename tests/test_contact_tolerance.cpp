@@ -6,11 +6,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cover_cutter.h"
-#include "math_constants.h"
-#include "scene_pieces.h"
-#include "sliding_block.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "common/math_constants.h"
+#include "reference/scene_pieces.h"
+#include "reference/sliding_block.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

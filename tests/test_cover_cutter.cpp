@@ -10,10 +10,10 @@
 #include <random>
 #include <set>
 
-#include "cover_cutter.h"
-#include "error.h"
-#include "mesh.h"
-#include "scene.h"
+#include "preprocess/cover_cutter.h"
+#include "common/error.h"
+#include "common/mesh.h"
+#include "common/scene.h"
 
 namespace nmm::pre {
 namespace {

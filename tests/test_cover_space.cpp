@@ -7,12 +7,12 @@
 
 #include <Eigen/Dense>
 
-#include "cover_cutter.h"
-#include "cover_space.h"
-#include "error.h"
-#include "element_integration.h"
-#include "energy.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/cover_space.h"
+#include "common/error.h"
+#include "solver/element_integration.h"
+#include "solver/energy.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

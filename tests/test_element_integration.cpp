@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "elasticity.h"
-#include "element_integration.h"
+#include "solver/elasticity.h"
+#include "solver/element_integration.h"
 
 namespace nmm::solve {
 namespace {

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "cover_cutter.h"
-#include "math_constants.h"
-#include "ring_geometry.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "common/math_constants.h"
+#include "common/ring_geometry.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

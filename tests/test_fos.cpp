@@ -14,11 +14,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "slides.h"
-#include "png_copy.h"
-#include "result_picture.h"
-#include "strength_reduction.h"
-#include "math_constants.h"
+#include "reference/slides.h"
+#include "common/png_copy.h"
+#include "report/result_picture.h"
+#include "studies/strength_reduction.h"
+#include "common/math_constants.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;

@@ -33,11 +33,11 @@
 #include <string>
 #include <vector>
 
-#include "cover_cutter.h"
-#include "scene_pieces.h"
-#include "element_integration.h"
-#include "time_stepper.h"
-#include "math_constants.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/scene_pieces.h"
+#include "solver/element_integration.h"
+#include "solver/time_stepper.h"
+#include "common/math_constants.h"
 
 namespace nmm::solve {
 namespace {

@@ -23,13 +23,13 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
-#include "mesh.h"
-#include "mesh_file.h"
-#include "mesh_report.h"
-#include "scene.h"
-#include "svg_writer.h"
-#include "vtk_writer.h"
+#include "common/error.h"
+#include "common/mesh.h"
+#include "common/mesh_file.h"
+#include "common/mesh_report.h"
+#include "common/scene.h"
+#include "common/svg_writer.h"
+#include "common/vtk_writer.h"
 
 namespace fs = std::filesystem;
 

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cover_cutter.h"
-#include "joint_law.h"
-#include "joint_specimen_run.h"
-#include "math_constants.h"
-#include "scene.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/joint_law.h"
+#include "studies/joint_specimen_run.h"
+#include "common/math_constants.h"
+#include "common/scene.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

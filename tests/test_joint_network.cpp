@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "joint_network.h"
-#include "math_constants.h"
+#include "preprocess/joint_network.h"
+#include "common/math_constants.h"
 
 namespace nmm::pre {
 namespace {

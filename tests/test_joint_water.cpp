@@ -7,9 +7,9 @@
 #include <cmath>
 #include <set>
 
-#include "cover_cutter.h"
-#include "scene.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "common/scene.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <string>
 
-#include "cover_cutter.h"
-#include "joint_wave.h"
-#include "scene.h"
+#include "preprocess/cover_cutter.h"
+#include "studies/joint_wave.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 namespace {

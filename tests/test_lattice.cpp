@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
-#include "lattice.h"
-#include "scene.h"
+#include "common/error.h"
+#include "common/lattice.h"
+#include "common/scene.h"
 
 namespace nmm {
 namespace {

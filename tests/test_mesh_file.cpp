@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
-#include "mesh.h"
-#include "mesh_file.h"
+#include "common/error.h"
+#include "common/mesh.h"
+#include "common/mesh_file.h"
 
 namespace nmm {
 namespace {

@@ -9,9 +9,9 @@
 #include <regex>
 #include <string>
 
-#include "joint_network.h"
-#include "math_constants.h"
-#include "network_report.h"
+#include "preprocess/joint_network.h"
+#include "common/math_constants.h"
+#include "preprocess/network_report.h"
 
 namespace nmm::pre {
 namespace {

@@ -20,12 +20,12 @@
 #include <system_error>
 #include <vector>
 
-#include "error.h"
-#include "mesh.h"
-#include "gzip_text.h"
-#include "output_writer.h"
-#include "vtu_compressed.h"
-#include "vtu_reader.h"
+#include "common/error.h"
+#include "common/mesh.h"
+#include "common/gzip_text.h"
+#include "solver/output_writer.h"
+#include "common/vtu_compressed.h"
+#include "common/vtu_reader.h"
 
 namespace nmm::solve {
 namespace {

@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
-#include "failure_cause.h"
-#include "mechanism_picture.h"
-#include "number_format.h"
-#include "result_picture.h"
-#include "svg_plot.h"
-#include "svg_writer.h"
-#include "sweep.h"
-#include "sweep_picture.h"
+#include "common/error.h"
+#include "report/failure_cause.h"
+#include "studies/mechanism_picture.h"
+#include "common/number_format.h"
+#include "report/result_picture.h"
+#include "common/svg_plot.h"
+#include "common/svg_writer.h"
+#include "studies/sweep.h"
+#include "studies/sweep_picture.h"
 
 namespace nmm {
 namespace {

@@ -9,12 +9,12 @@
 #include <fstream>
 #include <string>
 
-#include "cantilever.h"
-#include "kirsch.h"
-#include "math_constants.h"
-#include "slides.h"
-#include "sliding_block.h"
-#include "wave_bar.h"
+#include "reference/cantilever.h"
+#include "reference/kirsch.h"
+#include "common/math_constants.h"
+#include "reference/slides.h"
+#include "reference/sliding_block.h"
+#include "reference/wave_bar.h"
 
 namespace nmm::reference {
 namespace {

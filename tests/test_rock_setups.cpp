@@ -9,14 +9,14 @@
 #include <chrono>
 #include <cstdio>
 
-#include "cover_cutter.h"
-#include "error.h"
-#include "kirsch_opening.h"
-#include "kirsch.h"
-#include "scene_pieces.h"
-#include "time_stepper.h"
-#include "time_table.h"
-#include "math_constants.h"
+#include "preprocess/cover_cutter.h"
+#include "common/error.h"
+#include "studies/kirsch_opening.h"
+#include "reference/kirsch.h"
+#include "reference/scene_pieces.h"
+#include "solver/time_stepper.h"
+#include "common/time_table.h"
+#include "common/math_constants.h"
 
 #include <fstream>
 

@@ -12,10 +12,10 @@
 #include <system_error>
 #include <vector>
 
-#include "error.h"
-#include "mesh.h"
-#include "run_config.h"
-#include "scene.h"
+#include "common/error.h"
+#include "common/mesh.h"
+#include "solver/run_config.h"
+#include "common/scene.h"
 
 namespace nmm::solve {
 namespace {

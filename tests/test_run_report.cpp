@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
-#include "progress.h"
-#include "result_picture.h"
-#include "run_report.h"
+#include "common/error.h"
+#include "solver/progress.h"
+#include "report/result_picture.h"
+#include "report/run_report.h"
 
 namespace nmm::report {
 namespace {

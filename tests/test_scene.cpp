@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
-#include "scene.h"
+#include "common/error.h"
+#include "common/scene.h"
 
 namespace nmm {
 namespace {

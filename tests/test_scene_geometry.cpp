@@ -1,9 +1,9 @@
 // Geometric scene checks: each bad polygon is named by its JSON path.
 #include <gtest/gtest.h>
 
-#include "error.h"
-#include "scene.h"
-#include "scene_geometry.h"
+#include "common/error.h"
+#include "common/scene.h"
+#include "preprocess/scene_geometry.h"
 
 namespace nmm::pre {
 namespace {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cantilever.h"
-#include "cover_cutter.h"
-#include "error.h"
-#include "time_stepper.h"
+#include "reference/cantilever.h"
+#include "preprocess/cover_cutter.h"
+#include "common/error.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

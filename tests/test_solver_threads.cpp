@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "solver_threads.h"
-#include "system_matrix.h"
+#include "solver/solver_threads.h"
+#include "solver/system_matrix.h"
 
 extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags);
 

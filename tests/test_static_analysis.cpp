@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "cover_cutter.h"
-#include "brick_wall.h"
-#include "scene_pieces.h"
-#include "time_stepper.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/brick_wall.h"
+#include "reference/scene_pieces.h"
+#include "solver/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "math_constants.h"
-#include "png_copy.h"
-#include "sweep.h"
+#include "common/math_constants.h"
+#include "common/png_copy.h"
+#include "studies/sweep.h"
 
 namespace fs = std::filesystem;
 

@@ -40,7 +40,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

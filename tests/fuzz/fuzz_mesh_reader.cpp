@@ -13,8 +13,8 @@
 #include <cstring>
 #include <string>
 
-#include "error.h"
-#include "mesh_file.h"
+#include "common/error.h"
+#include "common/mesh_file.h"
 
 namespace {
 

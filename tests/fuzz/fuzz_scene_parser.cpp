@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
-#include "error.h"
-#include "lattice.h"
-#include "scene.h"
+#include "common/error.h"
+#include "common/lattice.h"
+#include "common/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
