@@ -174,10 +174,11 @@ struct SolverDef {
   /// cover), 1 linear (6), 2 quadratic (12); a choice of the run, not of the mesh
   /// (docs/higher-order-covers.md)
   int cover_order = 0;
-  /// –, in [1e-12, 1e-2]: the contact solve accepts a step when no unknown is out of balance by
-  /// more than this fraction of the largest contact force, and friction strengths follow the
-  /// normal forces to within the same force (docs/contact.md "Tolerance and error")
-  double contact_tolerance = 1e-4;
+  /// –, τ in [1e-12, 1e-2]: the contact solve accepts a step when no unknown is out of balance by
+  /// more than this fraction of the largest contact force, friction strengths follow the
+  /// normal forces to within the same force, and the displacement that would remove the rest is
+  /// within 3e-4·τ·w0 (docs/contact.md "Tolerance and error")
+  double contact_tolerance = 1e-3;
 };
 
 /// Water in the joints: a pressure p (Pa) on both faces of every joint (and on every body

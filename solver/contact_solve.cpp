@@ -188,7 +188,7 @@ double line_search(const F& psi, double psi0, double tol) {
 }  // namespace
 
 ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
-                                       double tau, Eigen::VectorXd& d, ContactSolveStats& stats) {
+                                       double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats) {
   using Status = ContactSolveOutcome::Status;
   // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
   static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
@@ -203,12 +203,32 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
   double last_r = std::numeric_limits<double>::infinity();
   bool last_full_cg = false;  // the last step was a full (α = 1) step along a CG direction
   double tol = floor, r_norm = 0;
+  double u_err = -1;  // m, the iterate's displacement error estimate ‖P⁻¹r‖∞ (−1: not computed yet)
   // r ← the residual at d, with its ∞-norm and the tolerance (which follows the contact forces).
   const auto evaluate = [&]() {
     r = ra;
     contacts.forces_at(d, r);
     tol = std::max(tau * contacts.force_scale(), floor);
     r_norm = r.lpNorm<Eigen::Infinity>();
+    u_err = -1;
+  };
+  // In balance: no unknown out of balance by more than F_tol, and the displacement that would
+  // remove what is left, estimated with the kept factorisation (P⁻¹r, the first step of the
+  // next CG run), within u_tol. Estimated once per iterate.
+  Eigen::VectorXd z(n);
+  const auto in_balance = [&]() {
+    if (r_norm > tol) return false;
+    if (!(u_tol > 0) || !system.has_factor()) return true;
+    if (u_err < 0) {
+      const Stopwatch t0;
+      precondition(system, r, z);
+      u_err = z.lpNorm<Eigen::Infinity>();
+      ++stats.displacement_checks;
+      if (u_err > u_tol) ++stats.displacement_refusals;
+      stats.cg_seconds += t0.seconds();
+      if (trace) std::fprintf(stderr, "displacement error %.3e m, tolerance %.3e m\n", u_err, u_tol);
+    }
+    return u_err <= u_tol;
   };
   for (int it = 0;; ++it) {
     evaluate();
@@ -221,17 +241,17 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     if (merged || r_norm <= tol) {
       moved = contacts.update_strengths(tol);
       if (trace) std::fprintf(stderr, "it %d strengths moved %d\n", it, moved);
-      if (moved == 0 && r_norm <= tol) break;
+      if (moved == 0 && in_balance()) break;
       if (moved > 0) {
         ++stats.strength_updates;
-        if (r_norm <= tol && ++rounds >= kMaxStrengthRounds) {
+        if (in_balance() && ++rounds >= kMaxStrengthRounds) {
           ++stats.unsettled;  // the fixed point still moves: the step keeps these strengths
           break;
         }
         evaluate();
       }
     }
-    if (r_norm <= tol) continue;  // the strengths moved without moving a force beyond the tolerance
+    if (in_balance()) continue;  // the strengths moved without moving a force beyond the tolerance
     // A full Newton step that did not halve the residual: no contact changed its spring along
     // it (else α < 1), so the direction was not H⁻¹r — CG's recursive residual drifted from the
     // true one (ill-conditioned H, e.g. higher cover orders). The next direction is solved
@@ -317,6 +337,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
   }
   contacts.settle_states();
   stats.max_force_tolerance = std::max(stats.max_force_tolerance, tol);
+  stats.max_displacement_error = std::max(stats.max_displacement_error, std::max(u_err, 0.0));
   double kn_min = std::numeric_limits<double>::infinity();
   for (const Contact& c : contacts.contacts())
     if (c.kn_now > 0 && c.normal_force > tol) kn_min = std::min(kn_min, c.kn_now);  // carrying a force

@@ -65,7 +65,12 @@ nlohmann::json run_summary(const TimeStepper& st, const RunOutcome& o) {
                               // What the tolerance allows (contact_solve.cpp, docs/contact.md).
                               {"tolerance", sv.contact_tolerance},
                               {"max_force_tolerance_N", st.contact_solve_stats().max_force_tolerance},
-                              {"max_gap_error_m", st.contact_solve_stats().max_gap_error}};
+                              {"max_gap_error_m", st.contact_solve_stats().max_gap_error},
+                              {"displacement_tolerance_m",
+                               displacement_tolerance(sv.contact_tolerance, st.model().w0())},
+                              {"max_displacement_error_m", st.contact_solve_stats().max_displacement_error},
+                              {"displacement_checks", st.contact_solve_stats().displacement_checks},
+                              {"displacement_refusals", st.contact_solve_stats().displacement_refusals}};
   summary["matrix"] = {{"unknowns", st.unknowns()},
                        {"nonzeros_lower", st.system().nonzeros()},
                        {"factor_nonzeros", st.system().factor_nonzeros()},

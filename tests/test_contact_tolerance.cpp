@@ -21,6 +21,9 @@ struct Slide {
   double force_tol = 0;     ///< N, largest F_tol used
   double gap_error = 0;     ///< m, largest F_tol/kn
   double max_force = 0;     ///< N, largest contact force at the end
+  double u_error = 0;       ///< m, largest estimated displacement error of an accepted step
+  double u_tol = 0;         ///< m, the displacement tolerance
+  long checks = 0;          ///< displacement estimates made
 };
 
 Slide slide(double tau) {
@@ -35,6 +38,9 @@ Slide slide(double tau) {
   r.newton = st.contact_solve_stats().newton;
   r.force_tol = st.contact_solve_stats().max_force_tolerance;
   r.gap_error = st.contact_solve_stats().max_gap_error;
+  r.u_error = st.contact_solve_stats().max_displacement_error;
+  r.u_tol = displacement_tolerance(tau, st.model().w0());
+  r.checks = st.contact_solve_stats().displacement_checks;
   for (const Contact& c : st.contacts().contacts())
     r.max_force = std::max({r.max_force, std::abs(c.normal_force), std::abs(c.shear_force)});
   return r;
@@ -57,6 +63,10 @@ TEST(ContactTolerance, LooserIsCheaperAndStaysOnCoulomb) {
   EXPECT_GT(loose.force_tol, 0.5e-3 * loose.max_force);
   EXPECT_LT(loose.force_tol, 2e-3 * loose.max_force);
   EXPECT_NEAR(loose.gap_error, loose.force_tol / 2e11, 1e-3 * loose.force_tol / 2e11);
+  // The displacement twin (3e-4·τ·w0) was checked and held at every accepted step.
+  EXPECT_GT(loose.checks, 0);
+  EXPECT_GT(loose.u_error, 0);
+  EXPECT_LE(loose.u_error, loose.u_tol);
   // τ = 1e-8 is 1e-5 of the loose one, but the tolerance has a round-off floor (1e-12 of the
   // largest load, here the inertia term): still far below.
   EXPECT_LT(tight.force_tol, 1e-4 * loose.force_tol);
