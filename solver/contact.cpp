@@ -553,8 +553,10 @@ void ContactSet::end_step() {
     const ContactLaw& law = laws_[c.law];
     // The joint law's memory follows the accepted step (a closed contact's shear travel and
     // dilation, its largest closure).
+    const double dilation0 = c.joint.dilation;
     if (c.state != ContactState::open)
       c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, step_shear(c), -c.gap);
+    c.dilation_step = c.joint.dilation - dilation0;
     if (c.state == ContactState::open) {
       c.shear_el = 0;
     } else if (c.state == ContactState::locked) {
