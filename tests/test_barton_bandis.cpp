@@ -31,6 +31,22 @@ constexpr double kJrc = 10, kJcs = 100e6, kPhiR = 30, kLength = 1;
 
 BartonBandis worked_law() { return {kJrc, kJcs, kPhiR, peak_shear_displacement(kJrc, kLength)}; }
 
+// The worked joint as a joint set with stiff springs (kn = ks = 1e12 Pa/m, 1 µm at 1 MPa), so
+// that the joint's travel and opening are the law's; residual friction angle φr (degrees).
+JointSetDef stiff_barton_joint(double phi_r) {
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = phi_r;
+  js.normal.model = NormalModel::constant;
+  js.normal.kn = 1e12;
+  js.shear.model = ShearModel::barton_bandis;
+  js.shear.ks = 1e12;
+  js.shear.jrc = kJrc;
+  js.shear.jcs = kJcs;
+  js.shear.length = kLength;
+  return js;
+}
+
 // Barton (1982), written out apart from the code under test: reference/direct_shear.h.
 double table_ratio(double r, double phi_r, double i) { return reference::barton_jrc_ratio(r, phi_r, i); }
 
@@ -225,16 +241,7 @@ TEST(BartonBandis, ClosureHysteresisUnloadsAlongTheTangent) {
 // loads along the joint. `cns`: the top face is held in y by springs of k (Pa/m per unit length:
 // solver.support_stiffness), a constant-normal-stiffness boundary.
 SceneDef shear_box(double sigma_n, double tau, double cns_k, double phi_r = kPhiR) {
-  JointSetDef js;
-  js.name = "joint";
-  js.friction_deg = phi_r;
-  js.normal.model = NormalModel::constant;
-  js.normal.kn = 1e12;
-  js.shear.model = ShearModel::barton_bandis;
-  js.shear.ks = 1e12;
-  js.shear.jrc = kJrc;
-  js.shear.jcs = kJcs;
-  js.shear.length = kLength;
+  const JointSetDef js = stiff_barton_joint(phi_r);
   // Δt = 1 ms (the specimen's): a quasi-static step moves the block by its out-of-balance force
   // times βΔt²/M; small steps keep each step's shear small against δp (docs/contact.md).
   SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
@@ -466,16 +473,7 @@ namespace {
 TEST(BartonBandisSolver, DirectShearUnderDisplacementControl) {
   const double phi_r = 25, dp = peak_shear_displacement(kJrc, kLength), kn = 1e12;
   const reference::BartonJoint model{kJrc, kJcs, phi_r, dp};
-  JointSetDef js;
-  js.name = "joint";
-  js.friction_deg = phi_r;
-  js.normal.model = NormalModel::constant;
-  js.normal.kn = kn;
-  js.shear.model = ShearModel::barton_bandis;
-  js.shear.ks = 1e12;
-  js.shear.jrc = kJrc;
-  js.shear.jcs = kJcs;
-  js.shear.length = kLength;
+  const JointSetDef js = stiff_barton_joint(phi_r);
   for (double sn : {0.5e6, 2e6, 5e6}) {
     const SceneDef s = reference::direct_shear_scene(js, sn, dp / 0.25);
     const studies::DirectShearRun run =
@@ -548,16 +546,7 @@ namespace {
 TEST(BartonBandisSolver, DirectShearReversedThroughTheStart) {
   const double phi_r = 25, dp = peak_shear_displacement(kJrc, kLength), kn = 1e12, a = 3 * dp;
   const reference::BartonJoint model{kJrc, kJcs, phi_r, dp};
-  JointSetDef js;
-  js.name = "joint";
-  js.friction_deg = phi_r;
-  js.normal.model = NormalModel::constant;
-  js.normal.kn = kn;
-  js.shear.model = ShearModel::barton_bandis;
-  js.shear.ks = 1e12;
-  js.shear.jrc = kJrc;
-  js.shear.jcs = kJcs;
-  js.shear.length = kLength;
+  const JointSetDef js = stiff_barton_joint(phi_r);
   const double v = dp / 0.25, t1 = a / v, dt = 1e-3;
   const int steps = static_cast<int>(std::lround((t1 + dt + 2 * a / v) / dt));
   for (double sn : {0.5e6, 2e6, 5e6}) {
@@ -638,20 +627,11 @@ namespace {
 // and 14 % sheared one way to 5·δp). What R keeps is the quasi-static scheme's loss (each step
 // starts from rest: the inertia term 2M·Δu/Δt² resists the push, ≈ 2M·v/(Δt·τ·L) = 1.0 % of W_s
 // at 5 ms, 2.1 % at 2.5 ms) less an O(Δt) gain of the implicit strength (the travel at the end of
-// the step): measured (2026-11-25) R = +1.95 / +1.15 / −1.27 / −5.3 % of W_s at Δt = 2.5, 5, 10,
+// the step): measured (2026-11-25) R = +3.05 / +1.15 / −1.27 / −5.27 % of W_s at Δt = 2.5, 5, 10,
 // 20 ms (one way to 5·δp: +1.95 / +0.90 / −1.35 / −3.67 %).
 TEST(BartonBandisSolver, ShearBoxEnergyBalanceCountsTheSupportsWork) {
   const double phi_r = 25, dp = peak_shear_displacement(kJrc, kLength), sn = 2e6;
-  JointSetDef js;
-  js.name = "joint";
-  js.friction_deg = phi_r;
-  js.normal.model = NormalModel::constant;
-  js.normal.kn = 1e12;
-  js.shear.model = ShearModel::barton_bandis;
-  js.shear.ks = 1e12;
-  js.shear.jrc = kJrc;
-  js.shear.jcs = kJcs;
-  js.shear.length = kLength;
+  const JointSetDef js = stiff_barton_joint(phi_r);
   const double v = dp / 0.25, dt = 5e-3, t1 = 2 * dp / v;
   SceneDef s = reference::direct_shear_scene(js, sn, v);
   s.solver.time_step = dt;
