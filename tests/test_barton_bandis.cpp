@@ -7,9 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 
+#include "common/error.h"
 #include "solver/barton_bandis.h"
+#include "solver/contact_history.h"
 #include "solver/energy.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/direct_shear.h"
@@ -441,6 +445,21 @@ TEST(BartonBandisSolver, RestartCarriesTheJointMemoryBitwise) {
               straight.state_hash().substr(0, 12).c_str(), second.state_hash().substr(0, 12).c_str());
   EXPECT_EQ(second.state_hash(), straight.state_hash());
   EXPECT_NE(first.state_hash(), straight.state_hash());
+  // The history carries the joint's shear position (layout 4); one of layout 3, written before the
+  // joint kept it, is refused with a Barton–Bandis contact in it rather than read without it.
+  std::string bytes = save_contact_history(first.contacts());
+  std::uint32_t layout = 0;
+  std::memcpy(&layout, bytes.data(), sizeof layout);
+  EXPECT_EQ(layout, 4u);
+  layout = 3;
+  std::memcpy(bytes.data(), &layout, sizeof layout);
+  ContactSet old_run(first.model());
+  try {
+    load_contact_history(old_run, bytes, m, "old.nmmstate");
+    ADD_FAILURE() << "a layout-3 history with Barton–Bandis contacts was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("without its shear position"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
