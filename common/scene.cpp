@@ -711,7 +711,7 @@ std::vector<SupportDef> read_supports(const Reader& r) {
   std::vector<SupportDef> out;
   for (std::size_t i = 0; i < r.size(); ++i) {
     const Reader s = r[i];
-    s.check_keys({"points", "fix", "velocity"});
+    s.check_keys({"points", "fix", "velocity", "table"});
     SupportDef d;
     d.points = s["points"].as_point_list(2, false, "a support");
     const std::size_t fix = s["fix"].as_choice({"x", "y", "xy"}, "fix direction");
@@ -721,6 +721,10 @@ std::vector<SupportDef> read_supports(const Reader& r) {
       d.velocity = v->as_pair("a velocity [vx, vy] in m/s");
       if ((!d.fix_x && d.velocity.x != 0) || (!d.fix_y && d.velocity.y != 0))
         v->fail("a support moves only in the directions it holds (fix)");
+    }
+    if (const auto t = s.optional("table")) {
+      if (d.velocity.x == 0 && d.velocity.y == 0) t->fail("a velocity table needs the support's velocity");
+      d.table = read_time_table(*t);
     }
     out.push_back(std::move(d));
   }

@@ -125,6 +125,9 @@ struct SupportDef {
   /// m/s, the held position moves at this velocity from t = 0 (UDEC's `boundary xvelocity`):
   /// held at u = velocity·t in its held directions; zero in a free direction. 0: held in place
   Vec2 velocity;
+  /// –, a factor on the velocity over time (UDEC's velocity history): held at
+  /// u = velocity·∫0^t f dt' (support_travel()); empty: f = 1
+  TimeTable table;
 };
 
 /// Traction on the body boundary under a polyline (solver/boundary_conditions.h).

@@ -18,4 +18,21 @@ double table_value(const TimeTable& table, double t, double fallback) {
   return v0 + (v1 - v0) * (t - t0) / (t1 - t0);
 }
 
+double table_integral(const TimeTable& table, double t) {
+  if (table.empty()) return t;
+  // Pieces of [0, t]: before the first row (f = v_0), between rows (linear), after the last.
+  double sum = 0, a = 0;
+  auto add = [&](double b) {  // ∫a^b f, f linear on [a, b]
+    if (b <= a) return;
+    sum += 0.5 * (table_value(table, a) + table_value(table, b)) * (b - a);
+    a = b;
+  };
+  for (double row : table.time) {
+    if (row >= t) break;
+    add(row);
+  }
+  add(t);
+  return sum;
+}
+
 }  // namespace nmm

@@ -65,6 +65,25 @@ double barton_opening(const BartonJoint& j, double sigma_n, double travel) {
   return v;
 }
 
+ReversedShearPoint barton_reversed_shear(const BartonJoint& j, double sigma_n, double amplitude,
+                                         double travel) {
+  ReversedShearPoint p;
+  const double a = amplitude;
+  p.position = travel <= a ? travel : 2 * a - travel;
+  if (travel <= a || travel >= 2 * a) {  // forward (at the start itself too)
+    p.shear_stress = barton_shear_stress(j, sigma_n, travel);
+    p.opening = travel <= a ? barton_opening(j, sigma_n, travel)
+                            : barton_opening(j, sigma_n, travel) - barton_opening(j, sigma_n, 2 * a);
+    return p;
+  }
+  const double v_a = barton_opening(j, sigma_n, a);
+  const double psi = std::atan(v_a / a) * 180 / kPi;
+  const double phi = j.phi_r_deg + roughness(j, sigma_n, travel) - barton_dilation_angle(j, sigma_n, travel) - psi;
+  p.shear_stress = sigma_n * tan_deg(std::clamp(phi, 0.0, kMaxFrictionDeg));
+  p.opening = v_a * p.position / a;
+  return p;
+}
+
 SceneDef direct_shear_scene(const JointSetDef& joint, double sigma_n, double velocity) {
   SceneDef s = joint_specimen_scene(joint, 5e11, 0.25);
   load_joint_specimen(s, sigma_n, 0);

@@ -39,6 +39,22 @@ double barton_dilation_angle(const BartonJoint& j, double sigma_n, double travel
 /// intervals, where the integrand is smooth).
 double barton_opening(const BartonJoint& j, double sigma_n, double travel);
 
+/// The shear box reversed: sheared to +A, back through the start position to −A (travel 3A), at
+/// constant σn (the extended model of solver/barton_bandis.cpp written out again: Plesha 1987's position and
+/// direction, Fei & Choo 2022's zero dilation at the start). Along the path's travel s (m):
+///   0 ≤ s ≤ A     u = s         τ = τ(s),  v = v(s)                          (forward: Barton)
+///   A < s < 2A    u = 2A − s    τ = σn·tan(φr + JRC·r(s/δp)·log10(JCS/σn) − d_mob(s) − ψ),
+///                               ψ = atan(v(A)/A),  v = v(A)·u/A             (back down the asperities)
+///   2A ≤ s ≤ 3A   u = 2A − s    τ = τ(s),  v = v(s) − v(2A)                 (forward again, degraded)
+/// with τ(δ), d_mob(δ) and v(δ) = ∫0^δ tan d_mob of the monotonic model above (the roughness and
+/// the dilation read Barton's table at the cumulative travel).
+struct ReversedShearPoint {
+  double position = 0;      ///< m, u: the upper block's shear displacement from the start
+  double shear_stress = 0;  ///< Pa, |τ| (it acts against the motion)
+  double opening = 0;       ///< m, v
+};
+ReversedShearPoint barton_reversed_shear(const BartonJoint& j, double sigma_n, double amplitude, double travel);
+
 /// The specimen (joint_specimen_scene(joint, E = 500 GPa, h = 0.25 m)) under σn (Pa) on its top
 /// face, the upper block's left face (x = 0, 1 ≤ y ≤ 2) driven in x at `velocity` (m/s) by a
 /// moving support of stiffness 1e14 N/m²; quasi-static steps of 1 ms.

@@ -20,9 +20,30 @@
 // 70°: the friction angle and so the dilation angle (its half roughness term) are capped there.
 // Strength reduction (nmm-fos) divides τ by F at every σn and travel (the SRM of a nonlinear
 // criterion: τ_F(σn) = τ(σn)/F); the dilation, a kinematic property of the asperities, is kept.
-// δ and v advance at the end of each accepted step from the step's shear |Δu|
-// (advance_barton_bandis); within a step the contact's strength uses δ + |Δu| of the solution so
-// far, the travel at the end of the step (solver/contact.cpp, the friction fixed point).
+// Shear reversal (cyclic shear). Barton's table describes shearing one way from the start; for
+// the way back we follow the position-and-direction form of Plesha (1987) that Fei & Choo (2022,
+// "Extended Barton–Bandis model for rock joints under cyclic loading", Int. J. Numer. Anal.
+// Methods Geomech.; arXiv 2207.06026) bring to the Barton–Bandis model: the joint remembers its
+// signed position u (shear displacement from its start), and the roughness degrades with the
+// cumulative travel δ = ∫|du| (Barton's table is read at δ whichever way the joint moves, so a
+// second cycle meets the softened, post-peak roughness). Their equations were not at hand; what
+// is built here is the standard form they extend, stated in full:
+//   forward (moving away from the start, u·du ≥ 0): Barton's model as above, at travel δ:
+//       τ = σn·tan(φr + JRC_mob(δ)·log10(JCS/σn)),   dv = tan(d_n,mob(δ))·|du|
+//   backward (toward the start, u·du < 0): the faces ride down the asperities they climbed, on
+//   the secant from where they are to the start (Fei & Choo's zero net dilation at the initial
+//   position, taken with the state at the start of the step so it cannot over-contract):
+//       dv = −(v/|u|)·|du|   ⇒   v = v_rev·|u|/|u_rev|,   0 at u = 0
+//   and the dilation's share of the strength turns against the motion (Patton's φ + i forward,
+//   φ − i backward; the asperity-shearing share ½·JRC_mob·log10(JCS/σn) stays):
+//       τ = σn·tan(φr + JRC_mob(δ)·log10(JCS/σn) − d_n,mob(δ) − ψ),   ψ = atan(v/|u|)
+//   so on reversal at u_rev the strength falls from σn·tan(φr + 2·d_n) to σn·tan(φr + d_n − ψ).
+//   Through u = 0 the joint moves forward again on the other side, dilating from zero with the
+//   degraded d_n,mob(δ). Before 0.3·δp (no dilation yet) both ways are Barton's pre-peak curve.
+// δ, u and v advance at the end of each accepted step from the step's signed shear Δu
+// (advance_barton_bandis); within a step the contact's strength uses the state at the end of
+// the step: δ + |Δu| and the direction of Δu of the solution so far (solver/contact.cpp, the
+// friction fixed point).
 #include "solver/barton_bandis.h"
 
 #include <algorithm>
@@ -76,11 +97,43 @@ double barton_bandis_strength(const BartonBandis& law, double sigma_n, double tr
 
 JointTravel advance_barton_bandis(const BartonBandis& law, JointTravel now, double sigma_n,
                                   double step_shear) {
-  const double du = std::abs(step_shear);
+  double du = std::abs(step_shear);
+  if (now.position * step_shear < 0) {  // back toward the start, down the secant
+    const double from = std::abs(now.position), back = std::min(du, from);
+    now.travel += back;
+    if (back < from) {
+      now.dilation *= (from - back) / from;
+      now.position += step_shear;
+      return now;
+    }
+    now.dilation = 0;  // at the start position: the asperities are back in their seats
+    now.position = 0;
+    du -= back;
+    if (!(du > 0)) return now;
+  }
   const BartonBandisState mid = barton_bandis_state(law, sigma_n, now.travel + 0.5 * du);
   now.dilation += std::tan(rad(mid.dilation_deg)) * du;
   now.travel += du;
+  now.position += step_shear < 0 ? -du : du;
   return now;
+}
+
+BartonBandisState barton_bandis_sliding_state(const BartonBandis& law, double sigma_n, const JointTravel& start,
+                                              double step_shear) {
+  BartonBandisState s = barton_bandis_state(law, sigma_n, start.travel + std::abs(step_shear));
+  const double from = std::abs(start.position);
+  if (!(start.position * step_shear < 0) || !(std::abs(step_shear) < from)) return s;
+  const double descent = std::atan(start.dilation / from) * 180 / kPi;  // ψ, degrees
+  s.friction_deg = std::clamp(s.friction_deg - s.dilation_deg - descent, 0.0, kMaxFrictionDeg);
+  s.dilation_deg = -descent;
+  return s;
+}
+
+double barton_bandis_strength(const BartonBandis& law, double sigma_n, const JointTravel& start,
+                              double step_shear) {
+  if (!(sigma_n > 0)) return 0.0;
+  return sigma_n * std::tan(rad(barton_bandis_sliding_state(law, sigma_n, start, step_shear).friction_deg)) /
+         law.strength_factor;
 }
 
 }  // namespace nmm::solve

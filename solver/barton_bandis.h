@@ -1,6 +1,7 @@
 // Barton–Bandis shear strength of a rough rock joint: peak strength, mobilised roughness along
 // the shear travel, and dilation (Barton & Choubey 1977; Barton 1982; Barton, Bandis & Bakhtar
-// 1985). Equations in barton_bandis.cpp and docs/physics.md §4.
+// 1985), with shear reversal (sliding back toward the start position down the asperities).
+// Equations in barton_bandis.cpp and docs/physics.md §4.
 #pragma once
 
 namespace nmm::solve {
@@ -36,12 +37,34 @@ BartonBandisState barton_bandis_state(const BartonBandis& law, double sigma_n, d
 /// strength factor, 1 but in strength reduction); 0 for σn ≤ 0.
 double barton_bandis_strength(const BartonBandis& law, double sigma_n, double travel);
 
-/// Travel and dilation after a step that sheared the joint by |Δu| (m) at normal stress σn (Pa):
-///   δ' = δ + |Δu|,   v' = v + tan(d_n,mob(δ + |Δu|/2))·|Δu|   (the midpoint of the step's travel)
+/// What a Barton–Bandis joint remembers of its shear history (the contact's JointMemory).
 struct JointTravel {
-  double travel = 0;    ///< m, δ: total shear travel (either direction)
-  double dilation = 0;  ///< m, v: normal opening from shearing over the asperities
+  double travel = 0;    ///< m, δ: total shear travel (either direction): Barton's table reads it
+  double dilation = 0;  ///< m, v: normal opening from shearing over the asperities, ≥ 0
+  double position = 0;  ///< m, u: signed shear displacement from the joint's start position
 };
+
+/// Travel, position and dilation after a step that sheared the joint by Δu (m, signed along the
+/// contact's edge) at normal stress σn (Pa). Away from the start position (u·Δu ≥ 0, or from
+/// u = 0) the faces climb the asperities; toward it (u·Δu < 0) they ride back down the secant
+/// to the start, v ∝ |u|, and reach it with no dilation; a step through u = 0 goes on forward
+/// with what is left:
+///   forward:   δ' = δ + |Δu|,  u' = u + Δu,  v' = v + tan(d_n,mob(δ + |Δu|/2))·|Δu|
+///   backward:  δ' = δ + |Δu|,  u' = u + Δu,  v' = v·|u'|/|u|
 JointTravel advance_barton_bandis(const BartonBandis& law, JointTravel now, double sigma_n, double step_shear);
+
+/// The strength state of a joint sliding by Δu (m, signed) from `start` (the memory at the start
+/// of the step), at the end of that step: Barton's forward state at the travel δ + |Δu|, or,
+/// sliding back toward the start position (u·Δu < 0 and |Δu| < |u|), the asperities' roughness
+/// turned against it:
+///   φ_back = φr + JRC_mob·log10(JCS/σn) − d_n,mob − ψ,   ψ = atan(v/|u|) (the descent angle)
+/// in [0, 70°]; dilation_deg is then −ψ.
+BartonBandisState barton_bandis_sliding_state(const BartonBandis& law, double sigma_n, const JointTravel& start,
+                                              double step_shear);
+
+/// Shear strength (Pa) of the joint sliding by Δu from `start`: σn·tan(barton_bandis_sliding_state's
+/// friction)/F; 0 for σn ≤ 0.
+double barton_bandis_strength(const BartonBandis& law, double sigma_n, const JointTravel& start,
+                              double step_shear);
 
 }  // namespace nmm::solve

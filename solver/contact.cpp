@@ -365,14 +365,15 @@ Spring shear_at(const ContactLaw& law, const Contact& c, double s) {
   return {sp.force, sp.stiffness, false};
 }
 
-// Barton–Bandis: the travel at the end of the step, the memory's (at its start) plus the step's
-// shear so far. The strength follows it in the friction fixed point below, as it follows the
+// Barton–Bandis: the strength at the end of the step, from the memory (at its start) and the
+// step's signed shear so far (travel δ + |Δu|, and the direction: forward or back toward the
+// start position). The strength follows it in the friction fixed point below, as it follows the
 // normal force of the solution (implicit in the step), so that the joint's τ and δ at the end of
 // a step lie on the mobilised curve. With the travel at the start of the step the strength
 // lagged the curve by one step: at δp/250 per step by up to 1 % on the pre-peak rise and 2 % at
 // 0.1·δp, where τ rises from zero; 4 % at the seed joint's δp/340 near the start
 // (tests/test_barton_bandis.cpp DirectShearUnderDisplacementControl, docs/joint-studies.md).
-double end_of_step_travel(const Contact& c) { return c.joint.travel + std::abs(c.shear - c.shear0); }
+double step_shear(const Contact& c) { return c.shear - c.shear0; }
 
 // Sliding: the trial force reaches the strength (a hyperbola with Rf = 1 only approaches it:
 // 99.9 % counts as slip).
@@ -389,7 +390,7 @@ void ContactSet::start_strengths() {
     const bool closed = c.start_state != ContactState::open;
     c.bonded = closed && !c.broken && law.tensile > 0;
     c.friction_normal = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken, c.joint.travel) : 0.0;
+    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken, c.joint) : 0.0;
     // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
     // sticks until the fixed point has its normal force.
     if (!closed && elastic_predictor_ && c.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
@@ -509,7 +510,7 @@ int ContactSet::update_strengths(double force_floor) {
     // sliding block then ends 0.17–0.31 % off Coulomb's answer, because its normal forces shift
     // between its corners as it slides.)
     const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    double s = closed ? shear_strength(law, n, c.length, c.broken, end_of_step_travel(c)) : 0.0;
+    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint, step_shear(c)) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
     const double moved = std::abs(s - c.strength);
     if (!std::isfinite(c.strength)) {
@@ -552,8 +553,10 @@ void ContactSet::end_step() {
     const ContactLaw& law = laws_[c.law];
     // The joint law's memory follows the accepted step (a closed contact's shear travel and
     // dilation, its largest closure).
+    const double dilation0 = c.joint.dilation;
     if (c.state != ContactState::open)
-      c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, c.shear - c.shear0, -c.gap);
+      c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, step_shear(c), -c.gap);
+    c.dilation_step = c.joint.dilation - dilation0;
     if (c.state == ContactState::open) {
       c.shear_el = 0;
     } else if (c.state == ContactState::locked) {

@@ -75,6 +75,8 @@ struct Contact {
   double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
   double ks_now = 0;         ///< N/m, tangent shear stiffness at the last solve (0 sliding)
   bool capped = false;       ///< closure held below Vm at the last solve
+  double dilation_step = 0;  ///< m, the joint's dilation over the accepted step (end_step();
+                             ///< Barton–Bandis, < 0 sliding back toward the start; energy.h)
 };
 
 /// All contacts of a run.

@@ -1,12 +1,17 @@
-// Contact history <-> bytes (contact_history.h). Layout 3: u32 layout, u64 count, then per
+// Contact history <-> bytes (contact_history.h). Layout 3 or 4: u32 layout, u64 count, then per
 // contact of the last accepted step, in this order: where it was — vertex, edge, elements A and
 // B (i32), ω and the gap at detection (f64), law (i32), tributary length (f64); what lasts from
 // one step to the next (ContactHistory; its block is element B's) — state (u8), broken (u8),
 // elastic shear (f64), slip direction (i32), normal force (f64), the joint law's memory (shear
-// travel, dilation, largest closure: f64); and what the last solve left
+// travel, dilation, largest closure: f64; layout 4 then the signed shear position, f64); and
+// what the last solve left
 // for output: gap, shear, shear force, tangent normal and shear stiffness (f64), capped (u8).
 // What a step rebuilds (unknowns, cn, cs, gap0, strengths, coupling groups) is not saved:
 // begin_step() makes it again from the geometry and the history, bitwise as in the straight run.
+// Layout 4 (with the position) is written when a contact's law is Barton–Bandis shear, the only
+// law that has one; otherwise layout 3, so that the checkpoints and state hashes of runs without
+// such joints are byte for byte those of before. A layout-3 history with a Barton–Bandis contact
+// (written before the position was kept) is refused: its joints would lose their way back.
 #include "solver/contact_history.h"
 
 #include <cmath>
@@ -18,16 +23,22 @@ namespace nmm::solve {
 
 namespace {
 constexpr std::uint32_t kContactLayout = 3;
+constexpr std::uint32_t kContactLayoutPosition = 4;  // with the Barton–Bandis shear position
+bool barton_bandis(const ContactSet& contacts, int law) {
+  return contacts.laws()[static_cast<std::size_t>(law)].shear == ShearModel::barton_bandis;
+}
 }
 
 std::string save_contact_history(const ContactSet& contacts) {
   ByteWriter w;
-  w.put(kContactLayout);
   // The history (what lasts) with the accepted rows it came from (where, and the last solve's
   // values for output): one each per contact, in the same order.
   const std::vector<Contact>& cs = contacts.accepted();
   const std::vector<ContactHistory>& hs = contacts.history();
   if (cs.size() != hs.size()) throw std::logic_error("contact history and rows out of step");
+  bool position = false;
+  for (const Contact& c : cs) position = position || barton_bandis(contacts, c.law);
+  w.put(position ? kContactLayoutPosition : kContactLayout);
   w.put<std::uint64_t>(cs.size());
   for (std::size_t i = 0; i < cs.size(); ++i) {
     const Contact& c = cs[i];
@@ -48,6 +59,7 @@ std::string save_contact_history(const ContactSet& contacts) {
     w.put(h.joint.travel);
     w.put(h.joint.dilation);
     w.put(h.joint.closure_max);
+    if (position) w.put(h.joint.position);
     w.put(c.gap);
     w.put(c.shear);
     w.put(c.shear_force);
@@ -61,7 +73,9 @@ std::string save_contact_history(const ContactSet& contacts) {
 void load_contact_history(ContactSet& contacts, const std::string& bytes, const Mesh& mesh,
                           const std::string& name) {
   ByteReader r(bytes, name, "CONTACT");
-  if (r.get<std::uint32_t>() != kContactLayout) r.fail("unknown contact history layout");
+  const std::uint32_t layout = r.get<std::uint32_t>();
+  if (layout != kContactLayout && layout != kContactLayoutPosition) r.fail("unknown contact history layout");
+  const bool position = layout == kContactLayoutPosition;
   const std::uint64_t n = r.get<std::uint64_t>();
   if (n > bytes.size() / 40) r.fail("contact count " + std::to_string(n) + " past the end");
   const std::int64_t nv = static_cast<std::int64_t>(mesh.loop_vertex_count());
@@ -111,6 +125,11 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     c.joint.travel = finite(r.get<double>());
     c.joint.dilation = finite(r.get<double>());
     c.joint.closure_max = finite(r.get<double>());
+    if (position) {
+      c.joint.position = finite(r.get<double>());
+    } else if (barton_bandis(contacts, c.law)) {
+      r.fail("a Barton–Bandis joint without its shear position (written by an older nmm-solve)");
+    }
     c.gap = finite(r.get<double>());
     c.shear = finite(r.get<double>());
     c.shear_force = finite(r.get<double>());

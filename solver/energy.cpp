@@ -18,6 +18,7 @@ EnergyMeter::EnergyMeter(const Model& model, const CoverSpace* space)
   const SceneDef& scene = scene_;
   const Mesh& mesh = mesh_;
   shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
+  for (const SupportDef& sd : scene.supports) moving_supports_ |= sd.velocity.x != 0 || sd.velocity.y != 0;
   const std::size_t ne = mesh.element_count();
   area0_.resize(ne);
   cx0_.resize(ne);
@@ -101,8 +102,9 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
     const double dx = f.x - f.x0, dy = f.y - f.y0;
     r.springs += 0.5 * model_.fixed_point_stiffness() * (dx * dx + dy * dy);
   }
-  // Supports: u linear along the edge, ∫ u² ds = L (ua² + ua·ub + ub²) / 3 per component.
-  for (std::size_t i = 0; i < model_.support_edges().size(); ++i)
+  // Supports: e = u − h linear along the edge, ∫ e² ds = L (ea² + ea·eb + eb²) / 3 per component.
+  for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
+    const std::array<double, 2> h = held(i, s.time);
     for (const BoundaryEdge& be : model_.support_edges()[i]) {
       if (removed(s, be.element)) continue;
       const std::int32_t a = be.vertex, b = be.next;
@@ -110,10 +112,11 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
                                     s.loop_xy[2 * b + 1] - s.loop_xy[2 * a + 1]);
       for (int d = 0; d < 2; ++d) {
         if (!(d == 0 ? scene_.supports[i].fix_x : scene_.supports[i].fix_y)) continue;
-        const double ua = s.loop_u[2 * a + d], ub = s.loop_u[2 * b + d];
+        const double ua = s.loop_u[2 * a + d] - h[d], ub = s.loop_u[2 * b + d] - h[d];
         r.springs += 0.5 * model_.support_stiffness() * len * (ua * ua + ua * ub + ub * ub) / 3;
       }
     }
+  }
   for (const Contact& c : contacts)
     if (c.state != ContactState::open)
       r.springs += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
@@ -129,12 +132,16 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
       load_work_ += factor * (scene_.loads[l].force.x * (s.loads[l].x - load_x_[l]) +
                               scene_.loads[l].force.y * (s.loads[l].y - load_y_[l]));
     }
-    for (const Contact& c : contacts)
-      if (c.state == ContactState::sliding)
-        friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
-    load_work_ += traction_work(s) + shaking_work(s) + water_work(s);
+    for (const Contact& c : contacts) {
+      if (c.state == ContactState::sliding) friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
+      friction_ -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
+    }
+    const double supports = support_work(s);
+    support_work_ += supports;
+    load_work_ += traction_work(s) + shaking_work(s) + water_work(s) + supports;
   }
-  if (!model_.traction_edges().empty() || model_.water().active()) prev_loop_u_ = s.loop_u;
+  if (!model_.traction_edges().empty() || model_.water().active() || moving_supports_) prev_loop_u_ = s.loop_u;
+  prev_time_ = s.time;
   if (shaking_) centroids(s, prev_cx_, prev_cy_);
   load_x_.resize(s.loads.size());
   load_y_.resize(s.loads.size());
@@ -146,6 +153,7 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
   if (!started_) mech0_ = mech;
   started_ = true;
   r.load_work = load_work_;
+  r.support_work = support_work_;
   r.friction = friction_;
   r.residual = load_work_ - friction_ - (mech - mech0_);
   last_ = r;
@@ -235,6 +243,37 @@ double EnergyMeter::water_work(const RunState& s) const {
           w += 0.5 * (t1 - t0) * len * (-p) * (d == 0 ? nx : ny) * ((1 - t) * du_a + t * du_b);
         }
       }
+  }
+  return w;
+}
+
+std::array<double, 2> EnergyMeter::held(std::size_t support, double t) const {
+  const SupportDef& sd = scene_.supports[support];
+  const double travel = table_integral(sd.table, t);  // as solver/integrators.cpp holds it
+  return {sd.velocity.x * travel, sd.velocity.y * travel};
+}
+
+double EnergyMeter::support_work(const RunState& s) const {
+  // −k_s ∫ ē·Δh ds on each held component, ē = ½(e_prev + e_now), e = u − h linear along the
+  // edge and Δh uniform: L·Δh·(ē_a + ē_b)/2.
+  if (!moving_supports_ || prev_loop_u_.size() != s.loop_u.size()) return 0;
+  double w = 0;
+  for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
+    const SupportDef& sd = scene_.supports[i];
+    if (sd.velocity.x == 0 && sd.velocity.y == 0) continue;
+    const std::array<double, 2> h0 = held(i, prev_time_), h1 = held(i, s.time);
+    for (const BoundaryEdge& be : model_.support_edges()[i]) {
+      if (removed(s, be.element)) continue;
+      const std::int32_t a = be.vertex, b = be.next;
+      const double len = std::hypot(s.loop_xy[2 * b] - s.loop_xy[2 * a], s.loop_xy[2 * b + 1] - s.loop_xy[2 * a + 1]);
+      for (int d = 0; d < 2; ++d) {
+        if (!(d == 0 ? sd.fix_x : sd.fix_y)) continue;
+        auto mean_e = [&](std::int32_t v) {
+          return 0.5 * ((prev_loop_u_[2 * v + d] - h0[d]) + (s.loop_u[2 * v + d] - h1[d]));
+        };
+        w -= model_.support_stiffness() * len * (h1[d] - h0[d]) * 0.5 * (mean_e(a) + mean_e(b));
+      }
+    }
   }
   return w;
 }

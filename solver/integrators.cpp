@@ -189,9 +189,10 @@ void edge_terms(const Model& model, const Configuration& config, const RunState&
   const double* xy = s.loop_xy.data();
   for (std::size_t i = 0; i < model.support_edges().size(); ++i) {
     const SupportDef& sd = scene.supports[i];
-    // A moving support holds its edges at u = velocity·t at the end of the step: the spring
-    // sees the displacement less that.
-    const double held[2] = {sd.velocity.x * t_end, sd.velocity.y * t_end};
+    // A moving support holds its edges at u = velocity·∫f dt (f its velocity table, 1 without)
+    // at the end of the step: the spring sees the displacement less that.
+    const double travel = table_integral(sd.table, t_end);
+    const double held[2] = {sd.velocity.x * travel, sd.velocity.y * travel};
     for (const BoundaryEdge& be : model.support_edges()[i]) {
       if (removed[be.element]) continue;
       k.setZero();

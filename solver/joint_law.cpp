@@ -42,7 +42,9 @@
 //   force and no division: the contact slides. Unloading (u shrinking) follows the same curve.
 // Barton–Bandis (barton_bandis.cpp): an elastic spring ks (Pa/m, like the constant law) capped at
 //   L·σn·tan(φr + JRC_mob(δ)·log10(JCS/σn)), σn = N/L the effective normal stress and δ the
-//   contact's shear travel; its dilation enters the normal spring through the contact's gap.
+//   contact's shear travel (forward; sliding back toward its start position the dilation's share
+//   of the roughness turns against it); its dilation enters the normal spring through the
+//   contact's gap.
 // Constant (a joint stiffness, like the laws above): σn = kn·δ, τ = ks·u with kn, ks in Pa/m;
 //   force kn·L·δ, stiffness kn·L. A joint closes by σn/kn whatever the mesh size, because the
 //   tributary lengths of the contacts along it add up to its length.
@@ -118,11 +120,12 @@ double initial_normal_stiffness(const ContactLaw& law, double length) {
 }
 
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken,
-                      double travel) {
+                      const JointMemory& start, double step_shear) {
   const double c = broken ? law.residual_cohesion : law.cohesion;
   const double n = std::max(normal_force, 0.0);
   const double friction = law.shear == ShearModel::barton_bandis && length > 0
-                              ? length * barton_bandis_strength(law.bb, n / length, travel)
+                              ? length * barton_bandis_strength(law.bb, n / length, {start.travel, start.dilation, start.position},
+                                                               step_shear)
                               : law.tan_phi * n;
   return std::max(0.0, friction + c * length);
 }
@@ -177,10 +180,11 @@ JointMemory advance_joint_memory(const ContactLaw& law, JointMemory m, double no
   if (law.normal == NormalModel::bandis_barton && law.hysteresis)
     m.closure_max = std::max(m.closure_max, closure);
   if (law.shear == ShearModel::barton_bandis && length > 0) {
-    const JointTravel t = advance_barton_bandis(law.bb, {m.travel, m.dilation},
+    const JointTravel t = advance_barton_bandis(law.bb, {m.travel, m.dilation, m.position},
                                                 std::max(normal_force, 0.0) / length, step_shear);
     m.travel = t.travel;
     m.dilation = t.dilation;
+    m.position = t.position;
   }
   return m;
 }

@@ -35,6 +35,7 @@ struct JointMemory {
   double travel = 0;       ///< m, δ: shear travel so far, either direction (Barton–Bandis)
   double dilation = 0;     ///< m, v: opening from shearing over the asperities (Barton–Bandis)
   double closure_max = 0;  ///< m, largest closure so far (Bandis–Barton hysteresis)
+  double position = 0;     ///< m, u: signed shear displacement from the start (Barton–Bandis)
 };
 
 /// The memory after an accepted step in which a closed contact carried the normal force N (N,
@@ -66,9 +67,10 @@ double initial_normal_stiffness(const ContactLaw& law, double length);
 
 /// Shear strength of a contact, N: tanφ·N + c·L, with the residual cohesion c_r in place of c once
 /// the contact is broken (it slid or opened; c_r = 0 by default: brittle). A Barton–Bandis joint
-/// has L·τ(σn = N/L, δ) + c·L instead of tanφ·N, with δ (m) the contact's shear travel so far.
+/// has L·τ + c·L instead of tanφ·N, τ its strength at σn = N/L after sliding by Δu (m, signed)
+/// from its memory `start` (barton_bandis_strength: travel, direction, position).
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken,
-                      double travel = 0);
+                      const JointMemory& start = {}, double step_shear = 0);
 
 /// True if the shear spring is linear (constant or penalty): its force is ks·s up to the strength.
 bool linear_shear(const ContactLaw& law);

@@ -15,7 +15,7 @@ DirectShearSample read(const solve::TimeStepper& st) {
   const auto b = st.displacement_at(st.measure_points()[1]);
   r.closure = b[1] - a[1];
   r.slip = a[0] - b[0];
-  double n = 0, t = 0, travel = 0;
+  double n = 0, t = 0, travel = 0, gap_length = 0, length = 0;
   int closed = 0;
   for (const solve::Contact& c : st.contacts().accepted())
     if (c.state != solve::ContactState::open) {
@@ -23,7 +23,12 @@ DirectShearSample read(const solve::TimeStepper& st) {
       t += c.shear_force;
       travel += c.joint.travel;
       ++closed;
+      // The gap is net of the dilation at the start of the step (contact.h): the faces stand
+      // apart by that more.
+      gap_length += c.length * (c.gap + c.joint.dilation - c.dilation_step);
+      length += c.length;
     }
+  r.face_gap = length > 0 ? gap_length / length : 0;
   // The specimen's faces are 2 m long; the upper one overhangs by the slip, and the tributary
   // lengths cover only the overlap (docs/contact.md), so the stresses are over that.
   const double overlap = 2.0 - std::abs(r.slip);

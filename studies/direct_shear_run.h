@@ -19,6 +19,10 @@ struct DirectShearSample {
   double travel = 0;         ///< m, the mean shear travel the closed contacts remember
   double shear_stress = 0;   ///< Pa, |Σ contact shear force| over the faces' overlap, 2 m − slip
   double normal_stress = 0;  ///< Pa, Σ contact normal force over the overlap
+  /// m, the faces' separation averaged along the joint (Σ L·(gap + dilation) / Σ L over the closed
+  /// contacts; < 0 while the springs are compressed): what a row of gauges along the joint
+  /// reads, where the pair of measure points reads one place of a block that may tilt
+  double face_gap = 0;
 };
 
 struct DirectShearRun {

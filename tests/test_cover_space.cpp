@@ -570,8 +570,8 @@ TEST(CoverSpace, RollersAndTractionGiveUniformStressAtOrderOneAndTwo) {
     SceneDef s = plate(0.3, order);
     s.plane = PlaneKind::stress;
     s.bodies[0].outer = {{0, 0}, {1, 0}, {1, 2}, {0, 2}};
-    s.supports.push_back({{{-0.1, 0}, {1.1, 0}}, false, true, {}});
-    s.supports.push_back({{{0, -0.1}, {0, 2.1}}, true, false, {}});
+    s.supports.push_back({{{-0.1, 0}, {1.1, 0}}, false, true, {}, {}});
+    s.supports.push_back({{{0, -0.1}, {0, 2.1}}, true, false, {}, {}});
     TractionDef t;
     t.points = {{-0.1, 2}, {1.1, 2}};
     t.normal = -1e6;

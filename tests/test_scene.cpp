@@ -13,6 +13,7 @@
 
 #include "common/error.h"
 #include "common/scene.h"
+#include "common/time_table.h"
 
 namespace nmm {
 namespace {
@@ -388,6 +389,8 @@ const BadCase kBadCases[] = {
      "/joint_sets/bedding/normal/hysteresis", "the reloading cycle (reload) needs the hysteresis: true or leave it out"},
     {R"({"supports": [{"points": [[0,0],[1,0]], "fix": "y", "velocity": [0.1, 0]}]})",
      "/supports/0/velocity", "a support moves only in the directions it holds (fix)"},
+    {R"({"supports": [{"points": [[0,0],[1,0]], "fix": "y", "table": [[0, 1], [1, -1]]}]})",
+     "/supports/0/table", "a velocity table needs the support's velocity"},
     {R"({"materials": null})", "top level", "missing required key \"materials\""},
     {R"({"bodies": []})", "/bodies", "at least one body is required"},
     {R"({"materials": {"rock": null, "soil": null}})", "/materials",
@@ -512,6 +515,25 @@ TEST(BadSceneTable, BaseSceneIsValid) {
   const SceneDef s = parse_scene(kBase, "base.json");
   EXPECT_EQ(s.joints.size(), 2u);
   EXPECT_EQ(s.joints[1].set, 1);
+}
+
+// A support's velocity table: held at velocity·∫0^t f, the integral exact on the linear rows
+// and f held outside them.
+TEST(Scene, SupportVelocityTableIntegratesItsFactor) {
+  const SceneDef s = parse_scene(R"({
+    "materials": {"rock": {"density": 2650, "young": 1e10, "poisson": 0.25}},
+    "bodies": [{"material": "rock", "outer": [[0,0],[1,0],[1,1],[0,1]]}], "mesh": {"size": 0.5},
+    "supports": [{"points": [[0,0],[0,1]], "fix": "x", "velocity": [0.002, 0],
+                  "table": [[0.5, 1], [1, 1], [1.5, -1]]}]})",
+                                 "table.json");
+  const TimeTable& t = s.supports[0].table;
+  ASSERT_EQ(t.time.size(), 3u);
+  EXPECT_DOUBLE_EQ(table_integral(t, 0.25), 0.25);  // f = 1 held before the first row
+  EXPECT_DOUBLE_EQ(table_integral(t, 1.0), 1.0);
+  EXPECT_DOUBLE_EQ(table_integral(t, 1.25), 1.125);  // f from 1 to 0 over 0.25 s
+  EXPECT_DOUBLE_EQ(table_integral(t, 1.5), 1.0);                 // the ramp 1 → −1 nets 0
+  EXPECT_DOUBLE_EQ(table_integral(t, 2.5), 0.0);                 // then back at −1
+  EXPECT_DOUBLE_EQ(table_integral(TimeTable{}, 3.0), 3.0);       // no table: velocity·t
 }
 
 TEST(Scene, SyntaxErrorPositionMatchesNlohmann) {

@@ -110,7 +110,7 @@ double cantilever_traction_error(double h, int order, double* tip_out = nullptr)
   const double L = 10, H = 1, P = 1e5;
   SceneDef s = beam(L, H, h);
   s.solver.cover_order = order;
-  s.supports.push_back({{{0, -0.1}, {0, H + 0.1}}, true, true, {}});
+  s.supports.push_back({{{0, -0.1}, {0, H + 0.1}}, true, true, {}, {}});
   TractionDef t;
   t.points = {{L, H + 0.1}, {L, -0.1}};  // direction −y: a positive shear pushes down
   t.shear = P / H;
