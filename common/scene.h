@@ -179,8 +179,8 @@ struct SolverDef {
   int cover_order = 0;
   /// –, τ in [1e-12, 1e-2]: the contact solve accepts a step when no unknown is out of balance by
   /// more than this fraction of the largest contact force, friction strengths follow the
-  /// normal forces to within the same force, and the displacement that would remove the rest is
-  /// within 3e-4·τ·w0 (docs/contact.md "Tolerance and error")
+  /// normal forces to within the same force, and (with a softening joint law) the displacement
+  /// that would remove the rest is within 3e-4·τ·w0 (docs/contact.md "Tolerance and error")
   double contact_tolerance = 1e-3;
 };
 

@@ -200,6 +200,11 @@ class ContactSet {
   std::size_t capped_count() const;
   /// True if some law is nonlinear (Bandis–Barton or hyperbolic).
   bool nonlinear() const { return nonlinear_; }
+  /// True if some law's tangent softens with the load or the travel (Bandis–Barton closure,
+  /// hyperbolic or Barton–Bandis shear): there the force tolerance alone does not bound a
+  /// contact's displacement error, and the contact solve checks it (contact_solve.h
+  /// displacement_tolerance). A constant spring's error is at most F_tol/k (max_gap_error).
+  bool softening() const { return nonlinear_ || memory_laws_; }
   double detection_seconds() const { return detection_seconds_; }
   const DetectionStats& detection_stats() const { return stats_; }
 

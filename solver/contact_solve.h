@@ -52,11 +52,12 @@ struct ContactSolveOutcome {
 /// balance is accepted only if the displacement that would remove its residual, estimated with
 /// the kept factorisation, is within it: a soft contact (a joint near its strength, whose tangent
 /// is a fraction of its initial stiffness) turns a force error F_tol into a displacement error
-/// F_tol / k_t that the force test alone does not see (contact_solve.cpp "Tolerance").
+/// F_tol / k_t that the force test alone does not see (contact_solve.cpp "Tolerance"). Applied
+/// where a law softens (ContactSet::softening()); a constant spring's error is F_tol/k at most.
 /// 3e-4, measured at τ = 1e-3 (docs/contact.md "Tolerance and error"): with 1e-3 the seed
 /// study's joint sheared to 10 % of its strength slid 1.64 % short (0.5 µm of 31 µm), with
-/// 3e-4 0.28 %; 1e-4 buys no more accuracy there (+0.26 %) and costs the dynamic 20 × 20 wall
-/// 16 instead of 13 solves per step.
+/// 3e-4 0.28 %; 1e-4 buys no more accuracy there (+0.26 %) and cost a wall of constant springs,
+/// had the test applied to it, 16 instead of 13 solves per step (dynamic 20 × 20).
 inline constexpr double kDisplacementTolerance = 3e-4;  ///< × τ·w0
 inline double displacement_tolerance(double tau, double w0) { return kDisplacementTolerance * tau * w0; }
 

@@ -67,7 +67,8 @@ nlohmann::json run_summary(const TimeStepper& st, const RunOutcome& o) {
                               {"max_force_tolerance_N", st.contact_solve_stats().max_force_tolerance},
                               {"max_gap_error_m", st.contact_solve_stats().max_gap_error},
                               {"displacement_tolerance_m",
-                               displacement_tolerance(sv.contact_tolerance, st.model().w0())},
+                               st.contacts().softening() ? displacement_tolerance(sv.contact_tolerance, st.model().w0())
+                                                         : 0.0},
                               {"max_displacement_error_m", st.contact_solve_stats().max_displacement_error},
                               {"displacement_checks", st.contact_solve_stats().displacement_checks},
                               {"displacement_refusals", st.contact_solve_stats().displacement_refusals}};

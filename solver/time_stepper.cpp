@@ -405,7 +405,8 @@ std::string TimeStepper::attempt(double dt) {
     const double tau = scene_.solver.contact_tolerance;
     const ContactSolveOutcome outcome =
         solve_contact_step(system_, contacts_, rhs_base_, tau,
-                           displacement_tolerance(tau, model_.w0()), d, solve_stats_);
+                           contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
+                           solve_stats_);
     timings_.factorisations += solve_stats_.factorisations - before.factorisations;
     timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
     timings_.solves_count += solve_stats_.cg_iterations - before.cg_iterations +

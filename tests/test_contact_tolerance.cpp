@@ -8,8 +8,10 @@
 
 #include "preprocess/cover_cutter.h"
 #include "common/math_constants.h"
+#include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
 #include "reference/sliding_block.h"
+#include "solver/contact_solve.h"
 #include "solver/time_stepper.h"
 
 namespace nmm::solve {
@@ -22,7 +24,6 @@ struct Slide {
   double gap_error = 0;     ///< m, largest F_tol/kn
   double max_force = 0;     ///< N, largest contact force at the end
   double u_error = 0;       ///< m, largest estimated displacement error of an accepted step
-  double u_tol = 0;         ///< m, the displacement tolerance
   long checks = 0;          ///< displacement estimates made
 };
 
@@ -39,7 +40,6 @@ Slide slide(double tau) {
   r.force_tol = st.contact_solve_stats().max_force_tolerance;
   r.gap_error = st.contact_solve_stats().max_gap_error;
   r.u_error = st.contact_solve_stats().max_displacement_error;
-  r.u_tol = displacement_tolerance(tau, st.model().w0());
   r.checks = st.contact_solve_stats().displacement_checks;
   for (const Contact& c : st.contacts().contacts())
     r.max_force = std::max({r.max_force, std::abs(c.normal_force), std::abs(c.shear_force)});
@@ -63,13 +63,42 @@ TEST(ContactTolerance, LooserIsCheaperAndStaysOnCoulomb) {
   EXPECT_GT(loose.force_tol, 0.5e-3 * loose.max_force);
   EXPECT_LT(loose.force_tol, 2e-3 * loose.max_force);
   EXPECT_NEAR(loose.gap_error, loose.force_tol / 2e11, 1e-3 * loose.force_tol / 2e11);
-  // The displacement twin (3e-4·τ·w0) was checked and held at every accepted step.
-  EXPECT_GT(loose.checks, 0);
-  EXPECT_GT(loose.u_error, 0);
-  EXPECT_LE(loose.u_error, loose.u_tol);
+  // A constant spring's error is bounded by F_tol/kn (above): no displacement test is made.
+  EXPECT_EQ(loose.checks, 0);
+  EXPECT_EQ(loose.u_error, 0);
   // τ = 1e-8 is 1e-5 of the loose one, but the tolerance has a round-off floor (1e-12 of the
   // largest load, here the inertia term): still far below.
   EXPECT_LT(tight.force_tol, 1e-4 * loose.force_tol);
+}
+
+TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
+  // The joint of the seed paper's direct shear (hyperbolic shear, Rf = 0.9) loaded to 90 % of
+  // its strength: its tangent is (1 − 0.9·0.9)² = 3.6 % of Ksi, so F_tol moves it 28 times as far
+  // as on its initial stiffness. The solve must check the displacement, refuse iterates over
+  // 3e-4·τ·w0, and accept none over it.
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = 30;
+  js.normal.model = NormalModel::bandis_barton;
+  js.normal.kni = 15.35e9;
+  js.normal.vm = 0.227e-3;
+  js.shear.model = ShearModel::hyperbolic;
+  js.shear.ksi = 1e10;
+  js.shear.rf = 0.9;
+  SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
+  reference::load_joint_specimen(s, 5e6, 0.9 * 5e6 * std::tan(30 * kPi / 180));
+  s.solver.contact_tolerance = 1e-3;
+  const Mesh m = pre::build_mesh(s, "joint");
+  TimeStepper st(m, s, "joint");
+  ASSERT_EQ(st.run_until(0.1, [](std::int64_t) {}), "ok");
+  const ContactSolveStats& cs = st.contact_solve_stats();
+  const double u_tol = displacement_tolerance(1e-3, st.model().w0());
+  std::printf("checks %ld, refused %ld, largest accepted %.3e m, tolerance %.3e m\n", cs.displacement_checks,
+              cs.displacement_refusals, cs.max_displacement_error, u_tol);
+  EXPECT_GT(cs.displacement_checks, 0);
+  EXPECT_GT(cs.displacement_refusals, 0) << "the force test alone would have stopped short here";
+  EXPECT_GT(cs.max_displacement_error, 0);
+  EXPECT_LE(cs.max_displacement_error, u_tol);
 }
 
 }  // namespace
