@@ -10,7 +10,7 @@
 //   initial stress  F(2a+s) −= Σ_i ∫ ∂_iφ_a σ_r(s,i) dA      σ of degree n        (n = 0: A Bᵀσ)
 //   body force      F(2a+s) += ρ b_s ∫ φ_a dA                b = g − a_base(t)
 //   inertia         K += c_d M,  F += M (c_v v0 + c_a a0),  M(a, b) = ρ ∫ φ_a φ_b dA per direction
-//                   (Newmark: c_d = 1/(βΔt²), c_v = 1/(βΔt), c_a = 1/(2β) − 1; time_stepper.cpp)
+//                   (Newmark: c_d = 1/(βΔt²), c_v = 1/(βΔt), c_a = 1/(2β) − 1; newmark.h)
 //   fixed point     K += k_f φφᵀ,  F −= k_f φ (p − P)       penalty spring back to where it started
 //   point load      F += φ(p) f(t)
 //   edges           supports, tractions, in-situ traction and water on faces (edge_terms below;
@@ -26,6 +26,7 @@
 #include "solver/elasticity.h"
 #include "solver/element_integration.h"
 #include "solver/model.h"
+#include "solver/newmark.h"
 #include "solver/run_state.h"
 #include "solver/system_matrix.h"
 
@@ -46,13 +47,6 @@ struct ElementGeometry {
 /// The geometry of element e (loop_xy: the current loop vertices, m).
 ElementGeometry element_geometry(const Configuration& config, const Mesh& mesh,
                                  const std::vector<double>& loop_xy, std::size_t e);
-
-/// The Newmark coefficients of the inertia term (0 without it).
-struct InertiaCoefficients {
-  double on_d = 0;  ///< 1/s², on the increment: 1/(βΔt²)
-  double on_v = 0;  ///< 1/s, on v0: 1/(βΔt)
-  double on_a = 0;  ///< –, on a0: 1/(2β) − 1
-};
 
 /// m/s², the body force per unit mass at time t: gravity, and −a_base(t) for a shaken base (the
 /// model moves relative to its base, which the supports and fixed points hold).

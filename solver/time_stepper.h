@@ -19,6 +19,7 @@
 #include "common/mesh.h"
 #include "solver/model.h"
 #include "solver/boundary_conditions.h"
+#include "solver/run_effects.h"
 #include "solver/run_state.h"
 #include "common/scene.h"
 #include "solver/step_control.h"
@@ -91,7 +92,7 @@ class TimeStepper {
   const Eigen::VectorXd& assemble_rhs(double dt);
   const StepTimings& timings() const { return timings_; }
   /// The physical effects this run computes (summary.json "effects").
-  std::vector<std::string> effects() const;
+  std::vector<std::string> effects() const { return run_effects(model_, s_, contacts_); }
   /// dofs_per_cover per independent cover: sliver covers share a neighbour's (cover_unknowns.cpp).
   int unknowns() const { return space_.unknowns(); }
   const CoverUnknowns& cover_unknowns() const { return space_.ties(); }
@@ -144,7 +145,6 @@ class TimeStepper {
   void assemble(double dt);
   void update_pattern();
   void update(const Eigen::VectorXd& d, double dt);
-  void check_static_support() const;
   /// The equilibrium indicators of the step just solved (increment d of length dt), before
   /// update() moves the state on.
   void measure_balance(const Eigen::VectorXd& d, double dt, bool contact);
