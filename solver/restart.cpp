@@ -2,6 +2,7 @@
 #include "solver/restart.h"
 
 #include "common/error.h"
+#include "solver/contact_history.h"
 
 namespace nmm::solve {
 
@@ -28,6 +29,12 @@ RunState restarted_state(const RunState& checkpoint, const RunState& scene_start
   if (!same_points(next.loads, scene_start.loads)) next.loads = scene_start.loads;
   if (!same_points(next.measure, scene_start.measure)) next.measure = scene_start.measure;
   return next;
+}
+
+void write_checkpoint(const RunView& v, const std::string& path) {
+  write_state_file(path, v.state, save_contact_history(v.contacts), v.mesh,
+                   v.contacts.active() && v.model.contacts_can_arise() ? v.system.factor_source()
+                                                                       : std::string());
 }
 
 }  // namespace nmm::solve

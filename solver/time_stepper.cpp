@@ -56,13 +56,13 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   // Fixed points and loads couple only the covers of their element: the element pattern holds
   // until contacts couple pairs of elements (update_pattern).
   build_pattern_with_pairs();
-  rhs_.resize(unknowns());
+  rhs_.resize(space_.unknowns());
   set_threads(0);
   excavate(scene.excavate);
 }
 
 void TimeStepper::set_threads(int threads) {
-  threads_ = set_solver_threads(threads > 0 ? threads : default_solver_threads(unknowns()));
+  threads_ = set_solver_threads(threads > 0 ? threads : default_solver_threads(space_.unknowns()));
 }
 
 
@@ -108,7 +108,7 @@ void TimeStepper::build_pattern_with_pairs() {
     dofs.insert(dofs.end(), space_.element_unknowns(b), space_.element_unknowns(b) + m);
     offsets.push_back(static_cast<int>(dofs.size()));
   }
-  system_.build_pattern(unknowns(), offsets, dofs);
+  system_.build_pattern(space_.unknowns(), offsets, dofs);
 }
 
 void TimeStepper::assemble(double dt) {
@@ -270,21 +270,6 @@ void TimeStepper::step(double dt) {
   if (!why.empty()) throw RunError(why);
 }
 
-void TimeStepper::impose_displacement(const Eigen::VectorXd& d) {
-  compute_frames();  // the element frames of the current configuration
-  update(d, 1.0);
-}
-
-const Eigen::VectorXd& TimeStepper::assemble_rhs(double dt) {
-  compute_frames();
-  assemble(dt);
-  return rhs_;
-}
-
-std::array<double, 2> TimeStepper::displacement_at(const TrackedPoint& p) const {
-  return {p.x - p.x0, p.y - p.y0};
-}
-
 std::string TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step) {
   // Attempts under Shi's step control (step_control.h): without contact nothing is rejected and
   // every step has the full length time_step.
@@ -323,24 +308,6 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
     if (stopped_at_ratio_) return "ok";
   }
   return "ok";
-}
-
-}  // namespace nmm::solve
-
-namespace nmm::solve {
-
-std::string TimeStepper::contact_history() const { return save_contact_history(contacts_); }
-
-std::string TimeStepper::state_hash() const {
-  return nmm::solve::state_hash(s_, contact_history(), mesh_);
-}
-
-void TimeStepper::write_checkpoint(const std::string& path) const {
-  // With contact the factorisation lives on from step to step (a preconditioner): the checkpoint
-  // keeps its matrix so that a restart continues bitwise as the straight run.
-  write_state_file(path, s_, contact_history(), mesh_,
-                   contacts_.active() && model_.contacts_can_arise() ? system_.factor_source()
-                                                                           : std::string());
 }
 
 void TimeStepper::restart_from(const std::string& path) {

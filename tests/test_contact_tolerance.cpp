@@ -31,11 +31,11 @@ Slide slide(double tau) {
   TimeStepper st(m, s, "tilted");
   EXPECT_EQ(st.run_until(1.0, [](std::int64_t) {}), "ok");
   Slide r;
-  r.along = st.displacement_at(st.measure_points()[0])[0];
-  r.newton = st.contact_solve_stats().newton;
-  r.force_tol = st.contact_solve_stats().max_force_tolerance;
-  r.gap_error = st.contact_solve_stats().max_gap_error;
-  for (const Contact& c : st.contacts().contacts())
+  r.along = st.view().state.measure[0].displacement()[0];
+  r.newton = st.view().contact_solve.newton;
+  r.force_tol = st.view().contact_solve.max_force_tolerance;
+  r.gap_error = st.view().contact_solve.max_gap_error;
+  for (const Contact& c : st.view().contacts.contacts())
     r.max_force = std::max({r.max_force, std::abs(c.normal_force), std::abs(c.shear_force)});
   return r;
 }
