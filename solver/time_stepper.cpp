@@ -3,9 +3,10 @@
 //
 //   frames      the configuration placed on the covers' positions (configuration.h)
 //   contacts    detection within the search distance, the pattern grown by new element pairs
-//   assembly    K and F by integrators.h, one per term (elasticity, initial stress, body force,
-//               inertia with newmark.h's coefficients, fixed points and loads, edges);
-//               excavated covers pinned (excavation.h, K += k_pin I)
+//   assembly    K and F by the scene's form (form.h): the integrators it calls for, one per
+//               term (integrators.h: elasticity, initial stress, body force, inertia with
+//               newmark.h's coefficients, fixed points, loads, supports, tractions, water,
+//               in-situ traction); excavated covers pinned (excavation.h, K += k_pin I)
 //   solve       one factorisation, or the step's contact problem (contact_solve.h)
 //   acceptance  Shi's step control (step_control.h): a rejected attempt leaves the state as it
 //               was and the caller cuts Δt
@@ -34,6 +35,7 @@
 #include "common/error.h"
 #include "solver/excavation.h"
 #include "solver/initial_state.h"
+#include "solver/form.h"
 #include "solver/integrators.h"
 #include "solver/newmark.h"
 #include "solver/restart.h"
@@ -43,7 +45,7 @@
 namespace nmm::solve {
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
-    : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name),
+    : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name), form_(model_),
       control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_) {
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
   config_ = Configuration(mesh, &space_);
@@ -112,51 +114,7 @@ void TimeStepper::build_pattern_with_pairs() {
 }
 
 void TimeStepper::assemble(double dt) {
-  // The terms are integrators.h's; only the effects the scene calls for are assembled.
-  const bool dynamic = step_inertia();  // the matrix has the inertia term
-  const double t_end = s_.time + dt;
-  const auto [bx, by] = body_force_per_mass(scene_, t_end);
-  const bool gravity = bx != 0 || by != 0;
-  InertiaCoefficients inertia;
-  if (dynamic) inertia = inertia_coefficients(step_beta(scene_.solver, s_), dt);
-  system_.set_zero();
-  rhs_.setZero();
-  const int nd = space_.element_dofs();
-  const std::size_t T = stress_terms();
-  Eigen::MatrixXd k(nd, nd);
-  Eigen::VectorXd fe(nd);
-  Mat6 k6;
-  Vec6 f6;
-  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    const int* g = space_.element_unknowns(e);
-    if (removed_elem_[e]) {  // excavated: its covers' unknowns are held at zero
-      k = model_.pin_stiffness() * Eigen::MatrixXd::Identity(nd, nd);
-      system_.add_group(e, k.data());
-      continue;
-    }
-    const std::int32_t* ec = &mesh_.element_covers[3 * e];
-    const ElementGeometry geo = element_geometry(config_, mesh_, s_.loop_xy, e);
-    const double rho = model_.density(e);
-    const double* sigma = s_.stress.data() + 3 * T * e;
-    if (space_.order() == 0) {  // constant strain: the 6×6 fast paths
-      integrators::elasticity(geo, model_.elasticity(e), k6);
-      integrators::initial_stress(geo, sigma, f6);
-      if (gravity) integrators::body_force(geo, rho, bx, by, f6);
-      if (dynamic) integrators::inertia(geo, rho, inertia, ec, s_, k6, f6);
-      system_.add_group(e, k6.data());
-      for (int i = 0; i < 6; ++i) rhs_[g[i]] += f6[i];
-      continue;
-    }
-    k.setZero();
-    integrators::elasticity(geo, model_.elasticity(e), k);
-    integrators::initial_stress(geo, sigma, fe);
-    if (gravity) integrators::body_force(geo, rho, bx, by, fe);
-    if (dynamic) integrators::inertia(geo, rho, inertia, ec, s_, space_.terms(), k, fe);
-    system_.add_group(e, k.data());
-    for (int i = 0; i < nd; ++i) rhs_[g[i]] += fe[i];
-  }
-  point_terms(model_, config_, s_, t_end, system_, rhs_);
-  edge_terms(model_, config_, s_, removed_elem_, t_end, system_, rhs_);
+  form_.assemble({config_, s_, removed_elem_, s_.time + dt, dt}, system_, rhs_);
 }
 
 void TimeStepper::update(const Eigen::VectorXd& d, double dt) {

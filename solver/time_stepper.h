@@ -20,6 +20,7 @@
 #include "solver/contact_solve.h"
 #include "solver/cover_space.h"
 #include "solver/equilibrium_indicator.h"
+#include "solver/form.h"
 #include "solver/model.h"
 #include "solver/run_state.h"
 #include "solver/run_view.h"
@@ -96,6 +97,7 @@ class TimeStepper {
   const SceneDef& scene_;
   std::string scene_name_;
   Model model_;                         // derived once from mesh and scene (model.h)
+  Form form_;                           // the integrators the scene calls for (form.h)
   StepControl control_;                 // Shi's step control (step_control.h)
   CoverSpace space_;                    // order, unknowns of each cover and element, shapes
   Configuration config_;                // the space on the step's cover positions: frames, bases

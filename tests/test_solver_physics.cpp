@@ -9,6 +9,8 @@
 #include "solver/time_stepper_probe.h"
 #include "preprocess/cover_cutter.h"
 #include "common/error.h"
+#include "solver/form.h"
+#include "solver/model.h"
 #include "solver/time_stepper.h"
 
 namespace nmm::solve {
@@ -175,6 +177,37 @@ TEST(SolverPhysics, FreeFallIsExact) {
   EXPECT_LT(smax, 1e-3) << "Pa: a falling body carries no stress";
   const auto eff = run_effects(st.view());
   EXPECT_EQ(eff, (std::vector<std::string>{"elasticity", "inertia", "gravity"}));
+}
+
+TEST(SolverPhysics, FormHoldsOnlyTheTermsTheSceneCallsFor) {
+  // The form (form.h) is built once from the model with the integrators the scene calls for,
+  // and its assembly at rest is the body's weight: Σ_a ∫ρ b φ_a dA = ρ b A (the shape functions
+  // are a partition of unity), with no inertia or spring force while nothing has moved.
+  SceneDef s = beam(2, 1, 0.4);
+  s.solver.dynamic = false;
+  s.solver.static_mode = StaticMode::equilibrium;
+  clamp_left_end(s, 1, 0.4);
+  const Mesh m = pre::build_mesh(s, "form");
+  EXPECT_EQ(Form(Model(m, s, "form")).names(),
+            (std::vector<std::string>{"elasticity", "initial_stress", "fixed_points"}));
+  s.solver.dynamic = true;
+  s.has_gravity = true;
+  s.gravity = {0.5, -9.81};
+  s.loads.push_back({{2, 0.5}, {0, -1e3}});
+  const Model model(m, s, "form");
+  EXPECT_EQ(Form(model).names(), (std::vector<std::string>{"elasticity", "initial_stress", "body_force",
+                                                          "inertia", "fixed_points", "point_loads"}));
+  s.loads.clear();
+  TimeStepper st(m, s, "form");
+  const Eigen::VectorXd& r = TimeStepperProbe::assemble_rhs(st, 0.01);
+  double fx = 0, fy = 0;
+  for (Eigen::Index i = 0; i < r.size(); i += 2) {
+    fx += r[i];
+    fy += r[i + 1];
+  }
+  const double weight = s.materials[0].density * 2 * 1;  // kg per m of thickness
+  EXPECT_NEAR(fx, weight * 0.5, 1e-9 * weight * 9.81);
+  EXPECT_NEAR(fy, -weight * 9.81, 1e-9 * weight * 9.81);
 }
 
 TEST(SolverPhysics, CantileverFirstPeriodMatchesBeamTheory) {
