@@ -8,7 +8,7 @@
 //   summary                       summary.json once the run has stopped (run_summary.h)
 //
 // The stepping core knows nothing of files: what a run writes is the driver's and its
-// observers'. Output seconds (summary.json timings.output) are those of the frames, histories
+// observers', each reading the run's view (run_view.h), never the stepper itself. Output seconds (summary.json timings.output) are those of the frames, histories
 // and checkpoints.
 #pragma once
 
