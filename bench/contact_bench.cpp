@@ -42,20 +42,20 @@ int trace_run(int n, bool dynamic, bool peer, int steps) {
   nmm::solve::TimeStepper st(m, s, "bench");
   std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
               "factorisation_ms,cg_ms,detection_ms,cpu_ms\n");
-  nmm::solve::ContactSolveStats a = st.contact_solve_stats();
-  nmm::solve::StepTimings ta = st.timings();
-  std::size_t cuts = st.time_step_cuts();
+  nmm::solve::ContactSolveStats a = st.view().contact_solve;
+  nmm::solve::StepTimings ta = st.view().timings;
+  std::size_t cuts = st.view().state.cuts;
   for (int k = 1; k <= steps; ++k) {
     const nmm::Stopwatch w0;
     const double c0 = nmm::bench::thread_cpu_seconds();
     const std::string status = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
     const double ms = 1e3 * w0.seconds(), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
-    const nmm::solve::ContactSolveStats& b = st.contact_solve_stats();
-    const nmm::solve::StepTimings& tb = st.timings();
+    const nmm::solve::ContactSolveStats& b = st.view().contact_solve;
+    const nmm::solve::StepTimings& tb = st.view().timings;
     std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f\n", k, b.newton - a.newton,
                 b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
                 b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
-                st.time_step_cuts() - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
+                st.view().state.cuts - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
                 1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms);
     std::fflush(stdout);
     if (status != "ok") {
@@ -64,15 +64,15 @@ int trace_run(int n, bool dynamic, bool peer, int steps) {
     }
     if (k == 1 || k == steps)
       std::printf("# unknowns %d, matrix nonzeros %zu, factor nonzeros %.0f, factorisation Mflop %.1f, ordering %s, analyses %zu\n",
-                  st.unknowns(), st.system().nonzeros(), st.system().factor_nonzeros(), 1e-6 * st.system().factor_flops(),
-                  st.system().ordering().c_str(), st.symbolic_analyses());
+                  st.view().space.unknowns(), st.view().system.nonzeros(), st.view().system.factor_nonzeros(), 1e-6 * st.view().system.factor_flops(),
+                  st.view().system.ordering().c_str(), st.view().system.analyses());
     a = b;
     ta = tb;
-    cuts = st.time_step_cuts();
+    cuts = st.view().state.cuts;
   }
   // One factorisation against one CG iteration's work (a factor solve pair and a product with
   // the matrix) on the last step's matrix, thread CPU time: what one factorisation is worth.
-  const auto& km = st.system().matrix();
+  const auto& km = st.view().system.matrix();
   Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Lower> llt;
   llt.analyzePattern(km);
   double f_best = 1e9, s_best = 1e9;
@@ -116,18 +116,18 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
       const std::string status = st.run_until(steps * s.solver.time_step, [&](std::int64_t) { ++done; });
       const double cpu = nmm::bench::thread_cpu_seconds() - c0;
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-      const nmm::solve::ContactSolveStats& cs = st.contact_solve_stats();
+      const nmm::solve::ContactSolveStats& cs = st.view().contact_solve;
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(done, 1));
       char line[600];
       std::snprintf(line, sizeof line, "%s,%d,%g,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f,%d,%.3f\n",
-                    dynamic ? "dynamic" : "static", n, h, m.block_count(), st.unknowns(),
-                    st.contacts().contacts().size(), static_cast<long long>(done), 1e3 * cpu * per,
+                    dynamic ? "dynamic" : "static", n, h, m.block_count(), st.view().space.unknowns(),
+                    st.view().contacts.contacts().size(), static_cast<long long>(done), 1e3 * cpu * per,
                     static_cast<double>(cs.newton) * per, static_cast<double>(cs.factorisations) * per,
                     static_cast<double>(cs.cg_iterations) * per, static_cast<double>(cs.strength_updates) * per,
-                    1e3 * st.timings().contact_detection * per, 1e3 * cs.factorisation_seconds * per,
-                    1e3 * cs.cg_seconds * per, st.time_step_cuts(), status == "ok" ? "ok" : status.c_str(),
+                    1e3 * st.view().timings.contact_detection * per, 1e3 * cs.factorisation_seconds * per,
+                    1e3 * cs.cg_seconds * per, st.view().state.cuts, status == "ok" ? "ok" : status.c_str(),
                     nmm::bench::load_average(),
-                    st.threads(), 1e3 * wall * per);
+                    st.view().threads, 1e3 * wall * per);
       csv << line;
       std::fputs(line, stdout);
       std::fflush(stdout);
@@ -174,29 +174,29 @@ int main(int argc, char** argv) {
       const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
       nmm::solve::TimeStepper st(m, s, "bench");
       std::string status = st.run_until(5e-3, [](std::int64_t) {});
-      const nmm::solve::StepTimings t0 = st.timings();
-      const std::size_t it0 = st.open_close_iterations(), cuts0 = st.time_step_cuts();
+      const nmm::solve::StepTimings t0 = st.view().timings;
+      const std::size_t it0 = st.view().state.iterations, cuts0 = st.view().state.cuts;
       std::int64_t steps = 0;
       const double timed = n > 30 ? 10e-3 : 20e-3;
       const nmm::Stopwatch w0;
       const double c0 = nmm::bench::thread_cpu_seconds();
       if (status == "ok") status = st.run_until(5e-3 + timed, [&](std::int64_t) { ++steps; });
       const double wall = w0.seconds(), cpu = nmm::bench::thread_cpu_seconds() - c0;
-      const nmm::solve::StepTimings& t1 = st.timings();
+      const nmm::solve::StepTimings& t1 = st.view().timings;
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(steps, 1));
       const double k = 1e3 * per;
       char line[600];
       std::snprintf(line, sizeof line,
                     "%s,%d,%zu,%zu,%d,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.2f,%zu,%s,%.3f,%.2f\n",
                     dynamic ? "dynamic" : "static", n, m.block_count(), m.element_count(),
-                    st.unknowns(), st.contacts().contacts().size(), wall * k,
+                    st.view().space.unknowns(), st.view().contacts.contacts().size(), wall * k,
                     (t1.contact_detection - t0.contact_detection) * k, (t1.assembly - t0.assembly) * k,
                     (t1.factorisation - t0.factorisation) * k, (t1.solves - t0.solves) * k,
                     (t1.geometry_update - t0.geometry_update) * k,
-                    static_cast<double>(st.open_close_iterations() - it0) * per,
+                    static_cast<double>(st.view().state.iterations - it0) * per,
                     static_cast<double>(t1.factorisations - t0.factorisations) * per,
                     static_cast<double>(t1.solves_count - t0.solves_count) * per,
-                    st.time_step_cuts() - cuts0, status == "ok" ? "ok" : status.c_str(), cpu * k,
+                    st.view().state.cuts - cuts0, status == "ok" ? "ok" : status.c_str(), cpu * k,
                     nmm::bench::load_average());
       csv << line;
       std::fputs(line, stdout);

@@ -48,9 +48,9 @@ int main(int argc, char** argv) {
     st.run_until(3e-3, [](std::int64_t) {});
     const nmm::solve::ContactTopology topo = nmm::solve::build_contact_topology(m);
     // The closed contacts of the last step, as the solver passes them.
-    const nmm::solve::ClosedContacts closed = st.contacts().closed_contacts();
+    const nmm::solve::ClosedContacts closed = st.view().contacts.closed_contacts();
     // As time_stepper.cpp: search distance 2.5·g2·w0, new contacts at most 1e-3·h deep.
-    const double d0 = 2.5 * s.solver.max_displacement_ratio * st.model().w0();
+    const double d0 = 2.5 * s.solver.max_displacement_ratio * st.view().model.w0();
     std::vector<double> times;
     std::size_t contacts = 0, near = 0;
     nmm::solve::DetectionStats stats;
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
       nmm::solve::DetectionStats one;
       nmm::solve::ElementPairs pairs;
       const double t0 = nmm::bench::thread_cpu_seconds();
-      const auto found = nmm::solve::detect_contacts(topo, st.loop_xy(), d0, 1e-3 * s.mesh_size, closed, &one, &pairs);
+      const auto found = nmm::solve::detect_contacts(topo, st.view().state.loop_xy, d0, 1e-3 * s.mesh_size, closed, &one, &pairs);
       times.push_back(nmm::bench::thread_cpu_seconds() - t0);
       contacts = found.size();
       near = pairs.size();

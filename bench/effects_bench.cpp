@@ -105,8 +105,8 @@ class Timed {
       : scene_(std::move(scene)), mesh_(nmm::pre::build_mesh(scene_, name)), st_(mesh_, scene_, name) {
     r_.section = section;
     r_.scene = name;
-    r_.effects = join(st_.effects());
-    r_.unknowns = st_.unknowns();
+    r_.effects = join(run_effects(st_.view()));
+    r_.unknowns = st_.view().space.unknowns();
     r_.elements = mesh_.element_count();
     r_.steps = steps;
   }
@@ -122,12 +122,12 @@ class Timed {
   // batch's mean step, s (0 if the run has stopped).
   double batch() {
     if (r_.status != "ok") return 0;
-    const nmm::solve::StepTimings t0 = st_.timings();
-    const std::size_t it0 = st_.open_close_iterations(), cut0 = st_.time_step_cuts();
+    const nmm::solve::StepTimings t0 = st_.view().timings;
+    const std::size_t it0 = st_.view().state.iterations, cut0 = st_.view().state.cuts;
     const nmm::Stopwatch w0;
     if (!advance(r_.steps)) return 0;
     const double n = r_.steps, wall = w0.seconds() / n;
-    const nmm::solve::StepTimings& t1 = st_.timings();
+    const nmm::solve::StepTimings& t1 = st_.view().timings;
     if (wall < r_.step) {
       r_.step = wall;
       r_.detection = (t1.contact_detection - t0.contact_detection) / n;
@@ -135,10 +135,10 @@ class Timed {
       r_.factorisation = (t1.factorisation - t0.factorisation) / n;
       r_.solves = (t1.solves - t0.solves) / n;
       r_.update = (t1.geometry_update - t0.geometry_update) / n;
-      r_.iterations = static_cast<double>(st_.open_close_iterations() - it0) / n;
-      r_.cuts = static_cast<double>(st_.time_step_cuts() - cut0) / n;
+      r_.iterations = static_cast<double>(st_.view().state.iterations - it0) / n;
+      r_.cuts = static_cast<double>(st_.view().state.cuts - cut0) / n;
     }
-    r_.analyses = st_.symbolic_analyses();
+    r_.analyses = st_.view().system.analyses();
     return wall;
   }
   Measured& result() { return r_; }
@@ -148,11 +148,11 @@ class Timed {
   bool advance(int n) {
     if (r_.status != "ok") return false;
     const double dt = scene_.solver.time_step;
-    if (!st_.contacts().active()) {
+    if (!st_.view().contacts.active()) {
       for (int i = 0; i < n; ++i) st_.step(dt);
       return true;
     }
-    const std::string why = st_.run_until(st_.time() + n * dt, [](std::int64_t) {});
+    const std::string why = st_.run_until(st_.view().state.time + n * dt, [](std::int64_t) {});
     if (why != "ok") r_.status = "stopped: " + why.substr(0, 60);
     return why == "ok";
   }

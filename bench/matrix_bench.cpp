@@ -132,8 +132,8 @@ int main(int argc, char** argv) {
     st.set_threads(1);
     const std::string status = st.run_until(3e-3, [](std::int64_t) {});
     if (status != "ok") std::fprintf(stderr, "wall %d: %s\n", n, status.c_str());
-    const Sparse wall_matrix = st.system().matrix();
-    const int unknowns = st.unknowns();
+    const Sparse wall_matrix = st.view().system.matrix();
+    const int unknowns = st.view().space.unknowns();
 
     struct Case {
       std::string scene;
@@ -145,20 +145,20 @@ int main(int argc, char** argv) {
     // The wall's unknowns with the elements' pattern plus the pairs of its contacts (all, closed).
     for (const bool closed_only : {false, true}) {
       std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-      for (const nmm::solve::Contact& c : st.contacts().contacts())
+      for (const nmm::solve::Contact& c : st.view().contacts.contacts())
         if (!closed_only || c.state != nmm::solve::ContactState::open)
           pairs.emplace_back(std::min(c.at.elem_a, c.at.elem_b), std::max(c.at.elem_a, c.at.elem_b));
       std::sort(pairs.begin(), pairs.end());
       pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
       std::vector<int> offsets{0}, dofs;
-      const int md = st.space().element_dofs();
+      const int md = st.view().space.element_dofs();
       for (std::size_t e = 0; e < wm.element_count(); ++e) {
-        dofs.insert(dofs.end(), st.space().element_unknowns(e), st.space().element_unknowns(e) + md);
+        dofs.insert(dofs.end(), st.view().space.element_unknowns(e), st.view().space.element_unknowns(e) + md);
         offsets.push_back(static_cast<int>(dofs.size()));
       }
       for (const auto& [a, b] : pairs) {
-        dofs.insert(dofs.end(), st.space().element_unknowns(a), st.space().element_unknowns(a) + md);
-        dofs.insert(dofs.end(), st.space().element_unknowns(b), st.space().element_unknowns(b) + md);
+        dofs.insert(dofs.end(), st.view().space.element_unknowns(a), st.view().space.element_unknowns(a) + md);
+        dofs.insert(dofs.end(), st.view().space.element_unknowns(b), st.view().space.element_unknowns(b) + md);
         offsets.push_back(static_cast<int>(dofs.size()));
       }
       nmm::solve::SystemMatrix sm;
@@ -177,13 +177,13 @@ int main(int argc, char** argv) {
       nmm::solve::TimeStepper ms(mm, s, "monolith");
       ms.set_threads(1);
       ms.run_until(1e-3, [](std::int64_t) {});
-      if (pass == 0) cases.push_back({"monolith_same_mesh", h, ms.system().matrix()});
-      const double ratio = static_cast<double>(ms.unknowns()) / unknowns;
+      if (pass == 0) cases.push_back({"monolith_same_mesh", h, ms.view().system.matrix()});
+      const double ratio = static_cast<double>(ms.view().space.unknowns()) / unknowns;
       if (pass > 0 && std::abs(ratio - 1) < 0.03) {
-        cases.push_back({"monolith_same_unknowns", h, ms.system().matrix()});
+        cases.push_back({"monolith_same_unknowns", h, ms.view().system.matrix()});
         break;
       }
-      if (pass == 2) cases.push_back({"monolith_same_unknowns", h, ms.system().matrix()});
+      if (pass == 2) cases.push_back({"monolith_same_unknowns", h, ms.view().system.matrix()});
       h *= std::sqrt(ratio);
     }
     for (const Case& c : cases) {

@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   const nmm::Mesh mesh = nmm::pre::build_mesh(scene, scene_path);
   nmm::solve::TimeStepper st(mesh, scene, scene_path);
   for (int i = 0; i < 50; ++i) st.step(scene.solver.time_step);
-  const std::vector<double> stress = st.mean_stress();
+  const std::vector<double> stress = mean_stress(st.view());
 
   const fs::path dir = fs::temp_directory_path() / ("nmm_output_bench_" + std::to_string(::getpid()));
   fs::create_directories(dir / "frames");
@@ -85,10 +85,10 @@ int main(int argc, char** argv) {
     const std::size_t nv = mesh.loop_vertex_count();
     std::vector<double> u(3 * nv, 0.0);
     for (std::size_t v = 0; v < nv; ++v) {
-      grid.points[3 * v] = st.loop_xy()[2 * v];
-      grid.points[3 * v + 1] = st.loop_xy()[2 * v + 1];
-      u[3 * v] = st.state().loop_u[2 * v];
-      u[3 * v + 1] = st.state().loop_u[2 * v + 1];
+      grid.points[3 * v] = st.view().state.loop_xy[2 * v];
+      grid.points[3 * v + 1] = st.view().state.loop_xy[2 * v + 1];
+      u[3 * v] = st.view().state.loop_u[2 * v];
+      u[3 * v + 1] = st.view().state.loop_u[2 * v + 1];
     }
     grid.point_data.clear();
     grid.add_point_array("displacement", 3, std::move(u));
@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
   const nmm::PolygonGrid cached = nmm::mesh_to_grid(mesh);
   auto row = [&](const std::string& name, int n, double seconds, double bytes, const std::string& run) {
     char line[320];
-    std::snprintf(line, sizeof line, "%s,%d,%zu,%zu,%d,%.3f,%.0f,%s,%.2f\n", name.c_str(), st.unknowns(),
+    std::snprintf(line, sizeof line, "%s,%d,%zu,%zu,%d,%.3f,%.0f,%s,%.2f\n", name.c_str(), st.view().space.unknowns(),
                   mesh.element_count(), mesh.loop_vertex_count(), n, 1e3 * seconds / n, bytes / n,
                   run.c_str(), nmm::bench::load_average());
     csv << line;
@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
   double seconds[kVariants] = {}, written[kVariants] = {};
   std::string pvd[kVariants];
   nmm::solve::OutputWriter out((dir / "writer").string());
-  const nmm::solve::FrameFields fields{&st.loop_xy(), &st.state().loop_u, &stress};
+  const nmm::solve::FrameFields fields{&st.view().state.loop_xy, &st.view().state.loop_u, &stress};
   double writer_seconds = 0;
   for (int round = 0; round < kRounds; ++round) {
     const nmm::Stopwatch w0;

@@ -17,7 +17,7 @@ import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 FOLDERS = ["common", "preprocess", "solver", "report", "reference", "studies", "tests", "bench"]
-MAIN_TYPES = ["TimeStepper", "Model", "Configuration", "StepControl", "RunDriver", "ContactSet",
+MAIN_TYPES = ["TimeStepper", "Model", "Configuration", "StepControl", "RunDriver", "Form", "ContactSet",
               "EnergyMeter", "CoverSpace", "OutputWriter", "SystemMatrix"]
 # Types whose public methods are listed by name (the rest by count).
 LISTED_TYPES = ["TimeStepper", "Model"]
@@ -73,18 +73,26 @@ Inside `solver/`, a run of nmm-solve is a short pipeline, one file per stage:
 2. `configuration.*` (`Configuration`): the cover space placed on the covers' current nodes,
    each element's frame and basis: what assembly, contact linearisation and the energy meter
    evaluate shape functions with.
-3. `integrators.*`: one integrator per term of the step's system (elasticity, initial stress,
-   body force, inertia, fixed points and loads, edges), each with its order-0 fast path.
-4. `time_stepper.*` (`TimeStepper`): one step attempt (assemble, solve with or without
-   contacts, accept or reject, update the state), and `run_until`, the attempts under
-   `step_control.*` (`StepControl`: Shi's displacement-ratio rule, cuts and growth, constants
-   named with their reasons).
+3. `form.*` (`Form`): the integrators the scene calls for, built once from the model and walked
+   per step to assemble the system; `integrators.*` holds one kernel per term (elasticity,
+   initial stress, body force, inertia with `newmark.h`'s coefficients, fixed points, point
+   loads, supports, tractions, water, in-situ traction), each with its order-0 fast path.
+4. `time_stepper.*` (`TimeStepper`): the run's phases only: build, start from a checkpoint
+   (`restart_from`, `restore`: `restart.*`), take steps (`attempt`: frames, contacts, assembly,
+   solve, accept or reject, `state_update.*`; `step`; `run_until`, the attempts under
+   `step_control.*`, `StepControl`: Shi's displacement-ratio rule, cuts and growth, constants
+   named with their reasons), and `view()`.
 5. `run_driver.*` (`RunDriver`): the run, calling observers after each accepted step (frames,
    histories and contacts, checkpoint, and nmm-solve's run history, energy and progress line),
-   then writing summary.json (`run_summary.*`).
+   each reading the run's `RunView` (`run_view.h`: state, model, space, contacts, system,
+   costs), then writing summary.json (`run_summary.*`).
 
-Beside them: `stress_field.*` (the state's stress polynomials, their means and point values for
-frames and pictures) and `energy.*` (the energy meter, one of nmm-solve's observers).
+Beside them: `initial_state.*` (step 0's state), `state_update.*` (the state moved on by a
+solved increment), `newmark.h` (the time integration and its β rule), `static_support.*`
+(whether a static system is held), `run_effects.*` (summary.json's effects), `stress_field.*`
+(the state's stress polynomials, their means and point values for frames and pictures) and
+`energy.*` (the energy meter, one of nmm-solve's observers). Test and bench hooks into assembly
+and update are `TimeStepperProbe`'s (`time_stepper_probe.h`), off `TimeStepper`'s surface.
 
 A move between folders must not change a result. CTest `state_hashes` compares summary.json's
 `state_hash` (SHA-256 of the run state, the contact history and the mesh, which includes the

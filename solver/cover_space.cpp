@@ -35,6 +35,16 @@ CoverSpace::CoverSpace(const Mesh& mesh, int order, double min_weight) : order_(
   }
 }
 
+std::vector<int> CoverSpace::higher_order_unknowns() const {
+  std::vector<int> u;
+  for (std::size_t c = 0; c < ties_.master.size(); ++c) {
+    if (basis_cover(c) != static_cast<int>(c)) continue;  // tied: its master's
+    for (int l = 0; l < dofs_per_cover(); ++l)
+      if (higher_order(l)) u.push_back(first_unknown(c) + l);
+  }
+  return u;
+}
+
 ElementBasis CoverSpace::element_basis(double ox, double oy, const TriangleWeights& w,
                                        const double centre[6]) const {
   ElementBasis b;

@@ -71,6 +71,9 @@ class CoverSpace {
   }
   /// True for local unknowns (of an element or a cover) of basis terms of degree ≥ 1.
   bool higher_order(int local) const { return (local / 2) % terms() != 0; }
+  /// The unknowns of degree ≥ 1 terms of the untied covers (tied covers share their master's):
+  /// those a factorisation regularises, as they may be linearly dependent (system_matrix.h).
+  std::vector<int> higher_order_unknowns() const;
 
   /// The shape functions of an element whose triangle has weights w relative to the origin
   /// (ox, oy) (its frame), with basis centres `centre` (m, absolute x and y of the basis cover of

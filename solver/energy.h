@@ -77,8 +77,8 @@ struct EnergyRow {
 
 class EnergyMeter {
  public:
-  /// `model`: the run's (TimeStepper::model(): materials, penalty springs, edge sets, water); it
-  /// must outlive the meter. `space`: the run's approximation space (TimeStepper::space()); at
+  /// `model`: the run's (RunView::model, run_view.h: materials, penalty springs, edge sets, water); it
+  /// must outlive the meter. `space`: the run's approximation space (RunView::space); at
   /// cover order n ≥ 1 the kinetic and strain energies integrate its shape functions and stress
   /// polynomials.
   explicit EnergyMeter(const Model& model, const CoverSpace* space = nullptr);

@@ -8,7 +8,7 @@
 // limit for `solve ratio` is 1e-5.
 //
 // Here the cover is the gridpoint. What is left of the force balance at a step's end is exactly
-// the inertia the step's equation absorbed (time_stepper.cpp: the Newmark step solves
+// the inertia the step's equation absorbed (newmark.h: the Newmark step solves
 // M a1 = F_ext + F_c − F_int(t1) at t1):
 //     dynamic:           R = M a1,   a1 = (d − Δt v0 − (½ − β)Δt² a0) / (β Δt²)
 //     static "dda":      R = 2 M d / Δt²    (every step from rest: (K + 2M/Δt²) d = F)

@@ -24,6 +24,13 @@ std::vector<std::uint8_t> removed_elements(const Mesh& mesh, const RunState& s) 
   return r;
 }
 
+void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, RunState& s) {
+  const std::size_t dpc = static_cast<std::size_t>(dofs_per_cover);
+  for (std::size_t c = 0; c < mesh.cover_count(); ++c)
+    if (s.body_removed[mesh.cover_body[c]])
+      for (std::size_t i = 0; i < dpc; ++i) s.velocity[c * dpc + i] = s.accel[c * dpc + i] = 0;
+}
+
 double interface_traction_factor(const RunState& s, std::int32_t body, std::int64_t release_steps) {
   if (!s.body_removed[body]) return 1.0;
   const std::int64_t k = s.step + 1 - s.body_removed_at[body];  // the step being taken, 1-based

@@ -39,6 +39,10 @@ void excavate_bodies(const std::vector<int>& bodies, const Mesh& mesh, std::size
 /// [me] 1 for elements of removed bodies.
 std::vector<std::uint8_t> removed_elements(const Mesh& mesh, const RunState& s);
 
+/// Removed covers keep no velocity: they stand still, held at zero (dofs_per_cover unknowns per
+/// cover in s.velocity and s.accel).
+void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, RunState& s);
+
 /// Fraction of the locked-in traction on a face towards `body` still applied in the step after
 /// `s.step`: 1 while the body is there, then 1 − k/N.
 double interface_traction_factor(const RunState& s, std::int32_t body, std::int64_t release_steps);

@@ -21,7 +21,7 @@
 // such a model does not move at t = 0.
 //
 // Supports carry the field's reaction σ·n in their held directions from the start (locked in,
-// time_stepper.cpp), so a model on rollers needs no first movement to load them.
+// integrators.cpp support_terms), so a model on rollers needs no first movement to load them.
 // Faces where two bodies touch carry t = σ_insitu·n on both sides as a locked-in interface
 // traction (contacts start with no force; UDEC likewise initialises its contact stresses from
 // the in-situ field), so touching bodies start in equilibrium too. Excavation releases it

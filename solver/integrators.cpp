@@ -36,7 +36,7 @@ std::array<double, 2> body_force_per_mass(const SceneDef& scene, double t) {
 namespace integrators {
 
 void elasticity(const ElementGeometry& g, const Mat3& D, Mat6& k) {
-  k = g.pm.a * (g.B.transpose() * D * g.B);
+  k.noalias() += g.pm.a * (g.B.transpose() * D * g.B);
 }
 
 void elasticity(const ElementGeometry& g, const Mat3& D, Eigen::MatrixXd& k) {
@@ -51,18 +51,21 @@ void elasticity(const ElementGeometry& g, const Mat3& D, Eigen::MatrixXd& k) {
         for (int j = 0; j < 2; ++j) G[i][j] = integral(*da[i], *db[j], g.m);
       for (int sd = 0; sd < 2; ++sd)
         for (int td = 0; td < 2; ++td) {
+          // On the diagonal block the (v, u) coupling stands for both (u, v) and (v, u): K
+          // is symmetric, each entry added once.
+          if (bb == a && sd < td) continue;
           double v = 0;
           for (int i = 0; i < 2; ++i)
             for (int j = 0; j < 2; ++j) v += D(kRow[sd][i], kRow[td][j]) * G[i][j];
-          k(2 * a + sd, 2 * bb + td) = v;
-          k(2 * bb + td, 2 * a + sd) = v;
+          k(2 * a + sd, 2 * bb + td) += v;
+          if (bb != a || sd != td) k(2 * bb + td, 2 * a + sd) += v;
         }
     }
   }
 }
 
 void initial_stress(const ElementGeometry& g, const double* sigma, Vec6& f) {
-  f = -g.pm.a * (g.B.transpose() * Vec3(sigma[0], sigma[1], sigma[2]));
+  f.noalias() += -g.pm.a * (g.B.transpose() * Vec3(sigma[0], sigma[1], sigma[2]));
 }
 
 void initial_stress(const ElementGeometry& g, const double* sigma, Eigen::VectorXd& f) {
@@ -74,7 +77,6 @@ void initial_stress(const ElementGeometry& g, const double* sigma, Eigen::Vector
     sig[r].degree = g.order;
     for (std::size_t t = 0; t < T; ++t) sig[r].c[t] = sigma[3 * t + r];
   }
-  f.setZero();
   for (int a = 0; a < nf; ++a) {
     const Poly* da[2] = {&eb.dx[a], &eb.dy[a]};
     for (int sd = 0; sd < 2; ++sd)
@@ -133,15 +135,54 @@ void inertia(const ElementGeometry& g, double rho, const InertiaCoefficients& c,
 
 }  // namespace integrators
 
-void point_terms(const Model& model, const Configuration& config, const RunState& s, double t_end,
-                 SystemMatrix& system, Eigen::VectorXd& rhs) {
-  const SceneDef& scene = model.scene();
+namespace {
+
+/// The edge frame of element e: its basis in the configuration's scratch (valid until the next
+/// call), and a Gauss rule exact for the shape functions (degree n + 1) and the linear field.
+EdgeFrame edge_frame(const Configuration& config, std::int32_t e) {
+  return EdgeFrame{&config.basis(static_cast<std::size_t>(e)), config.space().order() + 2};
+}
+
+/// rhs += factor·f over element e's unknowns.
+void add_edge_force(const CoverSpace& space, std::int32_t e, const std::vector<double>& f, double factor,
+                    Eigen::VectorXd& rhs) {
+  const int* g = space.element_unknowns(static_cast<std::size_t>(e));
+  for (int i = 0; i < space.element_dofs(); ++i) rhs[g[i]] += factor * f[i];
+}
+
+/// The in-situ traction σ_insitu·n on the edge a–b (loop displacements ua, ub): the field at a
+/// point's position in the mesh as cut (x − u), with n current.
+auto insitu_traction(const InsituStressDef& insitu, const double* ua, const double* ub, const double* a,
+                     const double* b) {
+  return [=, &insitu](double x, double y, double nx, double ny, double* t) {
+    const double len2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+    const double xi = len2 > 0 ? ((x - a[0]) * (b[0] - a[0]) + (y - a[1]) * (b[1] - a[1])) / len2 : 0;
+    const double y0 = y - ((1 - xi) * ua[1] + xi * ub[1]);
+    const auto sg = insitu_stress_at(insitu, x, y0);
+    t[0] = sg[0] * nx + sg[2] * ny;
+    t[1] = sg[2] * nx + sg[1] * ny;
+  };
+}
+
+/// The in-situ traction forces on boundary edge be in state s.
+std::vector<double> insitu_edge_forces(const Configuration& config, const InsituStressDef& insitu,
+                                       const RunState& s, const BoundaryEdge& be) {
+  const double* a = s.loop_xy.data() + 2 * be.vertex;
+  const double* b = s.loop_xy.data() + 2 * be.next;
+  return edge_traction_forces(
+      edge_frame(config, be.element), a, b,
+      insitu_traction(insitu, s.loop_u.data() + 2 * be.vertex, s.loop_u.data() + 2 * be.next, a, b));
+}
+
+}  // namespace
+
+void fixed_point_terms(const Model& model, const Configuration& config, const RunState& s,
+                       SystemMatrix& system, Eigen::VectorXd& rhs) {
   const CoverSpace& space = config.space();
   const int nd = space.element_dofs(), nf = nd / 2;
   const double kf = model.fixed_point_stiffness();
   Eigen::MatrixXd k(nd, nd);
   std::vector<double> phi(static_cast<std::size_t>(nf));
-  // Fixed points: penalty springs back to where they started.
   for (const TrackedPoint& p : s.fixed) {
     config.shape_values(static_cast<std::size_t>(p.element), p.x, p.y, phi.data());
     k.setZero();
@@ -157,6 +198,14 @@ void point_terms(const Model& model, const Configuration& config, const RunState
       rhs[g[2 * a + 1]] -= kf * phi[a] * (p.y - p.y0);
     }
   }
+}
+
+void point_load_terms(const Model& model, const Configuration& config, const RunState& s, double t_end,
+                      Eigen::VectorXd& rhs) {
+  const SceneDef& scene = model.scene();
+  const CoverSpace& space = config.space();
+  const int nf = space.element_dofs() / 2;
+  std::vector<double> phi(static_cast<std::size_t>(nf));
   for (std::size_t l = 0; l < s.loads.size(); ++l) {
     const TrackedPoint& p = s.loads[l];
     const int* g = space.element_unknowns(p.element);
@@ -170,22 +219,13 @@ void point_terms(const Model& model, const Configuration& config, const RunState
   }
 }
 
-void edge_terms(const Model& model, const Configuration& config, const RunState& s,
-                const std::vector<std::uint8_t>& removed, double t_end, SystemMatrix& system,
-                Eigen::VectorXd& rhs) {
+void support_terms(const Model& model, const Configuration& config, const RunState& s,
+                   const std::vector<std::uint8_t>& removed, double t_end, SystemMatrix& system,
+                   Eigen::VectorXd& rhs) {
   const SceneDef& scene = model.scene();
   const CoverSpace& space = config.space();
-  // Supports, tractions and the in-situ traction of faces between bodies (boundary_conditions.h).
   const int nd = space.element_dofs();
   Eigen::MatrixXd k(nd, nd);
-  // The edge's element basis lives in the configuration's scratch until the next call.
-  auto frame_of = [&](std::int32_t e) {
-    return EdgeFrame{&config.basis(static_cast<std::size_t>(e)), space.order() + 2};
-  };
-  auto add_force = [&](std::int32_t e, const std::vector<double>& f, double factor) {
-    const int* g = space.element_unknowns(static_cast<std::size_t>(e));
-    for (int i = 0; i < nd; ++i) rhs[g[i]] += factor * f[i];
-  };
   const double* xy = s.loop_xy.data();
   for (std::size_t i = 0; i < model.support_edges().size(); ++i) {
     const SupportDef& sd = scene.supports[i];
@@ -200,80 +240,75 @@ void edge_terms(const Model& model, const Configuration& config, const RunState&
       const double* u0 = s.loop_u.data() + 2 * be.vertex;
       const double* u1 = s.loop_u.data() + 2 * be.next;
       const double ua[2] = {u0[0] - held[0], u0[1] - held[1]}, ub[2] = {u1[0] - held[0], u1[1] - held[1]};
-      edge_support(frame_of(be.element), xy + 2 * be.vertex, xy + 2 * be.next, ua, ub, sd.fix_x,
-                   sd.fix_y, model.support_stiffness(), k.data(), f.data());
+      edge_support(edge_frame(config, be.element), xy + 2 * be.vertex, xy + 2 * be.next, ua, ub,
+                   sd.fix_x, sd.fix_y, model.support_stiffness(), k.data(), f.data());
       system.add_group(be.element, k.data());
-      add_force(be.element, f, 1.0);
+      add_edge_force(space, be.element, f, 1.0, rhs);
     }
   }
-  const InsituStressDef& insitu = scene.insitu_stress;
-  // The in-situ field at a point's position in the mesh as cut (x − u); σ·n with n current.
-  auto insitu_traction = [&](const double* ua, const double* ub, const double* a, const double* b) {
-    return [=, &insitu](double x, double y, double nx, double ny, double* t) {
-      const double len2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
-      const double xi = len2 > 0 ? ((x - a[0]) * (b[0] - a[0]) + (y - a[1]) * (b[1] - a[1])) / len2 : 0;
-      const double y0 = y - ((1 - xi) * ua[1] + xi * ub[1]);
-      const auto sg = insitu_stress_at(insitu, x, y0);
-      t[0] = sg[0] * nx + sg[2] * ny;
-      t[1] = sg[2] * nx + sg[1] * ny;
-    };
-  };
   // Supports start carrying the in-situ stress's reaction (σ_insitu·n in their held
   // directions) as a locked-in force, so that a model in in-situ equilibrium on rollers does not
   // first have to move by σ/k_s to load its springs; the springs carry only what changes.
-  if (insitu.present)
-    for (std::size_t i = 0; i < model.support_edges().size(); ++i) {
-      const SupportDef& sd = scene.supports[i];
-      for (const BoundaryEdge& be : model.support_edges()[i]) {
-        if (removed[be.element]) continue;
-        const double* a = xy + 2 * be.vertex;
-        const double* b = xy + 2 * be.next;
-        std::vector<double> f = edge_traction_forces(
-            frame_of(be.element), a, b,
-            insitu_traction(s.loop_u.data() + 2 * be.vertex, s.loop_u.data() + 2 * be.next, a, b));
-        for (int c = 0; c < nd / 2; ++c) {
-          if (!sd.fix_x) f[2 * c] = 0;
-          if (!sd.fix_y) f[2 * c + 1] = 0;
-        }
-        add_force(be.element, f, 1.0);
+  if (!scene.insitu_stress.present) return;
+  for (std::size_t i = 0; i < model.support_edges().size(); ++i) {
+    const SupportDef& sd = scene.supports[i];
+    for (const BoundaryEdge& be : model.support_edges()[i]) {
+      if (removed[be.element]) continue;
+      std::vector<double> f = insitu_edge_forces(config, scene.insitu_stress, s, be);
+      for (int c = 0; c < nd / 2; ++c) {
+        if (!sd.fix_x) f[2 * c] = 0;
+        if (!sd.fix_y) f[2 * c + 1] = 0;
       }
+      add_edge_force(space, be.element, f, 1.0, rhs);
     }
+  }
+}
+
+void traction_terms(const Model& model, const Configuration& config, const RunState& s,
+                    const std::vector<std::uint8_t>& removed, double t_end, Eigen::VectorXd& rhs) {
+  const SceneDef& scene = model.scene();
+  const double* xy = s.loop_xy.data();
   for (std::size_t i = 0; i < model.traction_edges().size(); ++i) {
     const TractionDef& td = scene.tractions[i];
     const double factor = table_value(td.table, t_end);
     for (const BoundaryEdge& be : model.traction_edges()[i]) {
       if (removed[be.element]) continue;
-      const double* a = xy + 2 * be.vertex;
-      const double* b = xy + 2 * be.next;
       std::vector<double> f;
       if (td.from_insitu) {
-        f = edge_traction_forces(frame_of(be.element), a, b,
-                                 insitu_traction(s.loop_u.data() + 2 * be.vertex,
-                                                 s.loop_u.data() + 2 * be.next, a, b));
+        f = insitu_edge_forces(config, scene.insitu_stress, s, be);
       } else {
         const double sn = td.normal, ss = td.shear, sx = be.sx, sy = be.sy;
-        f = edge_traction_forces(frame_of(be.element), a, b,
+        f = edge_traction_forces(edge_frame(config, be.element), xy + 2 * be.vertex, xy + 2 * be.next,
                                  [=](double, double, double nx, double ny, double* t) {
                                    t[0] = sn * nx + ss * sx;
                                    t[1] = sn * ny + ss * sy;
                                  });
       }
-      add_force(be.element, f, factor);
+      add_edge_force(config.space(), be.element, f, factor, rhs);
     }
   }
-  add_water_forces(model.water(), xy, removed, frame_of, add_force);
+}
+
+void water_terms(const Model& model, const Configuration& config, const RunState& s,
+                 const std::vector<std::uint8_t>& removed, Eigen::VectorXd& rhs) {
+  add_water_forces(
+      model.water(), s.loop_xy.data(), removed,
+      [&](std::int32_t e) { return edge_frame(config, e); },
+      [&](std::int32_t e, const std::vector<double>& f, double factor) {
+        add_edge_force(config.space(), e, f, factor, rhs);
+      });
+}
+
+void interface_traction_terms(const Model& model, const Configuration& config, const RunState& s,
+                              const std::vector<std::uint8_t>& removed, Eigen::VectorXd& rhs) {
+  const SceneDef& scene = model.scene();
   for (const InterfaceEdge& ie : model.interface_edges()) {
     const BoundaryEdge& be = ie.edge;
     if (removed[be.element]) continue;
     const double factor = interface_traction_factor(s, ie.other_body, scene.solver.excavation_steps);
     if (factor == 0) continue;
-    const double* a = xy + 2 * be.vertex;
-    const double* b = xy + 2 * be.next;
-    add_force(be.element,
-              edge_traction_forces(frame_of(be.element), a, b,
-                                   insitu_traction(s.loop_u.data() + 2 * be.vertex,
-                                                   s.loop_u.data() + 2 * be.next, a, b)),
-              factor);
+    add_edge_force(config.space(), be.element, insitu_edge_forces(config, scene.insitu_stress, s, be),
+                   factor, rhs);
   }
 }
 

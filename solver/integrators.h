@@ -1,4 +1,4 @@
-// The step's system assembled by integrators, one per term (TimeStepper::assemble adds them up).
+// The step's integrators, one per term: the kernels a Form (form.h) walks to assemble the system.
 // Each integrates exactly over the element polygon in the step's configuration
 // (configuration.h, element_integration.h) and has its order-0 fast path inside: at cover order
 // n = 0 the element is constant strain and the terms take the first-order code's closed forms
@@ -10,11 +10,11 @@
 //   initial stress  F(2a+s) −= Σ_i ∫ ∂_iφ_a σ_r(s,i) dA      σ of degree n        (n = 0: A Bᵀσ)
 //   body force      F(2a+s) += ρ b_s ∫ φ_a dA                b = g − a_base(t)
 //   inertia         K += c_d M,  F += M (c_v v0 + c_a a0),  M(a, b) = ρ ∫ φ_a φ_b dA per direction
-//                   (Newmark: c_d = 1/(βΔt²), c_v = 1/(βΔt), c_a = 1/(2β) − 1; time_stepper.cpp)
+//                   (Newmark: c_d = 1/(βΔt²), c_v = 1/(βΔt), c_a = 1/(2β) − 1; newmark.h)
 //   fixed point     K += k_f φφᵀ,  F −= k_f φ (p − P)       penalty spring back to where it started
 //   point load      F += φ(p) f(t)
-//   edges           supports, tractions, in-situ traction and water on faces (edge_terms below;
-//                   the edge integrals are boundary_conditions.h's)
+//   edges           supports, tractions, water on joint faces, in-situ traction of faces between
+//                   bodies (the edge integrals are boundary_conditions.h's)
 #pragma once
 
 #include <cstdint>
@@ -26,6 +26,7 @@
 #include "solver/elasticity.h"
 #include "solver/element_integration.h"
 #include "solver/model.h"
+#include "solver/newmark.h"
 #include "solver/run_state.h"
 #include "solver/system_matrix.h"
 
@@ -47,23 +48,18 @@ struct ElementGeometry {
 ElementGeometry element_geometry(const Configuration& config, const Mesh& mesh,
                                  const std::vector<double>& loop_xy, std::size_t e);
 
-/// The Newmark coefficients of the inertia term (0 without it).
-struct InertiaCoefficients {
-  double on_d = 0;  ///< 1/s², on the increment: 1/(βΔt²)
-  double on_v = 0;  ///< 1/s, on v0: 1/(βΔt)
-  double on_a = 0;  ///< –, on a0: 1/(2β) − 1
-};
-
 /// m/s², the body force per unit mass at time t: gravity, and −a_base(t) for a shaken base (the
 /// model moves relative to its base, which the supports and fixed points hold).
 std::array<double, 2> body_force_per_mass(const SceneDef& scene, double t);
 
 namespace integrators {
 
-/// k = the elasticity matrix (overwrites k).
+/// Each kernel adds its term into the element's k (N/m) and f (N), which the form starts at zero.
+
+/// k += the elasticity matrix.
 void elasticity(const ElementGeometry& g, const Mat3& D, Mat6& k);
 void elasticity(const ElementGeometry& g, const Mat3& D, Eigen::MatrixXd& k);
-/// f = −∫ Bᵀσ dA (overwrites f); sigma: the element's [3·T] stress coefficients, Pa.
+/// f −= ∫ Bᵀσ dA; sigma: the element's [3·T] stress coefficients, Pa.
 void initial_stress(const ElementGeometry& g, const double* sigma, Vec6& f);
 void initial_stress(const ElementGeometry& g, const double* sigma, Eigen::VectorXd& f);
 /// f += ρ b ∫ φ dA; b in m/s².
@@ -78,15 +74,30 @@ void inertia(const ElementGeometry& g, double rho, const InertiaCoefficients& c,
 
 }  // namespace integrators
 
-/// The fixed points' penalty springs and the point loads at time t_end (s), into the system's
-/// element groups and rhs.
-void point_terms(const Model& model, const Configuration& config, const RunState& s, double t_end,
-                 SystemMatrix& system, Eigen::VectorXd& rhs);
+// The point and edge terms, each into the system's element groups and rhs (N); `removed`: [me] 1
+// for excavated elements, whose edges carry nothing; t_end: s, the step's end (load tables,
+// moving supports).
 
-/// Supports, tractions, the in-situ traction of faces between bodies and water pressure at time
-/// t_end (s), into the system's element groups and rhs; `removed`: [me] 1 for excavated elements.
-void edge_terms(const Model& model, const Configuration& config, const RunState& s,
-                const std::vector<std::uint8_t>& removed, double t_end, SystemMatrix& system,
-                Eigen::VectorXd& rhs);
+/// The fixed points' penalty springs back to where they started.
+void fixed_point_terms(const Model& model, const Configuration& config, const RunState& s,
+                       SystemMatrix& system, Eigen::VectorXd& rhs);
+/// The point loads at t_end.
+void point_load_terms(const Model& model, const Configuration& config, const RunState& s, double t_end,
+                      Eigen::VectorXd& rhs);
+/// The supports' penalty springs (moving supports: the displacement less velocity·t_end) and,
+/// with an in-situ stress, its locked-in reaction in their held directions.
+void support_terms(const Model& model, const Configuration& config, const RunState& s,
+                   const std::vector<std::uint8_t>& removed, double t_end, SystemMatrix& system,
+                   Eigen::VectorXd& rhs);
+/// The tractions at t_end (given, or the in-situ field's σ·n).
+void traction_terms(const Model& model, const Configuration& config, const RunState& s,
+                    const std::vector<std::uint8_t>& removed, double t_end, Eigen::VectorXd& rhs);
+/// Water pressure on the joint faces (joint_water.h).
+void water_terms(const Model& model, const Configuration& config, const RunState& s,
+                 const std::vector<std::uint8_t>& removed, Eigen::VectorXd& rhs);
+/// The locked-in in-situ traction of faces between bodies, released after an excavation
+/// (excavation.h).
+void interface_traction_terms(const Model& model, const Configuration& config, const RunState& s,
+                              const std::vector<std::uint8_t>& removed, Eigen::VectorXd& rhs);
 
 }  // namespace nmm::solve

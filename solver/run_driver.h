@@ -8,7 +8,7 @@
 //   summary                       summary.json once the run has stopped (run_summary.h)
 //
 // The stepping core knows nothing of files: what a run writes is the driver's and its
-// observers'. Output seconds (summary.json timings.output) are those of the frames, histories
+// observers', each reading the run's view (run_view.h), never the stepper itself. Output seconds (summary.json timings.output) are those of the frames, histories
 // and checkpoints.
 #pragma once
 
@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/output_writer.h"
+#include "solver/run_view.h"
 #include "solver/time_stepper.h"
 
 namespace nmm::solve {
@@ -29,21 +30,21 @@ class StepObserver {
  public:
   virtual ~StepObserver() = default;
   /// Before the first step, with the state the run starts from.
-  virtual void start(const TimeStepper&) {}
+  virtual void start(const RunView&) {}
   /// After accepted step n of this run (1, 2, ...); `last`: the run's last step (its steps are
   /// done or solver.stop_at_ratio is met).
-  virtual void after_step(const TimeStepper& stepper, std::int64_t n, bool last) = 0;
+  virtual void after_step(const RunView& run, std::int64_t n, bool last) = 0;
   /// Once the run has stopped after `done` steps; `status` "ok" or why not (an interrupt, an
   /// error).
-  virtual void finish(const TimeStepper&, const std::string& /*status*/, std::int64_t /*done*/) {}
+  virtual void finish(const RunView&, const std::string& /*status*/, std::int64_t /*done*/) {}
 };
 
 /// An observer of one function (after_step only).
 class StepFunction : public StepObserver {
  public:
-  using Function = std::function<void(const TimeStepper&, std::int64_t n, bool last)>;
+  using Function = std::function<void(const RunView&, std::int64_t n, bool last)>;
   explicit StepFunction(Function f) : f_(std::move(f)) {}
-  void after_step(const TimeStepper& st, std::int64_t n, bool last) override { f_(st, n, last); }
+  void after_step(const RunView& run, std::int64_t n, bool last) override { f_(run, n, last); }
 
  private:
   Function f_;

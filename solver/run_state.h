@@ -23,6 +23,8 @@ struct TrackedPoint {
   std::int32_t element = -1;  ///< element it lies in
   double x0 = 0, y0 = 0;      ///< m, where it started
   double x = 0, y = 0;        ///< m, where it is now
+  /// m, its displacement since the start.
+  std::array<double, 2> displacement() const { return {x - x0, y - y0}; }
 };
 
 struct RunState {

@@ -5,10 +5,10 @@
 
 namespace nmm::solve {
 
-nlohmann::json run_summary(const TimeStepper& st, const RunOutcome& o) {
-  const SolverDef& sv = st.model().scene().solver;
-  const RunState& s = st.state();
-  StepTimings t = st.timings();
+nlohmann::json run_summary(const RunView& st, const RunOutcome& o) {
+  const SolverDef& sv = st.model.scene().solver;
+  const RunState& s = st.state;
+  StepTimings t = st.timings;
   t.output = o.output_seconds;
   nlohmann::json summary;
   summary["status"] = o.status;
@@ -16,17 +16,17 @@ nlohmann::json run_summary(const TimeStepper& st, const RunOutcome& o) {
   // (status then says which).
   summary["stopped_by"] = o.status == "interrupted" ? "interrupt"
                           : o.status != "ok"        ? "error"
-                          : st.stopped_at_ratio()     ? "stop_at_ratio"
+                          : st.stopped_at_ratio     ? "stop_at_ratio"
                                                   : "steps";
-  summary["equilibrium"] = equilibrium_verdict(st.equilibrium(), sv.dynamic);
+  summary["equilibrium"] = equilibrium_verdict(st.equilibrium, sv.dynamic);
   if (sv.stop_at_ratio > 0) summary["equilibrium"]["stop_at_ratio"] = sv.stop_at_ratio;
   summary["steps_completed"] = o.done;
   summary["first_step"] = o.first_step;  // steps before this run (a restart from a checkpoint)
   summary["step"] = s.step;      // steps since step 0 of the first run
-  summary["state_hash"] = st.state_hash();
+  summary["state_hash"] = state_hash(st);
   summary["simulated_time"] = s.time;
   summary["wall_seconds"] = o.wall_seconds;
-  summary["effects"] = st.effects();
+  summary["effects"] = run_effects(st);
   // Bodies removed by excavation so far (cumulative across restarts) and the step each went:
   // nmm-report leaves them out of a redrawn frame as nmm-solve --pictures does.
   summary["excavated_bodies"] = nlohmann::json::array();
@@ -41,15 +41,15 @@ nlohmann::json run_summary(const TimeStepper& st, const RunOutcome& o) {
   summary["steps_with_unsettled_friction"] = s.friction_unsettled;
   summary["max_penetration"] = s.max_penetration;
   summary["max_contacts_at_closure_cap"] = s.max_capped;
-  const ContactSet::Events& ev = st.contacts().events;
-  const ContactSet::JointStresses joint = st.contacts().joint_stresses();
-  summary["contacts"] = {{"at_end", st.contacts().contacts().size()},
-                         {"closed_at_end", st.contacts().closed_count()},
+  const ContactSet::Events& ev = st.contacts.events;
+  const ContactSet::JointStresses joint = st.contacts.joint_stresses();
+  summary["contacts"] = {{"at_end", st.contacts.contacts().size()},
+                         {"closed_at_end", st.contacts.closed_count()},
                          // The joint at the end: closed length (m), largest stresses (Pa).
                          {"closed_length_at_end", joint.closed_length},
                          {"max_normal_stress_at_end", joint.max_normal_stress},
                          {"max_shear_stress_at_end", joint.max_shear_stress},
-                         {"pairs_tested", st.contacts().detection_stats().pairs_tested},
+                         {"pairs_tested", st.contacts.detection_stats().pairs_tested},
                          // State changes in all iterations (attempts that were cut included):
                          // many "settled" ones mean contacts chattering at zero gap or slip.
                          {"closings", ev.closed},
@@ -57,26 +57,26 @@ nlohmann::json run_summary(const TimeStepper& st, const RunOutcome& o) {
                          {"slips", ev.slid},
                          {"sticks", ev.stuck},
                          {"bonds_broken", ev.broken}};
-  summary["contact_solve"] = {{"newton_iterations", st.contact_solve_stats().newton},
-                              {"cg_iterations", st.contact_solve_stats().cg_iterations},
-                              {"cg_runs_over_budget", st.contact_solve_stats().cg_aborted},
-                              {"factorisations", st.contact_solve_stats().factorisations},
-                              {"friction_updates", st.contact_solve_stats().strength_updates},
+  summary["contact_solve"] = {{"newton_iterations", st.contact_solve.newton},
+                              {"cg_iterations", st.contact_solve.cg_iterations},
+                              {"cg_runs_over_budget", st.contact_solve.cg_aborted},
+                              {"factorisations", st.contact_solve.factorisations},
+                              {"friction_updates", st.contact_solve.strength_updates},
                               // What the tolerance allows (contact_solve.cpp, docs/contact.md).
                               {"tolerance", sv.contact_tolerance},
-                              {"max_force_tolerance_N", st.contact_solve_stats().max_force_tolerance},
-                              {"max_gap_error_m", st.contact_solve_stats().max_gap_error},
+                              {"max_force_tolerance_N", st.contact_solve.max_force_tolerance},
+                              {"max_gap_error_m", st.contact_solve.max_gap_error},
                               {"displacement_tolerance_m",
-                               st.contacts().softening() ? displacement_tolerance(sv.contact_tolerance, st.model().w0())
-                                                         : 0.0},
-                              {"max_displacement_error_m", st.contact_solve_stats().max_displacement_error},
-                              {"displacement_checks", st.contact_solve_stats().displacement_checks},
-                              {"displacement_refusals", st.contact_solve_stats().displacement_refusals}};
-  summary["matrix"] = {{"unknowns", st.unknowns()},
-                       {"nonzeros_lower", st.system().nonzeros()},
-                       {"factor_nonzeros", st.system().factor_nonzeros()},
-                       {"factor_flops", st.system().factor_flops()},
-                       {"ordering", st.system().ordering()},
+                               st.contacts.softening() ? displacement_tolerance(sv.contact_tolerance, st.model.w0())
+                                                       : 0.0},
+                              {"max_displacement_error_m", st.contact_solve.max_displacement_error},
+                              {"displacement_checks", st.contact_solve.displacement_checks},
+                              {"displacement_refusals", st.contact_solve.displacement_refusals}};
+  summary["matrix"] = {{"unknowns", st.space.unknowns()},
+                       {"nonzeros_lower", st.system.nonzeros()},
+                       {"factor_nonzeros", st.system.factor_nonzeros()},
+                       {"factor_flops", st.system.factor_flops()},
+                       {"ordering", st.system.ordering()},
                        {"factorisations", t.factorisations}};
   summary["timings"] = {{"contact_detection", t.contact_detection},
                         {"assembly", t.assembly},
@@ -84,18 +84,18 @@ nlohmann::json run_summary(const TimeStepper& st, const RunOutcome& o) {
                         {"solves", t.solves},
                         {"geometry_update", t.geometry_update},
                         {"output", t.output}};
-  summary["unknowns"] = st.unknowns();
-  summary["threads"] = st.threads();
-  summary["physical_covers"] = st.mesh().cover_count();
-  summary["tied_sliver_covers"] = st.space().ties().tied;
-  summary["cover_order"] = st.space().order();
-  summary["dofs_per_cover"] = st.space().dofs_per_cover();
-  summary["manifold_elements"] = st.mesh().element_count();
-  summary["symbolic_analyses"] = st.system().analyses();
+  summary["unknowns"] = st.space.unknowns();
+  summary["threads"] = st.threads;
+  summary["physical_covers"] = st.mesh.cover_count();
+  summary["tied_sliver_covers"] = st.space.ties().tied;
+  summary["cover_order"] = st.space.order();
+  summary["dofs_per_cover"] = st.space.dofs_per_cover();
+  summary["manifold_elements"] = st.mesh.element_count();
+  summary["symbolic_analyses"] = st.system.analyses();
   summary["time_step"] = sv.time_step;
   summary["max_step_displacement"] = s.max_step_displacement;
-  summary["fixed_point_stiffness"] = st.model().fixed_point_stiffness();
-  if (!st.model().scene().supports.empty()) summary["support_stiffness"] = st.model().support_stiffness();
+  summary["fixed_point_stiffness"] = st.model.fixed_point_stiffness();
+  if (!st.model.scene().supports.empty()) summary["support_stiffness"] = st.model.support_stiffness();
   summary["tool_version"] = NMM_VERSION;
   return summary;
 }

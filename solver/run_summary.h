@@ -1,5 +1,5 @@
 // summary.json of a run (docs/output.md lists its keys): what the run did, how it ended, what
-// it cost. Built from the stepper after the run has stopped.
+// it cost. Built from the run's view (run_view.h) after the run has stopped.
 #pragma once
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "solver/time_stepper.h"
+#include "solver/run_view.h"
 
 namespace nmm::solve {
 
@@ -20,7 +20,7 @@ struct RunOutcome {
   double output_seconds = 0;    ///< s, frames, histories and checkpoints
 };
 
-/// The summary of `stepper`'s run (every key of summary.json).
-nlohmann::json run_summary(const TimeStepper& stepper, const RunOutcome& outcome);
+/// The summary of a run (its view once it has stopped) (every key of summary.json).
+nlohmann::json run_summary(const RunView& run, const RunOutcome& outcome);
 
 }  // namespace nmm::solve

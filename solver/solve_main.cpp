@@ -46,29 +46,29 @@ namespace {
 
 // --pictures: result.svg of the last state (result_picture.h) and the run's report
 // (run_report.h).
-nmm::report::ReportFiles write_pictures(const nmm::solve::TimeStepper& stepper, const nmm::SceneDef& scene,
+nmm::report::ReportFiles write_pictures(const nmm::solve::RunView& run, const nmm::SceneDef& scene,
                                         const std::string& status, const std::string& out_dir,
                                         double exaggerate, nmm::report::PictureField field) {
   nmm::report::PictureState state;
-  state.time = stepper.time();
+  state.time = run.state.time;
   state.status = status;
-  state.loop_xy = &stepper.loop_xy();
-  const std::vector<double> mean_stress = stepper.mean_stress();  // [3·me] at any order
+  state.loop_xy = &run.state.loop_xy;
+  const std::vector<double> mean_stress = nmm::solve::mean_stress(run);  // [3·me] at any order
   state.stress = &mean_stress;
-  for (const nmm::solve::Contact& c : stepper.contacts().contacts())
+  for (const nmm::solve::Contact& c : run.contacts.contacts())
     if (c.state != nmm::solve::ContactState::open)
-      state.contacts.push_back({stepper.loop_xy()[2 * c.at.vertex], stepper.loop_xy()[2 * c.at.vertex + 1],
+      state.contacts.push_back({run.state.loop_xy[2 * c.at.vertex], run.state.loop_xy[2 * c.at.vertex + 1],
                                 static_cast<int>(c.state), c.at.vertex, c.at.edge});
-  for (const nmm::solve::TrackedPoint& p : stepper.measure_points()) {
+  for (const nmm::solve::TrackedPoint& p : run.state.measure) {
     state.measure_points.push_back({p.x, p.y});
     // x − (x − x0): what nmm-report computes from history.csv (x, ux), so its redraw of an
     // exaggerated picture is this one byte for byte.
     state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
   }
   state.exaggeration = exaggerate;
-  state.excavated_body = stepper.state().body_removed;
+  state.excavated_body = run.state.body_removed;
   nmm::write_file_atomically(out_dir + "/result.svg",
-                             nmm::report::result_svg(stepper.mesh(), scene, state, field));
+                             nmm::report::result_svg(run.mesh, scene, state, field));
   return nmm::report::make_run_report(out_dir);
 }
 
@@ -147,35 +147,36 @@ int main(int argc, char** argv) {
     nmm::solve::install_interrupt_handlers();
     stepper.set_stop_check(nmm::solve::interrupt_requested);
     const nmm::SolverDef& sv = run.scene.solver;
-    const double t_start = stepper.time();  // 0, or the checkpoint's time
+    const double t_start = stepper.view().state.time;  // 0, or the checkpoint's time
     const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
     nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
     // Energy terms after every step, a row per output step (energy.h, energy.csv).
-    nmm::solve::EnergyMeter energy(stepper.model(), &stepper.space());
-    energy.after_step(stepper.state(), stepper.contacts().contacts(), true);
+    const nmm::solve::RunView view = stepper.view();
+    nmm::solve::EnergyMeter energy(view.model, &view.space);
+    energy.after_step(view.state, view.contacts.contacts(), true);
     std::vector<nmm::report::StepRecord> effort;
     std::size_t iterations = 0, cuts = 0;
     double t_prev = t_start;
     // After every accepted step, in this order: the run history's row (run_history.csv), the
     // energy terms, the progress line (the frames and the checkpoint come first: run_driver.h).
-    nmm::solve::StepFunction run_history([&](const nmm::solve::TimeStepper& st, std::int64_t, bool) {
-      const double t = st.time();
+    nmm::solve::StepFunction run_history([&](const nmm::solve::RunView& st, std::int64_t, bool) {
+      const double t = st.state.time;
       // Step numbers as history.csv counts them: after --restart they go on from the checkpoint's.
-      const nmm::solve::EquilibriumSample& eq = st.equilibrium();
-      effort.push_back({st.step_count(), t, t - t_prev,
-                        static_cast<std::int64_t>(st.open_close_iterations() - iterations),
-                        static_cast<std::int64_t>(st.time_step_cuts() - cuts),
-                        static_cast<std::int64_t>(st.contacts().closed_count()),
+      const nmm::solve::EquilibriumSample& eq = st.equilibrium;
+      effort.push_back({st.state.step, t, t - t_prev,
+                        static_cast<std::int64_t>(st.state.iterations - iterations),
+                        static_cast<std::int64_t>(st.state.cuts - cuts),
+                        static_cast<std::int64_t>(st.contacts.closed_count()),
                         eq.max_ratio, eq.mean_ratio, eq.max_velocity});
-      iterations = st.open_close_iterations();
-      cuts = st.time_step_cuts();
+      iterations = st.state.iterations;
+      cuts = st.state.cuts;
       t_prev = t;
     });
-    nmm::solve::StepFunction energy_terms([&](const nmm::solve::TimeStepper& st, std::int64_t n, bool) {
-      energy.after_step(st.state(), st.contacts().contacts(), n % sv.output_every == 0);
+    nmm::solve::StepFunction energy_terms([&](const nmm::solve::RunView& st, std::int64_t n, bool) {
+      energy.after_step(st.state, st.contacts.contacts(), n % sv.output_every == 0);
     });
-    nmm::solve::StepFunction progress_line([&](const nmm::solve::TimeStepper& st, std::int64_t, bool) {
-      progress.update(st.step_count(), st.time());
+    nmm::solve::StepFunction progress_line([&](const nmm::solve::RunView& st, std::int64_t, bool) {
+      progress.update(st.state.step, st.state.time);
     });
     nmm::solve::RunDriver driver(stepper, out);
     driver.add(run_history);
@@ -184,7 +185,7 @@ int main(int argc, char** argv) {
     const nlohmann::json summary = driver.run();
     const std::string status = summary["status"].get<std::string>();
     const std::string verdict = nmm::solve::equilibrium_line(summary["equilibrium"]);
-    progress.finish(stepper.step_count(), stepper.time(), status,
+    progress.finish(stepper.view().state.step, stepper.view().state.time, status,
                     status + ", " + verdict +
                         (summary["stopped_by"] == "stop_at_ratio" ? ", stopped by stop_at_ratio" : ""));
     nmm::report::write_run_history(out_dir, effort);
@@ -193,7 +194,7 @@ int main(int argc, char** argv) {
 
     if (pictures) {
       const nmm::report::ReportFiles files =
-          write_pictures(stepper, run.scene, status, out_dir, exaggerate, field);
+          write_pictures(stepper.view(), run.scene, status, out_dir, exaggerate, field);
       if (!quiet)
         std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
                   << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";
@@ -201,7 +202,7 @@ int main(int argc, char** argv) {
     const nmm::report::RunEnd end = nmm::report::run_end(status);
     if (end == nmm::report::RunEnd::interrupted) {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
-                << " steps at t = " << stepper.time() << " s (" << verdict
+                << " steps at t = " << stepper.view().state.time << " s (" << verdict
                 << "); history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
       return nmm::solve::kExitInterrupted;
     }

@@ -10,14 +10,14 @@ namespace nmm::studies {
 namespace {
 DirectShearSample read(const solve::TimeStepper& st) {
   DirectShearSample r;
-  r.time = st.time();
-  const auto a = st.displacement_at(st.measure_points()[0]);
-  const auto b = st.displacement_at(st.measure_points()[1]);
+  r.time = st.view().state.time;
+  const auto a = st.view().state.measure[0].displacement();
+  const auto b = st.view().state.measure[1].displacement();
   r.closure = b[1] - a[1];
   r.slip = a[0] - b[0];
   double n = 0, t = 0, travel = 0, gap_length = 0, length = 0;
   int closed = 0;
-  for (const solve::Contact& c : st.contacts().accepted())
+  for (const solve::Contact& c : st.view().contacts.accepted())
     if (c.state != solve::ContactState::open) {
       n += c.normal_force;
       t += c.shear_force;

@@ -11,12 +11,12 @@ JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, 
   solve::TimeStepper st(mesh, scene, "single joint");
   JointSpecimenResult r;
   r.status = st.run_until(seconds, [](std::int64_t) {});
-  const auto a = st.displacement_at(st.measure_points()[0]);
-  const auto b = st.displacement_at(st.measure_points()[1]);
+  const auto a = st.view().state.measure[0].displacement();
+  const auto b = st.view().state.measure[1].displacement();
   r.closure = b[1] - a[1];
   r.slip = a[0] - b[0];
   double n = 0;
-  for (const solve::Contact& c : st.contacts().accepted())
+  for (const solve::Contact& c : st.view().contacts.accepted())
     if (c.state != solve::ContactState::open) {
       n += c.normal_force;
       r.travel = std::max(r.travel, c.joint.travel);
@@ -41,8 +41,8 @@ std::vector<double> run_closure_cycles(const Mesh& mesh, SceneDef scene,
   for (std::size_t k = 0; k < targets.size(); ++k) {
     *status = st.run_until(0.15 * static_cast<double>(k) + 0.15, [](std::int64_t) {});
     if (*status != "ok") return {};
-    const auto a = st.displacement_at(st.measure_points()[0]);
-    const auto b = st.displacement_at(st.measure_points()[1]);
+    const auto a = st.view().state.measure[0].displacement();
+    const auto b = st.view().state.measure[1].displacement();
     closure.push_back(b[1] - a[1]);
   }
   return closure;

@@ -315,7 +315,7 @@ int main(int argc, char** argv) {
           st.run_until(static_cast<double>(s.solver.steps) * s.solver.time_step, [](std::int64_t) {});
       std::vector<double> kn_point, kn_m, ks_m;
       std::size_t i = 0;
-      for (const auto& c : st.contacts().contacts()) {
+      for (const auto& c : st.view().contacts.contacts()) {
         if (c.state == nmm::solve::ContactState::open) continue;
         kcsv << (variant == 2 ? "full_model" : variant ? "joint_laws" : "constant") << "," << i++ << "," << -c.gap << ","
              << c.kn_now << "," << c.ks_now << "," << c.length << "\n";

@@ -17,9 +17,9 @@ JointWaveHistory run_joint_wave(solve::TimeStepper& st, const SceneDef& scene,
                                 const std::function<void(std::int64_t)>& on_step) {
   JointWaveHistory h;
   auto sample = [&]() {
-    h.time.push_back(st.time());
-    h.before.push_back(st.displacement_at(st.measure_points()[0])[0]);
-    h.after.push_back(st.displacement_at(st.measure_points()[1])[0]);
+    h.time.push_back(st.view().state.time);
+    h.before.push_back(st.view().state.measure[0].displacement()[0]);
+    h.after.push_back(st.view().state.measure[1].displacement()[0]);
   };
   sample();
   const double t_end = static_cast<double>(scene.solver.steps) * scene.solver.time_step;

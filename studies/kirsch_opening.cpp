@@ -32,9 +32,9 @@ KirschWall kirsch_wall(const reference::KirschSetup& k, const Mesh& m, const sol
   const double hoop_max = std::max(std::abs(2 * P - 4 * Q), std::abs(2 * P + 4 * Q));
   const double ur_max = a / (4 * G) * (std::abs(px + py) + std::abs(px - py) * (3 - 4 * nu));
   const double tol = 1e-6 * k.h;
-  const std::vector<double> mean = st.mean_stress();
-  const std::vector<double>& now = st.loop_xy();
-  const std::vector<double>& u = st.state().loop_u;
+  const std::vector<double> mean = mean_stress(st.view());
+  const std::vector<double>& now = st.view().state.loop_xy;
+  const std::vector<double>& u = st.view().state.loop_u;
   auto on_wall = [&](double x, double y) { return std::abs(std::hypot(x, y) - a) < 1e-3 * a; };
   double e_wall = 0, e_cent = 0, e_ur = 0, side = 0;
   std::size_t n_wall = 0, n_cent = 0, n_ur = 0, n_side = 0;
@@ -54,7 +54,7 @@ KirschWall kirsch_wall(const reference::KirschSetup& k, const Mesh& m, const sol
         // The element's stress field at both ends of its wall edge (where it is now).
         for (const std::int32_t w : {v, nv}) {
           const double x0 = m.loop_xy[2 * w], y0 = m.loop_xy[2 * w + 1], th = std::atan2(y0, x0);
-          const double got = hoop_of(st.stress_at(e, now[2 * w], now[2 * w + 1]), th);
+          const double got = hoop_of(stress_at(st.view(), e, now[2 * w], now[2 * w + 1]), th);
           const double want = kirsch_hoop(px, py, std::hypot(x0, y0), th);
           e_wall += (got - want) * (got - want);
           ++n_wall;

@@ -135,10 +135,10 @@ Outcome timed_run_once(const SceneDef& s, const std::string& name,
       o.run_seconds = t1.seconds();
       return o;
     }
-    o.unknowns = st->unknowns();
+    o.unknowns = st->view().space.unknowns();
     const std::string status = body(*st, o);
-    o.cuts = st->time_step_cuts();
-    o.iterations = st->open_close_iterations();
+    o.cuts = st->view().state.cuts;
+    o.iterations = st->view().state.iterations;
     const bool finite = std::isfinite(o.computed);
     o.status = status == "ok" && finite ? RunStatus::ok : RunStatus::failed;
     o.reason = status != "ok" ? status : (finite ? "" : "result is not a finite number");
@@ -185,7 +185,7 @@ Row cantilever(double h, int order = 0) {
   r.out = timed_run(s, "cantilever", [](nmm::solve::TimeStepper& st, Outcome& o) {
     st.step(1.0);
     o.steps = 1;
-    o.computed = -st.displacement_at(st.measure_points()[0])[1];
+    o.computed = -st.view().state.measure[0].displacement()[1];
     return std::string("ok");
   });
   return r;
@@ -217,7 +217,7 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
   r.exact = nmm::reference::sliding_distance(alpha_deg, phi_deg, t);
   r.out = timed_run(s, "sliding block", [t](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, t, o);
-    o.computed = st.displacement_at(st.measure_points()[0])[0];
+    o.computed = st.view().state.measure[0].displacement()[0];
     return status;
   });
   return r;
@@ -246,7 +246,7 @@ Row kirsch(double h, int order) {
   r.out = timed_run(s, "kirsch", [&k](nmm::solve::TimeStepper& st, Outcome& o) {
     st.step(1.0);
     o.steps = 1;
-    const nmm::studies::KirschWall w = nmm::studies::kirsch_wall(k, st.mesh(), st);
+    const nmm::studies::KirschWall w = nmm::studies::kirsch_wall(k, st.view().mesh, st);
     o.computed = w.side_wall_hoop;
     o.own_error = w.hoop_wall;
     return std::string("ok");
@@ -271,8 +271,8 @@ Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool wan
   nmm::reference::load_joint_specimen(s, sigma, tau);
   return timed_run(s, "single joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, seconds, o);
-    const auto a = st.displacement_at(st.measure_points()[0]);
-    const auto b = st.displacement_at(st.measure_points()[1]);
+    const auto a = st.view().state.measure[0].displacement();
+    const auto b = st.view().state.measure[1].displacement();
     o.computed = want_slip ? a[0] - b[0] : b[1] - a[1];
     return status;
   });
@@ -351,7 +351,7 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   nmm::reference::load_joint_specimen(s, sigma, 0);
   r.out = timed_run(s, "tight joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
     const std::string status = run_steps(st, 0.3, o);
-    o.computed = st.displacement_at(st.measure_points()[1])[1] - st.displacement_at(st.measure_points()[0])[1];
+    o.computed = st.view().state.measure[1].displacement()[1] - st.view().state.measure[0].displacement()[1];
     return status;
   });
   return r;

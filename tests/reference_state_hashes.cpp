@@ -38,7 +38,7 @@ void run(const std::string& name, const SceneDef& s, int steps) {
   } else {
     status = st.run_until(steps * s.solver.time_step, [](std::int64_t) {});
   }
-  std::printf("reference.%s %d %s%s%s\n", name.c_str(), steps, st.state_hash().c_str(),
+  std::printf("reference.%s %d %s%s%s\n", name.c_str(), steps, state_hash(st.view()).c_str(),
               status == "ok" ? "" : " ", status == "ok" ? "" : status.c_str());
   std::fflush(stdout);
 }

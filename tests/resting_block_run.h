@@ -37,18 +37,18 @@ inline RestingBlockRun resting_block_two_seconds(int order) {
   s.measure_points = {{3, 1.5}};
   const Mesh m = pre::build_mesh(s, "rest");
   solve::TimeStepper st(m, s, "rest");
-  solve::EnergyMeter meter(st.model());
-  meter.after_step(st.state(), st.contacts().contacts(), true);
+  solve::EnergyMeter meter(st.view().model);
+  meter.after_step(st.view().state, st.view().contacts.contacts(), true);
   RestingBlockRun r;
   r.status = st.run_until(2.0, [&](std::int64_t) {
-    meter.after_step(st.state(), st.contacts().contacts(), true);
+    meter.after_step(st.view().state, st.view().contacts.contacts(), true);
     r.kinetic_max = std::max(r.kinetic_max, meter.rows().back().kinetic);
-    if (st.time() > 1.0) r.kinetic_late = std::max(r.kinetic_late, meter.rows().back().kinetic);
+    if (st.view().state.time > 1.0) r.kinetic_late = std::max(r.kinetic_late, meter.rows().back().kinetic);
   });
   r.weight_height = 2650 * 2.0 * 9.81 * 1.0;
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   r.moved = {u[0], u[1]};
-  for (const solve::Contact& c : st.contacts().contacts()) r.normal_force_sum += c.normal_force;
+  for (const solve::Contact& c : st.view().contacts.contacts()) r.normal_force_sum += c.normal_force;
   r.weight = 2650 * 2.0 * 9.81;
   return r;
 }

@@ -15,6 +15,7 @@
 #include "solver/barton_bandis.h"
 #include "solver/contact_history.h"
 #include "solver/energy.h"
+#include "solver/restart.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/direct_shear.h"
 #include "studies/direct_shear_run.h"
@@ -431,29 +432,29 @@ TEST(BartonBandisSolver, RestartCarriesTheJointMemoryBitwise) {
   advance(straight, 120);
   advance(first, 80);
   double dilation = 0, closure_max = 0;
-  for (const ContactHistory& h : first.contacts().history()) {
+  for (const ContactHistory& h : first.view().contacts.history()) {
     dilation = std::max(dilation, h.joint.dilation);
     closure_max = std::max(closure_max, h.joint.closure_max);
   }
   ASSERT_GT(dilation, 1e-6) << "the checkpoint must catch the joint dilating";
   ASSERT_GT(closure_max, 0.0);
   const std::string path = ::testing::TempDir() + "/barton_bandis.nmmstate";
-  first.write_checkpoint(path);
+  write_checkpoint(first.view(), path);
   second.restart_from(path);
   advance(second, 40);
   std::printf("restart at %.3f mm of dilation: hashes %s / %s\n", dilation * 1e3,
-              straight.state_hash().substr(0, 12).c_str(), second.state_hash().substr(0, 12).c_str());
-  EXPECT_EQ(second.state_hash(), straight.state_hash());
-  EXPECT_NE(first.state_hash(), straight.state_hash());
+              state_hash(straight.view()).substr(0, 12).c_str(), state_hash(second.view()).substr(0, 12).c_str());
+  EXPECT_EQ(state_hash(second.view()), state_hash(straight.view()));
+  EXPECT_NE(state_hash(first.view()), state_hash(straight.view()));
   // The history carries the joint's shear position (layout 4); one of layout 3, written before the
   // joint kept it, is refused with a Barton–Bandis contact in it rather than read without it.
-  std::string bytes = save_contact_history(first.contacts());
+  std::string bytes = save_contact_history(first.view().contacts);
   std::uint32_t layout = 0;
   std::memcpy(&layout, bytes.data(), sizeof layout);
   EXPECT_EQ(layout, 4u);
   layout = 3;
   std::memcpy(bytes.data(), &layout, sizeof layout);
-  ContactSet old_run(first.model());
+  ContactSet old_run(first.view().model);
   try {
     load_contact_history(old_run, bytes, m, "old.nmmstate");
     ADD_FAILURE() << "a layout-3 history with Barton–Bandis contacts was read";
@@ -658,16 +659,16 @@ TEST(BartonBandisSolver, ShearBoxEnergyBalanceCountsTheSupportsWork) {
   s.supports.back().table.value = {1, 1, -1};
   const Mesh m = pre::build_mesh(s, "shear box energy");
   TimeStepper st(m, s, "shear box energy");
-  EnergyMeter meter(st.model());
-  meter.after_step(st.state(), st.contacts().contacts(), true);
+  EnergyMeter meter(st.view().model);
+  meter.after_step(st.view().state, st.view().contacts.contacts(), true);
   double opening_work = 0;  // Σ N·Δv, J/m
   const std::string status = st.run_until(t1 + dt + 3 * dp / v, [&](std::int64_t) {
-    meter.after_step(st.state(), st.contacts().contacts(), true);
-    for (const Contact& c : st.contacts().contacts()) opening_work += c.normal_force * c.dilation_step;
+    meter.after_step(st.view().state, st.view().contacts.contacts(), true);
+    for (const Contact& c : st.view().contacts.contacts()) opening_work += c.normal_force * c.dilation_step;
   });
   ASSERT_EQ(status, "ok");
   const EnergyRow& r = meter.rows().back();
-  const auto a = st.displacement_at(st.measure_points()[0]), b = st.displacement_at(st.measure_points()[1]);
+  const auto a = st.view().state.measure[0].displacement(), b = st.view().state.measure[1].displacement();
   std::printf("shear box energy (+2·δp → −1·δp, slip now %.3f mm): support work %.1f J/m, all loads %.1f, "
               "friction %.1f (opening returned %.1f), springs %.1f, residual %.2f J/m (%.3f %% of the "
               "support's)\n", (a[0] - b[0]) * 1e3, r.support_work, r.load_work, r.friction, opening_work,

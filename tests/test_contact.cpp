@@ -45,10 +45,10 @@ TEST(Contact, BlockSlidesUnderTiltedGravityAsCoulombSays) {
   const Mesh m = pre::build_mesh(s, "tilted");
   TimeStepper st(m, s, "tilted");
   ASSERT_EQ(run_to(st, 1.0), "ok");
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   const double want = slide_distance(30, 20, 1.0);
   std::printf("tilted gravity: slid %.6f m, Coulomb %.6f m (%+.4f %%), %zu iterations, %zu cuts\n",
-              u[0], want, 100 * (u[0] - want) / want, st.open_close_iterations(), st.time_step_cuts());
+              u[0], want, 100 * (u[0] - want) / want, st.view().state.iterations, st.view().state.cuts);
   EXPECT_NEAR(u[0], want, 1e-3 * want);
   EXPECT_NEAR(u[1], 0, 1e-4) << "the block stays on the base";
 }
@@ -71,11 +71,11 @@ TEST(Contact, BlockSlidesDownARealIncline) {
   const Mesh m = pre::build_mesh(s, "incline");
   TimeStepper st(m, s, "incline");
   ASSERT_EQ(run_to(st, 1.0), "ok");
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   const double along = -(u[0] * c + u[1] * sn), across = -u[0] * sn + u[1] * c;
   const double want = slide_distance(30, 20, 1.0);
   std::printf("real incline: slid %.6f m, Coulomb %.6f m (%+.4f %%), %zu iterations, %zu cuts\n",
-              along, want, 100 * (along - want) / want, st.open_close_iterations(), st.time_step_cuts());
+              along, want, 100 * (along - want) / want, st.view().state.iterations, st.view().state.cuts);
   EXPECT_NEAR(along, want, 1e-3 * want);
   EXPECT_NEAR(across, 0, 1e-4);
 }
@@ -89,7 +89,7 @@ TEST(Contact, FrictionHoldsTheBlockWhenPhiExceedsTheSlope) {
   const Mesh m = pre::build_mesh(s, "held");
   TimeStepper st(m, s, "held");
   ASSERT_EQ(run_to(st, 1.0), "ok");
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   std::printf("phi 35 > 30: moved %.3e m along, %.3e m across\n", u[0], u[1]);
   EXPECT_LT(std::hypot(u[0], u[1]), 1e-4);
 }
@@ -102,16 +102,16 @@ TEST(Contact, DroppedBlockComesToRestOnTheBase) {
   const Mesh m = pre::build_mesh(s, "drop");
   TimeStepper st(m, s, "drop");
   ASSERT_EQ(run_to(st, 1.0), "ok");
-  const double y1 = st.displacement_at(st.measure_points()[0])[1];
+  const double y1 = st.view().state.measure[0].displacement()[1];
   ASSERT_EQ(run_to(st, 1.2), "ok");
-  const double y2 = st.displacement_at(st.measure_points()[0])[1];
+  const double y2 = st.view().state.measure[0].displacement()[1];
   std::printf("dropped block: fell %.6f m, then moved %.2e m in 0.2 s; max penetration %.2e m\n",
-              -y2, y2 - y1, st.max_penetration());
+              -y2, y2 - y1, st.view().state.max_penetration);
   EXPECT_NEAR(y2, -0.2, 1e-3) << "it lands on the base";
   EXPECT_LT(std::abs(y2 - y1), 1e-4) << "and stays there";
-  EXPECT_LT(st.max_penetration(), 1e-3) << "less than 1/1000 of its size";
+  EXPECT_LT(st.view().state.max_penetration, 1e-3) << "less than 1/1000 of its size";
   double vmax = 0;
-  for (double v : st.velocity()) vmax = std::max(vmax, std::abs(v));
+  for (double v : st.view().state.velocity) vmax = std::max(vmax, std::abs(v));
   EXPECT_LT(vmax, 1e-2) << "m/s";
 }
 
@@ -125,9 +125,9 @@ void stack_stands(double dynamic_factor) {
   const Mesh m = pre::build_mesh(s, "stack");
   TimeStepper st(m, s, "stack");
   ASSERT_EQ(run_to(st, 1.0), "ok");
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   std::printf("stack of 6 (dynamic factor %g): top moved %.3e, %.3e m; %zu cuts\n", dynamic_factor,
-              u[0], u[1], st.time_step_cuts());
+              u[0], u[1], st.view().state.cuts);
   EXPECT_LT(std::abs(u[0]), 1e-5);
   EXPECT_LT(std::abs(u[1]), 1e-4);
 }
@@ -161,10 +161,10 @@ RegimeResult run_regime(double phi_deg, double width, double height, double t) {
   const Mesh m = pre::build_mesh(s, "regime");
   TimeStepper st(m, s, "regime");
   EXPECT_EQ(run_to(st, t), "ok");
-  const auto& p = st.measure_points();
+  const auto& p = st.view().state.measure;
   const double ang0 = std::atan2(p[1].y0 - p[0].y0, p[1].x0 - p[0].x0);
   const double ang1 = std::atan2(p[1].y - p[0].y, p[1].x - p[0].x);
-  return {st.displacement_at(p[2])[0], ang0 - ang1};
+  return {p[2].displacement()[0], ang0 - ang1};
 }
 
 TEST(Contact, FourRegimesOfABlockOnAnIncline) {
@@ -251,17 +251,17 @@ EnergyTrace wedge_energy(double dt, double kn, double t_end) {
   s.solver.time_step = dt;
   const Mesh m = pre::build_mesh(s, "wedge");
   TimeStepper st(m, s, "wedge");
-  EnergyMeter meter(st.model());
-  meter.after_step(st.state(), st.contacts().contacts(), true);
+  EnergyMeter meter(st.view().model);
+  meter.after_step(st.view().state, st.view().contacts.contacts(), true);
   EnergyTrace e;
   e.status = st.run_until(t_end, [&](std::int64_t) {
-    meter.after_step(st.state(), st.contacts().contacts(), true);
+    meter.after_step(st.view().state, st.view().contacts.contacts(), true);
     const EnergyRow& r = meter.rows().back();
     e.worst_gain = std::max(e.worst_gain, -r.residual);
     e.released = std::max(e.released, std::abs(r.gravity));
     e.friction = r.friction;
   });
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   e.slide = std::hypot(u[0], u[1]);
   return e;
 }
@@ -314,16 +314,16 @@ TEST(Contact, CrackOpensOnlyWhereTheJointIs) {
     const Mesh m = pre::build_mesh(s, "crack");
     TimeStepper st(m, s, "crack");
     ASSERT_EQ(run_to(st, 3e-3), "ok");
-    const auto& mp = st.measure_points();
-    const double open_top = st.displacement_at(mp[1])[0] - st.displacement_at(mp[0])[0];
-    const double open_low = st.displacement_at(mp[3])[0] - st.displacement_at(mp[2])[0];
+    const auto& mp = st.view().state.measure;
+    const double open_top = mp[1].displacement()[0] - mp[0].displacement()[0];
+    const double open_low = mp[3].displacement()[0] - mp[2].displacement()[0];
     std::printf("crack, load %+g: top opens by %.3e m, below the tip %.3e m, penetration %.2e m\n",
-                sign, open_top, open_low, st.max_penetration());
+                sign, open_top, open_low, st.view().state.max_penetration);
     if (sign < 0) {
       EXPECT_GT(open_top, 1e-4) << "the crack opens at the top";
       EXPECT_GT(open_top, 20 * std::abs(open_low)) << "and only where it is";
     } else {
-      EXPECT_LT(st.max_penetration(), 1e-6) << "the closed crack's faces must not overlap";
+      EXPECT_LT(st.view().state.max_penetration, 1e-6) << "the closed crack's faces must not overlap";
       EXPECT_LT(std::abs(open_top), 1e-4) << "without contact they would pass through each other";
     }
   }

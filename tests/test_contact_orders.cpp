@@ -15,6 +15,7 @@
 #include <cstdlib>
 
 #include "preprocess/cover_cutter.h"
+#include "solver/restart.h"
 #include "solver/energy.h"
 #include "common/math_constants.h"
 #include "tests/resting_block_run.h"
@@ -78,17 +79,17 @@ TEST(ContactOrders, RowsAreTheFullApproximation) {
     s.fixed_points = held_along(0.1, 5.9, 0.1);
     const Mesh m = pre::build_mesh(s, "rows");
     TimeStepper st(m, s, "rows");
-    const std::vector<double> xy = st.loop_xy();
-    const std::vector<double> centre = st.state().cover_xy;
+    const std::vector<double> xy = st.view().state.loop_xy;
+    const std::vector<double> centre = st.view().state.cover_xy;
     st.step(1e-3);
-    const ContactSet& cs = st.contacts();
+    const ContactSet& cs = st.view().contacts;
     ASSERT_GT(cs.contacts().size(), 3u) << "order " << order;
-    ASSERT_EQ(cs.row_size(), 2 * st.space().element_dofs());
+    ASSERT_EQ(cs.row_size(), 2 * st.view().space.element_dofs());
     // Degree n: all terms of degree ≤ n non-zero.
     Field f{{1e-3, 2e-3, -3e-3, 4e-3, -5e-3, 6e-3}, {-2e-3, 1e-3, 3e-3, -1e-3, 2e-3, -4e-3}};
     for (int i = 0; i < 6; ++i)
       if ((i >= 1 && order < 1) || (i >= 3 && order < 2)) f.a[i] = f.b[i] = 0;
-    const CoverSpace& sp = st.space();
+    const CoverSpace& sp = st.view().space;
     Eigen::VectorXd d = Eigen::VectorXd::Zero(sp.unknowns());
     // The top block (body 1) moves by f, the base by g = −f: touching faces move apart.
     Field g = f;
@@ -138,10 +139,10 @@ TEST(ContactOrders, BlockSlidesUnderTiltedGravityAsCoulombSaysAtOrderOne) {
     const Mesh m = pre::build_mesh(s, "tilted");
     TimeStepper st(m, s, "tilted");
     ASSERT_EQ(run_to(st, 1.0), "ok");
-    const auto u = st.displacement_at(st.measure_points()[0]);
+    const auto u = st.view().state.measure[0].displacement();
     const double want = slide_distance(30, 20, 1.0);
     std::printf("order %d, tilted gravity: slid %.6f m, Coulomb %.6f m (%+.4f %%), %zu Newton iterations, %zu cuts\n",
-                order, u[0], want, 100 * (u[0] - want) / want, st.open_close_iterations(), st.time_step_cuts());
+                order, u[0], want, 100 * (u[0] - want) / want, st.view().state.iterations, st.view().state.cuts);
     EXPECT_NEAR(u[0], want, 1e-3 * want) << "order " << order;
     EXPECT_NEAR(u[1], 0, 1e-4) << "order " << order << ": the block stays on the base";
   }
@@ -158,10 +159,10 @@ TEST(ContactOrders, BlockSlidesUnderTiltedGravityAsCoulombSaysAtOrderTwo) {
   const Mesh m = pre::build_mesh(s, "tilted2");
   TimeStepper st(m, s, "tilted2");
   ASSERT_EQ(run_to(st, t), "ok");
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   const double want = slide_distance(30, 20, t);
   std::printf("order 2, tilted gravity: slid %.6f m in %.1f s, Coulomb %.6f m (%+.4f %%), %zu Newton iterations, %zu cuts\n",
-              u[0], t, want, 100 * (u[0] - want) / want, st.open_close_iterations(), st.time_step_cuts());
+              u[0], t, want, 100 * (u[0] - want) / want, st.view().state.iterations, st.view().state.cuts);
   EXPECT_NEAR(u[0], want, 1e-3 * want);
   EXPECT_NEAR(u[1], 0, 1e-4) << "the block stays on the base";
 }
@@ -172,12 +173,12 @@ TEST(ContactOrders, BlockSlidesDownARealInclineAtOrderOne) {
   const Mesh m = pre::build_mesh(s, "incline");
   TimeStepper st(m, s, "incline");
   ASSERT_EQ(run_to(st, 1.0), "ok");
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   const double c = std::cos(30 * kPi / 180), sn = std::sin(30 * kPi / 180);
   const double along = -(u[0] * c + u[1] * sn), across = -u[0] * sn + u[1] * c;
   const double want = slide_distance(30, 20, 1.0);
   std::printf("order 1, real incline: slid %.6f m, Coulomb %.6f m (%+.4f %%), %zu Newton iterations, %zu cuts\n",
-              along, want, 100 * (along - want) / want, st.open_close_iterations(), st.time_step_cuts());
+              along, want, 100 * (along - want) / want, st.view().state.iterations, st.view().state.cuts);
   EXPECT_NEAR(along, want, 1e-3 * want);
   EXPECT_NEAR(across, 0, 1e-4);
 }
@@ -188,7 +189,7 @@ TEST(ContactOrders, FrictionHoldsTheBlockAtPhiFiveDegreesAboveTheSlope) {
     const Mesh m = pre::build_mesh(s, "held");
     TimeStepper st(m, s, "held");
     ASSERT_EQ(run_to(st, 1.0), "ok");
-    const auto u = st.displacement_at(st.measure_points()[0]);
+    const auto u = st.view().state.measure[0].displacement();
     std::printf("order 1, %s, phi 35 > 30: moved %.3e m\n", incline ? "real incline" : "tilted gravity",
                 std::hypot(u[0], u[1]));
     EXPECT_LT(std::hypot(u[0], u[1]), 5e-5) << (incline ? "real incline" : "tilted gravity");
@@ -212,11 +213,11 @@ TEST(ContactOrders, DroppedBlockFallsFreelyAtOrderOne) {
   // The search distance is 2.5·g2·w0 = 5 mm: a step of 1 ms that starts within it (from
   // t = 0.1994 s) detects the base; the step ending at 0.201 s starts 3.8 mm above it.
   ASSERT_EQ(run_to(st, 0.201), "ok");
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   const double want = -0.5 * kG * 0.201 * 0.201;
   std::printf("order 1, dropped block: after 0.201 s fell %.9f m (free fall %.9f m), %zu contacts detected\n", -u[1],
-              -want, st.contacts().contacts().size());
-  EXPECT_GT(st.contacts().contacts().size(), 0u) << "the base is within the search distance";
+              -want, st.view().contacts.contacts().size());
+  EXPECT_GT(st.view().contacts.contacts().size(), 0u) << "the base is within the search distance";
   EXPECT_NEAR(u[1], want, 1e-9);
   EXPECT_NEAR(u[0], 0, 1e-12);
 }
@@ -230,16 +231,16 @@ TEST(ContactOrders, DroppedBlockLandsAndRestsAtOrderOne) {
   const SceneDef s = dropped_block();
   const Mesh m = pre::build_mesh(s, "drop");
   TimeStepper st(m, s, "drop");
-  ASSERT_EQ(run_to(st, 0.6), "ok") << "t = " << st.time() << " s";
-  const double y1 = st.displacement_at(st.measure_points()[0])[1];
+  ASSERT_EQ(run_to(st, 0.6), "ok") << "t = " << st.view().state.time << " s";
+  const double y1 = st.view().state.measure[0].displacement()[1];
   ASSERT_EQ(run_to(st, 0.8), "ok");
-  const double y2 = st.displacement_at(st.measure_points()[0])[1];
+  const double y2 = st.view().state.measure[0].displacement()[1];
   std::printf("order 1, dropped block: at 0.6 s %.6f m, at 0.8 s %.6f m (the gap was 0.2 m), penetration %.2e m, "
               "%zu Newton iterations, %zu cuts\n",
-              y1, y2, st.max_penetration(), st.open_close_iterations(), st.time_step_cuts());
+              y1, y2, st.view().state.max_penetration, st.view().state.iterations, st.view().state.cuts);
   EXPECT_NEAR(y2, -0.2, 1e-3) << "it lands on the base";
   EXPECT_LT(std::abs(y2 - y1), 1e-4) << "and stays there";
-  EXPECT_LT(st.max_penetration(), 1e-3);
+  EXPECT_LT(st.view().state.max_penetration, 1e-3);
 }
 
 TEST(ContactOrders, BlockRestingTwoSecondsKeepsItsEnergyBoundedAtOrderOne) {
@@ -259,23 +260,23 @@ TEST(ContactOrders, SliverCoversBesideAJointStayTiedAndAtRestAtOrderOne) {
   s.measure_points = {{1.5, 1.75}, {2.5, 1.75}, {1.5, 1.1}, {2.5, 1.1}};
   const Mesh m = pre::build_mesh(s, "sliver");
   TimeStepper st(m, s, "sliver");
-  ASSERT_GT(st.cover_unknowns().tied, 0u) << "the scene must tie sliver covers";
+  ASSERT_GT(st.view().space.ties().tied, 0u) << "the scene must tie sliver covers";
   ASSERT_EQ(run_to(st, 0.2), "ok");
   double moved = 0;
-  for (const TrackedPoint& p : st.measure_points()) {
-    const auto u = st.displacement_at(p);
+  for (const TrackedPoint& p : st.view().state.measure) {
+    const auto u = p.displacement();
     moved = std::max(moved, std::hypot(u[0], u[1]));
   }
   double vmax = 0;
   for (std::size_t c = 0; c < m.cover_count(); ++c)  // constant terms: the covers' own speed
-    vmax = std::max(vmax, std::hypot(st.velocity()[st.space().dofs_per_cover() * c],
-                                     st.velocity()[st.space().dofs_per_cover() * c + 1]));
+    vmax = std::max(vmax, std::hypot(st.view().state.velocity[st.view().space.dofs_per_cover() * c],
+                                     st.view().state.velocity[st.view().space.dofs_per_cover() * c + 1]));
   std::printf("order 1, slit beside nodes: %zu covers tied, measure points moved %.3e m, largest cover speed %.3e m/s, "
               "%zu contacts closed, penetration %.2e m\n",
-              st.cover_unknowns().tied, moved, vmax, st.contacts().closed_count(), st.max_penetration());
+              st.view().space.ties().tied, moved, vmax, st.view().contacts.closed_count(), st.view().state.max_penetration);
   EXPECT_LT(moved, 1e-4) << "the bodies rest where they were put, m";
   EXPECT_LT(vmax, 1e-3) << "m/s";
-  EXPECT_GT(st.contacts().closed_count(), 0u);
+  EXPECT_GT(st.view().contacts.closed_count(), 0u);
 }
 
 // Accepted steps of Δt = 1 ms with Shi's step control (a failed attempt is redone with Δt × 0.3,
@@ -306,19 +307,19 @@ TEST(ContactOrders, RestartWithContactsSlidingIsBitwiseAtOrderOne) {
   TimeStepper first(m, s, "restart");
   ASSERT_GE(advance(first, 30, dt), 0);
   std::size_t sliding = 0;
-  for (const Contact& c : first.contacts().contacts()) sliding += c.state == ContactState::sliding ? 1 : 0;
+  for (const Contact& c : first.view().contacts.contacts()) sliding += c.state == ContactState::sliding ? 1 : 0;
   ASSERT_GT(sliding, 0u) << "the checkpoint must catch contacts sliding";
   const std::string path = ::testing::TempDir() + "/contacts_order1.nmmstate";
-  first.write_checkpoint(path);
+  write_checkpoint(first.view(), path);
   TimeStepper second(m, s, "restart");
   second.restart_from(path);
   ASSERT_GE(advance(second, 30, dt), 0);
   std::printf("order 1 restart: %zu contacts sliding at the checkpoint, %d cuts in the straight run; hashes %s / %s\n", sliding,
-              cuts, straight.state_hash().substr(0, 12).c_str(),
-              second.state_hash().substr(0, 12).c_str());
-  EXPECT_EQ(second.state_hash(), straight.state_hash());
-  EXPECT_NE(first.state_hash(), straight.state_hash());
-  EXPECT_EQ(second.time(), straight.time());
+              cuts, state_hash(straight.view()).substr(0, 12).c_str(),
+              state_hash(second.view()).substr(0, 12).c_str());
+  EXPECT_EQ(state_hash(second.view()), state_hash(straight.view()));
+  EXPECT_NE(state_hash(first.view()), state_hash(straight.view()));
+  EXPECT_EQ(second.view().state.time, straight.view().state.time);
 }
 
 }  // namespace

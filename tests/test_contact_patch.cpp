@@ -173,7 +173,7 @@ PatchResult run_patch(const Case& c, double seconds) {
   PatchResult r;
   r.status = st.run_until(seconds, [](std::int64_t) {});
   const Expected e = expected(c);
-  for (const Contact& k : st.contacts().contacts()) {
+  for (const Contact& k : st.view().contacts.contacts()) {
     if (k.state == ContactState::open) continue;
     ++r.closed;
     r.length += k.length;
@@ -182,10 +182,10 @@ PatchResult run_patch(const Case& c, double seconds) {
     if (c.tau != 0) r.worst_t = std::max(r.worst_t, std::abs(std::abs(k.shear_force) / k.length - c.tau) / c.tau);
     r.worst_closure = std::max(r.worst_closure, std::abs(-k.gap - e.closure) / e.closure);
   }
-  const auto& mp = st.measure_points();
+  const auto& mp = st.view().state.measure;
   for (int i = 0; i < 3; ++i) {
-    const auto a = st.displacement_at(mp[static_cast<std::size_t>(2 * i)]);
-    const auto b = st.displacement_at(mp[static_cast<std::size_t>(2 * i + 1)]);
+    const auto a = (mp[static_cast<std::size_t>(2 * i)]).displacement();
+    const auto b = (mp[static_cast<std::size_t>(2 * i + 1)]).displacement();
     r.closure[i] = b[1] - a[1];
     r.shear[i] = a[0] - b[0];
   }
@@ -337,17 +337,17 @@ TEST(ContactPatch, TwoBlocksPressedTogetherInUniaxialStrain) {
       ASSERT_EQ(status, "ok") << what;
       std::size_t closed = 0, all = 0;
       double length = 0;
-      for (const Contact& c : st.contacts().contacts()) {
+      for (const Contact& c : st.view().contacts.contacts()) {
         ++all;
         if (c.state == ContactState::open) continue;
         ++closed;
         length += c.length;
       }
-      const auto& mp = st.measure_points();
+      const auto& mp = st.view().state.measure;
       double jump[3];
       for (int i = 0; i < 3; ++i)
-        jump[i] = st.displacement_at(mp[static_cast<std::size_t>(2 * i + 1)])[1] -
-                  st.displacement_at(mp[static_cast<std::size_t>(2 * i)])[1];
+        jump[i] = (mp[static_cast<std::size_t>(2 * i + 1)]).displacement()[1] -
+                  (mp[static_cast<std::size_t>(2 * i)]).displacement()[1];
       std::printf("%-48s %zu of %zu contacts closed over %.6f m; closure middle %+.3f %%, ends %+.3f / %+.3f %%\n",
                   what, closed, all, length, 100 * (jump[0] - want) / want, 100 * (jump[1] - want) / want,
                   100 * (jump[2] - want) / want);

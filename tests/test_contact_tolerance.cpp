@@ -35,13 +35,13 @@ Slide slide(double tau) {
   TimeStepper st(m, s, "tilted");
   EXPECT_EQ(st.run_until(1.0, [](std::int64_t) {}), "ok");
   Slide r;
-  r.along = st.displacement_at(st.measure_points()[0])[0];
-  r.newton = st.contact_solve_stats().newton;
-  r.force_tol = st.contact_solve_stats().max_force_tolerance;
-  r.gap_error = st.contact_solve_stats().max_gap_error;
-  r.u_error = st.contact_solve_stats().max_displacement_error;
-  r.checks = st.contact_solve_stats().displacement_checks;
-  for (const Contact& c : st.contacts().contacts())
+  r.along = st.view().state.measure[0].displacement()[0];
+  r.newton = st.view().contact_solve.newton;
+  r.force_tol = st.view().contact_solve.max_force_tolerance;
+  r.gap_error = st.view().contact_solve.max_gap_error;
+  r.u_error = st.view().contact_solve.max_displacement_error;
+  r.checks = st.view().contact_solve.displacement_checks;
+  for (const Contact& c : st.view().contacts.contacts())
     r.max_force = std::max({r.max_force, std::abs(c.normal_force), std::abs(c.shear_force)});
   return r;
 }
@@ -91,8 +91,8 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
   const Mesh m = pre::build_mesh(s, "joint");
   TimeStepper st(m, s, "joint");
   ASSERT_EQ(st.run_until(0.1, [](std::int64_t) {}), "ok");
-  const ContactSolveStats& cs = st.contact_solve_stats();
-  const double u_tol = displacement_tolerance(1e-3, st.model().w0());
+  const ContactSolveStats& cs = st.view().contact_solve;
+  const double u_tol = displacement_tolerance(1e-3, st.view().model.w0());
   std::printf("checks %ld, refused %ld, largest accepted %.3e m, tolerance %.3e m\n", cs.displacement_checks,
               cs.displacement_refusals, cs.max_displacement_error, u_tol);
   EXPECT_GT(cs.displacement_checks, 0);

@@ -8,6 +8,8 @@
 #include <Eigen/Dense>
 
 #include "preprocess/cover_cutter.h"
+#include "solver/time_stepper_probe.h"
+#include "solver/restart.h"
 #include "solver/cover_space.h"
 #include "common/error.h"
 #include "solver/element_integration.h"
@@ -164,8 +166,8 @@ TEST(CoverSpace, RankOfTheFreeStiffnessMatrix) {
     s.bodies[0].outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
     const Mesh m = pre::build_mesh(s, "rank");
     TimeStepper st(m, s, "rank");
-    st.assemble_rhs(1.0);
-    const SystemMatrix::Sparse full = st.system().matrix().selfadjointView<Eigen::Lower>();
+    TimeStepperProbe::assemble_rhs(st, 1.0);
+    const SystemMatrix::Sparse full = st.view().system.matrix().selfadjointView<Eigen::Lower>();
     const Eigen::VectorXd ev =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(full), Eigen::EigenvaluesOnly).eigenvalues();
     const double top = ev.maxCoeff();
@@ -179,15 +181,15 @@ TEST(CoverSpace, RankOfTheFreeStiffnessMatrix) {
         smallest_kept = std::min(smallest_kept, ev[i]);
       }
     }
-    const int dependent = 2 * field_null_dimension(m, st.space());
+    const int dependent = 2 * field_null_dimension(m, st.view().space);
     std::printf("order %d: %d unknowns, rank %d, %d zero eigenvalues = 3 rigid + %d dependent "
                 "(largest |λ| of them %.1e, smallest kept %.1e of the largest)\n",
-                order, st.unknowns(), st.unknowns() - zero, zero, dependent,
+                order, st.view().space.unknowns(), st.view().space.unknowns() - zero, zero, dependent,
                 largest_zero / top, smallest_kept / top);
     EXPECT_EQ(zero, 3 + dependent) << "order " << order;
-    EXPECT_EQ(st.unknowns() - zero, st.unknowns() - 3 - dependent);
+    EXPECT_EQ(st.view().space.unknowns() - zero, st.view().space.unknowns() - 3 - dependent);
     EXPECT_EQ(dependent, order == 0 ? 0 : order == 1 ? 6 : 16);  // measured: 4 + 2, 12 + 4
-    EXPECT_LE(dependent, order == 0 ? 0 : st.unknowns());
+    EXPECT_LE(dependent, order == 0 ? 0 : st.view().space.unknowns());
     EXPECT_GT(smallest_kept, 1e4 * largest_zero) << "a clear gap above the null space";
   }
 }
@@ -206,12 +208,12 @@ TEST(CoverSpace, RemoveNullPartTakesOutZeroFieldCombinationsOnly) {
     s.gravity = {0, -9.81};
     const Mesh m = pre::build_mesh(s, "null");
     TimeStepper st(m, s, "null");
-    ASSERT_EQ(st.cover_unknowns().tied, 0u);
+    ASSERT_EQ(st.view().space.ties().tied, 0u);
     st.step(1e-3);  // leaves the factorisation of this step's matrix
-    const SystemMatrix& sys = st.system();
+    const SystemMatrix& sys = st.view().system;
     ASSERT_TRUE(sys.has_factor());
     const SystemMatrix::Sparse a = sys.matrix().selfadjointView<Eigen::Lower>();
-    const CoverSpace& sp = st.space();
+    const CoverSpace& sp = st.view().space;
     const Eigen::Index n = sp.unknowns();
     Eigen::VectorXd z = Eigen::VectorXd::Zero(n), x(n);
     for (std::size_t c = 0; c < m.cover_count(); ++c) z[sp.first_unknown(c) + 2] = 1.0;  // term 1 = ξ, x
@@ -272,10 +274,10 @@ TEST(CoverSpace, QuadraticFieldIsExactAtOrderOne) {
 
   const Mesh m = pre::build_mesh(s, "patch2");
   TimeStepper st(m, s, "patch2");
-  const CoverSpace& sp = st.space();
+  const CoverSpace& sp = st.view().space;
   ASSERT_EQ(sp.dofs_per_cover(), 6);
   const double h = sp.scale();
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(st.unknowns());
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(st.view().space.unknowns());
   for (std::size_t cv = 0; cv < m.cover_count(); ++cv) {
     if (sp.basis_cover(cv) != static_cast<int>(cv)) continue;
     const double x = m.node_xy[2 * m.cover_node[cv]], y = m.node_xy[2 * m.cover_node[cv] + 1];
@@ -287,13 +289,13 @@ TEST(CoverSpace, QuadraticFieldIsExactAtOrderOne) {
     }
   }
   // The field at every loop vertex, before the update moves them.
-  std::vector<double> xy0 = st.loop_xy();
-  st.impose_displacement(d);
+  std::vector<double> xy0 = st.view().state.loop_xy;
+  TimeStepperProbe::impose_displacement(st, d);
   double worst_u = 0, umax = 0;
   for (std::size_t v = 0; v < xy0.size() / 2; ++v)
     for (int dir = 0; dir < 2; ++dir) {
       const double exact = u(xy0[2 * v], xy0[2 * v + 1], dir);
-      worst_u = std::max(worst_u, std::abs(st.loop_xy()[2 * v + dir] - xy0[2 * v + dir] - exact));
+      worst_u = std::max(worst_u, std::abs(st.view().state.loop_xy[2 * v + dir] - xy0[2 * v + dir] - exact));
       umax = std::max(umax, std::abs(exact));
     }
   // Round-off of positions (≈ 1e-16 m) against u ≈ 1e-7 m; a Taylor-gradient (not ½∇q)
@@ -308,7 +310,7 @@ TEST(CoverSpace, QuadraticFieldIsExactAtOrderOne) {
       const std::int32_t c0 = m.element_covers[3 * e];
       const double sx = x + u(m.node_xy[2 * m.cover_node[c0]], m.node_xy[2 * m.cover_node[c0] + 1], 0);
       const double sy = y + u(m.node_xy[2 * m.cover_node[c0]], m.node_xy[2 * m.cover_node[c0] + 1], 1);
-      const auto got = st.stress_at(e, sx, sy);
+      const auto got = stress_at(st.view(), e, sx, sy);
       const Vec3 want = D * strain(x, y);
       for (int r = 0; r < 3; ++r) {
         worst_s = std::max(worst_s, std::abs(got[r] - want[r]));
@@ -317,7 +319,7 @@ TEST(CoverSpace, QuadraticFieldIsExactAtOrderOne) {
     }
   EXPECT_LT(worst_s, 1e-9 * smax) << "σ = D ε(x) exactly";
   // Equilibrium of interior covers, all six unknowns.
-  const auto [worst_r, interior] = interior_residual(m, sp, st.assemble_rhs(1.0));
+  const auto [worst_r, interior] = interior_residual(m, sp, TimeStepperProbe::assemble_rhs(st, 1.0));
   const double scale = smax * s.mesh_size;
   EXPECT_GT(interior, 20);
   // The geometry moved by u (≤ 4e-7 m), which perturbs the residual by about u/h relative.
@@ -398,10 +400,10 @@ TEST(CoverSpace, CubicFieldIsExactAtOrderTwo) {
   };
   const Mesh m = pre::build_mesh(s, "patch3");
   TimeStepper st(m, s, "patch3");
-  const CoverSpace& sp = st.space();
+  const CoverSpace& sp = st.view().space;
   ASSERT_EQ(sp.dofs_per_cover(), 12);
   const double h = sp.scale();
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(st.unknowns());
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(st.view().space.unknowns());
   for (std::size_t cv = 0; cv < m.cover_count(); ++cv) {
     if (sp.basis_cover(cv) != static_cast<int>(cv)) continue;
     const double X = m.node_xy[2 * m.cover_node[cv]], Y = m.node_xy[2 * m.cover_node[cv] + 1];
@@ -418,13 +420,13 @@ TEST(CoverSpace, CubicFieldIsExactAtOrderTwo) {
       for (int j = 0; j < 6; ++j) d[f + 2 * j + dir] = c[j];
     }
   }
-  std::vector<double> xy0 = st.loop_xy();
-  st.impose_displacement(d);
+  std::vector<double> xy0 = st.view().state.loop_xy;
+  TimeStepperProbe::impose_displacement(st, d);
   double worst_u = 0, umax = 0;
   for (std::size_t v = 0; v < xy0.size() / 2; ++v)
     for (int dir = 0; dir < 2; ++dir) {
       const double exact = u[dir](xy0[2 * v], xy0[2 * v + 1]);
-      worst_u = std::max(worst_u, std::abs(st.loop_xy()[2 * v + dir] - xy0[2 * v + dir] - exact));
+      worst_u = std::max(worst_u, std::abs(st.view().state.loop_xy[2 * v + dir] - xy0[2 * v + dir] - exact));
       umax = std::max(umax, std::abs(exact));
     }
   EXPECT_LT(worst_u, 1e-8 * umax) << "the cubic field is reproduced at every loop vertex";
@@ -436,14 +438,14 @@ TEST(CoverSpace, CubicFieldIsExactAtOrderTwo) {
       const double x = m.loop_xy[2 * v], y = m.loop_xy[2 * v + 1];
       const std::int32_t c0 = m.element_covers[3 * e];
       const double nx = m.node_xy[2 * m.cover_node[c0]], ny = m.node_xy[2 * m.cover_node[c0] + 1];
-      const auto got = st.stress_at(e, x + u[0](nx, ny), y + u[1](nx, ny));
+      const auto got = stress_at(st.view(), e, x + u[0](nx, ny), y + u[1](nx, ny));
       for (int r = 0; r < 3; ++r) {
         worst_s = std::max(worst_s, std::abs(got[r] - sig[r](x, y)));
         smax = std::max(smax, std::abs(sig[r](x, y)));
       }
     }
   EXPECT_LT(worst_s, 1e-9 * smax) << "σ = D ε(x) exactly (quadratic)";
-  const auto [worst_r, interior] = interior_residual(m, sp, st.assemble_rhs(1.0));
+  const auto [worst_r, interior] = interior_residual(m, sp, TimeStepperProbe::assemble_rhs(st, 1.0));
   const double scale = smax * s.mesh_size;
   EXPECT_GT(interior, 10);
   std::printf("cubic patch at n = 2: displacement error %.2e, stress error %.2e (relative), worst "
@@ -459,9 +461,9 @@ TEST(CoverSpace, LinearFieldIsExactAtOrderZeroAndTwo) {
     SceneDef s = plate(0.2, order);
     const Mesh m = pre::build_mesh(s, "patch");
     TimeStepper st(m, s, "patch");
-    const CoverSpace& sp = st.space();
+    const CoverSpace& sp = st.view().space;
     const double exx = 1e-4, eyy = -3e-5, gxy = 5e-5, h = sp.scale();
-    Eigen::VectorXd d = Eigen::VectorXd::Zero(st.unknowns());
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(st.view().space.unknowns());
     for (std::size_t cv = 0; cv < m.cover_count(); ++cv) {
       if (sp.basis_cover(cv) != static_cast<int>(cv)) continue;
       const double x = m.node_xy[2 * m.cover_node[cv]], y = m.node_xy[2 * m.cover_node[cv] + 1];
@@ -475,10 +477,10 @@ TEST(CoverSpace, LinearFieldIsExactAtOrderZeroAndTwo) {
         d[f + 5] = h * eyy;
       }
     }
-    st.impose_displacement(d);
+    TimeStepperProbe::impose_displacement(st, d);
     const Mat3 D = elasticity_matrix(s.materials[0], s.plane);
     const Vec3 sigma = D * Vec3(exx, eyy, gxy);
-    const std::vector<double> mean = st.mean_stress();
+    const std::vector<double> mean = mean_stress(st.view());
     for (std::size_t e = 0; e < m.element_count(); ++e)
       for (int i = 0; i < 3; ++i) ASSERT_NEAR(mean[3 * e + i], sigma[i], 1e-9 * sigma.norm()) << "element " << e;
   }
@@ -500,15 +502,15 @@ TEST(CoverSpace, FreeFallIsExactAtOrderOne) {
   const Mesh m = pre::build_mesh(s, "fall");
   TimeStepper st(m, s, "fall");
   for (int i = 0; i < 100; ++i) st.step(0.01);
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  const auto u = st.view().state.measure[0].displacement();
   EXPECT_NEAR(u[1], -0.5 * 9.81 * 1.0, 1e-9 * 4.905);
   EXPECT_NEAR(u[0], 0, 1e-10);
   double smax = 0;
-  for (double x : st.mean_stress()) smax = std::max(smax, std::abs(x));
+  for (double x : mean_stress(st.view())) smax = std::max(smax, std::abs(x));
   EXPECT_LT(smax, 1e-3) << "Pa: a falling body carries no stress";
   // Every loop vertex fell the same.
-  for (std::size_t v = 1; v < st.loop_xy().size(); v += 2)
-    EXPECT_NEAR(st.loop_xy()[v] - m.loop_xy[v], -4.905, 1e-8);
+  for (std::size_t v = 1; v < st.view().state.loop_xy.size(); v += 2)
+    EXPECT_NEAR(st.view().state.loop_xy[v] - m.loop_xy[v], -4.905, 1e-8);
 }
 
 TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
@@ -534,14 +536,14 @@ TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
     s.insitu_stress.gxx = 4e5;
     const Mesh m = pre::build_mesh(s, "energy");
     TimeStepper st(m, s, "energy");
-    EnergyMeter meter(st.model(), &st.space());
+    EnergyMeter meter(st.view().model, &st.view().space);
     const Mat3 C = elasticity_matrix(s.materials[0], s.plane).inverse();
     auto u_density = [&](double y) {  // ½ σᵀ C σ per unit area at height y
       const Vec3 sg(-3e6 + (1 - y) * 4e5, -5e6 + (1 - y) * -2.5e5, 1e6);
       return 0.5 * sg.dot(C * sg);
     };
     const double want = 2.0 * (u_density(0) + 4 * u_density(0.5) + u_density(1)) / 6;
-    const EnergyRow r = meter.state_terms(st.state(), {});
+    const EnergyRow r = meter.state_terms(st.view().state, {});
     std::printf("n = %d: strain energy %.9e J/m, exact %.9e\n", order, r.strain, want);
     EXPECT_NEAR(r.strain, want, 1e-12 * want) << "order " << order;
     EXPECT_EQ(r.kinetic, 0.0);
@@ -550,9 +552,9 @@ TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
     s.has_gravity = true;
     s.gravity = {0, -9.81};
     TimeStepper fall(m, s, "fall");
-    EnergyMeter fmeter(fall.model(), &fall.space());
+    EnergyMeter fmeter(fall.view().model, &fall.view().space);
     for (int i = 0; i < 50; ++i) fall.step(0.02);
-    const EnergyRow f = fmeter.state_terms(fall.state(), {});
+    const EnergyRow f = fmeter.state_terms(fall.view().state, {});
     const double mass = 2500 * 2.0, v = 9.81 * 1.0;
     std::printf("n = %d: after 1 s of free fall K = %.9e, V = %.9e J/m (½mv² = %.9e)\n", order,
                 f.kinetic, f.gravity, 0.5 * mass * v * v);
@@ -579,7 +581,7 @@ TEST(CoverSpace, RollersAndTractionGiveUniformStressAtOrderOneAndTwo) {
     const Mesh m = pre::build_mesh(s, "column");
     TimeStepper st(m, s, "column");
     st.step(1.0);
-    const std::vector<double> mean = st.mean_stress();
+    const std::vector<double> mean = mean_stress(st.view());
     double worst = 0;
     for (std::size_t e = 0; e < m.element_count(); ++e) {
       worst = std::max(worst, std::abs(mean[3 * e] - 0));
@@ -590,7 +592,7 @@ TEST(CoverSpace, RollersAndTractionGiveUniformStressAtOrderOneAndTwo) {
     // The top shortens by σ·L/E = 1e6·2/1e10 = 0.2 mm, and the bottom roller gives way by
     // p/k_s with k_s = 100·E/h (boundary_conditions.h): 0.3 µm.
     double dy = 0;
-    for (std::size_t v = 1; v < st.loop_xy().size(); v += 2) dy = std::min(dy, st.loop_xy()[v] - m.loop_xy[v]);
+    for (std::size_t v = 1; v < st.view().state.loop_xy.size(); v += 2) dy = std::min(dy, st.view().state.loop_xy[v] - m.loop_xy[v]);
     EXPECT_NEAR(dy, -(2e-4 + 1e6 / (100 * 1e10 / 0.3)), 1e-9) << "order " << order;
   }
 }
@@ -614,14 +616,14 @@ TEST(CoverSpace, CheckpointRestartIsBitwiseAtOrderOneAndRefusedAtAnotherOrder) {
   TimeStepper first(m, s, "ckpt");
   for (int i = 0; i < 3; ++i) first.step(1e-3);
   const std::string path = ::testing::TempDir() + "/order1.nmmstate";
-  first.write_checkpoint(path);
+  write_checkpoint(first.view(), path);
   TimeStepper second(m, s, "ckpt");
   second.restart_from(path);
   for (int i = 0; i < 3; ++i) second.step(1e-3);
-  EXPECT_EQ(second.state_hash(), straight.state_hash());
+  EXPECT_EQ(state_hash(second.view()), state_hash(straight.view()));
   // The tip has moved (the run is not trivially at rest).
   double umax = 0;
-  for (double u : straight.cover_displacement()) umax = std::max(umax, std::abs(u));
+  for (double u : straight.view().state.cover_u) umax = std::max(umax, std::abs(u));
   EXPECT_GT(umax, 1e-9);
   // The same checkpoint into an order-0 run of the same mesh: refused, naming the orders.
   const SceneDef s0 = scene(0);

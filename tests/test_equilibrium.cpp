@@ -64,9 +64,9 @@ Sliding slide(bool dynamic, double t) {
   EXPECT_EQ(st.run_until(t, [](std::int64_t) {}), "ok");
   const double expected = c.block_fraction * c.accel / 9.81;
   std::printf("sliding block (%s): mean ratio %.6g (closed form %.6g), max %.4g, velocity %.5g m/s\n",
-              dynamic ? "dynamic" : "static", st.equilibrium().mean_ratio, expected,
-              st.equilibrium().max_ratio, st.equilibrium().max_velocity);
-  return {st.equilibrium(), expected, c.accel};
+              dynamic ? "dynamic" : "static", st.view().equilibrium.mean_ratio, expected,
+              st.view().equilibrium.max_ratio, st.view().equilibrium.max_velocity);
+  return {st.view().equilibrium, expected, c.accel};
 }
 
 TEST(Equilibrium, SlidingBlockIsMovingWithTheClosedFormsRatioAndVelocity) {
@@ -97,7 +97,7 @@ TEST(Equilibrium, BlockHeldByFrictionIsAtRestDynamicAndStatic) {
     Incline c = incline(40, dynamic);
     TimeStepper st(c.mesh, c.scene, "incline");
     ASSERT_EQ(st.run_until(0.1, [](std::int64_t) {}), "ok");
-    const EquilibriumSample& e = st.equilibrium();
+    const EquilibriumSample& e = st.view().equilibrium;
     std::printf("held block (%s): max ratio %.3g, mean %.3g, velocity %.3g m/s\n",
                 dynamic ? "dynamic" : "static", e.max_ratio, e.mean_ratio, e.max_velocity);
     EXPECT_LT(e.max_ratio, 1e-5);
@@ -111,14 +111,14 @@ TEST(Equilibrium, StopAtRatioEndsAStaticRunAtTheFirstStepBelowIt) {
   c.scene.solver.stop_at_ratio = 1e-6;
   TimeStepper st(c.mesh, c.scene, "incline");
   std::vector<double> ratios;
-  ASSERT_EQ(st.run_until(1.0, [&](std::int64_t) { ratios.push_back(st.equilibrium().max_ratio); }), "ok");
+  ASSERT_EQ(st.run_until(1.0, [&](std::int64_t) { ratios.push_back(st.view().equilibrium.max_ratio); }), "ok");
   std::printf("stop_at_ratio 1e-6: stopped after %zu steps at ratio %.3g\n", ratios.size(), ratios.back());
-  EXPECT_TRUE(st.stopped_at_ratio());
+  EXPECT_TRUE(st.view().stopped_at_ratio);
   ASSERT_GE(ratios.size(), 2u);
   EXPECT_LT(ratios.size(), 100u) << "stopped early (the run asked for 1000 steps)";
   EXPECT_LT(ratios.back(), 1e-6);
   for (std::size_t i = 0; i + 1 < ratios.size(); ++i) EXPECT_GE(ratios[i], 1e-6) << "step " << i + 1;
-  EXPECT_LT(st.time(), 0.1);
+  EXPECT_LT(st.view().state.time, 0.1);
 }
 
 TEST(Equilibrium, EquilibriumModeMeasuresTheForceEachSolveBalanced) {
@@ -132,7 +132,7 @@ TEST(Equilibrium, EquilibriumModeMeasuresTheForceEachSolveBalanced) {
   const Mesh mesh = pre::build_mesh(scene, "column");
   TimeStepper st(mesh, scene, "column");
   std::vector<EquilibriumSample> steps;
-  ASSERT_EQ(st.run_until(4 * scene.solver.time_step, [&](std::int64_t) { steps.push_back(st.equilibrium()); }), "ok");
+  ASSERT_EQ(st.run_until(4 * scene.solver.time_step, [&](std::int64_t) { steps.push_back(st.view().equilibrium); }), "ok");
   ASSERT_EQ(steps.size(), 4u);
   std::printf("hanging column, equilibrium mode: mean ratio %.9f at step 1, max ratio %.3g at step 4\n",
               steps[0].mean_ratio, steps[3].max_ratio);

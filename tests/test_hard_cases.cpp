@@ -118,17 +118,17 @@ class Monitor {
   // Call after every accepted step.
   void sample(const TimeStepper& st) {
     ++samples_;
-    if (finite_ && !(all_finite(st.velocity()) && all_finite(st.stress()) &&
-                     all_finite(st.loop_xy()) && all_finite(st.cover_displacement()))) {
+    if (finite_ && !(all_finite(st.view().state.velocity) && all_finite(st.view().state.stress) &&
+                     all_finite(st.view().state.loop_xy) && all_finite(st.view().state.cover_u))) {
       finite_ = false;
-      first_bad_time_ = st.time();
+      first_bad_time_ = st.view().state.time;
     }
-    const double ke = kinetic_energy(st.velocity());
-    const double w = gravity_work(st.cover_displacement());
+    const double ke = kinetic_energy(st.view().state.velocity);
+    const double w = gravity_work(st.view().state.cover_u);
     max_ke_ = std::max(max_ke_, ke);
     if (ke - w > max_excess_) {
       max_excess_ = ke - w;
-      excess_time_ = st.time();
+      excess_time_ = st.view().state.time;
       excess_ke_ = ke;
       excess_w_ = w;
     }
@@ -178,7 +178,7 @@ class Monitor {
 };
 
 double max_speed(const TimeStepper& st) {
-  const auto& v = st.velocity();
+  const auto& v = st.view().state.velocity;
   double s = 0;
   for (std::size_t i = 0; i + 1 < v.size(); i += 2) s = std::max(s, std::hypot(v[i], v[i + 1]));
   return s;
@@ -195,13 +195,13 @@ std::string run_to(TimeStepper& st, Monitor& mon, double t) {
 void expect_sound(const TimeStepper& st, const Monitor& mon, double block_size, const char* what) {
   EXPECT_TRUE(mon.finite()) << what << ": a non-finite velocity, stress or vertex at t = "
                             << mon.first_bad_time() << " s";
-  EXPECT_TRUE(all_finite(st.velocity()) && all_finite(st.stress()) && all_finite(st.loop_xy()))
+  EXPECT_TRUE(all_finite(st.view().state.velocity) && all_finite(st.view().state.stress) && all_finite(st.view().state.loop_xy))
       << what;
   EXPECT_GT(mon.samples(), 0u) << what << ": no step was accepted";
   EXPECT_LE(mon.max_excess(), mon.tolerance(std::max(mon.excess_ke(), std::abs(mon.excess_w()))))
       << what << ": kinetic energy " << mon.excess_ke() << " J exceeds the work of gravity "
       << mon.excess_w() << " J at t = " << mon.excess_time() << " s";
-  EXPECT_LT(st.max_penetration(), 1e-3 * block_size) << what << ": penetration, m";
+  EXPECT_LT(st.view().state.max_penetration, 1e-3 * block_size) << what << ": penetration, m";
 }
 
 void print_energy(const char* what, const Monitor& mon) {
@@ -223,11 +223,11 @@ TEST(HardCases, PenaltyFromOneToTenThousandTimesE) {
     TimeStepper st(m, s, "penalty");
     Monitor mon(m, s);
     const std::string status = run_to(st, mon, 0.2);
-    const auto u = st.displacement_at(st.measure_points()[0]);
+    const auto u = st.view().state.measure[0].displacement();
     std::printf("kn = %6g E: status %s; block moved (%.3e, %.3e) m; max speed %.3e m/s; max "
                 "penetration %.3e m; %zu cuts, %zu iterations\n",
-                factor, status.c_str(), u[0], u[1], max_speed(st), st.max_penetration(),
-                st.time_step_cuts(), st.open_close_iterations());
+                factor, status.c_str(), u[0], u[1], max_speed(st), st.view().state.max_penetration,
+                st.view().state.cuts, st.view().state.iterations);
     print_energy("energy", mon);
     const std::string what = "kn = " + std::to_string(factor) + " E";
     EXPECT_EQ(status, "ok") << what;
@@ -253,17 +253,17 @@ TEST(HardCases, TimeStepsFarTooLargeAreCutOrStopCleanly) {
     TimeStepper st(m, s, "large_dt");
     Monitor mon(m, s);
     const std::string status = run_to(st, mon, 1.0);
-    const auto u = st.displacement_at(st.measure_points()[0]);
+    const auto u = st.view().state.measure[0].displacement();
     std::printf("dt = %g s: status %s; t = %.4f s; fell %.5f m; max speed at end %.3e m/s; "
                 "penetration %.3e m; %zu cuts, %zu iterations\n",
-                dt, status.c_str(), st.time(), -u[1], max_speed(st), st.max_penetration(),
-                st.time_step_cuts(), st.open_close_iterations());
+                dt, status.c_str(), st.view().state.time, -u[1], max_speed(st), st.view().state.max_penetration,
+                st.view().state.cuts, st.view().state.iterations);
     print_energy("energy", mon);
     const std::string what = "dt = " + std::to_string(dt);
     ASSERT_FALSE(status.empty()) << what;
     expect_sound(st, mon, 1.0, what.c_str());
     if (status == "ok") {
-      EXPECT_GT(st.time_step_cuts(), 0u) << what << ": step control must cut a step this long";
+      EXPECT_GT(st.view().state.cuts, 0u) << what << ": step control must cut a step this long";
       EXPECT_NEAR(u[1], -0.05, 1e-3) << what << ": the block lands on the base";
       EXPECT_LT(std::abs(u[0]), 1e-3) << what;
       EXPECT_LT(max_speed(st), 10 * kRestSpeed) << what << ": and rests there, m/s";
@@ -315,20 +315,20 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
     bool forces_finite = true, state_finite = true;
     double max_closure = 0;
     const std::string status = st.run_until(0.3, [&](std::int64_t) {
-      max_capped = std::max(max_capped, st.contacts().capped_count());
-      state_finite = state_finite && all_finite(st.velocity()) && all_finite(st.stress()) &&
-                     all_finite(st.loop_xy());
-      for (const Contact& c : st.contacts().contacts()) {
+      max_capped = std::max(max_capped, st.view().contacts.capped_count());
+      state_finite = state_finite && all_finite(st.view().state.velocity) && all_finite(st.view().state.stress) &&
+                     all_finite(st.view().state.loop_xy);
+      for (const Contact& c : st.view().contacts.contacts()) {
         forces_finite = forces_finite && std::isfinite(c.normal_force) && std::isfinite(c.shear_force);
         if (c.state != ContactState::open) max_closure = std::max(max_closure, -c.gap);
       }
     });
-    const auto a = st.displacement_at(st.measure_points()[0]);
-    const auto b = st.displacement_at(st.measure_points()[1]);
+    const auto a = st.view().state.measure[0].displacement();
+    const auto b = st.view().state.measure[1].displacement();
     const double closure_mid = b[1] - a[1];
     double closure_end = 0, force_sum = 0;
     std::size_t closed = 0;
-    for (const Contact& c : st.contacts().contacts()) {
+    for (const Contact& c : st.view().contacts.contacts()) {
       if (c.state == ContactState::open) continue;
       ++closed;
       closure_end = std::max(closure_end, -c.gap);
@@ -341,7 +341,7 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
                 "most %zu; %zu cuts\n",
                 sigma_n / 1e6, status.c_str(), closure_mid, closure_mid / vm, want / vm,
                 closure_end / vm, max_closure / vm, closed, force_sum, sigma_n * 2.0,
-                st.contacts().capped_count(), max_capped, st.time_step_cuts());
+                st.view().contacts.capped_count(), max_capped, st.view().state.cuts);
     const std::string what = "sigma_n = " + std::to_string(sigma_n / 1e6) + " MPa";
     ASSERT_FALSE(status.empty());
     EXPECT_EQ(status, "ok") << what;
@@ -370,12 +370,12 @@ TEST(HardCases, StackOfTenBlocksStands) {
   TimeStepper st(m, s, "stack10");
   Monitor mon(m, s);
   const std::string status = run_to(st, mon, 1.0);
-  const auto top = st.displacement_at(st.measure_points()[0]);
-  const auto bottom = st.displacement_at(st.measure_points()[1]);
+  const auto top = st.view().state.measure[0].displacement();
+  const auto bottom = st.view().state.measure[1].displacement();
   std::printf("stack of 10: status %s; top moved (%.3e, %.3e) m, bottom block (%.3e, %.3e) m; "
               "max speed %.3e m/s; penetration %.3e m; %zu cuts, %zu iterations\n",
               status.c_str(), top[0], top[1], bottom[0], bottom[1], max_speed(st),
-              st.max_penetration(), st.time_step_cuts(), st.open_close_iterations());
+              st.view().state.max_penetration, st.view().state.cuts, st.view().state.iterations);
   print_energy("energy", mon);
   EXPECT_EQ(status, "ok");
   expect_sound(st, mon, 0.5, "stack of 10");
@@ -428,7 +428,7 @@ SceneDef node_joint_scene(const NodeJointCase& c, bool wedge_on) {
 // element's covers (weights of the starting configuration; the bodies barely move). Unlike a
 // cover's speed, this is the speed of the rock itself.
 double max_point_speed(const Mesh& m, const TimeStepper& st) {
-  const auto& v = st.velocity();
+  const auto& v = st.view().state.velocity;
   double best = 0;
   for (std::size_t e = 0; e < m.element_count(); ++e) {
     const std::int32_t* c = &m.element_covers[3 * e];
@@ -456,7 +456,7 @@ double max_point_speed(const Mesh& m, const TimeStepper& st) {
 double max_vertex_displacement(const Mesh& m, const TimeStepper& st) {
   double best = 0;
   for (std::size_t i = 0; i < m.loop_xy.size(); i += 2)
-    best = std::max(best, std::hypot(st.loop_xy()[i] - m.loop_xy[i], st.loop_xy()[i + 1] - m.loop_xy[i + 1]));
+    best = std::max(best, std::hypot(st.view().state.loop_xy[i] - m.loop_xy[i], st.view().state.loop_xy[i + 1] - m.loop_xy[i + 1]));
   return best;
 }
 
@@ -482,26 +482,26 @@ NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on, double sliver
   }
   TimeStepper st(m, s, c.name);
   Monitor mon(m, s);
-  r.tied = st.cover_unknowns().tied;
+  r.tied = st.view().space.ties().tied;
   r.status = run_to(st, mon, 0.1);
-  const std::vector<double> half_way = st.loop_xy();
+  const std::vector<double> half_way = st.view().state.loop_xy;
   if (r.status == "ok") r.status = run_to(st, mon, 0.2);
   for (std::size_t i = 0; i < half_way.size(); i += 2)
-    r.drift_speed = std::max(r.drift_speed, std::hypot(st.loop_xy()[i] - half_way[i],
-                                                       st.loop_xy()[i + 1] - half_way[i + 1]) /
-                                                (st.time() - 0.1));
-  r.time = st.time();
+    r.drift_speed = std::max(r.drift_speed, std::hypot(st.view().state.loop_xy[i] - half_way[i],
+                                                       st.view().state.loop_xy[i + 1] - half_way[i + 1]) /
+                                                (st.view().state.time - 0.1));
+  r.time = st.view().state.time;
   r.cover_speed = max_speed(st);
   r.point_speed = max_point_speed(m, st);
   r.moved = max_vertex_displacement(m, st);
-  for (const TrackedPoint& p : st.measure_points()) r.measured = std::max(r.measured, norm(st.displacement_at(p)));
+  for (const TrackedPoint& p : st.view().state.measure) r.measured = std::max(r.measured, norm(p.displacement()));
   std::printf("%s%s: %zu elements (%zu below 1e-6 h^2, smallest %.2e m^2), %zu blocks, %zu "
               "covers tied; status %s; t = %.5f s; speeds: cover %.3e, material point %.3e m/s, "
               "mean over 0.1-0.2 s %.3e m/s; largest vertex displacement %.3e m, measure points "
               "%.3e m; penetration %.3e m; %zu cuts\n",
               c.name, wedge_on ? " + 2-degree wedge" : "", m.element_count(), r.slivers, smallest,
               m.block_count(), r.tied, r.status.c_str(), r.time, r.cover_speed, r.point_speed,
-              r.drift_speed, r.moved, r.measured, st.max_penetration(), st.time_step_cuts());
+              r.drift_speed, r.moved, r.measured, st.view().state.max_penetration, st.view().state.cuts);
   print_energy("energy", mon);
   EXPECT_FALSE(r.status.empty()) << c.name;
   EXPECT_GT(r.slivers, 0u) << c.name << ": the scene must make sliver elements";
@@ -602,8 +602,8 @@ TEST(HardCases, ACornerBetweenTwoBlocksTouchesBoth) {
     ++steps;
     // Corners at (x, 1): which blocks each touches (closed), by the corner's own block.
     std::map<std::int32_t, std::set<std::int32_t>> touched;
-    for (const Contact& k : st.contacts().contacts()) {
-      const double px = st.loop_xy()[2 * k.at.vertex], py = st.loop_xy()[2 * k.at.vertex + 1];
+    for (const Contact& k : st.view().contacts.contacts()) {
+      const double px = st.view().state.loop_xy[2 * k.at.vertex], py = st.view().state.loop_xy[2 * k.at.vertex + 1];
       if (std::hypot(px - x, py - 1) > 1e-3 * s.mesh_size || k.state == ContactState::open) continue;
       touched[m.element_block[k.at.elem_a]].insert(m.element_block[k.at.elem_b]);
     }
@@ -688,10 +688,10 @@ TEST(HardCases, JointAlongMeshEdgesHoldsTheBlockAbove) {
     TimeStepper st(m, s, name);
     Monitor mon(m, s);
     const std::string status = run_to(st, mon, 0.2);
-    const auto top = st.displacement_at(st.measure_points()[0]);
+    const auto top = st.view().state.measure[0].displacement();
     std::printf("%s: status %s; upper block moved (%.3e, %.3e) m; %zu contacts, %zu closed\n", name,
-                status.c_str(), top[0], top[1], st.contacts().contacts().size(),
-                st.contacts().closed_count());
+                status.c_str(), top[0], top[1], st.view().contacts.contacts().size(),
+                st.view().contacts.closed_count());
     EXPECT_EQ(status, "ok") << name;
     expect_sound(st, mon, 1.0, name);
     EXPECT_LT(norm(top), 1e-4) << name << ": the upper block rests on the lower one, m";
@@ -720,9 +720,9 @@ TEST(HardCases, NearParallelJointsAtHalfADegree) {
   std::printf("near-parallel joints: %zu elements, %zu blocks; status %s; max speed %.3e m/s; "
               "penetration %.3e m; %zu cuts, %zu iterations\n",
               m.element_count(), m.block_count(), status.c_str(), max_speed(st),
-              st.max_penetration(), st.time_step_cuts(), st.open_close_iterations());
-  for (std::size_t i = 0; i < st.measure_points().size(); ++i) {
-    const auto u = st.displacement_at(st.measure_points()[i]);
+              st.view().state.max_penetration, st.view().state.cuts, st.view().state.iterations);
+  for (std::size_t i = 0; i < st.view().state.measure.size(); ++i) {
+    const auto u = st.view().state.measure[i].displacement();
     std::printf("  point %zu moved (%.3e, %.3e) m\n", i, u[0], u[1]);
     EXPECT_LT(norm(u), 1e-4) << "point " << i << " rests where it was";
   }
@@ -749,19 +749,19 @@ TEST(HardCases, RestingBlockStaysPutForTwoSeconds) {
   for (double t : {0.5, 1.0, 1.5, 2.0}) {
     status = st.run_until(t, [&](std::int64_t) {
       mon.sample(st);
-      if (st.time() > 0.1) speed_max_late = std::max(speed_max_late, max_speed(st));
+      if (st.view().state.time > 0.1) speed_max_late = std::max(speed_max_late, max_speed(st));
     });
     if (status != "ok") break;
-    at.push_back(st.displacement_at(st.measure_points()[0]));
+    at.push_back(st.view().state.measure[0].displacement());
   }
-  const auto corner = st.displacement_at(st.measure_points()[1]);
+  const auto corner = st.view().state.measure[1].displacement();
   std::printf("resting block, 2 s: status %s; centre moved (%.3e, %.3e) m at 0.5 s, (%.3e, %.3e) "
               "m at 2 s; corner (%.3e, %.3e) m; max speed after 0.1 s %.3e m/s; penetration "
               "%.3e m; %zu cuts, %zu iterations in %zu steps\n",
               status.c_str(), at.empty() ? 0 : at.front()[0], at.empty() ? 0 : at.front()[1],
               at.empty() ? 0 : at.back()[0], at.empty() ? 0 : at.back()[1], corner[0], corner[1],
-              speed_max_late, st.max_penetration(), st.time_step_cuts(),
-              st.open_close_iterations(), mon.samples());
+              speed_max_late, st.view().state.max_penetration, st.view().state.cuts,
+              st.view().state.iterations, mon.samples());
   print_energy("energy", mon);
   ASSERT_EQ(status, "ok");
   expect_sound(st, mon, 1.0, "resting block");
@@ -770,7 +770,7 @@ TEST(HardCases, RestingBlockStaysPutForTwoSeconds) {
   EXPECT_LT(norm(corner), 1e-4) << "nor does it rock";
   EXPECT_LT(std::hypot(at.back()[0] - at.front()[0], at.back()[1] - at.front()[1]), 1e-4)
       << "no drift from 0.5 s to 2 s";
-  EXPECT_LE(st.time_step_cuts(), 20u) << "a resting block needs (almost) no cuts";
+  EXPECT_LE(st.view().state.cuts, 20u) << "a resting block needs (almost) no cuts";
 }
 
 }  // namespace

@@ -195,7 +195,7 @@ TEST(JointLaw, TheWholeJointCarriesTheLoadOnFineMeshes) {
     TimeStepper st(m, s, "joint");
     ASSERT_EQ(st.run_until(0.01, [](std::int64_t) {}), "ok");
     double length = 0, force = 0;
-    for (const Contact& c : st.contacts().contacts())
+    for (const Contact& c : st.view().contacts.contacts())
       if (c.state != ContactState::open) {
         length += c.length;
         force += c.normal_force;

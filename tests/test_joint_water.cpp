@@ -8,6 +8,7 @@
 #include <set>
 
 #include "preprocess/cover_cutter.h"
+#include "solver/time_stepper_probe.h"
 #include "common/scene.h"
 #include "solver/time_stepper.h"
 
@@ -35,12 +36,12 @@ SceneDef square(const std::string& water, bool joint) {
 // Σ of the first step's nodal forces (x, y) over the unknowns of `block` (−1: all), N.
 std::array<double, 2> force_on(const SceneDef& s, const Mesh& m, int block) {
   TimeStepper st(m, s, "water");
-  const Eigen::VectorXd& f = st.assemble_rhs(1e-3);
+  const Eigen::VectorXd& f = TimeStepperProbe::assemble_rhs(st, 1e-3);
   std::set<int> unknowns;
   for (std::size_t e = 0; e < m.element_count(); ++e) {
     if (block >= 0 && m.element_block[e] != block) continue;
-    const int* u = st.space().element_unknowns(e);
-    for (int i = 0; i < st.space().element_dofs(); ++i) unknowns.insert(u[i]);
+    const int* u = st.view().space.element_unknowns(e);
+    for (int i = 0; i < st.view().space.element_dofs(); ++i) unknowns.insert(u[i]);
   }
   std::array<double, 2> sum{0, 0};
   for (int u : unknowns) sum[static_cast<std::size_t>(u % 2)] += f[u];

@@ -26,36 +26,36 @@ TEST(StaticAnalysis, BrickWallSettlesInDdaStaticMode) {
   s.measure_points = {{5.0, 4.75}, {1.25, 4.75}, {9.25, 4.75}};
   const Mesh m = pre::build_mesh(s, "wall");
   TimeStepper st(m, s, "wall");
-  EXPECT_EQ(st.effects()[1], "static_inertia");
+  EXPECT_EQ(run_effects(st.view())[1], "static_inertia");
   ASSERT_EQ(st.run_until(0.05, [](std::int64_t) {}), "ok");
   std::vector<std::array<double, 2>> at50;
-  for (const TrackedPoint& p : st.measure_points()) at50.push_back(st.displacement_at(p));
-  const std::size_t it50 = st.open_close_iterations();
+  for (const TrackedPoint& p : st.view().state.measure) at50.push_back(p.displacement());
+  const std::size_t it50 = st.view().state.iterations;
   ASSERT_EQ(st.run_until(0.1, [](std::int64_t) {}), "ok");
   double more = 0;
   for (std::size_t i = 0; i < at50.size(); ++i) {
-    const auto u = st.displacement_at(st.measure_points()[i]);
+    const auto u = st.view().state.measure[i].displacement();
     more = std::max(more, std::hypot(u[0] - at50[i][0], u[1] - at50[i][1]));
   }
   // Bed joints: contacts on a row boundary y = 0.5·k, away from the wall's ends (the end brick
   // of every other row overhangs by half its length and may tip by a few µm).
   double max_bed_gap = -1;
   std::size_t bed = 0, bed_open = 0;
-  for (const Contact& c : st.contacts().contacts()) {
-    const double y = st.loop_xy()[2 * c.at.vertex + 1];
-    const double x = st.loop_xy()[2 * c.at.vertex];
+  for (const Contact& c : st.view().contacts.contacts()) {
+    const double y = st.view().state.loop_xy[2 * c.at.vertex + 1];
+    const double x = st.view().state.loop_xy[2 * c.at.vertex];
     if (std::abs(2 * y - std::round(2 * y)) > 2e-3 || y < 0.25 || y > 4.75 || x < 1 || x > 9)
       continue;
     ++bed;
     if (c.state == ContactState::open) ++bed_open;
     max_bed_gap = std::max(max_bed_gap, c.gap);
   }
-  const auto top = st.displacement_at(st.measure_points()[0]);
+  const auto top = st.view().state.measure[0].displacement();
   std::printf("static wall 10x10: top settled by %.3e m; moved %.3e m more in steps 51-100; "
               "largest bed-joint gap %.3e m over %zu contacts (%zu open); %.2f iterations per step after "
               "step 50, %zu cuts\n",
-              top[1], more, max_bed_gap, bed, bed_open, (st.open_close_iterations() - it50) / 50.0,
-              st.time_step_cuts());
+              top[1], more, max_bed_gap, bed, bed_open, (st.view().state.iterations - it50) / 50.0,
+              st.view().state.cuts);
   EXPECT_LT(top[1], 0) << "the wall settles under its weight";
   EXPECT_LT(more, 1e-3) << "m: the wall has settled";
   // No bed joint opens: no gap reaches 10 µm. (About 1 µm is reached: faces resting at zero
@@ -93,12 +93,12 @@ TEST(StaticAnalysis, EquilibriumModeHoldsBricksOnTheirTouchingContacts) {
   // can still be singular: a mechanism, which equilibrium mode reports rather than solves.)
   ASSERT_EQ(st.run_until(1e-3, [](std::int64_t) {}), "ok");
   std::size_t sliding = 0;
-  for (const Contact& c : st.contacts().contacts()) sliding += c.state == ContactState::sliding;
-  std::printf("2 x 2 wall, equilibrium: %zu contacts, %zu sliding\n", st.contacts().contacts().size(), sliding);
-  const auto u = st.displacement_at(st.measure_points()[0]);
+  for (const Contact& c : st.view().contacts.contacts()) sliding += c.state == ContactState::sliding;
+  std::printf("2 x 2 wall, equilibrium: %zu contacts, %zu sliding\n", st.view().contacts.contacts().size(), sliding);
+  const auto u = st.view().state.measure[0].displacement();
   EXPECT_LT(std::hypot(u[0], u[1]), 1e-5) << "m: the wall stands on its springs";
   std::size_t open = 0;
-  for (const Contact& c : st.contacts().contacts())
+  for (const Contact& c : st.view().contacts.contacts())
     if (c.state == ContactState::open && c.gap < 0) ++open;
   EXPECT_EQ(open, 0u) << "no overlapping contact is left open";
 }
@@ -112,7 +112,7 @@ TEST(StaticAnalysis, FreeBlockFallsAtMostHalfGDtSquaredPerStep) {
   const Mesh m = pre::build_mesh(s, "drop");
   TimeStepper st(m, s, "drop");
   ASSERT_EQ(st.run_until(0.01, [](std::int64_t) {}), "ok");
-  const double uy = st.displacement_at(st.measure_points()[0])[1];
+  const double uy = st.view().state.measure[0].displacement()[1];
   const double per_step = 0.5 * 9.81 * 1e-3 * 1e-3;
   EXPECT_NEAR(uy, -10 * per_step, 1e-3 * 10 * per_step) << "m after 10 static steps";
 }
