@@ -28,6 +28,19 @@ SceneDef joint_specimen_scene(const std::string& path) {
   return s;
 }
 
+JointSetDef seed_shear_joint() {
+  JointSetDef js;
+  js.name = "joint";
+  js.friction_deg = 30;
+  js.normal.model = NormalModel::bandis_barton;
+  js.normal.kni = 15.35e9;
+  js.normal.vm = 0.227e-3;
+  js.shear.model = ShearModel::hyperbolic;
+  js.shear.ksi = 1e10;
+  js.shear.rf = 0.9;
+  return js;
+}
+
 SceneDef joint_specimen_scene(const JointSetDef& joint, double young, double h) {
   SceneDef s;
   s.materials.push_back({"rock", 2650, young, 0.25});

@@ -21,6 +21,10 @@ SceneDef scene_with_joint_laws(const std::string& path);
 /// measure points, just above and below the joint (InputError naming the key otherwise).
 SceneDef joint_specimen_scene(const std::string& path);
 
+/// The seed paper's joint of the direct-shear study: Bandis–Barton closure (Kni 15.35 GPa/m,
+/// Vm 0.227 mm), hyperbolic shear (Ksi 10 GPa/m, Rf 0.9), φ 30°.
+JointSetDef seed_shear_joint();
+
 /// The specimen built from one joint set (the joint between the blocks, the scene's interface
 /// set), without loads: rock of Young's modulus E (Pa; ν 0.25, 2650 kg/m³, plane stress), mesh
 /// size h (m), the base held along its bottom (fixed points at y = 0.02), measure points 0.1 mm

@@ -76,16 +76,7 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
   // its strength: its tangent is (1 − 0.9·0.9)² = 3.6 % of Ksi, so F_tol moves it 28 times as far
   // as on its initial stiffness. The solve must check the displacement, refuse iterates over
   // 3e-4·τ·w0, and accept none over it.
-  JointSetDef js;
-  js.name = "joint";
-  js.friction_deg = 30;
-  js.normal.model = NormalModel::bandis_barton;
-  js.normal.kni = 15.35e9;
-  js.normal.vm = 0.227e-3;
-  js.shear.model = ShearModel::hyperbolic;
-  js.shear.ksi = 1e10;
-  js.shear.rf = 0.9;
-  SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
+  SceneDef s = reference::joint_specimen_scene(reference::seed_shear_joint(), 5e11, 0.25);
   reference::load_joint_specimen(s, 5e6, 0.9 * 5e6 * std::tan(30 * kPi / 180));
   s.solver.contact_tolerance = 1e-3;
   const Mesh m = pre::build_mesh(s, "joint");

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "preprocess/cover_cutter.h"
+#include "reference/joint_specimen.h"
 #include "solver/joint_law.h"
 #include "studies/joint_specimen_run.h"
 #include "common/math_constants.h"
@@ -116,16 +117,7 @@ struct JointResult {
 SceneDef joint_scene(double sigma_n, double tau, double h) {
   // Rock far stiffer than the joint (500 GPa): the closed forms are about the joint alone, and
   // the point loads' own local deformation must not reach the measuring points.
-  JointSetDef js;
-  js.name = "joint";
-  js.friction_deg = 30;
-  js.normal.model = NormalModel::bandis_barton;
-  js.normal.kni = 15.35e9;
-  js.normal.vm = 0.227e-3;
-  js.shear.model = ShearModel::hyperbolic;
-  js.shear.ksi = 1e10;
-  js.shear.rf = 0.9;
-  SceneDef s = reference::joint_specimen_scene(js, 5e11, h);
+  SceneDef s = reference::joint_specimen_scene(reference::seed_shear_joint(), 5e11, h);
   reference::load_joint_specimen(s, sigma_n, tau);
   return s;
 }
