@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "preprocess/cover_cutter.h"
+#include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
 #include "solver/element_integration.h"
 #include "solver/time_stepper.h"
@@ -281,20 +282,12 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
   // δ = 0.966·Vm at 100 MPa; at 1000 MPa δ would be 0.9965·Vm, above the 0.99·Vm guard, beyond
   // which the force grows linearly with the tangent at the cap (1e4·Kni): the closure may exceed
   // the cap by only (σn − σcap)/(1e4·Kni) = 0.019·Vm (σcap = 99·Kni·Vm = 345 MPa).
-  const double kni = 15.35e9, vm = 0.227e-3;
+  const JointSetDef joint = reference::seed_shear_joint();  // Kni 15.35 GPa/m, Vm 0.227 mm
+  const double kni = joint.normal.kni, vm = joint.normal.vm;
   for (double sigma_n : {100e6, 1000e6}) {
     SceneDef s;
     s.materials.push_back({"rock", 2650, 5e11, 0.25});
-    JointSetDef js;
-    js.name = "joint";
-    js.friction_deg = 30;
-    js.normal.model = NormalModel::bandis_barton;
-    js.normal.kni = kni;
-    js.normal.vm = vm;
-    js.shear.model = ShearModel::hyperbolic;
-    js.shear.ksi = 1e10;
-    js.shear.rf = 0.9;
-    s.joint_sets.push_back(js);
+    s.joint_sets.push_back(joint);
     s.interface_set = 0;
     s.mesh_size = 0.25;
     s.plane = PlaneKind::stress;
