@@ -27,7 +27,9 @@
 // remove the residual, estimated with the kept factorisation, is within u_tol:
 //     ‖P⁻¹r‖∞ ≤ u_tol = 3e-4 · τ · w0                 (contact_solve.h displacement_tolerance)
 // A soft contact (a joint near its strength) turns F_tol into F_tol / k_t, which the force test
-// alone does not bound; a constant spring's error is F_tol / k at most. Not "no contact changed state": a contact touching at zero gap may
+// alone does not bound; a constant spring's error is F_tol / k at most. The estimate is the
+// first step of the CG run that follows a refusal, which takes it over instead of solving again.
+// Not "no contact changed state": a contact touching at zero gap may
 // show either state without moving a force by more than its spring times the gap, and once that
 // is below F_tol it cannot keep a step iterating — the tolerance is the hysteresis of the
 // open–close iteration, in forces rather than in a band of penetration: a contact may carry a
@@ -130,12 +132,16 @@ void precondition(const SystemMatrix& k, const Eigen::VectorXd& r, Eigen::Vector
 }
 
 // Preconditioned CG for H x = r to ‖H x − r‖ ≤ target; false when the budget is spent or H
-// shows a non-positive curvature (then the caller factorises H).
+// shows a non-positive curvature (then the caller factorises H). `first`, if given, is C r
+// already computed (the displacement test's estimate).
 bool pcg(const SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& r, double target,
-         int budget, Eigen::VectorXd& x, ContactSolveStats& stats) {
+         int budget, Eigen::VectorXd& x, ContactSolveStats& stats, const Eigen::VectorXd* first = nullptr) {
   x.setZero(r.size());
   Eigen::VectorXd res = r, z(r.size()), hp(r.size());
-  precondition(k, res, z);
+  if (first)
+    z = *first;
+  else
+    precondition(k, res, z);
   Eigen::VectorXd p = z;
   double rz = res.dot(z);
   for (int it = 1; it <= budget; ++it) {
@@ -278,7 +284,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     if (system.has_factor() && !refresh) {
       const Stopwatch t0;
       const long before = stats.cg_iterations;
-      solved = pcg(system, contacts, r, cg_target, budget, delta, stats);
+      solved = pcg(system, contacts, r, cg_target, budget, delta, stats, u_err >= 0 ? &z : nullptr);
       // A run that needed more than half its budget says the factorisation is far from H: the
       // next direction is cheaper from a new one (which later runs reuse) than from another
       // long CG run.
