@@ -36,15 +36,16 @@
 namespace {
 
 // A long run of one wall, one line per step: where a settling wall's work goes as it settles.
-int trace_run(int n, bool dynamic, bool peer, int steps) {
-  const nmm::SceneDef s = peer ? nmm::reference::peer_wall(n, n, dynamic) : nmm::reference::brick_wall(n, dynamic);
+int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size) {
+  const nmm::SceneDef s =
+      peer ? nmm::reference::peer_wall(n, n, dynamic, mesh_size) : nmm::reference::brick_wall(n, dynamic);
   const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
   nmm::solve::TimeStepper st(m, s, "bench");
   std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
-              "factorisation_ms,cg_ms,detection_ms,cpu_ms\n");
+              "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses\n");
   nmm::solve::ContactSolveStats a = st.view().contact_solve;
   nmm::solve::StepTimings ta = st.view().timings;
-  std::size_t cuts = st.view().state.cuts;
+  std::size_t cuts = st.view().state.cuts, analyses = st.view().system.analyses();
   for (int k = 1; k <= steps; ++k) {
     const nmm::Stopwatch w0;
     const double c0 = nmm::bench::thread_cpu_seconds();
@@ -52,11 +53,12 @@ int trace_run(int n, bool dynamic, bool peer, int steps) {
     const double ms = 1e3 * w0.seconds(), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
     const nmm::solve::ContactSolveStats& b = st.view().contact_solve;
     const nmm::solve::StepTimings& tb = st.view().timings;
-    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f\n", k, b.newton - a.newton,
+    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu\n", k, b.newton - a.newton,
                 b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
                 b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
                 st.view().state.cuts - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
-                1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms);
+                1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms,
+                st.view().system.analyses() - analyses);
     std::fflush(stdout);
     if (status != "ok") {
       std::printf("# stopped: %s\n", status.c_str());
@@ -69,6 +71,7 @@ int trace_run(int n, bool dynamic, bool peer, int steps) {
     a = b;
     ta = tb;
     cuts = st.view().state.cuts;
+    analyses = st.view().system.analyses();
   }
   // One factorisation against one CG iteration's work (a factor solve pair and a product with
   // the matrix) on the last step's matrix, thread CPU time: what one factorisation is worth.
@@ -157,11 +160,11 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) peer_threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
-      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--contact-tolerance T] [--threads N] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer [--mesh H]] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--contact-tolerance T] [--threads N] [--csv FILE]\n");
       return 2;
     }
   }
-  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps);
+  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps, peer_mesh);
   if (peer) return peer_run(sizes, peer_steps, peer_mesh, peer_tau, peer_threads, csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"
