@@ -15,7 +15,8 @@
 //     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
 //     (a vertex deep inside another element without having come in through a contact is near
 //     that edge from the wrong side, e.g. a corner of a block near the far side of the same
-//     block); a negative gap must also mean that P lies inside element B — or, near an end of
+//     block), and never deeper than 0.35 of how far B and the elements of its block around it
+//     reach behind the edge (a mesh coarser than the blocks: 0.3·h can exceed a block); a negative gap must also mean that P lies inside element B — or, near an end of
 //     the edge and at most 0.05·h deep, inside an element of B's block sharing a mesh node with
 //     it (a vertex sinking through an edge at a mesh node enters the triangle below the node,
 //     which does not own the edge): past a corner of the block, P can be behind the line of an
@@ -91,6 +92,23 @@ bool inside_element(const ContactTopology& t, const std::vector<double>& xy, std
     i = t.next[i];
   } while (i != first);
   return in;
+}
+
+// How far the elements of element e's block around it (those sharing a mesh node with it: a
+// sliver's full neighbours too) reach behind the line through (qx, qy) with outward normal
+// (ex, ey): the largest depth of their loop vertices below that line.
+double reach_behind(const ContactTopology& t, const std::vector<double>& xy, std::int32_t e,
+                    double qx, double qy, double ex, double ey) {
+  double r = 0;
+  for (std::int32_t k = t.near_offset[e]; k < t.near_offset[e + 1]; ++k) {
+    const std::int32_t first = t.first_vertex[t.near_elements[k]];
+    std::int32_t i = first;
+    do {
+      r = std::max(r, -((xy[2 * i] - qx) * ex + (xy[2 * i + 1] - qy) * ey));
+      i = t.next[i];
+    } while (i != first);
+  }
+  return r;
 }
 
 // P inside element e or an element of its block sharing a mesh node with it.
@@ -371,6 +389,8 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const double eps = tl.gap_round_off * topo.mesh_size;
       if (master_side && g >= -topo.master_depth) continue;
       if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
+      if (g < -eps && -g > tl.closed_extent * reach_behind(topo, xy, eb, eg.x, eg.y, ex, ey))
+        continue;
       // Inside B: tested at P moved onto the edge's span (ω within [β, 1 − β], β = beside_edge),
       // so a vertex a round-off past the end of the edge — the corner of one block over the
       // corner of the other, both moved apart by the same Poisson expansion — is judged as the

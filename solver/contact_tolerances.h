@@ -16,6 +16,14 @@ struct ContactTolerances {
   /// ×h, the deepest a vertex that was closed against that block may be and still keep its
   /// contact (penetration is limited to g2·w0 per step; 0.3·h is beyond any accepted one).
   double closed_depth = 0.3;
+  /// –, and at most this fraction of how far element B and the elements of its block around it
+  /// (sharing a mesh node with B: a sliver's neighbours too) reach behind the edge (the largest
+  /// depth of their vertices below the edge's line). A full triangle reaches 0.87·h behind each
+  /// edge, so 0.35 of it is above closed_depth·h and this bites only where B's block is smaller
+  /// than a triangle behind the edge — a mesh coarser than the blocks, where 0.3·h can exceed a
+  /// brick's height and a corner closed against a brick's side would otherwise be taken as 0.5 m
+  /// deep below its top face (a 20 × 20 wall at h = 2 m then cut Δt below its floor).
+  double closed_extent = 0.35;
   /// ×h, how deep a vertex on the upward (master) side of a flat stretch must poke into the other
   /// side before it too is held: beyond what a spring lets a face sink under any load, so faces
   /// pressed together carry one set of contacts (2·Vm is added for Bandis–Barton joints).

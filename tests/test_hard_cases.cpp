@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "preprocess/cover_cutter.h"
+#include "reference/brick_wall.h"
 #include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
 #include "solver/element_integration.h"
@@ -690,6 +691,24 @@ TEST(HardCases, JointAlongMeshEdgesHoldsTheBlockAbove) {
     EXPECT_LT(norm(top), 1e-4) << name << ": the upper block rests on the lower one, m";
     EXPECT_LT(max_point_speed(m, st), kRestSpeed) << name << ": at rest, m/s";
   }
+}
+
+// A mesh coarser than the blocks (the DDA code's 20 × 20 wall, bricks 1 × 0.5 m, h = 2 m, so
+// 0.3·h = 0.6 m exceeds a brick's height): a brick corner closed against its neighbour's side,
+// with a mesh node at the corner, was taken as 0.5 m deep below the neighbour's top face and the
+// run cut Δt below its floor at t = 0.078 s. A closed vertex may be at most 0.35 of how far the
+// other block reaches behind the edge (contact_detection.cpp).
+TEST(HardCases, AWallMeshedCoarserThanItsBricksRuns) {
+  const SceneDef s = reference::peer_wall(20, 20, true, 2.0);
+  const Mesh m = pre::build_mesh(s, "coarse_wall");
+  TimeStepper st(m, s, "coarse_wall");
+  Monitor mon(m, s);
+  const std::string status = run_to(st, mon, 0.1);
+  std::printf("20 x 20 wall at h = 2 m: status %s; penetration %.3e m; %zu cuts\n", status.c_str(),
+              st.view().state.max_penetration, st.view().state.cuts);
+  print_energy("energy", mon);
+  EXPECT_EQ(status, "ok");
+  expect_sound(st, mon, 1.0, "20 x 20 wall at h = 2 m");
 }
 
 // ---- 6. Near-parallel joints ----------------------------------------------------------------
