@@ -77,13 +77,21 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
       }
     }
   }
-  k_ = Sparse(n, n);
-  k_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-  std::copy(outer.begin(), outer.end(), k_.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), k_.innerIndexPtr());
+  // New pairs of elements whose covers were already coupled (neighbours along a joint share two
+  // of their three covers) leave the pattern of unknowns as it was: CHOLMOD's symbolic analysis
+  // then still holds.
+  const bool same = k_.rows() == n && k_.nonZeros() == static_cast<Eigen::Index>(inner.size()) &&
+                    std::equal(outer.begin(), outer.end(), k_.outerIndexPtr()) &&
+                    std::equal(inner.begin(), inner.end(), k_.innerIndexPtr());
+  if (!same) {
+    k_ = Sparse(n, n);
+    k_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+    std::copy(outer.begin(), outer.end(), k_.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), k_.innerIndexPtr());
+    analysed_ = false;
+  }
   std::fill(k_.valuePtr(), k_.valuePtr() + inner.size(), 0.0);
   diag_.assign(outer.begin(), outer.end() - 1);  // the diagonal heads its column
-  analysed_ = false;
   // A matrix that is not positive definite is reported by us (failed_unknown), on one line;
   // CHOLMOD itself must not print.
   llt_.cholmod().print = 0;
