@@ -4,28 +4,35 @@
 # DDA code"). Not part of CI: the DDA side is a program you build yourself, outside this
 # repository, from its public sources; give its runner and its wall generator:
 #
-#   NTDDA_RUN=/path/to/ntdda_run GEN_WALL=/path/to/gen_wall.py sh bench/ntdda_compare.sh [SIZES]
+#   NTDDA_RUN=/path/to/ntdda_run GEN_WALL=/path/to/gen_wall.py [MESHES="0.5 2"] sh bench/ntdda_compare.sh [SIZES]
 #
 # NTDDA_RUN is called as `ntdda_run WALL.geo WALL.ana` and prints a line
 # `NTDDA blocks=… ms_per_step=…` on stderr; GEN_WALL writes those files for an NX × NY wall
 # (`gen_wall.py OUTDIR NX NY --steps S`; E = 10 MPa, penalty 50·E, φ = 30°, Δt = 1 ms), which
 # this script switches to SI units and, for the static rows, to static analysis. The nmm side is
-# reference/brick_wall.h peer_wall (the same wall, mesh size 0.5 m) run by contact_bench --peer.
-# SIZES: wall sizes, default "10 20 30". Writes bench/results/peer_compare.csv (one row per wall
-# and mode: both codes' ms per step, nmm's counts) from the repository root, after building.
+# reference/brick_wall.h peer_wall (the same wall) run by contact_bench --peer at each mesh size
+# of MESHES (m, default "0.5 2": about 22 unknowns per brick, and about 9 — a mesh coarser than
+# the bricks, where a brick lies in one or two triangles, as near DDA's 6 as NMM's covers come).
+# SIZES: wall sizes, default "10 20 30". Writes bench/results/peer_compare.csv (one row per wall,
+# mode and mesh size: both codes' ms per step, nmm's counts) from the repository root, after
+# building.
 set -e
 cd "$(dirname "$0")/.."
 : "${NTDDA_RUN:?set NTDDA_RUN to the DDA code's runner}"
 : "${GEN_WALL:?set GEN_WALL to the wall generator}"
 SIZES=${1:-"10 20 30"}
+MESHES=${MESHES:-"0.5 2"}
 STEPS=100
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 out=bench/results/peer_compare.csv
-echo "date,mode,wall_n,ntdda_blocks,ntdda_ms_per_step,nmm_blocks,nmm_unknowns,nmm_ms_per_step,ratio,nmm_solves_per_step,nmm_factorisations_per_step,nmm_cg_per_step,nmm_detection_ms_per_step,nmm_cuts,load_average" > "$out"
+echo "date,mode,wall_n,nmm_mesh_size,ntdda_blocks,ntdda_ms_per_step,nmm_blocks,nmm_unknowns,nmm_ms_per_step,ratio,nmm_solves_per_step,nmm_factorisations_per_step,nmm_cg_per_step,nmm_detection_ms_per_step,nmm_cuts,load_average" > "$out"
 for n in $SIZES; do
-  build/bin/contact_bench --peer --sizes "$n" --steps $STEPS --csv "$work/nmm_$n.csv" > /dev/null
+  for h in $MESHES; do
+    build/bin/contact_bench --peer --sizes "$n" --steps $STEPS --mesh "$h" --csv "$work/nmm_$n.part" > /dev/null
+    tail -n +2 "$work/nmm_$n.part" >> "$work/nmm_$n.csv"
+  done
   for mode in static dynamic; do
     d="$work/$mode$n"
     python3 "$GEN_WALL" "$d" "$n" "$n" --steps $STEPS > /dev/null
@@ -39,7 +46,7 @@ for n in $SIZES; do
     # detection_ms_per_step,factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average
     grep "^$mode," "$work/nmm_$n.csv" | awk -F, -v d="$(date +%F)" -v nb="$nt_blocks" -v nm="$nt_ms" '{
       ratio = (nm > 0) ? sprintf("%.1f", $8 / nm) : "";
-      printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", d, $1, $2, nb, (nm == "" ? "crashed" : nm), $4, $5, $8, ratio, $9, $10, $11, $13, $16, $18 }' >> "$out"
+      printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", d, $1, $2, $3, nb, (nm == "" ? "crashed" : nm), $4, $5, $8, ratio, $9, $10, $11, $13, $16, $18 }' >> "$out"
   done
 done
 cat "$out"

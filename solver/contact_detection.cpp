@@ -1,9 +1,10 @@
 // Contact detection (classic NMM / DDA, docs/physics.md §3).
 //
-// Broad phase: a uniform grid of cell size max(h, 2·d0). Every candidate edge is entered in the
-// cells its box (grown by d0) overlaps; every candidate vertex meets the edges of its own cell.
-// Element edges are at most one mesh size long however large the blocks are, so each cell holds
-// a bounded number of edges and the cost grows about linearly with the number of edges.
+// Broad phase: a uniform grid of cell size max(mean candidate edge length, 2·d0). Every
+// candidate edge is entered in the cells its box (grown by d0) overlaps; every candidate vertex
+// meets the edges of its own cell. Element edges are at most one mesh size long however large
+// the blocks are, so each cell holds a bounded number of edges and the cost grows about linearly
+// with the number of edges.
 //
 // Narrow phase, for vertex P of element A and edge Q2 → Q3 of element B (loops are CCW, so the
 // edge's outward normal is n = (t_y, −t_x) with t = (Q3 − Q2)/l):
@@ -267,7 +268,6 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               DetectionStats* stats, ElementPairs* near_pairs) {
   std::vector<ContactCandidate> out;
   if (topo.edges.empty()) return out;
-  const double cell = std::max(topo.mesh_size, 2 * d0);
   const ContactTolerances& tl = kContactTolerances;
   const double p_max = tl.closed_depth * topo.mesh_size;
 
@@ -277,10 +277,6 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     x0 = std::min(x0, xy[i]);
     y0 = std::min(y0, xy[i + 1]);
   }
-  auto cell_of = [&](double x, double y) {
-    return std::make_pair(static_cast<std::int64_t>(std::floor((x - x0) / cell)),
-                          static_cast<std::int64_t>(std::floor((y - y0) / cell)));
-  };
   // Cell (i, j) → one 64-bit key; unsigned arithmetic (shifting a negative index is undefined).
   auto key = [](std::int64_t i, std::int64_t j) {
     return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^
@@ -294,13 +290,24 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     bool usable;  // not degenerate
   };
   std::vector<EdgeGeometry> geometry(topo.edges.size());
+  double mean_length = 0;
   for (std::size_t k = 0; k < topo.edges.size(); ++k) {
     const std::int32_t q2 = topo.edges[k], q3 = topo.next[q2];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
     const double l = std::hypot(dx, dy);
     geometry[k] = {xy[2 * q2], xy[2 * q2 + 1], dx / l, dy / l, l, q2, topo.element_of[q2],
                    l > tl.degenerate_edge * topo.mesh_size};
+    mean_length += l;
   }
+  mean_length /= static_cast<double>(topo.edges.size());
+  // The cell: the candidate edges' mean length (what a vertex's cell then holds is a few edges
+  // around it), at least 2·d0. Not the mesh size: with a mesh coarser than the blocks a cell of
+  // h held the edges of several blocks (a 20 × 20 wall at h = 2 m: 5.7 ms a call against 3.3).
+  const double cell = std::max(mean_length, 2 * d0);
+  auto cell_of = [&](double x, double y) {
+    return std::make_pair(static_cast<std::int64_t>(std::floor((x - x0) / cell)),
+                          static_cast<std::int64_t>(std::floor((y - y0) / cell)));
+  };
   // (cell key, index into topo.edges)
   std::vector<std::pair<std::int64_t, std::int32_t>> entries;
   entries.reserve(topo.edges.size() * 4);
