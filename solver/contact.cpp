@@ -93,7 +93,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
   closed_ = closed_contacts();
   eps_ = kContactTolerances.open_gap * w0;
   skin_ = kContactTolerances.skin * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_);
   detection_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

@@ -245,6 +245,7 @@ class ContactSet {
   double eps_ = 0;                          // m, gap tolerance (contact_tolerances.h open_gap·w0)
   double skin_ = 0;                         // m, smoothing of the normal spring (skin·w0)
   DetectionStats stats_;
+  CandidateList candidates_;  // detection's Verlet list (a cache: contact_detection.h)
   double detection_seconds_ = 0;
 };
 

@@ -1,10 +1,18 @@
 // Contact detection (classic NMM / DDA, docs/physics.md §3).
 //
-// Broad phase: a uniform grid of cell size max(mean candidate edge length, 2·d0). Every
-// candidate edge is entered in the cells its box (grown by d0) overlaps; every candidate vertex
-// meets the edges of its own cell. Element edges are at most one mesh size long however large
-// the blocks are, so each cell holds a bounded number of edges and the cost grows about linearly
-// with the number of edges.
+// Broad phase: a Verlet list. Each candidate vertex keeps the candidate edges of other elements
+// within reach R = 2·(d0 + β·h) of it (β = beside_edge: the narrow phase looks that far past an
+// edge's ends), found by a uniform grid of cell size max(mean candidate edge length, 2·R): every
+// edge entered in the cells its box grown by R overlaps, every vertex meeting the edges of its
+// own cell. Element edges are at most one mesh size long however large the blocks are, so each
+// cell holds a bounded number of edges and the build grows about linearly with their number.
+// The list is reused while no loop vertex has moved more than (R − d0 − β·h)/2 since the build:
+// a vertex and a segment whose ends each moved at most m/2 have come at most m nearer, so every
+// edge the narrow phase can accept (|g| ≤ d0, ω in [−β, 1 + β]: within d0 + β·h of the segment)
+// is still in the list. Each vertex's edges ascend, as the grid gives them, so the narrow phase
+// meets its candidates in the same order from a new list or an old one, and finds the same
+// contacts: the list is a cache (no state of the run). A settling wall moves far less than
+// R/4 = 1.25·g2·w0 per step, so most steps reuse the list.
 //
 // Narrow phase, for vertex P of element A and edge Q2 → Q3 of element B (loops are CCW, so the
 // edge's outward normal is n = (t_y, −t_x) with t = (Q3 − Q2)/l):
@@ -13,7 +21,9 @@
 //     block, or next to a crack tip whose covers are not split);
 //   - ω = (P − Q2)·t / l in [0, 1] (within 1e-3): P lies beside the edge;
 //   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (1e-3·h: a vertex missed for a step) unless
-//     P was in closed contact with B's block after the last step, then g ≥ −p_max, p_max = 0.3·h
+//     P was in closed contact with B's block after the last step, then g ≥ −p_max,
+//     p_max = min(0.3·h, d0) (an accepted step leaves no contact deeper than g2·w0 < d0, and the
+//     list holds no edge farther than that)
 //     (a vertex deep inside another element without having come in through a contact is near
 //     that edge from the wrong side, e.g. a corner of a block near the far side of the same
 //     block), and never deeper than 0.35 of how far B and the elements of its block around it
@@ -56,7 +66,6 @@
 #include <cmath>
 #include <map>
 #include <tuple>
-#include <unordered_map>
 
 namespace nmm::solve {
 
@@ -261,78 +270,139 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
   return t;
 }
 
-std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
-                                              const std::vector<double>& xy, double d0,
-                                              double shallow,
-                                              const ClosedContacts& closed,
-                                              DetectionStats* stats, ElementPairs* near_pairs) {
-  std::vector<ContactCandidate> out;
-  if (topo.edges.empty()) return out;
-  const ContactTolerances& tl = kContactTolerances;
-  const double p_max = tl.closed_depth * topo.mesh_size;
+namespace {
 
-  // Grid: (cell key, edge) pairs sorted by key; a vertex looks up its own cell.
-  double x0 = xy[0], y0 = xy[1];
-  for (std::size_t i = 0; i < xy.size(); i += 2) {
-    x0 = std::min(x0, xy[i]);
-    y0 = std::min(y0, xy[i + 1]);
-  }
-  // Cell (i, j) → one 64-bit key; unsigned arithmetic (shifting a negative index is undefined).
-  auto key = [](std::int64_t i, std::int64_t j) {
-    return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^
-                                     (static_cast<std::uint64_t>(j) & 0xffffffffu));
-  };
-  // Each candidate edge's start, unit tangent and length, once per call (not once per vertex
-  // that meets it: about 25 vertices per edge in a brick wall).
-  struct EdgeGeometry {
-    double x, y, tx, ty, l;
-    std::int32_t q2, element;
-    bool usable;  // not degenerate
-  };
-  std::vector<EdgeGeometry> geometry(topo.edges.size());
-  double mean_length = 0;
+// A candidate edge's start, unit tangent and length.
+struct EdgeGeometry {
+  double x, y, tx, ty, l;
+  std::int32_t q2, element;
+  bool usable;  // not degenerate
+};
+
+void edge_geometry(const ContactTopology& topo, const std::vector<double>& xy,
+                   std::vector<EdgeGeometry>& geometry) {
+  geometry.resize(topo.edges.size());
   for (std::size_t k = 0; k < topo.edges.size(); ++k) {
     const std::int32_t q2 = topo.edges[k], q3 = topo.next[q2];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
     const double l = std::hypot(dx, dy);
     geometry[k] = {xy[2 * q2], xy[2 * q2 + 1], dx / l, dy / l, l, q2, topo.element_of[q2],
-                   l > tl.degenerate_edge * topo.mesh_size};
-    mean_length += l;
+                   l > kContactTolerances.degenerate_edge * topo.mesh_size};
   }
-  mean_length /= static_cast<double>(topo.edges.size());
-  // The cell: the candidate edges' mean length (what a vertex's cell then holds is a few edges
-  // around it), at least 2·d0. Not the mesh size: with a mesh coarser than the blocks a cell of
-  // h held the edges of several blocks (a 20 × 20 wall at h = 2 m: 5.7 ms a call against 3.3).
-  const double cell = std::max(mean_length, 2 * d0);
+}
+
+// The list holds for a search within `need` of the edges while no loop vertex has moved more
+// than half its margin (reach − need) since it was built: a vertex and a segment whose end
+// points each moved at most m/2 have come at most m nearer.
+bool list_holds(const CandidateList& list, const std::vector<double>& xy, double need) {
+  if (list.builds == 0 || list.xy.size() != xy.size() || !(list.reach > need)) return false;
+  const double half = 0.5 * (list.reach - need), half2 = half * half;
+  for (std::size_t i = 0; i < xy.size(); i += 2) {
+    const double dx = xy[i] - list.xy[i], dy = xy[i + 1] - list.xy[i + 1];
+    if (dx * dx + dy * dy > half2) return false;
+  }
+  return true;
+}
+
+// For every candidate vertex, the candidate edges of other elements, not continuous with it,
+// within reach = 2·need of it (need: the search distance and how far past its ends an edge
+// reaches), by a uniform grid: cell the edges' mean length (at least 2·reach; not the mesh
+// size: with a mesh coarser than the blocks a cell of h held the edges of several blocks), every
+// edge entered in the cells its box grown by reach overlaps, a vertex meeting the edges of its
+// own cell. Each vertex's edges ascend, as the grid's cells held them, so the narrow phase meets
+// candidates in the same order whichever list it reads.
+void build_candidate_list(const ContactTopology& topo, const std::vector<double>& xy,
+                          const std::vector<EdgeGeometry>& geometry, double need, CandidateList& list) {
+  const double reach = kContactTolerances.list_reach * need;
+  list.reach = reach;
+  list.xy = xy;
+  ++list.builds;
+  double x0 = xy[0], y0 = xy[1], mean_length = 0;
+  for (std::size_t i = 0; i < xy.size(); i += 2) {
+    x0 = std::min(x0, xy[i]);
+    y0 = std::min(y0, xy[i + 1]);
+  }
+  for (const EdgeGeometry& g : geometry) mean_length += g.l;
+  mean_length /= static_cast<double>(geometry.size());
+  const double cell = std::max(mean_length, 2 * reach);
   auto cell_of = [&](double x, double y) {
     return std::make_pair(static_cast<std::int64_t>(std::floor((x - x0) / cell)),
                           static_cast<std::int64_t>(std::floor((y - y0) / cell)));
   };
-  // (cell key, index into topo.edges)
+  // Cell (i, j) → one 64-bit key; unsigned arithmetic (shifting a negative index is undefined).
+  auto key = [](std::int64_t i, std::int64_t j) {
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^
+                                     (static_cast<std::uint64_t>(j) & 0xffffffffu));
+  };
+  // (cell key, index into topo.edges), sorted
   std::vector<std::pair<std::int64_t, std::int32_t>> entries;
   entries.reserve(topo.edges.size() * 4);
   for (std::size_t k = 0; k < topo.edges.size(); ++k) {
     const std::int32_t e = topo.edges[k], f = topo.next[e];
-    const auto [i0, j0] = cell_of(std::min(xy[2 * e], xy[2 * f]) - d0, std::min(xy[2 * e + 1], xy[2 * f + 1]) - d0);
-    const auto [i1, j1] = cell_of(std::max(xy[2 * e], xy[2 * f]) + d0, std::max(xy[2 * e + 1], xy[2 * f + 1]) + d0);
+    const auto [i0, j0] = cell_of(std::min(xy[2 * e], xy[2 * f]) - reach, std::min(xy[2 * e + 1], xy[2 * f + 1]) - reach);
+    const auto [i1, j1] = cell_of(std::max(xy[2 * e], xy[2 * f]) + reach, std::max(xy[2 * e + 1], xy[2 * f + 1]) + reach);
     for (std::int64_t i = i0; i <= i1; ++i)
       for (std::int64_t j = j0; j <= j1; ++j) entries.emplace_back(key(i, j), static_cast<std::int32_t>(k));
   }
   std::sort(entries.begin(), entries.end());
+  list.offset.assign(1, 0);
+  list.edges.clear();
+  for (std::int32_t p : topo.vertices) {
+    const double px = xy[2 * p], py = xy[2 * p + 1];
+    const std::int32_t ea = topo.element_of[p];
+    const auto [ci, cj] = cell_of(px, py);
+    const std::int64_t k = key(ci, cj);
+    for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
+         it != entries.end() && it->first == k; ++it) {
+      const EdgeGeometry& g = geometry[static_cast<std::size_t>(it->second)];
+      if (g.element == ea) continue;
+      // Distance from P to the segment (to its start if it has no direction).
+      const double rx = px - g.x, ry = py - g.y;
+      const double s = g.usable ? std::clamp(rx * g.tx + ry * g.ty, 0.0, g.l) : 0.0;
+      const double ox = rx - (g.usable ? s * g.tx : 0.0), oy = ry - (g.usable ? s * g.ty : 0.0);
+      if (ox * ox + oy * oy > reach * reach) continue;
+      if (topo.is_continuous(p, g.element)) continue;
+      list.edges.push_back(it->second);
+    }
+    list.offset.push_back(static_cast<std::int32_t>(list.edges.size()));
+  }
+}
+
+}  // namespace
+
+std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
+                                              const std::vector<double>& xy, double d0,
+                                              double shallow,
+                                              const ClosedContacts& closed,
+                                              DetectionStats* stats, ElementPairs* near_pairs,
+                                              CandidateList* list) {
+  std::vector<ContactCandidate> out;
+  if (topo.edges.empty()) return out;
+  const ContactTolerances& tl = kContactTolerances;
+  const double p_max = std::min(tl.closed_depth * topo.mesh_size, d0);
+
+  // Each candidate edge's start, unit tangent and length, once per call (not once per vertex
+  // that meets it: about 25 vertices per edge in a brick wall).
+  std::vector<EdgeGeometry> geometry;
+  edge_geometry(topo, xy, geometry);
+  // The candidates: the Verlet list, built anew when a vertex has moved too far for it.
+  CandidateList own;
+  CandidateList& cand = list ? *list : own;
+  const double beside = tl.beside_edge * topo.mesh_size;  // how far past its ends an edge reaches
+  if (!list_holds(cand, xy, d0 + beside)) {
+    build_candidate_list(topo, xy, geometry, d0 + beside, cand);
+    if (stats) ++stats->list_builds;
+  }
 
   std::size_t tested = 0;
-  // (vertex, block of the edge) → index in out
-  auto vb_key = [](std::int32_t v, std::int32_t b) {
-    return (static_cast<std::int64_t>(v) << 32) | static_cast<std::uint32_t>(b);
-  };
-  std::unordered_map<std::int64_t, std::size_t> by_vertex;
   struct Best {
     std::int32_t block;
     ContactCandidate c;
     double abs, face;
   };
   std::vector<Best> bests;
-  for (std::int32_t p : topo.vertices) {
+  for (std::size_t vi = 0; vi < topo.vertices.size(); ++vi) {
+    const std::int32_t p = topo.vertices[vi];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const std::int32_t ea = topo.element_of[p];
     // P's own outward normal: the mean of its candidate edges' normals.
@@ -367,14 +437,10 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
         mirror_closed[n_mirror_closed++] = topo.block_of[topo.element_of[m]];
     }
     const auto [closed_lo, closed_hi] = closed.range(p);
-    const auto [ci, cj] = cell_of(px, py);
-    const std::int64_t k = key(ci, cj);
-    auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
     bests.clear();
-    for (; it != entries.end() && it->first == k; ++it) {
-      const EdgeGeometry& eg = geometry[static_cast<std::size_t>(it->second)];
-      const std::int32_t q2 = eg.q2, eb = eg.element;
-      if (eb == ea) continue;
+    for (std::int32_t ci = cand.offset[vi]; ci < cand.offset[vi + 1]; ++ci) {
+      const EdgeGeometry& eg = geometry[static_cast<std::size_t>(cand.edges[ci])];
+      const std::int32_t q2 = eg.q2, eb = eg.element;  // of another element, not continuous with P
       ++tested;
       if (!eg.usable) continue;
       const double tx = eg.tx, ty = eg.ty, ex = ty, ey = -tx;
@@ -385,9 +451,8 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       // round-off must not push it off that one (the point is clamped onto the edge).
       if (omega < -tl.beside_edge || omega > 1 + tl.beside_edge) continue;
       const double g = rx * ex + ry * ey;
-      // Cheap geometric rejections first; continuity (a binary search) only for what is near.
+      // Cheap geometric rejections first (continuity was left out when the list was built).
       if (g > d0 || (g < -d0 && g < -p_max)) continue;
-      if (topo.is_continuous(p, eb)) continue;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
       const std::int32_t block_b = topo.block_of[eb];
       bool was_closed = false;
@@ -431,10 +496,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     }
     // In the order of the blocks, so that the output does not depend on the grid's order.
     std::sort(bests.begin(), bests.end(), [](const Best& a, const Best& b) { return a.block < b.block; });
-    for (const Best& b : bests) {
-      by_vertex[vb_key(p, b.block)] = out.size();
-      out.push_back(b.c);
-    }
+    for (const Best& b : bests) out.push_back(b.c);
   }
   // One contact per point of a joint: drop the mirror of a contact between coincident vertices.
   std::vector<char> drop(out.size(), 0);
@@ -442,19 +504,29 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   auto near = [&](std::int32_t u, std::int32_t v) {
     return std::hypot(xy[2 * u] - xy[2 * v], xy[2 * u + 1] - xy[2 * v + 1]) <= tol;
   };
+  // `out` ascends by (vertex, block of the edge): the vertices in order, each one's by block.
+  auto contact_of = [&](std::int32_t v, std::int32_t block) -> std::size_t {
+    const auto it = std::lower_bound(out.begin(), out.end(), std::make_pair(v, block),
+                                     [&](const ContactCandidate& c, const std::pair<std::int32_t, std::int32_t>& k) {
+                                       return std::make_pair(c.vertex, topo.block_of[c.elem_b]) < k;
+                                     });
+    return it != out.end() && it->vertex == v && topo.block_of[it->elem_b] == block
+               ? static_cast<std::size_t>(it - out.begin())
+               : out.size();
+  };
   for (std::size_t c = 0; c < out.size(); ++c) {
     const ContactCandidate& a = out[c];
     for (std::int32_t q : {a.edge, topo.next[a.edge]}) {
       if (!near(q, a.vertex)) continue;
       // q's contact against P's block, if any
-      const auto m = by_vertex.find(vb_key(q, topo.block_of[a.elem_a]));
-      if (m == by_vertex.end() || drop[m->second] || drop[c]) continue;
-      const ContactCandidate& b = out[m->second];
+      const std::size_t m = contact_of(q, topo.block_of[a.elem_a]);
+      if (m == out.size() || drop[m] || drop[c]) continue;
+      const ContactCandidate& b = out[m];
       if (!near(b.edge, a.vertex) && !near(topo.next[b.edge], a.vertex)) continue;
       const bool a_closed = closed.with(a.vertex, topo.block_of[a.elem_b]);
       const bool q_closed = closed.with(q, topo.block_of[b.elem_b]);
       const bool keep_a = a_closed != q_closed ? a_closed : a.vertex < q;
-      drop[keep_a ? m->second : c] = 1;
+      drop[keep_a ? m : c] = 1;
     }
   }
   if (near_pairs) {

@@ -53,6 +53,7 @@ struct ContactCandidate {
 struct DetectionStats {
   std::size_t pairs_tested = 0;  ///< vertex–edge pairs that reached the narrow phase
   std::size_t contacts = 0;      ///< candidates kept
+  std::size_t list_builds = 0;   ///< Verlet lists built (the others reused the last one)
 };
 
 /// The blocks each loop vertex was in closed contact with after the last step: sorted, unique
@@ -64,22 +65,38 @@ struct ClosedContacts {
   bool with(std::int32_t v, std::int32_t block) const;
 };
 
+/// Detection's Verlet list: for each candidate vertex (ContactTopology::vertices, in order), the
+/// candidate edges of other elements, not continuous with it, that were within `reach` of it
+/// when the list was built, ascending. detect_contacts reuses it while no loop vertex has moved
+/// more than half of (reach − what the search needs) since then, and builds it anew otherwise.
+/// Only a cache: the contacts found do not depend on when it was built.
+struct CandidateList {
+  double reach = 0;                  ///< m, the distance it was built for
+  std::vector<double> xy;            ///< [2·v] m, loop vertex positions when it was built
+  std::vector<std::int32_t> offset;  ///< [vertices + 1] CSR into `edges`
+  std::vector<std::int32_t> edges;   ///< indices into ContactTopology::edges
+  std::size_t builds = 0;            ///< times built
+};
+
 /// Element pairs (a, b) with a vertex of a and an edge of b within the search distance, facing
 /// or not: the pairs that may come into contact soon (for the sparsity pattern). Sorted, unique.
 using ElementPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
 
 /// Finds, for every candidate vertex and every other block, the one edge of that block it faces
-/// within distance d0 (m), by a uniform grid over the edges (cost about linear in the number of
-/// edges) and the narrow-phase rules. `closed` lists the blocks each vertex was in closed contact
-/// with after the last step: against such a block a vertex may be inside its elements by up to
-/// 0.3·h; against any other by up to `shallow` (m) at most, a depth only a contact can explain (a
-/// vertex deeper inside without having come in through a contact is near that edge from the
-/// wrong side).
+/// within distance d0 (m), from the candidates of a Verlet list (`list`, kept by the caller
+/// between calls; built by a uniform grid over the edges, cost about linear in the number of
+/// edges, whenever a vertex has moved too far for it; without one, built for this call) and the
+/// narrow-phase rules. `closed` lists the blocks each vertex was in closed contact with after
+/// the last step: against such a block a vertex may be inside its elements by up to
+/// min(0.3·h, d0); against any other by up to `shallow` (m) at most, a depth only a contact can
+/// explain (a vertex deeper inside without having come in through a contact is near that edge
+/// from the wrong side).
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& loop_xy, double d0,
                                               double shallow,
                                               const ClosedContacts& closed,
                                               DetectionStats* stats = nullptr,
-                                              ElementPairs* near = nullptr);
+                                              ElementPairs* near = nullptr,
+                                              CandidateList* list = nullptr);
 
 }  // namespace nmm::solve

@@ -33,6 +33,11 @@ struct ContactTolerances {
   /// (ω below node_sink_omega or above 1 − node_sink_omega).
   double node_sink_depth = 0.05;
   double node_sink_omega = 0.25;  ///< –
+  /// –, detection's Verlet list holds the edges within this many times the search need (the
+  /// search distance d0 plus beside_edge·h) of each vertex, and is reused while no vertex has
+  /// moved more than half the difference: at 2, half of d0 = 1.25·g2·w0, more than a settling
+  /// wall moves in many steps, and about 2–4 edges per vertex on a brick wall.
+  double list_reach = 2.0;
   /// –, how far past the ends of an edge (in ω) a vertex still lies beside it: a vertex right
   /// above a vertex of the other face projects onto both neighbouring edges at ω ≈ 0 or 1, and
   /// round-off must not push it off the one whose element holds it.

@@ -50,6 +50,8 @@ nlohmann::json run_summary(const RunView& st, const RunOutcome& o) {
                          {"max_normal_stress_at_end", joint.max_normal_stress},
                          {"max_shear_stress_at_end", joint.max_shear_stress},
                          {"pairs_tested", st.contacts.detection_stats().pairs_tested},
+                         // Detection's Verlet list: built anew this many times, reused otherwise.
+                         {"candidate_list_builds", st.contacts.detection_stats().list_builds},
                          // State changes in all iterations (attempts that were cut included):
                          // many "settled" ones mean contacts chattering at zero gap or slip.
                          {"closings", ev.closed},
