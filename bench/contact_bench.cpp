@@ -102,7 +102,8 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
   const char* header =
       "mode,wall_n,mesh_size,blocks,unknowns,contacts,steps,cpu_ms_per_step,solves_per_step,"
       "factorisations_per_step,cg_per_step,friction_updates_per_step,detection_ms_per_step,"
-      "factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average,threads,wall_ms_per_step\n";
+      "factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average,threads,wall_ms_per_step,"
+      "line_search_ms_per_step,assembly_ms_per_step,update_ms_per_step,analyses\n";
   std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (const bool dynamic : {false, true}) {
     for (int n : sizes) {
@@ -121,8 +122,9 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
       const nmm::solve::ContactSolveStats& cs = st.view().contact_solve;
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(done, 1));
-      char line[600];
-      std::snprintf(line, sizeof line, "%s,%d,%g,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f,%d,%.3f\n",
+      const nmm::solve::StepTimings& tm = st.view().timings;
+      char line[700];
+      std::snprintf(line, sizeof line, "%s,%d,%g,%zu,%d,%zu,%lld,%.3f,%.2f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%zu,%s,%.2f,%d,%.3f,%.3f,%.3f,%.3f,%zu\n",
                     dynamic ? "dynamic" : "static", n, h, m.block_count(), st.view().space.unknowns(),
                     st.view().contacts.contacts().size(), static_cast<long long>(done), 1e3 * cpu * per,
                     static_cast<double>(cs.newton) * per, static_cast<double>(cs.factorisations) * per,
@@ -130,7 +132,8 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
                     1e3 * st.view().timings.contact_detection * per, 1e3 * cs.factorisation_seconds * per,
                     1e3 * cs.cg_seconds * per, st.view().state.cuts, status == "ok" ? "ok" : status.c_str(),
                     nmm::bench::load_average(),
-                    st.view().threads, 1e3 * wall * per);
+                    st.view().threads, 1e3 * wall * per, 1e3 * cs.line_search_seconds * per,
+                    1e3 * tm.assembly * per, 1e3 * tm.geometry_update * per, st.view().system.analyses());
       csv << line;
       std::fputs(line, stdout);
       std::fflush(stdout);
