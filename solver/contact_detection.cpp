@@ -23,15 +23,15 @@
 //   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (1e-3·h: a vertex missed for a step) unless
 //     P was in closed contact with B's block after the last step, then g ≥ −p_max,
 //     p_max = min(0.3·h, d0) (an accepted step leaves no contact deeper than g2·w0 < d0, and the
-//     list holds no edge farther than that)
-//     (a vertex deep inside another element without having come in through a contact is near
-//     that edge from the wrong side, e.g. a corner of a block near the far side of the same
-//     block), and never deeper than 0.35 of how far B and the elements of its block around it
-//     reach behind the edge (a mesh coarser than the blocks: 0.3·h can exceed a block); a negative gap must also mean that P lies inside element B — or, near an end of
-//     the edge and at most 0.05·h deep, inside an element of B's block sharing a mesh node with
-//     it (a vertex sinking through an edge at a mesh node enters the triangle below the node,
-//     which does not own the edge): past a corner of the block, P can be behind the line of an
-//     edge without being inside it at all;
+//     list holds no edge farther than that; a vertex deep inside another element without having
+//     come in through a contact is near that edge from the wrong side, e.g. a corner of a block
+//     near the far side of the same block), and never deeper than 0.35 of how far B and the
+//     elements of its block around it reach behind the edge (a mesh coarser than the blocks:
+//     0.3·h can exceed a block); a negative gap must also mean that P lies inside element B — or, near an end of the edge
+//     and at most 0.05·h deep, inside an element of B's block sharing a mesh node with it (a
+//     vertex sinking through an edge at a mesh node enters the triangle below the node, which
+//     does not own the edge): past a corner of the block, P can be behind the line of an edge
+//     without being inside it at all;
 //   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
 //   - single pass along flat stretches: a vertex that is not a corner of its block's boundary
 //     (a 180° vertex: where mesh lines cut a straight boundary or joint) touches only if its
