@@ -155,7 +155,6 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
       c.broken = o.broken;
       c.slip_sign = o.slip_sign;
       c.normal_force = o.normal_force;
-      c.friction_normal = o.normal_force;
       c.shear_el = o.shear_el;
       if (!memory || o.state != ContactState::open) c.joint = o.joint;
     }
@@ -187,8 +186,10 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
   for (const Contact& c : contacts_) kept.push_back(c.at);
   const std::vector<double> lengths =
       tributary_lengths(topo_, xy, kept, kContactTolerances.corner_length * topo_.mesh_size);
+  work_.assign(contacts_.size(), ContactWork{});
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
+    ContactWork& w = work_[i];
     const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo_.next[q2];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
@@ -212,9 +213,9 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
         cn[lb] = -phi_b[a] * n_dir[sd];
         cs[lb] = -phi_b[a] * t_dir[sd];
       }
-    c.gap0 = c.at.gap - c.joint.dilation;
-    c.gap = c.gap0;
-    c.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
+    w.gap0 = c.at.gap - c.joint.dilation;
+    c.gap = w.gap0;
+    w.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
     c.length = lengths[i];
   }
 }
@@ -301,17 +302,19 @@ std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::contact_pairs() c
 
 void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
                                int first_group) {
-  for (Contact& c : contacts_) {
+  work_.resize(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
     const auto key = std::make_pair(c.at.elem_a, c.at.elem_b);
     const auto it = std::lower_bound(pairs.begin(), pairs.end(), key);
-    c.group = it != pairs.end() && *it == key ? first_group + static_cast<int>(it - pairs.begin()) : -1;
+    work_[i].group = it != pairs.end() && *it == key ? first_group + static_cast<int>(it - pairs.begin()) : -1;
   }
 }
 
 std::size_t ContactSet::springs_outside_pattern() const {
   std::size_t n = 0;
-  for (const Contact& c : contacts_)
-    if (c.group < 0) n += (c.kn_now != 0) + (c.ks_now != 0);
+  for (std::size_t i = 0; i < contacts_.size(); ++i)
+    if (work_[i].group < 0) n += (contacts_[i].kn_now != 0) + (contacts_[i].ks_now != 0);
   return n;
 }
 
@@ -330,9 +333,9 @@ struct Spring {
 // bricks in a wall) sits inside the skin, and round-off in its gap moves its tangent a little
 // instead of switching it between 0 and kn, which would change the Newton matrix every
 // iteration. τ = 1e-12·w0 (a few pm): the force at touching is kn·τ/4, far below any load.
-Spring normal_at(const ContactLaw& law, const Contact& c, double g, double skin) {
+Spring normal_at(const ContactLaw& law, const Contact& c, const ContactWork& w, double g, double skin) {
   const double closure = -g;
-  if (c.bonded && closure < skin) {
+  if (w.bonded && closure < skin) {
     const double k0 = initial_normal_stiffness(law, c.length);
     return {k0 * closure, k0, false};
   }
@@ -347,20 +350,20 @@ Spring normal_at(const ContactLaw& law, const Contact& c, double g, double skin)
 }
 
 // The trial shear force of the spring at elastic shear s, before the strength caps it.
-double trial_shear(const ContactLaw& law, const Contact& c, double s) {
-  return shear_spring(law, s, c.strength, c.length).force;
+double trial_shear(const ContactLaw& law, const Contact& c, const ContactWork& w, double s) {
+  return shear_spring(law, s, w.strength, c.length).force;
 }
 
 // Shear force at elastic shear s (m): the spring, capped at the strength S (elastoplastic: the
 // energy is ½ks·s² inside the cap and S·|s| − S²/(2ks) beyond, convex and C¹).
-Spring shear_at(const ContactLaw& law, const Contact& c, double s) {
-  if (!(c.strength > 0)) return {};
-  const SpringState sp = shear_spring(law, s, c.strength, c.length);
-  if (std::abs(sp.force) >= c.strength) return {s > 0 ? c.strength : -c.strength, 0.0, false};
+Spring shear_at(const ContactLaw& law, const Contact& c, const ContactWork& w, double s) {
+  if (!(w.strength > 0)) return {};
+  const SpringState sp = shear_spring(law, s, w.strength, c.length);
+  if (std::abs(sp.force) >= w.strength) return {s > 0 ? w.strength : -w.strength, 0.0, false};
   // At the kink to round-off after sliding into the step the same way: the slip branch's tangent
   // (the force is the spring's, exact either way; contact_tolerances.h slip_kink).
   if (c.start_state == ContactState::sliding && sp.force * c.slip_sign > 0 &&
-      std::abs(sp.force) >= (1 - kContactTolerances.slip_kink) * c.strength)
+      std::abs(sp.force) >= (1 - kContactTolerances.slip_kink) * w.strength)
     return {sp.force, 0.0, false};
   return {sp.force, sp.stiffness, false};
 }
@@ -373,34 +376,37 @@ Spring shear_at(const ContactLaw& law, const Contact& c, double s) {
 // lagged the curve by one step: at δp/250 per step by up to 1 % on the pre-peak rise and 2 % at
 // 0.1·δp, where τ rises from zero; 4 % at the seed joint's δp/340 near the start
 // (tests/test_barton_bandis.cpp DirectShearUnderDisplacementControl, docs/joint-studies.md).
-double step_shear(const Contact& c) { return c.shear - c.shear0; }
+double step_shear(const Contact& c, const ContactWork& w) { return c.shear - w.shear0; }
 
 // Sliding: the trial force reaches the strength (a hyperbola with Rf = 1 only approaches it:
 // 99.9 % counts as slip).
-bool slides(const ContactLaw& law, const Contact& c) {
+bool slides(const ContactLaw& law, const Contact& c, const ContactWork& w) {
   const double limit =
-      linear_shear(law) ? c.strength : kContactTolerances.hyperbola_slip * c.strength;
-  return std::abs(trial_shear(law, c, c.shear)) >= limit;
+      linear_shear(law) ? w.strength : kContactTolerances.hyperbola_slip * w.strength;
+  return std::abs(trial_shear(law, c, w, c.shear)) >= limit;
 }
 }  // namespace
 
 void ContactSet::start_strengths() {
-  for (Contact& c : contacts_) {
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    ContactWork& w = work_[i];
     const ContactLaw& law = laws_[c.law];
     const bool closed = c.start_state != ContactState::open;
-    c.bonded = closed && !c.broken && law.tensile > 0;
-    c.friction_normal = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    c.strength = closed ? shear_strength(law, c.friction_normal, c.length, c.broken, c.joint) : 0.0;
+    w.bonded = closed && !c.broken && law.tensile > 0;
+    const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
+    w.strength = closed ? shear_strength(law, n, c.length, c.broken, c.joint) : 0.0;
     // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
     // sticks until the fixed point has its normal force.
-    if (!closed && elastic_predictor_ && c.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
-      c.strength = std::numeric_limits<double>::infinity();
+    if (!closed && elastic_predictor_ && w.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
+      w.strength = std::numeric_limits<double>::infinity();
   }
 }
 
 void ContactSet::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     Contact& c = contacts_[k];
+    const ContactWork& w = work_[k];
     const ContactLaw& law = laws_[c.law];
     const int* dof = row_dofs(k);
     const double *cn = row_cn(k), *cs = row_cs(k);
@@ -409,10 +415,10 @@ void ContactSet::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
       dg += cn[i] * d[dof[i]];
       ds += cs[i] * d[dof[i]];
     }
-    c.gap = c.gap0 + dg;
-    c.shear = c.shear0 + ds;
-    const Spring n = normal_at(law, c, c.gap, skin_);
-    const Spring t = shear_at(law, c, c.shear);
+    c.gap = w.gap0 + dg;
+    c.shear = w.shear0 + ds;
+    const Spring n = normal_at(law, c, w, c.gap, skin_);
+    const Spring t = shear_at(law, c, w, c.shear);
     c.normal_force = n.force;
     c.kn_now = n.stiffness;
     c.capped = n.capped;
@@ -427,11 +433,12 @@ void ContactSet::add_tangents(SystemMatrix& k) const {
   block_.resize(row_, row_);
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
-    if ((c.kn_now == 0 && c.ks_now == 0) || c.group < 0) continue;  // outside the pattern: CG's
+    const int group = work_[i].group;
+    if ((c.kn_now == 0 && c.ks_now == 0) || group < 0) continue;  // outside the pattern: CG's
     const Eigen::Map<const Eigen::VectorXd> cn(row_cn(i), row_), cs(row_cs(i), row_);
     block_.noalias() = c.kn_now * cn * cn.transpose();
     if (c.ks_now != 0) block_.noalias() += c.ks_now * cs * cs.transpose();
-    k.add_group(static_cast<std::size_t>(c.group), block_.data());
+    k.add_group(static_cast<std::size_t>(group), block_.data());
   }
 }
 
@@ -454,7 +461,7 @@ void ContactSet::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) con
 
 void ContactSet::set_direction(const Eigen::VectorXd& delta) {
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    Contact& c = contacts_[k];
+    ContactWork& w = work_[k];
     const int* dof = row_dofs(k);
     const double *cn = row_cn(k), *cs = row_cs(k);
     double dg = 0, ds = 0;
@@ -462,18 +469,20 @@ void ContactSet::set_direction(const Eigen::VectorXd& delta) {
       dg += cn[i] * delta[dof[i]];
       ds += cs[i] * delta[dof[i]];
     }
-    c.rate_gap = dg;
-    c.rate_shear = ds;
+    w.rate_gap = dg;
+    w.rate_shear = ds;
   }
 }
 
 double ContactSet::directional_force(double alpha) const {
   double sum = 0;
-  for (const Contact& c : contacts_) {
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    const ContactWork& w = work_[k];
     const ContactLaw& law = laws_[c.law];
-    if (c.rate_gap != 0) sum += normal_at(law, c, c.gap + alpha * c.rate_gap, skin_).force * c.rate_gap;
-    if (c.rate_shear != 0 && c.strength > 0)
-      sum -= shear_at(law, c, c.shear + alpha * c.rate_shear).force * c.rate_shear;
+    if (w.rate_gap != 0) sum += normal_at(law, c, w, c.gap + alpha * w.rate_gap, skin_).force * w.rate_gap;
+    if (w.rate_shear != 0 && w.strength > 0)
+      sum -= shear_at(law, c, w, c.shear + alpha * w.rate_shear).force * w.rate_shear;
   }
   return sum;
 }
@@ -486,20 +495,22 @@ double ContactSet::force_scale() const {
 
 int ContactSet::update_strengths(double force_floor) {
   int changed = 0;
-  for (Contact& c : contacts_) {
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    Contact& c = contacts_[i];
+    ContactWork& w = work_[i];
     const ContactLaw& law = laws_[c.law];
     // A bond breaks for good beyond its tensile strength; cohesion is lost once a contact
     // slides. Both only ever switch one way, so they settle within a step.
-    if (c.bonded && c.normal_force < -law.tensile * c.length) {
-      c.bonded = false;
+    if (w.bonded && c.normal_force < -law.tensile * c.length) {
+      w.bonded = false;
       c.broken = true;
       ++events.broken;
       ++changed;
     }
-    const bool closed = c.normal_force > 0 || c.bonded;
-    if (closed && !c.broken && c.strength > 0 && slides(law, c) && (law.cohesion > 0 || law.tensile > 0)) {
+    const bool closed = c.normal_force > 0 || w.bonded;
+    if (closed && !c.broken && w.strength > 0 && slides(law, c, w) && (law.cohesion > 0 || law.tensile > 0)) {
       c.broken = true;
-      c.bonded = false;
+      w.bonded = false;
       ++events.broken;
       ++changed;
     }
@@ -510,28 +521,29 @@ int ContactSet::update_strengths(double force_floor) {
     // sliding block then ends 0.17–0.31 % off Coulomb's answer, because its normal forces shift
     // between its corners as it slides.)
     const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint, step_shear(c)) : 0.0;
+    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint, step_shear(c, w)) : 0.0;
     if (s < force_floor) s = 0;  // barely touching: no shear spring to switch on and off
-    const double moved = std::abs(s - c.strength);
-    if (!std::isfinite(c.strength)) {
+    const double moved = std::abs(s - w.strength);
+    if (!std::isfinite(w.strength)) {
       ++changed;  // the elastic predictor's stick ends: solve again with the real strength
-    } else if (moved > kContactTolerances.strength_change * std::max(s, c.strength) && moved > force_floor) {
+    } else if (moved > kContactTolerances.strength_change * std::max(s, w.strength) && moved > force_floor) {
       const bool matters = !linear_shear(law) ||
-                           std::abs(trial_shear(law, c, c.shear)) >= kContactTolerances.near_limit * std::min(s, c.strength);
+                           std::abs(trial_shear(law, c, w, c.shear)) >= kContactTolerances.near_limit * std::min(s, w.strength);
       if (matters) ++changed;
     }
-    c.friction_normal = n;
-    c.strength = s;
+    w.strength = s;
   }
   return changed;
 }
 
 void ContactSet::settle_states() {
-  for (Contact& c : contacts_) {
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    Contact& c = contacts_[i];
+    const ContactWork& w = work_[i];
     const ContactLaw& law = laws_[c.law];
-    const bool closed = c.normal_force > 0 || c.bonded;
+    const bool closed = c.normal_force > 0 || w.bonded;
     ContactState now = ContactState::open;
-    if (closed) now = slides(law, c) ? ContactState::sliding : ContactState::locked;
+    if (closed) now = slides(law, c, w) ? ContactState::sliding : ContactState::locked;
     if (now == ContactState::sliding) c.slip_sign = c.shear > 0 ? 1 : -1;
     if (now == ContactState::open) {
       c.normal_force = 0;
@@ -549,13 +561,15 @@ void ContactSet::settle_states() {
 }
 
 void ContactSet::end_step() {
-  for (Contact& c : contacts_) {
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    Contact& c = contacts_[i];
+    const ContactWork& w = work_[i];
     const ContactLaw& law = laws_[c.law];
     // The joint law's memory follows the accepted step (a closed contact's shear travel and
     // dilation, its largest closure).
     const double dilation0 = c.joint.dilation;
     if (c.state != ContactState::open)
-      c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, step_shear(c), -c.gap);
+      c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, step_shear(c, w), -c.gap);
     c.dilation_step = c.joint.dilation - dilation0;
     if (c.state == ContactState::open) {
       c.shear_el = 0;
@@ -563,7 +577,7 @@ void ContactSet::end_step() {
       c.shear_el = c.shear;
     } else {
       // Sliding: the spring stays loaded at the friction limit (return mapping).
-      c.shear_el = c.slip_sign * shear_at_force(law, c.strength, c.strength, c.length);
+      c.shear_el = c.slip_sign * shear_at_force(law, w.strength, w.strength, c.length);
     }
   }
   history_.resize(contacts_.size());

@@ -40,7 +40,9 @@ struct ContactHistory {
 
 /// One contact of the step being solved: rebuilt by every begin_step() from the detection and
 /// the history, iterated by the solve, read by output and diagnostics after the step. Its
-/// linearisation rows (unknowns, cn, cs) are ContactSet's flat arrays.
+/// linearisation rows (unknowns, cn, cs) and the inner solve's working values (ContactWork) are
+/// ContactSet's flat arrays, index-aligned with contacts(); what it carries to the next step is
+/// a ContactHistory.
 struct Contact {
   // Where, and the law (this step's detection).
   ContactCandidate at;  ///< vertex P, edge, elements, ω, gap at the start of the step
@@ -59,13 +61,6 @@ struct Contact {
   int slip_sign = 0;         ///< direction of sliding along the edge (±1)
   JointMemory joint;         ///< the joint law's history at the start of the step (at its end
                              ///< after end_step()); the gap below is net of joint.dilation
-  // The inner solve's working values.
-  double friction_normal = 0;  ///< N, normal force the shear strength of the inner solve uses
-  double strength = 0;       ///< N, shear strength of the inner solve (tanφ·N + c·L, 0 if open)
-  bool bonded = false;       ///< normal spring holds tension (unbroken, tensile strength, closed)
-  double gap0 = 0, shear0 = 0;  ///< m, gap = gap0 + cnᵀd, shear = shear0 + csᵀd
-  int group = -1;  ///< coupling group of its element pair in the system matrix
-  double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
   // The last solve (output and diagnostics).
   double normal_force = 0;   ///< N, compression > 0
   double gap = 0;            ///< m, gap after the last solve (< 0: penetration), net of the
@@ -77,6 +72,19 @@ struct Contact {
   bool capped = false;       ///< closure held below Vm at the last solve
   double dilation_step = 0;  ///< m, the joint's dilation over the accepted step (end_step();
                              ///< Barton–Bandis, < 0 sliding back toward the start; energy.h)
+};
+
+/// The inner solve's working values of one contact: set by begin_step(), assign_groups(),
+/// start_strengths() and the Newton iterations, read by nothing after the step. Kept apart from
+/// Contact (the step's rows and results, what output and the next step's history read) as Box2D
+/// keeps its solver's constraints apart from its contacts: the solve's loops touch only these
+/// and the rows.
+struct ContactWork {
+  double strength = 0;          ///< N, shear strength of the inner solve (tanφ·N + c·L, 0 if open)
+  bool bonded = false;          ///< normal spring holds tension (unbroken, tensile strength, closed)
+  double gap0 = 0, shear0 = 0;  ///< m, gap = gap0 + cnᵀd, shear = shear0 + csᵀd
+  int group = -1;               ///< coupling group of its element pair in the system matrix
+  double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
 };
 
 /// All contacts of a run.
@@ -235,6 +243,7 @@ class ContactSet {
   bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve
   bool active_ = false;
   std::vector<Contact> contacts_;   // this step's, being iterated
+  std::vector<ContactWork> work_;   // [contact] contacts_'s inner-solve working values
   std::vector<Contact> accepted_;   // the last accepted step's, while contacts_ is a later attempt's
   bool rows_accepted_ = false;      // contacts_ are the last accepted step's
   std::vector<ContactHistory> history_;  // what the last accepted step left for the next
