@@ -14,7 +14,9 @@ struct ContactTolerances {
   /// wrong side (e.g. a corner of a block near the far side of the same block).
   double new_depth = 1e-3;
   /// ×h, the deepest a vertex that was closed against that block may be and still keep its
-  /// contact (penetration is limited to g2·w0 per step; 0.3·h is beyond any accepted one).
+  /// contact, and never deeper than the search distance d0 (penetration is limited to g2·w0 per
+  /// step, below d0 = 2.5·g2·w0: both are beyond any accepted one; detection's Verlet list holds
+  /// no edge farther than d0 plus its margin).
   double closed_depth = 0.3;
   /// –, and at most this fraction of how far element B and the elements of its block around it
   /// (sharing a mesh node with B: a sliver's neighbours too) reach behind the edge (the largest
