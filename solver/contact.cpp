@@ -292,12 +292,21 @@ std::vector<std::string> ContactSet::effects() const {
   return e;
 }
 
-std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::contact_pairs() const {
+namespace {
+std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs(const std::vector<Contact>& contacts) {
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  for (const Contact& c : contacts_) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
+  pairs.reserve(contacts.size());
+  for (const Contact& c : contacts) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
+}
+}  // namespace
+
+std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::contact_pairs() const { return element_pairs(contacts_); }
+
+std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::accepted_pairs() const {
+  return element_pairs(accepted());
 }
 
 void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,

@@ -138,6 +138,8 @@ class ContactSet {
   /// Element pairs of the step's contacts (open or closed), sorted and unique: the pairs the
   /// system matrix's pattern must hold (docs/contact.md "Sparse pattern").
   std::vector<std::pair<std::int32_t, std::int32_t>> contact_pairs() const;
+  /// The same of the last accepted step's contacts (accepted()).
+  std::vector<std::pair<std::int32_t, std::int32_t>> accepted_pairs() const;
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
   /// or -1 when its pair is not there (a safeguard: the pattern takes every step's contact
   /// pairs): add_tangents() leaves such a contact out of the matrix, and the contact solve takes
