@@ -61,8 +61,8 @@
 // converged in 2–10 iterations where r was in the thousands (bench/contact_bench --peer,
 // docs/performance.md).
 //
-// The system matrix's pattern holds the element pairs that have had a contact (every step adds
-// its contacts' pairs: time_stepper.cpp update_pattern). Should a contact's pair be missing,
+// The system matrix's pattern holds the element pairs of the step's contacts (every step adds
+// its contacts' pairs, and sheds the unused ones now and then: time_stepper.cpp update_pattern). Should a contact's pair be missing,
 // add_tangents() leaves it out of P, and the direction after a factorisation is CG's with the
 // new P (H − P of the rank of the left-out springs) — a safeguard.
 //
