@@ -49,8 +49,10 @@ namespace {
 // sparse pattern may hold before a growth rebuilds it from those alone (update_pattern).
 // Measured on the DDA code's walls (contact_bench --peer, 100 steps, one thread): at 1.1 the
 // 30 × 30 wall took 117 ms per static step and 332 dynamic against 132 and 423 with a pattern
-// that only grew; 1.0 (rebuilt from the used pairs at every growth) and 1.05 were no faster,
-// 1.3 kept most of the growth (dynamic 20 × 20: 148 ms against 152 and 122 at 1.1).
+// that only grew. 1.0 (rebuilt from the used pairs at every growth) and 1.05 were within a few
+// per cent of it either way (1.0: 122 / 336 ms at 30 × 30, 116 dynamic at 20 × 20 against 122,
+// with 80–92 analyses per 100 static steps against 54–56), and 1.3 kept most of the growth
+// (dynamic 20 × 20: 148 ms against 152 and 122 at 1.1).
 constexpr double kPatternSlack = 1.1;
 }  // namespace
 
