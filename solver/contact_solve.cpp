@@ -66,9 +66,6 @@
 // add_tangents() leaves it out of P, and the direction after a factorisation is CG's with the
 // new P (H − P of the rank of the left-out springs) — a safeguard.
 //
-// Each direction is solved only to a fraction η of the residual (inexact Newton, kForcing): far
-// from balance the linear model is not worth solving exactly.
-//
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
 // next direction comes from a new factorisation, which the following runs then reuse.
 #include "solver/contact_solve.h"
@@ -90,24 +87,6 @@ constexpr int kMaxNewton = 60;             // Newton iterations per step
 constexpr int kMergedUpdates = 8;          // iterates whose strengths follow their own N
 constexpr int kMaxStrengthRounds = 12;     // strength updates at balance before the step keeps them
 constexpr double kRoundOff = 1e-12;        // the tolerance's floor, × ‖b‖∞
-
-// Inexact Newton's forcing term η: a direction is solved by CG only to ‖Hδ − r‖₂ ≤ η‖r‖₂ (or
-// 0.3·F_tol, whichever is larger). Far from balance — a step's first iterate sits at 1e4 × F_tol
-// on a settling wall — solving the linear model to 1e-6 of r bought nothing: the contacts that
-// switch along δ and the friction strengths that follow it leave a residual of tens × F_tol
-// anyway. Measured on the DDA code's walls (contact_bench --peer, 100 steps, 2026-11-27):
-//   η       static 20 × 20 (solves / fact. / CG)   dynamic 20 × 20
-//   1e-6    3.54 / 1.63 / 19.0                       9.83 / 5.61 / 44.1
-//   1e-3    3.74 / 0.95 / 13.5                      10.40 / 4.81 / 40.4
-//   1e-2    3.63 / 0.85 / 12.8                       9.32 / 4.08 / 36.4
-//   1e-1    4.12 / 0.61 / 13.4                      10.18 / 3.41 / 30.5
-// (fewer factorisations because a CG run that needs more than half its budget no longer
-// triggers one at the second iterate of nearly every step). Truncated PCG from δ = 0 gives a
-// descent direction at any η (each CG iterate minimises the quadratic model over a Krylov space
-// containing P⁻¹r, so rᵀδ > 0), the exact line search keeps Π falling, and acceptance reads the
-// true residual: the step's accuracy is the tolerance's, whatever η (Dembo, Eisenstat & Steihaug
-// 1982; docs/contact.md "Directions are solved inexactly").
-constexpr double kForcing = 1e-2;
 
 // CG iterations worth one numeric factorisation. From flops: a factorisation's over one
 // iteration's (a factor solve pair, a product with the matrix, the contacts' rows). Measured
@@ -298,7 +277,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     // 2-norm bounds the ∞-norm.
     bool solved = false;
     const int budget = cg_budget(system, contacts.contacts().size());
-    const double cg_target = std::max(kForcing * r.norm(), 0.3 * tol);
+    const double cg_target = std::max(1e-6 * r.norm(), 0.3 * tol);
     // Many strengths moved at once: the springs are far from the kept factorisation's, and CG
     // on it would only spend its budget before the factorisation (kMovedPerCgIteration).
     if (moved > kMovedPerCgIteration * budget) refresh = true;
