@@ -36,12 +36,15 @@
 // force it should not, or lack one it should, of at most F_tol, and every unknown is in balance
 // within F_tol. The error this leaves in a step's displacement is at most ‖H⁻¹‖·F_tol·√n and in
 // practice F_tol over the stiffness the unknown is held by. In a static step it does not
-// accumulate; with inertia, Shi's velocity update turns it into the impulse of a force F_tol over
-// the step, so it does not vanish as Δt → 0: residuals of one sign act like an extra force of up
-// to F_tol on a moving body (docs/contact.md "What the tolerance allows in a motion"). Each
-// direction is therefore solved to 1e-6 of the residual: the accepted iterate then lands far
-// inside F_tol (directions solved to 1e-2 cut the brick walls' factorisations by half but let
-// the sliding block drift +0.084 % instead of +0.037 % at τ = 1e-3).
+// accumulate: the next step's balance starts from the stresses and contact forces this one left.
+// With inertia, Shi's velocity update turns it into the impulse of a force F_tol over the step,
+// which does not vanish as Δt → 0: residuals of one sign act like an extra force of up to F_tol on
+// a moving body (docs/contact.md "What the tolerance allows in a motion"). So the residual the
+// step ends with — re-evaluated with the strengths of the accepted normal forces, whose lag within
+// the strength test has one sign too — is returned, and the time stepper hands each block's net
+// share of it to the next step (block_momentum.h): the momentum errors then telescope. Measured on
+// the sliding block at τ = 1e-3 with directions solved to 1e-2 (kForcing): +0.084 % off Coulomb
+// without the hand-on, +0.037 % with it, as with τ = 1e-8.
 //
 // Friction. S = tanφ·N + c·L needs the normal force. Each of the first kMergedUpdates Newton
 // iterates updates every strength from its own N (the friction state lags one iterate, as in
@@ -92,6 +95,25 @@ constexpr int kMaxNewton = 60;             // Newton iterations per step
 constexpr int kMergedUpdates = 8;          // iterates whose strengths follow their own N
 constexpr int kMaxStrengthRounds = 12;     // strength updates at balance before the step keeps them
 constexpr double kRoundOff = 1e-12;        // the tolerance's floor, × ‖b‖∞
+
+// Inexact Newton's forcing term η: CG solves a direction only to ‖Hδ − r‖₂ ≤ η‖r‖₂ (or 0.3·F_tol,
+// whichever is larger). Far from balance — a settling wall's step starts at about 1e4 × F_tol —
+// solving the linear model to 1e-6 of r buys nothing: the contacts that switch along δ and the
+// friction strengths that follow it leave tens × F_tol anyway, and a first CG run that needs more
+// than half its budget makes the second iterate factorise. Measured on the DDA code's walls
+// (contact_bench --peer, 20 × 20, 100 steps, 2026-11-27, before the residual was handed on;
+// solves / factorisations / CG per step):
+//   η       static                 dynamic
+//   1e-6    3.54 / 1.63 / 19.0     9.83 / 5.61 / 44.1
+//   1e-3    3.74 / 0.95 / 13.5    10.40 / 4.81 / 40.4
+//   1e-2    3.63 / 0.85 / 12.8     9.32 / 4.08 / 36.4
+//   1e-1    4.12 / 0.61 / 13.4    10.18 / 3.41 / 30.5
+// Truncated PCG from δ = 0 gives a descent direction at any η (each CG iterate minimises the
+// quadratic model over a Krylov space that contains P⁻¹r, so rᵀδ > 0), the exact line search keeps
+// Π falling, and acceptance reads the true residual (Dembo, Eisenstat & Steihaug 1982). What an
+// inexact path changes is where within the tolerance a step lands; with inertia that is handed
+// on to the next step (block_momentum.h), without it the next step's balance starts from it.
+constexpr double kForcing = 1e-2;
 
 // CG iterations worth one numeric factorisation. From flops: a factorisation's over one
 // iteration's (a factor solve pair, a product with the matrix, the contacts' rows). Measured
@@ -203,7 +225,8 @@ double line_search(const F& psi, double psi0, double tol) {
 }  // namespace
 
 ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
-                                       double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats) {
+                                       double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
+                                       Eigen::VectorXd* residual) {
   using Status = ContactSolveOutcome::Status;
   // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
   static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
@@ -282,7 +305,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     // 2-norm bounds the ∞-norm.
     bool solved = false;
     const int budget = cg_budget(system, contacts.contacts().size());
-    const double cg_target = std::max(1e-6 * r.norm(), 0.3 * tol);
+    const double cg_target = std::max(kForcing * r.norm(), 0.3 * tol);
     // Many strengths moved at once: the springs are far from the kept factorisation's, and CG
     // on it would only spend its budget before the factorisation (kMovedPerCgIteration).
     if (moved > kMovedPerCgIteration * budget) refresh = true;
@@ -350,9 +373,15 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     d.noalias() += alpha * delta;
     ra.noalias() -= alpha * adelta;
   }
+  // The forces the step ends with: the accepted d with the strengths of its own normal forces
+  // (update_strengths() set them above; they moved less than the tolerance, which still leaves
+  // one sign to their lag). What is out of balance then is the residual the step hands on.
+  const double u_accepted = u_err;
+  evaluate();
+  if (residual) *residual = r;
   contacts.settle_states();
   stats.max_force_tolerance = std::max(stats.max_force_tolerance, tol);
-  stats.max_displacement_error = std::max(stats.max_displacement_error, std::max(u_err, 0.0));
+  stats.max_displacement_error = std::max(stats.max_displacement_error, std::max(u_accepted, 0.0));
   double kn_min = std::numeric_limits<double>::infinity();
   for (const Contact& c : contacts.contacts())
     if (c.kn_now > 0 && c.normal_force > tol) kn_min = std::min(kn_min, c.kn_now);  // carrying a force

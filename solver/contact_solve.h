@@ -65,8 +65,11 @@ inline double displacement_tolerance(double tau, double w0) { return kDisplaceme
 /// b the system without contacts (`system` holds A in its saved values), to the force tolerance
 /// τ (solver.contact_tolerance: the largest out-of-balance force on an unknown, as a fraction of
 /// the largest contact force) and the displacement tolerance u_tol (m; 0: none,
-/// displacement_tolerance()). On return d is the solution.
+/// displacement_tolerance()). On return d is the solution and, if asked for, *residual (N/m, in
+/// unknown order) the out-of-balance force it leaves, with the friction strengths of its own
+/// normal forces (block_momentum.h hands its blocks' share to the next step).
 ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
-                                       double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats);
+                                       double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
+                                       Eigen::VectorXd* residual = nullptr);
 
 }  // namespace nmm::solve

@@ -65,6 +65,9 @@ class EquilibriumIndicator {
 
   /// kg/m, the mass of the bodies not excavated.
   double active_mass(const std::vector<std::uint8_t>& body_removed) const;
+  /// [unknown group] kg/m, the lumped mass of each independent cover (its unknowns are
+  /// g·dpc … g·dpc + dpc − 1).
+  const std::vector<double>& group_mass() const { return mass_; }
 
  private:
   const Mesh* mesh_ = nullptr;        // the stepper's: outlives it

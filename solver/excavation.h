@@ -40,7 +40,7 @@ void excavate_bodies(const std::vector<int>& bodies, const Mesh& mesh, std::size
 std::vector<std::uint8_t> removed_elements(const Mesh& mesh, const RunState& s);
 
 /// Removed covers keep no velocity: they stand still, held at zero (dofs_per_cover unknowns per
-/// cover in s.velocity and s.accel).
+/// cover in s.velocity and s.accel); removed blocks hand no force on (s.block_force).
 void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, RunState& s);
 
 /// Fraction of the locked-in traction on a face towards `body` still applied in the step after

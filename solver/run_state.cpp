@@ -9,6 +9,7 @@
 //   (FACTOR, optional, last: the matrix of the contact solve's factorisation, system_matrix.cpp;
 //    not part of the state hash — it only makes a restart precondition as the straight run did)
 //   DIAG    counters for summary.json (not hashed)
+//   (CARRY, optional, after DIAG: [2·block] f64 block_force, written when not empty)
 // Every vector carries its length, which must match the mesh; every index is range-checked.
 #include "solver/run_state.h"
 
@@ -119,6 +120,8 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
     w.put(s.max_step_displacement);
     out.emplace_back("DIAG", w.take());
   }
+  // Only when a dynamic step left one: the states of every other run keep their bytes.
+  if (!s.block_force.empty()) out.emplace_back("CARRY", doubles(s.block_force));
   return out;
 }
 
@@ -129,11 +132,17 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
                                       "STRESS", "LOOPXY", "LOOPU", "POINTS",  "PATTERN",
                                       "BODIES", "CONTACT", "DIAG"};
   constexpr std::size_t kCount = sizeof kTags / sizeof kTags[0];
-  // An optional last section FACTOR: the matrix of the solver's factorisation (not physics).
-  const bool factor = sections.size() == kCount + 1 && sections.back().first == "FACTOR";
-  if (sections.size() != kCount && !factor)
+  // Optional after them: CARRY (the blocks' handed-on forces), then FACTOR (the matrix of the
+  // solver's factorisation, not physics).
+  std::size_t next = kCount;
+  const bool carry = sections.size() > next && sections[next].first == "CARRY";
+  if (carry) ++next;
+  const bool factor = sections.size() > next && sections[next].first == "FACTOR";
+  if (factor) ++next;
+  if (sections.size() < kCount || sections.size() != next)
     throw InputError(name, "section table", "expected " + std::to_string(kCount) +
-                                                " sections, found " + std::to_string(sections.size()));
+                                                " sections (and CARRY, FACTOR), found " +
+                                                std::to_string(sections.size()));
   for (std::size_t i = 0; i < kCount; ++i)
     if (sections[i].first != kTags[i])
       throw InputError(name, "section table", "section " + std::to_string(i) + " is " +
@@ -223,6 +232,13 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
   }
   contact_history = sections[11].second;
   if (factor_source) *factor_source = factor ? sections.back().second : std::string();
+  if (carry) {
+    ByteReader r(sections[kCount].second, name, "CARRY");
+    s.block_force = r.get_vector<double>(2 * mesh.block_count(), "block forces");
+    for (double x : s.block_force)
+      if (!std::isfinite(x)) r.fail("block forces hold a value that is not finite");
+    r.expect_end();
+  }
   {
     ByteReader r(sections[12].second, name, "DIAG");
     s.iterations = r.get<std::uint64_t>();

@@ -62,6 +62,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
   config_ = Configuration(mesh, &space_);
   indicator_ = EquilibriumIndicator(mesh, scene, space_);
+  momentum_ = BlockMomentum(mesh, space_, indicator_.group_mass());
   contacts_.use_space(space_);
   contacts_.set_elastic_predictor(!step_inertia());
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
@@ -161,6 +162,9 @@ std::string TimeStepper::attempt(double dt) {
   timings_.contact_detection = contacts_.detection_seconds();
   watch.restart();
   assemble(dt);
+  // The blocks' share of the last step's out-of-balance force (block_momentum.h); not in a
+  // static step (a restart may switch a dynamic run to static), whose balance starts afresh.
+  if (!s_.block_force.empty() && handed_on_share() > 0) momentum_.add_forces(s_.block_force, rhs_);
   if (contact) {
     system_.save();
     rhs_base_ = rhs_;
@@ -169,7 +173,8 @@ std::string TimeStepper::attempt(double dt) {
 
   // Without contact: one factorisation and solve. With contact: the step's convex contact
   // problem (contact_solve.cpp), Newton iterations on a reused factorisation.
-  Eigen::VectorXd d;
+  Eigen::VectorXd d, residual;
+  bool iterated = false;  // the contact solve took a Newton direction
   auto not_positive_definite = [&]() {
     return not_positive_definite_message(mesh_, space_, system_.failed_unknown());
   };
@@ -189,7 +194,8 @@ std::string TimeStepper::attempt(double dt) {
     const ContactSolveOutcome outcome =
         solve_contact_step(system_, contacts_, rhs_base_, tau,
                            contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
-                           solve_stats_);
+                           solve_stats_, &residual);
+    iterated = solve_stats_.newton > before.newton;
     timings_.factorisations += solve_stats_.factorisations - before.factorisations;
     timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
     timings_.solves_count += solve_stats_.cg_iterations - before.cg_iterations +
@@ -211,9 +217,16 @@ std::string TimeStepper::attempt(double dt) {
         control_.rejection(d.cwiseAbs().maxCoeff(), contacts_.max_penetration(), step_inertia());
     if (!why.empty()) return why;
     contacts_.end_step();
+    // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
+    // its start hands nothing on, and a direct solve leaves nothing to hand on.
+    if (handed_on_share() > 0 && iterated)
+      momentum_.net_forces(residual, handed_on_share(), s_.block_force);
+    else
+      s_.block_force.clear();
     s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());
     s_.max_capped = std::max(s_.max_capped, contacts_.capped_count());
   }
+  if (!contact) s_.block_force.clear();
   watch.restart();
   measure_balance(d, dt, contact);
   update(d, dt);

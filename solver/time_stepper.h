@@ -15,6 +15,7 @@
 
 #include "common/mesh.h"
 #include "common/scene.h"
+#include "solver/block_momentum.h"
 #include "solver/configuration.h"
 #include "solver/contact.h"
 #include "solver/contact_solve.h"
@@ -84,6 +85,9 @@ class TimeStepper {
   void measure_balance(const Eigen::VectorXd& d, double dt, bool contact);
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
   bool step_inertia() const { return model_.step_inertia(); }
+  /// –, the share of a step's momentum the next step keeps: solver.dynamic_factor in a dynamic
+  /// run, 0 in a static one (block_momentum.h hands on that share of the residual).
+  double handed_on_share() const { return scene_.solver.dynamic ? scene_.solver.dynamic_factor : 0.0; }
   void build_pattern_with_pairs();
   /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
   std::size_t stress_terms() const { return static_cast<std::size_t>(space_.terms()); }
@@ -114,6 +118,7 @@ class TimeStepper {
   ContactSolveStats solve_stats_;   // what the contact solves cost (contact_solve.h)
   int threads_ = 1;                 // of the factorisation (solver_threads.h)
   EquilibriumIndicator indicator_;  // lumped cover masses (derived from the mesh: no run state)
+  BlockMomentum momentum_;          // each block's covers and mass shares (block_momentum.h)
   EquilibriumSample balance_;       // of the last accepted step (diagnostics, not state)
   bool stopped_at_ratio_ = false;
 };

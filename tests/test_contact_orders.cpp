@@ -309,6 +309,7 @@ TEST(ContactOrders, RestartWithContactsSlidingIsBitwiseAtOrderOne) {
   std::size_t sliding = 0;
   for (const Contact& c : first.view().contacts.contacts()) sliding += c.state == ContactState::sliding ? 1 : 0;
   ASSERT_GT(sliding, 0u) << "the checkpoint must catch contacts sliding";
+  ASSERT_FALSE(first.view().state.block_force.empty()) << "and a force handed on (checkpoint section CARRY)";
   const std::string path = ::testing::TempDir() + "/contacts_order1.nmmstate";
   write_checkpoint(first.view(), path);
   TimeStepper second(m, s, "restart");

@@ -1,6 +1,7 @@
 // The contact solve's force tolerance (solver.contact_tolerance, docs/contact.md "Tolerance and
 // error"): a looser tolerance costs fewer Newton iterations and leaves the sliding block on
-// Coulomb's answer; what the tolerance allowed is reported in forces and in gap.
+// Coulomb's answer; what the tolerance allowed is reported in forces and in gap. The residual a
+// dynamic step leaves is handed on to its blocks (block_momentum.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +12,9 @@
 #include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
 #include "reference/sliding_block.h"
+#include "solver/block_momentum.h"
 #include "solver/contact_solve.h"
+#include "solver/equilibrium_indicator.h"
 #include "solver/time_stepper.h"
 
 namespace nmm::solve {
@@ -90,6 +93,66 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
   EXPECT_GT(cs.displacement_refusals, 0) << "the force test alone would have stopped short here";
   EXPECT_GT(cs.max_displacement_error, 0);
   EXPECT_LE(cs.max_displacement_error, u_tol);
+}
+
+TEST(BlockMomentum, SpreadsEachBlocksForceByMassAndGetsItBack) {
+  // The sliding block's mesh: the block and its base, each of many covers.
+  const SceneDef s = reference::sliding_block_tilted(30, 20, 0.5, 1);
+  const Mesh m = pre::build_mesh(s, "tilted");
+  const TimeStepper st(m, s, "tilted");
+  const CoverSpace& space = st.view().space;
+  const EquilibriumIndicator indicator(m, s, space);
+  const BlockMomentum momentum(m, space, indicator.group_mass());
+  ASSERT_EQ(m.block_count(), 2u);
+  // A body force g on every cover's constant coefficients: each block's net force is its mass × g.
+  const std::vector<double>& mass = indicator.group_mass();
+  const auto dpc = static_cast<std::size_t>(space.dofs_per_cover());
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(space.unknowns());
+  double total = 0;
+  for (std::size_t g = 0; g < mass.size(); ++g) {
+    r[static_cast<Eigen::Index>(g * dpc)] = 3 * mass[g];
+    r[static_cast<Eigen::Index>(g * dpc + 1)] = -2 * mass[g];
+    r[static_cast<Eigen::Index>(g * dpc + 2)] = 1e3;  // a linear term: not a translation
+    total += mass[g];
+  }
+  std::vector<double> f;
+  momentum.net_forces(r, 0.5, f);
+  ASSERT_EQ(f.size(), 4u);
+  EXPECT_NEAR(f[0] + f[2], 0.5 * 3 * total, 1e-12 * total);
+  EXPECT_NEAR(f[1] + f[3], -0.5 * 2 * total, 1e-12 * total);
+  EXPECT_NEAR(f[0] / f[1], -1.5, 1e-12);
+  // Spread back by mass: the same body force, and the same net forces once summed again.
+  Eigen::VectorXd back = Eigen::VectorXd::Zero(space.unknowns());
+  momentum.add_forces(f, back);
+  std::vector<double> again;
+  momentum.net_forces(back, 1.0, again);
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_NEAR(again[i], f[i], 1e-12 * std::abs(f[i]));
+  for (std::size_t g = 0; g < mass.size(); ++g) {
+    EXPECT_NEAR(back[static_cast<Eigen::Index>(g * dpc)], 0.5 * 3 * mass[g], 1e-9 * mass[g]);
+    EXPECT_EQ(back[static_cast<Eigen::Index>(g * dpc + 2)], 0.0);
+  }
+}
+
+TEST(BlockMomentum, OnlyADynamicStepThatIteratedHandsAForceOn) {
+  SceneDef s = reference::sliding_block_tilted(30, 20);
+  const Mesh m = pre::build_mesh(s, "tilted");
+  {
+    TimeStepper st(m, s, "tilted");
+    ASSERT_EQ(st.run_until(0.02, [](std::int64_t) {}), "ok");
+    const std::vector<double>& f = st.view().state.block_force;
+    ASSERT_EQ(f.size(), 2 * m.block_count());
+    double largest = 0;
+    for (double x : f) largest = std::max(largest, std::abs(x));
+    // Within the tolerance: at most F_tol on each of the block's unknowns, summed.
+    const double f_tol = st.view().contact_solve.max_force_tolerance;
+    std::printf("largest handed-on force %.3e N/m, F_tol %.3e N/m\n", largest, f_tol);
+    EXPECT_GT(largest, 0.0);
+    EXPECT_LT(largest, static_cast<double>(st.view().space.unknowns()) * f_tol);
+  }
+  s.solver.dynamic = false;  // DDA static: the next step starts at rest, nothing to hand on
+  TimeStepper st(m, s, "tilted");
+  ASSERT_EQ(st.run_until(0.02, [](std::int64_t) {}), "ok");
+  EXPECT_TRUE(st.view().state.block_force.empty());
 }
 
 }  // namespace
