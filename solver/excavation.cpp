@@ -31,7 +31,7 @@ void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, RunState& s) {
       for (std::size_t i = 0; i < dpc; ++i) s.velocity[c * dpc + i] = s.accel[c * dpc + i] = 0;
   if (!s.block_force.empty())
     for (std::size_t b = 0; b < mesh.block_count(); ++b)
-      if (s.body_removed[mesh.block_body[b]]) s.block_force[2 * b] = s.block_force[2 * b + 1] = 0;
+      if (s.body_removed[mesh.block_body[b]]) std::fill_n(s.block_force.begin() + static_cast<long>(3 * b), 3, 0.0);
 }
 
 double interface_traction_factor(const RunState& s, std::int32_t body, std::int64_t release_steps) {

@@ -9,7 +9,7 @@
 //   (FACTOR, optional, last: the matrix of the contact solve's factorisation, system_matrix.cpp;
 //    not part of the state hash — it only makes a restart precondition as the straight run did)
 //   DIAG    counters for summary.json (not hashed)
-//   (CARRY, optional, after DIAG: [2·block] f64 block_force, written when not empty)
+//   (CARRY, optional, after DIAG: [3·block] f64 block_force, written when not empty)
 // Every vector carries its length, which must match the mesh; every index is range-checked.
 #include "solver/run_state.h"
 
@@ -234,7 +234,7 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
   if (factor_source) *factor_source = factor ? sections.back().second : std::string();
   if (carry) {
     ByteReader r(sections[kCount].second, name, "CARRY");
-    s.block_force = r.get_vector<double>(2 * mesh.block_count(), "block forces");
+    s.block_force = r.get_vector<double>(3 * mesh.block_count(), "block forces");
     for (double x : s.block_force)
       if (!std::isfinite(x)) r.fail("block forces hold a value that is not finite");
     r.expect_end();

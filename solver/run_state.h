@@ -48,8 +48,9 @@ struct RunState {
   /// that a restarted run factorises the same pattern, hence the same round-off, as the
   /// straight run)
   std::vector<std::pair<std::int32_t, std::int32_t>> pattern_pairs;
-  /// [2·block] N/m, the net out-of-balance force the last step left on each block, applied in
-  /// the next step (block_momentum.h); empty: none (static runs, steps in balance at their start)
+  /// [3·block] N/m, N/m, N·m/m: the net out-of-balance force (x, y) and moment the last step left
+  /// on each block, applied in the next step (block_momentum.h); empty: none (static runs, steps
+  /// in balance at their start)
   std::vector<double> block_force;
   std::vector<std::uint8_t> body_removed;      ///< [body] 1: excavated
   std::vector<std::int64_t> body_removed_at;   ///< [body] step at which it was excavated, or -1

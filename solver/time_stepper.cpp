@@ -164,7 +164,7 @@ std::string TimeStepper::attempt(double dt) {
   assemble(dt);
   // The blocks' share of the last step's out-of-balance force (block_momentum.h); not in a
   // static step (a restart may switch a dynamic run to static), whose balance starts afresh.
-  if (!s_.block_force.empty() && handed_on_share() > 0) momentum_.add_forces(s_.block_force, rhs_);
+  if (!s_.block_force.empty() && handed_on_share() > 0) momentum_.add_forces(s_.block_force, s_.cover_xy, rhs_);
   if (contact) {
     system_.save();
     rhs_base_ = rhs_;
@@ -220,7 +220,7 @@ std::string TimeStepper::attempt(double dt) {
     // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
     // its start hands nothing on, and a direct solve leaves nothing to hand on.
     if (handed_on_share() > 0 && iterated)
-      momentum_.net_forces(residual, handed_on_share(), s_.block_force);
+      momentum_.net_forces(residual, handed_on_share(), s_.cover_xy, s_.block_force);
     else
       s_.block_force.clear();
     s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());

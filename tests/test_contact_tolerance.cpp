@@ -4,6 +4,7 @@
 // dynamic step leaves is handed on to its blocks (block_momentum.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -95,42 +96,77 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
   EXPECT_LE(cs.max_displacement_error, u_tol);
 }
 
-TEST(BlockMomentum, SpreadsEachBlocksForceByMassAndGetsItBack) {
-  // The sliding block's mesh: the block and its base, each of many covers.
+TEST(BlockMomentum, SpreadsEachBlocksForceAndMomentByMassAndGetsThemBack) {
+  // The sliding block's mesh at cover order 1: the block and its base, each of many covers.
   const SceneDef s = reference::sliding_block_tilted(30, 20, 0.5, 1);
   const Mesh m = pre::build_mesh(s, "tilted");
   const TimeStepper st(m, s, "tilted");
   const CoverSpace& space = st.view().space;
+  const std::vector<double>& xy = st.view().state.cover_xy;
   const EquilibriumIndicator indicator(m, s, space);
   const BlockMomentum momentum(m, space, indicator.group_mass());
   ASSERT_EQ(m.block_count(), 2u);
-  // A body force g on every cover's constant coefficients: each block's net force is its mass × g.
   const std::vector<double>& mass = indicator.group_mass();
   const auto dpc = static_cast<std::size_t>(space.dofs_per_cover());
+  // A cover of each group, and the whole model's centre of mass (both blocks together).
+  std::vector<std::size_t> cover(mass.size());
+  for (std::size_t c = 0; c < m.cover_count(); ++c)
+    cover[static_cast<std::size_t>(space.first_unknown(c)) / dpc] = c;
+  double total = 0, cx = 0, cy = 0;
+  for (std::size_t g = 0; g < mass.size(); ++g) {
+    total += mass[g];
+    cx += mass[g] * xy[2 * cover[g]];
+    cy += mass[g] * xy[2 * cover[g] + 1];
+  }
+  cx /= total;
+  cy /= total;
+  // A body force g on every cover's constant coefficients: each block's net force is its mass × g
+  // and its moment about its own centre of mass 0.
   Eigen::VectorXd r = Eigen::VectorXd::Zero(space.unknowns());
-  double total = 0;
   for (std::size_t g = 0; g < mass.size(); ++g) {
     r[static_cast<Eigen::Index>(g * dpc)] = 3 * mass[g];
     r[static_cast<Eigen::Index>(g * dpc + 1)] = -2 * mass[g];
-    r[static_cast<Eigen::Index>(g * dpc + 2)] = 1e3;  // a linear term: not a translation
-    total += mass[g];
+    r[static_cast<Eigen::Index>(g * dpc + 2)] = 1e3;  // a linear term: not a rigid motion
   }
   std::vector<double> f;
-  momentum.net_forces(r, 0.5, f);
-  ASSERT_EQ(f.size(), 4u);
-  EXPECT_NEAR(f[0] + f[2], 0.5 * 3 * total, 1e-12 * total);
-  EXPECT_NEAR(f[1] + f[3], -0.5 * 2 * total, 1e-12 * total);
+  momentum.net_forces(r, 0.5, xy, f);
+  ASSERT_EQ(f.size(), 6u);
+  EXPECT_NEAR(f[0] + f[3], 0.5 * 3 * total, 1e-12 * total);
+  EXPECT_NEAR(f[1] + f[4], -0.5 * 2 * total, 1e-12 * total);
   EXPECT_NEAR(f[0] / f[1], -1.5, 1e-12);
+  EXPECT_NEAR(f[2], 0.0, 1e-9 * total);
+  EXPECT_NEAR(f[5], 0.0, 1e-9 * total);
   // Spread back by mass: the same body force, and the same net forces once summed again.
   Eigen::VectorXd back = Eigen::VectorXd::Zero(space.unknowns());
-  momentum.add_forces(f, back);
+  momentum.add_forces(f, xy, back);
   std::vector<double> again;
-  momentum.net_forces(back, 1.0, again);
-  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_NEAR(again[i], f[i], 1e-12 * std::abs(f[i]));
+  momentum.net_forces(back, 1.0, xy, again);
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_NEAR(again[i], f[i], 1e-9 * total);
   for (std::size_t g = 0; g < mass.size(); ++g) {
     EXPECT_NEAR(back[static_cast<Eigen::Index>(g * dpc)], 0.5 * 3 * mass[g], 1e-9 * mass[g]);
     EXPECT_EQ(back[static_cast<Eigen::Index>(g * dpc + 2)], 0.0);
   }
+  // An angular acceleration ω about the model's centre: forces m_g·ω ẑ × (x_g − c). Each block
+  // gets the moment ω·Σ m_g·(x_g − c)·(x_g − x_b) and the force of its centre's acceleration;
+  // spread back and summed again, both return.
+  r.setZero();
+  for (std::size_t g = 0; g < mass.size(); ++g) {
+    r[static_cast<Eigen::Index>(g * dpc)] = -7 * mass[g] * (xy[2 * cover[g] + 1] - cy);
+    r[static_cast<Eigen::Index>(g * dpc + 1)] = 7 * mass[g] * (xy[2 * cover[g]] - cx);
+  }
+  momentum.net_forces(r, 1.0, xy, f);
+  EXPECT_GT(std::abs(f[2]) + std::abs(f[5]), 0.0);
+  back.setZero();
+  momentum.add_forces(f, xy, back);
+  momentum.net_forces(back, 1.0, xy, again);
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_NEAR(again[i], f[i], 1e-9 * (std::abs(f[i]) + total));
+  // The rotation is spread as a rigid angular acceleration: the same forces as r where r is one.
+  const double scale = r.cwiseAbs().maxCoeff();
+  for (std::size_t g = 0; g < mass.size(); ++g)
+    for (std::size_t d = 0; d < 2; ++d) {
+      const auto i = static_cast<Eigen::Index>(g * dpc + d);
+      EXPECT_NEAR(back[i], r[i], 1e-6 * scale);
+    }
 }
 
 TEST(BlockMomentum, OnlyADynamicStepThatIteratedHandsAForceOn) {
@@ -140,9 +176,9 @@ TEST(BlockMomentum, OnlyADynamicStepThatIteratedHandsAForceOn) {
     TimeStepper st(m, s, "tilted");
     ASSERT_EQ(st.run_until(0.02, [](std::int64_t) {}), "ok");
     const std::vector<double>& f = st.view().state.block_force;
-    ASSERT_EQ(f.size(), 2 * m.block_count());
+    ASSERT_EQ(f.size(), 3 * m.block_count());
     double largest = 0;
-    for (double x : f) largest = std::max(largest, std::abs(x));
+    for (std::size_t b = 0; b < m.block_count(); ++b) largest = std::max({largest, std::abs(f[3 * b]), std::abs(f[3 * b + 1])});
     // Within the tolerance: at most F_tol on each of the block's unknowns, summed.
     const double f_tol = st.view().contact_solve.max_force_tolerance;
     std::printf("largest handed-on force %.3e N/m, F_tol %.3e N/m\n", largest, f_tol);
