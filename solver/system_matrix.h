@@ -25,6 +25,9 @@ class SystemMatrix {
   /// unknowns in it: one group per element (its CoverSpace::element_dofs() unknowns), one per
   /// pair of elements in contact (both elements' unknowns; an unknown may appear twice in a group).
   /// Group g holds dofs[offsets[g] .. offsets[g+1]).
+  /// A pattern that only grew by groups whose entries it already holds (new pairs of elements
+  /// whose covers were already coupled: neighbours along a joint share covers) keeps its
+  /// nonzeros and the old groups' positions, and only the new groups are placed.
   void build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
 
   /// Unknowns whose diagonal is perturbed by eps·K_ii in the factorisation (linearly dependent
@@ -94,6 +97,7 @@ class SystemMatrix {
   int size() const { return static_cast<int>(k_.rows()); }
   const Sparse& matrix() const { return k_; }
   std::size_t analyses() const { return analyses_; }  ///< symbolic analyses done so far
+  std::size_t builds() const { return builds_; }  ///< patterns built from scratch so far (not grown in place)
 
  private:
   void set_perturbation();  // perturbation_ of factored_
@@ -104,6 +108,8 @@ class SystemMatrix {
   Sparse k_;
   std::vector<std::int32_t> slot_offset_;  // [group+1] CSR into slots_
   std::vector<std::int32_t> slots_;  // [m² per group] value index of entry (i, j), -1 above diagonal
+  std::vector<int> group_offsets_, group_dofs_;  // the groups of the last build (build_pattern's)
+  bool grow_in_place(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
   std::vector<double> saved_;
   Sparse factored_;  // the matrix of the current factorisation
   std::vector<std::int32_t> diag_;   // [n] value index of each diagonal entry
@@ -111,6 +117,7 @@ class SystemMatrix {
   bool analysed_ = false;
   bool has_factor_ = false;
   std::size_t analyses_ = 0;
+  std::size_t builds_ = 0;
   double factor_nonzeros_ = 0, factor_flops_ = 0;
   std::string ordering_;
   int failed_unknown_ = -1;

@@ -1,0 +1,100 @@
+// The system matrix's pattern (solver/system_matrix.h): a pattern that grows by groups is grown
+// in place, and must give bit for bit what a build from scratch gives — the same nonzeros,
+// every group's values at the same places — with no new symbolic analysis where the new groups
+// couple only unknowns already coupled.
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "solver/system_matrix.h"
+
+namespace {
+
+using nmm::solve::SystemMatrix;
+
+struct Groups {
+  std::vector<int> offsets{0}, dofs;
+  Groups& add(std::initializer_list<int> g) {
+    dofs.insert(dofs.end(), g);
+    offsets.push_back(static_cast<int>(dofs.size()));
+    return *this;
+  }
+};
+
+// Each group adds a block of its own numbers (column-major m × m, symmetric), and every
+// diagonal a weight, so a misplaced entry shows in the values; returns the assembled matrix.
+SystemMatrix::Sparse assembled(SystemMatrix& k, const Groups& g, int n) {
+  k.set_zero();
+  for (std::size_t e = 0; e + 1 < g.offsets.size(); ++e) {
+    const int m = g.offsets[e + 1] - g.offsets[e];
+    std::vector<double> block(static_cast<std::size_t>(m * m));
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i)
+        block[static_cast<std::size_t>(j * m + i)] = i == j ? 10.0 + static_cast<double>(e) : 0.1 * static_cast<double>(e + 1) / (1 + i + j);
+    k.add_group(e, block.data());
+  }
+  for (int i = 0; i < n; ++i) k.add_diagonal(i, 1.0 + i);
+  return k.matrix();
+}
+
+void expect_same(const SystemMatrix::Sparse& a, const SystemMatrix::Sparse& b) {
+  ASSERT_EQ(a.nonZeros(), b.nonZeros());
+  for (int c = 0; c <= a.cols(); ++c) ASSERT_EQ(a.outerIndexPtr()[c], b.outerIndexPtr()[c]) << "column " << c;
+  for (int p = 0; p < a.nonZeros(); ++p) {
+    ASSERT_EQ(a.innerIndexPtr()[p], b.innerIndexPtr()[p]) << "entry " << p;
+    ASSERT_EQ(a.valuePtr()[p], b.valuePtr()[p]) << "entry " << p;  // bit for bit
+  }
+}
+
+constexpr int kN = 9;
+
+Groups base() { return Groups{}.add({0, 1, 2}).add({2, 3, 4}).add({4, 5, 6}).add({6, 7, 8}).add({0, 1, 4, 5}); }
+
+}  // namespace
+
+TEST(SystemMatrixPattern, GrowthByCoupledUnknownsKeepsPatternAndAnalysis) {
+  SystemMatrix k;
+  k.build_pattern(kN, base().offsets, base().dofs);
+  assembled(k, base(), kN);
+  ASSERT_TRUE(k.factorize());
+  ASSERT_EQ(k.analyses(), 1u);
+  // New groups inside the old ones' couplings (one with a repeated unknown), among the old ones.
+  const Groups grown = Groups{}.add({0, 1, 2}).add({1, 2}).add({2, 3, 4}).add({4, 5, 6}).add({5, 4, 5}).add({6, 7, 8}).add({0, 1, 4, 5}).add({7, 8});
+  k.build_pattern(kN, grown.offsets, grown.dofs);
+  EXPECT_EQ(k.builds(), 1u) << "grown in place";
+  SystemMatrix fresh;
+  fresh.build_pattern(kN, grown.offsets, grown.dofs);
+  expect_same(assembled(k, grown, kN), assembled(fresh, grown, kN));
+  ASSERT_TRUE(k.factorize());
+  EXPECT_EQ(k.analyses(), 1u) << "the pattern did not change: its analysis holds";
+}
+
+TEST(SystemMatrixPattern, NewCouplingsAreMergedAndDroppedGroupsRebuild) {
+  // Groups coupling unknowns not yet coupled (3 with 6; 0 with 8 and 7, the first and last
+  // columns): new nonzeros merged into their columns, and a new analysis.
+  SystemMatrix k;
+  k.build_pattern(kN, base().offsets, base().dofs);
+  assembled(k, base(), kN);
+  ASSERT_TRUE(k.factorize());
+  const Groups wider = Groups{}.add({0, 1, 2}).add({2, 3, 4}).add({3, 6}).add({4, 5, 6}).add({6, 7, 8}).add({0, 1, 4, 5}).add({8, 0, 7});
+  k.build_pattern(kN, wider.offsets, wider.dofs);
+  EXPECT_EQ(k.builds(), 1u) << "grown in place";
+  SystemMatrix fresh;
+  fresh.build_pattern(kN, wider.offsets, wider.dofs);
+  const auto a = assembled(k, wider, kN);
+  expect_same(a, assembled(fresh, wider, kN));
+  EXPECT_EQ(static_cast<std::size_t>(a.nonZeros()), k.nonzeros());
+  ASSERT_TRUE(k.factorize());
+  EXPECT_EQ(k.analyses(), 2u);
+  // Dropping a group (the pattern shrinks to the pairs in use) builds afresh: the coupling of
+  // 0, 1 with 4, 5 goes.
+  k.build_pattern(kN, base().offsets, base().dofs);
+  EXPECT_EQ(k.builds(), 2u);
+  SystemMatrix again;
+  const Groups fewer = Groups{}.add({0, 1, 2}).add({2, 3, 4}).add({4, 5, 6}).add({6, 7, 8});
+  k.build_pattern(kN, fewer.offsets, fewer.dofs);
+  EXPECT_EQ(k.builds(), 3u);
+  again.build_pattern(kN, fewer.offsets, fewer.dofs);
+  expect_same(assembled(k, fewer, kN), assembled(again, fewer, kN));
+  EXPECT_LT(k.nonzeros(), static_cast<std::size_t>(a.nonZeros()));
+}
