@@ -78,22 +78,27 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     outer = k_.outerIndexPtr();
     inner = k_.innerIndexPtr();
   }
-  std::vector<std::int32_t> slot_offset(ng + 1, 0), slots;
-  slots.reserve(slots_.size() + 144 * (ng - old_ng));
+  std::vector<std::int32_t> slot_offset(ng + 1, 0);
   for (std::size_t g = 0; g < ng; ++g) {
     const int m = offsets[g + 1] - offsets[g];
+    slot_offset[g + 1] = slot_offset[g] + m * m;
+  }
+  std::vector<std::int32_t> slots(static_cast<std::size_t>(slot_offset[ng]));
+  for (std::size_t g = 0; g < ng; ++g) {
+    std::int32_t* out = slots.data() + slot_offset[g];
     if (old_of[g] != kNew) {
-      const auto first = slots_.begin() + slot_offset_[old_of[g]], last = slots_.begin() + slot_offset_[old_of[g] + 1];
+      const std::int32_t* first = slots_.data() + slot_offset_[old_of[g]];
+      const std::int32_t* last = slots_.data() + slot_offset_[old_of[g] + 1];
       if (moved.empty())
-        slots.insert(slots.end(), first, last);
+        std::copy(first, last, out);
       else
-        for (auto it = first; it != last; ++it) slots.push_back(*it < 0 ? -1 : moved[static_cast<std::size_t>(*it)]);
+        for (const std::int32_t* it = first; it != last; ++it) *out++ = *it < 0 ? -1 : moved[static_cast<std::size_t>(*it)];
     } else {
+      const int m = offsets[g + 1] - offsets[g];
       const int* d = dofs.data() + offsets[g];
       for (int jj = 0; jj < m; ++jj)
-        for (int ii = 0; ii < m; ++ii) slots.push_back(d[ii] < d[jj] ? -1 : find(outer, inner, d[ii], d[jj]));
+        for (int ii = 0; ii < m; ++ii) *out++ = d[ii] < d[jj] ? -1 : find(outer, inner, d[ii], d[jj]);
     }
-    slot_offset[g + 1] = static_cast<std::int32_t>(slots.size());
   }
   slot_offset_ = std::move(slot_offset);
   slots_ = std::move(slots);

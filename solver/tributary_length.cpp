@@ -113,17 +113,29 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
 
   std::vector<double> length(n, corner_length);
   const double tie = kContactTolerances.gap_round_off * h;
-  for (std::size_t i = 0; i < n; ++i) {
+  // The run of P's pair of blocks in the list, [first, end): P's neighbours are searched in it.
+  std::vector<std::uint32_t> run_first(keys.size()), run_end(keys.size());
+  for (std::size_t k = 0, first = 0; k < keys.size(); ++k) {
+    if (keys[k].b0 != keys[first].b0 || keys[k].b1 != keys[first].b1) {
+      for (std::size_t q = first; q < k; ++q) run_end[q] = static_cast<std::uint32_t>(k);
+      first = k;
+    }
+    run_first[k] = static_cast<std::uint32_t>(first);
+    if (k + 1 == keys.size())
+      for (std::size_t q = first; q <= k; ++q) run_end[q] = static_cast<std::uint32_t>(k + 1);
+  }
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const auto run = keys.begin() + run_first[k], end = keys.begin() + run_end[k];
+    const std::size_t i = keys[k].i;
     const Frame& a = f[i];
-    if (!(a.hi > a.lo)) continue;
     double lo = a.lo, hi = a.hi;
     // Nearest own-half boundaries of the neighbours beyond P's halves (no overlap), each side.
     double next_hi = std::numeric_limits<double>::infinity(), next_lo = -next_hi;
     const std::int64_t ci = cell(a.px), cj = cell(a.py);
     for (std::int64_t di = -1; di <= 1; ++di) {
       const Key last{a.b0, a.b1, ci + di, cj + 1, std::numeric_limits<std::uint32_t>::max()};
-      for (auto it = std::lower_bound(keys.begin(), keys.end(), Key{a.b0, a.b1, ci + di, cj - 1, 0});
-           it != keys.end() && !(last < *it); ++it) {
+      for (auto it = std::lower_bound(run, end, Key{a.b0, a.b1, ci + di, cj - 1, 0}); it != end && !(last < *it);
+           ++it) {
         const std::uint32_t j = it->i;
         if (j == i) continue;
         const Frame& b = f[j];
