@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -114,18 +115,13 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
   std::vector<double> length(n, corner_length);
   const double tie = kContactTolerances.gap_round_off * h;
   // The run of P's pair of blocks in the list, [first, end): P's neighbours are searched in it.
-  std::vector<std::uint32_t> run_first(keys.size()), run_end(keys.size());
-  for (std::size_t k = 0, first = 0; k < keys.size(); ++k) {
-    if (keys[k].b0 != keys[first].b0 || keys[k].b1 != keys[first].b1) {
-      for (std::size_t q = first; q < k; ++q) run_end[q] = static_cast<std::uint32_t>(k);
-      first = k;
-    }
-    run_first[k] = static_cast<std::uint32_t>(first);
-    if (k + 1 == keys.size())
-      for (std::size_t q = first; q <= k; ++q) run_end[q] = static_cast<std::uint32_t>(k + 1);
-  }
+  const auto same_pair = [&](std::size_t k, std::size_t q) { return keys[k].b0 == keys[q].b0 && keys[k].b1 == keys[q].b1; };
+  std::vector<std::size_t> run_first(keys.size()), run_end(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k) run_first[k] = k > 0 && same_pair(k - 1, k) ? run_first[k - 1] : k;
+  for (std::size_t k = keys.size(); k-- > 0;) run_end[k] = k + 1 < keys.size() && same_pair(k, k + 1) ? run_end[k + 1] : k + 1;
   for (std::size_t k = 0; k < keys.size(); ++k) {
-    const auto run = keys.begin() + run_first[k], end = keys.begin() + run_end[k];
+    const auto run = keys.begin() + static_cast<std::ptrdiff_t>(run_first[k]);
+    const auto end = keys.begin() + static_cast<std::ptrdiff_t>(run_end[k]);
     const std::size_t i = keys[k].i;
     const Frame& a = f[i];
     double lo = a.lo, hi = a.hi;
