@@ -194,7 +194,7 @@ std::string TimeStepper::attempt(double dt) {
     const ContactSolveOutcome outcome =
         solve_contact_step(system_, contacts_, rhs_base_, tau,
                            contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
-                           solve_stats_, &residual);
+                           solve_stats_, handed_on_share() > 0 ? &residual : nullptr);
     iterated = solve_stats_.newton > before.newton;
     timings_.factorisations += solve_stats_.factorisations - before.factorisations;
     timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
