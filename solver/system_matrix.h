@@ -49,6 +49,12 @@ class SystemMatrix {
   /// change during the open–close iteration of a step).
   void save() { saved_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros()); }
   void restore() { std::copy(saved_.begin(), saved_.end(), k_.valuePtr()); }
+  /// The matrix with the saved values (pattern and values; a bench reads it).
+  Sparse saved_matrix() const {
+    Sparse a = k_;
+    std::copy(saved_.begin(), saved_.end(), a.valuePtr());
+    return a;
+  }
 
   /// Adds `value` to the diagonal entry of unknown i.
   void add_diagonal(int i, double value);
