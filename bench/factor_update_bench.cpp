@@ -27,7 +27,8 @@
 //               solve's forcing term) and to 1e-8‖b‖, each iteration a factor solve pair and a
 //               product with H1.
 // Times are thread CPU, best of 2, one core (run with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1).
-// One row per wall and mode: means over the step pairs from --from to --steps, and r's largest.
+// One row per wall and mode: means over the step pairs from --from to --steps (and the contacts
+// with a normal spring at the end of a step: the size of the contact space), and r's largest.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -98,7 +99,7 @@ struct Term {
 };
 
 struct Pair {
-  int r_normal = 0, r_shear = 0, r_on_off = 0;
+  int r_normal = 0, r_shear = 0, r_on_off = 0, closed = 0;
   double factorise_ms = 0, updown_ms = 0, simplicial_ms = 0, updown_error = 0;
   int cg_forcing = 0, cg_tight = 0;
 };
@@ -144,6 +145,7 @@ Pair measure(const Sparse& a, const Springs& before, const Springs& after, const
   std::vector<Term> terms;
   // Every term of H1, with step k's tangent in H0 (0 for a contact step k did not have).
   for (const auto& [key, s] : after) {
+    out.closed += s.kn != 0;
     const auto at = before.find(key);
     double kn0 = at == before.end() ? 0.0 : at->second.kn, ks0 = at == before.end() ? 0.0 : at->second.ks;
     // A tangent that moved by less than kSwitch of itself (a constant spring's kn·L follows the
@@ -275,7 +277,7 @@ int main(int argc, char** argv) {
   }
   std::ofstream csv = nmm::bench::start_csv(
       csv_path,
-      "mode,wall_n,mesh_size_m,unknowns,step_pairs,changed_normal_mean,changed_shear_mean,switched_on_off_mean,changed_max,"
+      "mode,wall_n,mesh_size_m,unknowns,closed_contacts_mean,step_pairs,changed_normal_mean,changed_shear_mean,switched_on_off_mean,changed_max,"
       "factorise_ms,updown_ms,updown_per_term_us,simplicial_build_ms,updown_relative_residual_max,"
       "cg_iterations_forcing,cg_iterations_1e-8,load_average\n");
   for (const bool dynamic : {false, true})
@@ -299,6 +301,7 @@ int main(int argc, char** argv) {
           const Pair p = measure(st.view().system.saved_matrix(), last, now, nmm::solve::TimeStepperProbe::rhs(st));
           sum.r_normal += p.r_normal;
           sum.r_on_off += p.r_on_off;
+          sum.closed += p.closed;
           sum.r_shear += p.r_shear;
           worst = std::max(worst, p.r_normal + p.r_shear);
           sum.factorise_ms += p.factorise_ms;
@@ -315,8 +318,8 @@ int main(int argc, char** argv) {
       if (pairs == 0) continue;
       const double q = pairs, terms = sum.r_normal + sum.r_shear;
       char line[600];
-      std::snprintf(line, sizeof line, "%s,%d,%.3g,%d,%d,%.1f,%.1f,%.1f,%d,%.3f,%.3f,%.2f,%.3f,%.1e,%.1f,%.1f,%.2f%s\n",
-                    dynamic ? "dynamic" : "static", n, h, st.view().space.unknowns(), pairs, sum.r_normal / q,
+      std::snprintf(line, sizeof line, "%s,%d,%.3g,%d,%.0f,%d,%.1f,%.1f,%.1f,%d,%.3f,%.3f,%.2f,%.3f,%.1e,%.1f,%.1f,%.2f%s\n",
+                    dynamic ? "dynamic" : "static", n, h, st.view().space.unknowns(), sum.closed / q, pairs, sum.r_normal / q,
                     sum.r_shear / q, sum.r_on_off / q, worst, sum.factorise_ms / q, sum.updown_ms / q,
                     terms > 0 ? 1e3 * sum.updown_ms / terms : 0.0, sum.simplicial_ms / q, err, sum.cg_forcing / q,
                     sum.cg_tight / q, nmm::bench::load_average(), cg_failed ? ",some CG runs over 500 iterations" : "");

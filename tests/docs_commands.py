@@ -88,6 +88,12 @@ SHORTEN = [
      "settings"),
     ("performance.md", r"(effects_bench) --csv ", r"\1 --quick --csv ",
      "the full benchmark takes about 45 s; --quick runs every effect once"),
+    ("performance.md", r"(factor_update_bench) --sizes 10,20,30 --mesh 2 --steps 30 --from 10 ",
+     r"\1 --sizes 10 --mesh 2 --steps 4 --from 2 ",
+     "the 30 x 30 walls take minutes; the 10 x 10 wall's steps 3-4 run every method once"),
+    ("performance.md", r"(factor_update_bench) --sizes 10,20 --mesh 0\.5 --steps 30 --from 10 ",
+     r"\1 --sizes 10 --mesh 0.5 --steps 3 --from 2 ",
+     "the 20 x 20 walls at h = 0.5 m take minutes; one step pair of the 10 x 10 wall shows it"),
     ("fos-and-sweeps.md", r"(--workers 2 --set solver\.steps=)300",
      r"\g<1>100 --max-factor 4",
      "the search up to F = 64 takes 77 s on the loaded machine; trials of 100 steps up to F = 4 "
