@@ -496,6 +496,41 @@ double ContactSet::directional_force(double alpha) const {
   return sum;
 }
 
+ContactSet::LineModelError ContactSet::line_model_error() const {
+  // A normal spring closes when its tangent rises past half the law's initial stiffness between
+  // α = 0 and 1 (touching contacts inside the skin included), opens when it falls below; a shear
+  // spring slips when its tangent goes to 0, and a sliding one whose force changes sign or that
+  // sticks again is "reversed or stuck".
+  LineModelError out;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    const ContactWork& w = work_[k];
+    const ContactLaw& law = laws_[c.law];
+    if (w.rate_gap != 0) {
+      const Spring a = normal_at(law, c, w, c.gap, skin_), b = normal_at(law, c, w, c.gap + w.rate_gap, skin_);
+      const double half = 0.5 * normal_at(law, c, w, -2 * skin_, skin_).stiffness;
+      const double error = (b.force - a.force + a.stiffness * w.rate_gap) * w.rate_gap;
+      const int kind = a.stiffness < half && b.stiffness > half ? 0 : a.stiffness > half && b.stiffness < half ? 1 : 2;
+      if (error != 0) {
+        ++out.contacts[kind];
+        out.error[kind] += error;
+      }
+    }
+    if (w.rate_shear != 0 && w.strength > 0) {
+      const Spring a = shear_at(law, c, w, c.shear), b = shear_at(law, c, w, c.shear + w.rate_shear);
+      const double error = -(b.force - a.force - a.stiffness * w.rate_shear) * w.rate_shear;
+      const int kind = a.stiffness > 0 && b.stiffness == 0                          ? 3
+                       : a.stiffness == 0 && (b.stiffness > 0 || a.force * b.force < 0) ? 4
+                                                                                      : 5;
+      if (error != 0) {
+        ++out.contacts[kind];
+        out.error[kind] += error;
+      }
+    }
+  }
+  return out;
+}
+
 double ContactSet::force_scale() const {
   double f = 0;
   for (const Contact& c : contacts_) f = std::max({f, std::abs(c.normal_force), std::abs(c.shear_force)});

@@ -172,6 +172,18 @@ class ContactSet {
   void set_direction(const Eigen::VectorXd& delta);
   /// Σ N(g + αΔg)·Δg − Σ T(s + αΔs)·Δs, the contacts' part of −dΠ/dα (non-increasing in α).
   double directional_force(double alpha) const;
+  /// What the Newton model missed along the direction (the contact solve's trace): per kind of
+  /// spring change between α = 0 and α = 1, the contacts and their part of ψ(1) − ψ_model(1),
+  /// ψ_model being linear in α with the tangents at α = 0 (ψ(1) − ψ_model(1) < 0: the change
+  /// stops the step short of α = 1). Kinds: kLineKinds.
+  static constexpr int kLineKinds = 6;
+  static constexpr const char* kLineKindNames[kLineKinds] = {
+      "closing", "opening", "normal other", "stick to slip", "slip reversed or stuck", "shear other"};
+  struct LineModelError {
+    std::array<int, kLineKinds> contacts{};
+    std::array<double, kLineKinds> error{};  ///< N·m per unit α², summed
+  };
+  LineModelError line_model_error() const;
   /// Largest |N| and |T| of the last forces_at(), N (a scale for the residual tolerance).
   double force_scale() const;
   /// After an inner solve: bonds beyond their tensile strength or cohesion break (for good), and

@@ -370,6 +370,15 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
                    r_norm / tol, solved ? 1 : 0, alpha, psi(1.0) / psi0, stats.cg_iterations, stats.factorisations,
                    budget);
     stats.line_search_seconds += t1.seconds();
+    if (trace) {
+      // What stopped the step short of α = 1: each kind's share of ψ(1)'s departure from the
+      // Newton model, over ψ(0).
+      const ContactSet::LineModelError m = contacts.line_model_error();
+      std::fprintf(stderr, "  model error over psi0:");
+      for (int kind = 0; kind < ContactSet::kLineKinds; ++kind)
+        std::fprintf(stderr, " %s %d %.2e%s", ContactSet::kLineKindNames[kind], m.contacts[kind], m.error[kind] / psi0,
+                     kind + 1 < ContactSet::kLineKinds ? " |" : "\n");
+    }
     d.noalias() += alpha * delta;
     ra.noalias() -= alpha * adelta;
   }
