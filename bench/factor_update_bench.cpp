@@ -19,9 +19,10 @@
 //   factorise   supernodal LLᵀ of H1, the symbolic analysis reused (what the contact solve does
 //               when it refactorises: solver/system_matrix.cpp);
 //   updown      CHOLMOD's cholmod_updown of a simplicial LDLᵀ factor of H0 by the r terms
-//               (an update for the terms that stiffen, a downdate for those that soften), then a
-//               solve; the simplicial factor's own build is reported beside it, as the price of
-//               keeping a factor cholmod_updown can modify;
+//               (an update for the terms that stiffen, a downdate for those that soften); the
+//               simplicial factor's own build is reported beside it, as the price of keeping a
+//               factor cholmod_updown can modify, and one solve with the updated factor checks
+//               it against H1 (not timed);
 //   cg          conjugate gradients on H1 preconditioned by the factor of H0 (what the contact
 //               solve does before it refactorises), iterations to ‖H1 x − b‖ ≤ 1e-2‖b‖ (the
 //               solve's forcing term) and to 1e-8‖b‖, each iteration a factor solve pair and a
@@ -86,7 +87,8 @@ void add_term(std::vector<Eigen::Triplet<double>>& t, const std::vector<int>& do
       if (dofs[a] >= dofs[b]) t.emplace_back(dofs[a], dofs[b], k * w[a] * w[b]);
 }
 
-// A spring term switched: on or off, or its tangent moved by more than 1 % (Bandis–Barton).
+// A spring term switched: on or off, or its tangent moved by more than 1 % (a nonlinear law's
+// tangent; a constant spring's kn·L moves with the tributary length L).
 constexpr double kSwitch = 0.01;
 bool switched(double t0, double t1) {
   return (t0 == 0) != (t1 == 0) || std::abs(t1 - t0) > kSwitch * std::max(std::abs(t0), std::abs(t1));
