@@ -508,7 +508,7 @@ ContactSet::LineModelError ContactSet::line_model_error() const {
     const ContactLaw& law = laws_[c.law];
     if (w.rate_gap != 0) {
       const Spring a = normal_at(law, c, w, c.gap, skin_), b = normal_at(law, c, w, c.gap + w.rate_gap, skin_);
-      const double half = 0.5 * normal_at(law, c, w, -2 * skin_, skin_).stiffness;
+      const double half = 0.5 * initial_normal_stiffness(law, c.length);
       const double error = (b.force - a.force + a.stiffness * w.rate_gap) * w.rate_gap;
       const int kind = a.stiffness < half && b.stiffness > half ? 0 : a.stiffness > half && b.stiffness < half ? 1 : 2;
       if (error != 0) {
