@@ -278,7 +278,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     int moved = 0;  // friction strengths this iterate moved
     if (merged || r_norm <= tol) {
       moved = contacts.update_strengths(tol);
-      if (trace) std::fprintf(stderr, "it %d strengths moved %d\n", it, moved);
+      if (trace) std::fprintf(stderr, "it %d strengths moved %d at r/tol %.3e\n", it, moved, r_norm / tol);
       if (moved == 0 && in_balance()) break;
       if (moved > 0) {
         ++stats.strength_updates;
