@@ -76,7 +76,7 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size) {
   // One factorisation against one CG iteration's work (a factor solve pair and a product with
   // the matrix) on the last step's matrix, thread CPU time: what one factorisation is worth.
   const auto& km = st.view().system.matrix();
-  Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Lower> llt;
+  Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Upper> llt;
   llt.analyzePattern(km);
   double f_best = 1e9, s_best = 1e9;
   Eigen::VectorXd x = Eigen::VectorXd::Ones(km.rows()), y(km.rows());
@@ -87,7 +87,7 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size) {
     c0 = nmm::bench::thread_cpu_seconds();
     for (int i = 0; i < 20; ++i) {
       y = llt.solve(x);
-      x.noalias() = km.selfadjointView<Eigen::Lower>() * y;
+      x.noalias() = km.selfadjointView<Eigen::Upper>() * y;
       x /= x.norm();
     }
     s_best = std::min(s_best, (nmm::bench::thread_cpu_seconds() - c0) / 20);

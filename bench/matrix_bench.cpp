@@ -56,7 +56,7 @@ Ordered factorise(const Sparse& a, int ordering, int reps) {
   Ordered r;
   double best = 1e300;
   for (int rep = 0; rep < reps; ++rep) {
-    Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> llt;
+    Eigen::CholmodSupernodalLLT<Sparse, Eigen::Upper> llt;
     cholmod_common& c = llt.cholmod();
     c.print = 0;
     if (ordering >= 0) {

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
     const double step_s = w0.seconds() / steps;
     const nmm::solve::StepTimings& t1 = st.view().timings;
 
-    using Llt = Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Lower>;
+    using Llt = Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Upper>;
     Llt llt;
     const auto& k = st.view().system.matrix();
     llt.analyzePattern(k);

@@ -9,6 +9,30 @@
 
 namespace nmm::solve {
 
+namespace {
+// y ← y + α·A v (α = ±1) for the symmetric A whose upper triangle is (outer, inner, values),
+// diagonal last in each column. The sums run in the order of Eigen's product with the lower
+// triangle in columns (the storage before the upper one): into y_i the terms of the columns
+// left of i one by one, then the diagonal's, then the terms of the columns right of i summed
+// apart from zero and added at once. So every result is the same, bit for bit, as with the
+// lower storage.
+void add_upper_times(int n, const int* outer, const int* inner, const double* values, const Eigen::VectorXd& v,
+                     double alpha, Eigen::VectorXd& y) {
+  Eigen::VectorXd right = Eigen::VectorXd::Zero(n);  // [i] Σ over columns j > i of A_ij·v_j
+  for (int j = 0; j < n; ++j) {
+    const int diagonal = outer[j + 1] - 1;
+    const double vj = v[j];
+    for (int p = outer[j]; p < diagonal; ++p) {
+      const int i = inner[p];
+      y[j] += values[p] * (alpha * v[i]);
+      right[i] += values[p] * vj;
+    }
+    y[j] += alpha * values[diagonal] * vj;
+  }
+  for (int i = 0; i < n; ++i) y[i] += alpha * right[i];
+}
+}  // namespace
+
 bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const std::vector<int>& dofs) {
   // The groups of the last build, in order, among the new ones (a pattern that grew by pairs of
   // elements in contact: the pairs are sorted, so the old groups keep their relative order).
@@ -44,7 +68,7 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     }
     for (int jj = 0; jj < m; ++jj)
       for (int ii = 0; ii < m; ++ii)
-        if (d[ii] >= d[jj] && find(outer, inner, d[ii], d[jj]) < 0) added.emplace_back(d[jj], d[ii]);
+        if (d[ii] >= d[jj] && find(outer, inner, d[jj], d[ii]) < 0) added.emplace_back(d[ii], d[jj]);
   }
   if (o != old_ng) return false;
   std::vector<int> moved;  // [old nonzero] its position in the grown matrix (empty: unchanged)
@@ -75,7 +99,7 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     std::copy(new_outer.begin(), new_outer.end(), k_.outerIndexPtr());
     std::copy(new_inner.begin(), new_inner.end(), k_.innerIndexPtr());
     analysed_ = false;
-    diag_.assign(new_outer.begin(), new_outer.end() - 1);  // the diagonal still heads its column
+    for (int c = 0; c < n; ++c) diag_[static_cast<std::size_t>(c)] = new_outer[static_cast<std::size_t>(c) + 1] - 1;  // still ends it
     outer = k_.outerIndexPtr();
     inner = k_.innerIndexPtr();
   }
@@ -98,7 +122,7 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
       const int m = offsets[g + 1] - offsets[g];
       const int* d = dofs.data() + offsets[g];
       for (int jj = 0; jj < m; ++jj)
-        for (int ii = 0; ii < m; ++ii) *out++ = d[ii] < d[jj] ? -1 : find(outer, inner, d[ii], d[jj]);
+        for (int ii = 0; ii < m; ++ii) *out++ = d[ii] < d[jj] ? -1 : find(outer, inner, d[jj], d[ii]);
     }
   }
   slot_offset_ = std::move(slot_offset);
@@ -140,10 +164,11 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
           groups[fill[dofs[i]]++] = static_cast<std::int32_t>(g);
         }
   }
-  // Slots: entry (i, j) of a group's block (column-major) lands at (dof i, dof j) when that is in
-  // the lower triangle; its mirror (j, i) then does not (-1), so each global entry gets each local
-  // entry once. An unknown repeated in a group maps all its copies to the same entries, which
-  // sums them.
+  // Slots: entry (i, j) of a group's block (column-major) lands at (dof j, dof i) of the upper
+  // triangle when dof i ≥ dof j; its mirror (j, i) then does not (-1), so each global entry gets
+  // each local entry once. (The entry below the block's diagonal, not its mirror: an element's
+  // block is symmetric only to round-off, and these are the values the lower triangle held.) An
+  // unknown repeated in a group maps all its copies to the same entries, which sums them.
   slot_offset_.assign(ng + 1, 0);
   for (std::size_t g = 0; g < ng; ++g) {
     const int m = offsets[g + 1] - offsets[g];
@@ -155,12 +180,12 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
   std::vector<std::int32_t> mark(static_cast<std::size_t>(n), -1), pos(static_cast<std::size_t>(n), -1);
   for (int c = 0; c < n; ++c) {
     const std::size_t first = inner.size();
-    inner.push_back(c);  // every diagonal, even of a lone unknown
+    inner.push_back(c);  // every diagonal, even of a lone unknown (sorted last)
     mark[c] = c;
     for (std::int32_t k = group_offset[c]; k < group_offset[c + 1]; ++k) {
       const std::int32_t g = groups[k];
       for (int i = offsets[g]; i < offsets[g + 1]; ++i)
-        if (dofs[i] > c && mark[dofs[i]] != c) {
+        if (dofs[i] < c && mark[dofs[i]] != c) {
           mark[dofs[i]] = c;
           inner.push_back(dofs[i]);
         }
@@ -173,10 +198,10 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
       const int m = offsets[g + 1] - offsets[g];
       const int* d = dofs.data() + offsets[g];
       std::int32_t* slot = slots_.data() + slot_offset_[g];
-      for (int jj = 0; jj < m; ++jj) {
-        if (d[jj] != c) continue;
-        for (int ii = 0; ii < m; ++ii)
-          if (d[ii] >= c) slot[jj * m + ii] = pos[d[ii]];
+      for (int ii = 0; ii < m; ++ii) {
+        if (d[ii] != c) continue;
+        for (int jj = 0; jj < m; ++jj)
+          if (d[jj] <= c) slot[jj * m + ii] = pos[d[jj]];
       }
     }
   }
@@ -194,7 +219,8 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
     analysed_ = false;
   }
   std::fill(k_.valuePtr(), k_.valuePtr() + inner.size(), 0.0);
-  diag_.assign(outer.begin(), outer.end() - 1);  // the diagonal heads its column
+  diag_.resize(static_cast<std::size_t>(n));
+  for (int c = 0; c < n; ++c) diag_[static_cast<std::size_t>(c)] = outer[static_cast<std::size_t>(c) + 1] - 1;  // it ends its column
   group_offsets_ = offsets;
   group_dofs_ = dofs;
   // A matrix that is not positive definite is reported by us (failed_unknown), on one line;
@@ -267,11 +293,14 @@ bool SystemMatrix::factorize() {
 
 std::string SystemMatrix::factor_source() const {
   if (!has_factor_) return {};
-  const auto n = static_cast<std::size_t>(factored_.rows()), nnz = static_cast<std::size_t>(factored_.nonZeros());
+  // The checkpoint keeps the lower triangle (its format since the first version): the transpose
+  // of the stored upper one, the same entries.
+  const Sparse lower = factored_.transpose();
+  const auto n = static_cast<std::size_t>(lower.rows()), nnz = static_cast<std::size_t>(lower.nonZeros());
   ByteWriter w;
-  w.put_vector(std::vector<int>(factored_.outerIndexPtr(), factored_.outerIndexPtr() + n + 1));
-  w.put_vector(std::vector<int>(factored_.innerIndexPtr(), factored_.innerIndexPtr() + nnz));
-  w.put_vector(std::vector<double>(factored_.valuePtr(), factored_.valuePtr() + nnz));
+  w.put_vector(std::vector<int>(lower.outerIndexPtr(), lower.outerIndexPtr() + n + 1));
+  w.put_vector(std::vector<int>(lower.innerIndexPtr(), lower.innerIndexPtr() + nnz));
+  w.put_vector(std::vector<double>(lower.valuePtr(), lower.valuePtr() + nnz));
   return w.take();
 }
 
@@ -309,6 +338,7 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   }
   for (std::int64_t k = 0; k < nnz; ++k)
     if (!std::isfinite(m.valuePtr()[k])) return false;
+  m = Sparse(m.transpose());  // stored as the upper triangle
   // The same analysis and numbers as the run that wrote it; the next factorize() of this run's
   // own matrix analyses its pattern again (deterministically: the same ordering).
   llt_.analyzePattern(m);
@@ -331,7 +361,7 @@ void SystemMatrix::set_perturbation() {
   // factor was made here or restored from a checkpoint, so a restart stays bitwise.
   perturbation_.setZero(factored_.rows());
   for (int i : regularised_)
-    perturbation_[i] = factored_.valuePtr()[factored_.outerIndexPtr()[i]] * (eps_ / (1 + eps_));
+    perturbation_[i] = factored_.valuePtr()[factored_.outerIndexPtr()[i + 1] - 1] * (eps_ / (1 + eps_));
 }
 
 void SystemMatrix::remove_null_part(Eigen::VectorXd& x) const {
@@ -340,9 +370,8 @@ void SystemMatrix::remove_null_part(Eigen::VectorXd& x) const {
 }
 
 void SystemMatrix::saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
-  const Eigen::Map<const Sparse> a(k_.rows(), k_.cols(), k_.nonZeros(), k_.outerIndexPtr(),
-                                   k_.innerIndexPtr(), saved_.data());
-  y.noalias() = a.selfadjointView<Eigen::Lower>() * v;
+  y.setZero(k_.rows());
+  add_upper_times(static_cast<int>(k_.rows()), k_.outerIndexPtr(), k_.innerIndexPtr(), saved_.data(), v, 1.0, y);
 }
 
 Eigen::VectorXd SystemMatrix::solve(const Eigen::VectorXd& b) {
@@ -354,7 +383,8 @@ Eigen::VectorXd SystemMatrix::solve(const Eigen::VectorXd& b) {
   const double bn = b.norm();
   double prev = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 20; ++it) {
-    const Eigen::VectorXd r = b - k_.selfadjointView<Eigen::Lower>() * x;
+    Eigen::VectorXd r = b;
+    add_upper_times(static_cast<int>(k_.rows()), k_.outerIndexPtr(), k_.innerIndexPtr(), k_.valuePtr(), x, -1.0, r);
     const double rn = r.norm();
     if (!(rn > 1e-13 * bn) || !(rn < 0.5 * prev)) break;
     prev = rn;

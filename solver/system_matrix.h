@@ -1,10 +1,14 @@
-// The global system matrix: symmetric, stored as its lower triangle in compressed columns, with
+// The global system matrix: symmetric, stored as its upper triangle in compressed columns, with
 // a sparsity pattern built once from the element–cover incidence, and CHOLMOD's factorisation.
 //
 // Pattern and numbers are kept apart (deal.II step-8 style): build_pattern() fixes the nonzeros
 // and precomputes, for every group, where each entry of its block lands in the value
 // array, so assembly is a scatter with no search. CHOLMOD's symbolic analysis (fill-reducing
 // ordering, supernodes) runs only when the pattern changes; each step refactors the numbers.
+//
+// The upper triangle, not the lower: CHOLMOD's supernodal factorisation first copies the matrix
+// into its fill-reducing order, which takes one transpose of an upper triangle and two of a
+// lower one (cholmod_factorize_p). The copy is the same matrix either way, and so is the factor.
 #pragma once
 
 #include <array>
@@ -94,7 +98,7 @@ class SystemMatrix {
   /// Of the last symbolic analysis: nonzeros of the factor and flops of one factorisation.
   double factor_nonzeros() const { return factor_nonzeros_; }
   double factor_flops() const { return factor_flops_; }
-  /// Nonzeros of the stored lower triangle of the matrix.
+  /// Nonzeros of the stored upper triangle of the matrix.
   std::size_t nonzeros() const { return static_cast<std::size_t>(k_.nonZeros()); }
   /// CHOLMOD's fill-reducing ordering of the last analysis ("amd", "metis", "nesdis", ...).
   std::string ordering() const { return ordering_; }
@@ -108,7 +112,7 @@ class SystemMatrix {
  private:
   void set_perturbation();  // perturbation_ of factored_
   // Eigen's CHOLMOD wrapper, with the failing column exposed.
-  struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> {
+  struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Upper> {
     int failed_column() const;
   };
   Sparse k_;

@@ -167,7 +167,7 @@ TEST(CoverSpace, RankOfTheFreeStiffnessMatrix) {
     const Mesh m = pre::build_mesh(s, "rank");
     TimeStepper st(m, s, "rank");
     TimeStepperProbe::assemble_rhs(st, 1.0);
-    const SystemMatrix::Sparse full = st.view().system.matrix().selfadjointView<Eigen::Lower>();
+    const SystemMatrix::Sparse full = st.view().system.matrix().selfadjointView<Eigen::Upper>();
     const Eigen::VectorXd ev =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(full), Eigen::EigenvaluesOnly).eigenvalues();
     const double top = ev.maxCoeff();
@@ -212,7 +212,7 @@ TEST(CoverSpace, RemoveNullPartTakesOutZeroFieldCombinationsOnly) {
     st.step(1e-3);  // leaves the factorisation of this step's matrix
     const SystemMatrix& sys = st.view().system;
     ASSERT_TRUE(sys.has_factor());
-    const SystemMatrix::Sparse a = sys.matrix().selfadjointView<Eigen::Lower>();
+    const SystemMatrix::Sparse a = sys.matrix().selfadjointView<Eigen::Upper>();
     const CoverSpace& sp = st.view().space;
     const Eigen::Index n = sp.unknowns();
     Eigen::VectorXd z = Eigen::VectorXd::Zero(n), x(n);
