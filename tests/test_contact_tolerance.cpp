@@ -10,6 +10,7 @@
 
 #include "preprocess/cover_cutter.h"
 #include "common/math_constants.h"
+#include "reference/brick_wall.h"
 #include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
 #include "reference/sliding_block.h"
@@ -94,6 +95,28 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
   EXPECT_GT(cs.displacement_refusals, 0) << "the force test alone would have stopped short here";
   EXPECT_GT(cs.max_displacement_error, 0);
   EXPECT_LE(cs.max_displacement_error, u_tol);
+}
+
+// The friction fixed point settles: a barely touching contact's strength falls to zero along a
+// ramp below F_tol (contact.cpp update_strengths), not in one jump at F_tol. With the jump,
+// contacts whose normal force hovered around the cut cycled — zero strength lets a brick slide,
+// which lifts N above the cut, whose strength holds the brick, which drops N below it — and 4 of
+// the first 100 steps of this wall (11 of the 20 × 20 one's) used all 12 strength rounds and
+// were taken with friction still moving; up to 19 Newton iterations in a step.
+TEST(ContactTolerance, FrictionSettlesInEveryStepOfAVibratingWall) {
+  // The DDA code's dynamic 10 × 10 wall (bricks 1 m × 0.5 m, φ = 30°, Δt = 1 ms) meshed coarser
+  // than its bricks, its first 100 steps.
+  const SceneDef s = reference::peer_wall(10, 10, true, 2.0);
+  const Mesh m = pre::build_mesh(s, "wall");
+  TimeStepper st(m, s, "wall");
+  st.set_threads(1);
+  ASSERT_EQ(st.run_until(100 * s.solver.time_step, [](std::int64_t) {}), "ok");
+  const auto& state = st.view().state;
+  std::printf("dynamic 10 x 10 wall: %llu steps, %llu Newton iterations, %llu with friction unsettled\n",
+              static_cast<unsigned long long>(state.step), static_cast<unsigned long long>(state.iterations),
+              static_cast<unsigned long long>(state.friction_unsettled));
+  EXPECT_EQ(state.friction_unsettled, 0u) << "steps taken with friction strengths still moving";
+  EXPECT_EQ(st.view().contact_solve.unsettled, 0L);
 }
 
 TEST(BlockMomentum, SpreadsEachBlocksForceAndMomentByMassAndGetsThemBack) {
