@@ -18,18 +18,23 @@ namespace {
 // lower storage.
 void add_upper_times(int n, const int* outer, const int* inner, const double* values, const Eigen::VectorXd& v,
                      double alpha, Eigen::VectorXd& y) {
-  Eigen::VectorXd right = Eigen::VectorXd::Zero(n);  // [i] Σ over columns j > i of A_ij·v_j
+  thread_local std::vector<double> right;  // [i] Σ over columns j > i of A_ij·v_j
+  right.assign(static_cast<std::size_t>(n), 0.0);
+  const double* vv = v.data();
+  double* yy = y.data();
+  double* rr = right.data();
   for (int j = 0; j < n; ++j) {
     const int diagonal = outer[j + 1] - 1;
-    const double vj = v[j];
+    const double vj = vv[j];
+    double yj = yy[j];  // summed in a register, term by term as into y_j itself
     for (int p = outer[j]; p < diagonal; ++p) {
       const int i = inner[p];
-      y[j] += values[p] * (alpha * v[i]);
-      right[i] += values[p] * vj;
+      yj += values[p] * (alpha * vv[i]);
+      rr[i] += values[p] * vj;
     }
-    y[j] += alpha * values[diagonal] * vj;
+    yy[j] = yj + alpha * values[diagonal] * vj;
   }
-  for (int i = 0; i < n; ++i) y[i] += alpha * right[i];
+  for (int i = 0; i < n; ++i) yy[i] += alpha * rr[i];
 }
 }  // namespace
 
