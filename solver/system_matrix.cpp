@@ -104,7 +104,6 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     std::copy(new_outer.begin(), new_outer.end(), k_.outerIndexPtr());
     std::copy(new_inner.begin(), new_inner.end(), k_.innerIndexPtr());
     analysed_ = false;
-    for (int c = 0; c < n; ++c) diag_[static_cast<std::size_t>(c)] = new_outer[static_cast<std::size_t>(c) + 1] - 1;  // still ends it
     outer = k_.outerIndexPtr();
     inner = k_.innerIndexPtr();
   }
@@ -224,8 +223,6 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
     analysed_ = false;
   }
   std::fill(k_.valuePtr(), k_.valuePtr() + inner.size(), 0.0);
-  diag_.resize(static_cast<std::size_t>(n));
-  for (int c = 0; c < n; ++c) diag_[static_cast<std::size_t>(c)] = outer[static_cast<std::size_t>(c) + 1] - 1;  // it ends its column
   group_offsets_ = offsets;
   group_dofs_ = dofs;
   // A matrix that is not positive definite is reported by us (failed_unknown), on one line;
@@ -243,7 +240,7 @@ void SystemMatrix::add_group(std::size_t g, const double* k) {
     if (s[e] >= 0) v[s[e]] += k[e];
 }
 
-void SystemMatrix::add_diagonal(int i, double value) { k_.valuePtr()[diag_[i]] += value; }
+void SystemMatrix::add_diagonal(int i, double value) { k_.valuePtr()[diagonal(i)] += value; }
 
 int SystemMatrix::Llt::failed_column() const {
   // CHOLMOD records the column where the factorisation stopped (L->minor) in its fill-reducing
@@ -273,11 +270,11 @@ bool SystemMatrix::factorize() {
   std::vector<double> delta(regularised_.size());
   if (!regularised_.empty()) {
     double dmax = 0;
-    for (int i : regularised_) dmax = std::max(dmax, k_.valuePtr()[diag_[i]]);
+    for (int i : regularised_) dmax = std::max(dmax, k_.valuePtr()[diagonal(i)]);
     for (std::size_t r = 0; r < regularised_.size(); ++r) {
-      const double kii = k_.valuePtr()[diag_[regularised_[r]]];
+      const double kii = k_.valuePtr()[diagonal(regularised_[r])];
       delta[r] = eps_ * (kii > 0 ? kii : dmax);
-      k_.valuePtr()[diag_[regularised_[r]]] += delta[r];
+      k_.valuePtr()[diagonal(regularised_[r])] += delta[r];
     }
   }
   llt_.factorize(k_);
@@ -288,7 +285,7 @@ bool SystemMatrix::factorize() {
     factored_ = k_;
     set_perturbation();
   }
-  for (std::size_t r = 0; r < regularised_.size(); ++r) k_.valuePtr()[diag_[regularised_[r]]] -= delta[r];
+  for (std::size_t r = 0; r < regularised_.size(); ++r) k_.valuePtr()[diagonal(regularised_[r])] -= delta[r];
   if (!has_factor_) {
     failed_unknown_ = llt_.failed_column();
     return false;
@@ -366,7 +363,7 @@ void SystemMatrix::set_perturbation() {
   // factor was made here or restored from a checkpoint, so a restart stays bitwise.
   perturbation_.setZero(factored_.rows());
   for (int i : regularised_)
-    perturbation_[i] = factored_.valuePtr()[factored_.outerIndexPtr()[i + 1] - 1] * (eps_ / (1 + eps_));
+    perturbation_[i] = factored_.valuePtr()[factored_.outerIndexPtr()[i + 1] - 1] * (eps_ / (1 + eps_));  // its diagonal
 }
 
 void SystemMatrix::remove_null_part(Eigen::VectorXd& x) const {

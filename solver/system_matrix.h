@@ -122,7 +122,8 @@ class SystemMatrix {
   bool grow_in_place(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
   std::vector<double> saved_;
   Sparse factored_;  // the matrix of the current factorisation
-  std::vector<std::int32_t> diag_;   // [n] value index of each diagonal entry
+  /// Value index of unknown i's diagonal entry: the last of its column (rows ≤ i, sorted).
+  int diagonal(int i) const { return k_.outerIndexPtr()[i + 1] - 1; }
   Llt llt_;
   bool analysed_ = false;
   bool has_factor_ = false;
