@@ -49,6 +49,7 @@
 #include <limits>
 
 #include "solver/contact_tolerances.h"
+#include "common/vec2.h"
 #include "common/error.h"
 #include "solver/tributary_length.h"
 
@@ -136,7 +137,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
     for (std::int32_t i = topo_.mirror_offset[f.vertex]; i < topo_.mirror_offset[f.vertex + 1]; ++i) {
       const std::int32_t m = topo_.mirrors[i];
       if (topo_.block_of[topo_.element_of[m]] != block_b ||
-          std::hypot(xy[2 * m] - xy[2 * f.vertex], xy[2 * m + 1] - xy[2 * f.vertex + 1]) > same)
+          length(xy[2 * m] - xy[2 * f.vertex], xy[2 * m + 1] - xy[2 * f.vertex + 1]) > same)
         continue;
       if (topo_.element_of[m] == f.elem_b) c.mirror = m;
       if (at < 0) {
@@ -193,7 +194,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
     const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo_.next[q2];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
-    const double l = std::hypot(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
+    const double l = length(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
     const double p0x = xy[2 * q2] + c.at.omega * dx, p0y = xy[2 * q2 + 1] + c.at.omega * dy;
     config.shape_values(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
     config.shape_values(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
@@ -245,7 +246,7 @@ JointMemory ContactSet::nearby_joint_memory(const std::vector<double>& xy, std::
         const ContactHistory& e = history_[static_cast<std::size_t>((*k)[2])];
         const std::int32_t own = topo_.block_of[topo_.element_of[e.vertex]];
         if (!((own == block_a && e.block == block_b) || (own == block_b && e.block == block_a))) continue;
-        const double d = std::hypot(xy[2 * e.vertex] - px, xy[2 * e.vertex + 1] - py);
+        const double d = length(xy[2 * e.vertex] - px, xy[2 * e.vertex + 1] - py);
         if (d < best_d || (d == best_d && (*k)[2] < best_at)) {  // ties: the first in the history
           best_d = d;
           best_at = (*k)[2];
@@ -318,6 +319,22 @@ void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::in
     const auto it = std::lower_bound(pairs.begin(), pairs.end(), key);
     work_[i].group = it != pairs.end() && *it == key ? first_group + static_cast<int>(it - pairs.begin()) : -1;
   }
+}
+
+bool ContactSet::touching_at_start(const Contact& c) const {
+  return c.start_state != ContactState::open || c.at.gap - c.joint.dilation <= eps_;
+}
+
+std::size_t ContactSet::touching_at_start() const {
+  std::size_t n = 0;
+  for (const Contact& c : contacts_) n += touching_at_start(c);
+  return n;
+}
+
+std::size_t ContactSet::touching_outside_pattern() const {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < contacts_.size(); ++i) n += work_[i].group < 0 && touching_at_start(contacts_[i]);
+  return n;
 }
 
 std::size_t ContactSet::springs_outside_pattern() const {

@@ -141,10 +141,15 @@ class ContactSet {
   /// The same of the last accepted step's contacts (accepted()).
   std::vector<std::pair<std::int32_t, std::int32_t>> accepted_pairs() const;
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
-  /// or -1 when its pair is not there (a safeguard: the pattern takes every step's contact
-  /// pairs): add_tangents() leaves such a contact out of the matrix, and the contact solve takes
-  /// its springs by CG (tangent_times() has all contacts).
+  /// or -1 when its pair is not there (the pattern's growth waits for a few such contacts,
+  /// time_stepper.cpp update_pattern): add_tangents() leaves such a contact out of the matrix,
+  /// and the contact solve takes its springs by CG (tangent_times() has all contacts).
   void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
+  /// Of the step's contacts touching at its start (closed, or within the gap tolerance of
+  /// touching): how many there are, and how many of them assign_groups() left outside the
+  /// pattern (group -1).
+  std::size_t touching_at_start() const;
+  std::size_t touching_outside_pattern() const;
   /// Spring terms (kn, ks) of the last forces_at() that add_tangents() leaves out (group -1).
   std::size_t springs_outside_pattern() const;
 
@@ -265,6 +270,7 @@ class ContactSet {
   std::vector<std::int32_t> history_next_;  // [i] next history_ entry of the same vertex, or -1
   std::vector<std::uint8_t> removed_;  // [me] excavated elements (empty: none)
   ClosedContacts closed_;                   // (vertex, block) pairs closed after the last step
+  bool touching_at_start(const Contact& c) const;
   double eps_ = 0;                          // m, gap tolerance (contact_tolerances.h open_gap·w0)
   double skin_ = 0;                         // m, smoothing of the normal spring (skin·w0)
   DetectionStats stats_;

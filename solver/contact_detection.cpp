@@ -59,6 +59,7 @@
 #include "solver/contact_detection.h"
 
 #include "solver/contact_tolerances.h"
+#include "common/vec2.h"
 #include "common/math_constants.h"
 #include "common/ring_geometry.h"
 
@@ -285,7 +286,7 @@ void edge_geometry(const ContactTopology& topo, const std::vector<double>& xy,
   for (std::size_t k = 0; k < topo.edges.size(); ++k) {
     const std::int32_t q2 = topo.edges[k], q3 = topo.next[q2];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
-    const double l = std::hypot(dx, dy);
+    const double l = length(dx, dy);
     geometry[k] = {xy[2 * q2], xy[2 * q2 + 1], dx / l, dy / l, l, q2, topo.element_of[q2],
                    l > kContactTolerances.degenerate_edge * topo.mesh_size};
   }
@@ -411,13 +412,13 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (!topo.edge_candidate[s]) continue;
       const std::int32_t f = topo.next[s];
       const double dx = xy[2 * f] - xy[2 * s], dy = xy[2 * f + 1] - xy[2 * s + 1];
-      const double l = std::hypot(dx, dy);
+      const double l = length(dx, dy);
       if (l > 0) {
         nx += dy / l;
         ny -= dx / l;
       }
     }
-    const double nl = std::hypot(nx, ny);
+    const double nl = length(nx, ny);
     if (nl < tl.slit_tip_normal) continue;  // the tip of a slit: both faces are this element's own
     nx /= nl;
     ny /= nl;
@@ -433,7 +434,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     for (std::int32_t i = topo.mirror_offset[p]; !closed.pairs.empty() && i < topo.mirror_offset[p + 1]; ++i) {
       const std::int32_t m = topo.mirrors[i];
       if (n_mirror_closed < 4 && closed.with(m, topo.block_of[ea]) &&
-          std::hypot(xy[2 * m] - px, xy[2 * m + 1] - py) <= tl.same_point * topo.mesh_size)
+          length(xy[2 * m] - px, xy[2 * m + 1] - py) <= tl.same_point * topo.mesh_size)
         mirror_closed[n_mirror_closed++] = topo.block_of[topo.element_of[m]];
     }
     const auto [closed_lo, closed_hi] = closed.range(p);
@@ -502,7 +503,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   std::vector<char> drop(out.size(), 0);
   const double tol = tl.same_point * topo.mesh_size;
   auto near = [&](std::int32_t u, std::int32_t v) {
-    return std::hypot(xy[2 * u] - xy[2 * v], xy[2 * u + 1] - xy[2 * v + 1]) <= tol;
+    return length(xy[2 * u] - xy[2 * v], xy[2 * u + 1] - xy[2 * v + 1]) <= tol;
   };
   // `out` ascends by (vertex, block of the edge): the vertices in order, each one's by block.
   auto contact_of = [&](std::int32_t v, std::int32_t block) -> std::size_t {

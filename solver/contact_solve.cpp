@@ -69,10 +69,11 @@
 // converged in 2–10 iterations where r was in the thousands (bench/contact_bench --peer,
 // docs/performance.md).
 //
-// The system matrix's pattern holds the element pairs of the step's contacts (every step adds
-// its contacts' pairs, and sheds the unused ones now and then: time_stepper.cpp update_pattern). Should a contact's pair be missing,
-// add_tangents() leaves it out of P, and the direction after a factorisation is CG's with the
-// new P (H − P of the rank of the left-out springs) — a safeguard.
+// The system matrix's pattern holds the element pairs of the step's contacts, but for a few
+// (time_stepper.cpp update_pattern: it grows once more than a few closed contacts lie outside
+// it, and sheds the unused pairs now and then). A contact whose pair is missing is left out of
+// P by add_tangents(), and the direction after a factorisation is CG's with the new P (H − P of
+// the rank of the left-out springs).
 //
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
 // next direction comes from a new factorisation, which the following runs then reuse.

@@ -54,6 +54,27 @@ namespace {
 // with 80–92 analyses per 100 static steps against 54–56), and 1.3 kept most of the growth
 // (dynamic 20 × 20: 148 ms against 152 and 122 at 1.1).
 constexpr double kPatternSlack = 1.1;
+
+// How many of a step's touching contacts (closed at its start, or within the gap tolerance of
+// touching) may lie outside the sparse pattern before it grows, in a run with inertia: at most
+// kDeferredTouching, and at most kDeferredShare of the touching contacts (update_pattern). Each
+// costs the CG runs on the kept factorisation up to two iterations (its two springs: H − P of
+// rank 2); a growth that adds entries costs a symbolic analysis, 0.3–0.5 of a factorisation, at
+// the next factorisation. Open contacts outside the pattern cost nothing unless they close.
+// Measured on the DDA code's walls (contact_bench --peer, h = 2 m, 100 steps, one thread,
+// 2026-11-28, paired runs), ms per step at 10 / 20 / 30, symbolic analyses in brackets:
+//   static, growth at every new pair   4.13 (30)  20.8 (33)  50.8 (27)
+//   static, this rule                  3.67 (14)  17.9 (20)  47.2 (20)
+//   dynamic, growth at every new pair  8.45 (88)  49.9 (99)  148 (98)
+//   dynamic, this rule                 8.05 (44)  50.5 (94)  147 (95)
+// ("this rule" also with detection's lengths by sqrt, not std::hypot: 0.1 / 0.4 / 1.0 ms of
+// each static step's difference). Counting every contact outside, open or closed,
+// against 20 or 40 gave fewer analyses (static 5–9, 2–6) and more CG iterations: 4–10 % slower
+// than this rule. The share keeps a scene of a few contacts (a block on an incline) growing its
+// pattern at once; without inertia it always grows (the contacts' springs are what makes the
+// matrix positive definite there).
+constexpr int kDeferredTouching = 5;
+constexpr double kDeferredShare = 0.01;
 }  // namespace
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
@@ -93,9 +114,11 @@ void TimeStepper::update_pattern() {
   // Elements, then one coupling group per pair of elements with a contact (open or closed: all
   // the step's contacts can close within it). Pairs that part keep their (zero) entries, so the
   // pattern — and with it CHOLMOD's symbolic analysis — changes only when a contact reaches a
-  // pair the pattern lacks. Then it grows by the new pairs, unless it already holds more than
-  // kPatternSlack times the pairs this step's and the last accepted step's contacts use: then it
-  // is built from those alone. A pattern that only grew kept every pair a contact had ever
+  // pair the pattern lacks, and, in a run with inertia, not even then while only a few touching
+  // contacts lie outside it (kDeferredTouching): their springs are left to CG (H − P of small
+  // rank) instead of a symbolic analysis at the next factorisation. Then it grows by the new pairs,
+  // unless it already holds more than kPatternSlack times the pairs this step's and the last
+  // accepted step's contacts use: then it is built from those alone. A pattern that only grew kept every pair a contact had ever
   // touched, and its factor's fill grew faster than its entries (a dynamic 20 × 20 wall: +5 %
   // entries, +24 % factor nonzeros, +46 % flops over 100 steps). (Pairs merely within the search
   // distance are not added in advance: that margin doubled to tripled the factorisation's flops
@@ -104,9 +127,12 @@ void TimeStepper::update_pattern() {
   // same patterns.
   const int first = static_cast<int>(mesh_.element_count());
   const auto now = contacts_.contact_pairs();
-  if (std::includes(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end())) {
-    contacts_.assign_groups(s_.pattern_pairs, first);
-    return;
+  contacts_.assign_groups(s_.pattern_pairs, first);
+  if (std::includes(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end())) return;
+  if (step_inertia()) {
+    const double outside = static_cast<double>(contacts_.touching_outside_pattern());
+    const double touching = static_cast<double>(contacts_.touching_at_start());
+    if (outside <= std::min(static_cast<double>(kDeferredTouching), kDeferredShare * touching)) return;
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   std::set_union(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end(),

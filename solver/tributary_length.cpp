@@ -34,6 +34,7 @@
 #include <limits>
 
 #include "solver/contact_tolerances.h"
+#include "common/vec2.h"
 
 namespace nmm::solve {
 
@@ -59,7 +60,7 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
     const ContactCandidate& c = contacts[i];
     const std::int32_t p = c.vertex, q2 = c.edge, q3 = topo.next[q2];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
-    const double l = std::hypot(dx, dy);
+    const double l = length(dx, dy);
     Frame& fr = f[i];
     fr.px = xy[2 * p];
     fr.py = xy[2 * p + 1];
@@ -71,7 +72,7 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
       if (!topo.edge_candidate[s]) continue;
       const std::int32_t e = topo.next[s];
       const double ex = xy[2 * e] - xy[2 * s], ey = xy[2 * e + 1] - xy[2 * s + 1];
-      const double el = std::hypot(ex, ey);
+      const double el = length(ex, ey);
       if (!(el > 0) || (ey / el) * nx + (-ex / el) * ny >= kContactTolerances.tributary_cos) continue;
       const std::int32_t other = s == p ? e : s;
       const double a = 0.5 * ((xy[2 * other] - fr.px) * fr.tx + (xy[2 * other + 1] - fr.py) * fr.ty);
