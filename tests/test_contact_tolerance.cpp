@@ -19,6 +19,7 @@
 #include "solver/block_momentum.h"
 #include "solver/contact_solve.h"
 #include "solver/equilibrium_indicator.h"
+#include "solver/restart.h"
 #include "solver/time_stepper.h"
 
 namespace nmm::solve {
@@ -148,6 +149,37 @@ TEST(ContactTolerance, SparsePatternLeavesOnlyAFewTouchingContactsToCg) {
   EXPECT_GT(steps_leaving, 0u) << "the pattern grew at every new pair";
   EXPECT_LT(st.view().system.analyses(), 60u);  // 88 in 100 steps with growth at every new pair
   EXPECT_EQ(st.view().state.friction_unsettled, 0u);
+}
+
+TEST(ContactTolerance, RestartWithContactsOutsideThePatternIsBitwise) {
+  // The same wall, 40 steps straight against 20 + checkpoint + 20 from a fresh stepper, with
+  // the checkpoint taken while touching contacts lie outside the pattern: the restarted run
+  // rebuilds the same pattern from the checkpoint and leaves the same contacts to CG.
+  const SceneDef s = reference::peer_wall(10, 10, true, 2.0);
+  const Mesh m = pre::build_mesh(s, "wall");
+  const double dt = s.solver.time_step;
+  const auto advance = [dt](TimeStepper& st, int steps) {
+    for (int i = 0; i < steps; ++i) ASSERT_EQ(st.attempt(dt), "") << "step " << i;
+  };
+  TimeStepper straight(m, s, "wall");
+  straight.set_threads(1);
+  advance(straight, 40);
+  TimeStepper first(m, s, "wall");
+  first.set_threads(1);
+  int at = 0;  // the first step after 20 that ends with touching contacts outside the pattern
+  for (advance(first, 20), at = 20; first.view().contacts.touching_outside_pattern() == 0 && at < 35; ++at)
+    advance(first, 1);
+  ASSERT_GT(first.view().contacts.touching_outside_pattern(), 0u) << "no step left contacts to CG";
+  const std::string path = ::testing::TempDir() + "/wall_outside_pattern.nmmstate";
+  write_checkpoint(first.view(), path);
+  TimeStepper second(m, s, "wall");
+  second.set_threads(1);
+  second.restart_from(path);
+  advance(second, 40 - at);
+  std::printf("wall restart at step %d with %zu touching contacts outside the pattern\n", at,
+              first.view().contacts.touching_outside_pattern());
+  EXPECT_EQ(state_hash(second.view()), state_hash(straight.view()));
+  EXPECT_EQ(second.view().state.step, 40);
 }
 
 TEST(ContactTolerance, SettlingWallKeepsItsFactorisation) {
