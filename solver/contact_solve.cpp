@@ -121,8 +121,8 @@ constexpr double kForcing = 1e-2;
 // step's own test — leaving the rest of F_tol to the contacts that switch along the direction.
 // Before, only the 2-norm counted (to 0.3·F_tol), which on a wall of thousands of unknowns near
 // balance asks each of them for far less than F_tol: CG spent its budget and a factorisation
-// followed, at residuals of 1.3–3 × F_tol (36 of the 39 factorisations in the static 30 × 30
-// wall's first 100 steps). Measured on the DDA code's walls (contact_bench --peer, h = 2 m,
+// followed: 30 of the 35 factorisations after the first step of the static 30 × 30 wall's
+// first 100 steps came at residuals of 1.3–10 × F_tol (16 of them within 3 ×). Measured on the DDA code's walls (contact_bench --peer, h = 2 m,
 // 200 steps, one thread, 2026-11-28), ms per step (solves / factorisations per step):
 //   share     static 20 × 20       static 30 × 30       dynamic 20 × 20      dynamic 30 × 30
 //   — (2-norm) 17.1 (2.31 / 0.32)  42.1 (2.15 / 0.32)   41.2 (4.52 / 1.75)   128 (4.84 / 2.27)
