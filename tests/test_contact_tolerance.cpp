@@ -187,7 +187,7 @@ TEST(ContactTolerance, SettlingWallKeepsItsFactorisation) {
   // 100 steps. A step near balance needs a direction that leaves every unknown within F_tol, the
   // accepted step's own test; CG on the kept factorisation gives that in a few iterations. When
   // CG had to bring the residual's 2-norm over all unknowns below 0.3·F_tol instead, it spent its
-  // budget there and a factorisation followed: 0.41 per step against 0.20 (kDirectionBalance).
+  // budget there and a factorisation followed: 0.39 per step against 0.20 (kDirectionBalance).
   const SceneDef s = reference::peer_wall(20, 20, false, 2.0);
   const Mesh m = pre::build_mesh(s, "wall");
   TimeStepper st(m, s, "wall");
