@@ -70,8 +70,8 @@
 // docs/performance.md).
 //
 // The system matrix's pattern holds the element pairs of the step's contacts, but for a few
-// (time_stepper.cpp update_pattern: it grows once more than a few closed contacts lie outside
-// it, and sheds the unused pairs now and then). A contact whose pair is missing is left out of
+// (time_stepper.cpp update_pattern: with inertia it grows once more than a few touching
+// contacts lie outside it, and it sheds the unused pairs now and then). A contact whose pair is missing is left out of
 // P by add_tangents(), and the direction after a factorisation is CG's with the new P (H − P of
 // the rank of the left-out springs).
 //
@@ -121,9 +121,10 @@ constexpr double kForcing = 1e-2;
 // step's own test — leaving the rest of F_tol to the contacts that switch along the direction.
 // Before, only the 2-norm counted (to 0.3·F_tol), which on a wall of thousands of unknowns near
 // balance asks each of them for far less than F_tol: CG spent its budget and a factorisation
-// followed: 30 of the 35 factorisations after the first step of the static 30 × 30 wall's
-// first 100 steps came at residuals of 1.3–10 × F_tol (16 of them within 3 ×). Measured on the DDA code's walls (contact_bench --peer, h = 2 m,
-// 200 steps, one thread, 2026-11-28), ms per step (solves / factorisations per step):
+// followed. 30 of the 35 factorisations after the first step of the static 30 × 30 wall's
+// first 100 steps came at residuals of 1.3–10 × F_tol (16 of them within 3 ×). Measured on the
+// DDA code's walls (contact_bench --peer, h = 2 m, 200 steps, one thread, 2026-11-28), ms per
+// step (solves / factorisations per step):
 //   share     static 20 × 20       static 30 × 30       dynamic 20 × 20      dynamic 30 × 30
 //   — (2-norm) 17.1 (2.31 / 0.32)  42.1 (2.15 / 0.32)   41.2 (4.52 / 1.75)   128 (4.84 / 2.27)
 //   0.5       15.7 (2.48 / 0.25)   40.7 (2.33 / 0.26)   34.8 (4.62 / 1.41)   109 (4.92 / 1.84)
@@ -178,9 +179,8 @@ void precondition(const SystemMatrix& k, const Eigen::VectorXd& r, Eigen::Vector
 }
 
 // Preconditioned CG for H x = r to ‖H x − r‖₂ ≤ target or ‖H x − r‖∞ ≤ target_inf; false when
-// the budget is spent or H
-// shows a non-positive curvature (then the caller factorises H). `first`, if given, is C r
-// already computed (the displacement test's estimate).
+// the budget is spent or H shows a non-positive curvature (then the caller factorises H).
+// `first`, if given, is C r already computed (the displacement test's estimate).
 bool pcg(const SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& r, double target,
          double target_inf, int budget, Eigen::VectorXd& x, ContactSolveStats& stats,
          const Eigen::VectorXd* first = nullptr) {
@@ -335,7 +335,8 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     if (system.has_factor() && !refresh) {
       const Stopwatch t0;
       const long before = stats.cg_iterations;
-      solved = pcg(system, contacts, r, cg_target, cg_target_inf, budget, delta, stats, u_err >= 0 ? &z : nullptr);
+      solved = pcg(system, contacts, r, cg_target, cg_target_inf, budget, delta, stats,
+                   u_err >= 0 ? &z : nullptr);
       // A run that needed more than half its budget says the factorisation is far from H: the
       // next direction is cheaper from a new one (which later runs reuse) than from another
       // long CG run.

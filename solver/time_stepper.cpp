@@ -68,12 +68,12 @@ constexpr double kPatternSlack = 1.1;
 //   dynamic, growth at every new pair  8.45 (88)  49.9 (99)  148 (98)
 //   dynamic, this rule                 8.05 (44)  50.5 (94)  147 (95)
 // ("this rule" also with detection's lengths by sqrt, not std::hypot: 0.1 / 0.4 / 1.0 ms of
-// each static step's difference). Counting every contact outside, open or closed,
-// against 20 or 40 gave fewer analyses (static 5–9, 2–6) and more CG iterations: summed over
-// the three walls, static steps 5–7 % slower than with 5 contacts closed at the start (this
-// rule's first form), dynamic ones 2 % faster and 3 % slower. The share keeps a scene of a few contacts (a block on an incline) growing its
-// pattern at once; without inertia it always grows (the contacts' springs are what makes the
-// matrix positive definite there).
+// each static step's difference). Counting every contact outside, open or closed, against 20
+// or 40 gave fewer analyses (static 5–9, 2–6) and more CG iterations: summed over the three
+// walls, static steps 5–7 % slower than with 5 contacts closed at the start (this rule's first
+// form), dynamic ones 2 % faster and 3 % slower. The share keeps a scene of a few contacts (a
+// block on an incline) growing its pattern at once; without inertia it always grows (the
+// contacts' springs are what makes the matrix positive definite there).
 constexpr int kDeferredTouching = 5;
 constexpr double kDeferredShare = 0.01;
 }  // namespace
@@ -117,27 +117,30 @@ void TimeStepper::update_pattern() {
   // pattern — and with it CHOLMOD's symbolic analysis — changes only when a contact reaches a
   // pair the pattern lacks, and, in a run with inertia, not even then while only a few touching
   // contacts lie outside it (kDeferredTouching): their springs are left to CG (H − P of small
-  // rank) instead of a symbolic analysis at the next factorisation. Then it grows by the new pairs,
-  // unless it already holds more than kPatternSlack times the pairs this step's and the last
-  // accepted step's contacts use: then it is built from those alone. A pattern that only grew kept every pair a contact had ever
-  // touched, and its factor's fill grew faster than its entries (a dynamic 20 × 20 wall: +5 %
-  // entries, +24 % factor nonzeros, +46 % flops over 100 steps). (Pairs merely within the search
-  // distance are not added in advance: that margin doubled to tripled the factorisation's flops
-  // on brick walls, docs/contact.md "Sparse pattern".) The rule reads only what a checkpoint
-  // restores (the pattern's pairs and the accepted contacts), so a restarted run rebuilds the
+  // rank) instead of a symbolic analysis at the next factorisation. Then it grows by the new
+  // pairs, unless it already holds more than kPatternSlack times the pairs this step's and the
+  // last accepted step's contacts use: then it is built from those alone. A pattern that only
+  // grew kept every pair a contact had ever touched, and its factor's fill grew faster than its
+  // entries (a dynamic 20 × 20 wall: +5 % entries, +24 % factor nonzeros, +46 % flops over 100
+  // steps). (Pairs merely within the search distance are not added in advance: that margin
+  // doubled to tripled the factorisation's flops on brick walls, docs/contact.md "Sparse
+  // pattern".) The rule reads only what a checkpoint restores (the pattern's pairs, the accepted
+  // contacts and the step's own contacts detected from them), so a restarted run rebuilds the
   // same patterns.
   const int first = static_cast<int>(mesh_.element_count());
   const auto now = contacts_.contact_pairs();
-  contacts_.assign_groups(s_.pattern_pairs, first);
-  if (std::includes(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end())) return;
+  const auto& had = s_.pattern_pairs;
+  const bool holds = std::includes(had.begin(), had.end(), now.begin(), now.end());
+  // The groups in the present pattern: final if it holds every pair, else what the deferral counts.
+  if (holds || step_inertia()) contacts_.assign_groups(had, first);
+  if (holds) return;
   if (step_inertia()) {
     const double outside = static_cast<double>(contacts_.touching_outside_pattern());
     const double touching = static_cast<double>(contacts_.touching_at_start());
     if (outside <= std::min(static_cast<double>(kDeferredTouching), kDeferredShare * touching)) return;
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  std::set_union(s_.pattern_pairs.begin(), s_.pattern_pairs.end(), now.begin(), now.end(),
-                 std::back_inserter(pairs));
+  std::set_union(had.begin(), had.end(), now.begin(), now.end(), std::back_inserter(pairs));
   const auto last = contacts_.accepted_pairs();
   std::vector<std::pair<std::int32_t, std::int32_t>> used;
   std::set_union(now.begin(), now.end(), last.begin(), last.end(), std::back_inserter(used));

@@ -100,6 +100,19 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
   EXPECT_LE(cs.max_displacement_error, u_tol);
 }
 
+// The DDA code's brick wall (bricks 1 m × 0.5 m, φ = 30°, Δt = 1 ms), n × n bricks meshed at
+// h = 2 m, coarser than its bricks, and a stepper on one thread.
+struct PeerWall {
+  PeerWall(int n, bool dynamic)
+      : scene(reference::peer_wall(n, n, dynamic, 2.0)), mesh(pre::build_mesh(scene, "wall")),
+        st(mesh, scene, "wall") {
+    st.set_threads(1);
+  }
+  const SceneDef scene;
+  const Mesh mesh;
+  TimeStepper st;
+};
+
 // The friction fixed point settles: a barely touching contact's strength falls to zero along a
 // ramp below F_tol (contact.cpp update_strengths), not in one jump at F_tol. With the jump,
 // contacts whose normal force hovered around the cut cycled — zero strength lets a brick slide,
@@ -107,13 +120,10 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
 // the first 100 steps of this wall (11 of the 20 × 20 one's) used all 12 strength rounds and
 // were taken with friction still moving; up to 19 Newton iterations in a step.
 TEST(ContactTolerance, FrictionSettlesInEveryStepOfAVibratingWall) {
-  // The DDA code's dynamic 10 × 10 wall (bricks 1 m × 0.5 m, φ = 30°, Δt = 1 ms) meshed coarser
-  // than its bricks, its first 100 steps.
-  const SceneDef s = reference::peer_wall(10, 10, true, 2.0);
-  const Mesh m = pre::build_mesh(s, "wall");
-  TimeStepper st(m, s, "wall");
-  st.set_threads(1);
-  ASSERT_EQ(st.run_until(100 * s.solver.time_step, [](std::int64_t) {}), "ok");
+  // The dynamic 10 × 10 wall, its first 100 steps.
+  PeerWall w(10, true);
+  TimeStepper& st = w.st;
+  ASSERT_EQ(st.run_until(100 * w.scene.solver.time_step, [](std::int64_t) {}), "ok");
   const auto& state = st.view().state;
   std::printf("dynamic 10 x 10 wall: %llu steps, %llu Newton iterations, %llu with friction unsettled\n",
               static_cast<unsigned long long>(state.step), static_cast<unsigned long long>(state.iterations),
@@ -128,12 +138,10 @@ TEST(ContactTolerance, SparsePatternLeavesOnlyAFewTouchingContactsToCg) {
   // lie outside it (time_stepper.cpp update_pattern); their springs are taken by CG. Every step
   // keeps to that bound, some steps do leave contacts to CG, and the wall's symbolic analyses
   // are fewer than its steps that met a new pair.
-  const SceneDef s = reference::peer_wall(10, 10, true, 2.0);
-  const Mesh m = pre::build_mesh(s, "wall");
-  TimeStepper st(m, s, "wall");
-  st.set_threads(1);
+  PeerWall w(10, true);
+  TimeStepper& st = w.st;
   std::size_t worst_excess = 0, steps_leaving = 0;
-  ASSERT_EQ(st.run_until(100 * s.solver.time_step,
+  ASSERT_EQ(st.run_until(100 * w.scene.solver.time_step,
                          [&](std::int64_t) {
                            const ContactSet& c = st.view().contacts;
                            const std::size_t outside = c.touching_outside_pattern();
@@ -155,14 +163,14 @@ TEST(ContactTolerance, RestartWithContactsOutsideThePatternIsBitwise) {
   // The same wall, 40 steps straight against 20 + checkpoint + 20 from a fresh stepper, with
   // the checkpoint taken while touching contacts lie outside the pattern: the restarted run
   // rebuilds the same pattern from the checkpoint and leaves the same contacts to CG.
-  const SceneDef s = reference::peer_wall(10, 10, true, 2.0);
-  const Mesh m = pre::build_mesh(s, "wall");
+  PeerWall w(10, true);
+  const SceneDef& s = w.scene;
+  const Mesh& m = w.mesh;
   const double dt = s.solver.time_step;
   const auto advance = [dt](TimeStepper& st, int steps) {
     for (int i = 0; i < steps; ++i) ASSERT_EQ(st.attempt(dt), "") << "step " << i;
   };
-  TimeStepper straight(m, s, "wall");
-  straight.set_threads(1);
+  TimeStepper& straight = w.st;
   advance(straight, 40);
   TimeStepper first(m, s, "wall");
   first.set_threads(1);
@@ -188,11 +196,9 @@ TEST(ContactTolerance, SettlingWallKeepsItsFactorisation) {
   // accepted step's own test; CG on the kept factorisation gives that in a few iterations. When
   // CG had to bring the residual's 2-norm over all unknowns below 0.3·F_tol instead, it spent its
   // budget there and a factorisation followed: 0.39 per step against 0.20 (kDirectionBalance).
-  const SceneDef s = reference::peer_wall(20, 20, false, 2.0);
-  const Mesh m = pre::build_mesh(s, "wall");
-  TimeStepper st(m, s, "wall");
-  st.set_threads(1);
-  ASSERT_EQ(st.run_until(100 * s.solver.time_step, [](std::int64_t) {}), "ok");
+  PeerWall w(20, false);
+  TimeStepper& st = w.st;
+  ASSERT_EQ(st.run_until(100 * w.scene.solver.time_step, [](std::int64_t) {}), "ok");
   const ContactSolveStats& cs = st.view().contact_solve;
   const double steps = static_cast<double>(st.view().state.step);
   std::printf("static 20 x 20 wall: %.0f steps, %.2f solves, %.2f factorisations, %.2f CG iterations per step\n",
