@@ -155,7 +155,8 @@ int main(int argc, char** argv) {
     nmm::solve::EnergyMeter energy(view.model, &view.space);
     energy.after_step(view.state, view.contacts.contacts(), true);
     std::vector<nmm::report::StepRecord> effort;
-    std::size_t iterations = 0, cuts = 0;
+    // Per-step counts from the running totals, which a restart brings from the checkpoint.
+    std::size_t iterations = view.state.iterations, cuts = view.state.cuts;
     double t_prev = t_start;
     // After every accepted step, in this order: the run history's row (run_history.csv), the
     // energy terms, the progress line (the frames and the checkpoint come first: run_driver.h).

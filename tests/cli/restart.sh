@@ -35,6 +35,13 @@ case "$last" in *"ok, moving"*|*"ok, at_rest"*) ;; *) echo "no status and verdic
 [ "$(awk -F, 'NR == 2 {print $1}' "$dir/second/run_history.csv")" = $((n + 1)) ] &&
   [ "$(tail -n 1 "$dir/second/run_history.csv" | cut -d, -f1)" = $((2 * n)) ] ||
   { echo "run_history.csv steps do not go on from the checkpoint"; fail=1; }
+# Row for row as the straight run's second half: per-step iterations and cuts too (the restart
+# counts on from the checkpoint's totals, not from zero).
+if ! diff <(tail -n +$((n + 2)) "$dir/straight/run_history.csv") <(tail -n +2 "$dir/second/run_history.csv") > /dev/null; then
+  echo "run_history.csv of the restart differs from the straight run's rows $((n + 1))-$((2 * n)):"
+  diff <(tail -n +$((n + 2)) "$dir/straight/run_history.csv") <(tail -n +2 "$dir/second/run_history.csv") | head -4
+  fail=1
+fi
 # The equilibrium indicators carry no state: the restart's last step measures as the straight run's.
 e1=$(field "$dir/straight/summary.json" equilibrium)
 e2=$(field "$dir/second/summary.json" equilibrium)
