@@ -40,6 +40,11 @@ class SystemMatrix {
     regularised_ = std::move(unknowns);
     eps_ = eps;
   }
+  /// Fill-reducing ordering by AMD alone (true), or CHOLMOD's default (false: AMD, and METIS as
+  /// well where AMD's fill is high, keeping the sparser factor). A run whose pattern changes with
+  /// its contacts analyses it again every few steps, and there a METIS ordering costs more to
+  /// find than its factorisations save (system_matrix.cpp).
+  void set_amd_only(bool on);
   /// Iterative-refinement passes of the last solve (0 without regularisation).
   int refinements() const { return refinements_; }
 

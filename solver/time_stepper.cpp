@@ -89,6 +89,8 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   contacts_.set_elastic_predictor(!step_inertia());
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
   if (space_.order() > 0) system_.set_regularised(space_.higher_order_unknowns(), kRegularisation);
+  // Contacts change the pattern every few steps: each analysis orders by AMD alone.
+  system_.set_amd_only(contacts_.active());
   s_ = initial_state(model_, space_);
   // Fixed points and loads couple only the covers of their element: the element pattern holds
   // until contacts couple pairs of elements (update_pattern).
