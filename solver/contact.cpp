@@ -85,6 +85,7 @@ ClosedContacts ContactSet::closed_contacts() const {
     if (h.state != ContactState::open) closed.pairs.emplace_back(h.vertex, h.block);
   std::sort(closed.pairs.begin(), closed.pairs.end());
   closed.pairs.erase(std::unique(closed.pairs.begin(), closed.pairs.end()), closed.pairs.end());
+  closed.index(topo_.next.size());
   return closed;
 }
 

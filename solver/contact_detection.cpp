@@ -78,7 +78,16 @@ bool ContactTopology::is_continuous(std::int32_t vertex, std::int32_t element) c
   return false;
 }
 
+void ClosedContacts::index(std::size_t vertices) {
+  first.assign(vertices + 1, 0);
+  for (const auto& [v, block] : pairs) ++first[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
+}
+
 std::pair<std::size_t, std::size_t> ClosedContacts::range(std::int32_t v) const {
+  if (!first.empty())
+    return {static_cast<std::size_t>(first[static_cast<std::size_t>(v)]),
+            static_cast<std::size_t>(first[static_cast<std::size_t>(v) + 1])};
   const auto lo = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(v, std::int32_t{-1}));
   auto hi = lo;
   while (hi != pairs.end() && hi->first == v) ++hi;
@@ -86,6 +95,11 @@ std::pair<std::size_t, std::size_t> ClosedContacts::range(std::int32_t v) const 
 }
 
 bool ClosedContacts::with(std::int32_t v, std::int32_t block) const {
+  if (!first.empty()) {
+    for (std::int32_t i = first[static_cast<std::size_t>(v)]; i < first[static_cast<std::size_t>(v) + 1]; ++i)
+      if (pairs[static_cast<std::size_t>(i)].second == block) return true;
+    return false;
+  }
   return std::binary_search(pairs.begin(), pairs.end(), std::make_pair(v, block));
 }
 

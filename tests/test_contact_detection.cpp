@@ -81,5 +81,26 @@ TEST(ContactDetection, AReusedVerletListFindsWhatAFreshSearchFinds) {
   }
 }
 
+// The closed pairs' per-vertex index answers as the binary search over the sorted pairs does.
+TEST(ContactDetection, ClosedPairsIndexedByVertexAnswerAsTheirSearch) {
+  const SceneDef s = reference::peer_wall(6, 6, false, 0.5);
+  const Mesh m = pre::build_mesh(s, "wall");
+  TimeStepper st(m, s, "wall");
+  ASSERT_EQ(st.run_until(5e-3, [](std::int64_t) {}), "ok");
+  const ClosedContacts indexed = st.view().contacts.closed_contacts();
+  ASSERT_FALSE(indexed.first.empty());
+  ClosedContacts searched = indexed;
+  searched.first.clear();
+  const auto vertices = static_cast<std::int32_t>(indexed.first.size() - 1);
+  std::size_t with_pairs = 0;
+  for (std::int32_t v = 0; v < vertices; ++v) {
+    ASSERT_EQ(indexed.range(v), searched.range(v)) << "vertex " << v;
+    with_pairs += indexed.range(v).second > indexed.range(v).first;
+    for (std::int32_t block = -1; block <= static_cast<std::int32_t>(m.block_count()); ++block)
+      ASSERT_EQ(indexed.with(v, block), searched.with(v, block)) << "vertex " << v << ", block " << block;
+  }
+  EXPECT_GT(with_pairs, 100u) << "the wall rests on many closed vertices";
+}
+
 }  // namespace
 }  // namespace nmm::solve
