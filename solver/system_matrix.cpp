@@ -233,12 +233,13 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
 // AMD alone. CHOLMOD's default strategy tries METIS after AMD when AMD's factor is dense
 // (flops / nnz(L) ≥ 500 and nnz(L) / nnz(A) ≥ 5) and keeps the ordering with the fewer factor
 // nonzeros. On the DDA code's 10,000-block wall (contact_bench --trace 100 --sizes 100 --peer
-// --mesh 2, one thread, 2026-11-28) that picked METIS in the end — 13.3 M factor nonzeros and
-// 4.6 Gflop against AMD's 15.7 M and 8.1 Gflop — yet the step took 749 ms against 686 ms with
-// AMD alone: 17 analyses in 100 steps at about 0.5 s each with METIS (0.2 s with AMD alone),
-// and a METIS-ordered factorisation timed 465 ms against AMD's 346 ms despite its fewer flops
-// (smaller supernodes). The walls up to 30 × 30 never reach the threshold, so their orderings,
-// and their results, are the same either way.
+// --mesh 2, one thread, 2026-11-28) the first analysis stayed with AMD and the later ones, past
+// the threshold, took METIS — 13.3 M factor nonzeros and 4.6 Gflop against AMD's 15.7 M and
+// 8.1 Gflop — yet the step took 749 ms against 686 ms with AMD alone: factorisations with their
+// analyses 194 ms per step against 128 (17 analyses against 14), and the final matrix's
+// factorisation timed 465 ms with the METIS ordering against 346 ms with AMD's, despite its
+// fewer flops. The walls up to 30 × 30 never reach the threshold, so their orderings, and their
+// results, are the same either way.
 void SystemMatrix::set_amd_only(bool on) {
   cholmod_common& c = llt_.cholmod();
   c.nmethods = on ? 1 : 0;
