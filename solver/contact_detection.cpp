@@ -95,12 +95,10 @@ std::pair<std::size_t, std::size_t> ClosedContacts::range(std::int32_t v) const 
 }
 
 bool ClosedContacts::with(std::int32_t v, std::int32_t block) const {
-  if (!first.empty()) {
-    for (std::int32_t i = first[static_cast<std::size_t>(v)]; i < first[static_cast<std::size_t>(v) + 1]; ++i)
-      if (pairs[static_cast<std::size_t>(i)].second == block) return true;
-    return false;
-  }
-  return std::binary_search(pairs.begin(), pairs.end(), std::make_pair(v, block));
+  const auto [lo, hi] = range(v);
+  for (std::size_t i = lo; i < hi; ++i)
+    if (pairs[i].second == block) return true;
+  return false;
 }
 
 namespace {
