@@ -244,7 +244,6 @@ void SystemMatrix::set_amd_only(bool on) {
   cholmod_common& c = llt_.cholmod();
   c.nmethods = on ? 1 : 0;
   c.method[0].ordering = on ? CHOLMOD_AMD : CHOLMOD_GIVEN;  // CHOLMOD_GIVEN: cholmod_defaults'
-  c.postorder = 1;
 }
 
 void SystemMatrix::set_zero() { std::fill(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), 0.0); }
