@@ -88,7 +88,7 @@ struct JointSetDef {
   double friction_deg = 0;      ///< degrees, in [0, 90)
   double cohesion = 0;          ///< Pa, >= 0
   double tensile_strength = 0;  ///< Pa, >= 0
-  double residual_cohesion = 0;  ///< Pa, in [0, cohesion]: kept by a contact once it slid or opened
+  double residual_cohesion = 0;  ///< Pa, in [0, cohesion]: kept by a contact once it broke (reached its peak at an accepted step) or opened
   NormalLawDef normal;
   ShearLawDef shear;
   bool generated = false;       ///< a `generate` block is present

@@ -29,9 +29,10 @@
 // contact, no cohesion (F came out 0.90 with perfectly plastic joints, 1.24 with the grid).
 // (2) Perfectly plastic Mohr–Coulomb: Hoek & Bray mobilise c over the whole plane at once, so
 // the plane's joint set keeps its cohesion after slip (residual_cohesion = cohesion,
-// docs/contact.md). With the default brittle joint (cohesion lost at a contact's first slip) the
+// docs/contact.md). With the default brittle joint (cohesion lost where a contact reaches its peak) the
 // elastic shear concentrations at the toe and the crack end fail first and the plane unzips:
-// F = 1.01 from a settled intact state, 0.87 from the initial one, against 1.253.
+// F = 1.12 from a settled intact state, 0.92 from the initial one, against 1.253 (nmm-fos,
+// docs/fos-and-sweeps.md).
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -17,7 +17,7 @@
 // minimisation: contact_solve.cpp):
 //   normal  N(δ) on the closure δ = −gap (constant kn·L·δ, penalty kn·δ, or Bandis–Barton), 0 when open; a bond
 //           (tensile strength T, unbroken, closed at the start of the step) continues it into
-//           tension with the initial stiffness until N < −T·L, when it breaks for good;
+//           tension with the initial stiffness;
 //   shear   elastoplastic: the spring carries an elastic shear s_el from step to step; the trial
 //           shear is s = s_el + slip and the force T(s) = ks·s (or the hyperbola) capped at the
 //           strength S = tanφ·N + c·L (c while unbroken, then the joint set's residual
@@ -29,7 +29,11 @@
 // (set_direction, directional_force). S needs N: a fixed point around the convex solve
 // (update_strengths). States (open, locked, sliding) are read off the solution at the end of
 // the step (settle_states): open when N = 0 and no bond, sliding when the trial force reaches S.
-// Cohesion and the bond are lost once a contact slides or opens.
+// Breaking (docs/contact.md "Cohesion and tensile bonds"): a bond or a cohesion breaks for good
+// only at a solution of the step — never on an iterate of the friction fixed point — where its
+// force reaches the peak: N < −T·L, or |T| at S = c·L + tanφ·N (break_at_peak). The step is then
+// solved again with it broken (residual cohesion c_r, no tension), until no unbroken contact is
+// beyond its peak; a contact that was closed and ends the step open loses its cohesion too.
 //
 // The springs come from joint_law.h: a joint stress per unit closure or shear (constant kn, ks in
 // Pa/m, Bandis–Barton closure, hyperbolic shear) times the contact's tributary length L
@@ -215,6 +219,8 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
         cn[lb] = -phi_b[a] * n_dir[sd];
         cs[lb] = -phi_b[a] * t_dir[sd];
       }
+    w.start_normal_force = c.normal_force;
+    w.start_broken = c.broken;
     w.gap0 = c.at.gap - c.joint.dilation;
     c.gap = w.gap0;
     w.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
@@ -421,7 +427,7 @@ void ContactSet::start_strengths() {
     const ContactLaw& law = laws_[c.law];
     const bool closed = c.start_state != ContactState::open;
     w.bonded = closed && !c.broken && law.tensile > 0;
-    const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
+    const double n = closed ? std::max(w.start_normal_force, 0.0) : 0.0;
     w.strength = closed ? shear_strength(law, n, c.length, c.broken, c.joint) : 0.0;
     // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
     // sticks until the fixed point has its normal force.
@@ -561,21 +567,7 @@ int ContactSet::update_strengths(double force_floor) {
     Contact& c = contacts_[i];
     ContactWork& w = work_[i];
     const ContactLaw& law = laws_[c.law];
-    // A bond breaks for good beyond its tensile strength; cohesion is lost once a contact
-    // slides. Both only ever switch one way, so they settle within a step.
-    if (w.bonded && c.normal_force < -law.tensile * c.length) {
-      w.bonded = false;
-      c.broken = true;
-      ++events.broken;
-      ++changed;
-    }
     const bool closed = c.normal_force > 0 || w.bonded;
-    if (closed && !c.broken && w.strength > 0 && slides(law, c, w) && (law.cohesion > 0 || law.tensile > 0)) {
-      c.broken = true;
-      w.bonded = false;
-      ++events.broken;
-      ++changed;
-    }
     // The friction fixed point: the strength follows the normal force of the solution. A change
     // matters only where the shear force is at or near the limit (or on a hyperbola, whose
     // whole curve scales with the strength). (Keeping the strength of the normal force a
@@ -604,6 +596,33 @@ int ContactSet::update_strengths(double force_floor) {
     w.strength = s;
   }
   return changed;
+}
+
+ContactSet::Breaks ContactSet::break_at_peak() {
+  // Only at a solution: an iterate of the friction fixed point may pass through forces the
+  // solution does not reach (a strength lagging its normal force, a bond stretched by a
+  // direction the line search then shortens), and breaking there lost the cohesion of joints
+  // that never slid (a Hoek–Bray wedge at F = 2.26 counted 26 broken bonds).
+  Breaks b;
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    Contact& c = contacts_[i];
+    ContactWork& w = work_[i];
+    const ContactLaw& law = laws_[c.law];
+    if (c.broken || !(law.cohesion > 0 || law.tensile > 0)) continue;
+    const bool tension = w.bonded && c.normal_force < -law.tensile * c.length;
+    const bool closed = c.normal_force > 0 || w.bonded;
+    const bool shear = !tension && closed && w.strength > 0 && slides(law, c, w);
+    if (!tension && !shear) continue;
+    c.broken = true;
+    w.bonded = false;
+    // The strength it has broken: the step's next solve starts from this solution.
+    w.strength = shear_strength(law, std::max(c.normal_force, 0.0), c.length, true, c.joint, step_shear(c, w));
+    ++(tension ? b.tensile : b.shear);
+    // A perfectly plastic joint without tension (c_r = c, T = 0) keeps the same strength: the
+    // solution stands as it is.
+    if (law.tensile > 0 || law.residual_cohesion != law.cohesion) b.resolve = true;
+  }
+  return b;
 }
 
 void ContactSet::settle_states() {
@@ -653,6 +672,8 @@ void ContactSet::end_step() {
   history_.resize(contacts_.size());
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
+    const ContactLaw& law = laws_[c.law];
+    if (c.broken && !work_[i].start_broken && (law.cohesion > 0 || law.tensile > 0)) ++events.broken;
     history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
                    static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint};
   }

@@ -31,7 +31,8 @@ struct ContactHistory {
   std::int32_t vertex = -1;  ///< loop vertex P
   std::int32_t block = -1;   ///< block of the edge P was against
   ContactState state = ContactState::open;
-  bool broken = false;       ///< cohesion and tensile strength lost (it slid or opened)
+  bool broken = false;       ///< cohesion and tensile strength lost (it reached its peak at an
+                             ///< accepted state, or opened)
   std::int8_t slip_sign = 0; ///< direction of sliding along the edge (±1, 0 never slid)
   double shear_el = 0;       ///< m, elastic shear of the shear spring (return mapping)
   double normal_force = 0;   ///< N, compression > 0: the next step's first friction strength
@@ -55,7 +56,8 @@ struct Contact {
   // State: from the history at the start of the step, the solution's at its end.
   ContactState state = ContactState::open;
   ContactState start_state = ContactState::open;  ///< state at the start of the step
-  bool broken = false;       ///< cohesion and tensile strength lost (it slid or opened)
+  bool broken = false;       ///< cohesion and tensile strength lost: from the history, then set
+                             ///< by break_at_peak() and settle_states() at the step's solution
   double shear_el = 0;       ///< m, elastic shear of the shear spring at the start of the step
                              ///< (at its end after end_step())
   int slip_sign = 0;         ///< direction of sliding along the edge (±1)
@@ -84,6 +86,8 @@ struct ContactWork {
   bool bonded = false;          ///< normal spring holds tension (unbroken, tensile strength, closed)
   double gap0 = 0, shear0 = 0;  ///< m, gap = gap0 + cnᵀd, shear = shear0 + csᵀd
   int group = -1;               ///< coupling group of its element pair in the system matrix
+  double start_normal_force = 0;  ///< N, the normal force carried into the step (start_strengths())
+  bool start_broken = false;    ///< broken at the start of the step (end_step() counts new breaks)
   double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
 };
 
@@ -191,12 +195,25 @@ class ContactSet {
   LineModelError line_model_error() const;
   /// Largest |N| and |T| of the last forces_at(), N (a scale for the residual tolerance).
   double force_scale() const;
-  /// After an inner solve: bonds beyond their tensile strength or cohesion break (for good), and
-  /// shear strengths follow the normal forces (the friction fixed point). Returns the number of
+  /// After an inner solve: shear strengths follow the normal forces (the friction fixed point).
+  /// Bonds do not break here: an iterate is not the step (break_at_peak()). Returns the number of
   /// contacts whose strength changed where it matters (at or near the limit) by more than 0.1 %
   /// and more than `force_floor` (N).
   int update_strengths(double force_floor);
-  /// The states the step ends in (open, locked, sliding) and the events they make.
+  /// What break_at_peak() broke.
+  struct Breaks {
+    int tensile = 0;      ///< bonds pulled beyond their tensile strength × length
+    int shear = 0;        ///< contacts whose shear force reached the peak strength c·L + tanφ·N
+    bool resolve = false; ///< a break changed a law's strength: the step must be solved again
+  };
+  /// At a solution of the step's contact problem (solve_contact_step converged): every unbroken
+  /// contact with cohesion or tensile strength whose force reaches its peak — a bond in tension
+  /// beyond T·L, or a shear force at c·L + tanφ·N — breaks (docs/contact.md "Cohesion and
+  /// tensile bonds"). The caller solves the step again while `resolve` (the broken contacts'
+  /// strengths changed), until no unbroken contact is beyond its peak.
+  Breaks break_at_peak();
+  /// The states the step ends in (open, locked, sliding) and the events they make: once per
+  /// attempt, on its last solve. A contact that was closed and ends open loses its cohesion.
   void settle_states();
 
   /// Accepts the step: its contacts and states are what the next step starts from (a sliding
@@ -207,7 +224,8 @@ class ContactSet {
   /// State changes of accepted and cut attempts (diagnostics, summary.json "contacts").
   struct Events {
     long closed = 0, opened = 0, slid = 0, stuck = 0;
-    long broken = 0;  ///< bonds broken (tensile strength or cohesion exceeded)
+    long broken = 0;  ///< bonds broken on accepted steps (tensile strength or peak shear
+                      ///< strength reached, or opened), counted by end_step()
   };
   Events events;
 

@@ -53,8 +53,10 @@
 // updated only at an iterate in balance (a round of the fixed point per update, each round a
 // convex problem solved to the tolerance), and after kMaxStrengthRounds rounds the step keeps
 // the strengths it has (counted: summary.json steps_with_unsettled_friction).
-// Cohesion and tensile bonds break for good when exceeded, so they change at most once per
-// contact and step.
+// Cohesion and tensile bonds do not break within this solve: the strengths are those of the
+// bonds the step started with (or broke at an earlier solution of the same step); the time
+// stepper breaks the contacts that reach their peak at the solution and solves again
+// (ContactSet::break_at_peak, time_stepper.cpp).
 //
 // Linear solves. H differs from the matrix P of the last factorisation by the springs that
 // switched and, from one step to the next, by the small change of A with the geometry. Conjugate
@@ -247,16 +249,23 @@ double line_search(const F& psi, double psi0, double tol) {
 
 ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
-                                       Eigen::VectorXd* residual) {
+                                       Eigen::VectorXd* residual, bool warm) {
   using Status = ContactSolveOutcome::Status;
   // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
   static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
   const Eigen::Index n = b.size();
-  d.setZero(n);
   Eigen::VectorXd ra = b;  // b − A d, kept up to date without a product per iteration
   Eigen::VectorXd r(n), delta(n), adelta(n);
+  if (warm) {
+    // From the solution of the same step before contacts broke (ContactSet::break_at_peak has
+    // set their broken strengths; the others are the fixed point's at d).
+    system.saved_times(d, adelta);
+    ra -= adelta;
+  } else {
+    d.setZero(n);
+    contacts.start_strengths();
+  }
   const double floor = kRoundOff * b.lpNorm<Eigen::Infinity>() + std::numeric_limits<double>::min();
-  contacts.start_strengths();
   bool refresh = false;       // factorise H for the next direction
   int rounds = 0;             // strength updates at an iterate in balance
   double last_r = std::numeric_limits<double>::infinity();
@@ -412,7 +421,6 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
   const double u_accepted = u_err;
   evaluate();
   if (residual) *residual = r;
-  contacts.settle_states();
   stats.max_force_tolerance = std::max(stats.max_force_tolerance, tol);
   stats.max_displacement_error = std::max(stats.max_displacement_error, std::max(u_accepted, 0.0));
   double kn_min = std::numeric_limits<double>::infinity();

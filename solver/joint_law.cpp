@@ -33,7 +33,8 @@
 //   stays continuous at δmax even after the virgin curve's cap).
 // Shear, hyperbolic (Kulhawy 1975; Duncan–Chang form), elastic shear u ≥ 0, strength
 // τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact (c → the residual cohesion c_r once
-// the contact is broken: it slid or opened; c_r = 0 unless the joint set gives one):
+// the contact is broken: it reached its peak at an accepted step or opened, contact.cpp;
+// c_r = 0 unless the joint set gives one):
 //     τ = u / (1/Ksi + Rf·u/τf)              ⇔  u = τ / (Ksi·(1 − Rf·τ/τf))
 //     ks = dτ/du · L = Ksi·L·(1 − Rf·τ/τf)²   (falls as u grows)
 //   The contact slips (Mohr–Coulomb) when the force reaches T_f, which the curve does at

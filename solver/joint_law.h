@@ -66,7 +66,8 @@ SpringState normal_spring(const ContactLaw& law, double closure, double length, 
 double initial_normal_stiffness(const ContactLaw& law, double length);
 
 /// Shear strength of a contact, N: tanφ·N + c·L, with the residual cohesion c_r in place of c once
-/// the contact is broken (it slid or opened; c_r = 0 by default: brittle). A Barton–Bandis joint
+/// the contact is broken (it reached its peak at an accepted step, or opened; c_r = 0 by
+/// default: brittle). A Barton–Bandis joint
 /// has L·τ + c·L instead of tanφ·N, τ its strength at σn = N/L after sliding by Δu (m, signed)
 /// from its memory `start` (barton_bandis_strength: travel, direction, position).
 double shear_strength(const ContactLaw& law, double normal_force, double length, bool broken,

@@ -58,12 +58,18 @@ nlohmann::json run_summary(const RunView& st, const RunOutcome& o) {
                          {"openings", ev.opened},
                          {"slips", ev.slid},
                          {"sticks", ev.stuck},
+                         // Bonds and cohesions broken on accepted steps only (contact.h
+                         // break_at_peak), each where its force reached its peak.
                          {"bonds_broken", ev.broken}};
   summary["contact_solve"] = {{"newton_iterations", st.contact_solve.newton},
                               {"cg_iterations", st.contact_solve.cg_iterations},
                               {"cg_runs_over_budget", st.contact_solve.cg_aborted},
                               {"factorisations", st.contact_solve.factorisations},
                               {"friction_updates", st.contact_solve.strength_updates},
+                              // Attempts solved again because contacts broke at their solution,
+                              // and the extra solves (docs/contact.md "Cohesion and tensile bonds").
+                              {"steps_resolved_for_breaks", st.contact_solve.steps_resolved_for_breaks},
+                              {"break_resolves", st.contact_solve.break_resolves},
                               // What the tolerance allows (contact_solve.cpp, docs/contact.md).
                               {"tolerance", sv.contact_tolerance},
                               {"max_force_tolerance_N", st.contact_solve.max_force_tolerance},

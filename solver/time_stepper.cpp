@@ -223,10 +223,23 @@ std::string TimeStepper::attempt(double dt) {
   } else {
     const ContactSolveStats before = solve_stats_;
     const double tau = scene_.solver.contact_tolerance;
-    const ContactSolveOutcome outcome =
-        solve_contact_step(system_, contacts_, rhs_base_, tau,
-                           contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
-                           solve_stats_, handed_on_share() > 0 ? &residual : nullptr);
+    const auto solve = [&](bool warm) {
+      return solve_contact_step(system_, contacts_, rhs_base_, tau,
+                                contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
+                                solve_stats_, handed_on_share() > 0 ? &residual : nullptr, warm);
+    };
+    ContactSolveOutcome outcome = solve(false);
+    // Bonds and cohesion break only at a solution of the step, and the step is solved again with
+    // them broken until no unbroken contact is beyond its peak (contact.h break_at_peak). Each
+    // round breaks at least one contact, so this ends.
+    for (bool resolved = false; outcome.ok();) {
+      if (!contacts_.break_at_peak().resolve) break;
+      if (!resolved) ++solve_stats_.steps_resolved_for_breaks;
+      resolved = true;
+      ++solve_stats_.break_resolves;
+      outcome = solve(true);  // from the solution before the breaks
+    }
+    if (outcome.ok()) contacts_.settle_states();
     iterated = solve_stats_.newton > before.newton;
     timings_.factorisations += solve_stats_.factorisations - before.factorisations;
     timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
