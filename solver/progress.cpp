@@ -51,11 +51,18 @@ std::string ProgressLine::line(std::int64_t step, double time, double wall) cons
   return buf;
 }
 
+void ProgressLine::print_warning() {
+  if (warning_.empty()) return;
+  std::fprintf(out_, "nmm-solve: warning: %s\n", warning_.c_str());
+  warning_.clear();
+}
+
 void ProgressLine::update(std::int64_t step, double time) {
   if (mode_ == Mode::off) return;
   const double now = seconds_since_start();
   if (now - last_ < period_) return;
   last_ = now;
+  if (!printed_) print_warning();
   printed_ = true;
   if (mode_ == Mode::terminal)
     std::fprintf(out_, "\r%s\033[K", line(step, time, now).c_str());
@@ -76,6 +83,7 @@ void ProgressLine::finish(std::int64_t step, double time, const std::string& sta
   }
   const std::string text =
       line(step, time, seconds_since_start()) + (note.empty() ? std::string() : "; " + note);
+  if (!printed_) print_warning();
   if (mode_ == Mode::terminal) std::fprintf(out_, "\r%s\033[K\n", text.c_str());
   else std::fprintf(out_, "%s\n", text.c_str());
   std::fflush(out_);

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace nmm::solve {
 
@@ -19,6 +20,10 @@ class ProgressLine {
   /// `t_end`: simulated time at the end of the run, s. `out`: where the lines go (stderr).
   ProgressLine(Mode mode, double t_end, std::FILE* out = stderr,
                double terminal_period = 0.5, double plain_period = 5.0);
+  /// A warning for the user (nmm-solve: slow BLAS kernels, blas_info.h), printed on a line of its
+  /// own before the first progress line: so a long run shows it, while a short run that fails
+  /// keeps the one line that says why, and --quiet prints nothing.
+  void set_warning(std::string text) { warning_ = std::move(text); }
   /// After an accepted step: prints when the period has passed since the last line.
   void update(std::int64_t step, double time);
   /// At the end of an "ok" run: the last line, with `note` after it (nmm-solve: the status and
@@ -43,6 +48,8 @@ class ProgressLine {
   Clock::time_point start_;
   double last_ = 0;   // s since start when the last line was printed
   bool printed_ = false;
+  std::string warning_;  // printed once, before the first line (set_warning)
+  void print_warning();
 };
 
 }  // namespace nmm::solve

@@ -2,6 +2,7 @@
 #include "solver/run_summary.h"
 
 #include "nmm_version.h"
+#include "solver/blas_info.h"
 
 namespace nmm::solve {
 
@@ -105,6 +106,17 @@ nlohmann::json run_summary(const RunView& st, const RunOutcome& o) {
   summary["fixed_point_stiffness"] = st.model.fixed_point_stiffness();
   if (!st.model.scene().supports.empty()) summary["support_stiffness"] = st.model.support_stiffness();
   summary["tool_version"] = NMM_VERSION;
+  // What the last bits of the results depend on besides the inputs (tests/state_hashes.py), and
+  // what the factorisation's speed depends on (docs/performance.md "BLAS kernels").
+  summary["compiler"] = NMM_COMPILER;
+  const BlasInfo blas = blas_info();
+  summary["blas"] = {{"library", blas.library},
+                     {"core", blas.core},
+                     {"config", blas.config},
+                     {"threads", blas.threads},
+                     {"cpu_avx2", blas.cpu_avx2},
+                     {"slow_kernels", blas.slow_kernels()},
+                     {"warning", blas_warning(blas)}};
   return summary;
 }
 

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "common/command_line.h"
+#include "solver/blas_info.h"
 #include "solver/energy.h"
 #include "report/failure_cause.h"
 #include "common/error.h"
@@ -107,7 +108,8 @@ int main(int argc, char** argv) {
                  "draw result.svg's displacements F times larger (1: true scale); default: "
                  "automatic when the largest displacement is under 1 % of the model size")
       ->check(CLI::PositiveNumber);
-  app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION);
+  app.set_version_flag("--version", std::string("nmm-solve ") + NMM_VERSION + " (" + NMM_COMPILER + ")\n" +
+                                        nmm::solve::blas_line(nmm::solve::blas_info()));
   if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-solve"); status >= 0)
     return status;
   nmm::report::PictureField field;
@@ -150,6 +152,8 @@ int main(int argc, char** argv) {
     const double t_start = stepper.view().state.time;  // 0, or the checkpoint's time
     const double t_end = t_start + static_cast<double>(sv.steps) * sv.time_step;
     nmm::solve::ProgressLine progress(nmm::solve::ProgressLine::choose(quiet), t_end);
+    // Slow BLAS kernels: said once, with the progress (blas_info.h); summary.json's blas says it always.
+    progress.set_warning(nmm::solve::blas_warning(nmm::solve::blas_info()));
     // Energy terms after every step, a row per output step (energy.h, energy.csv).
     const nmm::solve::RunView view = stepper.view();
     nmm::solve::EnergyMeter energy(view.model, &view.space);

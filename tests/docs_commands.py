@@ -77,6 +77,8 @@ SKIP = [
      "the same run as CTest study.joint_full, whose rows docs.tables_match_fresh_run.* compare"),
     ("performance.md", r"matrix_bench --sizes 10,20,30 ",
      "benchmark of minutes (30 x 30 wall, 3 repetitions)"),
+    ("performance.md", r"OPENBLAS_CORETYPE=\$c .*matrix_bench --sizes 30,50 ",
+     "benchmark of minutes (30 x 30 wall and 50 x 50 monolith, three kernel sets)"),
     ("performance.md", r"^NTDDA_RUN=/path/to/ntdda_run ",
      "needs a DDA runner built by hand outside the repository (its header says how it is called)"),
 ]

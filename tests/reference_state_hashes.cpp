@@ -1,13 +1,21 @@
 // Prints the state hash (summary.json's state_hash: SHA-256 of the run state, the contact history
-// and the mesh) of every reference problem after a short run of its own, one line each:
+// and the mesh) of every reference problem after a short run of its own, and its physical figures
+// (the measure points' displacements and the largest of an element vertex, m), after a first
+// line naming the platform:
+//   platform LIBRARY | KERNELS | COMPILER       (the BLAS, its kernel set, the compiler)
 //   reference.NAME STEPS HASH
+//   figures reference.NAME UX0 UY0 UX1 UY1 ...
 // tests/state_hashes.py compares these lines (with the data/ scenes' hashes) against the table
-// tests/state_hashes.txt: a change of layout must leave every one of them bit for bit.
+// tests/state_hashes.txt: on a platform the table has, a change of layout must leave every hash
+// bit for bit; elsewhere the figures must match within round-off.
 // Each run is short (a few steps, or the problem's one static step): long enough that the
 // scene's geometry, materials, joints, loads and supports all reach the state.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +30,8 @@
 #include "reference/sliding_block.h"
 #include "solver/time_stepper.h"
 #include "reference/wave_bar.h"
+#include "solver/blas_info.h"
+#include "nmm_version.h"
 
 namespace {
 
@@ -40,6 +50,18 @@ void run(const std::string& name, const SceneDef& s, int steps) {
   }
   std::printf("reference.%s %d %s%s%s\n", name.c_str(), steps, state_hash(st.view()).c_str(),
               status == "ok" ? "" : " ", status == "ok" ? "" : status.c_str());
+  // Figures: the measure points' displacements, then the largest displacement of an element
+  // vertex (m; every problem has one, measure points or not).
+  std::printf("figures reference.%s", name.c_str());
+  for (const nmm::solve::TrackedPoint& p : st.view().state.measure) {
+    const auto u = p.displacement();
+    std::printf(" %.17g %.17g", u[0], u[1]);
+  }
+  double largest = 0;
+  const std::vector<double>& xy = st.view().state.loop_xy;
+  for (std::size_t i = 0; i + 1 < xy.size(); i += 2)
+    largest = std::max(largest, std::hypot(xy[i] - m.loop_xy[i], xy[i + 1] - m.loop_xy[i + 1]));
+  std::printf(" %.17g\n", largest);
   std::fflush(stdout);
 }
 
@@ -55,6 +77,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string data = argv[1];
+  const nmm::solve::BlasInfo blas = nmm::solve::blas_info();
+  std::printf("platform %s | %s | %s\n", blas.library.c_str(), blas.core.empty() ? "-" : blas.core.c_str(),
+              NMM_COMPILER);
   try {
     using namespace nmm::reference;
     run("sliding_block_tilted", sliding_block_tilted(30, 20), 100);

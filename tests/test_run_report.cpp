@@ -70,6 +70,34 @@ TEST(ProgressLine, PlainLinesAreRateLimitedAndQuietPrintsNothing) {
   std::fclose(g);
 }
 
+// A warning (slow BLAS kernels) comes once, on its own line before the first progress line; a
+// run that prints no progress line (a failure's one line, --quiet) does not show it.
+TEST(ProgressLine, AWarningComesOnceBeforeTheFirstLine) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  {
+    ProgressLine p(ProgressLine::Mode::plain, 1.0, f, 0.0, 0.0);
+    p.set_warning("slow kernels");
+    p.update(1, 0.5);
+    p.update(2, 1.0);
+    p.finish(2, 1.0, "ok");
+  }
+  const std::string out = read_all(f);
+  EXPECT_EQ(out.rfind("nmm-solve: warning: slow kernels\n", 0), 0u) << out;
+  EXPECT_EQ(out.find("warning", out.find('\n')), std::string::npos) << out;  // once
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 4) << out;
+  std::fclose(f);
+  for (const ProgressLine::Mode mode : {ProgressLine::Mode::plain, ProgressLine::Mode::off}) {
+    std::FILE* g = std::tmpfile();
+    ProgressLine p(mode, 1.0, g, 5.0, 5.0);
+    p.set_warning("slow kernels");
+    p.update(1, 0.5);                                  // before its period: no line
+    p.finish(1, 0.5, mode == ProgressLine::Mode::off ? "ok" : "the system matrix is not positive definite");
+    EXPECT_EQ(read_all(g), "");
+    std::fclose(g);
+  }
+}
+
 TEST(ResultPicture, SliverStressStaysOutOfTheColourScale) {
   // The slope: overburden about 1 MPa in 0.5 m² elements, one 0.0125 m² sliver at
   // 37.7 MPa. Area-weighted, the sliver is 0.0125 / 50 of the area: the 99th percentile stays 1.
