@@ -31,7 +31,7 @@
 #include "reference/brick_wall.h"
 #include "preprocess/cover_cutter.h"
 #include "common/stopwatch.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace {
 

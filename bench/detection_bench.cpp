@@ -1,5 +1,5 @@
 // Contact detection alone (issue 11: "contact detection must cost a small fraction of a step"):
-// the broad and narrow phase of solver/contact_detection.cpp on the staggered brick walls of
+// the broad and narrow phase of solver/contact/contact_detection.cpp on the staggered brick walls of
 // contact_bench after 3 static steps, repeated on the same configuration: each call building
 // its Verlet list, and each reusing the list one call built (what most steps pay), with whether
 // the two find the same contacts.
@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "solver/contact_detection.h"
+#include "solver/contact/contact_detection.h"
 #include "bench/bench_common.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 30, 50};

@@ -34,7 +34,7 @@
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
 #include "reference/scene_pieces.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 #include "common/stopwatch.h"
 
 namespace {

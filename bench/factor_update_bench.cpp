@@ -17,7 +17,7 @@
 // the fewest changes a step makes (a step's Newton iterates pass through more). Measured, with
 // the factor of H0 in hand, the cost of getting a direction for H1:
 //   factorise   supernodal LLᵀ of H1, the symbolic analysis reused (what the contact solve does
-//               when it refactorises: solver/system_matrix.cpp);
+//               when it refactorises: solver/discretisation/system_matrix.cpp);
 //   updown      CHOLMOD's cholmod_updown of a simplicial LDLᵀ factor of H0 by the r terms
 //               (an update for the terms that stiffen, a downdate for those that soften); the
 //               simplicial factor's own build is reported beside it, as the price of keeping a
@@ -47,8 +47,8 @@
 #include "bench/bench_common.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
-#include "solver/time_stepper.h"
-#include "solver/time_stepper_probe.h"
+#include "solver/stepping/time_stepper.h"
+#include "solver/stepping/time_stepper_probe.h"
 
 namespace {
 using Sparse = nmm::solve::SystemMatrix::Sparse;

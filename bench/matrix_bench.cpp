@@ -38,7 +38,7 @@
 #include "bench/bench_common.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 #include "common/stopwatch.h"
 
 namespace {

@@ -35,10 +35,10 @@
 #include "common/atomic_file.h"
 #include "bench/bench_common.h"
 #include "preprocess/cover_cutter.h"
-#include "solver/output_writer.h"
-#include "solver/run_driver.h"
+#include "solver/output/output_writer.h"
+#include "solver/output/run_driver.h"
 #include "common/stopwatch.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 #include "common/vtk_writer.h"
 #include "common/vtu_compressed.h"
 

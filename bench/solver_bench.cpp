@@ -20,10 +20,10 @@
 #include <vector>
 
 #include "bench/bench_common.h"
-#include "solver/time_stepper_probe.h"
+#include "solver/stepping/time_stepper_probe.h"
 #include "preprocess/cover_cutter.h"
 #include "common/stopwatch.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace {
 }  // namespace

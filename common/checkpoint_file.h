@@ -1,6 +1,6 @@
 // The checkpoint file (.nmmstate): a container of named binary sections, written atomically and
 // read with every check. What the sections hold is the solver's business
-// (solver/run_state.cpp); this file knows only the container. Layout (little-endian):
+// (solver/discretisation/run_state.cpp); this file knows only the container. Layout (little-endian):
 //
 //   header, 32 bytes: magic "NMMSTATE" | u32 version | u32 endian marker 0x01020304 |
 //                     u32 section count | u32 CRC-32 of header + table (this field as zero) |

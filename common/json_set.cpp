@@ -1,4 +1,4 @@
-// `--set PATH=VALUE` on a JSON document (json_set.h); moved from solver/run_config.cpp.
+// `--set PATH=VALUE` on a JSON document (json_set.h); moved from common/run_config.cpp.
 #include "common/json_set.h"
 
 #include <charconv>

@@ -444,7 +444,7 @@ ShearLawDef read_shear_law(const Reader& r) {
     law.model = model == 0 ? ShearModel::constant : ShearModel::penalty;
     law.ks = r.number("ks", kStiffness);
   } else if (model == 3) {
-    // Barton–Bandis shear (solver/barton_bandis.h): the elastic spring ks (Pa/m), JRC and JCS,
+    // Barton–Bandis shear (solver/contact/barton_bandis.h): the elastic spring ks (Pa/m), JRC and JCS,
     // the joint length L_n for the peak displacement, and — if JRC and JCS were measured on a
     // sample of length L_0 — Bandis' scale corrections (Barton & Bandis 1982):
     //   JRC_n = JRC_0·(L_n/L_0)^(−0.02·JRC_0),   JCS_n = JCS_0·(L_n/L_0)^(−0.03·JRC_0)

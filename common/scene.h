@@ -67,7 +67,7 @@ struct NormalLawDef {
 
 /// constant: ks in Pa/m (shear stress per unit shear displacement); hyperbolic: the curve (Pa/m,
 /// –); penalty: DDA's point spring, ks in N/m per contact point; barton_bandis: Barton's peak
-/// strength, mobilised roughness and dilation (solver/barton_bandis.h) on an elastic spring ks
+/// strength, mobilised roughness and dilation (solver/contact/barton_bandis.h) on an elastic spring ks
 /// in Pa/m, the joint set's friction_deg being the residual friction angle φr.
 enum class ShearModel { constant, hyperbolic, penalty, barton_bandis };
 struct ShearLawDef {
@@ -117,7 +117,7 @@ struct LoadDef {
 };
 
 /// Supports along the body boundary under a polyline: the covers of the ME edges lying on it are
-/// held by penalty springs in x, y or both (solver/boundary_conditions.h).
+/// held by penalty springs in x, y or both (solver/discretisation/boundary_conditions.h).
 struct SupportDef {
   std::vector<Vec2> points;  ///< polyline, >= 2 points, m
   bool fix_x = false;        ///< held in x
@@ -130,7 +130,7 @@ struct SupportDef {
   TimeTable table;
 };
 
-/// Traction on the body boundary under a polyline (solver/boundary_conditions.h).
+/// Traction on the body boundary under a polyline (solver/discretisation/boundary_conditions.h).
 struct TractionDef {
   std::vector<Vec2> points;  ///< polyline, >= 2 points, m
   double normal = 0;         ///< Pa, along the outward normal (< 0 pushes into the body)
@@ -161,11 +161,11 @@ struct SolverDef {
   std::int64_t history_every = 0;
   /// –, in (0, 1): stop the run once the maximum unbalanced force ratio falls below it (and, in a
   /// dynamic run, no cover moves faster than the rest velocity): UDEC's `solve ratio`
-  /// (solver/equilibrium_indicator.cpp); 0 (absent): run all steps
+  /// (solver/stepping/equilibrium_indicator.cpp); 0 (absent): run all steps
   double stop_at_ratio = 0;
   /// –, in [0, 0.3): a physical cover whose weight stays below this everywhere on its support (a
   /// sliver left where a joint passes next to the edge of its star) shares the unknowns of the
-  /// neighbour cover it overlaps most; 0 never ties (solver/cover_unknowns.cpp)
+  /// neighbour cover it overlaps most; 0 never ties (solver/discretisation/cover_unknowns.cpp)
   double sliver_cover_weight = 1e-3;
   /// steps between checkpoints written during the run (0: only after the last step)
   std::int64_t checkpoint_every = 0;
@@ -185,7 +185,7 @@ struct SolverDef {
 };
 
 /// Water in the joints: a pressure p (Pa) on both faces of every joint (and on every body
-/// boundary) below the phreatic surface, or from a per-joint entry (solver/joint_water.h).
+/// boundary) below the phreatic surface, or from a per-joint entry (solver/discretisation/joint_water.h).
 struct JointWaterDef {
   int joint = -1;               ///< index into SceneDef::joints
   std::vector<double> at;       ///< m, distance along the joint from its first point (table rows)

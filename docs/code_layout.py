@@ -51,7 +51,7 @@ INTRO = """Where the code lives, layer by layer (an arrow only ever points down 
 - `preprocess/`: cover cutting with CGAL, nmm-preprocess and nmm-inspect.
 - `solver/`: the kernel (time stepping, contact, joint laws, frames, checkpoints; the library
   nmm_solver, which includes nothing but `common/`) and nmm-solve, whose main
-  (solver/solve_main.cpp) is the one file here that reaches up, into `report/`, for `--pictures`
+  (tools/nmm_solve.cpp) is the one file here that reaches up, into `report/`, for `--pictures`
   and the run's report; no CGAL, nothing from `preprocess/`.
 - `report/`: what is drawn and written about a run (result picture, likely cause of a stop, the
   run's report, redraw), nmm-report and nmm-history-plot.
@@ -59,7 +59,7 @@ INTRO = """Where the code lives, layer by layer (an arrow only ever points down 
   read-offs) and nmm-fos and nmm-sweep (the tools driven as programs).
 - `tests/`, `bench/`: on top of everything.
 
-Every header is included by its path from the repository root (`#include "solver/model.h"`;
+Every header is included by its path from the repository root (`#include "solver/discretisation/model.h"`;
 the root is the one include directory), so each #include names the layer it reaches into.
 CTest `layers` (tests/check_layers.py) fails on an #include or a library link that points up
 this list, or on a project header included by another path.

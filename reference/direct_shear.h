@@ -10,7 +10,7 @@
 //         r      −φr/i   0    0.75  1  0.85  0.7  0.5  0.4  0      (i = JRC·log10(JCS/σn), °)
 //     d_mob(δ) = ½·JRC·r·log10(JCS/σn) (held at 0 where r < 0),   v(δ) = ∫0^δ tan d_mob dδ'
 // (the roughness term capped so that the friction angle stays ≤ 70°, Barton 1976). Written here
-// from the papers, apart from solver/barton_bandis.cpp, so that the solver is checked against an
+// from the papers, apart from solver/contact/barton_bandis.cpp, so that the solver is checked against an
 // independent statement of the model. Used by tests/test_barton_bandis.cpp and nmm-joint-study.
 #pragma once
 
@@ -40,7 +40,7 @@ double barton_dilation_angle(const BartonJoint& j, double sigma_n, double travel
 double barton_opening(const BartonJoint& j, double sigma_n, double travel);
 
 /// The shear box reversed: sheared to +A, back through the start position to −A (travel 3A), at
-/// constant σn (the extended model of solver/barton_bandis.cpp written out again: Plesha 1987's position and
+/// constant σn (the extended model of solver/contact/barton_bandis.cpp written out again: Plesha 1987's position and
 /// direction, Fei & Choo 2022's zero dilation at the start). Along the path's travel s (m):
 ///   0 ≤ s ≤ A     u = s         τ = τ(s),  v = v(s)                          (forward: Barton)
 ///   A < s < 2A    u = 2A − s    τ = σn·tan(φr + JRC·r(s/δp)·log10(JCS/σn) − d_mob(s) − ψ),

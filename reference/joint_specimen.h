@@ -1,7 +1,7 @@
 // The single-joint specimen (data/single_joint.json: two 2 m × 1 m blocks, the joint at y = 1,
 // measure points 0.1 mm above and below its middle): the scene with the seed paper's joint laws
 // selected, and how it is loaded. Its closed form is the joint law itself (Bandis–Barton closure,
-// hyperbolic shear: solver/joint_law.h, docs/physics.md). Shared by nmm-joint-study, nmm-study
+// hyperbolic shear: solver/contact/joint_law.h, docs/physics.md). Shared by nmm-joint-study, nmm-study
 // and tests/test_joint_law.cpp so all three load it alike; studies/joint_specimen_run.h runs it.
 #pragma once
 

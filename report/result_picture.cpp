@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "report/failure_cause.h"
-#include "solver/joint_water.h"
+#include "solver/discretisation/joint_water.h"
 #include "common/math_constants.h"
 #include "common/svg_plot.h"
 #include "common/svg_writer.h"

@@ -18,7 +18,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/mesh_file.h"
-#include "solver/run_config.h"
+#include "common/run_config.h"
 #include "report/run_report.h"
 #include "common/scene.h"  // read_text_file
 #include "common/vtk_writer.h"

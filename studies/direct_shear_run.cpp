@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::studies {
 

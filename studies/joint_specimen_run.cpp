@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::studies {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::studies {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::studies {
 

@@ -1,15 +1,20 @@
 #!/usr/bin/env python3
 """The folders are layers (docs/code-layout.md); an #include may only point down:
 
-  common/      -> (nothing)
-  reference/   -> common/
-  preprocess/  -> common/
-  solver/      -> common/            (solve_main.cpp, nmm-solve's main, also -> report/)
-  report/      -> common/, solver/
-  studies/     -> common/, reference/, preprocess/, solver/, report/
+  common/                  -> (nothing)
+  reference/               -> common/
+  preprocess/              -> common/
+  solver/discretisation/   -> common/
+  solver/contact/          -> common/, solver/discretisation/
+  solver/stepping/         -> common/, solver/discretisation/, solver/contact/
+  solver/output/           -> common/, solver/discretisation/, solver/contact/, solver/stepping/
+  report/                  -> common/, solver/...
+  studies/                 -> common/, reference/, preprocess/, solver/..., report/
+  tools/                   -> anything (the command-line tools' mains)
   tests/, bench/: anything
+No exceptions.
 
-Every project header is included by its path from the repository root ("solver/model.h"),
+Every project header is included by its path from the repository root ("solver/contact/contact_set.h"),
 the one include directory, so an #include says which layer it reaches into. Resolves each
 #include to the folder holding the header and prints every include that points elsewhere or
 names a project header by another path; likewise every library a folder's CMakeLists.txt links (target_link_libraries of
@@ -20,15 +25,16 @@ import pathlib
 import re
 import sys
 
+SOLVER = ["solver/discretisation", "solver/contact", "solver/stepping", "solver/output"]
 ALLOWED = {
     "common": set(),
     "reference": {"common"},
     "preprocess": {"common"},
-    "solver": {"common"},
-    "report": {"common", "solver"},
-    "studies": {"common", "reference", "preprocess", "solver", "report"},
+    **{w: {"common", *SOLVER[:i]} for i, w in enumerate(SOLVER)},
+    "report": {"common", *SOLVER},
+    "studies": {"common", "reference", "preprocess", *SOLVER, "report"},
+    "tools": {"common", "reference", "preprocess", *SOLVER, "report", "studies"},
 }
-EXCEPTIONS = {("solver/solve_main.cpp", "report")}  # nmm-solve draws its pictures and report
 
 
 def main():
@@ -36,34 +42,40 @@ def main():
     where = {}
     for folder in ALLOWED:
         for f in (root / folder).rglob("*.h"):
-            where.setdefault(f.name, folder)
+            where.setdefault(f.relative_to(root).as_posix(), folder)
     include = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
     bad = 0
     for folder, allowed in ALLOWED.items():
         for f in sorted((root / folder).rglob("*")):
             if f.suffix not in (".h", ".cpp"):
                 continue
+            # A file belongs to the deepest folder of ALLOWED that holds it (solver/contact/, not solver/).
+            if max((k for k in ALLOWED if f.relative_to(root).as_posix().startswith(k + "/")), key=len) != folder:
+                continue
             rel = f.relative_to(root).as_posix()
             for n, line in enumerate(f.read_text(errors="replace").splitlines(), 1):
                 m = include.match(line)
                 if not m:
                     continue
-                target = where.get(pathlib.Path(m.group(1)).name)
-                if target and not (root / m.group(1)).is_file():
+                target = where.get(m.group(1))
+                named = [h for h in where if pathlib.Path(h).name == pathlib.Path(m.group(1)).name]
+                if not target and named:
                     print(f"{rel}:{n}: includes {m.group(1)}: not by its path from the root")
                     bad += 1
-                if target and target != folder and target not in allowed and (rel, target) not in EXCEPTIONS:
+                if target and target != folder and target not in allowed:
                     print(f"{rel}:{n}: includes {m.group(1)} from {target}/, above {folder}/")
                     bad += 1
     library = {"nmm_common": "common", "nmm_reference": "reference", "nmm_preprocess": "preprocess",
-               "nmm_joint_network": "preprocess", "nmm_solver": "solver", "nmm_report": "report",
+               "nmm_joint_network": "preprocess", "nmm_solver": "solver/discretisation", "nmm_report": "report",
                "nmm_studies": "studies"}
     link = re.compile(r"target_link_libraries\((\w+)([^)]*)\)", re.S)
     for folder, allowed in ALLOWED.items():
         cmake = root / folder / "CMakeLists.txt"
+        if not cmake.is_file():
+            continue  # a wing of solver/: its sources are in solver/CMakeLists.txt
         for m in link.finditer(cmake.read_text()):
             if library.get(m.group(1)) != folder:
-                continue  # the folder's programs (nmm-solve links nmm_report, as its main includes it)
+                continue  # not a library of this folder
             for dep in re.findall(r"nmm_\w+", m.group(2)):
                 target = library.get(dep)
                 if target and target != folder and target not in allowed:

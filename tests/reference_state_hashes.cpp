@@ -28,9 +28,9 @@
 #include "common/scene.h"
 #include "reference/slides.h"
 #include "reference/sliding_block.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 #include "reference/wave_bar.h"
-#include "solver/blas_info.h"
+#include "solver/discretisation/blas_info.h"
 #include "nmm_version.h"
 
 namespace {

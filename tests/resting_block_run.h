@@ -14,9 +14,9 @@
 #include <gtest/gtest.h>
 
 #include "preprocess/cover_cutter.h"
-#include "solver/energy.h"
+#include "solver/output/energy.h"
 #include "reference/scene_pieces.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::test {
 

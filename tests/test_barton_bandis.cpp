@@ -12,18 +12,18 @@
 #include <cstring>
 
 #include "common/error.h"
-#include "solver/barton_bandis.h"
-#include "solver/contact_history.h"
-#include "solver/energy.h"
-#include "solver/restart.h"
+#include "solver/contact/barton_bandis.h"
+#include "solver/contact/contact_history.h"
+#include "solver/output/energy.h"
+#include "solver/stepping/restart.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/direct_shear.h"
 #include "studies/direct_shear_run.h"
-#include "solver/joint_law.h"
+#include "solver/contact/joint_law.h"
 #include "reference/joint_specimen.h"
 #include "studies/joint_specimen_run.h"
 #include "common/scene.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

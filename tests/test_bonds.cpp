@@ -21,7 +21,7 @@
 #include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
 #include "reference/slides.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 #include "studies/direct_shear_run.h"
 
 namespace nmm {

@@ -6,11 +6,11 @@
 #include <cstdio>
 
 #include "preprocess/cover_cutter.h"
-#include "solver/energy.h"
+#include "solver/output/energy.h"
 #include "common/math_constants.h"
 #include "tests/resting_block_run.h"
 #include "reference/scene_pieces.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

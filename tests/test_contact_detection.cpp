@@ -1,4 +1,4 @@
-// Contact detection's Verlet list (solver/contact_detection.cpp, "Broad phase") is a cache: a
+// Contact detection's Verlet list (solver/contact/contact_detection.cpp, "Broad phase") is a cache: a
 // call that reuses a list must find exactly the contacts a fresh search finds, on
 // configurations that drift away from the one the list was built on until it no longer holds
 // and is built anew. What it catches, measured: a list kept without ever being built anew
@@ -12,8 +12,8 @@
 
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
-#include "solver/contact_detection.h"
-#include "solver/time_stepper.h"
+#include "solver/contact/contact_detection.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

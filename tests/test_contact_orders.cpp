@@ -15,13 +15,13 @@
 #include <cstdlib>
 
 #include "preprocess/cover_cutter.h"
-#include "solver/restart.h"
-#include "solver/energy.h"
+#include "solver/stepping/restart.h"
+#include "solver/output/energy.h"
 #include "common/math_constants.h"
 #include "tests/resting_block_run.h"
 #include "reference/scene_pieces.h"
 #include "reference/sliding_block.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -26,10 +26,10 @@
 #include <string>
 
 #include "preprocess/cover_cutter.h"
-#include "solver/joint_law.h"
+#include "solver/contact/joint_law.h"
 #include "common/math_constants.h"
 #include "common/scene.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

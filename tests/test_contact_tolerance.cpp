@@ -16,11 +16,11 @@
 #include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
 #include "reference/sliding_block.h"
-#include "solver/block_momentum.h"
-#include "solver/contact_solve.h"
-#include "solver/equilibrium_indicator.h"
-#include "solver/restart.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/block_momentum.h"
+#include "solver/contact/contact_solve.h"
+#include "solver/stepping/equilibrium_indicator.h"
+#include "solver/stepping/restart.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

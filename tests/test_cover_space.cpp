@@ -8,13 +8,13 @@
 #include <Eigen/Dense>
 
 #include "preprocess/cover_cutter.h"
-#include "solver/time_stepper_probe.h"
-#include "solver/restart.h"
-#include "solver/cover_space.h"
+#include "solver/stepping/time_stepper_probe.h"
+#include "solver/stepping/restart.h"
+#include "solver/discretisation/cover_space.h"
 #include "common/error.h"
-#include "solver/element_integration.h"
-#include "solver/energy.h"
-#include "solver/time_stepper.h"
+#include "solver/discretisation/element_integration.h"
+#include "solver/output/energy.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

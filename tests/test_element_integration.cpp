@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "solver/elasticity.h"
-#include "solver/element_integration.h"
+#include "solver/discretisation/elasticity.h"
+#include "solver/discretisation/element_integration.h"
 
 namespace nmm::solve {
 namespace {

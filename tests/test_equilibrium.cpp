@@ -1,4 +1,4 @@
-// Equilibrium indicators (solver/equilibrium_indicator.cpp, docs/solver.md "Equilibrium
+// Equilibrium indicators (solver/stepping/equilibrium_indicator.cpp, docs/solver.md "Equilibrium
 // indicators"): the unbalanced force ratio and largest velocity against the sliding block's
 // closed form, the verdict for blocks that slide and blocks that rest, dynamic and static, and
 // solver.stop_at_ratio.
@@ -14,7 +14,7 @@
 #include "preprocess/cover_cutter.h"
 #include "common/math_constants.h"
 #include "common/ring_geometry.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -37,8 +37,8 @@
 #include "reference/brick_wall.h"
 #include "reference/joint_specimen.h"
 #include "reference/scene_pieces.h"
-#include "solver/element_integration.h"
-#include "solver/time_stepper.h"
+#include "solver/discretisation/element_integration.h"
+#include "solver/stepping/time_stepper.h"
 #include "common/math_constants.h"
 
 namespace nmm::solve {
@@ -525,7 +525,7 @@ const NodeJointCase kHardNodeJoints[] = {
 
 // Found by this suite and fixed: joints a hair's breadth beside mesh nodes leave physical covers
 // whose weight never exceeds ~offset/h (17 sliver elements down to 1.8e-20 m² here). Before
-// those covers shared a neighbour's unknowns (solver/cover_unknowns.cpp), with h = 0.25 m,
+// those covers shared a neighbour's unknowns (solver/discretisation/cover_unknowns.cpp), with h = 0.25 m,
 // kn = 20·E, Δt = 1e-3 s:
 // - horizontal joint 1e-9·h above a node row: stopped at t = 0.00025 s, "time step cut below
 //   its floor": a near-null cover moved 0.43 m in one step (387 m at 1e-12·h, 0.043 m at
@@ -569,7 +569,7 @@ TEST(HardCases, UntiedSliverCoversStopTheRun) {
 // base's gap the smaller one next step, and so on (the step's solution really alternated; the
 // Newmark damping of β = 0.6 cannot remove a mode the geometry drives). Now a vertex keeps one
 // edge per other block, as DDA detects contacts block pair by block pair
-// (solver/contact_detection.cpp): both corners stay on the base every step and the blocks rest
+// (solver/contact/contact_detection.cpp): both corners stay on the base every step and the blocks rest
 // at 1e-13 m/s. A chattering corner moves ~1e-7 m per 1e-3 s step (1e-4 m/s): 1e-8 m/s fails it.
 TEST(HardCases, BlocksSideBySideBesideMeshNodesAreStill) {
   for (const NodeJointCase& c : kHardNodeJoints) {
@@ -661,7 +661,7 @@ TEST(HardCases, SliverCoversShareANeighboursUnknowns) {
 //   2.5e-10 m thick): the same fall.
 // Cause: a negative gap was accepted only inside the element owning the edge; a vertex sinking
 // at a mesh node enters the triangle below the node. Now any element of that block sharing a
-// mesh node with it counts (solver/contact_detection.cpp, inside_near).
+// mesh node with it counts (solver/contact/contact_detection.cpp, inside_near).
 TEST(HardCases, JointAlongMeshEdgesHoldsTheBlockAbove) {
   const double h = 0.25, row6 = 6 * h * std::sqrt(3.0) / 2;
   for (int variant = 0; variant < 2; ++variant) {

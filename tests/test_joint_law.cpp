@@ -8,11 +8,11 @@
 
 #include "preprocess/cover_cutter.h"
 #include "reference/joint_specimen.h"
-#include "solver/joint_law.h"
+#include "solver/contact/joint_law.h"
 #include "studies/joint_specimen_run.h"
 #include "common/math_constants.h"
 #include "common/scene.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

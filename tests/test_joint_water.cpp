@@ -1,4 +1,4 @@
-// Water in the joints (solver/joint_water.h) against hydrostatics: the face forces of the water,
+// Water in the joints (solver/discretisation/joint_water.h) against hydrostatics: the face forces of the water,
 // summed over a body or a block, are Archimedes' buoyancy under a level water table, −∫∇p dA
 // under a sloping one, ½·γw·d² on a joint filled to a depth d, and ∫p ds for a pressure table.
 // The forces are read off the first step's right-hand side (with and without the water).
@@ -8,9 +8,9 @@
 #include <set>
 
 #include "preprocess/cover_cutter.h"
-#include "solver/time_stepper_probe.h"
+#include "solver/stepping/time_stepper_probe.h"
 #include "common/scene.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

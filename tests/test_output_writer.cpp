@@ -1,4 +1,4 @@
-// Tests of the solver's output files (solver/output_writer.h) on a hand-made two-element mesh:
+// Tests of the solver's output files (solver/output/output_writer.h) on a hand-made two-element mesh:
 // the exact text of history.csv and frames.pvd, the arrays of the .vtu frames, summary.json, that
 // no temporary file is left behind, and that ParaView's readers' stand-in (meshio) reads the
 // frames back with the values written.
@@ -23,7 +23,7 @@
 #include "common/error.h"
 #include "common/mesh.h"
 #include "common/gzip_text.h"
-#include "solver/output_writer.h"
+#include "solver/output/output_writer.h"
 #include "common/vtu_compressed.h"
 #include "common/vtu_reader.h"
 

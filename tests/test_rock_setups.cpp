@@ -10,12 +10,12 @@
 #include <cstdio>
 
 #include "preprocess/cover_cutter.h"
-#include "solver/contact_history.h"
+#include "solver/contact/contact_history.h"
 #include "common/error.h"
 #include "studies/kirsch_opening.h"
 #include "reference/kirsch.h"
 #include "reference/scene_pieces.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 #include "common/time_table.h"
 #include "common/math_constants.h"
 

@@ -1,4 +1,4 @@
-// Tests of a run's variants (solver/run_config.h): the merge patch of --config, the --set syntax,
+// Tests of a run's variants (common/run_config.h): the merge patch of --config, the --set syntax,
 // the refusal of geometry changes, and the one-line InputError of every kind of mistake. The
 // function reads only Mesh::scene_text, so the mesh here is a scene and nothing else.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 
 #include "common/error.h"
 #include "common/mesh.h"
-#include "solver/run_config.h"
+#include "common/run_config.h"
 #include "common/scene.h"
 
 namespace nmm::solve {

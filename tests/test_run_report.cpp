@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "solver/progress.h"
+#include "solver/output/progress.h"
 #include "report/result_picture.h"
 #include "report/run_report.h"
 

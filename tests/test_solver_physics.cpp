@@ -6,12 +6,12 @@
 #include <cstdio>
 
 #include "reference/cantilever.h"
-#include "solver/time_stepper_probe.h"
+#include "solver/stepping/time_stepper_probe.h"
 #include "preprocess/cover_cutter.h"
 #include "common/error.h"
-#include "solver/form.h"
-#include "solver/model.h"
-#include "solver/time_stepper.h"
+#include "solver/discretisation/form.h"
+#include "solver/discretisation/model.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -1,4 +1,4 @@
-// One solver thread is one thread (solver/solver_threads.cpp, docs/contact.md "Threads"):
+// One solver thread is one thread (solver/discretisation/solver_threads.cpp, docs/contact.md "Threads"):
 // Debian's CHOLMOD asks OpenMP for 4 threads in a clause of its own, which used to start 3 more
 // threads in the first factorisation of a run that had asked for one.
 #include <dlfcn.h>
@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "solver/solver_threads.h"
-#include "solver/system_matrix.h"
+#include "solver/discretisation/solver_threads.h"
+#include "solver/discretisation/system_matrix.h"
 
 extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags);
 

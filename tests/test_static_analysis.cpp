@@ -12,7 +12,7 @@
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
 #include "reference/scene_pieces.h"
-#include "solver/time_stepper.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
 namespace {

@@ -1,4 +1,4 @@
-// The system matrix's pattern (solver/system_matrix.h): a pattern that grows by groups is grown
+// The system matrix's pattern (solver/discretisation/system_matrix.h): a pattern that grows by groups is grown
 // in place, and must give bit for bit what a build from scratch gives — the same nonzeros,
 // every group's values at the same places — with no new symbolic analysis where the new groups
 // couple only unknowns already coupled.
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "solver/system_matrix.h"
+#include "solver/discretisation/system_matrix.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks a run's energy.csv (solver/energy.h) against a known answer.
+"""Checks a run's energy.csv (solver/output/energy.h) against a known answer.
 
 Usage: check_energy.py CASE OUTDIR
   free_fall  a 2 m x 1 m block (2650 kg/m3) falling from rest: K = 1/2 m g^2 t^2 within 0.1 %,

@@ -1,0 +1,171 @@
+// Tributary joint lengths: a partition of each joint among its contact points.
+//
+// A contact is a vertex P facing an edge of another element (contact_detection.cpp); along the
+// edge's unit tangent t, P stands at most for half of each of its own candidate edges that face
+// the contacted edge (normals opposed within ~45°: a corner's other side is not on this joint):
+//     own(P) = [lo, hi],  lo = min(0, ½·(X_prev − P)·t),  hi = max(0, ½·(X_next − P)·t)
+// Where only one face makes contacts and its vertices are the other face's (a joint cut by the
+// lattice, bodies meshed by one lattice), these halves tile the joint. They do not where the
+// contact points of the two faces do not match: at the end of a face that stops on the other
+// face (the corner of the narrower block makes a contact between two vertices of the wider
+// one), where a vertex of the other face pokes through and is held too, or where the faces have
+// slid by a fraction of an element. The halves then overlap, the overlap is counted twice, and
+// the joint there is stiffer and stronger than written (and a Bandis–Barton joint closes less
+// at one end than at the other, which tilts the block on top).
+//
+// First, P's halves end where the contacted face ends (an end of the contacted edge that is a
+// corner of its block). Then each contact's share is cut at the midpoint to its nearest
+// neighbour on the same joint (a contact between the same two blocks whose edge is parallel
+// within 10°, on the same line, and whose own halves overlap P's):
+//     L = min(hi, min u_j/2 over u_j > 0) − max(lo, max u_j/2 over u_j < 0),  u_j = (P_j − P)·t
+// a one-dimensional Voronoi cell of the contact points, bounded by P's own faces. Neighbours that
+// tile already (matching vertices) do not overlap, so nothing changes there; two contacts at one
+// point whose halves overlap split it by index. Where the faces have slid, the corner of one face
+// and the first contact point of the other stand more than their two halves apart: a gap of up
+// to h between P's halves and the next contact's on the same joint is shared at its middle. A
+// contact with no length of its own (a bare corner touching a face) is a point: `corner_length`.
+// Checked by tests/test_contact_patch.cpp (the tributary lengths add up to the joint's length).
+#include "solver/contact/tributary_length.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "solver/contact/contact_tolerances.h"
+#include "common/vec2.h"
+
+namespace nmm::solve {
+
+namespace {
+// Two contact edges are on one joint when parallel within 10° ...
+constexpr double kParallelCos = 0.984807753;  // cos 10°
+// ... and within this distance (×h) of each other's line (a face pressed into the other side
+// is at most a few closures away; a different face of the same blocks is a block's width away).
+constexpr double kSameLine = 0.1;
+}  // namespace
+
+std::vector<double> tributary_lengths(const ContactTopology& topo, const std::vector<double>& xy,
+                                      const std::vector<ContactCandidate>& contacts,
+                                      double corner_length) {
+  const std::size_t n = contacts.size();
+  struct Frame {
+    double px, py, tx, ty;  // P; the contacted edge's unit tangent
+    double lo, hi;          // m, P's own half-edges along t
+    std::int32_t b0, b1;    // the two blocks, lower first
+  };
+  std::vector<Frame> f(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ContactCandidate& c = contacts[i];
+    const std::int32_t p = c.vertex, q2 = c.edge, q3 = topo.next[q2];
+    const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
+    const double l = length(dx, dy);
+    Frame& fr = f[i];
+    fr.px = xy[2 * p];
+    fr.py = xy[2 * p + 1];
+    fr.tx = dx / l;
+    fr.ty = dy / l;
+    const double nx = fr.ty, ny = -fr.tx;
+    fr.lo = fr.hi = 0;
+    for (std::int32_t s : {topo.prev[p], p}) {
+      if (!topo.edge_candidate[s]) continue;
+      const std::int32_t e = topo.next[s];
+      const double ex = xy[2 * e] - xy[2 * s], ey = xy[2 * e + 1] - xy[2 * s + 1];
+      const double el = length(ex, ey);
+      if (!(el > 0) || (ey / el) * nx + (-ex / el) * ny >= kContactTolerances.tributary_cos) continue;
+      const std::int32_t other = s == p ? e : s;
+      const double a = 0.5 * ((xy[2 * other] - fr.px) * fr.tx + (xy[2 * other + 1] - fr.py) * fr.ty);
+      fr.lo = std::min(fr.lo, a);
+      fr.hi = std::max(fr.hi, a);
+    }
+    // The contacted face ends at a corner of its block: no length of joint beyond it (a flat
+    // vertex of the wider face at the narrower block's corner, kept for the pair of coincident
+    // points, would otherwise count its half-edge over the overhang).
+    if (topo.corner[q2]) fr.lo = std::max(fr.lo, std::min(0.0, (xy[2 * q2] - fr.px) * fr.tx + (xy[2 * q2 + 1] - fr.py) * fr.ty));
+    if (topo.corner[q3]) fr.hi = std::min(fr.hi, std::max(0.0, (xy[2 * q3] - fr.px) * fr.tx + (xy[2 * q3 + 1] - fr.py) * fr.ty));
+    const std::int32_t ba = topo.block_of[c.elem_a], bb = topo.block_of[c.elem_b];
+    fr.b0 = std::min(ba, bb);
+    fr.b1 = std::max(ba, bb);
+  }
+
+  // Contacts with a length of their own, by pair of blocks and grid cell of size h (a neighbour
+  // within reach is at most twice a half-edge, one element edge, away): sorted by (blocks, cell
+  // column, cell row), the neighbours of P's cell in one cell column are one run of the list.
+  // (A hash map of cells held every pair of blocks in a cell; this is a tenth of its time.)
+  const double h = topo.mesh_size;
+  struct Key {
+    std::int32_t b0, b1;
+    std::int64_t cx, cy;
+    std::uint32_t i;
+    bool operator<(const Key& o) const {
+      if (b0 != o.b0) return b0 < o.b0;
+      if (b1 != o.b1) return b1 < o.b1;
+      if (cx != o.cx) return cx < o.cx;
+      if (cy != o.cy) return cy < o.cy;
+      return i < o.i;
+    }
+  };
+  const auto cell = [h](double x) { return static_cast<std::int64_t>(std::floor(x / h)); };
+  std::vector<Key> keys;
+  keys.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (f[i].hi > f[i].lo) keys.push_back({f[i].b0, f[i].b1, cell(f[i].px), cell(f[i].py), static_cast<std::uint32_t>(i)});
+  std::sort(keys.begin(), keys.end());
+
+  std::vector<double> length(n, corner_length);
+  const double tie = kContactTolerances.gap_round_off * h;
+  // The run of P's pair of blocks in the list, [first, end): P's neighbours are searched in it.
+  const auto same_pair = [&](std::size_t k, std::size_t q) { return keys[k].b0 == keys[q].b0 && keys[k].b1 == keys[q].b1; };
+  std::vector<std::size_t> run_first(keys.size()), run_end(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k) run_first[k] = k > 0 && same_pair(k - 1, k) ? run_first[k - 1] : k;
+  for (std::size_t k = keys.size(); k-- > 0;) run_end[k] = k + 1 < keys.size() && same_pair(k, k + 1) ? run_end[k + 1] : k + 1;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const auto run = keys.begin() + static_cast<std::ptrdiff_t>(run_first[k]);
+    const auto end = keys.begin() + static_cast<std::ptrdiff_t>(run_end[k]);
+    const std::size_t i = keys[k].i;
+    const Frame& a = f[i];
+    double lo = a.lo, hi = a.hi;
+    // Nearest own-half boundaries of the neighbours beyond P's halves (no overlap), each side.
+    double next_hi = std::numeric_limits<double>::infinity(), next_lo = -next_hi;
+    const std::int64_t ci = cell(a.px), cj = cell(a.py);
+    for (std::int64_t di = -1; di <= 1; ++di) {
+      const Key last{a.b0, a.b1, ci + di, cj + 1, std::numeric_limits<std::uint32_t>::max()};
+      for (auto it = std::lower_bound(run, end, Key{a.b0, a.b1, ci + di, cj - 1, 0}); it != end && !(last < *it);
+           ++it) {
+        const std::uint32_t j = it->i;
+        if (j == i) continue;
+        const Frame& b = f[j];
+        if (std::abs(a.tx * b.tx + a.ty * b.ty) < kParallelCos) continue;
+        const double rx = b.px - a.px, ry = b.py - a.py;
+        if (std::abs(rx * a.ty - ry * a.tx) > kSameLine * h) continue;
+        const double u = rx * a.tx + ry * a.ty;
+        // Only a contact whose own half-edges overlap P's shares P's stretch of joint (two
+        // vertices of one face at one point, in two elements, stand for its two sides).
+        const bool along = a.tx * b.tx + a.ty * b.ty > 0;
+        const double b_lo = u + (along ? b.lo : -b.hi), b_hi = u + (along ? b.hi : -b.lo);
+        if (std::min(a.hi, b_hi) - std::max(a.lo, b_lo) <= tie) {
+          if (b_lo >= a.hi - tie) next_hi = std::min(next_hi, b_lo);
+          if (b_hi <= a.lo + tie) next_lo = std::max(next_lo, b_hi);
+          continue;
+        }
+        // Two contacts at one point split it by index: the higher takes the side beyond.
+        const bool same_point = std::abs(u) <= tie;
+        if (same_point ? j > i : u > 0)
+          hi = std::min(hi, same_point ? 0.0 : 0.5 * u);
+        else
+          lo = std::max(lo, same_point ? 0.0 : 0.5 * u);
+      }
+    }
+    // A gap of at most h between P's halves and the next contact's on the same joint (the faces
+    // have slid: a corner of one face and the first contact point of the other no longer stand
+    // half an edge apart each) is shared at its middle.
+    if (hi == a.hi && next_hi - a.hi > tie && next_hi - a.hi <= h) hi = 0.5 * (a.hi + next_hi);
+    if (lo == a.lo && a.lo - next_lo > tie && a.lo - next_lo <= h) lo = 0.5 * (a.lo + next_lo);
+    length[i] = std::max(hi - lo, 0.0);
+    if (!(length[i] > 0)) length[i] = corner_length;
+  }
+  return length;
+}
+
+}  // namespace nmm::solve

@@ -1,0 +1,415 @@
+#include "solver/discretisation/system_matrix.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/error.h"
+#include "solver/discretisation/state_bytes.h"
+
+namespace nmm::solve {
+
+namespace {
+// y ← y + α·A v (α = ±1) for the symmetric A whose upper triangle is (outer, inner, values),
+// diagonal last in each column. The sums run in the order of Eigen's product with the lower
+// triangle in columns (the storage before the upper one): into y_i the terms of the columns
+// left of i one by one, then the diagonal's, then the terms of the columns right of i summed
+// apart from zero and added at once. So every result is the same, bit for bit, as with the
+// lower storage.
+void add_upper_times(int n, const int* outer, const int* inner, const double* values, const Eigen::VectorXd& v,
+                     double alpha, Eigen::VectorXd& y) {
+  thread_local std::vector<double> right;  // [i] Σ over columns j > i of A_ij·v_j
+  right.assign(static_cast<std::size_t>(n), 0.0);
+  const double* vv = v.data();
+  double* yy = y.data();
+  double* rr = right.data();
+  for (int j = 0; j < n; ++j) {
+    const int diagonal = outer[j + 1] - 1;
+    const double vj = vv[j];
+    double yj = yy[j];  // summed in a register, term by term as into y_j itself
+    for (int p = outer[j]; p < diagonal; ++p) {
+      const int i = inner[p];
+      yj += values[p] * (alpha * vv[i]);
+      rr[i] += values[p] * vj;
+    }
+    yy[j] = yj + alpha * values[diagonal] * vj;
+  }
+  for (int i = 0; i < n; ++i) yy[i] += alpha * rr[i];
+}
+}  // namespace
+
+bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const std::vector<int>& dofs) {
+  // The groups of the last build, in order, among the new ones (a pattern that grew by pairs of
+  // elements in contact: the pairs are sorted, so the old groups keep their relative order).
+  // Then the nonzeros a build from scratch would give are the old ones and the new groups'
+  // entries that are not among them: those are merged into their columns, the old groups'
+  // positions follow the shift, and the new groups' positions are found by a search in their
+  // columns. Work ~ nonzeros + Σ (group size)² of copying, against a build's incidence lists and
+  // sorted columns (a build took about 4 ms of a 48 ms static step on the DDA code's 20 × 20 wall
+  // at h = 2 m, where the pattern grows in most steps; growing, about 1 ms). A dropped group (the
+  // pattern shrank) needs the build.
+  if (k_.rows() != n || group_offsets_.empty()) return false;
+  const std::size_t ng = offsets.size() - 1, old_ng = group_offsets_.size() - 1;
+  if (ng < old_ng) return false;
+  const int* outer = k_.outerIndexPtr();
+  const int* inner = k_.innerIndexPtr();
+  const auto find = [](const int* o, const int* in, int row, int col) {
+    const int* first = in + o[col];
+    const int* last = in + o[col + 1];
+    const int* at = std::lower_bound(first, last, row);
+    return at == last || *at != row ? -1 : static_cast<int>(at - in);
+  };
+  constexpr std::size_t kNew = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> old_of(ng, kNew);  // the old group a group is, or kNew
+  std::vector<std::pair<int, int>> added;     // (column, row) of entries not in the matrix
+  std::size_t o = 0;
+  for (std::size_t g = 0; g < ng; ++g) {
+    const int m = offsets[g + 1] - offsets[g];
+    const int* d = dofs.data() + offsets[g];
+    if (o < old_ng && group_offsets_[o + 1] - group_offsets_[o] == m &&
+        std::equal(d, d + m, group_dofs_.data() + group_offsets_[o])) {
+      old_of[g] = o++;
+      continue;
+    }
+    for (int jj = 0; jj < m; ++jj)
+      for (int ii = 0; ii < m; ++ii)
+        if (d[ii] >= d[jj] && find(outer, inner, d[jj], d[ii]) < 0) added.emplace_back(d[ii], d[jj]);
+  }
+  if (o != old_ng) return false;
+  std::vector<int> moved;  // [old nonzero] its position in the grown matrix (empty: unchanged)
+  if (!added.empty()) {
+    std::sort(added.begin(), added.end());
+    added.erase(std::unique(added.begin(), added.end()), added.end());
+    const auto nnz = static_cast<std::size_t>(k_.nonZeros());
+    std::vector<int> new_outer(static_cast<std::size_t>(n) + 1), new_inner(nnz + added.size());
+    moved.resize(nnz);
+    std::size_t a = 0;
+    int w = 0;
+    for (int c = 0; c < n; ++c) {
+      new_outer[static_cast<std::size_t>(c)] = w;
+      int p = outer[c];
+      const int end = outer[c + 1];
+      while (p < end || (a < added.size() && added[a].first == c)) {
+        if (a < added.size() && added[a].first == c && (p == end || added[a].second < inner[p])) {
+          new_inner[static_cast<std::size_t>(w++)] = added[a++].second;
+        } else {
+          moved[static_cast<std::size_t>(p)] = w;
+          new_inner[static_cast<std::size_t>(w++)] = inner[p++];
+        }
+      }
+    }
+    new_outer[static_cast<std::size_t>(n)] = w;
+    k_ = Sparse(n, n);
+    k_.resizeNonZeros(w);
+    std::copy(new_outer.begin(), new_outer.end(), k_.outerIndexPtr());
+    std::copy(new_inner.begin(), new_inner.end(), k_.innerIndexPtr());
+    analysed_ = false;
+    outer = k_.outerIndexPtr();
+    inner = k_.innerIndexPtr();
+  }
+  std::vector<std::int32_t> slot_offset(ng + 1, 0);
+  for (std::size_t g = 0; g < ng; ++g) {
+    const int m = offsets[g + 1] - offsets[g];
+    slot_offset[g + 1] = slot_offset[g] + m * m;
+  }
+  std::vector<std::int32_t> slots(static_cast<std::size_t>(slot_offset[ng]));
+  for (std::size_t g = 0; g < ng; ++g) {
+    std::int32_t* out = slots.data() + slot_offset[g];
+    if (old_of[g] != kNew) {
+      const std::int32_t* first = slots_.data() + slot_offset_[old_of[g]];
+      const std::int32_t* last = slots_.data() + slot_offset_[old_of[g] + 1];
+      if (moved.empty())
+        std::copy(first, last, out);
+      else
+        for (const std::int32_t* it = first; it != last; ++it) *out++ = *it < 0 ? -1 : moved[static_cast<std::size_t>(*it)];
+    } else {
+      const int m = offsets[g + 1] - offsets[g];
+      const int* d = dofs.data() + offsets[g];
+      for (int jj = 0; jj < m; ++jj)
+        for (int ii = 0; ii < m; ++ii) *out++ = d[ii] < d[jj] ? -1 : find(outer, inner, d[jj], d[ii]);
+    }
+  }
+  slot_offset_ = std::move(slot_offset);
+  slots_ = std::move(slots);
+  group_offsets_ = offsets;
+  group_dofs_ = dofs;
+  set_zero();
+  return true;
+}
+
+void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs) {
+  if (grow_in_place(n, offsets, dofs)) return;
+  ++builds_;
+  // Column by column, without sorting the whole pattern or searching it: the groups of each
+  // unknown (dof → groups incidence), then column c's rows are the unknowns ≥ c of c's groups,
+  // marked once each; a group's entries (i, j) with dof j = c land at the positions of their rows
+  // in column c. Work ~ Σ (group size)², no binary search (with per-column row lists and a
+  // search per entry this took 30–40 ms at 20k unknowns, 8 ms now). A pattern that only grew
+  // (a contact reached a new pair of elements, in most steps of a settling brick wall) is grown
+  // in place instead (grow_in_place).
+  const std::size_t ng = offsets.size() - 1;
+  std::vector<std::int32_t> group_offset(static_cast<std::size_t>(n) + 1, 0), groups;
+  {
+    std::vector<std::int32_t> last(static_cast<std::size_t>(n), -1);  // an unknown may repeat in a group
+    for (std::size_t g = 0; g < ng; ++g)
+      for (int i = offsets[g]; i < offsets[g + 1]; ++i)
+        if (last[dofs[i]] != static_cast<std::int32_t>(g)) {
+          last[dofs[i]] = static_cast<std::int32_t>(g);
+          ++group_offset[dofs[i] + 1];
+        }
+    for (int c = 0; c < n; ++c) group_offset[c + 1] += group_offset[c];
+    groups.resize(static_cast<std::size_t>(group_offset[n]));
+    std::vector<std::int32_t> fill(group_offset.begin(), group_offset.end() - 1);
+    std::fill(last.begin(), last.end(), -1);
+    for (std::size_t g = 0; g < ng; ++g)
+      for (int i = offsets[g]; i < offsets[g + 1]; ++i)
+        if (last[dofs[i]] != static_cast<std::int32_t>(g)) {
+          last[dofs[i]] = static_cast<std::int32_t>(g);
+          groups[fill[dofs[i]]++] = static_cast<std::int32_t>(g);
+        }
+  }
+  // Slots: entry (i, j) of a group's block (column-major) lands at (dof j, dof i) of the upper
+  // triangle when dof i ≥ dof j; its mirror (j, i) then does not (-1), so each global entry gets
+  // each local entry once. (The entry below the block's diagonal, not its mirror: an element's
+  // block is symmetric only to round-off, and these are the values the lower triangle held.) An
+  // unknown repeated in a group maps all its copies to the same entries, which sums them.
+  slot_offset_.assign(ng + 1, 0);
+  for (std::size_t g = 0; g < ng; ++g) {
+    const int m = offsets[g + 1] - offsets[g];
+    slot_offset_[g + 1] = slot_offset_[g] + m * m;
+  }
+  slots_.assign(static_cast<std::size_t>(slot_offset_[ng]), -1);
+  std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
+  inner.reserve(static_cast<std::size_t>(n) * 16);
+  std::vector<std::int32_t> mark(static_cast<std::size_t>(n), -1), pos(static_cast<std::size_t>(n), -1);
+  for (int c = 0; c < n; ++c) {
+    const std::size_t first = inner.size();
+    inner.push_back(c);  // every diagonal, even of a lone unknown (sorted last)
+    mark[c] = c;
+    for (std::int32_t k = group_offset[c]; k < group_offset[c + 1]; ++k) {
+      const std::int32_t g = groups[k];
+      for (int i = offsets[g]; i < offsets[g + 1]; ++i)
+        if (dofs[i] < c && mark[dofs[i]] != c) {
+          mark[dofs[i]] = c;
+          inner.push_back(dofs[i]);
+        }
+    }
+    std::sort(inner.begin() + static_cast<std::ptrdiff_t>(first), inner.end());
+    for (std::size_t p = first; p < inner.size(); ++p) pos[inner[p]] = static_cast<std::int32_t>(p);
+    outer[c + 1] = static_cast<int>(inner.size());
+    for (std::int32_t k = group_offset[c]; k < group_offset[c + 1]; ++k) {
+      const std::int32_t g = groups[k];
+      const int m = offsets[g + 1] - offsets[g];
+      const int* d = dofs.data() + offsets[g];
+      std::int32_t* slot = slots_.data() + slot_offset_[g];
+      for (int ii = 0; ii < m; ++ii) {
+        if (d[ii] != c) continue;
+        for (int jj = 0; jj < m; ++jj)
+          if (d[jj] <= c) slot[jj * m + ii] = pos[d[jj]];
+      }
+    }
+  }
+  // New pairs of elements whose covers were already coupled (neighbours along a joint share two
+  // of their three covers) leave the pattern of unknowns as it was: CHOLMOD's symbolic analysis
+  // then still holds.
+  const bool same = k_.rows() == n && k_.nonZeros() == static_cast<Eigen::Index>(inner.size()) &&
+                    std::equal(outer.begin(), outer.end(), k_.outerIndexPtr()) &&
+                    std::equal(inner.begin(), inner.end(), k_.innerIndexPtr());
+  if (!same) {
+    k_ = Sparse(n, n);
+    k_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+    std::copy(outer.begin(), outer.end(), k_.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), k_.innerIndexPtr());
+    analysed_ = false;
+  }
+  std::fill(k_.valuePtr(), k_.valuePtr() + inner.size(), 0.0);
+  group_offsets_ = offsets;
+  group_dofs_ = dofs;
+  // A matrix that is not positive definite is reported by us (failed_unknown), on one line;
+  // CHOLMOD itself must not print.
+  llt_.cholmod().print = 0;
+}
+
+// AMD alone. CHOLMOD's default strategy tries METIS after AMD when AMD's factor is dense
+// (flops / nnz(L) ≥ 500 and nnz(L) / nnz(A) ≥ 5) and keeps the ordering with the fewer factor
+// nonzeros. On the DDA code's 10,000-block wall (contact_bench --trace 100 --sizes 100 --peer
+// --mesh 2, one thread, 2026-11-28) the first analysis stayed with AMD and the later ones, past
+// the threshold, took METIS — 13.3 M factor nonzeros and 4.6 Gflop against AMD's 15.7 M and
+// 8.1 Gflop — yet the step took 749 ms against 686 ms with AMD alone: factorisations with their
+// analyses 194 ms per step against 128 (17 analyses against 14), and the final matrix's
+// factorisation timed 465 ms with the METIS ordering against 346 ms with AMD's, despite its
+// fewer flops. The walls up to 30 × 30 never reach the threshold, so their orderings, and their
+// results, are the same either way.
+void SystemMatrix::set_amd_only(bool on) {
+  cholmod_common& c = llt_.cholmod();
+  c.nmethods = on ? 1 : 0;
+  c.method[0].ordering = on ? CHOLMOD_AMD : CHOLMOD_GIVEN;  // CHOLMOD_GIVEN: cholmod_defaults'
+}
+
+void SystemMatrix::set_zero() { std::fill(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), 0.0); }
+
+void SystemMatrix::add_group(std::size_t g, const double* k) {
+  const std::int32_t* s = slots_.data() + slot_offset_[g];
+  const int count = slot_offset_[g + 1] - slot_offset_[g];
+  double* v = k_.valuePtr();
+  for (int e = 0; e < count; ++e)
+    if (s[e] >= 0) v[s[e]] += k[e];
+}
+
+void SystemMatrix::add_diagonal(int i, double value) { k_.valuePtr()[diagonal(i)] += value; }
+
+int SystemMatrix::Llt::failed_column() const {
+  // CHOLMOD records the column where the factorisation stopped (L->minor) in its fill-reducing
+  // order; L->Perm maps it back to our unknown.
+  const cholmod_factor* f = this->m_cholmodFactor;
+  if (!f || f->minor >= f->n) return -1;
+  return f->Perm ? static_cast<const int*>(f->Perm)[f->minor] : static_cast<int>(f->minor);
+}
+
+bool SystemMatrix::factorize() {
+  if (!analysed_) {
+    llt_.analyzePattern(k_);
+    analysed_ = true;
+    ++analyses_;
+    const cholmod_common& c = llt_.cholmod();
+    factor_nonzeros_ = c.lnz;
+    factor_flops_ = c.fl;
+    const int method = c.selected >= 0 && c.selected < CHOLMOD_MAXMETHODS ? c.method[c.selected].ordering : -1;
+    ordering_ = method == CHOLMOD_AMD      ? "amd"
+                : method == CHOLMOD_METIS  ? "metis"
+                : method == CHOLMOD_NESDIS ? "nesdis"
+                : method == CHOLMOD_COLAMD ? "colamd"
+                : method == CHOLMOD_NATURAL ? "natural"
+                                           : "other";
+  }
+  // The perturbation lives only in the factor: the values keep K for the refinement.
+  std::vector<double> delta(regularised_.size());
+  if (!regularised_.empty()) {
+    double dmax = 0;
+    for (int i : regularised_) dmax = std::max(dmax, k_.valuePtr()[diagonal(i)]);
+    for (std::size_t r = 0; r < regularised_.size(); ++r) {
+      const double kii = k_.valuePtr()[diagonal(regularised_[r])];
+      delta[r] = eps_ * (kii > 0 ? kii : dmax);
+      k_.valuePtr()[diagonal(regularised_[r])] += delta[r];
+    }
+  }
+  llt_.factorize(k_);
+  failed_unknown_ = -1;
+  has_factor_ = llt_.info() == Eigen::Success;
+  // The matrix factorised, perturbation included: a restart refactorises exactly it (bitwise).
+  if (has_factor_) {
+    factored_ = k_;
+    set_perturbation();
+  }
+  for (std::size_t r = 0; r < regularised_.size(); ++r) k_.valuePtr()[diagonal(regularised_[r])] -= delta[r];
+  if (!has_factor_) {
+    failed_unknown_ = llt_.failed_column();
+    return false;
+  }
+  return true;
+}
+
+std::string SystemMatrix::factor_source() const {
+  if (!has_factor_) return {};
+  // The checkpoint keeps the lower triangle (its format since the first version): the transpose
+  // of the stored upper one, the same entries.
+  const Sparse lower = factored_.transpose();
+  const auto n = static_cast<std::size_t>(lower.rows()), nnz = static_cast<std::size_t>(lower.nonZeros());
+  ByteWriter w;
+  w.put_vector(std::vector<int>(lower.outerIndexPtr(), lower.outerIndexPtr() + n + 1));
+  w.put_vector(std::vector<int>(lower.innerIndexPtr(), lower.innerIndexPtr() + nnz));
+  w.put_vector(std::vector<double>(lower.valuePtr(), lower.valuePtr() + nnz));
+  return w.take();
+}
+
+bool SystemMatrix::factor_from_source(const std::string& bytes) {
+  const auto n = static_cast<std::int64_t>(k_.rows());
+  std::vector<int> outer, inner;
+  std::vector<double> values, note;
+  try {
+    ByteReader r(bytes, "", "FACTOR");
+    outer = r.get_vector<int>(static_cast<std::size_t>(n + 1), "column starts");
+    const std::int64_t nnz = outer.back();
+    if (nnz < n || nnz > n * n) return false;
+    inner = r.get_vector<int>(static_cast<std::size_t>(nnz), "rows");
+    values = r.get_vector<double>(static_cast<std::size_t>(nnz), "values");
+    // Older checkpoints end with a note on the springs factorised (no longer used): skipped.
+    if (!r.at_end()) note = r.get_vector<double>(SIZE_MAX, "note");
+    r.expect_end();
+  } catch (const InputError&) {
+    return false;
+  }
+  const auto nnz = static_cast<std::int64_t>(inner.size());
+  Sparse m(n, n);
+  m.resizeNonZeros(nnz);
+  std::copy(outer.begin(), outer.end(), m.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), m.innerIndexPtr());
+  std::copy(values.begin(), values.end(), m.valuePtr());
+  // Structure checks: columns in order, rows sorted, in the lower triangle, diagonal first.
+  const int* o = m.outerIndexPtr();
+  const int* in = m.innerIndexPtr();
+  if (o[0] != 0 || o[n] != nnz) return false;
+  for (std::int64_t c = 0; c < n; ++c) {
+    if (o[c + 1] <= o[c] || in[o[c]] != c) return false;
+    for (int k = o[c] + 1; k < o[c + 1]; ++k)
+      if (in[k] <= in[k - 1] || in[k] >= n) return false;
+  }
+  for (std::int64_t k = 0; k < nnz; ++k)
+    if (!std::isfinite(m.valuePtr()[k])) return false;
+  m = Sparse(m.transpose());  // stored as the upper triangle
+  // The same analysis and numbers as the run that wrote it; the next factorize() of this run's
+  // own matrix analyses its pattern again (deterministically: the same ordering).
+  llt_.analyzePattern(m);
+  ++analyses_;
+  const cholmod_common& c = llt_.cholmod();
+  factor_nonzeros_ = c.lnz;
+  factor_flops_ = c.fl;
+  llt_.factorize(m);
+  analysed_ = false;
+  has_factor_ = llt_.info() == Eigen::Success;
+  if (has_factor_) {
+    factored_ = std::move(m);
+    set_perturbation();
+  }
+  return has_factor_;
+}
+
+void SystemMatrix::set_perturbation() {
+  // E from the factorised matrix itself (diagonal (1 + ε)·K_ii): the same numbers whether the
+  // factor was made here or restored from a checkpoint, so a restart stays bitwise.
+  perturbation_.setZero(factored_.rows());
+  for (int i : regularised_)
+    perturbation_[i] = factored_.valuePtr()[factored_.outerIndexPtr()[i + 1] - 1] * (eps_ / (1 + eps_));  // its diagonal
+}
+
+void SystemMatrix::remove_null_part(Eigen::VectorXd& x) const {
+  if (regularised_.empty() || !has_factor_) return;
+  x -= llt_.solve(perturbation_.cwiseProduct(x));
+}
+
+void SystemMatrix::saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  y.setZero(k_.rows());
+  add_upper_times(static_cast<int>(k_.rows()), k_.outerIndexPtr(), k_.innerIndexPtr(), saved_.data(), v, 1.0, y);
+}
+
+Eigen::VectorXd SystemMatrix::solve(const Eigen::VectorXd& b) {
+  Eigen::VectorXd x = llt_.solve(b);
+  refinements_ = 0;
+  if (regularised_.empty()) return x;
+  // Iterative refinement against the unperturbed K, until the residual stops falling or is at
+  // round-off (1e-13 of b); a handful of passes (the contraction is ε/λ_min per pass).
+  const double bn = b.norm();
+  double prev = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 20; ++it) {
+    Eigen::VectorXd r = b;
+    add_upper_times(static_cast<int>(k_.rows()), k_.outerIndexPtr(), k_.innerIndexPtr(), k_.valuePtr(), x, -1.0, r);
+    const double rn = r.norm();
+    if (!(rn > 1e-13 * bn) || !(rn < 0.5 * prev)) break;
+    prev = rn;
+    x += llt_.solve(r);
+    ++refinements_;
+  }
+  return x;
+}
+
+}  // namespace nmm::solve

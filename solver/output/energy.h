@@ -1,0 +1,131 @@
+// Energy terms of a run (energy.csv, the energy panel of run_history.svg): what a user checks to
+// trust a dynamic run — is kinetic + potential + strain energy conserved where nothing
+// dissipates, and does friction take what the blocks lose? All in J per metre of thickness
+// (2-D: per unit thickness), measured after a step from the run state alone, so the time
+// stepping is not touched (docs/energy.md has the derivations):
+//
+//   kinetic    K = ½ Σ_e ρ_e Σ_kl (∫_e w_k w_l dA) v_k·v_l     the consistent mass the step uses;
+//                  v_k the velocity the next step starts from (0 in static and quasi-static runs);
+//                  cover order n ≥ 1: ½ Σ_e ρ_e ∫_e |Σ_a φ_a v_a|² dA over the element's shape
+//                  functions φ_a (cover_space.h), integrated exactly
+//   strain     U = ½ Σ_e A_e σ_eᵀ D_e⁻¹ σ_e                    elastic energy of the stress state
+//                  (in-situ stress included; plane strain: D is the plane-strain matrix);
+//                  n ≥ 1: ½ Σ_e ∫_e σ(x)ᵀ D_e⁻¹ σ(x) dA of the stress polynomial, exactly
+//   gravity    V = −Σ_e ρ_e A0_e g·(c_e − c0_e)                c the element's centroid now, c0 at
+//                  the start, A0 its initial area (mass is conserved); 0 at the start
+//   springs    S = Σ_fixed ½ k_f |p − P|² + Σ_supported edges ½ k_s ∫ (u_d − h_d)² ds
+//                  + Σ_closed contacts (½ N·closure + ½ |T·s_el|)
+//                  penalty springs (u_d the held displacement components, linear along the edge,
+//                  h_d where a moving support holds them, velocity·∫f dt, 0 for a fixed one;
+//                  N normal force, closure = −gap, T shear force, s_el elastic shear; exact for
+//                  constant springs, the secant energy for nonlinear laws)
+//   load_work  W = Σ_steps [Σ_loads f(t_n+1)·(p_n+1 − p_n)       work of the external loads since
+//                  + Σ_traction edges ∫ t(t_n+1)·Δu ds           the start of this run: point loads,
+//                  + Σ_wet faces ∫ −p·n·Δu ds                    (water in the joints, joint_water.h:
+//                                                                exact on each linear piece of p)
+//                  + Σ_e ρ_e A0_e b(t_n+1)·Δc_e                  tractions (t = normal·n + shear·s,
+//                  − Σ_moving supports k_s ∫ ē_d·Δh_d ds]
+//                  or σ_insitu·n; two-point Gauss, exact for the linear Δu) and the body force of
+//                  base shaking b = −a_base; each at the step's end time, as the implicit step
+//                  applies it. (Gravity's work is −ΔV, not counted here.) A moving support's
+//                  work: its springs pull on the held line with k_s·(u − h), which the motion
+//                  Δh works against; ē = u − h averaged over the step (trapezoid: exact for the
+//                  linear spring), linear along the edge.
+//   friction   D = Σ_steps Σ_sliding (|T|·|s − s_el| − N·Δv)     work of friction in sliding
+//                  contacts (s the trial elastic shear, s_el the shear left at the limit: the
+//                  step's slip), less what the asperities return as opening: a Barton–Bandis
+//                  joint that dilates by Δv (joint_law.h) pushes its faces apart with N over it
+//                  (and takes N·|Δv| back sliding down toward its start)
+//   residual   R = W − D − [(K + U + V + S) − (K + U + V + S)_first row]
+//                  energy lost elsewhere: the time scheme's numerical damping (Newmark γ = 1), the
+//                  in-situ traction on faces between bodies (not metered), contact springs unloading.
+// At cover order n ≥ 1 the traction work and the support springs still take the displacement
+// linear between an edge's ends (the field there has degree n + 1): an O(h²) approximation that
+// shows in the residual; K and U are exact.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/discretisation/boundary_conditions.h"
+#include "solver/discretisation/configuration.h"
+#include "solver/contact/contact.h"
+#include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/elasticity.h"
+#include "solver/discretisation/joint_water.h"
+#include "common/mesh.h"
+#include "solver/discretisation/model.h"
+#include "solver/discretisation/run_state.h"
+#include "common/scene.h"
+
+namespace nmm::solve {
+
+struct EnergyRow {
+  std::int64_t step = 0;  ///< steps since step 0 of the first run
+  double time = 0;        ///< s
+  double kinetic = 0;     ///< J/m
+  double strain = 0;      ///< J/m
+  double gravity = 0;     ///< J/m, potential of gravity relative to the start
+  double springs = 0;     ///< J/m, penalty springs of fixed points and closed contacts
+  double load_work = 0;   ///< J/m, work of loads, tractions, base shaking, moving supports since this run's start
+  double support_work = 0;  ///< J/m, the moving supports' part of load_work (not in energy.csv)
+  double friction = 0;    ///< J/m, work of friction since the start of this run
+  double residual = 0;    ///< J/m, W − D − Δ(K + U + V + S)
+};
+
+class EnergyMeter {
+ public:
+  /// `model`: the run's (RunView::model, run_view.h: materials, penalty springs, edge sets, water); it
+  /// must outlive the meter. `space`: the run's approximation space (RunView::space); at
+  /// cover order n ≥ 1 the kinetic and strain energies integrate its shape functions and stress
+  /// polynomials.
+  explicit EnergyMeter(const Model& model, const CoverSpace* space = nullptr);
+
+  /// The state terms (K, U, V, S) of a state; the path terms stay 0.
+  EnergyRow state_terms(const RunState& s, const std::vector<Contact>& contacts) const;
+
+  /// Call once before the first step and after every accepted step: accumulates the work of
+  /// loads and friction; `keep` adds the row to rows() (output steps).
+  void after_step(const RunState& s, const std::vector<Contact>& contacts, bool keep);
+
+  /// Keeps the last measured row if it is not kept yet (the run's final state).
+  void keep_last();
+
+  const std::vector<EnergyRow>& rows() const { return rows_; }
+
+  /// Writes DIR/energy.csv: "step,time,kinetic,strain,gravity,springs,load_work,friction,residual".
+  void write_csv(const std::string& dir) const;
+
+ private:
+  bool removed(const RunState& s, std::int32_t element) const;
+  void centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const;
+  double traction_work(const RunState& s) const;  // J/m, since the previous call
+  double shaking_work(const RunState& s) const;   // J/m, since the previous call
+  double water_work(const RunState& s) const;     // J/m, since the previous call
+  double support_work(const RunState& s) const;   // J/m, since the previous call
+  // m, where support i holds its edges at time t (velocity·∫f dt; 0 for a fixed support)
+  std::array<double, 2> held(std::size_t support, double t) const;
+
+  const Model& model_;
+  const Mesh& mesh_;
+  const SceneDef& scene_;
+  const CoverSpace* space_;  // null or order 0: the constant-cover formulas
+  std::vector<double> prev_loop_u_;  // [2·v] m, loop displacements at the previous call
+  double prev_time_ = 0;             // s, time of the previous call
+  bool moving_supports_ = false;     // a support has a velocity
+  std::vector<double> prev_cx_, prev_cy_;  // [me] m, centroids at the previous call (shaking)
+  bool shaking_ = false;  // a base acceleration table is given
+  std::vector<double> area0_;        // [me] m², initial area
+  std::vector<double> cx0_, cy0_;    // [me] m, initial centroid
+  std::vector<double> load_x_, load_y_;  // [load] m, position at the previous call
+  bool started_ = false;
+  double mech0_ = 0;                 // J/m, K + U + V + S of the first call
+  double load_work_ = 0, friction_ = 0, support_work_ = 0;
+  EnergyRow last_;
+  std::int64_t last_kept_step_ = -1;
+  std::vector<EnergyRow> rows_;
+};
+
+}  // namespace nmm::solve

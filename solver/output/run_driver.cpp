@@ -1,0 +1,140 @@
+// A run as a pipeline of the stepping core and observers: see run_driver.h.
+#include "solver/output/run_driver.h"
+
+#include "solver/stepping/restart.h"
+#include "solver/output/run_summary.h"
+#include "common/stopwatch.h"
+
+namespace nmm::solve {
+
+namespace {
+
+// Frames (and contacts.csv) every output_every steps, history.csv rows every history_every: a
+// history at every step costs no frame. The last step, and the last good state of a run that
+// stopped early, always get a frame.
+class FrameOutput : public StepObserver {
+ public:
+  FrameOutput(OutputWriter& out, std::int64_t first_step, const SolverDef& sv)
+      : out_(out), first_step_(first_step), output_every_(sv.output_every),
+        history_every_(sv.history_every > 0 ? sv.history_every : sv.output_every) {}
+
+  void start(const RunView& st) override { frame(st, 0); }
+  void after_step(const RunView& st, std::int64_t n, bool last) override {
+    if (n % output_every_ == 0 || last) frame(st, n);
+    else if (n % history_every_ == 0) history(st, n);
+  }
+  void finish(const RunView& st, const std::string& status, std::int64_t done) override {
+    if (status != "ok" && done % output_every_ != 0) frame(st, done);  // the last good state
+    out_.flush_history();
+  }
+
+ private:
+  void history(const RunView& st, std::int64_t n) {
+    if (n == last_history_) return;
+    std::vector<MeasureSample> samples;
+    for (const TrackedPoint& p : st.state.measure) samples.push_back({p.x, p.y, p.x - p.x0, p.y - p.y0});
+    out_.add_history(first_step_ + n, st.state.time, samples);
+    last_history_ = n;
+  }
+  void frame(const RunView& st, std::int64_t n) {
+    const std::int64_t step = first_step_ + n;
+    history(st, n);
+    const RunState& s = st.state;
+    const Mesh& mesh = st.mesh;
+    FrameFields fields;
+    fields.loop_xy = &s.loop_xy;
+    fields.loop_u = &s.loop_u;
+    const std::vector<double> mean = mean_stress(st);  // n = 0: the element stresses themselves
+    fields.stress = &mean;
+    std::vector<double> at_vertex;
+    if (st.space.order() > 0) {
+      at_vertex.resize(s.loop_xy.size() / 2 * 3);
+      for (std::size_t e = 0; e < mesh.element_count(); ++e)
+        for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
+          const auto sg = stress_at(st, e, s.loop_xy[2 * v], s.loop_xy[2 * v + 1]);
+          for (int r = 0; r < 3; ++r) at_vertex[3 * static_cast<std::size_t>(v) + r] = sg[r];
+        }
+      fields.vertex_stress = &at_vertex;
+    }
+    out_.write_frame(step, s.time, mesh, fields);
+    const ContactSet& contacts = st.contacts;
+    if (!contacts.active()) return;
+    std::vector<ContactSample> rows;
+    for (const Contact& c : contacts.contacts()) {
+      if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
+      const double x = s.loop_xy[2 * c.at.vertex], y = s.loop_xy[2 * c.at.vertex + 1];
+      const JointLawOutput j = joint_law_output(contacts.laws()[c.law], c.normal_force, c.length, c.joint);
+      rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
+                      c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
+                      st.model.water().pressure_at(contacts.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
+    }
+    out_.add_contacts(step, s.time, rows);
+  }
+
+  OutputWriter& out_;
+  std::int64_t first_step_;
+  std::int64_t output_every_, history_every_;
+  std::int64_t last_history_ = -1;
+};
+
+// checkpoint.nmmstate every checkpoint_every steps (0: never), and after the last completed
+// step, also when the run stopped early.
+class CheckpointOutput : public StepObserver {
+ public:
+  CheckpointOutput(std::string path, std::int64_t every) : path_(std::move(path)), every_(every) {}
+  void after_step(const RunView& st, std::int64_t n, bool) override {
+    if (every_ > 0 && n % every_ == 0) write_checkpoint(st, path_);
+  }
+  void finish(const RunView& st, const std::string&, std::int64_t) override {
+    write_checkpoint(st, path_);
+  }
+
+ private:
+  std::string path_;
+  std::int64_t every_;
+};
+
+}  // namespace
+
+RunDriver::RunDriver(TimeStepper& stepper, OutputWriter& out) : stepper_(stepper), out_(out) {}
+
+nlohmann::json RunDriver::run() {
+  const Stopwatch wall;
+  const SolverDef& sv = stepper_.view().model.scene().solver;
+  RunOutcome outcome;
+  outcome.first_step = stepper_.view().state.step;  // a restart continues from the checkpoint's
+  FrameOutput frames(out_, outcome.first_step, sv);
+  CheckpointOutput checkpoint(out_.dir() + "/checkpoint.nmmstate", sv.checkpoint_every);
+  // Output seconds: the frames', histories' and checkpoints' (summary.json timings.output).
+  auto timed = [&outcome](auto&& write) {
+    const Stopwatch sw;
+    write();
+    outcome.output_seconds += sw.seconds();
+  };
+  timed([&] { frames.start(stepper_.view()); });
+  for (StepObserver* o : observers_) o->start(stepper_.view());
+  const double t_end = stepper_.view().state.time + static_cast<double>(sv.steps) * sv.time_step;
+  outcome.status = stepper_.run_until(t_end, [&](std::int64_t n) {
+    outcome.done = n;
+    const bool last =
+        stepper_.view().state.time >= t_end - StepControl::kRoundOff * sv.time_step || stepper_.view().stopped_at_ratio;
+    timed([&] {
+      frames.after_step(stepper_.view(), n, last);
+      checkpoint.after_step(stepper_.view(), n, last);
+    });
+    for (StepObserver* o : observers_) o->after_step(stepper_.view(), n, last);
+  });
+  timed([&] {
+    frames.finish(stepper_.view(), outcome.status, outcome.done);
+    checkpoint.finish(stepper_.view(), outcome.status, outcome.done);
+  });
+  for (StepObserver* o : observers_) o->finish(stepper_.view(), outcome.status, outcome.done);
+  outcome.wall_seconds = wall.seconds();
+  nlohmann::json summary = run_summary(stepper_.view(), outcome);
+  out_.write_summary(summary);
+  return summary;
+}
+
+nlohmann::json run_to_end(TimeStepper& stepper, OutputWriter& out) { return RunDriver(stepper, out).run(); }
+
+}  // namespace nmm::solve

@@ -1,0 +1,123 @@
+// summary.json of a run: see run_summary.h.
+#include "solver/output/run_summary.h"
+
+#include "nmm_version.h"
+#include "solver/discretisation/blas_info.h"
+
+namespace nmm::solve {
+
+nlohmann::json run_summary(const RunView& st, const RunOutcome& o) {
+  const SolverDef& sv = st.model.scene().solver;
+  const RunState& s = st.state;
+  StepTimings t = st.timings;
+  t.output = o.output_seconds;
+  nlohmann::json summary;
+  summary["status"] = o.status;
+  // Why the run ended: all its steps, solver.stop_at_ratio met, an interrupt, or an error
+  // (status then says which).
+  summary["stopped_by"] = o.status == "interrupted" ? "interrupt"
+                          : o.status != "ok"        ? "error"
+                          : st.stopped_at_ratio     ? "stop_at_ratio"
+                                                  : "steps";
+  summary["equilibrium"] = equilibrium_verdict(st.equilibrium, sv.dynamic);
+  if (sv.stop_at_ratio > 0) summary["equilibrium"]["stop_at_ratio"] = sv.stop_at_ratio;
+  summary["steps_completed"] = o.done;
+  summary["first_step"] = o.first_step;  // steps before this run (a restart from a checkpoint)
+  summary["step"] = s.step;      // steps since step 0 of the first run
+  summary["state_hash"] = state_hash(st);
+  summary["simulated_time"] = s.time;
+  summary["wall_seconds"] = o.wall_seconds;
+  summary["effects"] = run_effects(st);
+  // Bodies removed by excavation so far (cumulative across restarts) and the step each went:
+  // nmm-report leaves them out of a redrawn frame as nmm-solve --pictures does.
+  summary["excavated_bodies"] = nlohmann::json::array();
+  for (std::size_t b = 0; b < s.body_removed.size(); ++b)
+    if (s.body_removed[b])
+      summary["excavated_bodies"].push_back({{"body", b}, {"step", s.body_removed_at[b]}});
+  summary["analysis"] = sv.dynamic                                ? "dynamic"
+                        : sv.static_mode == StaticMode::dda ? "static_dda"
+                                                                       : "static_equilibrium";
+  summary["open_close_iterations"] = s.iterations;
+  summary["time_step_cuts"] = s.cuts;
+  summary["steps_with_unsettled_friction"] = s.friction_unsettled;
+  summary["max_penetration"] = s.max_penetration;
+  summary["max_contacts_at_closure_cap"] = s.max_capped;
+  const ContactSet::Events& ev = st.contacts.events;
+  const ContactSet::JointStresses joint = st.contacts.joint_stresses();
+  summary["contacts"] = {{"at_end", st.contacts.contacts().size()},
+                         {"closed_at_end", st.contacts.closed_count()},
+                         // The joint at the end: closed length (m), largest stresses (Pa).
+                         {"closed_length_at_end", joint.closed_length},
+                         {"max_normal_stress_at_end", joint.max_normal_stress},
+                         {"max_shear_stress_at_end", joint.max_shear_stress},
+                         {"pairs_tested", st.contacts.detection_stats().pairs_tested},
+                         // Detection's Verlet list: built anew this many times, reused otherwise.
+                         {"candidate_list_builds", st.contacts.detection_stats().list_builds},
+                         // State changes in all iterations (attempts that were cut included):
+                         // many "settled" ones mean contacts chattering at zero gap or slip.
+                         {"closings", ev.closed},
+                         {"openings", ev.opened},
+                         {"slips", ev.slid},
+                         {"sticks", ev.stuck},
+                         // Bonds and cohesions broken on accepted steps only (contact.h
+                         // break_at_peak), each where its force reached its peak.
+                         {"bonds_broken", ev.broken}};
+  summary["contact_solve"] = {{"newton_iterations", st.contact_solve.newton},
+                              {"cg_iterations", st.contact_solve.cg_iterations},
+                              {"cg_runs_over_budget", st.contact_solve.cg_aborted},
+                              {"factorisations", st.contact_solve.factorisations},
+                              {"friction_updates", st.contact_solve.strength_updates},
+                              // Attempts solved again because contacts broke at their solution,
+                              // and the extra solves (docs/contact.md "Cohesion and tensile bonds").
+                              {"steps_resolved_for_breaks", st.contact_solve.steps_resolved_for_breaks},
+                              {"break_resolves", st.contact_solve.break_resolves},
+                              // What the tolerance allows (contact_solve.cpp, docs/contact.md).
+                              {"tolerance", sv.contact_tolerance},
+                              {"max_force_tolerance_N", st.contact_solve.max_force_tolerance},
+                              {"max_gap_error_m", st.contact_solve.max_gap_error},
+                              {"displacement_tolerance_m",
+                               st.contacts.softening() ? displacement_tolerance(sv.contact_tolerance, st.model.w0())
+                                                       : 0.0},
+                              {"max_displacement_error_m", st.contact_solve.max_displacement_error},
+                              {"displacement_checks", st.contact_solve.displacement_checks},
+                              {"displacement_refusals", st.contact_solve.displacement_refusals}};
+  summary["matrix"] = {{"unknowns", st.space.unknowns()},
+                       {"nonzeros_lower", st.system.nonzeros()},
+                       {"factor_nonzeros", st.system.factor_nonzeros()},
+                       {"factor_flops", st.system.factor_flops()},
+                       {"ordering", st.system.ordering()},
+                       {"factorisations", t.factorisations}};
+  summary["timings"] = {{"contact_detection", t.contact_detection},
+                        {"assembly", t.assembly},
+                        {"factorisation", t.factorisation},
+                        {"solves", t.solves},
+                        {"geometry_update", t.geometry_update},
+                        {"output", t.output}};
+  summary["unknowns"] = st.space.unknowns();
+  summary["threads"] = st.threads;
+  summary["physical_covers"] = st.mesh.cover_count();
+  summary["tied_sliver_covers"] = st.space.ties().tied;
+  summary["cover_order"] = st.space.order();
+  summary["dofs_per_cover"] = st.space.dofs_per_cover();
+  summary["manifold_elements"] = st.mesh.element_count();
+  summary["symbolic_analyses"] = st.system.analyses();
+  summary["time_step"] = sv.time_step;
+  summary["max_step_displacement"] = s.max_step_displacement;
+  summary["fixed_point_stiffness"] = st.model.fixed_point_stiffness();
+  if (!st.model.scene().supports.empty()) summary["support_stiffness"] = st.model.support_stiffness();
+  summary["tool_version"] = NMM_VERSION;
+  // What the last bits of the results depend on besides the inputs (tests/state_hashes.py), and
+  // what the factorisation's speed depends on (docs/performance.md "BLAS kernels").
+  summary["compiler"] = NMM_COMPILER;
+  const BlasInfo blas = blas_info();
+  summary["blas"] = {{"library", blas.library},
+                     {"core", blas.core},
+                     {"config", blas.config},
+                     {"threads", blas.threads},
+                     {"cpu_avx2", blas.cpu_avx2},
+                     {"slow_kernels", blas.slow_kernels()},
+                     {"warning", blas_warning(blas)}};
+  return summary;
+}
+
+}  // namespace nmm::solve

@@ -1,0 +1,40 @@
+// Continuing a run from a checkpoint: see restart.h.
+#include "solver/stepping/restart.h"
+
+#include "common/error.h"
+#include "solver/contact/contact_history.h"
+
+namespace nmm::solve {
+
+namespace {
+
+/// The same points: the same count and starting positions, in order.
+bool same_points(const std::vector<TrackedPoint>& a, const std::vector<TrackedPoint>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].x0 != b[i].x0 || a[i].y0 != b[i].y0) return false;
+  return true;
+}
+
+}  // namespace
+
+RunState restarted_state(const RunState& checkpoint, const RunState& scene_start,
+                         std::size_t bodies, const std::string& name) {
+  if (checkpoint.body_removed.size() != bodies)
+    throw InputError(name, "section BODIES", "the checkpoint has " +
+                                                 std::to_string(checkpoint.body_removed.size()) +
+                                                 " bodies, the scene " + std::to_string(bodies));
+  RunState next = checkpoint;
+  if (!same_points(next.fixed, scene_start.fixed)) next.fixed = scene_start.fixed;
+  if (!same_points(next.loads, scene_start.loads)) next.loads = scene_start.loads;
+  if (!same_points(next.measure, scene_start.measure)) next.measure = scene_start.measure;
+  return next;
+}
+
+void write_checkpoint(const RunView& v, const std::string& path) {
+  write_state_file(path, v.state, save_contact_history(v.contacts), v.mesh,
+                   v.contacts.active() && v.model.contacts_can_arise() ? v.system.factor_source()
+                                                                       : std::string());
+}
+
+}  // namespace nmm::solve

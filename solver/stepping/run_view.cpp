@@ -1,0 +1,24 @@
+// The quantities derived from a run's view: see run_view.h.
+#include "solver/stepping/run_view.h"
+
+#include "solver/contact/contact_history.h"
+#include "solver/stepping/run_effects.h"
+#include "solver/discretisation/stress_field.h"
+
+namespace nmm::solve {
+
+std::vector<double> mean_stress(const RunView& v) { return mean_stress(v.mesh, v.space, v.state); }
+
+std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, double y) {
+  return stress_at(v.mesh, v.space, v.state, e, x, y);
+}
+
+std::vector<std::string> run_effects(const RunView& v) {
+  return run_effects(v.model, v.state, v.contacts);
+}
+
+std::string state_hash(const RunView& v) {
+  return state_hash(v.state, save_contact_history(v.contacts), v.mesh);
+}
+
+}  // namespace nmm::solve

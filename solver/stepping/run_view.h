@@ -1,0 +1,58 @@
+// What the outputs read of a run: one read-only view of a TimeStepper (time_stepper.h) — the
+// state a next step starts from and what the run was built from and has cost — for the
+// observers after each step (run_driver.h: frames, histories, contacts, energy, checkpoint,
+// progress, summary), the studies, the tests and the benches. The stepper keeps the phases
+// (attempt, step, run_until, restart); everything one reads of it is here, by const reference,
+// valid while the stepper lives and current after every step.
+//
+// The quantities derived from the view (mean and point stresses, the effects, the state hash)
+// are the functions below, each forwarding to the unit that computes it.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "common/mesh.h"
+#include "solver/discretisation/configuration.h"
+#include "solver/contact/contact.h"
+#include "solver/contact/contact_solve.h"
+#include "solver/discretisation/cover_space.h"
+#include "solver/stepping/equilibrium_indicator.h"
+#include "solver/discretisation/model.h"
+#include "solver/discretisation/run_state.h"
+#include "solver/stepping/step_timings.h"
+#include "solver/discretisation/system_matrix.h"
+
+namespace nmm::solve {
+
+struct RunView {
+  const Mesh& mesh;                    ///< the mesh the run steps on
+  const Model& model;                  ///< derived once from mesh and scene (model.h)
+  const CoverSpace& space;             ///< order, unknowns of each cover, shapes (cover_space.h)
+  /// The space placed on the cover positions at the start of the last step (configuration.h).
+  const Configuration& configuration;
+  /// The whole state a next step starts from (run_state.h; the contact history: contacts).
+  const RunState& state;
+  const ContactSet& contacts;          ///< contacts, their history and events (contact.h)
+  /// The system of the last step: pattern, factorisation statistics (system_matrix.h).
+  const SystemMatrix& system;
+  const StepTimings& timings;          ///< s and counts, per part of the run
+  /// What the contact solves of the run have cost so far (summary.json "contact_solve").
+  const ContactSolveStats& contact_solve;
+  /// The equilibrium indicators of the last accepted step (equilibrium_indicator.h).
+  const EquilibriumSample& equilibrium;
+  const bool& stopped_at_ratio;        ///< the last run_until stopped at solver.stop_at_ratio
+  const int& threads;                  ///< threads the factorisation uses (solver_threads.h)
+};
+
+/// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).
+std::vector<double> mean_stress(const RunView& v);
+/// Pa, σxx σyy τxy of element e at the point (x, y) (m) of its current configuration.
+std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, double y);
+/// The physical effects the run computes (run_effects.h; summary.json "effects").
+std::vector<std::string> run_effects(const RunView& v);
+/// SHA-256 (hex) of the physical state and contact history: equal hashes, equal states.
+std::string state_hash(const RunView& v);
+
+}  // namespace nmm::solve

@@ -1,0 +1,53 @@
+// Whether a step's system is held: see static_support.h.
+#include "solver/stepping/static_support.h"
+
+#include <sstream>
+
+#include "common/error.h"
+
+namespace nmm::solve {
+
+namespace {
+
+/// "(x, y)" of cover c's node, m.
+std::string cover_node_text(const Mesh& mesh, std::int32_t c) {
+  std::ostringstream os;
+  os << "(" << mesh.node_xy[2 * mesh.cover_node[c]] << ", " << mesh.node_xy[2 * mesh.cover_node[c] + 1]
+     << ")";
+  return os.str();
+}
+
+}  // namespace
+
+void check_static_support(const Model& model, const RunState& s) {
+  const Mesh& mesh = model.mesh();
+  std::vector<int> held(mesh.block_count(), 0);
+  for (const TrackedPoint& p : s.fixed) ++held[mesh.element_block[p.element]];
+  for (const auto& edges : model.support_edges())
+    for (const BoundaryEdge& be : edges) held[mesh.element_block[be.element]] += 2;
+  for (std::size_t b = 0; b < held.size(); ++b) {
+    if (held[b] >= 2 || s.body_removed[mesh.block_body[b]]) continue;
+    std::size_t e = 0;
+    while (mesh.element_block[e] != static_cast<std::int32_t>(b)) ++e;
+    const std::int32_t c = mesh.element_covers[3 * e];
+    std::ostringstream os;
+    os << "static run: block " << b << " (body " << mesh.block_body[b] << ") is held by "
+       << held[b] << " fixed point" << (held[b] == 1 ? "" : "s")
+       << ", so its covers (e.g. cover " << c << " at node " << cover_node_text(mesh, c)
+       << ") are unconstrained: give each block two fixed points, or use DDA's static analysis "
+          "(solver.static_mode \"dda\", the default) or a dynamic run";
+    throw RunError(os.str());
+  }
+}
+
+std::string not_positive_definite_message(const Mesh& mesh, const CoverSpace& space,
+                                          int failed_unknown) {
+  std::string m = "the system matrix is not positive definite";
+  if (failed_unknown < 0) return m;
+  const int c = space.cover_of_unknown(failed_unknown);
+  return m + " at cover " + std::to_string(c) + " (node " + cover_node_text(mesh, c) +
+         "): it is unconstrained (held by no fixed point or closed contact); add fixed points or "
+         "run dynamic";
+}
+
+}  // namespace nmm::solve

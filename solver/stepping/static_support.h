@@ -1,0 +1,28 @@
+// Whether a step's system is held: a system without inertia (static_mode "equilibrium", or a
+// static run without contacts) is singular unless every block is held, and a factorisation
+// that fails names the cover left free. Both say so in one RunError line a rock engineer can act
+// on (which block or cover, where, and what to add).
+//
+//   held(b) = (fixed points in block b) + 2·(support edges on block b)
+//   a block is held when held(b) ≥ 2: one point still lets it turn about that point; a support
+//   along an edge holds what two points would (the system says so if it does not)
+#pragma once
+
+#include <string>
+
+#include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/model.h"
+#include "solver/discretisation/run_state.h"
+
+namespace nmm::solve {
+
+/// Throws RunError naming the first block of a body still there (s.body_removed) held by fewer
+/// than two fixed points (s.fixed) or supports (model.support_edges()).
+void check_static_support(const Model& model, const RunState& s);
+
+/// Why a factorisation failed at unknown `failed_unknown` (-1: not known): the cover and its
+/// node, unconstrained.
+std::string not_positive_definite_message(const Mesh& mesh, const CoverSpace& space,
+                                          int failed_unknown);
+
+}  // namespace nmm::solve

@@ -1,0 +1,57 @@
+// Shi's step control: see step_control.h for the rules and their constants.
+#include "solver/stepping/step_control.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "common/number_format.h"
+
+namespace nmm::solve {
+
+StepControl::StepControl(const SolverDef& solver, double w0, double dt)
+    : time_step_(solver.time_step),
+      ratio_(solver.max_displacement_ratio),
+      w0_(w0),
+      g2w0_(solver.max_displacement_ratio * w0),
+      floor_(kFloor * solver.time_step),
+      dt_(std::min(dt, solver.time_step)) {}
+
+double StepControl::next(double t, double t_end) const {
+  const double left = t_end - t;
+  return left < dt_ * (1 - kRoundOff) ? left : dt_;
+}
+
+std::string StepControl::rejection(double dmax, double max_penetration, bool inertia) const {
+  // The reason names w0 in words: users coming from UDEC do not know DDA's symbol. The value and
+  // its limit get the digits that tell them apart (6e-06 against 6e-06 would puzzle).
+  const double limit = g2w0_;
+  const std::string ratio = format_rough(ratio_, 3);
+  const std::string w0 = format_rough(w0_, 3) + " m";
+  auto apart = [](double value, double bound) {
+    int digits = 3;
+    while (digits < 9 && format_rough(value, digits) == format_rough(bound, digits)) ++digits;
+    return std::make_pair(format_rough(value, digits), format_rough(bound, digits));
+  };
+  if (inertia && dmax > kMaxMove * limit) {
+    const auto [moved, allowed] = apart(dmax, kMaxMove * limit);
+    return "one step moved a cover by " + moved + " m, more than the " + allowed +
+           " m a step may move (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
+           ", w0 being half the model size as in DDA)";
+  }
+  if (max_penetration > limit) {
+    const auto [depth, allowed] = apart(max_penetration, limit);
+    return "a contact penetrated " + depth + " m, more than the " + allowed +
+           " m allowed (max_displacement_ratio " + ratio + " × w0 " + w0 +
+           ", w0 being half the model size as in DDA)";
+  }
+  return "";
+}
+
+bool StepControl::cut(double h) {
+  dt_ = kCut * h;
+  return !(dt_ < floor_);
+}
+
+void StepControl::accept() { dt_ = std::min(kGrowth * dt_, time_step_); }
+
+}  // namespace nmm::solve

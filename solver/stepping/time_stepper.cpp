@@ -1,0 +1,389 @@
+// NMM time stepping with Shi's implicit scheme (Shi 1988, 1991; docs/physics.md §2): the
+// stepping core. A step of length Δt is one attempt:
+//
+//   frames      the configuration placed on the covers' positions (configuration.h)
+//   contacts    detection within the search distance, the pattern grown by new element pairs
+//   assembly    K and F by the scene's form (form.h): the integrators it calls for, one per
+//               term (integrators.h: elasticity, initial stress, body force, inertia with
+//               newmark.h's coefficients, fixed points, loads, supports, tractions, water,
+//               in-situ traction); excavated covers pinned (excavation.h, K += k_pin I)
+//   solve       one factorisation, or the step's contact problem (contact_solve.h)
+//   acceptance  Shi's step control (step_control.h): a rejected attempt leaves the state as it
+//               was and the caller cuts Δt
+//   update      the state moved on by d (state_update.h), after the equilibrium indicators
+//               (equilibrium_indicator.h) are taken from d, v0 and a0
+//
+// Unknowns: the cover functions' coefficients during the step (cover_space.h; a sliver cover
+// shares a neighbour's, cover_unknowns.cpp). All integrals are exact simplex integrals over the
+// element polygon (element_integration.cpp). Everything carried from step to step is in RunState
+// s_ (run_state.h) and the contact history: a checkpoint of both continues a run bitwise exactly
+// (restart.h). Only the effects a scene calls for are computed (run_effects.h).
+#include "solver/stepping/time_stepper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iterator>
+#include <sstream>
+
+#include "solver/contact/contact_history.h"
+#include "solver/contact/contact_solve.h"
+#include "solver/contact/contact_tolerances.h"
+#include "solver/discretisation/solver_threads.h"
+#include "common/stopwatch.h"
+#include "common/error.h"
+#include "solver/discretisation/excavation.h"
+#include "solver/stepping/initial_state.h"
+#include "solver/discretisation/form.h"
+#include "solver/discretisation/integrators.h"
+#include "solver/discretisation/newmark.h"
+#include "solver/stepping/restart.h"
+#include "solver/stepping/state_update.h"
+#include "solver/stepping/static_support.h"
+
+namespace nmm::solve {
+
+namespace {
+// How many times the pairs the contacts use (this step's and the last accepted step's) the
+// sparse pattern may hold before a growth rebuilds it from those alone (update_pattern).
+// Measured on the DDA code's walls (contact_bench --peer, 100 steps, one thread): at 1.1 the
+// 30 × 30 wall took 117 ms per static step and 332 dynamic against 132 and 423 with a pattern
+// that only grew. 1.0 (rebuilt from the used pairs at every growth) and 1.05 were within a few
+// per cent of it either way (1.0: 122 / 336 ms at 30 × 30, 116 dynamic at 20 × 20 against 122,
+// with 80–92 analyses per 100 static steps against 54–56), and 1.3 kept most of the growth
+// (dynamic 20 × 20: 148 ms against 152 and 122 at 1.1).
+constexpr double kPatternSlack = 1.1;
+
+// How many of a step's touching contacts (closed at its start, or within the gap tolerance of
+// touching) may lie outside the sparse pattern before it grows, in a run with inertia: at most
+// kDeferredTouching, and at most kDeferredShare of the touching contacts (update_pattern). Each
+// costs the CG runs on the kept factorisation up to two iterations (its two springs: H − P of
+// rank 2); a growth that adds entries costs a symbolic analysis, 0.3–0.5 of a factorisation, at
+// the next factorisation. Open contacts outside the pattern cost nothing unless they close.
+// Measured on the DDA code's walls (contact_bench --peer, h = 2 m, 100 steps, one thread,
+// 2026-11-28, paired runs), ms per step at 10 / 20 / 30, symbolic analyses in brackets:
+//   static, growth at every new pair   4.13 (30)  20.8 (33)  50.8 (27)
+//   static, this rule                  3.67 (14)  17.9 (20)  47.2 (20)
+//   dynamic, growth at every new pair  8.45 (88)  49.9 (99)  148 (98)
+//   dynamic, this rule                 8.05 (44)  50.5 (94)  147 (95)
+// ("this rule" also with detection's lengths by sqrt, not std::hypot: 0.1 / 0.4 / 1.0 ms of
+// each static step's difference). Counting every contact outside, open or closed, against 20
+// or 40 gave fewer analyses (static 5–9, 2–6) and more CG iterations: summed over the three
+// walls, static steps 5–7 % slower than with 5 contacts closed at the start (this rule's first
+// form), dynamic ones 2 % faster and 3 % slower. The share keeps a scene of a few contacts (a
+// block on an incline) growing its pattern at once; without inertia it always grows (the
+// contacts' springs are what makes the matrix positive definite there).
+constexpr int kDeferredTouching = 5;
+constexpr double kDeferredShare = 0.01;
+}  // namespace
+
+TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
+    : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name), form_(model_),
+      control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_) {
+  space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
+  config_ = Configuration(mesh, &space_);
+  indicator_ = EquilibriumIndicator(mesh, scene, space_);
+  momentum_ = BlockMomentum(mesh, space_, indicator_.group_mass());
+  contacts_.use_space(space_);
+  contacts_.set_elastic_predictor(!step_inertia());
+  // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
+  if (space_.order() > 0) system_.set_regularised(space_.higher_order_unknowns(), kRegularisation);
+  // Contacts change the pattern every few steps: each analysis orders by AMD alone.
+  system_.set_amd_only(contacts_.active());
+  s_ = initial_state(model_, space_);
+  // Fixed points and loads couple only the covers of their element: the element pattern holds
+  // until contacts couple pairs of elements (update_pattern).
+  build_pattern_with_pairs();
+  rhs_.resize(space_.unknowns());
+  set_threads(0);
+  excavate(scene.excavate);
+}
+
+void TimeStepper::set_threads(int threads) {
+  threads_ = set_solver_threads(threads > 0 ? threads : default_solver_threads(space_.unknowns()));
+}
+
+
+
+void TimeStepper::compute_frames() {
+  const std::int64_t e = config_.place(s_.cover_xy);
+  if (e >= 0)
+    throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
+                   std::to_string(s_.time) + " s (displacements too large for the time step)");
+}
+
+void TimeStepper::update_pattern() {
+  // Elements, then one coupling group per pair of elements with a contact (open or closed: all
+  // the step's contacts can close within it). Pairs that part keep their (zero) entries, so the
+  // pattern — and with it CHOLMOD's symbolic analysis — changes only when a contact reaches a
+  // pair the pattern lacks, and, in a run with inertia, not even then while only a few touching
+  // contacts lie outside it (kDeferredTouching): their springs are left to CG (H − P of small
+  // rank) instead of a symbolic analysis at the next factorisation. Then it grows by the new
+  // pairs, unless it already holds more than kPatternSlack times the pairs this step's and the
+  // last accepted step's contacts use: then it is built from those alone. A pattern that only
+  // grew kept every pair a contact had ever touched, and its factor's fill grew faster than its
+  // entries (a dynamic 20 × 20 wall: +5 % entries, +24 % factor nonzeros, +46 % flops over 100
+  // steps). (Pairs merely within the search distance are not added in advance: that margin
+  // doubled to tripled the factorisation's flops on brick walls, docs/contact.md "Sparse
+  // pattern".) The rule reads only what a checkpoint restores (the pattern's pairs, the accepted
+  // contacts and the step's own contacts detected from them), so a restarted run rebuilds the
+  // same patterns.
+  const int first = static_cast<int>(mesh_.element_count());
+  const auto now = contacts_.contact_pairs();
+  const auto& had = s_.pattern_pairs;
+  const bool holds = std::includes(had.begin(), had.end(), now.begin(), now.end());
+  // The groups in the present pattern: final if it holds every pair, else what the deferral counts.
+  if (holds || step_inertia()) contacts_.assign_groups(had, first);
+  if (holds) return;
+  if (step_inertia()) {
+    const double outside = static_cast<double>(contacts_.touching_outside_pattern());
+    const double touching = static_cast<double>(contacts_.touching_at_start());
+    if (outside <= std::min(static_cast<double>(kDeferredTouching), kDeferredShare * touching)) return;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  std::set_union(had.begin(), had.end(), now.begin(), now.end(), std::back_inserter(pairs));
+  const auto last = contacts_.accepted_pairs();
+  std::vector<std::pair<std::int32_t, std::int32_t>> used;
+  std::set_union(now.begin(), now.end(), last.begin(), last.end(), std::back_inserter(used));
+  if (static_cast<double>(pairs.size()) > kPatternSlack * static_cast<double>(used.size())) pairs = std::move(used);
+  s_.pattern_pairs = std::move(pairs);
+  build_pattern_with_pairs();
+  contacts_.assign_groups(s_.pattern_pairs, first);
+}
+
+void TimeStepper::build_pattern_with_pairs() {
+  const auto& pairs = s_.pattern_pairs;
+  std::vector<int> offsets{0}, dofs;
+  const int m = space_.element_dofs();
+  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+    dofs.insert(dofs.end(), space_.element_unknowns(e), space_.element_unknowns(e) + m);
+    offsets.push_back(static_cast<int>(dofs.size()));
+  }
+  for (const auto& [a, b] : pairs) {
+    dofs.insert(dofs.end(), space_.element_unknowns(a), space_.element_unknowns(a) + m);
+    dofs.insert(dofs.end(), space_.element_unknowns(b), space_.element_unknowns(b) + m);
+    offsets.push_back(static_cast<int>(dofs.size()));
+  }
+  system_.build_pattern(space_.unknowns(), offsets, dofs);
+}
+
+void TimeStepper::assemble(double dt) {
+  form_.assemble({config_, s_, removed_elem_, s_.time + dt, dt}, system_, rhs_);
+}
+
+void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
+  update_state(model_, config_, d, dt, s_);
+}
+
+std::string TimeStepper::attempt(double dt) {
+  // Where no two faces can touch (an opening excavated from one unjointed block), the plain
+  // solve: no contact detection, no contact problem.
+  const bool contact = contacts_.active() && model_.contacts_can_arise();
+  if (!step_inertia() && !contact) check_static_support(model_, s_);
+  Stopwatch watch;
+  compute_frames();
+  timings_.assembly += watch.seconds();
+  if (contact) {
+    contacts_.begin_step(
+        s_.loop_xy, config_,
+        control_.search_distance() + contacts_.max_dilation(),
+        kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
+    update_pattern();
+  }
+  timings_.contact_detection = contacts_.detection_seconds();
+  watch.restart();
+  assemble(dt);
+  // The blocks' share of the last step's out-of-balance force (block_momentum.h); not in a
+  // static step (a restart may switch a dynamic run to static), whose balance starts afresh.
+  if (!s_.block_force.empty() && handed_on_share() > 0) momentum_.add_forces(s_.block_force, s_.cover_xy, rhs_);
+  if (contact) {
+    system_.save();
+    rhs_base_ = rhs_;
+  }
+  timings_.assembly += watch.seconds();
+
+  // Without contact: one factorisation and solve. With contact: the step's convex contact
+  // problem (contact_solve.cpp), Newton iterations on a reused factorisation.
+  Eigen::VectorXd d, residual;
+  bool iterated = false;  // the contact solve took a Newton direction
+  auto not_positive_definite = [&]() {
+    return not_positive_definite_message(mesh_, space_, system_.failed_unknown());
+  };
+  if (!contact) {
+    watch.restart();
+    const bool ok = system_.factorize();
+    ++timings_.factorisations;
+    timings_.factorisation += watch.seconds();
+    if (!ok) throw RunError(not_positive_definite());
+    watch.restart();
+    d = system_.solve(rhs_);
+    ++timings_.solves_count;
+    timings_.solves += watch.seconds();
+  } else {
+    const ContactSolveStats before = solve_stats_;
+    const double tau = scene_.solver.contact_tolerance;
+    const auto solve = [&](bool warm) {
+      return solve_contact_step(system_, contacts_, rhs_base_, tau,
+                                contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
+                                solve_stats_, handed_on_share() > 0 ? &residual : nullptr, warm);
+    };
+    ContactSolveOutcome outcome = solve(false);
+    // Bonds and cohesion break only at a solution of the step, and the step is solved again with
+    // them broken until no unbroken contact is beyond its peak (contact.h break_at_peak). Each
+    // round breaks at least one contact, so this ends.
+    for (bool resolved = false; outcome.ok();) {
+      if (!contacts_.break_at_peak().resolve) break;
+      if (!resolved) ++solve_stats_.steps_resolved_for_breaks;
+      resolved = true;
+      ++solve_stats_.break_resolves;
+      outcome = solve(true);  // from the solution before the breaks
+    }
+    if (outcome.ok()) contacts_.settle_states();
+    iterated = solve_stats_.newton > before.newton;
+    timings_.factorisations += solve_stats_.factorisations - before.factorisations;
+    timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
+    timings_.solves_count += solve_stats_.cg_iterations - before.cg_iterations +
+                             (solve_stats_.factorisations - before.factorisations);
+    timings_.solves += solve_stats_.cg_seconds - before.cg_seconds +
+                       solve_stats_.line_search_seconds - before.line_search_seconds;
+    s_.iterations += static_cast<std::uint64_t>(solve_stats_.newton - before.newton);
+    s_.friction_unsettled += static_cast<std::uint64_t>(solve_stats_.unsettled - before.unsettled);
+    if (outcome.status == ContactSolveOutcome::Status::not_positive_definite)
+      throw RunError(not_positive_definite());
+    if (!outcome.ok()) return outcome.reason;
+  }
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+    if (!std::isfinite(d[i]))
+      throw RunError("the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
+                     " is not a finite number at t = " + std::to_string(s_.time) + " s");
+  if (contact) {
+    const std::string why =
+        control_.rejection(d.cwiseAbs().maxCoeff(), contacts_.max_penetration(), step_inertia());
+    if (!why.empty()) return why;
+    contacts_.end_step();
+    // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
+    // its start hands nothing on, and a direct solve leaves nothing to hand on.
+    if (handed_on_share() > 0 && iterated)
+      momentum_.net_forces(residual, handed_on_share(), s_.cover_xy, s_.block_force);
+    else
+      s_.block_force.clear();
+    s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());
+    s_.max_capped = std::max(s_.max_capped, contacts_.capped_count());
+  }
+  if (!contact) s_.block_force.clear();
+  watch.restart();
+  measure_balance(d, dt, contact);
+  update(d, dt);
+  timings_.geometry_update += watch.seconds();
+  s_.time += dt;
+  ++s_.step;
+  return "";
+}
+
+void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool contact) {
+  // The same body force, β and loads as the step's assembly (assemble()), at the step's end.
+  const double t_end = s_.time + dt;
+  const auto [bx, by] = body_force_per_mass(scene_, t_end);
+  StepBalance b;
+  b.d = &d;
+  b.v0 = &s_.velocity;
+  b.a0 = &s_.accel;
+  b.dt = dt;
+  b.beta = step_beta(scene_.solver, s_);
+  Eigen::VectorXd kd;
+  if (!step_inertia()) {
+    // No mass: the force the solve balanced, K·d (with contacts: the saved matrix, K without
+    // the contact springs; without: K·d = the right-hand side itself).
+    if (contact) system_.saved_times(d, kd);
+    b.balance = contact ? &kd : &rhs_;
+  }
+  b.applied_sum = applied_force_sum(scene_, s_, t_end, std::hypot(bx, by),
+                                    indicator_.active_mass(s_.body_removed), model_.traction_edges(),
+                                    model_.interface_edges(), removed_elem_);
+  b.stress = &s_.stress;
+  b.stress_terms = stress_terms();
+  balance_ = indicator_.measure(b, s_.body_removed);
+}
+
+void TimeStepper::step(double dt) {
+  const std::string why = attempt(dt);
+  if (!why.empty()) throw RunError(why);
+}
+
+std::string TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step) {
+  // Attempts under Shi's step control (step_control.h): without contact nothing is rejected and
+  // every step has the full length time_step.
+  const SolverDef& sv = scene_.solver;
+  control_ = StepControl(sv, model_.w0(), s_.dt);
+  std::int64_t done = 0;
+  stopped_at_ratio_ = false;
+  while (!control_.done(s_.time, t_end)) {
+    // Between steps only, so an interrupted run stops in a consistent state.
+    if (stop_check_ && stop_check_()) return "interrupted";
+    const double h = control_.next(s_.time, t_end);
+    std::string why;
+    try {
+      why = attempt(h);
+    } catch (const RunError& e) {
+      return e.what();
+    }
+    if (!why.empty()) {
+      static const bool trace = std::getenv("NMM_TRACE_CUTS") != nullptr;
+      if (trace) std::fprintf(stderr, "cut at t = %.9g: %s\n", s_.time, why.c_str());
+      ++s_.cuts;
+      if (!control_.cut(h)) {
+        std::ostringstream os;
+        os << "time step cut below its floor (" << control_.floor() << " s) at t = " << s_.time
+           << " s because " << why;
+        return os.str();
+      }
+      continue;
+    }
+    control_.accept();
+    s_.dt = control_.dt();
+    // UDEC's `solve ratio`: the run has reached equilibrium (equilibrium_indicator.cpp).
+    stopped_at_ratio_ = sv.stop_at_ratio > 0 && balance_.max_ratio < sv.stop_at_ratio &&
+                        (!sv.dynamic || balance_.max_velocity < RestCriterion::kVelocity);
+    on_step(++done);
+    if (stopped_at_ratio_) return "ok";
+  }
+  return "ok";
+}
+
+void TimeStepper::restart_from(const std::string& path) {
+  std::string history, factor;
+  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history,
+                                          space_.dofs_per_cover(), space_.terms(), &factor);
+  restore(st, history, path);
+  if (!factor.empty() && contacts_.active() && !system_.factor_from_source(factor))
+    throw InputError(path, "section FACTOR", "not the matrix of a factorisation of this run's size");
+}
+
+void TimeStepper::restore(const RunState& st, const std::string& history, const std::string& name) {
+  s_ = restarted_state(st, s_, scene_.bodies.size(), name);
+  load_contact_history(contacts_, history, mesh_, name);
+  // The same pattern as the run that wrote the checkpoint: the same symbolic analysis, the same
+  // round-off.
+  if (!s_.pattern_pairs.empty()) {
+    build_pattern_with_pairs();
+    contacts_.assign_groups(s_.pattern_pairs, static_cast<int>(mesh_.element_count()));
+  }
+  apply_removed();
+  excavate(scene_.excavate);
+}
+
+void TimeStepper::excavate(const std::vector<int>& bodies) {
+  excavate_bodies(bodies, mesh_, stress_terms(), s_);
+  apply_removed();
+}
+
+void TimeStepper::apply_removed() {
+  removed_elem_ = removed_elements(mesh_, s_);
+  const bool any = std::any_of(removed_elem_.begin(), removed_elem_.end(),
+                               [](std::uint8_t r) { return r != 0; });
+  contacts_.set_removed_elements(any ? removed_elem_ : std::vector<std::uint8_t>{});
+  hold_removed_covers(mesh_, space_.dofs_per_cover(), s_);
+}
+
+}  // namespace nmm::solve

@@ -1,0 +1,31 @@
+// Test and bench hooks into a TimeStepper's assembly and update, kept off its public surface
+// (time_stepper.h): the patch test imposes cover displacements and reads the next step's
+// right-hand side; a bench solves the last step's system with a bare factorisation.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "solver/stepping/time_stepper.h"
+
+namespace nmm::solve {
+
+class TimeStepperProbe {
+ public:
+  /// Imposes cover displacements d as a step would (stresses and geometry follow), in the
+  /// frames of the current configuration.
+  static void impose_displacement(TimeStepper& st, const Eigen::VectorXd& d) {
+    st.compute_frames();
+    st.update(d, 1.0);
+  }
+  /// Assembles a step of dt from the current state and returns its right-hand side
+  /// −F_int (+ loads, gravity, inertia), N.
+  static const Eigen::VectorXd& assemble_rhs(TimeStepper& st, double dt) {
+    st.compute_frames();
+    st.assemble(dt);
+    return st.rhs_;
+  }
+  /// The right-hand side of the last assembly, N.
+  static const Eigen::VectorXd& rhs(const TimeStepper& st) { return st.rhs_; }
+};
+
+}  // namespace nmm::solve

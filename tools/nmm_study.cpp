@@ -1,0 +1,720 @@
+// nmm-study OUTDIR [--quick] [--data DIR] [--only CASE...]
+//
+// Accuracy against run time (docs/accuracy.md is made from it): reference problems with known
+// answers, each run across settings, every run timed.
+//  cantilever        L = 10, H = 1, tip load, static, against Timoshenko; mesh size.
+//  sliding_block     2 m × 1 m block on a held 12 m base, gravity tilted 30°, φ = 20°, 1 s,
+//                    against ½g(sin α − cos α tan φ)t²; time step, and penalty kn (as a multiple
+//                    of E·1 m).
+//  bandis_barton     data/single_joint.json (with ν = 0) at σn = 5 MPa against
+//                    σn·Vm/(Kni·Vm + σn); mesh
+//                    size, settling time, time step, contact model (constant springs or the
+//                    joint law).
+//  hyperbolic_shear  the same joint sheared at 60 % of its strength against the hyperbola;
+//                    mesh size, settling time, contact model.
+//  tight_joint       the same specimen with penalty springs standing for a tight joint: the
+//                    shortening across it against the intact rock's σn·(1 m)/E; penalty kn.
+//  kirsch            a circular opening excavated under K0 = 0.5 in-situ stress
+//                    (reference/kirsch.h), the hoop stress along the wall against Kirsch
+//                    (RMS over the wall points, relative to its peak); mesh size at cover order
+//                    n = 0, 1, 2.
+//  joint_wave        a 1 MPa half-sine pulse crossing one joint of constant springs (kn =
+//                    1.37 GPa/m, τ = 2 ms; reference/wave_bar.h, data/joint_wave.json): the
+//                    transmitted displacement history against the displacement-discontinuity
+//                    model (RMS relative to its peak), the peak particle velocity shown; mesh
+//                    size, time step. Also writes OUTDIR/joint_wave_tables.md (the read-off of
+//                    joint_wave.h for τ = 2 and 0.5 ms at h = 0.5 and 0.25 m) and
+//                    OUTDIR/joint_wave.svg (particle velocity before and after the joint, the
+//                    runs against the closed form; docs/joint-studies.md).
+// The cover order axis (docs/higher-order-covers.md): the cantilever and the Kirsch opening at
+// n = 0, 1, 2 across mesh sizes, the sliding block (a joint case) at n = 0, 1, 2. A run the
+// solver refuses at an order (exit-2 input error naming /solver/cover_order) is listed as not
+// available, with the solver's reason, and the study goes on.
+// Writes OUTDIR/accuracy_time.csv (case,setting,value,error,wall_seconds: one row per completed
+// run), OUTDIR/accuracy_time.svg (error against wall time, log–log) and OUTDIR/accuracy_tables.md
+// (a table per case, the runs that did not complete, and whether the costliest setting of each
+// sweep beat the cheapest). wall_seconds covers building the mesh from the scene (cover cutting)
+// and the run; parsing the scene file is left out; short runs are repeated and the fastest is
+// kept (see timed_run). --quick runs a subset of the settings. Exit status 2 on bad input.
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/atomic_file.h"
+#include "common/command_line.h"
+#include "preprocess/cover_cutter.h"
+#include "common/error.h"
+#include "reference/cantilever.h"
+#include "reference/joint_specimen.h"
+#include "studies/joint_specimen_run.h"
+#include "studies/joint_wave.h"
+#include "studies/kirsch_opening.h"
+#include "reference/sliding_block.h"
+#include "common/scene.h"
+#include "common/svg_plot.h"
+#include "solver/stepping/time_stepper.h"
+#include "common/vtk_writer.h"
+#include "common/stopwatch.h"
+#include "common/math_constants.h"
+
+namespace {
+
+using nmm::SceneDef;
+using nmm::kPi;
+
+std::string num(double v, const char* f = "%.4g") {
+  char b[48];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// How a run ended: with a finite value to compare; stopped or failed (the reason says why); or
+// not run because the solver does not support the setting (a cover order it refuses with an
+// input error at /solver/cover_order), which is no failure of the study.
+enum class RunStatus { ok, failed, not_available };
+
+// What one run gives: the computed value (or why it has none) and what it cost.
+struct Outcome {
+  RunStatus status = RunStatus::failed;
+  std::string reason;      // why not, when status is not ok
+  bool ok() const { return status == RunStatus::ok; }
+  double computed = 0;     // the quantity compared with the closed form
+  double mesh_seconds = 0;  // cover cutting
+  double run_seconds = 0;   // TimeStepper construction and stepping
+  int unknowns = 0;
+  std::int64_t steps = 0;
+  std::size_t cuts = 0, iterations = 0;
+  // A case that measures its relative error itself (an RMS along a line) sets it here; others
+  // leave it NaN and the error is |computed − exact| / |exact|.
+  double own_error = std::nan("");
+};
+
+// One row of the study: a case, the setting varied and its value, and the outcome.
+struct Row {
+  std::string case_name, setting;  // setting: what the sweep it belongs to varies
+  double value = 0;
+  std::string value_text;                 // as shown in the tables
+  double exact = 0;
+  Outcome out;
+  double error() const {
+    return std::isfinite(out.own_error) ? out.own_error : std::abs(out.computed - exact) / std::abs(exact);
+  }
+  double wall() const { return out.mesh_seconds + out.run_seconds; }
+};
+
+// Builds the mesh and runs `body` on a fresh TimeStepper, timing both; RunError and a non-"ok"
+// status become a failed outcome (InputError is bad input and goes up).
+Outcome timed_run_once(const SceneDef& s, const std::string& name,
+                       const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
+  Outcome o;
+  const nmm::Stopwatch t0;
+  const nmm::Mesh m = nmm::pre::build_mesh(s, name);
+  o.mesh_seconds = t0.seconds();
+  const nmm::Stopwatch t1;
+  try {
+    std::unique_ptr<nmm::solve::TimeStepper> st;
+    try {
+      st = std::make_unique<nmm::solve::TimeStepper>(m, s, name);
+    } catch (const nmm::InputError& e) {
+      // What the solver does not support at this cover order yet (its input error's place is
+      // /solver/cover_order): not available, not a failure of the study.
+      if (s.solver.cover_order == 0 || e.where().rfind("/solver/cover_order", 0) != 0) throw;
+      o.status = RunStatus::not_available;
+      o.reason = "not available at this cover order: " + e.where() + ": " + e.message();
+      o.run_seconds = t1.seconds();
+      return o;
+    }
+    o.unknowns = st->view().space.unknowns();
+    const std::string status = body(*st, o);
+    o.cuts = st->view().state.cuts;
+    o.iterations = st->view().state.iterations;
+    const bool finite = std::isfinite(o.computed);
+    o.status = status == "ok" && finite ? RunStatus::ok : RunStatus::failed;
+    o.reason = status != "ok" ? status : (finite ? "" : "result is not a finite number");
+  } catch (const nmm::RunError& e) {
+    o.status = RunStatus::failed;
+    o.reason = e.what();
+  }
+  o.run_seconds = t1.seconds();
+  return o;
+}
+
+// Short runs are repeated and the fastest is kept: the runs are deterministic, so only the time
+// differs, and the fastest is the one least disturbed by other work on the machine. A run is
+// repeated until three runs and half a second have been spent on it (at most 25 runs).
+Outcome timed_run(const SceneDef& s, const std::string& name,
+                  const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
+  Outcome best = timed_run_once(s, name, body);
+  if (best.status == RunStatus::not_available) return best;  // nothing to time
+  double spent = best.mesh_seconds + best.run_seconds;
+  for (int runs = 1; runs < 25 && (runs < 3 || spent < 0.5); ++runs) {
+    const Outcome o = timed_run_once(s, name, body);
+    spent += o.mesh_seconds + o.run_seconds;
+    if (o.mesh_seconds + o.run_seconds < best.mesh_seconds + best.run_seconds) best = o;
+  }
+  return best;
+}
+
+std::string run_steps(nmm::solve::TimeStepper& st, double t_end, Outcome& o) {
+  return st.run_until(t_end, [&o](std::int64_t n) { o.steps = n; });
+}
+
+// ---- cantilever ----------------------------------------------------------------------------
+// L = 10, H = 1, E = 10 GPa, ν = 0.25, plane stress, clamped by fixed points every h/2 along
+// x = 0, P = 1e5 N down at (L, H/2), one static step (tests/test_solver_physics.cpp).
+Row cantilever(double h, int order = 0) {
+  const SceneDef s = nmm::reference::cantilever(h, order);
+  Row r;
+  r.case_name = "cantilever";
+  // Cover order n ≥ 1 is its own sweep over h (docs/higher-order-covers.md).
+  r.setting = order == 0 ? "mesh_size" : "mesh_size_n" + std::to_string(order);
+  r.value = h;
+  r.value_text = "h = " + num(h, "%.6g") + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
+  r.exact = nmm::reference::timoshenko_tip_deflection();
+  r.out = timed_run(s, "cantilever", [](nmm::solve::TimeStepper& st, Outcome& o) {
+    st.step(1.0);
+    o.steps = 1;
+    o.computed = -st.view().state.measure[0].displacement()[1];
+    return std::string("ok");
+  });
+  return r;
+}
+
+// ---- sliding block -------------------------------------------------------------------------
+// Flat 12 m × 1 m base held by fixed points every 0.25 m along y = 0.1, a 2 m × 1 m block on it,
+// gravity tilted by 30°, φ = 20°, h = 0.5, ks = kn/2.5, 1 s (tests/test_contact.cpp).
+Row sliding_block(const std::string& setting, double dt, double kn_over_e, int order = 0,
+                  double contact_tolerance = nmm::SolverDef{}.contact_tolerance) {
+  const double alpha_deg = 30, phi_deg = 20, t = 1.0;
+  SceneDef s = nmm::reference::sliding_block_tilted(alpha_deg, phi_deg, 0.5, order, dt, kn_over_e);
+  s.solver.contact_tolerance = contact_tolerance;
+  Row r;
+  r.case_name = "sliding_block";
+  r.setting = setting;
+  if (setting == "time_step") {
+    r.value = dt;
+  } else if (setting == "cover_order") {
+    r.value = order;
+  } else if (setting == "contact_tolerance") {
+    r.value = contact_tolerance;
+  } else {
+    r.value = kn_over_e;
+  }
+  r.value_text = "Δt = " + num(dt) + " s, kn = " + num(kn_over_e) + "·E" +
+                 (setting == "cover_order" ? ", n = " + std::to_string(order) : "") +
+                 (setting == "contact_tolerance" ? ", τ = " + num(contact_tolerance) : "");
+  r.exact = nmm::reference::sliding_distance(alpha_deg, phi_deg, t);
+  r.out = timed_run(s, "sliding block", [t](nmm::solve::TimeStepper& st, Outcome& o) {
+    const std::string status = run_steps(st, t, o);
+    o.computed = st.view().state.measure[0].displacement()[0];
+    return status;
+  });
+  return r;
+}
+
+// ---- Kirsch opening (reference/kirsch.h, studies/kirsch_opening.h) ---------------------------------------------
+// K0 = 0.5, b = 20a, the core excavated at the start of one static step. The error is the RMS
+// of the hoop stress along the wall against Kirsch, relative to its peak (3p_y − p_x = 25 MPa):
+// each wall element's stress field at the ends of its wall edges, the same read-off at every
+// order (what the VTU frames show). The table's value column is σθ at the side wall (a, 0).
+Row kirsch(double h, int order) {
+  nmm::reference::KirschSetup k;
+  k.h = h;
+  k.k0 = 0.5;
+  k.b_over_a = 20;
+  k.order = order;
+  Row r;
+  r.case_name = "kirsch";
+  r.setting = order == 0 ? "mesh_size" : "mesh_size_n" + std::to_string(order);
+  r.value = h;
+  r.value_text = "h = " + num(h, "%.6g") + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
+  r.exact = nmm::reference::kirsch_hoop(k.k0 * nmm::reference::kKirschPressure, nmm::reference::kKirschPressure,
+                                     nmm::reference::kKirschRadius, 0);
+  const SceneDef s = nmm::reference::kirsch_scene(k);
+  // The read-off needs the mesh: kept from the timed run (build_mesh is deterministic).
+  r.out = timed_run(s, "kirsch", [&k](nmm::solve::TimeStepper& st, Outcome& o) {
+    st.step(1.0);
+    o.steps = 1;
+    const nmm::studies::KirschWall w = nmm::studies::kirsch_wall(k, st.view().mesh, st);
+    o.computed = w.side_wall_hoop;
+    o.own_error = w.hoop_wall;
+    return std::string("ok");
+  });
+  return r;
+}
+
+// ---- single joint (data/single_joint.json) --------------------------------------------------
+SceneDef single_joint_scene(const std::string& path) {
+  SceneDef s = nmm::reference::joint_specimen_scene(path);
+  // ν = 0: the closed forms assume the same stress all along the joint. With the file's ν = 0.25
+  // the blocks' Poisson expansion, held at the base, makes the joint's stress uneven (5.018 MPa
+  // at the middle, 4.963 MPa at the ends, h = 0.25) and the closure settled 0.15 % high at every
+  // mesh size: a floor of the problem that no setting moves (docs/accuracy.md).
+  for (nmm::MaterialDef& m : s.materials) m.poisson = 0;
+  return s;
+}
+
+// The single-joint specimen loaded as everywhere else (reference/joint_specimen.h); closure or slip at the
+// joint's middle.
+Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool want_slip) {
+  nmm::reference::load_joint_specimen(s, sigma, tau);
+  return timed_run(s, "single joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
+    const std::string status = run_steps(st, seconds, o);
+    const auto a = st.view().state.measure[0].displacement();
+    const auto b = st.view().state.measure[1].displacement();
+    o.computed = want_slip ? a[0] - b[0] : b[1] - a[1];
+    return status;
+  });
+}
+
+// The joint's constant stiffnesses (the scene's kn, ks in Pa/m beside the law's parameters)
+// instead of its laws: the setting "contact_model" (value 0 constant, 1 the joint laws).
+std::string use_constant_springs(SceneDef& s) {
+  auto& js = s.joint_sets[0];
+  js.normal.model = nmm::NormalModel::constant;
+  js.shear.model = nmm::ShearModel::constant;
+  return "constant kn = " + num(js.normal.kn) + " Pa/m, ks = " + num(js.shear.ks) + " Pa/m, ";
+}
+
+Row bandis_barton(const SceneDef& joint, const std::string& setting, double h, double dt,
+                  double seconds, bool joint_law = true) {
+  const auto& law = joint.joint_sets[0].normal;
+  const double sigma = 5e6;
+  SceneDef s = joint;
+  s.mesh_size = h;
+  s.solver.time_step = dt;
+  Row r;
+  r.case_name = "bandis_barton";
+  r.setting = setting;
+  if (setting == "mesh_size") r.value = h;
+  if (setting == "time_step") r.value = dt;
+  if (setting == "settling_time") r.value = seconds;
+  if (setting == "contact_model") r.value = joint_law ? 1 : 0;
+  if (!joint_law) r.value_text = use_constant_springs(s);
+  r.value_text += "h = " + num(h, "%.6g") + " m, Δt = " + num(dt) + " s, " + num(seconds) + " s";
+  r.exact = sigma * law.vm / (law.kni * law.vm + sigma);
+  r.out = joint_run(s, sigma, 0, seconds, false);
+  return r;
+}
+
+Row hyperbolic_shear(const SceneDef& joint, const std::string& setting, double h, double seconds,
+                     bool joint_law = true) {
+  const auto& js = joint.joint_sets[0];
+  const double sigma = 5e6, tf = sigma * std::tan(js.friction_deg * kPi / 180), tau = 0.6 * tf;
+  SceneDef s = joint;
+  s.mesh_size = h;
+  Row r;
+  r.case_name = "hyperbolic_shear";
+  r.setting = setting;
+  r.value = setting == "mesh_size" ? h : setting == "contact_model" ? (joint_law ? 1 : 0) : seconds;
+  if (!joint_law) r.value_text = use_constant_springs(s);
+  r.value_text += "h = " + num(h, "%.6g") + " m, Δt = " + num(s.solver.time_step) + " s, " +
+                  num(seconds) + " s";
+  r.exact = tau / (js.shear.ksi * (1 - js.shear.rf * tau / tf));
+  r.out = joint_run(s, sigma, tau, seconds, true);
+  return r;
+}
+
+// ---- tight joint: what a penalty spring costs in accuracy ------------------------------------
+// The single-joint specimen with DDA's point penalty kn = factor·E·(1 m) per contact point
+// (model "penalty") standing for a tight joint
+// (no closure of its own), σn = 5 MPa. The exact shortening between (1, 0.5) and (1, 1.5) is
+// that of the intact rock, σn·(1 m)/E (uniform stress; constant-strain elements represent it
+// exactly); the penalty springs add their own compliance, N/kn per contact, which a stiffer kn
+// shrinks: this is the trade penalty contact makes.
+Row tight_joint(const SceneDef& joint, double kn_over_e) {
+  const double sigma = 5e6, e = joint.materials[0].young;
+  SceneDef s = joint;
+  auto& js = s.joint_sets[0];
+  js.normal.model = nmm::NormalModel::penalty;
+  js.shear.model = nmm::ShearModel::penalty;
+  js.normal.kn = kn_over_e * e;
+  js.shear.ks = js.normal.kn / 2.5;
+  s.measure_points = {{1.0, 1.5}, {1.0, 0.5}};
+  Row r;
+  r.case_name = "tight_joint";
+  r.setting = "penalty";
+  r.value = kn_over_e;
+  r.value_text = "kn = " + num(kn_over_e) + "·E, h = " + num(s.mesh_size, "%.6g") + " m, 0.3 s";
+  r.exact = sigma * 1.0 / e;
+  nmm::reference::load_joint_specimen(s, sigma, 0);
+  r.out = timed_run(s, "tight joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
+    const std::string status = run_steps(st, 0.3, o);
+    o.computed = st.view().state.measure[1].displacement()[1] - st.view().state.measure[0].displacement()[1];
+    return status;
+  });
+  return r;
+}
+
+// ---- a wave crossing a joint (reference/wave_bar.h) -----------------------------------------
+// The bar of data/joint_wave.json at mesh size h and time step Δt. The error is the RMS of the
+// transmitted displacement history against the closed form, relative to its peak; the table's
+// value column is the peak particle velocity after the joint.
+Row joint_wave(const std::string& setting, double h, double dt) {
+  nmm::reference::JointWaveSetup w;
+  w.h = h;
+  w.dt = dt;
+  Row r;
+  r.case_name = "joint_wave";
+  r.setting = setting;
+  r.value = setting == "mesh_size" ? h : dt;
+  r.value_text = "h = " + num(h, "%.6g") + " m, Δt = " + num(dt) + " s";
+  const nmm::reference::JointWaveClosedForm cf(w);
+  r.exact = cf.transmitted_peak() / cf.impedance();
+  const SceneDef s = nmm::reference::joint_wave_scene(w);
+  r.out = timed_run(s, "joint wave", [&](nmm::solve::TimeStepper& st, Outcome& o) {
+    const nmm::studies::JointWaveHistory hist =
+        nmm::studies::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
+    const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
+    o.computed = e.peak_velocity;
+    o.own_error = e.after_rms;
+    return hist.status;
+  });
+  return r;
+}
+
+// The wave against the closed form in detail, for τ = 2 ms (kn = 1.37 GPa/m) and 0.5 ms
+// (5.48 GPa/m) at h = 0.5 and 0.25 m (--quick: 0.5 m), Δt = 25 µs: joint_wave_tables.md (the
+// read-off of studies/joint_wave.h: RMS of the displacement histories, half-rise time and peak
+// particle velocity after the joint) and joint_wave.svg (particle velocity before and after the
+// joint at h = 0.5 m, the runs as dots against the closed form as lines).
+void write_wave_outputs(const std::string& out, bool quick) {
+  nmm::PlotSpec spec{"A half-sine pulse crossing a joint: nmm (dots) against the "
+                     "displacement-discontinuity model (lines)",
+                     "time, ms", "particle velocity, m/s", false, false, {}};
+  std::ostringstream md;
+  md << "<!-- made by nmm-study" << (quick ? " --quick" : "") << " -->\n\n"
+     << "### joint_wave: the runs against the closed form\n\n"
+     << "| run | incident alone, RMS | incident + reflected, RMS | transmitted, RMS | "
+        "half-rise, ms (closed form) | half-rise error, ms | peak velocity, mm/s (closed form) | "
+        "peak velocity error |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  const std::vector<std::pair<double, std::string>> joints = {{1.37e9, "#1f77b4"},
+                                                             {5.48e9, "#d62728"}};
+  for (std::size_t j = 0; j < joints.size(); ++j)
+    for (double h : quick ? std::vector<double>{0.5} : std::vector<double>{0.5, 0.25}) {
+      nmm::reference::JointWaveSetup w;
+      w.kn = joints[j].first;
+      w.h = h;
+      const nmm::reference::JointWaveClosedForm cf(w);
+      const SceneDef s = nmm::reference::joint_wave_scene(w);
+      const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
+      const nmm::studies::JointWaveHistory hist = nmm::studies::run_joint_wave(m, s);
+      if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
+      const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
+      md << "| τ = " << num(1e3 * cf.tau(), "%.2g") << " ms (kn = " << num(1e-9 * w.kn, "%.3g")
+         << " GPa/m), h = " << num(h) << " m, Δt = " << num(1e6 * w.dt) << " µs | "
+         << num(100 * e.incident_rms, "%.2f") << " % | " << num(100 * e.before_rms, "%.2f") << " % | "
+         << num(100 * e.after_rms, "%.2f") << " % | "
+         << num(1e3 * (e.half_rise_exact + e.half_rise), "%.3f") << " ("
+         << num(1e3 * e.half_rise_exact, "%.3f") << ") | " << num(1e3 * e.half_rise, "%+.3f") << " | "
+         << num(1e3 * e.peak_velocity, "%.1f") << " (" << num(1e3 * e.peak_velocity_exact, "%.1f")
+         << ") | " << num(100 * e.peak_velocity_error(), "%+.2f") << " % |\n";
+      if (h != 0.5) continue;
+      const std::string tau = "τ = " + num(1e3 * cf.tau(), "%.2g") + " ms";
+      const std::string kn = "kn = " + num(1e-9 * w.kn, "%.3g") + " GPa/m";
+      auto add_point = [&](double x, const std::vector<double>& u, const std::string& where,
+                           const std::string& colour) {
+        nmm::PlotSeries run{"nmm, " + where + ", " + kn, {}, {}, colour, false, true};
+        nmm::PlotSeries exact{"closed form, " + where + ", " + tau, {}, {}, colour, true, false};
+        for (std::size_t k = 1; k < hist.time.size(); ++k) {
+          const double t = 0.5 * (hist.time[k] + hist.time[k - 1]);
+          if (t > cf.valid_until(x)) break;
+          if (k % 2 == 0) {
+            exact.x.push_back(1e3 * t);
+            exact.y.push_back(cf.velocity(x, t));
+          }
+          if (k % 8 == 0) {  // every 8th step: the dots stay apart
+            run.x.push_back(1e3 * t);
+            run.y.push_back((u[k] - u[k - 1]) / (hist.time[k] - hist.time[k - 1]));
+          }
+        }
+        spec.series.push_back(exact);
+        spec.series.push_back(run);
+      };
+      // Before the joint: the incident wave, the same for both joints, and the reflection off
+      // the softer one (drawn once).
+      if (j == 0)
+        add_point(w.before_x, hist.before, "x = " + num(w.before_x) + " m (incident, reflected)",
+                  "#7f7f7f");
+      add_point(w.after_x, hist.after, "x = " + num(w.after_x) + " m (transmitted)", joints[j].second);
+    }
+  nmm::write_svg_plot(spec, out + "/joint_wave.svg");
+  nmm::write_file_atomically(out + "/joint_wave_tables.md", md.str());
+}
+
+// ---- outputs -------------------------------------------------------------------------------
+std::string csv_text(const std::vector<Row>& rows) {
+  std::ostringstream os;
+  os << "case,setting,value,error,wall_seconds\n";
+  for (const Row& r : rows)
+    if (r.out.ok())
+      os << r.case_name << "," << r.setting << "," << num(r.value, "%.6g") << ","
+         << num(r.error(), "%.6e") << "," << num(r.wall(), "%.4f") << "\n";
+  return os.str();
+}
+
+std::string unit_of(const std::string& case_name) {
+  return case_name == "cantilever" ? "tip deflection, mm"
+         : case_name == "kirsch"        ? "σθ at the side wall, MPa"
+         : case_name == "sliding_block" ? "slide, m"
+         : case_name == "bandis_barton" ? "closure, mm"
+         : case_name == "tight_joint"   ? "shortening, mm"
+         : case_name == "joint_wave"    ? "peak particle velocity after the joint, mm/s"
+                                        : "slip, mm";
+}
+
+double shown(const std::string& case_name, double v) {
+  if (case_name == "kirsch") return 1e-6 * v;            // MPa
+  return case_name == "sliding_block" ? v : 1e3 * v;  // m for the slide, mm otherwise
+}
+
+// "costliest run (…) is more accurate than the cheapest (…): e1 % against e2 %."
+std::string judge(const Row& dear, const Row& cheap) {
+  const bool same = std::abs(dear.error() - cheap.error()) <= 1e-3 * cheap.error();
+  const bool better = !same && dear.error() < cheap.error();
+  return "costliest run (" + dear.value_text + ", " + num(dear.wall(), "%.3f") + " s) " +
+         (same ? "is **not** more accurate (equal within 0.1 % of the error)"
+               : better ? "**is** more accurate" : "is **not** more accurate") +
+         " than the cheapest (" + cheap.value_text + ", " + num(cheap.wall(), "%.3f") + " s): " +
+         num(100 * dear.error(), "%.3f") + " % against " + num(100 * cheap.error(), "%.3f") + " %.";
+}
+
+std::string tables_text(const std::vector<Row>& rows, bool quick) {
+  std::ostringstream md;
+  md << "<!-- made by nmm-study" << (quick ? " --quick" : "") << " -->\n";
+  std::vector<std::string> cases;
+  for (const Row& r : rows)
+    if (std::find(cases.begin(), cases.end(), r.case_name) == cases.end()) cases.push_back(r.case_name);
+  for (const std::string& c : cases) {
+    const Row* first = nullptr;
+    for (const Row& r : rows)
+      if (r.case_name == c) {
+        first = &r;
+        break;
+      }
+    md << "\n### " << c << "\n\nexact: " << num(shown(c, first->exact), "%.6g") << " ("
+       << unit_of(c) << ")\n\n"
+       << "| setting | run | " << unit_of(c) << " | "
+       << (c == "kirsch"       ? "hoop RMS error along the wall"
+           : c == "joint_wave" ? "transmitted u RMS error"
+                               : "signed error")
+       << " | wall s (mesh + run) | unknowns | steps | step cuts | contact solves |\n"
+       << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows) {
+      if (r.case_name != c) continue;
+      md << "| " << r.setting << " | " << r.value_text << " | ";
+      if (r.out.ok() && std::isfinite(r.out.own_error))
+        md << num(shown(c, r.out.computed), "%.6g") << " | " << num(100 * r.out.own_error, "%.3f") << " %";
+      else if (r.out.ok())
+        md << num(shown(c, r.out.computed), "%.6g") << " | "
+           << num(100 * (r.out.computed - r.exact) / std::abs(r.exact), "%+.3f") << " %";
+      else
+        md << (r.out.status == RunStatus::not_available ? "not available" : "did not complete") << " | –";
+      md << " | " << num(r.wall(), "%.4f") << " (" << num(r.out.mesh_seconds, "%.4f") << " + "
+         << num(r.out.run_seconds, "%.4f") << ") | " << r.out.unknowns << " | " << r.out.steps
+         << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
+    }
+    // Per sweep: does the costliest run beat the cheapest?
+    std::vector<std::string> sweeps;
+    for (const Row& r : rows)
+      if (r.case_name == c && std::find(sweeps.begin(), sweeps.end(), r.setting) == sweeps.end())
+        sweeps.push_back(r.setting);
+    md << "\n";
+    for (const std::string& sw : sweeps) {
+      const Row *cheap = nullptr, *dear = nullptr;
+      for (const Row& r : rows) {
+        if (r.case_name != c || r.setting != sw || !r.out.ok()) continue;
+        if (!cheap || r.wall() < cheap->wall()) cheap = &r;
+        if (!dear || r.wall() > dear->wall()) dear = &r;
+      }
+      if (!cheap || cheap == dear) continue;
+      if (dear->wall() < 1.25 * cheap->wall()) {
+        // Within timing noise (docs/accuracy.md): which run is "costliest" would be chance.
+        const Row* best = cheap;
+        for (const Row& r : rows)
+          if (r.case_name == c && r.setting == sw && r.out.ok() && r.error() < best->error()) best = &r;
+        md << "- " << sw << ": the cost does not depend on it (" << num(cheap->wall(), "%.3f")
+           << "–" << num(dear->wall(), "%.3f") << " s, within timing noise); the most accurate run is "
+           << best->value_text << ": " << num(100 * best->error(), "%.3f") << " %.\n";
+        continue;
+      }
+      md << "- " << sw << ": " << judge(*dear, *cheap) << "\n";
+    }
+    const Row *cheap = nullptr, *dear = nullptr;
+    for (const Row& r : rows) {
+      if (r.case_name != c || !r.out.ok()) continue;
+      if (!cheap || r.wall() < cheap->wall()) cheap = &r;
+      if (!dear || r.wall() > dear->wall()) dear = &r;
+    }
+    if (cheap && dear && cheap != dear && dear->wall() >= 1.25 * cheap->wall())
+      md << "- the whole case: " << judge(*dear, *cheap) << "\n";
+  }
+  std::ostringstream failed;
+  for (const Row& r : rows)
+    if (!r.out.ok())
+      failed << "| " << r.case_name << " | " << r.value_text << " | " << num(r.wall(), "%.3f")
+             << " | " << r.out.reason << " |\n";
+  md << "\n### Runs that did not complete (not in the CSV or the picture)\n\n";
+  if (failed.str().empty())
+    md << "None.\n";
+  else
+    md << "| case | run | wall s | reason |\n|---|---|---:|---|\n" << failed.str();
+  return md.str();
+}
+
+void write_plot(const std::vector<Row>& rows, const std::string& path) {
+  // One curve per case and swept setting, its points joined in the order the settings were run
+  // (cheapest first). The sweeps whose error does not move (the closure against Δt, the slip
+  // against settling time past a few steps) stay in the tables and the CSV only.
+  const std::vector<std::pair<std::pair<std::string, std::string>, std::string>> curves = {
+      {{"cantilever", "mesh_size"}, "cantilever h"},
+      {{"cantilever", "mesh_size_n1"}, "cantilever h, n = 1"},
+      {{"cantilever", "mesh_size_n2"}, "cantilever h, n = 2"},
+      {{"kirsch", "mesh_size"}, "Kirsch h"},
+      {{"kirsch", "mesh_size_n1"}, "Kirsch h, n = 1"},
+      {{"kirsch", "mesh_size_n2"}, "Kirsch h, n = 2"},
+      {{"sliding_block", "cover_order"}, "block n = 0, 1, 2"},
+      {{"sliding_block", "time_step"}, "block Δt"},
+      {{"sliding_block", "penalty"}, "block kn"},
+      {{"sliding_block", "contact_tolerance"}, "block τ"},
+      {{"bandis_barton", "mesh_size"}, "closure h"},
+      {{"bandis_barton", "settling_time"}, "closure t"},
+      {{"hyperbolic_shear", "mesh_size"}, "shear h"},
+      {{"bandis_barton", "contact_model"}, "closure model"},
+      {{"hyperbolic_shear", "contact_model"}, "shear model"},
+      {{"tight_joint", "penalty"}, "tight joint kn"},
+      {{"joint_wave", "mesh_size"}, "joint wave h"},
+      {{"joint_wave", "time_step"}, "joint wave Δt"},
+  };
+  const std::vector<std::string> colours = {"#1f77b4", "#393b79", "#6b6ecf", "#d62728", "#ff7f0e",
+                                            "#2ca02c", "#9467bd", "#17becf", "#8c564b", "#e377c2",
+                                            "#7f7f7f", "#bcbd22", "#e7ba52", "#ad494a",
+                                            "#637939", "#000000", "#c51b8a", "#fd8d3c"};
+  nmm::PlotSpec spec{"Error against wall time, cheapest setting first",
+                     "wall time, s (log)", "relative error (log)", true, true, {}};
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    nmm::PlotSeries ser{curves[i].second, {}, {}, colours[i % colours.size()], true, true};
+    for (const Row& r : rows)
+      if (r.out.ok() && r.case_name == curves[i].first.first && r.setting == curves[i].first.second) {
+        ser.x.push_back(r.wall());
+        ser.y.push_back(r.error());
+      }
+    if (!ser.x.empty()) spec.series.push_back(ser);
+  }
+  nmm::write_svg_plot(spec, path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"nmm-study: accuracy against run time on reference problems with known answers"};
+  std::string out, data = "data";
+  bool quick = false;
+  app.add_option("outdir", out, "folder for accuracy_time.csv, accuracy_time.svg, accuracy_tables.md")
+      ->required();
+  app.add_option("--data", data, "folder holding single_joint.json");
+  app.add_flag("--quick", quick, "fewer settings (under a minute, for tests)");
+  std::vector<std::string> only;
+  app.add_option("--only", only,
+                 "run only these cases (cantilever, kirsch, sliding_block, bandis_barton, "
+                 "hyperbolic_shear, tight_joint, joint_wave)");
+  if (const int status = nmm::parse_command_line(app, argc, argv, "nmm-study"); status >= 0)
+    return status;
+  try {
+    nmm::prepare_output_folder(out);  // fails early on a bad folder
+    const SceneDef joint = single_joint_scene(data + "/single_joint.json");
+
+    std::vector<Row> rows;
+    auto add = [&rows](Row r) {
+      std::fprintf(stderr, "%-16s %-14s %-52s %s  %.3f s\n", r.case_name.c_str(), r.setting.c_str(),
+                   r.value_text.c_str(),
+                   r.out.ok() ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason.c_str(),
+                   r.wall());
+      rows.push_back(std::move(r));
+    };
+
+    auto want = [&only](const char* c) {
+      return only.empty() || std::find(only.begin(), only.end(), c) != only.end();
+    };
+    using V = std::vector<double>;
+    if (want("cantilever")) {
+      for (double h : quick ? V{0.5, 0.25, 0.125} : V{0.5, 0.25, 0.125, 0.0625, 0.03125, 0.015625})
+        add(cantilever(h));
+      // The order axis: linear (n = 1) and quadratic (n = 2) cover functions on the same meshes.
+      for (double h : quick ? V{0.5, 0.25} : V{0.5, 0.25, 0.125, 0.0625}) add(cantilever(h, 1));
+      for (double h : quick ? V{0.5} : V{0.5, 0.25, 0.125}) add(cantilever(h, 2));
+    }
+    if (want("kirsch")) {
+      for (double h : quick ? V{0.4} : V{0.4, 0.2, 0.1}) add(kirsch(h, 0));
+      for (double h : quick ? V{0.4} : V{0.4, 0.3, 0.2, 0.15}) add(kirsch(h, 1));
+      for (double h : quick ? V{} : V{0.4, 0.3}) add(kirsch(h, 2));
+    }
+
+    if (want("sliding_block")) {
+      for (double dt : quick ? V{4e-3, 2e-3, 1e-3} : V{8e-3, 4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4})
+        add(sliding_block("time_step", dt, 20));
+      for (double k : quick ? V{10, 20, 50} : V{5, 10, 20, 50, 100})
+        add(sliding_block("penalty", 1e-3, k));
+      // The order axis on a joint case: the same block at n = 0, 1, 2 (h = 0.5, Δt = 1 ms).
+      for (int n : quick ? std::vector<int>{1} : std::vector<int>{0, 1, 2})
+        add(sliding_block("cover_order", 1e-3, 20, n));
+      // The contact solve's force tolerance (solver.contact_tolerance; docs/contact.md).
+      for (double tau : quick ? V{1e-3, 1e-5} : V{1e-3, 1e-4, 1e-5, 1e-6, 1e-8, 1e-10})
+        add(sliding_block("contact_tolerance", 1e-3, 20, 0, tau));
+    }
+
+    const double dt0 = joint.solver.time_step, h0 = joint.mesh_size;
+    if (want("bandis_barton")) {
+      for (double h : quick ? V{0.5, 0.25} : V{0.5, 0.25, 0.125, 0.0625})
+        add(bandis_barton(joint, "mesh_size", h, dt0, 0.3));
+      for (double t : quick ? V{0.002, 0.01, 0.1} : V{0.001, 0.002, 0.003, 0.005, 0.01, 0.03, 0.1, 0.3})
+        add(bandis_barton(joint, "settling_time", h0, dt0, t));
+      for (double dt : quick ? V{} : V{4e-3, 2e-3, 1e-3, 5e-4})
+        add(bandis_barton(joint, "time_step", h0, dt, 0.3));
+    }
+    if (want("hyperbolic_shear")) {
+      for (double h : quick ? V{0.5, 0.25, 0.125} : V{0.5, 0.25, 0.125, 0.0625})
+        add(hyperbolic_shear(joint, "mesh_size", h, 0.4));
+      for (double t : quick ? V{} : V{0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.4})
+        add(hyperbolic_shear(joint, "settling_time", h0, t));
+    }
+
+    // The seed paper's point: constant springs against the joint laws, on the same mesh.
+    for (bool law : {false, true}) {
+      if (want("bandis_barton")) add(bandis_barton(joint, "contact_model", h0, dt0, 0.3, law));
+      if (want("hyperbolic_shear")) add(hyperbolic_shear(joint, "contact_model", h0, 0.4, law));
+    }
+    if (want("tight_joint"))
+      for (double k : quick ? V{1, 20, 1000} : V{1, 5, 20, 100, 1000, 1e4}) add(tight_joint(joint, k));
+
+    if (want("joint_wave")) {
+      for (double h : quick ? V{0.5} : V{1, 0.5, 0.25}) add(joint_wave("mesh_size", h, 2.5e-5));
+      for (double dt : quick ? V{} : V{1e-4, 5e-5, 2.5e-5, 1.25e-5}) add(joint_wave("time_step", 0.5, dt));
+      write_wave_outputs(out, quick);
+    }
+
+    nmm::write_file_atomically(out + "/accuracy_time.csv", csv_text(rows));
+    write_plot(rows, out + "/accuracy_time.svg");
+    const std::string md = tables_text(rows, quick);
+    nmm::write_file_atomically(out + "/accuracy_tables.md", md);
+    std::cout << md;
+  } catch (const nmm::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return nmm::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "nmm-study: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
