@@ -49,7 +49,7 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size) {
   for (int k = 1; k <= steps; ++k) {
     const nmm::Stopwatch w0;
     const double c0 = nmm::bench::thread_cpu_seconds();
-    const std::string status = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
+    const nmm::Outcome ran = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
     const double ms = 1e3 * w0.seconds(), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
     const nmm::solve::ContactSolveStats& b = st.view().contact_solve;
     const nmm::solve::StepTimings& tb = st.view().timings;
@@ -60,8 +60,8 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size) {
                 1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms,
                 st.view().system.analyses() - analyses);
     std::fflush(stdout);
-    if (status != "ok") {
-      std::printf("# stopped: %s\n", status.c_str());
+    if (!ran.ok()) {
+      std::printf("# stopped: %s\n", ran.reason.c_str());
       return 1;
     }
     if (k == 1 || k == steps)
@@ -117,7 +117,7 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
       // time (what more threads save: their work is not this thread's CPU time).
       const double c0 = nmm::bench::thread_cpu_seconds();
       const auto w0 = std::chrono::steady_clock::now();
-      const std::string status = st.run_until(steps * s.solver.time_step, [&](std::int64_t) { ++done; });
+      const nmm::Outcome ran = st.run_until(steps * s.solver.time_step, [&](std::int64_t) { ++done; });
       const double cpu = nmm::bench::thread_cpu_seconds() - c0;
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
       const nmm::solve::ContactSolveStats& cs = st.view().contact_solve;
@@ -130,7 +130,7 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
                     static_cast<double>(cs.newton) * per, static_cast<double>(cs.factorisations) * per,
                     static_cast<double>(cs.cg_iterations) * per, static_cast<double>(cs.strength_updates) * per,
                     1e3 * st.view().timings.contact_detection * per, 1e3 * cs.factorisation_seconds * per,
-                    1e3 * cs.cg_seconds * per, st.view().state.cuts, status == "ok" ? "ok" : status.c_str(),
+                    1e3 * cs.cg_seconds * per, st.view().state.cuts, ran.status().c_str(),
                     nmm::bench::load_average(),
                     st.view().threads, 1e3 * wall * per, 1e3 * cs.line_search_seconds * per,
                     1e3 * tm.assembly * per, 1e3 * tm.geometry_update * per, st.view().system.analyses());
@@ -179,14 +179,14 @@ int main(int argc, char** argv) {
       const nmm::SceneDef s = nmm::reference::brick_wall(n, dynamic);
       const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
       nmm::solve::TimeStepper st(m, s, "bench");
-      std::string status = st.run_until(5e-3, [](std::int64_t) {});
+      nmm::Outcome ran = st.run_until(5e-3, [](std::int64_t) {});
       const nmm::solve::StepTimings t0 = st.view().timings;
       const std::size_t it0 = st.view().state.iterations, cuts0 = st.view().state.cuts;
       std::int64_t steps = 0;
       const double timed = n > 30 ? 10e-3 : 20e-3;
       const nmm::Stopwatch w0;
       const double c0 = nmm::bench::thread_cpu_seconds();
-      if (status == "ok") status = st.run_until(5e-3 + timed, [&](std::int64_t) { ++steps; });
+      if (ran.ok()) ran = st.run_until(5e-3 + timed, [&](std::int64_t) { ++steps; });
       const double wall = w0.seconds(), cpu = nmm::bench::thread_cpu_seconds() - c0;
       const nmm::solve::StepTimings& t1 = st.view().timings;
       const double per = 1.0 / static_cast<double>(std::max<std::int64_t>(steps, 1));
@@ -202,7 +202,7 @@ int main(int argc, char** argv) {
                     static_cast<double>(st.view().state.iterations - it0) * per,
                     static_cast<double>(t1.factorisations - t0.factorisations) * per,
                     static_cast<double>(t1.solves_count - t0.solves_count) * per,
-                    st.view().state.cuts - cuts0, status == "ok" ? "ok" : status.c_str(), cpu * k,
+                    st.view().state.cuts - cuts0, ran.status().c_str(), cpu * k,
                     nmm::bench::load_average());
       csv << line;
       std::fputs(line, stdout);

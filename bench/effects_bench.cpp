@@ -152,9 +152,9 @@ class Timed {
       for (int i = 0; i < n; ++i) st_.step(dt);
       return true;
     }
-    const std::string why = st_.run_until(st_.view().state.time + n * dt, [](std::int64_t) {});
-    if (why != "ok") r_.status = "stopped: " + why.substr(0, 60);
-    return why == "ok";
+    const nmm::Outcome ran = st_.run_until(st_.view().state.time + n * dt, [](std::int64_t) {});
+    if (!ran.ok()) r_.status = "stopped: " + ran.reason.substr(0, 60);
+    return ran.ok();
   }
   nmm::SceneDef scene_;
   nmm::Mesh mesh_;

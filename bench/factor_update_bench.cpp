@@ -293,9 +293,9 @@ int main(int argc, char** argv) {
       int pairs = 0, worst = 0, cg_failed = 0;
       double err = 0;
       for (int k = 1; k <= steps; ++k) {
-        const std::string status = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
-        if (status != "ok") {
-          std::fprintf(stderr, "wall %d: %s\n", n, status.c_str());
+        const nmm::Outcome ran = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
+        if (!ran.ok()) {
+          std::fprintf(stderr, "wall %d: %s\n", n, ran.reason.c_str());
           break;
         }
         Springs now = springs_of(st.view().contacts);

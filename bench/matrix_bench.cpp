@@ -130,8 +130,8 @@ int main(int argc, char** argv) {
     const nmm::Mesh wm = nmm::pre::build_mesh(wall, "wall");
     nmm::solve::TimeStepper st(wm, wall, "wall");
     st.set_threads(1);
-    const std::string status = st.run_until(3e-3, [](std::int64_t) {});
-    if (status != "ok") std::fprintf(stderr, "wall %d: %s\n", n, status.c_str());
+    const nmm::Outcome ran = st.run_until(3e-3, [](std::int64_t) {});
+    if (!ran.ok()) std::fprintf(stderr, "wall %d: %s\n", n, ran.reason.c_str());
     const Sparse wall_matrix = st.view().system.matrix();
     const int unknowns = st.view().space.unknowns();
 

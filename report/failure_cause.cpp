@@ -9,17 +9,18 @@
 
 namespace nmm::report {
 
-RunEnd run_end(const std::string& status) {
-  if (status.empty()) return RunEnd::unknown;
-  if (status == "ok") return RunEnd::ok;
-  if (status == "interrupted") return RunEnd::interrupted;
-  if (status.rfind("step ", 0) == 0) return RunEnd::frame;
-  return RunEnd::failed;
+Outcome run_outcome(const nlohmann::json& summary) {
+  Outcome o;
+  o.reason = summary.value("status", std::string("unknown"));
+  o.time = summary.value("stop_time", summary.value("simulated_time", 0.0));
+  if (!stop_code_from_name(summary.value("stop_code", std::string()), o.code))
+    o.code = o.reason == "ok" ? StopCode::ok : o.reason == "interrupted" ? StopCode::interrupted : StopCode::failed;
+  if (!o.failed()) o.reason.clear();
+  return o;
 }
 
-std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const std::string& status) {
-  if (!status_is_failure(status)) return "";
-  auto has = [&](const char* s) { return status.find(s) != std::string::npos; };
+std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, StopCode code) {
+  if (code == StopCode::ok || code == StopCode::interrupted) return "";
 
   // The body the mesh is coarsest against (largest mesh size / inradius above 1).
   double worst = 1;
@@ -42,14 +43,14 @@ std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const 
            "whose corners jump from step to step. Cut the scene again with mesh.size at most " +
            format_rough(0.5 * r, 2) + " m.";
   }
-  if (has("a step may move") || has("penetrated"))
+  if (code == StopCode::step_displacement || code == StopCode::penetration)
     return "a block moved farther in one step than contacts can follow: a block falling or "
            "flying off (hold the model with supports or fixed points), or solver.time_step too "
            "long for the joint stiffness (try a smaller one).";
-  if (has("did not converge"))
+  if (code == StopCode::contact_not_converged)
     return "contacts keep changing state: try a smaller solver.time_step, a lower "
            "max_displacement_ratio or a softer penalty (joint_sets.NAME.normal.kn).";
-  if (has("positive definite") || has("unconstrained"))
+  if (code == StopCode::unconstrained)
     return "a block is held by nothing: give it fixed points or supports, or run dynamic.";
   return "";
 }

@@ -14,26 +14,21 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "common/mesh.h"
+#include "common/outcome.h"
 #include "common/scene.h"
 
 namespace nmm::report {
 
-/// How a run ended, read from its status (summary.json's "status", the stepper's result): the
-/// status is text for the files and the user, this is what code branches on.
-enum class RunEnd {
-  unknown,      ///< no status
-  ok,           ///< "ok": reached its end
-  interrupted,  ///< "interrupted": Ctrl-C, results kept
-  frame,        ///< "step N": a frame before the end (nmm-report --frame)
-  failed,       ///< any other status: the failure's reason
-};
-RunEnd run_end(const std::string& status);
+/// How a finished run ended, from its summary.json: its "stop_code", with "stop_time" and
+/// "status" (an older summary without stop_code: ok and interrupted by their status, any other
+/// status failed; no status: failed, "unknown").
+Outcome run_outcome(const nlohmann::json& summary);
 
-/// False for statuses of runs that did not stop on a failure, true for every other status.
-inline bool status_is_failure(const std::string& status) { return run_end(status) == RunEnd::failed; }
-
-/// The likely cause of a stopped run, one or two sentences; "" when the status is no failure.
-std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, const std::string& status);
+/// The likely cause of a run stopped by `code`, one or two sentences; "" when the code is no
+/// failure or has no likely cause to name.
+std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, StopCode code);
 
 }  // namespace nmm::report

@@ -332,7 +332,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
            label_font, "#000000");
 
   // Title and legend above the model; a failure's reason under the scale bar, wrapped.
-  const bool failed = status_is_failure(state.status);
+  const bool failed = state.stop != StopCode::ok && state.stop != StopCode::interrupted;
   const std::string status_word = state.status.empty() ? "ok"
                                   : failed             ? "stopped, reason below"
                                                        : state.status;
@@ -356,7 +356,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     const std::size_t n = svg.text_block({ax_x, y}, "stopped: " + state.status, reason_font,
                                          "#b00000", width);
     y -= 1.3 * reason_font * static_cast<double>(n) + 0.4 * reason_font;
-    const std::string cause = likely_failure_cause(mesh, scene, state.status);
+    const std::string cause = likely_failure_cause(mesh, scene, state.stop);
     if (!cause.empty())
       svg.text_block({ax_x, y}, "likely cause: " + cause, reason_font, "#202020", width);
   }

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "common/mesh.h"
+#include "common/outcome.h"
 #include "common/scene.h"
 
 namespace nmm::report {
@@ -56,7 +57,10 @@ struct PictureContact {
 
 struct PictureState {
   double time = 0;                      ///< s, simulated time of the state
-  std::string status;                   ///< run status ("ok", "interrupted", ...), shown in title
+  std::string status;                   ///< run status ("ok", "interrupted", "step 30", or a
+                                        ///< stopped run's reason), shown in the title
+  StopCode stop = StopCode::ok;         ///< how the run ended, where this is its last state: a
+                                        ///< failure draws `status` as the reason, and its likely cause
   const std::vector<double>* loop_xy;   ///< [2·v] m, current loop vertex positions
   const std::vector<double>* stress;    ///< [3·me] Pa, σxx σyy σxy (tension positive)
   std::vector<PictureContact> contacts;

@@ -8,6 +8,8 @@
 // - A chosen step must have a frame; the error lists the first and last steps that do.
 #include "report/result_redraw.h"
 
+#include "report/failure_cause.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -143,8 +145,9 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
 
   PictureState state;
   state.time = time;
-  state.status = pick + 1 == frames.size() ? summary.value("status", std::string("unknown"))
-                                           : "step " + std::to_string(step);
+  const bool last = pick + 1 == frames.size();
+  state.status = last ? summary.value("status", std::string("unknown")) : "step " + std::to_string(step);
+  if (last) state.stop = run_outcome(summary).code;  // an earlier frame is no stop
   state.loop_xy = &loop_xy;
   state.stress = &stress;
   // Bodies excavated by this frame's step (summary.json "excavated_bodies", cumulative across

@@ -274,15 +274,15 @@ ReportFiles make_run_report(const std::string& dir) {
       "td.n{text-align:right;white-space:nowrap}th.group{background:#eee}th.sub{padding-left:1.5em}"
       ".bad{color:#b00;font-weight:bold}.ok{color:#070;font-weight:bold}</style></head><body>\n";
   const std::string status = summary.value("status", std::string("unknown"));
-  const RunEnd end = run_end(status);
-  const bool finished = end == RunEnd::ok;
+  const Outcome outcome = run_outcome(summary);
+  const bool finished = outcome.ok();
   auto number_at = [&](const char* key) {
     const auto it = summary.find(key);
     return it != summary.end() && it->is_number() ? it->get<double>() : 0.0;
   };
   html += "<h1>nmm run report</h1>\n<p>status: <span class=\"" +
           std::string(finished ? "ok" : "bad") + "\">" +
-          (finished || end == RunEnd::interrupted ? xml_escape(status) : std::string("stopped")) +
+          (outcome.failed() ? std::string("stopped") : xml_escape(status)) +
           "</span>, simulated time " + format_engineering(number_at("simulated_time"), "s") +
           " in " + summary_cell(summary.value("steps_completed", nlohmann::json(0)), "").first +
           " steps, wall " + format_engineering(number_at("wall_seconds"), "s") + "</p>\n";
@@ -301,14 +301,14 @@ ReportFiles make_run_report(const std::string& dir) {
                            : "max unbalanced force ratio " + std::string(ratio)) +
               ")</p>\n";
   }
-  if (status_is_failure(status)) {
+  if (outcome.failed()) {
     html += "<p class=\"bad\">" + xml_escape(status) + "</p>\n";
     // The likely cause needs the run's mesh and scene; a folder whose mesh has moved gets the
     // reason alone.
     std::string cause;
     try {
       const RunInputs in = load_run_inputs(dir, "");
-      cause = likely_failure_cause(in.mesh, in.scene, status);
+      cause = likely_failure_cause(in.mesh, in.scene, outcome.code);
     } catch (const InputError&) {
     }
     if (!cause.empty()) html += "<p>likely cause: " + xml_escape(cause) + "</p>\n";

@@ -45,8 +45,8 @@ DirectShearRun run_direct_shear(const Mesh& mesh, const SceneDef& scene, int ste
   run.samples.push_back(read(st));
   const double dt = scene.solver.time_step;
   for (int n = every; n <= steps; n += every) {
-    run.status = st.run_until(n * dt, [](std::int64_t) {});
-    if (run.status != "ok") return run;
+    run.outcome = st.run_until(n * dt, [](std::int64_t) {});
+    if (!run.outcome.ok()) return run;
     run.samples.push_back(read(st));
   }
   return run;

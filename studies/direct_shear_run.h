@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/outcome.h"
 #include "common/mesh.h"
 #include "common/scene.h"
 
@@ -27,7 +28,7 @@ struct DirectShearSample {
 
 struct DirectShearRun {
   std::vector<DirectShearSample> samples;  ///< at every `every` steps' time, the first at t = 0
-  std::string status;                      ///< "ok" or why the run stopped
+  Outcome outcome;                         ///< how the run ended
 };
 
 /// Runs the scene (1 ms steps) for `steps` steps, reading it every `every` steps.

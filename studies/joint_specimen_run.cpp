@@ -10,7 +10,7 @@ namespace nmm::studies {
 JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, double seconds) {
   solve::TimeStepper st(mesh, scene, "single joint");
   JointSpecimenResult r;
-  r.status = st.run_until(seconds, [](std::int64_t) {});
+  r.outcome = st.run_until(seconds, [](std::int64_t) {});
   const auto a = st.view().state.measure[0].displacement();
   const auto b = st.view().state.measure[1].displacement();
   r.closure = b[1] - a[1];
@@ -26,7 +26,7 @@ JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, 
 }
 
 std::vector<double> run_closure_cycles(const Mesh& mesh, SceneDef scene,
-                                       const std::vector<double>& targets, std::string* status) {
+                                       const std::vector<double>& targets, Outcome* outcome) {
   const double top = *std::max_element(targets.begin(), targets.end());
   TimeTable cycles;
   cycles.time = {0};
@@ -39,8 +39,8 @@ std::vector<double> run_closure_cycles(const Mesh& mesh, SceneDef scene,
   solve::TimeStepper st(mesh, scene, "closure cycles");
   std::vector<double> closure;
   for (std::size_t k = 0; k < targets.size(); ++k) {
-    *status = st.run_until(0.15 * static_cast<double>(k) + 0.15, [](std::int64_t) {});
-    if (*status != "ok") return {};
+    *outcome = st.run_until(0.15 * static_cast<double>(k) + 0.15, [](std::int64_t) {});
+    if (!outcome->ok()) return {};
     const auto a = st.view().state.measure[0].displacement();
     const auto b = st.view().state.measure[1].displacement();
     closure.push_back(b[1] - a[1]);

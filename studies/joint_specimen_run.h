@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/outcome.h"
 #include "reference/joint_specimen.h"
 #include "common/mesh.h"
 #include "common/scene.h"
@@ -17,7 +18,7 @@ struct JointSpecimenResult {
   double slip = 0;     ///< m, horizontal jump (above − below)
   double normal_stress = 0;  ///< Pa, mean effective normal stress over the 2 m joint (Σ N / 2 m)
   double travel = 0;   ///< m, the largest shear travel a closed contact remembers (Barton–Bandis)
-  std::string status;  ///< "ok" or why the run stopped
+  Outcome outcome;  ///< how the run ended
 };
 
 /// Runs the loaded specimen for `seconds` and reads the jumps between measure points 0 (above)
@@ -27,8 +28,8 @@ JointSpecimenResult run_joint_specimen(const Mesh& mesh, const SceneDef& scene, 
 /// Load cycles: the specimen's top loads (`scene`'s, which must be the specimen loaded to
 /// σ_top = max of `targets`) scaled by a time table to each normal stress of `targets` (Pa) in
 /// turn — a 50 ms ramp, then a 100 ms hold — and the closure (m) read at the end of each hold.
-/// Empty on a run that stops (the status in *status).
+/// Empty on a run that stops (how, in *outcome).
 std::vector<double> run_closure_cycles(const Mesh& mesh, SceneDef scene,
-                                       const std::vector<double>& targets, std::string* status);
+                                       const std::vector<double>& targets, Outcome* outcome);
 
 }  // namespace nmm::studies

@@ -23,7 +23,7 @@ JointWaveHistory run_joint_wave(solve::TimeStepper& st, const SceneDef& scene,
   };
   sample();
   const double t_end = static_cast<double>(scene.solver.steps) * scene.solver.time_step;
-  h.status = st.run_until(t_end * (1 - 1e-12), [&](std::int64_t n) {
+  h.outcome = st.run_until(t_end * (1 - 1e-12), [&](std::int64_t n) {
     sample();
     on_step(n);
   });

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/outcome.h"
 #include "common/mesh.h"
 #include "common/scene.h"
 #include "reference/wave_bar.h"
@@ -30,7 +31,7 @@ struct JointWaveHistory {
   std::vector<double> time;    ///< s
   std::vector<double> before;  ///< m, u_x at measure point 0
   std::vector<double> after;   ///< m, u_x at measure point 1
-  std::string status;          ///< "ok" or why the run stopped
+  Outcome outcome;             ///< how the run ended
 };
 
 /// Runs the scene (from reference::joint_wave_scene or the data file) on its mesh to its last step.

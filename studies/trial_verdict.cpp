@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "report/failure_cause.h"
 #include "common/error.h"
 #include "studies/frame_reader.h"
 
@@ -90,22 +91,23 @@ Watch parse_watch(const std::string& word) {
 
 TrialVerdict judge_trial(const std::string& out_dir, int exit_status, const VerdictCriterion& c) {
   TrialVerdict v;
-  std::string status = "ok";
+  std::string stopped;  // why the trial's run stopped ("" when it ended ok)
   {
     std::ifstream in(fs::path(out_dir) / "summary.json");
     if (in) {
       try {
-        status = nlohmann::json::parse(in).value("status", std::string("ok"));
+        const Outcome ended = report::run_outcome(nlohmann::json::parse(in));
+        if (!ended.ok()) stopped = ended.status();
       } catch (const nlohmann::json::exception&) {
-        status = "unreadable summary.json";
+        stopped = "unreadable summary.json";
       }
     } else if (exit_status != 0) {
-      status = "no summary.json";
+      stopped = "no summary.json";
     }
   }
-  if (exit_status != 0 || status != "ok") {
+  if (exit_status != 0 || !stopped.empty()) {
     v.failing = true;
-    v.reason = "run stopped: " + status;
+    v.reason = "run stopped: " + (stopped.empty() ? "exit status " + std::to_string(exit_status) : stopped);
   }
   bool non_finite = false;
   std::map<std::string, std::vector<Row>> series;

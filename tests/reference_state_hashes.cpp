@@ -42,14 +42,14 @@ using nmm::SceneDef;
 void run(const std::string& name, const SceneDef& s, int steps) {
   const nmm::Mesh m = nmm::pre::build_mesh(s, name);
   nmm::solve::TimeStepper st(m, s, name);
-  std::string status = "ok";
+  nmm::Outcome status;
   if (!s.solver.dynamic && s.solver.static_mode == nmm::StaticMode::equilibrium) {
     for (int i = 0; i < steps; ++i) st.step(1.0);
   } else {
     status = st.run_until(steps * s.solver.time_step, [](std::int64_t) {});
   }
   std::printf("reference.%s %d %s%s%s\n", name.c_str(), steps, state_hash(st.view()).c_str(),
-              status == "ok" ? "" : " ", status == "ok" ? "" : status.c_str());
+              status.ok() ? "" : " ", status.ok() ? "" : status.status().c_str());
   // Figures: the measure points' displacements, then the largest displacement of an element
   // vertex (m; every problem has one, measure points or not).
   std::printf("figures reference.%s", name.c_str());

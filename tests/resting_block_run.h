@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
 #include "solver/output/energy.h"
 #include "reference/scene_pieces.h"
@@ -21,7 +22,7 @@
 namespace nmm::test {
 
 struct RestingBlockRun {
-  std::string status;        ///< the run's status ("ok")
+  Outcome status;        ///< the run's status ("ok")
   double kinetic_max = 0;    ///< J/m, largest kinetic energy over the 2 s
   double kinetic_late = 0;   ///< J/m, largest after t = 1 s
   double weight_height = 0;  ///< J/m, the block's weight times its height (m·g·1 m)
@@ -55,7 +56,7 @@ inline RestingBlockRun resting_block_two_seconds(int order) {
 
 /// What the run must show at any order, with `label` naming it in the printed line.
 inline void expect_resting_block_at_rest(const RestingBlockRun& r, const char* label) {
-  ASSERT_EQ(r.status, "ok");
+  ASSERT_PRED1(test::ended_ok, r.status);
   std::printf("%sresting block, 2 s: largest kinetic energy %.3e J/m (after 1 s %.3e), moved %.3e, %.3e m, "
               "Σ N / weight %.6f\n",
               label, r.kinetic_max, r.kinetic_late, r.moved[0], r.moved[1], r.normal_force_sum / r.weight);

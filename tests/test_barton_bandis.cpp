@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "tests/ended_ok.h"
 #include "common/error.h"
 #include "solver/contact/barton_bandis.h"
 #include "solver/contact/contact_history.h"
@@ -296,7 +297,7 @@ TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
   for (double frac : {0.6, 0.9}) {
     const Rest want = rest_of(sn, frac * tau_p, 0);
     const studies::JointSpecimenResult r = shear(sn, frac * tau_p, 0, 2.0);
-    ASSERT_EQ(r.status, "ok");
+    ASSERT_PRED1(test::ended_ok, r.outcome);
     const double opening = sn / 1e12 - r.closure;  // net of the springs' 1 µm closure
     std::printf("CNL τ = %.0f %% τp: travel %.4f mm (Barton %.4f), slip %.4f mm, opening %.4f mm "
                 "(Barton %.4f), σn %.4f MPa\n", 100 * frac, r.travel * 1e3, want.travel * 1e3,
@@ -324,7 +325,7 @@ TEST(BartonBandisSolver, PeakStrengthAtThreeNormalStresses) {
     const double tau_p = sn * std::tan(rad(phi_r + kJrc * std::log10(kJcs / sn)));
     const Rest want = rest_of(sn, 0.99 * tau_p, 0, phi_r);
     const studies::JointSpecimenResult r = shear(sn, 0.99 * tau_p, 0, 2.0, phi_r);
-    ASSERT_EQ(r.status, "ok");
+    ASSERT_PRED1(test::ended_ok, r.outcome);
     const double opening = sn / 1e12 - r.closure;  // net of the springs' closure
     const studies::JointSpecimenResult a = shear(sn, 1.01 * tau_p, 0, 1.0, phi_r);
     const studies::JointSpecimenResult b = shear(sn, 1.01 * tau_p, 0, 1.5, phi_r);
@@ -350,11 +351,11 @@ TEST(BartonBandisSolver, ShearAgainstConstantNormalStiffness) {
   const double sn = 1e6, k_springs = 5e9, tau_p = sn * std::tan(rad(kPhiR + kJrc * 2));
   const double k = 1 / (1 / k_springs + 1.98 / 5e11);
   const studies::JointSpecimenResult at0 = shear(sn, 0, k_springs, 0.5);  // normal load only: what the springs leave the joint
-  ASSERT_EQ(at0.status, "ok");
+  ASSERT_PRED1(test::ended_ok, at0.outcome);
   const double tau = 0.9 * tau_p;
   const Rest want = rest_of(at0.normal_stress, tau, k);
   const studies::JointSpecimenResult r = shear(sn, tau, k_springs, 2.0);
-  ASSERT_EQ(r.status, "ok");
+  ASSERT_PRED1(test::ended_ok, r.outcome);
   const double dv = at0.closure - r.closure;  // the opening the shear added
   std::printf("CNS k = %.0e Pa/m, τ = 90 %% τp: σn %.4f -> %.4f MPa (k·Δv %.4f MPa; Barton %.4f), "
               "travel %.4f mm (Barton %.4f), Δv %.4f mm (Barton %.4f)\n", k, at0.normal_stress / 1e6,
@@ -403,7 +404,7 @@ TEST(BartonBandisSolver, ClosureHysteresisThroughTheSolver) {
     unload.value = {1.0, 0.4};
     s.load_tables.assign(s.loads.size(), unload);
     const studies::JointSpecimenResult r = studies::run_joint_specimen(pre::build_mesh(s, "hysteresis"), s, 0.7);
-    EXPECT_EQ(r.status, "ok");
+    EXPECT_PRED1(test::ended_ok, r.outcome);
     return r.closure;
   };
   const double dmax = s1 * vm / (kni * vm + s1), kt = kni / std::pow(1 - dmax / vm, 2);
@@ -426,7 +427,7 @@ TEST(BartonBandisSolver, RestartCarriesTheJointMemoryBitwise) {
   s.joint_sets[0].normal.hysteresis = true;
   const Mesh m = pre::build_mesh(s, "restart");
   auto advance = [](TimeStepper& st, int steps) {
-    for (int n = 0; n < steps; ++n) ASSERT_EQ(st.attempt(1e-3), "") << "step " << n;
+    for (int n = 0; n < steps; ++n) ASSERT_PRED1(test::ended_ok, st.attempt(1e-3)) << "step " << n;
   };
   TimeStepper straight(m, s, "restart"), first(m, s, "restart"), second(m, s, "restart");
   advance(straight, 120);
@@ -498,7 +499,7 @@ TEST(BartonBandisSolver, DirectShearUnderDisplacementControl) {
     const SceneDef s = reference::direct_shear_scene(js, sn, dp / 0.25);
     const studies::DirectShearRun run =
         studies::run_direct_shear(pre::build_mesh(s, "direct shear"), s, 2500, 1);
-    ASSERT_EQ(run.status, "ok");
+    ASSERT_PRED1(test::ended_ok, run.outcome);
     const auto& v = run.samples;
     // The peak: the largest shear stress, and the slip where it stands.
     std::size_t k = 0;
@@ -574,7 +575,7 @@ TEST(BartonBandisSolver, DirectShearReversedThroughTheStart) {
     s.supports.back().table.time = {0, t1, t1 + dt};
     s.supports.back().table.value = {1, 1, -1};
     const studies::DirectShearRun run = studies::run_direct_shear(pre::build_mesh(s, "reversed shear"), s, steps, 1);
-    ASSERT_EQ(run.status, "ok");
+    ASSERT_PRED1(test::ended_ok, run.outcome);
     const auto& w = run.samples;
     // The path's travel at each reading: Σ|Δslip|; the reversal where the slip is largest.
     std::vector<double> travel(w.size(), 0.0);
@@ -662,11 +663,11 @@ TEST(BartonBandisSolver, ShearBoxEnergyBalanceCountsTheSupportsWork) {
   EnergyMeter meter(st.view().model);
   meter.after_step(st.view().state, st.view().contacts.contacts(), true);
   double opening_work = 0;  // Σ N·Δv, J/m
-  const std::string status = st.run_until(t1 + dt + 3 * dp / v, [&](std::int64_t) {
+  const Outcome status = st.run_until(t1 + dt + 3 * dp / v, [&](std::int64_t) {
     meter.after_step(st.view().state, st.view().contacts.contacts(), true);
     for (const Contact& c : st.view().contacts.contacts()) opening_work += c.normal_force * c.dilation_step;
   });
-  ASSERT_EQ(status, "ok");
+  ASSERT_PRED1(test::ended_ok, status);
   const EnergyRow& r = meter.rows().back();
   const auto a = st.view().state.measure[0].displacement(), b = st.view().state.measure[1].displacement();
   std::printf("shear box energy (+2·δp → −1·δp, slip now %.3f mm): support work %.1f J/m, all loads %.1f, "
@@ -703,9 +704,9 @@ TEST(BartonBandisSolver, ClosureCyclesFollowBandisCurves) {
   js.normal.reload_vm = vm2;
   SceneDef s = reference::joint_specimen_scene(js, 5e11, 0.25);
   reference::load_joint_specimen(s, top, 0);
-  std::string status;
+  Outcome status;
   const std::vector<double> closures = studies::run_closure_cycles(pre::build_mesh(s, "cycles"), s, target, &status);
-  ASSERT_EQ(status, "ok");
+  ASSERT_PRED1(test::ended_ok, status);
   auto virgin = [&](double sn) { return sn * vm / (kni * vm + sn); };
   double smax = 0;
   for (std::size_t k = 0; k < target.size(); ++k) {

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
 #include "solver/contact/contact_detection.h"
@@ -28,7 +29,7 @@ std::size_t compare_along_a_drift(double mesh_size, double slip, int drifts) {
   const SceneDef s = reference::peer_wall(6, 6, false, mesh_size);
   const Mesh m = pre::build_mesh(s, "wall");
   TimeStepper st(m, s, "wall");
-  EXPECT_EQ(st.run_until(5e-3, [](std::int64_t) {}), "ok");
+  EXPECT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
   const ContactTopology topo = build_contact_topology(m);
   const ClosedContacts closed = st.view().contacts.closed_contacts();
   EXPECT_FALSE(closed.pairs.empty()) << "the wall rests on closed contacts";
@@ -86,7 +87,7 @@ TEST(ContactDetection, ClosedPairsIndexedByVertexAnswerAsTheirSearch) {
   const SceneDef s = reference::peer_wall(6, 6, false, 0.5);
   const Mesh m = pre::build_mesh(s, "wall");
   TimeStepper st(m, s, "wall");
-  ASSERT_EQ(st.run_until(5e-3, [](std::int64_t) {}), "ok");
+  ASSERT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
   const ClosedContacts indexed = st.view().contacts.closed_contacts();
   ASSERT_FALSE(indexed.first.empty());
   ClosedContacts searched = indexed;

@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <string>
 
+#include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
 #include "solver/contact/joint_law.h"
 #include "common/math_constants.h"
@@ -157,7 +158,7 @@ Expected expected(const Case& c) {
 }
 
 struct PatchResult {
-  std::string status;
+  Outcome status;
   double worst_n = 0, worst_t = 0;     // largest |N/L − σn|/σn, |T/L − τ|/τ over closed contacts
   double length = 0;                   // m, Σ L of the closed contacts
   double worst_closure = 0;            // largest |δ − δ_exact|/δ_exact over closed contacts
@@ -203,7 +204,7 @@ std::string describe(const Case& c) {
 void check(const Case& c, double seconds) {
   const PatchResult r = run_patch(c, seconds);
   const std::string what = describe(c);
-  ASSERT_EQ(r.status, "ok") << what;
+  ASSERT_PRED1(test::ended_ok, r.status) << what;
   const Expected e = expected(c);
   const auto [x0, x1] = joint_extent(c.setup);
   std::printf("%-58s closed %3zu, sum L %.8f m (joint %.2f m), worst N/L %+.4f %%, T/L %.4f %%; "
@@ -326,7 +327,7 @@ TEST(ContactPatch, TwoBlocksPressedTogetherInUniaxialStrain) {
       const SceneDef s = pressed_blocks(h, law.normal, law.sigma);
       const Mesh m = pre::build_mesh(s, "pressed");
       TimeStepper st(m, s, "pressed");
-      const std::string status = st.run_until(3, [](std::int64_t) {});
+      const Outcome status = st.run_until(3, [](std::int64_t) {});
       const NormalLawDef& n = law.normal;
       const double want = n.model == NormalModel::constant ? law.sigma / n.kn
                                                             : law.sigma * n.vm / (n.kni * n.vm + law.sigma);
@@ -334,7 +335,7 @@ TEST(ContactPatch, TwoBlocksPressedTogetherInUniaxialStrain) {
       std::snprintf(what, sizeof what, "%s kn %g Vm %g, %g MPa, h = %g m",
                     n.model == NormalModel::constant ? "constant" : "Bandis-Barton",
                     n.model == NormalModel::constant ? n.kn : n.kni, n.vm, law.sigma / 1e6, h);
-      ASSERT_EQ(status, "ok") << what;
+      ASSERT_PRED1(test::ended_ok, status) << what;
       std::size_t closed = 0, all = 0;
       double length = 0;
       for (const Contact& c : st.view().contacts.contacts()) {

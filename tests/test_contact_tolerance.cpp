@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
 #include "common/math_constants.h"
 #include "reference/brick_wall.h"
@@ -41,7 +42,7 @@ Slide slide(double tau) {
   s.solver.contact_tolerance = tau;
   const Mesh m = pre::build_mesh(s, "tilted");
   TimeStepper st(m, s, "tilted");
-  EXPECT_EQ(st.run_until(1.0, [](std::int64_t) {}), "ok");
+  EXPECT_PRED1(test::ended_ok, st.run_until(1.0, [](std::int64_t) {}));
   Slide r;
   r.along = st.view().state.measure[0].displacement()[0];
   r.newton = st.view().contact_solve.newton;
@@ -89,7 +90,7 @@ TEST(ContactTolerance, ASofteningJointIsCheckedInDisplacement) {
   s.solver.contact_tolerance = 1e-3;
   const Mesh m = pre::build_mesh(s, "joint");
   TimeStepper st(m, s, "joint");
-  ASSERT_EQ(st.run_until(0.1, [](std::int64_t) {}), "ok");
+  ASSERT_PRED1(test::ended_ok, st.run_until(0.1, [](std::int64_t) {}));
   const ContactSolveStats& cs = st.view().contact_solve;
   const double u_tol = displacement_tolerance(1e-3, st.view().model.w0());
   std::printf("checks %ld, refused %ld, largest accepted %.3e m, tolerance %.3e m\n", cs.displacement_checks,
@@ -123,7 +124,7 @@ TEST(ContactTolerance, FrictionSettlesInEveryStepOfAVibratingWall) {
   // The dynamic 10 × 10 wall, its first 100 steps.
   PeerWall w(10, true);
   TimeStepper& st = w.st;
-  ASSERT_EQ(st.run_until(100 * w.scene.solver.time_step, [](std::int64_t) {}), "ok");
+  ASSERT_PRED1(test::ended_ok, st.run_until(100 * w.scene.solver.time_step, [](std::int64_t) {}));
   const auto& state = st.view().state;
   std::printf("dynamic 10 x 10 wall: %llu steps, %llu Newton iterations, %llu with friction unsettled\n",
               static_cast<unsigned long long>(state.step), static_cast<unsigned long long>(state.iterations),
@@ -141,7 +142,7 @@ TEST(ContactTolerance, SparsePatternLeavesOnlyAFewTouchingContactsToCg) {
   PeerWall w(10, true);
   TimeStepper& st = w.st;
   std::size_t worst_excess = 0, steps_leaving = 0;
-  ASSERT_EQ(st.run_until(100 * w.scene.solver.time_step,
+  ASSERT_PRED1(test::ended_ok, st.run_until(100 * w.scene.solver.time_step,
                          [&](std::int64_t) {
                            const ContactSet& c = st.view().contacts;
                            const std::size_t outside = c.touching_outside_pattern();
@@ -149,8 +150,7 @@ TEST(ContactTolerance, SparsePatternLeavesOnlyAFewTouchingContactsToCg) {
                                std::min(5.0, 0.01 * static_cast<double>(c.touching_at_start())));
                            worst_excess = std::max(worst_excess, outside > allowed ? outside - allowed : 0);
                            steps_leaving += outside > 0;
-                         }),
-            "ok");
+                         }));
   std::printf("dynamic 10 x 10 wall: %zu of 100 steps left touching contacts to CG, %zu analyses\n",
               steps_leaving, st.view().system.analyses());
   EXPECT_EQ(worst_excess, 0u) << "a step left more touching contacts outside the pattern than allowed";
@@ -168,7 +168,7 @@ TEST(ContactTolerance, RestartWithContactsOutsideThePatternIsBitwise) {
   const Mesh& m = w.mesh;
   const double dt = s.solver.time_step;
   const auto advance = [dt](TimeStepper& st, int steps) {
-    for (int i = 0; i < steps; ++i) ASSERT_EQ(st.attempt(dt), "") << "step " << i;
+    for (int i = 0; i < steps; ++i) ASSERT_PRED1(test::ended_ok, st.attempt(dt)) << "step " << i;
   };
   TimeStepper& straight = w.st;
   advance(straight, 40);
@@ -198,7 +198,7 @@ TEST(ContactTolerance, SettlingWallKeepsItsFactorisation) {
   // budget there and a factorisation followed: 0.39 per step against 0.20 (kDirectionBalance).
   PeerWall w(20, false);
   TimeStepper& st = w.st;
-  ASSERT_EQ(st.run_until(100 * w.scene.solver.time_step, [](std::int64_t) {}), "ok");
+  ASSERT_PRED1(test::ended_ok, st.run_until(100 * w.scene.solver.time_step, [](std::int64_t) {}));
   const ContactSolveStats& cs = st.view().contact_solve;
   const double steps = static_cast<double>(st.view().state.step);
   std::printf("static 20 x 20 wall: %.0f steps, %.2f solves, %.2f factorisations, %.2f CG iterations per step\n",
@@ -286,7 +286,7 @@ TEST(BlockMomentum, OnlyADynamicStepThatIteratedHandsAForceOn) {
   const Mesh m = pre::build_mesh(s, "tilted");
   {
     TimeStepper st(m, s, "tilted");
-    ASSERT_EQ(st.run_until(0.02, [](std::int64_t) {}), "ok");
+    ASSERT_PRED1(test::ended_ok, st.run_until(0.02, [](std::int64_t) {}));
     const std::vector<double>& f = st.view().state.block_force;
     ASSERT_EQ(f.size(), 3 * m.block_count());
     double largest = 0;
@@ -299,7 +299,7 @@ TEST(BlockMomentum, OnlyADynamicStepThatIteratedHandsAForceOn) {
   }
   s.solver.dynamic = false;  // DDA static: the next step starts at rest, nothing to hand on
   TimeStepper st(m, s, "tilted");
-  ASSERT_EQ(st.run_until(0.02, [](std::int64_t) {}), "ok");
+  ASSERT_PRED1(test::ended_ok, st.run_until(0.02, [](std::int64_t) {}));
   EXPECT_TRUE(st.view().state.block_force.empty());
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
 #include "common/math_constants.h"
 #include "common/ring_geometry.h"
@@ -61,7 +62,7 @@ struct Sliding {
 Sliding slide(bool dynamic, double t) {
   Incline c = incline(20, dynamic);
   TimeStepper st(c.mesh, c.scene, "incline");
-  EXPECT_EQ(st.run_until(t, [](std::int64_t) {}), "ok");
+  EXPECT_PRED1(test::ended_ok, st.run_until(t, [](std::int64_t) {}));
   const double expected = c.block_fraction * c.accel / 9.81;
   std::printf("sliding block (%s): mean ratio %.6g (closed form %.6g), max %.4g, velocity %.5g m/s\n",
               dynamic ? "dynamic" : "static", st.view().equilibrium.mean_ratio, expected,
@@ -96,7 +97,7 @@ TEST(Equilibrium, BlockHeldByFrictionIsAtRestDynamicAndStatic) {
   for (bool dynamic : {true, false}) {
     Incline c = incline(40, dynamic);
     TimeStepper st(c.mesh, c.scene, "incline");
-    ASSERT_EQ(st.run_until(0.1, [](std::int64_t) {}), "ok");
+    ASSERT_PRED1(test::ended_ok, st.run_until(0.1, [](std::int64_t) {}));
     const EquilibriumSample& e = st.view().equilibrium;
     std::printf("held block (%s): max ratio %.3g, mean %.3g, velocity %.3g m/s\n",
                 dynamic ? "dynamic" : "static", e.max_ratio, e.mean_ratio, e.max_velocity);
@@ -111,7 +112,7 @@ TEST(Equilibrium, StopAtRatioEndsAStaticRunAtTheFirstStepBelowIt) {
   c.scene.solver.stop_at_ratio = 1e-6;
   TimeStepper st(c.mesh, c.scene, "incline");
   std::vector<double> ratios;
-  ASSERT_EQ(st.run_until(1.0, [&](std::int64_t) { ratios.push_back(st.view().equilibrium.max_ratio); }), "ok");
+  ASSERT_PRED1(test::ended_ok, st.run_until(1.0, [&](std::int64_t) { ratios.push_back(st.view().equilibrium.max_ratio); }));
   std::printf("stop_at_ratio 1e-6: stopped after %zu steps at ratio %.3g\n", ratios.size(), ratios.back());
   EXPECT_TRUE(st.view().stopped_at_ratio);
   ASSERT_GE(ratios.size(), 2u);
@@ -132,7 +133,7 @@ TEST(Equilibrium, EquilibriumModeMeasuresTheForceEachSolveBalanced) {
   const Mesh mesh = pre::build_mesh(scene, "column");
   TimeStepper st(mesh, scene, "column");
   std::vector<EquilibriumSample> steps;
-  ASSERT_EQ(st.run_until(4 * scene.solver.time_step, [&](std::int64_t) { steps.push_back(st.view().equilibrium); }), "ok");
+  ASSERT_PRED1(test::ended_ok, st.run_until(4 * scene.solver.time_step, [&](std::int64_t) { steps.push_back(st.view().equilibrium); }));
   ASSERT_EQ(steps.size(), 4u);
   std::printf("hanging column, equilibrium mode: mean ratio %.9f at step 1, max ratio %.3g at step 4\n",
               steps[0].mean_ratio, steps[3].max_ratio);

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
 #include "reference/joint_specimen.h"
@@ -189,7 +190,7 @@ double max_speed(const TimeStepper& st) {
 double norm(const std::array<double, 2>& u) { return std::hypot(u[0], u[1]); }
 
 // Runs to time t, sampling every accepted step.
-std::string run_to(TimeStepper& st, Monitor& mon, double t) {
+Outcome run_to(TimeStepper& st, Monitor& mon, double t) {
   return st.run_until(t, [&](std::int64_t) { mon.sample(st); });
 }
 
@@ -224,15 +225,15 @@ TEST(HardCases, PenaltyFromOneToTenThousandTimesE) {
     const Mesh m = pre::build_mesh(s, "penalty");
     TimeStepper st(m, s, "penalty");
     Monitor mon(m, s);
-    const std::string status = run_to(st, mon, 0.2);
+    const Outcome status = run_to(st, mon, 0.2);
     const auto u = st.view().state.measure[0].displacement();
     std::printf("kn = %6g E: status %s; block moved (%.3e, %.3e) m; max speed %.3e m/s; max "
                 "penetration %.3e m; %zu cuts, %zu iterations\n",
-                factor, status.c_str(), u[0], u[1], max_speed(st), st.view().state.max_penetration,
+                factor, test::text(status).c_str(), u[0], u[1], max_speed(st), st.view().state.max_penetration,
                 st.view().state.cuts, st.view().state.iterations);
     print_energy("energy", mon);
     const std::string what = "kn = " + std::to_string(factor) + " E";
-    EXPECT_EQ(status, "ok") << what;
+    EXPECT_PRED1(test::ended_ok, status) << what;
     expect_sound(st, mon, 1.0, what.c_str());
     // Weight 26 kN over a 1 m face on springs of ≥ 1·E: it sinks micrometres, never millimetres.
     EXPECT_LT(norm(u), 1e-4) << what << ": the block rests where it was put";
@@ -254,23 +255,22 @@ TEST(HardCases, TimeStepsFarTooLargeAreCutOrStopCleanly) {
     const Mesh m = pre::build_mesh(s, "large_dt");
     TimeStepper st(m, s, "large_dt");
     Monitor mon(m, s);
-    const std::string status = run_to(st, mon, 1.0);
+    const Outcome status = run_to(st, mon, 1.0);
     const auto u = st.view().state.measure[0].displacement();
     std::printf("dt = %g s: status %s; t = %.4f s; fell %.5f m; max speed at end %.3e m/s; "
                 "penetration %.3e m; %zu cuts, %zu iterations\n",
-                dt, status.c_str(), st.view().state.time, -u[1], max_speed(st), st.view().state.max_penetration,
+                dt, test::text(status).c_str(), st.view().state.time, -u[1], max_speed(st), st.view().state.max_penetration,
                 st.view().state.cuts, st.view().state.iterations);
     print_energy("energy", mon);
     const std::string what = "dt = " + std::to_string(dt);
-    ASSERT_FALSE(status.empty()) << what;
     expect_sound(st, mon, 1.0, what.c_str());
-    if (status == "ok") {
+    if (status.ok()) {
       EXPECT_GT(st.view().state.cuts, 0u) << what << ": step control must cut a step this long";
       EXPECT_NEAR(u[1], -0.05, 1e-3) << what << ": the block lands on the base";
       EXPECT_LT(std::abs(u[0]), 1e-3) << what;
       EXPECT_LT(max_speed(st), 10 * kRestSpeed) << what << ": and rests there, m/s";
     } else {
-      std::printf("  stopped: %s\n", status.c_str());
+      std::printf("  stopped: %s\n", test::text(status).c_str());
     }
   }
 }
@@ -308,7 +308,7 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
     std::size_t max_capped = 0;
     bool forces_finite = true, state_finite = true;
     double max_closure = 0;
-    const std::string status = st.run_until(0.3, [&](std::int64_t) {
+    const Outcome status = st.run_until(0.3, [&](std::int64_t) {
       max_capped = std::max(max_capped, st.view().contacts.capped_count());
       state_finite = state_finite && all_finite(st.view().state.velocity) && all_finite(st.view().state.stress) &&
                      all_finite(st.view().state.loop_xy);
@@ -333,12 +333,11 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
                 "(curve, capped at 0.99 Vm: %.4f Vm); largest contact closure %.4f Vm (any step "
                 "%.4f Vm); %zu closed contacts carrying %.4e N (load %.4e N); capped now %zu, "
                 "most %zu; %zu cuts\n",
-                sigma_n / 1e6, status.c_str(), closure_mid, closure_mid / vm, want / vm,
+                sigma_n / 1e6, test::text(status).c_str(), closure_mid, closure_mid / vm, want / vm,
                 closure_end / vm, max_closure / vm, closed, force_sum, sigma_n * 2.0,
                 st.view().contacts.capped_count(), max_capped, st.view().state.cuts);
     const std::string what = "sigma_n = " + std::to_string(sigma_n / 1e6) + " MPa";
-    ASSERT_FALSE(status.empty());
-    EXPECT_EQ(status, "ok") << what;
+    EXPECT_PRED1(test::ended_ok, status) << what;
     EXPECT_TRUE(state_finite) << what;
     EXPECT_TRUE(forces_finite) << what;
     EXPECT_LT(max_closure, 1.01 * vm) << what << ": the closure must stay at the cap";
@@ -363,15 +362,15 @@ TEST(HardCases, StackOfTenBlocksStands) {
   const Mesh m = pre::build_mesh(s, "stack10");
   TimeStepper st(m, s, "stack10");
   Monitor mon(m, s);
-  const std::string status = run_to(st, mon, 1.0);
+  const Outcome status = run_to(st, mon, 1.0);
   const auto top = st.view().state.measure[0].displacement();
   const auto bottom = st.view().state.measure[1].displacement();
   std::printf("stack of 10: status %s; top moved (%.3e, %.3e) m, bottom block (%.3e, %.3e) m; "
               "max speed %.3e m/s; penetration %.3e m; %zu cuts, %zu iterations\n",
-              status.c_str(), top[0], top[1], bottom[0], bottom[1], max_speed(st),
+              test::text(status).c_str(), top[0], top[1], bottom[0], bottom[1], max_speed(st),
               st.view().state.max_penetration, st.view().state.cuts, st.view().state.iterations);
   print_energy("energy", mon);
-  EXPECT_EQ(status, "ok");
+  EXPECT_PRED1(test::ended_ok, status);
   expect_sound(st, mon, 0.5, "stack of 10");
   EXPECT_LT(norm(top), 1e-3) << "the stack stands";
   EXPECT_LT(max_speed(st), kRestSpeed) << "at rest, m/s";
@@ -455,7 +454,7 @@ double max_vertex_displacement(const Mesh& m, const TimeStepper& st) {
 }
 
 struct NodeJointRun {
-  std::string status;
+  Outcome status;
   double time = 0, cover_speed = 0, point_speed = 0, moved = 0, measured = 0;
   double drift_speed = 0;  // m/s, largest mean speed of a loop vertex over 0.1–0.2 s
   std::size_t slivers = 0, tied = 0;
@@ -479,7 +478,7 @@ NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on, double sliver
   r.tied = st.view().space.ties().tied;
   r.status = run_to(st, mon, 0.1);
   const std::vector<double> half_way = st.view().state.loop_xy;
-  if (r.status == "ok") r.status = run_to(st, mon, 0.2);
+  if (r.status.ok()) r.status = run_to(st, mon, 0.2);
   for (std::size_t i = 0; i < half_way.size(); i += 2)
     r.drift_speed = std::max(r.drift_speed, std::hypot(st.view().state.loop_xy[i] - half_way[i],
                                                        st.view().state.loop_xy[i + 1] - half_way[i + 1]) /
@@ -494,12 +493,11 @@ NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on, double sliver
               "mean over 0.1-0.2 s %.3e m/s; largest vertex displacement %.3e m, measure points "
               "%.3e m; penetration %.3e m; %zu cuts\n",
               c.name, wedge_on ? " + 2-degree wedge" : "", m.element_count(), r.slivers, smallest,
-              m.block_count(), r.tied, r.status.c_str(), r.time, r.cover_speed, r.point_speed,
+              m.block_count(), r.tied, test::text(r.status).c_str(), r.time, r.cover_speed, r.point_speed,
               r.drift_speed, r.moved, r.measured, st.view().state.max_penetration, st.view().state.cuts);
   print_energy("energy", mon);
-  EXPECT_FALSE(r.status.empty()) << c.name;
   EXPECT_GT(r.slivers, 0u) << c.name << ": the scene must make sliver elements";
-  if (r.status != "ok") return r;  // the caller judges a stop
+  if (!r.status.ok()) return r;  // the caller judges a stop
   expect_sound(st, mon, 0.05, c.name);  // the wedge is 5.6 cm high
   EXPECT_LT(r.moved, 1e-3) << c.name << ": a vertex was flung away, m";
   return r;
@@ -508,7 +506,7 @@ NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on, double sliver
 TEST(HardCases, SliverElementsAndAThinWedgeRest) {
   // A slit 1e-6·h beside mesh nodes (its sliver covers tied), and the 2° wedge on the base.
   const NodeJointRun r = run_node_joint({"vertical slit 1e-6 h beside nodes", Beside::vertical_slit, 1e-6}, true);
-  EXPECT_EQ(r.status, "ok");
+  EXPECT_PRED1(test::ended_ok, r.status);
   EXPECT_LT(r.measured, 1e-4) << "the bodies rest where they were put, m";
   EXPECT_LT(r.moved, 1e-4) << "m";
   EXPECT_LT(r.cover_speed, kRestSpeed) << "at rest, m/s";
@@ -538,7 +536,7 @@ const NodeJointCase kHardNodeJoints[] = {
 TEST(HardCases, JointsBesideMeshNodesRest) {
   for (const NodeJointCase& c : kHardNodeJoints) {
     const NodeJointRun r = run_node_joint(c, false);
-    EXPECT_EQ(r.status, "ok") << c.name;
+    EXPECT_PRED1(test::ended_ok, r.status) << c.name;
     EXPECT_GT(r.tied, 0u) << c.name << ": sliver covers must be tied";
     EXPECT_LT(r.measured, 1e-4) << c.name << ": the bodies rest where they were put, m";
     EXPECT_LT(r.moved, 1e-4) << c.name << ": m";
@@ -555,7 +553,7 @@ TEST(HardCases, UntiedSliverCoversStopTheRun) {
   // robust to near-null covers by other means; revisit cover_unknowns.cpp.
   const NodeJointRun r = run_node_joint(kHardNodeJoints[0], false, 0.0);
   EXPECT_EQ(r.tied, 0u);
-  EXPECT_NE(r.status, "ok") << "t = " << r.time << " s";
+  EXPECT_FALSE(r.status.ok()) << "t = " << r.time << " s";
 }
 
 // Found by this suite and fixed: the vertical joint through the upper body (two 1 m blocks side
@@ -575,7 +573,7 @@ TEST(HardCases, BlocksSideBySideBesideMeshNodesAreStill) {
   for (const NodeJointCase& c : kHardNodeJoints) {
     if (c.kind != Beside::vertical_through) continue;
     const NodeJointRun r = run_node_joint(c, false);
-    EXPECT_EQ(r.status, "ok") << c.name;
+    EXPECT_PRED1(test::ended_ok, r.status) << c.name;
     EXPECT_LT(r.cover_speed, 1e-8) << c.name << ": at rest, m/s";
     EXPECT_LT(r.point_speed, 1e-8) << c.name << ": at rest, m/s";
     EXPECT_LT(r.drift_speed, 1e-8) << c.name << ": mean speed over 0.1-0.2 s, m/s";
@@ -592,7 +590,7 @@ TEST(HardCases, ACornerBetweenTwoBlocksTouchesBoth) {
   TimeStepper st(m, s, c.name);
   const double x = 2 + c.offset * s.mesh_size;
   int steps = 0;
-  const std::string status = st.run_until(0.05, [&](std::int64_t) {
+  const Outcome status = st.run_until(0.05, [&](std::int64_t) {
     ++steps;
     // Corners at (x, 1): which blocks each touches (closed), by the corner's own block.
     std::map<std::int32_t, std::set<std::int32_t>> touched;
@@ -609,7 +607,7 @@ TEST(HardCases, ACornerBetweenTwoBlocksTouchesBoth) {
       if (block != base) on_base += others.count(base) ? 1 : 0;
     EXPECT_EQ(on_base, 2) << "step " << steps << ": both upper corners rest on the base";
   });
-  EXPECT_EQ(status, "ok");
+  EXPECT_PRED1(test::ended_ok, status);
   EXPECT_GT(steps, 40);
 }
 
@@ -681,12 +679,12 @@ TEST(HardCases, JointAlongMeshEdgesHoldsTheBlockAbove) {
     const Mesh m = pre::build_mesh(s, name);
     TimeStepper st(m, s, name);
     Monitor mon(m, s);
-    const std::string status = run_to(st, mon, 0.2);
+    const Outcome status = run_to(st, mon, 0.2);
     const auto top = st.view().state.measure[0].displacement();
     std::printf("%s: status %s; upper block moved (%.3e, %.3e) m; %zu contacts, %zu closed\n", name,
-                status.c_str(), top[0], top[1], st.view().contacts.contacts().size(),
+                test::text(status).c_str(), top[0], top[1], st.view().contacts.contacts().size(),
                 st.view().contacts.closed_count());
-    EXPECT_EQ(status, "ok") << name;
+    EXPECT_PRED1(test::ended_ok, status) << name;
     expect_sound(st, mon, 1.0, name);
     EXPECT_LT(norm(top), 1e-4) << name << ": the upper block rests on the lower one, m";
     EXPECT_LT(max_point_speed(m, st), kRestSpeed) << name << ": at rest, m/s";
@@ -703,11 +701,11 @@ TEST(HardCases, AWallMeshedCoarserThanItsBricksRuns) {
   const Mesh m = pre::build_mesh(s, "coarse_wall");
   TimeStepper st(m, s, "coarse_wall");
   Monitor mon(m, s);
-  const std::string status = run_to(st, mon, 0.1);
-  std::printf("20 x 20 wall at h = 2 m: status %s; penetration %.3e m; %zu cuts\n", status.c_str(),
+  const Outcome status = run_to(st, mon, 0.1);
+  std::printf("20 x 20 wall at h = 2 m: status %s; penetration %.3e m; %zu cuts\n", test::text(status).c_str(),
               st.view().state.max_penetration, st.view().state.cuts);
   print_energy("energy", mon);
-  EXPECT_EQ(status, "ok");
+  EXPECT_PRED1(test::ended_ok, status);
   expect_sound(st, mon, 1.0, "20 x 20 wall at h = 2 m");
 }
 
@@ -728,10 +726,10 @@ TEST(HardCases, NearParallelJointsAtHalfADegree) {
   const Mesh m = pre::build_mesh(s, "parallel");
   TimeStepper st(m, s, "parallel");
   Monitor mon(m, s);
-  const std::string status = run_to(st, mon, 0.2);
+  const Outcome status = run_to(st, mon, 0.2);
   std::printf("near-parallel joints: %zu elements, %zu blocks; status %s; max speed %.3e m/s; "
               "penetration %.3e m; %zu cuts, %zu iterations\n",
-              m.element_count(), m.block_count(), status.c_str(), max_speed(st),
+              m.element_count(), m.block_count(), test::text(status).c_str(), max_speed(st),
               st.view().state.max_penetration, st.view().state.cuts, st.view().state.iterations);
   for (std::size_t i = 0; i < st.view().state.measure.size(); ++i) {
     const auto u = st.view().state.measure[i].displacement();
@@ -740,7 +738,7 @@ TEST(HardCases, NearParallelJointsAtHalfADegree) {
   }
   print_energy("energy", mon);
   EXPECT_EQ(m.block_count(), 4u) << "base, lower block, slab, upper block";
-  EXPECT_EQ(status, "ok");
+  EXPECT_PRED1(test::ended_ok, status);
   expect_sound(st, mon, h / 50, "near-parallel joints");  // the slab is 5 mm thin at its end
   EXPECT_LT(max_speed(st), kRestSpeed) << "at rest, m/s";
 }
@@ -757,25 +755,25 @@ TEST(HardCases, RestingBlockStaysPutForTwoSeconds) {
   Monitor mon(m, s);
   double speed_max_late = 0;  // after the first 0.1 s
   std::vector<std::array<double, 2>> at;  // centre's displacement at 0.5, 1, 1.5, 2 s
-  std::string status = "ok";
+  Outcome status;
   for (double t : {0.5, 1.0, 1.5, 2.0}) {
     status = st.run_until(t, [&](std::int64_t) {
       mon.sample(st);
       if (st.view().state.time > 0.1) speed_max_late = std::max(speed_max_late, max_speed(st));
     });
-    if (status != "ok") break;
+    if (!status.ok()) break;
     at.push_back(st.view().state.measure[0].displacement());
   }
   const auto corner = st.view().state.measure[1].displacement();
   std::printf("resting block, 2 s: status %s; centre moved (%.3e, %.3e) m at 0.5 s, (%.3e, %.3e) "
               "m at 2 s; corner (%.3e, %.3e) m; max speed after 0.1 s %.3e m/s; penetration "
               "%.3e m; %zu cuts, %zu iterations in %zu steps\n",
-              status.c_str(), at.empty() ? 0 : at.front()[0], at.empty() ? 0 : at.front()[1],
+              test::text(status).c_str(), at.empty() ? 0 : at.front()[0], at.empty() ? 0 : at.front()[1],
               at.empty() ? 0 : at.back()[0], at.empty() ? 0 : at.back()[1], corner[0], corner[1],
               speed_max_late, st.view().state.max_penetration, st.view().state.cuts,
               st.view().state.iterations, mon.samples());
   print_energy("energy", mon);
-  ASSERT_EQ(status, "ok");
+  ASSERT_PRED1(test::ended_ok, status);
   expect_sound(st, mon, 1.0, "resting block");
   EXPECT_LT(speed_max_late, kRestSpeed) << "m/s";
   EXPECT_LT(norm(at.back()), 1e-4) << "no drift: the block stays where it was put";

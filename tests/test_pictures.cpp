@@ -69,12 +69,13 @@ SceneDef one_block_scene() {
 
 // The block moved by (ux, uy) at its top corners (the bottom ones held).
 std::string draw(const Mesh& m, double ux, double uy, const std::string& status, double factor,
-                 std::vector<double>* xy_out = nullptr) {
+                 std::vector<double>* xy_out = nullptr, StopCode stop = StopCode::ok) {
   std::vector<double> xy = m.loop_xy, stress(3, 0.0);
   xy[4] += ux, xy[5] += uy, xy[6] += ux, xy[7] += uy;
   report::PictureState st;
   st.time = 0.5;
   st.status = status;
+  st.stop = stop;
   st.loop_xy = &xy;
   st.stress = &stress;
   st.exaggeration = factor;
@@ -142,7 +143,7 @@ TEST(Pictures, AFailedRunsReasonIsWrappedUnderThePicture) {
       "0.0812 m, more than the 0.06 m a step may move (2 × max_displacement_ratio 0.01 × w0 3 m, "
       "w0 being half the model size as in DDA)";
   const Mesh coarse = one_block(10);  // the body is 10 m × 4 m
-  const std::string svg = draw(coarse, 0.3, 0, reason, 0);
+  const std::string svg = draw(coarse, 0.3, 0, reason, 0, nullptr, StopCode::step_displacement);
   EXPECT_NE(svg.find("block  t = 0.5 s  (stopped, reason below)"), std::string::npos);
   // The title is short: the reason is not in it.
   for (const std::string& t : texts(svg))
@@ -171,31 +172,48 @@ TEST(Pictures, AFailedRunsReasonIsWrappedUnderThePicture) {
     return std::regex_search(doc, mm, vb) ? std::stod(mm[3]) : -1.0;
   };
   EXPECT_DOUBLE_EQ(width(svg), width(draw(coarse, 0.3, 0, "ok", 0)));
-  const std::string cause = report::likely_failure_cause(coarse, one_block_scene(), reason);
+  const std::string cause = report::likely_failure_cause(coarse, one_block_scene(), StopCode::step_displacement);
   EXPECT_NE(cause.find("mesh size 10 m against body 0, 10 m wide and 4 m high: the mesh is "
                        "coarser than the body"),
             std::string::npos)
       << cause;
   EXPECT_NE(svg.find("likely cause: mesh size 10 m"), std::string::npos);
   // A mesh finer than the body: the cause follows the kind of failure.
-  EXPECT_NE(report::likely_failure_cause(one_block(0.5), one_block_scene(), reason)
+  EXPECT_NE(report::likely_failure_cause(one_block(0.5), one_block_scene(), StopCode::step_displacement)
                 .find("a block moved farther in one step than contacts can follow"),
             std::string::npos);
-  EXPECT_EQ(report::likely_failure_cause(coarse, one_block_scene(), "ok"), "");
+  EXPECT_EQ(report::likely_failure_cause(coarse, one_block_scene(), StopCode::ok), "");
+  EXPECT_EQ(report::likely_failure_cause(coarse, one_block_scene(), StopCode::interrupted), "");
+  EXPECT_NE(report::likely_failure_cause(one_block(0.5), one_block_scene(), StopCode::unconstrained)
+                .find("a block is held by nothing"),
+            std::string::npos);
   EXPECT_EQ(draw(coarse, 0.3, 0, "ok", 0).find("likely cause"), std::string::npos);
   EXPECT_EQ(draw(coarse, 0.3, 0, "step 30", 0).find("stopped"), std::string::npos);
 }
 
-TEST(Pictures, RunEndFromStatus) {
-  using report::RunEnd;
-  EXPECT_EQ(report::run_end("ok"), RunEnd::ok);
-  EXPECT_EQ(report::run_end("interrupted"), RunEnd::interrupted);
-  EXPECT_EQ(report::run_end("step 30"), RunEnd::frame);
-  EXPECT_EQ(report::run_end(""), RunEnd::unknown);
-  EXPECT_EQ(report::run_end("not positive definite at step 4"), RunEnd::failed);
-  EXPECT_EQ(report::run_end("okay"), RunEnd::failed);  // only the exact word is success
-  EXPECT_TRUE(report::status_is_failure("unknown"));
-  EXPECT_FALSE(report::status_is_failure("step 1"));
+// How a finished run ended, read back from its summary.json: by its stop_code; an older summary
+// without one by its status (ok, interrupted, anything else a failure).
+TEST(Pictures, RunOutcomeFromSummary) {
+  using nlohmann::json;
+  const Outcome stopped = report::run_outcome(
+      json{{"status", "a contact penetrated 0.3 m"}, {"stop_code", "penetration"}, {"stop_time", 1.5}});
+  EXPECT_EQ(stopped.code, StopCode::penetration);
+  EXPECT_EQ(stopped.reason, "a contact penetrated 0.3 m");
+  EXPECT_EQ(stopped.time, 1.5);
+  EXPECT_TRUE(stopped.failed());
+  EXPECT_TRUE(report::run_outcome(json{{"status", "ok"}, {"stop_code", "ok"}}).ok());
+  EXPECT_EQ(report::run_outcome(json{{"status", "interrupted"}}).code, StopCode::interrupted);
+  EXPECT_EQ(report::run_outcome(json{{"status", "not positive definite"}}).code, StopCode::failed);
+  EXPECT_EQ(report::run_outcome(json{{"status", "okay"}}).code, StopCode::failed);  // only the exact word
+  EXPECT_EQ(report::run_outcome(json::object()).code, StopCode::failed);
+  // Every code's name reads back as the code.
+  for (StopCode c : {StopCode::ok, StopCode::interrupted, StopCode::step_displacement, StopCode::penetration,
+                     StopCode::contact_not_converged, StopCode::direction_not_finite, StopCode::unconstrained,
+                     StopCode::element_folded, StopCode::displacement_not_finite, StopCode::failed}) {
+    StopCode back = StopCode::ok;
+    EXPECT_TRUE(stop_code_from_name(stop_code_name(c), back)) << stop_code_name(c);
+    EXPECT_EQ(back, c);
+  }
 }
 
 TEST(Pictures, WordsWrapToTheWidth) {

@@ -45,10 +45,10 @@ using nmm::kPi;
 
 // Closure and slip (m) of the single-joint scene under σn and τ (Pa) after `seconds`.
 std::pair<double, double> joint_response(SceneDef s, const nmm::Mesh& m, double sigma, double tau,
-                                         double seconds, std::string* status) {
+                                         double seconds, nmm::Outcome* outcome) {
   nmm::reference::load_joint_specimen(s, sigma, tau);
   const nmm::studies::JointSpecimenResult r = nmm::studies::run_joint_specimen(m, s, seconds);
-  *status = r.status;
+  *outcome = r.outcome;
   return {r.closure, r.slip};
 }
 
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
        << "°.\n\n| test | load | solver | closed form | error |\n|---|---:|---:|---:|---:|\n";
     nmm::PlotSeries ns_s{"solver", {}, {}, "#d62728", false, true}, ns_c{"Bandis–Barton", {}, {}, "#1f77b4"};
     for (double s : sig) {
-      std::string st;
+      nmm::Outcome st;
       const double d = joint_response(joint, jm, s, 0, 0.3, &st).first;
       const double want = s * vm / (kni * vm + s);
       csv << "normal," << s << "," << d << "," << want << "," << (d - want) / want << "\n";
@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
                         out + "/joint_normal.svg");
     nmm::PlotSeries ss_s{"solver", {}, {}, "#d62728", false, true}, ss_c{"hyperbola", {}, {}, "#1f77b4"};
     for (double f : frac) {
-      std::string st;
+      nmm::Outcome st;
       const double u = joint_response(joint, jm, sn, f * tf, 0.4, &st).second;
       const double want = f * tf / (ksi * (1 - rf * f));
       csv << "shear," << f * tf << "," << u << "," << want << "," << (u - want) / want << "\n";
@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
            << (model ? num(nmm::reference::barton_opening(bj, sn, d) * 1e3) + " mm" : std::string("0 mm"))
            << " |\n";
       }
-      if (run.status != "ok") md << "\n(" << name << ": the run stopped: " << run.status << ")\n";
+      if (!run.outcome.ok()) md << "\n(" << name << ": the run stopped: " << run.outcome.status() << ")\n";
     }
     const double d_end = std::max(dh.x.empty() ? 0.0 : dh.x.back(), df.x.empty() ? 0.0 : df.x.back()) * 1e-3;
     for (int k = 0; k <= 200; ++k) {
@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
     SceneDef seed_cycle = joint, full_cycle = full;
     nmm::reference::load_joint_specimen(seed_cycle, 10e6, 0);
     nmm::reference::load_joint_specimen(full_cycle, 10e6, 0);
-    std::string st1, st2;
+    nmm::Outcome st1, st2;
     const std::vector<double> c_seed = nmm::studies::run_closure_cycles(jm, seed_cycle, cyc, &st1);
     const std::vector<double> c_full = nmm::studies::run_closure_cycles(jm, full_cycle, cyc, &st2);
     if (c_seed.size() == cyc.size() && c_full.size() == cyc.size()) {
@@ -265,7 +265,7 @@ int main(int argc, char** argv) {
            << " mm | " << num(c_full[k] * 1e3) << " mm | " << num(full_want * 1e3) << " mm |\n";
       }
     } else {
-      md << "\n(the cycle runs stopped: " << st1 << " / " << st2 << ")\n";
+      md << "\n(the cycle runs stopped: " << st1.status() << " / " << st2.status() << ")\n";
     }
 
     // ---- (b) shear ramp past the strength: constant springs against the joint laws --------
@@ -280,7 +280,7 @@ int main(int argc, char** argv) {
     std::ostringstream rcsv;  // written atomically at the end
     rcsv << "tau_over_tf,slip_constant_m,slip_joint_laws_m,slip_full_model_m\n";
     for (double f : ramp) {
-      std::string s1, s2;
+      nmm::Outcome s1, s2;
       const double uc = joint_response(constant, jm, sn, f * tf, 0.3, &s1).second;
       const double ul = joint_response(joint, jm, sn, f * tf, 0.3, &s2).second;
       const double uf = joint_response(full, jm, sn, f * tf, 0.3, &s2).second;
@@ -312,7 +312,7 @@ int main(int argc, char** argv) {
       if (variant == 0) use_constant(s); else if (variant == 1) use_joint_laws(s); else use_full_model(s, 1.0);
       nmm::solve::TimeStepper st(tm, s, "tunnel");
       const std::string status =
-          st.run_until(static_cast<double>(s.solver.steps) * s.solver.time_step, [](std::int64_t) {});
+          st.run_until(static_cast<double>(s.solver.steps) * s.solver.time_step, [](std::int64_t) {}).status();
       std::vector<double> kn_point, kn_m, ks_m;
       std::size_t i = 0;
       for (const auto& c : st.view().contacts.contacts()) {

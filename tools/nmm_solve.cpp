@@ -48,11 +48,12 @@ namespace {
 // --pictures: result.svg of the last state (result_picture.h) and the run's report
 // (run_report.h).
 nmm::report::ReportFiles write_pictures(const nmm::solve::RunView& run, const nmm::SceneDef& scene,
-                                        const std::string& status, const std::string& out_dir,
+                                        const nmm::Outcome& outcome, const std::string& out_dir,
                                         double exaggerate, nmm::report::PictureField field) {
   nmm::report::PictureState state;
   state.time = run.state.time;
-  state.status = status;
+  state.status = outcome.status();
+  state.stop = outcome.code;
   state.loop_xy = &run.state.loop_xy;
   const std::vector<double> mean_stress = nmm::solve::mean_stress(run);  // [3·me] at any order
   state.stress = &mean_stress;
@@ -188,9 +189,10 @@ int main(int argc, char** argv) {
     driver.add(energy_terms);
     driver.add(progress_line);
     const nlohmann::json summary = driver.run();
-    const std::string status = summary["status"].get<std::string>();
+    const nmm::Outcome& outcome = driver.outcome();
+    const std::string status = outcome.status();
     const std::string verdict = nmm::solve::equilibrium_line(summary["equilibrium"]);
-    progress.finish(stepper.view().state.step, stepper.view().state.time, status,
+    progress.finish(stepper.view().state.step, stepper.view().state.time, outcome.ok(),
                     status + ", " + verdict +
                         (summary["stopped_by"] == "stop_at_ratio" ? ", stopped by stop_at_ratio" : ""));
     nmm::report::write_run_history(out_dir, effort);
@@ -199,20 +201,19 @@ int main(int argc, char** argv) {
 
     if (pictures) {
       const nmm::report::ReportFiles files =
-          write_pictures(stepper.view(), run.scene, status, out_dir, exaggerate, field);
+          write_pictures(stepper.view(), run.scene, outcome, out_dir, exaggerate, field);
       if (!quiet)
         std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
                   << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";
     }
-    const nmm::report::RunEnd end = nmm::report::run_end(status);
-    if (end == nmm::report::RunEnd::interrupted) {
+    if (outcome.code == nmm::StopCode::interrupted) {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()
                 << " steps at t = " << stepper.view().state.time << " s (" << verdict
                 << "); history.csv, summary.json and checkpoint.nmmstate written (continue with --restart)\n";
       return nmm::solve::kExitInterrupted;
     }
-    if (end != nmm::report::RunEnd::ok) {
-      const std::string cause = nmm::report::likely_failure_cause(mesh, run.scene, status);
+    if (outcome.failed()) {
+      const std::string cause = nmm::report::likely_failure_cause(mesh, run.scene, outcome.code);
       std::cerr << "nmm-solve: stopped after " << summary["steps_completed"].get<long long>()
                 << " steps: " << status << (cause.empty() ? "" : "; likely cause: " + cause)
                 << "; equilibrium at the last step: " << verdict << "\n";

@@ -79,16 +79,19 @@ std::string num(double v, const char* f = "%.4g") {
   return b;
 }
 
-// How a run ended: with a finite value to compare; stopped or failed (the reason says why); or
-// not run because the solver does not support the setting (a cover order it refuses with an
-// input error at /solver/cover_order), which is no failure of the study.
-enum class RunStatus { ok, failed, not_available };
-
-// What one run gives: the computed value (or why it has none) and what it cost.
-struct Outcome {
-  RunStatus status = RunStatus::failed;
-  std::string reason;      // why not, when status is not ok
-  bool ok() const { return status == RunStatus::ok; }
+// What one run gives: the computed value (or why it has none) and what it cost. A run is ok
+// when it ended ok with a finite value; a setting the solver does not support (a cover order it
+// refuses with an input error at /solver/cover_order) is not available, which is no failure of
+// the study.
+struct RunResult {
+  nmm::Outcome run;         // how the run ended (common/outcome.h)
+  bool available = true;    // false: the solver does not support this setting
+  bool finite = true;       // the computed value is a finite number
+  bool ok() const { return available && run.ok() && finite; }
+  // Why not, when not ok.
+  std::string reason() const {
+    return !available || !run.ok() ? run.reason : finite ? "" : "result is not a finite number";
+  }
   double computed = 0;     // the quantity compared with the closed form
   double mesh_seconds = 0;  // cover cutting
   double run_seconds = 0;   // TimeStepper construction and stepping
@@ -106,18 +109,18 @@ struct Row {
   double value = 0;
   std::string value_text;                 // as shown in the tables
   double exact = 0;
-  Outcome out;
+  RunResult out;
   double error() const {
     return std::isfinite(out.own_error) ? out.own_error : std::abs(out.computed - exact) / std::abs(exact);
   }
   double wall() const { return out.mesh_seconds + out.run_seconds; }
 };
 
-// Builds the mesh and runs `body` on a fresh TimeStepper, timing both; RunError and a non-"ok"
-// status become a failed outcome (InputError is bad input and goes up).
-Outcome timed_run_once(const SceneDef& s, const std::string& name,
-                       const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
-  Outcome o;
+// Builds the mesh and runs `body` on a fresh TimeStepper, timing both; RunError and a run that
+// did not end ok become a failed result (InputError is bad input and goes up).
+RunResult timed_run_once(const SceneDef& s, const std::string& name,
+                         const std::function<nmm::Outcome(nmm::solve::TimeStepper&, RunResult&)>& body) {
+  RunResult o;
   const nmm::Stopwatch t0;
   const nmm::Mesh m = nmm::pre::build_mesh(s, name);
   o.mesh_seconds = t0.seconds();
@@ -130,21 +133,18 @@ Outcome timed_run_once(const SceneDef& s, const std::string& name,
       // What the solver does not support at this cover order yet (its input error's place is
       // /solver/cover_order): not available, not a failure of the study.
       if (s.solver.cover_order == 0 || e.where().rfind("/solver/cover_order", 0) != 0) throw;
-      o.status = RunStatus::not_available;
-      o.reason = "not available at this cover order: " + e.where() + ": " + e.message();
+      o.available = false;
+      o.run.reason = "not available at this cover order: " + e.where() + ": " + e.message();
       o.run_seconds = t1.seconds();
       return o;
     }
     o.unknowns = st->view().space.unknowns();
-    const std::string status = body(*st, o);
+    o.run = body(*st, o);
     o.cuts = st->view().state.cuts;
     o.iterations = st->view().state.iterations;
-    const bool finite = std::isfinite(o.computed);
-    o.status = status == "ok" && finite ? RunStatus::ok : RunStatus::failed;
-    o.reason = status != "ok" ? status : (finite ? "" : "result is not a finite number");
+    o.finite = std::isfinite(o.computed);
   } catch (const nmm::RunError& e) {
-    o.status = RunStatus::failed;
-    o.reason = e.what();
+    o.run = nmm::Outcome::stop(nmm::StopCode::failed, e.what(), 0);
   }
   o.run_seconds = t1.seconds();
   return o;
@@ -153,20 +153,20 @@ Outcome timed_run_once(const SceneDef& s, const std::string& name,
 // Short runs are repeated and the fastest is kept: the runs are deterministic, so only the time
 // differs, and the fastest is the one least disturbed by other work on the machine. A run is
 // repeated until three runs and half a second have been spent on it (at most 25 runs).
-Outcome timed_run(const SceneDef& s, const std::string& name,
-                  const std::function<std::string(nmm::solve::TimeStepper&, Outcome&)>& body) {
-  Outcome best = timed_run_once(s, name, body);
-  if (best.status == RunStatus::not_available) return best;  // nothing to time
+RunResult timed_run(const SceneDef& s, const std::string& name,
+                  const std::function<nmm::Outcome(nmm::solve::TimeStepper&, RunResult&)>& body) {
+  RunResult best = timed_run_once(s, name, body);
+  if (!best.available) return best;  // nothing to time
   double spent = best.mesh_seconds + best.run_seconds;
   for (int runs = 1; runs < 25 && (runs < 3 || spent < 0.5); ++runs) {
-    const Outcome o = timed_run_once(s, name, body);
+    const RunResult o = timed_run_once(s, name, body);
     spent += o.mesh_seconds + o.run_seconds;
     if (o.mesh_seconds + o.run_seconds < best.mesh_seconds + best.run_seconds) best = o;
   }
   return best;
 }
 
-std::string run_steps(nmm::solve::TimeStepper& st, double t_end, Outcome& o) {
+nmm::Outcome run_steps(nmm::solve::TimeStepper& st, double t_end, RunResult& o) {
   return st.run_until(t_end, [&o](std::int64_t n) { o.steps = n; });
 }
 
@@ -182,11 +182,11 @@ Row cantilever(double h, int order = 0) {
   r.value = h;
   r.value_text = "h = " + num(h, "%.6g") + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
   r.exact = nmm::reference::timoshenko_tip_deflection();
-  r.out = timed_run(s, "cantilever", [](nmm::solve::TimeStepper& st, Outcome& o) {
+  r.out = timed_run(s, "cantilever", [](nmm::solve::TimeStepper& st, RunResult& o) {
     st.step(1.0);
     o.steps = 1;
     o.computed = -st.view().state.measure[0].displacement()[1];
-    return std::string("ok");
+    return nmm::Outcome{};
   });
   return r;
 }
@@ -215,8 +215,8 @@ Row sliding_block(const std::string& setting, double dt, double kn_over_e, int o
                  (setting == "cover_order" ? ", n = " + std::to_string(order) : "") +
                  (setting == "contact_tolerance" ? ", τ = " + num(contact_tolerance) : "");
   r.exact = nmm::reference::sliding_distance(alpha_deg, phi_deg, t);
-  r.out = timed_run(s, "sliding block", [t](nmm::solve::TimeStepper& st, Outcome& o) {
-    const std::string status = run_steps(st, t, o);
+  r.out = timed_run(s, "sliding block", [t](nmm::solve::TimeStepper& st, RunResult& o) {
+    const nmm::Outcome status = run_steps(st, t, o);
     o.computed = st.view().state.measure[0].displacement()[0];
     return status;
   });
@@ -243,13 +243,13 @@ Row kirsch(double h, int order) {
                                      nmm::reference::kKirschRadius, 0);
   const SceneDef s = nmm::reference::kirsch_scene(k);
   // The read-off needs the mesh: kept from the timed run (build_mesh is deterministic).
-  r.out = timed_run(s, "kirsch", [&k](nmm::solve::TimeStepper& st, Outcome& o) {
+  r.out = timed_run(s, "kirsch", [&k](nmm::solve::TimeStepper& st, RunResult& o) {
     st.step(1.0);
     o.steps = 1;
     const nmm::studies::KirschWall w = nmm::studies::kirsch_wall(k, st.view().mesh, st);
     o.computed = w.side_wall_hoop;
     o.own_error = w.hoop_wall;
-    return std::string("ok");
+    return nmm::Outcome{};
   });
   return r;
 }
@@ -267,10 +267,10 @@ SceneDef single_joint_scene(const std::string& path) {
 
 // The single-joint specimen loaded as everywhere else (reference/joint_specimen.h); closure or slip at the
 // joint's middle.
-Outcome joint_run(SceneDef s, double sigma, double tau, double seconds, bool want_slip) {
+RunResult joint_run(SceneDef s, double sigma, double tau, double seconds, bool want_slip) {
   nmm::reference::load_joint_specimen(s, sigma, tau);
-  return timed_run(s, "single joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
-    const std::string status = run_steps(st, seconds, o);
+  return timed_run(s, "single joint", [&](nmm::solve::TimeStepper& st, RunResult& o) {
+    const nmm::Outcome status = run_steps(st, seconds, o);
     const auto a = st.view().state.measure[0].displacement();
     const auto b = st.view().state.measure[1].displacement();
     o.computed = want_slip ? a[0] - b[0] : b[1] - a[1];
@@ -349,8 +349,8 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   r.value_text = "kn = " + num(kn_over_e) + "·E, h = " + num(s.mesh_size, "%.6g") + " m, 0.3 s";
   r.exact = sigma * 1.0 / e;
   nmm::reference::load_joint_specimen(s, sigma, 0);
-  r.out = timed_run(s, "tight joint", [&](nmm::solve::TimeStepper& st, Outcome& o) {
-    const std::string status = run_steps(st, 0.3, o);
+  r.out = timed_run(s, "tight joint", [&](nmm::solve::TimeStepper& st, RunResult& o) {
+    const nmm::Outcome status = run_steps(st, 0.3, o);
     o.computed = st.view().state.measure[1].displacement()[1] - st.view().state.measure[0].displacement()[1];
     return status;
   });
@@ -373,13 +373,13 @@ Row joint_wave(const std::string& setting, double h, double dt) {
   const nmm::reference::JointWaveClosedForm cf(w);
   r.exact = cf.transmitted_peak() / cf.impedance();
   const SceneDef s = nmm::reference::joint_wave_scene(w);
-  r.out = timed_run(s, "joint wave", [&](nmm::solve::TimeStepper& st, Outcome& o) {
+  r.out = timed_run(s, "joint wave", [&](nmm::solve::TimeStepper& st, RunResult& o) {
     const nmm::studies::JointWaveHistory hist =
         nmm::studies::run_joint_wave(st, s, [&o](std::int64_t n) { o.steps = n; });
     const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
     o.computed = e.peak_velocity;
     o.own_error = e.after_rms;
-    return hist.status;
+    return hist.outcome;
   });
   return r;
 }
@@ -410,7 +410,7 @@ void write_wave_outputs(const std::string& out, bool quick) {
       const SceneDef s = nmm::reference::joint_wave_scene(w);
       const nmm::Mesh m = nmm::pre::build_mesh(s, "joint wave");
       const nmm::studies::JointWaveHistory hist = nmm::studies::run_joint_wave(m, s);
-      if (hist.status != "ok") throw nmm::RunError("joint wave: " + hist.status);
+      if (!hist.outcome.ok()) throw nmm::RunError("joint wave: " + hist.outcome.status());
       const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
       md << "| τ = " << num(1e3 * cf.tau(), "%.2g") << " ms (kn = " << num(1e-9 * w.kn, "%.3g")
          << " GPa/m), h = " << num(h) << " m, Δt = " << num(1e6 * w.dt) << " µs | "
@@ -520,7 +520,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
         md << num(shown(c, r.out.computed), "%.6g") << " | "
            << num(100 * (r.out.computed - r.exact) / std::abs(r.exact), "%+.3f") << " %";
       else
-        md << (r.out.status == RunStatus::not_available ? "not available" : "did not complete") << " | –";
+        md << (!r.out.available ? "not available" : "did not complete") << " | –";
       md << " | " << num(r.wall(), "%.4f") << " (" << num(r.out.mesh_seconds, "%.4f") << " + "
          << num(r.out.run_seconds, "%.4f") << ") | " << r.out.unknowns << " | " << r.out.steps
          << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
@@ -564,7 +564,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
   for (const Row& r : rows)
     if (!r.out.ok())
       failed << "| " << r.case_name << " | " << r.value_text << " | " << num(r.wall(), "%.3f")
-             << " | " << r.out.reason << " |\n";
+             << " | " << r.out.reason() << " |\n";
   md << "\n### Runs that did not complete (not in the CSV or the picture)\n\n";
   if (failed.str().empty())
     md << "None.\n";
@@ -639,7 +639,7 @@ int main(int argc, char** argv) {
     auto add = [&rows](Row r) {
       std::fprintf(stderr, "%-16s %-14s %-52s %s  %.3f s\n", r.case_name.c_str(), r.setting.c_str(),
                    r.value_text.c_str(),
-                   r.out.ok() ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason.c_str(),
+                   r.out.ok() ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason().c_str(),
                    r.wall());
       rows.push_back(std::move(r));
     };

@@ -247,10 +247,9 @@ double line_search(const F& psi, double psi0, double tol) {
 }
 }  // namespace
 
-ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
+Outcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
                                        Eigen::VectorXd* residual, bool warm) {
-  using Status = ContactSolveOutcome::Status;
   // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
   static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
   const Eigen::Index n = b.size();
@@ -327,7 +326,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
     if (last_full_cg && r_norm > 0.5 * last_r) refresh = true;
     last_r = r_norm;
     if (it >= kMaxNewton)
-      return {Status::not_converged, "the contact solve did not converge in " + std::to_string(kMaxNewton) +
+      return {StopCode::contact_not_converged, "the contact solve did not converge in " + std::to_string(kMaxNewton) +
                                          " Newton iterations (residual " + std::to_string(r_norm / tol) +
                                          " × its tolerance)"};
     ++stats.newton;
@@ -361,7 +360,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
       const bool ok = system.factorize();
       ++stats.factorisations;
       stats.factorisation_seconds += t0.seconds();
-      if (!ok) return {Status::not_positive_definite, "the system matrix is not positive definite"};
+      if (!ok) return {StopCode::unconstrained, "the system matrix is not positive definite"};
       const std::size_t outside = contacts.springs_outside_pattern();
       if (outside == 0) {
         delta = system.solve(r);
@@ -382,7 +381,7 @@ ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contact
       }
     }
     if (!delta.allFinite())
-      return {Status::not_finite, "the contact solve produced a displacement that is not finite"};
+      return {StopCode::direction_not_finite, "the contact solve produced a displacement that is not finite"};
     // Exact line search on ψ(α) = r(d + αδ)ᵀδ.
     const Stopwatch t1;
     system.saved_times(delta, adelta);

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/outcome.h"
 #include "solver/contact/contact.h"
 #include "solver/discretisation/system_matrix.h"
 
@@ -38,19 +39,6 @@ struct ContactSolveStats {
   double factorisation_seconds = 0, cg_seconds = 0, line_search_seconds = 0;
 };
 
-/// How a step's contact solve ended.
-struct ContactSolveOutcome {
-  enum class Status {
-    converged,              ///< within the tolerance
-    not_positive_definite,  ///< a factorisation failed (an unconstrained cover)
-    not_converged,          ///< the Newton iterations ran out (the step is cut)
-    not_finite,             ///< a direction was not finite (the step is cut)
-  };
-  Status status = Status::converged;
-  std::string reason;  ///< in words, for the run's status when the step cannot be cut further
-  bool ok() const { return status == Status::converged; }
-};
-
 /// u_tol = 3e-4·τ·w0 (m): the displacement twin of the force tolerance. An iterate in force
 /// balance is accepted only if the displacement that would remove its residual, estimated with
 /// the kept factorisation, is within it: a soft contact (a joint near its strength, whose tangent
@@ -71,10 +59,12 @@ inline double displacement_tolerance(double tau, double w0) { return kDisplaceme
 /// displacement_tolerance()). On return d is the solution and, if asked for, *residual (N/m, in
 /// unknown order) the out-of-balance force it leaves, with the friction strengths of its own
 /// normal forces (block_momentum.h hands its blocks' share to the next step). The contacts'
-/// states are left to the caller (ContactSet::break_at_peak, settle_states). `warm`: start from d
+/// states are left to the caller (ContactSet::break_at_peak, settle_states). Returns ok, or
+/// unconstrained (a factorisation failed), contact_not_converged or direction_not_finite (the
+/// caller cuts the step) with the reason in words; its time is the caller's to set. `warm`: start from d
 /// as given, with the strengths the contacts hold (the same step solved again after contacts
 /// broke at its solution), instead of from d = 0 with the strengths the step started with.
-ContactSolveOutcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
+Outcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
                                        Eigen::VectorXd* residual = nullptr, bool warm = false);
 

@@ -71,12 +71,11 @@ void ProgressLine::update(std::int64_t step, double time) {
   std::fflush(out_);
 }
 
-void ProgressLine::finish(std::int64_t step, double time, const std::string& status,
-                          const std::string& note) {
+void ProgressLine::finish(std::int64_t step, double time, bool ended_ok, const std::string& note) {
   if (mode_ == Mode::off) return;
   // A run that did not end "ok" is reported by the caller in exactly one line (the exit-status
   // contract): only end a terminal's in-place line here.
-  if (status != "ok") {
+  if (!ended_ok) {
     if (mode_ == Mode::terminal && printed_) std::fprintf(out_, "\n");
     std::fflush(out_);
     return;

@@ -26,11 +26,10 @@ class ProgressLine {
   void set_warning(std::string text) { warning_ = std::move(text); }
   /// After an accepted step: prints when the period has passed since the last line.
   void update(std::int64_t step, double time);
-  /// At the end of an "ok" run: the last line, with `note` after it (nmm-solve: the status and
-  /// the equilibrium verdict). Any other status prints nothing (the caller's one line says why),
-  /// a terminal's in-place line is only ended.
-  void finish(std::int64_t step, double time, const std::string& status,
-              const std::string& note = "");
+  /// At the end of a run that ended ok: the last line, with `note` after it (nmm-solve: the
+  /// status and the equilibrium verdict). Any other end prints nothing (the caller's one line
+  /// says why), a terminal's in-place line is only ended.
+  void finish(std::int64_t step, double time, bool ended_ok, const std::string& note = "");
   /// The text of one line (no line ending), for tests.
   std::string line(std::int64_t step, double time, double wall_seconds) const;
 

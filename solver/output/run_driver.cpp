@@ -23,8 +23,8 @@ class FrameOutput : public StepObserver {
     if (n % output_every_ == 0 || last) frame(st, n);
     else if (n % history_every_ == 0) history(st, n);
   }
-  void finish(const RunView& st, const std::string& status, std::int64_t done) override {
-    if (status != "ok" && done % output_every_ != 0) frame(st, done);  // the last good state
+  void finish(const RunView& st, const Outcome& outcome, std::int64_t done) override {
+    if (!outcome.ok() && done % output_every_ != 0) frame(st, done);  // the last good state
     out_.flush_history();
   }
 
@@ -85,7 +85,7 @@ class CheckpointOutput : public StepObserver {
   void after_step(const RunView& st, std::int64_t n, bool) override {
     if (every_ > 0 && n % every_ == 0) write_checkpoint(st, path_);
   }
-  void finish(const RunView& st, const std::string&, std::int64_t) override {
+  void finish(const RunView& st, const Outcome&, std::int64_t) override {
     write_checkpoint(st, path_);
   }
 
@@ -101,21 +101,21 @@ RunDriver::RunDriver(TimeStepper& stepper, OutputWriter& out) : stepper_(stepper
 nlohmann::json RunDriver::run() {
   const Stopwatch wall;
   const SolverDef& sv = stepper_.view().model.scene().solver;
-  RunOutcome outcome;
-  outcome.first_step = stepper_.view().state.step;  // a restart continues from the checkpoint's
-  FrameOutput frames(out_, outcome.first_step, sv);
+  RunRecord record;
+  record.first_step = stepper_.view().state.step;  // a restart continues from the checkpoint's
+  FrameOutput frames(out_, record.first_step, sv);
   CheckpointOutput checkpoint(out_.dir() + "/checkpoint.nmmstate", sv.checkpoint_every);
   // Output seconds: the frames', histories' and checkpoints' (summary.json timings.output).
-  auto timed = [&outcome](auto&& write) {
+  auto timed = [&record](auto&& write) {
     const Stopwatch sw;
     write();
-    outcome.output_seconds += sw.seconds();
+    record.output_seconds += sw.seconds();
   };
   timed([&] { frames.start(stepper_.view()); });
   for (StepObserver* o : observers_) o->start(stepper_.view());
   const double t_end = stepper_.view().state.time + static_cast<double>(sv.steps) * sv.time_step;
-  outcome.status = stepper_.run_until(t_end, [&](std::int64_t n) {
-    outcome.done = n;
+  record.outcome = stepper_.run_until(t_end, [&](std::int64_t n) {
+    record.done = n;
     const bool last =
         stepper_.view().state.time >= t_end - StepControl::kRoundOff * sv.time_step || stepper_.view().stopped_at_ratio;
     timed([&] {
@@ -125,12 +125,13 @@ nlohmann::json RunDriver::run() {
     for (StepObserver* o : observers_) o->after_step(stepper_.view(), n, last);
   });
   timed([&] {
-    frames.finish(stepper_.view(), outcome.status, outcome.done);
-    checkpoint.finish(stepper_.view(), outcome.status, outcome.done);
+    frames.finish(stepper_.view(), record.outcome, record.done);
+    checkpoint.finish(stepper_.view(), record.outcome, record.done);
   });
-  for (StepObserver* o : observers_) o->finish(stepper_.view(), outcome.status, outcome.done);
-  outcome.wall_seconds = wall.seconds();
-  nlohmann::json summary = run_summary(stepper_.view(), outcome);
+  for (StepObserver* o : observers_) o->finish(stepper_.view(), record.outcome, record.done);
+  record.wall_seconds = wall.seconds();
+  outcome_ = record.outcome;
+  nlohmann::json summary = run_summary(stepper_.view(), record);
   out_.write_summary(summary);
   return summary;
 }

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/outcome.h"
 #include "solver/output/output_writer.h"
 #include "solver/stepping/run_view.h"
 #include "solver/stepping/time_stepper.h"
@@ -34,9 +35,8 @@ class StepObserver {
   /// After accepted step n of this run (1, 2, ...); `last`: the run's last step (its steps are
   /// done or solver.stop_at_ratio is met).
   virtual void after_step(const RunView& run, std::int64_t n, bool last) = 0;
-  /// Once the run has stopped after `done` steps; `status` "ok" or why not (an interrupt, an
-  /// error).
-  virtual void finish(const RunView&, const std::string& /*status*/, std::int64_t /*done*/) {}
+  /// Once the run has stopped after `done` steps, with how it ended.
+  virtual void finish(const RunView&, const Outcome& /*outcome*/, std::int64_t /*done*/) {}
 };
 
 /// An observer of one function (after_step only).
@@ -60,11 +60,14 @@ class RunDriver {
 
   /// Runs all steps, calling the observers; writes and returns the summary.
   nlohmann::json run();
+  /// How the last run() ended.
+  const Outcome& outcome() const { return outcome_; }
 
  private:
   TimeStepper& stepper_;
   OutputWriter& out_;
   std::vector<StepObserver*> observers_;
+  Outcome outcome_;
 };
 
 /// The whole run without further observers (tests, benches): RunDriver(stepper, out).run().

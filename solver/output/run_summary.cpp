@@ -6,19 +6,22 @@
 
 namespace nmm::solve {
 
-nlohmann::json run_summary(const RunView& st, const RunOutcome& o) {
+nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   const SolverDef& sv = st.model.scene().solver;
   const RunState& s = st.state;
   StepTimings t = st.timings;
   t.output = o.output_seconds;
   nlohmann::json summary;
-  summary["status"] = o.status;
+  summary["status"] = o.outcome.status();
+  // The same, as a stable code to branch on (common/outcome.h), and when it happened.
+  summary["stop_code"] = stop_code_name(o.outcome.code);
+  summary["stop_time"] = o.outcome.time;
   // Why the run ended: all its steps, solver.stop_at_ratio met, an interrupt, or an error
   // (status then says which).
-  summary["stopped_by"] = o.status == "interrupted" ? "interrupt"
-                          : o.status != "ok"        ? "error"
-                          : st.stopped_at_ratio     ? "stop_at_ratio"
-                                                  : "steps";
+  summary["stopped_by"] = o.outcome.code == StopCode::interrupted ? "interrupt"
+                          : o.outcome.failed()                    ? "error"
+                          : st.stopped_at_ratio                   ? "stop_at_ratio"
+                                                                  : "steps";
   summary["equilibrium"] = equilibrium_verdict(st.equilibrium, sv.dynamic);
   if (sv.stop_at_ratio > 0) summary["equilibrium"]["stop_at_ratio"] = sv.stop_at_ratio;
   summary["steps_completed"] = o.done;

@@ -7,13 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/outcome.h"
 #include "solver/stepping/run_view.h"
 
 namespace nmm::solve {
 
 /// How a run went, as the run driver saw it (run_driver.h).
-struct RunOutcome {
-  std::string status;           ///< "ok", "interrupted" or why the run could not go on
+struct RunRecord {
+  Outcome outcome;              ///< how it ended (common/outcome.h)
   std::int64_t done = 0;        ///< steps completed by this run
   std::int64_t first_step = 0;  ///< steps before this run (a restart from a checkpoint)
   double wall_seconds = 0;      ///< s, the whole run
@@ -21,6 +22,6 @@ struct RunOutcome {
 };
 
 /// The summary of a run (its view once it has stopped) (every key of summary.json).
-nlohmann::json run_summary(const RunView& run, const RunOutcome& outcome);
+nlohmann::json run_summary(const RunView& run, const RunRecord& record);
 
 }  // namespace nmm::solve

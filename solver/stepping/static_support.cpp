@@ -19,7 +19,7 @@ std::string cover_node_text(const Mesh& mesh, std::int32_t c) {
 
 }  // namespace
 
-void check_static_support(const Model& model, const RunState& s) {
+std::string unheld_block(const Model& model, const RunState& s) {
   const Mesh& mesh = model.mesh();
   std::vector<int> held(mesh.block_count(), 0);
   for (const TrackedPoint& p : s.fixed) ++held[mesh.element_block[p.element]];
@@ -36,8 +36,9 @@ void check_static_support(const Model& model, const RunState& s) {
        << ", so its covers (e.g. cover " << c << " at node " << cover_node_text(mesh, c)
        << ") are unconstrained: give each block two fixed points, or use DDA's static analysis "
           "(solver.static_mode \"dda\", the default) or a dynamic run";
-    throw RunError(os.str());
+    return os.str();
   }
+  return "";
 }
 
 std::string not_positive_definite_message(const Mesh& mesh, const CoverSpace& space,

@@ -1,6 +1,6 @@
 // Whether a step's system is held: a system without inertia (static_mode "equilibrium", or a
 // static run without contacts) is singular unless every block is held, and a factorisation
-// that fails names the cover left free. Both say so in one RunError line a rock engineer can act
+// that fails names the cover left free. Both say so in one line a rock engineer can act
 // on (which block or cover, where, and what to add).
 //
 //   held(b) = (fixed points in block b) + 2·(support edges on block b)
@@ -16,9 +16,10 @@
 
 namespace nmm::solve {
 
-/// Throws RunError naming the first block of a body still there (s.body_removed) held by fewer
-/// than two fixed points (s.fixed) or supports (model.support_edges()).
-void check_static_support(const Model& model, const RunState& s);
+/// Why the system is singular, naming the first block of a body still there (s.body_removed)
+/// held by fewer than two fixed points (s.fixed) or supports (model.support_edges()); "" when
+/// every block is held.
+std::string unheld_block(const Model& model, const RunState& s);
 
 /// Why a factorisation failed at unknown `failed_unknown` (-1: not known): the cover and its
 /// node, unconstrained.

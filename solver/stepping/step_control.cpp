@@ -21,7 +21,7 @@ double StepControl::next(double t, double t_end) const {
   return left < dt_ * (1 - kRoundOff) ? left : dt_;
 }
 
-std::string StepControl::rejection(double dmax, double max_penetration, bool inertia) const {
+Outcome StepControl::rejection(double dmax, double max_penetration, bool inertia) const {
   // The reason names w0 in words: users coming from UDEC do not know DDA's symbol. The value and
   // its limit get the digits that tell them apart (6e-06 against 6e-06 would puzzle).
   const double limit = g2w0_;
@@ -34,17 +34,17 @@ std::string StepControl::rejection(double dmax, double max_penetration, bool ine
   };
   if (inertia && dmax > kMaxMove * limit) {
     const auto [moved, allowed] = apart(dmax, kMaxMove * limit);
-    return "one step moved a cover by " + moved + " m, more than the " + allowed +
+    return {StopCode::step_displacement, "one step moved a cover by " + moved + " m, more than the " + allowed +
            " m a step may move (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
-           ", w0 being half the model size as in DDA)";
+           ", w0 being half the model size as in DDA)"};
   }
   if (max_penetration > limit) {
     const auto [depth, allowed] = apart(max_penetration, limit);
-    return "a contact penetrated " + depth + " m, more than the " + allowed +
+    return {StopCode::penetration, "a contact penetrated " + depth + " m, more than the " + allowed +
            " m allowed (max_displacement_ratio " + ratio + " × w0 " + w0 +
-           ", w0 being half the model size as in DDA)";
+           ", w0 being half the model size as in DDA)"};
   }
-  return "";
+  return {};
 }
 
 bool StepControl::cut(double h) {

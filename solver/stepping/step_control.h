@@ -11,6 +11,8 @@
 // Without contact every step has the full length time_step (nothing is ever rejected).
 #pragma once
 
+#include "common/outcome.h"
+
 #include <string>
 
 #include "common/scene.h"
@@ -48,10 +50,10 @@ class StepControl {
   bool done(double t, double t_end) const { return !(t < t_end - kRoundOff * time_step_); }
   /// s, the length of the next attempt from t: Δt, or what is left to t_end.
   double next(double t, double t_end) const;
-  /// Why a solved attempt may not be accepted, "" if it may: the largest cover displacement
-  /// dmax (m; checked with the inertia term only: an equilibrium increment does not shrink with
-  /// Δt) and the deepest penetration (m).
-  std::string rejection(double dmax, double max_penetration, bool inertia) const;
+  /// Why a solved attempt may not be accepted (step_displacement or penetration, with the
+  /// reason; ok if it may): the largest cover displacement dmax (m; checked with the inertia
+  /// term only: an equilibrium increment does not shrink with Δt) and the deepest penetration (m).
+  Outcome rejection(double dmax, double max_penetration, bool inertia) const;
   /// After a rejected attempt of length h (s): false when the cut step is below the floor.
   bool cut(double h);
   /// After an accepted attempt: Δt grows back towards time_step.

@@ -106,11 +106,17 @@ void TimeStepper::set_threads(int threads) {
 
 
 
-void TimeStepper::compute_frames() {
+Outcome TimeStepper::compute_frames() {
   const std::int64_t e = config_.place(s_.cover_xy);
   if (e >= 0)
-    throw RunError("element " + std::to_string(e) + ": its triangle has folded over at t = " +
-                   std::to_string(s_.time) + " s (displacements too large for the time step)");
+    return stop(StopCode::element_folded, "element " + std::to_string(e) + ": its triangle has folded over at t = " +
+                                              std::to_string(s_.time) +
+                                              " s (displacements too large for the time step)");
+  return {};
+}
+
+Outcome TimeStepper::stop(StopCode code, std::string reason) const {
+  return Outcome::stop(code, std::move(reason), s_.time);
 }
 
 void TimeStepper::update_pattern() {
@@ -176,13 +182,14 @@ void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
   update_state(model_, config_, d, dt, s_);
 }
 
-std::string TimeStepper::attempt(double dt) {
+Outcome TimeStepper::attempt(double dt) {
   // Where no two faces can touch (an opening excavated from one unjointed block), the plain
   // solve: no contact detection, no contact problem.
   const bool contact = contacts_.active() && model_.contacts_can_arise();
-  if (!step_inertia() && !contact) check_static_support(model_, s_);
+  if (!step_inertia() && !contact)
+    if (std::string why = unheld_block(model_, s_); !why.empty()) return stop(StopCode::unconstrained, std::move(why));
   Stopwatch watch;
-  compute_frames();
+  if (Outcome folded = compute_frames(); !folded.ok()) return folded;
   timings_.assembly += watch.seconds();
   if (contact) {
     contacts_.begin_step(
@@ -215,7 +222,7 @@ std::string TimeStepper::attempt(double dt) {
     const bool ok = system_.factorize();
     ++timings_.factorisations;
     timings_.factorisation += watch.seconds();
-    if (!ok) throw RunError(not_positive_definite());
+    if (!ok) return stop(StopCode::unconstrained, not_positive_definite());
     watch.restart();
     d = system_.solve(rhs_);
     ++timings_.solves_count;
@@ -228,7 +235,7 @@ std::string TimeStepper::attempt(double dt) {
                                 contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
                                 solve_stats_, handed_on_share() > 0 ? &residual : nullptr, warm);
     };
-    ContactSolveOutcome outcome = solve(false);
+    Outcome outcome = solve(false);
     // Bonds and cohesion break only at a solution of the step, and the step is solved again with
     // them broken until no unbroken contact is beyond its peak (contact.h break_at_peak). Each
     // round breaks at least one contact, so this ends.
@@ -249,18 +256,17 @@ std::string TimeStepper::attempt(double dt) {
                        solve_stats_.line_search_seconds - before.line_search_seconds;
     s_.iterations += static_cast<std::uint64_t>(solve_stats_.newton - before.newton);
     s_.friction_unsettled += static_cast<std::uint64_t>(solve_stats_.unsettled - before.unsettled);
-    if (outcome.status == ContactSolveOutcome::Status::not_positive_definite)
-      throw RunError(not_positive_definite());
-    if (!outcome.ok()) return outcome.reason;
+    if (outcome.code == StopCode::unconstrained) return stop(StopCode::unconstrained, not_positive_definite());
+    if (!outcome.ok()) return stop(outcome.code, std::move(outcome.reason));
   }
   for (Eigen::Index i = 0; i < d.size(); ++i)
     if (!std::isfinite(d[i]))
-      throw RunError("the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
-                     " is not a finite number at t = " + std::to_string(s_.time) + " s");
+      return stop(StopCode::displacement_not_finite,
+                  "the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
+                      " is not a finite number at t = " + std::to_string(s_.time) + " s");
   if (contact) {
-    const std::string why =
-        control_.rejection(d.cwiseAbs().maxCoeff(), contacts_.max_penetration(), step_inertia());
-    if (!why.empty()) return why;
+    Outcome rejected = control_.rejection(d.cwiseAbs().maxCoeff(), contacts_.max_penetration(), step_inertia());
+    if (!rejected.ok()) return stop(rejected.code, std::move(rejected.reason));
     contacts_.end_step();
     // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
     // its start hands nothing on, and a direct solve leaves nothing to hand on.
@@ -278,7 +284,7 @@ std::string TimeStepper::attempt(double dt) {
   timings_.geometry_update += watch.seconds();
   s_.time += dt;
   ++s_.step;
-  return "";
+  return {};
 }
 
 void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool contact) {
@@ -307,36 +313,33 @@ void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool cont
 }
 
 void TimeStepper::step(double dt) {
-  const std::string why = attempt(dt);
-  if (!why.empty()) throw RunError(why);
+  const Outcome o = attempt(dt);
+  if (!o.ok()) throw RunError(o.reason);
 }
 
-std::string TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step) {
+Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step) {
   // Attempts under Shi's step control (step_control.h): without contact nothing is rejected and
-  // every step has the full length time_step.
+  // every step has the full length time_step. What a shorter step may cure is cut and tried
+  // again; anything else stops the run at once.
   const SolverDef& sv = scene_.solver;
   control_ = StepControl(sv, model_.w0(), s_.dt);
   std::int64_t done = 0;
   stopped_at_ratio_ = false;
   while (!control_.done(s_.time, t_end)) {
     // Between steps only, so an interrupted run stops in a consistent state.
-    if (stop_check_ && stop_check_()) return "interrupted";
+    if (stop_check_ && stop_check_()) return stop(StopCode::interrupted, "interrupted");
     const double h = control_.next(s_.time, t_end);
-    std::string why;
-    try {
-      why = attempt(h);
-    } catch (const RunError& e) {
-      return e.what();
-    }
-    if (!why.empty()) {
+    const Outcome o = attempt(h);
+    if (!o.ok()) {
+      if (!cured_by_shorter_step(o.code)) return o;
       static const bool trace = std::getenv("NMM_TRACE_CUTS") != nullptr;
-      if (trace) std::fprintf(stderr, "cut at t = %.9g: %s\n", s_.time, why.c_str());
+      if (trace) std::fprintf(stderr, "cut at t = %.9g: %s\n", s_.time, o.reason.c_str());
       ++s_.cuts;
       if (!control_.cut(h)) {
         std::ostringstream os;
         os << "time step cut below its floor (" << control_.floor() << " s) at t = " << s_.time
-           << " s because " << why;
-        return os.str();
+           << " s because " << o.reason;
+        return stop(o.code, os.str());
       }
       continue;
     }
@@ -346,9 +349,9 @@ std::string TimeStepper::run_until(double t_end, const std::function<void(std::i
     stopped_at_ratio_ = sv.stop_at_ratio > 0 && balance_.max_ratio < sv.stop_at_ratio &&
                         (!sv.dynamic || balance_.max_velocity < RestCriterion::kVelocity);
     on_step(++done);
-    if (stopped_at_ratio_) return "ok";
+    if (stopped_at_ratio_) break;
   }
-  return "ok";
+  return stop(StopCode::ok, "");
 }
 
 void TimeStepper::restart_from(const std::string& path) {

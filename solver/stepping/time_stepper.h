@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 
 #include "common/mesh.h"
+#include "common/outcome.h"
 #include "common/scene.h"
 #include "solver/stepping/block_momentum.h"
 #include "solver/discretisation/configuration.h"
@@ -41,7 +42,7 @@ class TimeStepper {
   TimeStepper(const TimeStepper&) = delete;
   TimeStepper& operator=(const TimeStepper&) = delete;
 
-  /// Asked before every step: true stops the run with status "interrupted" (interrupt.h).
+  /// Asked before every step: true stops the run, interrupted (interrupt.h).
   void set_stop_check(std::function<bool()> f) { stop_check_ = std::move(f); }
   /// Threads of the factorisation's dense kernels (solver_threads.h); 0: the default for the
   /// problem size (one thread below 150k unknowns).
@@ -55,15 +56,17 @@ class TimeStepper {
   void restore(const RunState& state, const std::string& contact_history, const std::string& name);
 
   // ---- steps ------------------------------------------------------------------------------
-  /// Tries one step of length dt; on success the state moves on and "" is returned, otherwise
-  /// the state is left as it was and the reason is returned (the caller cuts dt and retries).
-  /// Throws RunError for what no smaller step can cure.
-  std::string attempt(double dt);
+  /// Tries one step of length dt; on success the state moves on and ok is returned, otherwise
+  /// the state is left as it was and the outcome says why (common/outcome.h: the caller cuts dt
+  /// and retries where cured_by_shorter_step(), and stops otherwise).
+  Outcome attempt(double dt);
   /// One step of length dt. Throws RunError when it cannot be taken.
   void step(double dt);
   /// Steps until simulated time t_end (s) with step control, calling on_step(n) after the n-th
-  /// accepted step. Returns "ok" or the reason the run cannot go on.
-  std::string run_until(double t_end, const std::function<void(std::int64_t)>& on_step);
+  /// accepted step. Returns ok (also when solver.stop_at_ratio is met), interrupted (the stop
+  /// check said so), or why the run cannot go on: what no shorter step cures, or what step
+  /// control cut to its floor (the reason says so).
+  Outcome run_until(double t_end, const std::function<void(std::int64_t)>& on_step);
 
   // ---- read -------------------------------------------------------------------------------
   /// What the outputs read: state, model, space, contacts, system, costs (run_view.h).
@@ -76,7 +79,9 @@ class TimeStepper {
  private:
   friend class TimeStepperProbe;  // test and bench hooks (time_stepper_probe.h)
 
-  void compute_frames();
+  Outcome compute_frames();
+  /// A stop of this attempt: the code and reason at the current state's time.
+  Outcome stop(StopCode code, std::string reason) const;
   void assemble(double dt);
   void update_pattern();
   void update(const Eigen::VectorXd& d, double dt);
