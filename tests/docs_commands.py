@@ -56,8 +56,6 @@ SKIP = [
      "rewrites the table from a minute of runs; CTest state_hashes runs the comparison"),
     ("accuracy.md", r"^build/bin/nmm-study docs/figures ",
      "about 5 min; CTest study.accuracy_quick runs its --quick variant and compares the rows"),
-    ("contact.md", r"contact_bench --sizes 10,20,30,50 ",
-     "benchmark of several minutes (50 x 50 wall)"),
     ("fos-and-sweeps.md", r"--profile workflow/profiles/slurm",
      "needs a Slurm cluster and a shared /shared/scratch; CTest studies.sweep_through_slurm "
      "runs the profile on a single-node Slurm when run as root"),
@@ -93,9 +91,6 @@ SHORTEN = [
     ("performance.md", r"(factor_update_bench) --sizes 10,20,30 --mesh 2 --steps 30 --from 10 ",
      r"\1 --sizes 10 --mesh 2 --steps 4 --from 2 ",
      "the 30 x 30 walls take minutes; the 10 x 10 wall's steps 3-4 run every method once"),
-    ("performance.md", r"(factor_update_bench) --sizes 10,20 --mesh 0\.5 --steps 30 --from 10 ",
-     r"\1 --sizes 10 --mesh 0.5 --steps 3 --from 2 ",
-     "the 20 x 20 walls at h = 0.5 m take minutes; one step pair of the 10 x 10 wall shows it"),
     ("fos-and-sweeps.md", r"(--workers 2 --set solver\.steps=)300",
      r"\g<1>100 --max-factor 4",
      "the search up to F = 64 takes 77 s on the loaded machine; trials of 100 steps up to F = 4 "
