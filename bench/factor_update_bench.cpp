@@ -62,15 +62,16 @@ struct Spring {
 };
 using Springs = std::map<Key, Spring>;
 
-Springs springs_of(const nmm::solve::ContactSet& cs) {
+Springs springs_of(const nmm::solve::ContactProblem& cs) {
   Springs out;
-  const int m = cs.row_size();
   for (std::size_t i = 0; i < cs.contacts().size(); ++i) {
     const nmm::solve::Contact& c = cs.contacts()[i];
+    const nmm::solve::ContactProblem::Row row = cs.row(i);
+    const int m = row.size;
     Spring s;
-    s.dofs.assign(cs.row_dofs(i), cs.row_dofs(i) + m);
-    s.cn.assign(cs.row_cn(i), cs.row_cn(i) + m);
-    s.cs.assign(cs.row_cs(i), cs.row_cs(i) + m);
+    s.dofs.assign(row.dofs, row.dofs + m);
+    s.cn.assign(row.cn, row.cn + m);
+    s.cs.assign(row.cs, row.cs + m);
     s.kn = c.kn_now;
     s.ks = c.ks_now;
     out[{c.at.vertex, c.at.elem_a, c.at.elem_b}] = std::move(s);
@@ -298,7 +299,7 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "wall %d: %s\n", n, ran.reason.c_str());
           break;
         }
-        Springs now = springs_of(st.view().contacts);
+        Springs now = springs_of(nmm::solve::TimeStepperProbe::contact_problem(st));
         if (k > from) {
           // The system keeps the upper triangle; this bench works on the lower one.
           const Pair p = measure(Sparse(st.view().system.saved_matrix().transpose()), last, now,

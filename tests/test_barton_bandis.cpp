@@ -290,7 +290,7 @@ Rest rest_of(double sigma_n0, double tau, double k, double phi_r = kPhiR) {
 // where the mobilised strength carries τ, and has opened by ∫ tan(d_n,mob) dδ on the way;
 // beyond τp it keeps sliding. Measured (2026-11-25): travel +0.04 % / +0.12 %, opening +0.3 % /
 // +0.2 %. Before a new or reopened contact took the joint's memory from its closed neighbours
-// (contact.cpp nearby_joint_memory), the end of the joint stood open and the 90 % case travelled
+// (contact_set.cpp nearby_joint_memory), the end of the joint stood open and the 90 % case travelled
 // 20 % too far.
 TEST(BartonBandisSolver, DirectShearAtConstantNormalStress) {
   const double sn = 1e6, tau_p = sn * std::tan(rad(kPhiR + kJrc * 2)), dp = peak_shear_displacement(kJrc, kLength);
@@ -487,7 +487,7 @@ namespace {
 // less where σn is higher) and the block tilts, so one point reads a tilted face, not the
 // opening; the contacts' own dilation, integrated with the σn and travel they saw, is within
 // 0.7 % of the closed form (neither the step, δp/250, nor the midpoint rule is the cause). With
-// the strength at the travel of the start of the step (before contact.cpp took the travel at
+// the strength at the travel of the start of the step (before contact_problem.cpp took the travel at
 // the end of the step) it lagged one step: −2.0 % at 0.1·δp, up to −1 % on the rest of the
 // rise. The stresses are over the faces' overlap (2 m − slip): by 10·δp the upper block
 // overhangs by 2 %.

@@ -23,6 +23,7 @@
 #include "reference/scene_pieces.h"
 #include "reference/sliding_block.h"
 #include "solver/stepping/time_stepper.h"
+#include "solver/stepping/time_stepper_probe.h"
 
 namespace nmm::solve {
 namespace {
@@ -84,8 +85,9 @@ TEST(ContactOrders, RowsAreTheFullApproximation) {
     const std::vector<double> centre = st.view().state.cover_xy;
     st.step(1e-3);
     const ContactSet& cs = st.view().contacts;
+    const ContactProblem& pr = TimeStepperProbe::contact_problem(st);
     ASSERT_GT(cs.contacts().size(), 3u) << "order " << order;
-    ASSERT_EQ(cs.row_size(), 2 * st.view().space.element_dofs());
+    ASSERT_EQ(pr.row(0).size, 2 * st.view().space.element_dofs());
     // Degree n: all terms of degree ≤ n non-zero.
     Field f{{1e-3, 2e-3, -3e-3, 4e-3, -5e-3, 6e-3}, {-2e-3, 1e-3, 3e-3, -1e-3, 2e-3, -4e-3}};
     for (int i = 0; i < 6; ++i)
@@ -107,11 +109,11 @@ TEST(ContactOrders, RowsAreTheFullApproximation) {
     double worst = 0, scale = 0;
     for (std::size_t i = 0; i < cs.contacts().size(); ++i) {
       const Contact& c = cs.contacts()[i];
-      const int* dof = cs.row_dofs(i);
+      const ContactProblem::Row row = pr.row(i);
       double dg = 0, ds = 0;
-      for (int k = 0; k < cs.row_size(); ++k) {
-        dg += cs.row_cn(i)[k] * d[dof[k]];
-        ds += cs.row_cs(i)[k] * d[dof[k]];
+      for (int k = 0; k < row.size; ++k) {
+        dg += row.cn[k] * d[row.dofs[k]];
+        ds += row.cs[k] * d[row.dofs[k]];
       }
       const std::int32_t p = c.at.vertex, q2 = c.at.edge;
       // Q3: the next vertex of Q2's loop in its element.
@@ -127,7 +129,7 @@ TEST(ContactOrders, RowsAreTheFullApproximation) {
       scale = std::max({scale, std::abs(want_g), std::abs(want_s)});
     }
     std::printf("order %d: %zu contacts, %d unknowns per row, largest row error %.2e m (relative motion up to %.2e m)\n",
-                order, cs.contacts().size(), cs.row_size(), worst, scale);
+                order, cs.contacts().size(), pr.row(0).size, worst, scale);
     EXPECT_GT(scale, 1e-4) << "the field must move the faces relative to each other";
     EXPECT_LT(worst, 1e-12) << "order " << order;
   }
@@ -274,10 +276,10 @@ TEST(ContactOrders, SliverCoversBesideAJointStayTiedAndAtRestAtOrderOne) {
                                      st.view().state.velocity[st.view().space.dofs_per_cover() * c + 1]));
   std::printf("order 1, slit beside nodes: %zu covers tied, measure points moved %.3e m, largest cover speed %.3e m/s, "
               "%zu contacts closed, penetration %.2e m\n",
-              st.view().space.ties().tied, moved, vmax, st.view().contacts.closed_count(), st.view().state.max_penetration);
+              st.view().space.ties().tied, moved, vmax, st.view().contacts.totals().closed, st.view().state.max_penetration);
   EXPECT_LT(moved, 1e-4) << "the bodies rest where they were put, m";
   EXPECT_LT(vmax, 1e-3) << "m/s";
-  EXPECT_GT(st.view().contacts.closed_count(), 0u);
+  EXPECT_GT(st.view().contacts.totals().closed, 0u);
 }
 
 // Accepted steps of Δt = 1 ms with Shi's step control (a failed attempt is redone with Δt × 0.3,

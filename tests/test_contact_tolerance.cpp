@@ -22,6 +22,7 @@
 #include "solver/stepping/equilibrium_indicator.h"
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
+#include "solver/stepping/time_stepper_probe.h"
 
 namespace nmm::solve {
 namespace {
@@ -115,7 +116,7 @@ struct PeerWall {
 };
 
 // The friction fixed point settles: a barely touching contact's strength falls to zero along a
-// ramp below F_tol (contact.cpp update_strengths), not in one jump at F_tol. With the jump,
+// ramp below F_tol (contact_problem.cpp update_strengths), not in one jump at F_tol. With the jump,
 // contacts whose normal force hovered around the cut cycled — zero strength lets a brick slide,
 // which lifts N above the cut, whose strength holds the brick, which drops N below it — and 4 of
 // the first 100 steps of this wall (11 of the 20 × 20 one's) used all 12 strength rounds and
@@ -145,7 +146,8 @@ TEST(ContactTolerance, SparsePatternLeavesOnlyAFewTouchingContactsToCg) {
   ASSERT_PRED1(test::ended_ok, st.run_until(100 * w.scene.solver.time_step,
                          [&](std::int64_t) {
                            const ContactSet& c = st.view().contacts;
-                           const std::size_t outside = c.touching_outside_pattern();
+                           const std::size_t outside =
+                               TimeStepperProbe::contact_problem(st).outside_pattern().touching;
                            const auto allowed = static_cast<std::size_t>(
                                std::min(5.0, 0.01 * static_cast<double>(c.touching_at_start())));
                            worst_excess = std::max(worst_excess, outside > allowed ? outside - allowed : 0);
@@ -175,9 +177,9 @@ TEST(ContactTolerance, RestartWithContactsOutsideThePatternIsBitwise) {
   TimeStepper first(m, s, "wall");
   first.set_threads(1);
   int at = 0;  // the first step after 20 that ends with touching contacts outside the pattern
-  for (advance(first, 20), at = 20; first.view().contacts.touching_outside_pattern() == 0 && at < 35; ++at)
+  for (advance(first, 20), at = 20; TimeStepperProbe::contact_problem(first).outside_pattern().touching == 0 && at < 35; ++at)
     advance(first, 1);
-  ASSERT_GT(first.view().contacts.touching_outside_pattern(), 0u) << "no step left contacts to CG";
+  ASSERT_GT(TimeStepperProbe::contact_problem(first).outside_pattern().touching, 0u) << "no step left contacts to CG";
   const std::string path = ::testing::TempDir() + "/wall_outside_pattern.nmmstate";
   write_checkpoint(first.view(), path);
   TimeStepper second(m, s, "wall");
@@ -185,7 +187,7 @@ TEST(ContactTolerance, RestartWithContactsOutsideThePatternIsBitwise) {
   second.restart_from(path);
   advance(second, 40 - at);
   std::printf("wall restart at step %d with %zu touching contacts outside the pattern\n", at,
-              first.view().contacts.touching_outside_pattern());
+              TimeStepperProbe::contact_problem(first).outside_pattern().touching);
   EXPECT_EQ(state_hash(second.view()), state_hash(straight.view()));
   EXPECT_EQ(second.view().state.step, 40);
 }

@@ -309,7 +309,7 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
     bool forces_finite = true, state_finite = true;
     double max_closure = 0;
     const Outcome status = st.run_until(0.3, [&](std::int64_t) {
-      max_capped = std::max(max_capped, st.view().contacts.capped_count());
+      max_capped = std::max(max_capped, st.view().contacts.totals().capped);
       state_finite = state_finite && all_finite(st.view().state.velocity) && all_finite(st.view().state.stress) &&
                      all_finite(st.view().state.loop_xy);
       for (const Contact& c : st.view().contacts.contacts()) {
@@ -335,7 +335,7 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
                 "most %zu; %zu cuts\n",
                 sigma_n / 1e6, test::text(status).c_str(), closure_mid, closure_mid / vm, want / vm,
                 closure_end / vm, max_closure / vm, closed, force_sum, sigma_n * 2.0,
-                st.view().contacts.capped_count(), max_capped, st.view().state.cuts);
+                st.view().contacts.totals().capped, max_capped, st.view().state.cuts);
     const std::string what = "sigma_n = " + std::to_string(sigma_n / 1e6) + " MPa";
     EXPECT_PRED1(test::ended_ok, status) << what;
     EXPECT_TRUE(state_finite) << what;
@@ -683,7 +683,7 @@ TEST(HardCases, JointAlongMeshEdgesHoldsTheBlockAbove) {
     const auto top = st.view().state.measure[0].displacement();
     std::printf("%s: status %s; upper block moved (%.3e, %.3e) m; %zu contacts, %zu closed\n", name,
                 test::text(status).c_str(), top[0], top[1], st.view().contacts.contacts().size(),
-                st.view().contacts.closed_count());
+                st.view().contacts.totals().closed);
     EXPECT_PRED1(test::ended_ok, status) << name;
     expect_sound(st, mon, 1.0, name);
     EXPECT_LT(norm(top), 1e-4) << name << ": the upper block rests on the lower one, m";

@@ -161,7 +161,7 @@ TEST(JointLaw, SingleJointDirectShearThroughTheSolver) {
     // -0.06 / -0.46 / -1.24 %: near its strength the joint is soft, and the force tolerance
     // alone let it stop short.
     // 1 %: a joint point whose contact passes to the other face's vertex must keep its elastic
-    // shear (contact.cpp begin_step); when it started over with none, the slip came out
+    // shear (contact_set.cpp begin_step); when it started over with none, the slip came out
     // +1.7 / +1.3 / +0.6 %.
     EXPECT_NEAR(r.slip, want, 0.01 * want);
   }

@@ -82,7 +82,7 @@ TEST(StaticAnalysis, EquilibriumModeStillNeedsFixedPoints) {
 
 TEST(StaticAnalysis, EquilibriumModeHoldsBricksOnTheirTouchingContacts) {
   // Bricks resting on touching contacts with friction are held by them: in the first inner solve
-  // their contacts stick (the elastic predictor, contact.h set_elastic_predictor), then friction
+  // their contacts stick (the elastic predictor, contact_problem.h set_elastic_predictor), then friction
   // takes its strength from the normal force. Before, no contact was closed at the start, the
   // shear springs had no strength, and this wall stopped with "not positive definite".
   SceneDef s = reference::brick_wall(2, false);

@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
       effort.push_back({st.state.step, t, t - t_prev,
                         static_cast<std::int64_t>(st.state.iterations - iterations),
                         static_cast<std::int64_t>(st.state.cuts - cuts),
-                        static_cast<std::int64_t>(st.contacts.closed_count()),
+                        static_cast<std::int64_t>(st.contacts.totals().closed),
                         eq.max_ratio, eq.mean_ratio, eq.max_velocity});
       iterations = st.state.iterations;
       cuts = st.state.cuts;

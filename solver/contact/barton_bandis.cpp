@@ -42,7 +42,7 @@
 //   degraded d_n,mob(δ). Before 0.3·δp (no dilation yet) both ways are Barton's pre-peak curve.
 // δ, u and v advance at the end of each accepted step from the step's signed shear Δu
 // (advance_barton_bandis); within a step the contact's strength uses the state at the end of
-// the step: δ + |Δu| and the direction of Δu of the solution so far (solver/contact/contact.cpp, the
+// the step: δ + |Δu| and the direction of Δu of the solution so far (solver/contact/contact_problem.cpp, the
 // friction fixed point).
 #include "solver/contact/barton_bandis.h"
 

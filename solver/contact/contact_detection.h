@@ -54,6 +54,7 @@ struct DetectionStats {
   std::size_t pairs_tested = 0;  ///< vertex–edge pairs that reached the narrow phase
   std::size_t contacts = 0;      ///< candidates kept
   std::size_t list_builds = 0;   ///< Verlet lists built (the others reused the last one)
+  double seconds = 0;            ///< s, wall time in detection (ContactSet::begin_step)
 };
 
 /// The blocks each loop vertex was in closed contact with after the last step: sorted, unique

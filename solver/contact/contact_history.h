@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "solver/contact/contact.h"
+#include "solver/contact/contact_set.h"
 
 namespace nmm::solve {
 

@@ -56,7 +56,7 @@
 // Cohesion and tensile bonds do not break within this solve: the strengths are those of the
 // bonds the step started with (or broke at an earlier solution of the same step); the time
 // stepper breaks the contacts that reach their peak at the solution and solves again
-// (ContactSet::break_at_peak, time_stepper.cpp).
+// (ContactProblem::break_at_peak, time_stepper.cpp).
 //
 // Linear solves. H differs from the matrix P of the last factorisation by the springs that
 // switched and, from one step to the next, by the small change of A with the geometry. Conjugate
@@ -69,7 +69,7 @@
 // direction solved directly. CG is tried whatever the number of switched springs: predicting
 // from that number (rank r against the budget) refactorised 4× as often as needed, since CG
 // converged in 2–10 iterations where r was in the thousands (bench/contact_bench --peer,
-// docs/performance.md).
+// docs/notes/2026-11-linear-algebra.md).
 //
 // The system matrix's pattern holds the element pairs of the step's contacts, but for a few
 // (time_stepper.cpp update_pattern: with inertia it grows once more than a few touching
@@ -162,7 +162,7 @@ int cg_budget(const SystemMatrix& k, std::size_t contacts) {
 }
 
 // y = H v.
-void hessian_times(const SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& v,
+void hessian_times(const SystemMatrix& k, const ContactProblem& contacts, const Eigen::VectorXd& v,
                    Eigen::VectorXd& y) {
   k.saved_times(v, y);
   contacts.tangent_times(v, y);
@@ -183,7 +183,7 @@ void precondition(const SystemMatrix& k, const Eigen::VectorXd& r, Eigen::Vector
 // Preconditioned CG for H x = r to ‖H x − r‖₂ ≤ target or ‖H x − r‖∞ ≤ target_inf; false when
 // the budget is spent or H shows a non-positive curvature (then the caller factorises H).
 // `first`, if given, is C r already computed (the displacement test's estimate).
-bool pcg(const SystemMatrix& k, const ContactSet& contacts, const Eigen::VectorXd& r, double target,
+bool pcg(const SystemMatrix& k, const ContactProblem& contacts, const Eigen::VectorXd& r, double target,
          double target_inf, int budget, Eigen::VectorXd& x, ContactSolveStats& stats,
          const Eigen::VectorXd* first = nullptr) {
   x.setZero(r.size());
@@ -247,7 +247,7 @@ double line_search(const F& psi, double psi0, double tol) {
 }
 }  // namespace
 
-Outcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
+Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
                                        Eigen::VectorXd* residual, bool warm) {
   // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
@@ -256,7 +256,7 @@ Outcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eig
   Eigen::VectorXd ra = b;  // b − A d, kept up to date without a product per iteration
   Eigen::VectorXd r(n), delta(n), adelta(n);
   if (warm) {
-    // From the solution of the same step before contacts broke (ContactSet::break_at_peak has
+    // From the solution of the same step before contacts broke (ContactProblem::break_at_peak has
     // set their broken strengths; the others are the fixed point's at d).
     system.saved_times(d, adelta);
     ra -= adelta;
@@ -361,7 +361,7 @@ Outcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eig
       ++stats.factorisations;
       stats.factorisation_seconds += t0.seconds();
       if (!ok) return {StopCode::unconstrained, "the system matrix is not positive definite"};
-      const std::size_t outside = contacts.springs_outside_pattern();
+      const std::size_t outside = contacts.outside_pattern().springs;
       if (outside == 0) {
         delta = system.solve(r);
         // The exact solve leaves r's round-off null component amplified by 1/ε in δ (zero field,
@@ -405,11 +405,11 @@ Outcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eig
     if (trace) {
       // What stopped the step short of α = 1: each kind's share of ψ(1)'s departure from the
       // Newton model, over ψ(0).
-      const ContactSet::LineModelError m = contacts.line_model_error();
+      const ContactProblem::LineModelError m = contacts.line_model_error();
       std::fprintf(stderr, "  model error over psi0:");
-      for (int kind = 0; kind < ContactSet::kLineKinds; ++kind)
-        std::fprintf(stderr, " %s %d %.2e%s", ContactSet::kLineKindNames[kind], m.contacts[kind], m.error[kind] / psi0,
-                     kind + 1 < ContactSet::kLineKinds ? " |" : "\n");
+      for (int kind = 0; kind < ContactProblem::kLineKinds; ++kind)
+        std::fprintf(stderr, " %s %d %.2e%s", ContactProblem::kLineKindNames[kind], m.contacts[kind], m.error[kind] / psi0,
+                     kind + 1 < ContactProblem::kLineKinds ? " |" : "\n");
     }
     d.noalias() += alpha * delta;
     ra.noalias() -= alpha * adelta;

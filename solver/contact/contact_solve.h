@@ -9,7 +9,7 @@
 #include <Eigen/Dense>
 
 #include "common/outcome.h"
-#include "solver/contact/contact.h"
+#include "solver/contact/contact_problem.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace nmm::solve {
@@ -33,7 +33,7 @@ struct ContactSolveStats {
   /// m, the largest displacement error estimate ‖P⁻¹r‖∞ of an accepted step (at most the
   /// displacement tolerance; 0 where no factorisation was kept to estimate it with)
   double max_displacement_error = 0;
-  /// Attempts solved again because contacts broke at their solution (ContactSet::break_at_peak):
+  /// Attempts solved again because contacts broke at their solution (ContactProblem::break_at_peak):
   /// steps, and the extra solves they took
   long steps_resolved_for_breaks = 0, break_resolves = 0;
   double factorisation_seconds = 0, cg_seconds = 0, line_search_seconds = 0;
@@ -59,12 +59,12 @@ inline double displacement_tolerance(double tau, double w0) { return kDisplaceme
 /// displacement_tolerance()). On return d is the solution and, if asked for, *residual (N/m, in
 /// unknown order) the out-of-balance force it leaves, with the friction strengths of its own
 /// normal forces (block_momentum.h hands its blocks' share to the next step). The contacts'
-/// states are left to the caller (ContactSet::break_at_peak, settle_states). Returns ok, or
+/// states are left to the caller (ContactProblem::break_at_peak, settle_states). Returns ok, or
 /// unconstrained (a factorisation failed), contact_not_converged or direction_not_finite (the
 /// caller cuts the step) with the reason in words; its time is the caller's to set. `warm`: start from d
 /// as given, with the strengths the contacts hold (the same step solved again after contacts
 /// broke at its solution), instead of from d = 0 with the strengths the step started with.
-Outcome solve_contact_step(SystemMatrix& system, ContactSet& contacts, const Eigen::VectorXd& b,
+Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
                                        Eigen::VectorXd* residual = nullptr, bool warm = false);
 

@@ -67,7 +67,7 @@ struct ContactTolerances {
   double same_direction = 1e-9;
   double same_weight = 1e-9;
 
-  // ---- Springs (contact.cpp) ---------------------------------------------------------------
+  // ---- Springs (contact_problem.cpp) ---------------------------------------------------------------
   /// ×w0, a closed contact whose gap at the start of a step is above this has separated and
   /// starts the step open (kept closed, its spring would pull the faces together: glue).
   double open_gap = 1e-10;

@@ -1,6 +1,6 @@
 // Joint laws on contact springs (seed paper; docs/physics.md §4).
 //
-// A contact point stands for a tributary length L of joint (contact.cpp: half of each of the
+// A contact point stands for a tributary length L of joint (contact_set.cpp, tributary_length.cpp: half of each of the
 // contact vertex's candidate edges that face the contacted edge). Its spring force is the joint
 // stress times L, so the *force* follows the constitutive curve exactly (a secant relation),
 // while the matrix gets the tangent stiffness (Newton's method in the open–close iteration).
@@ -33,7 +33,7 @@
 //   stays continuous at δmax even after the virgin curve's cap).
 // Shear, hyperbolic (Kulhawy 1975; Duncan–Chang form), elastic shear u ≥ 0, strength
 // τf = c + σn·tanφ, i.e. T_f = tanφ·N + c·L on the contact (c → the residual cohesion c_r once
-// the contact is broken: it reached its peak at an accepted step or opened, contact.cpp;
+// the contact is broken: it reached its peak at an accepted step or opened, contact_problem.cpp;
 // c_r = 0 unless the joint set gives one):
 //     τ = u / (1/Ksi + Rf·u/τf)              ⇔  u = τ / (Ksi·(1 − Rf·τ/τf))
 //     ks = dτ/du · L = Ksi·L·(1 − Rf·τ/τf)²   (falls as u grows)

@@ -26,7 +26,7 @@ class Elasticity final : public ElementIntegrator {
 class InitialStress final : public ElementIntegrator {
  public:
   const char* name() const override { return "initial_stress"; }
-  bool begin(const StepInputs& step) override {
+  bool begin(const StepContext& step) override {
     stress_ = step.s.stress.data();
     per_element_ = 3 * static_cast<std::size_t>(step.config.space().terms());
     return true;
@@ -47,11 +47,10 @@ class BodyForce final : public ElementIntegrator {
  public:
   explicit BodyForce(const Model& model) : model_(model) {}
   const char* name() const override { return "body_force"; }
-  bool begin(const StepInputs& step) override {
-    const auto [bx, by] = body_force_per_mass(model_.scene(), step.t_end);
-    bx_ = bx;
-    by_ = by;
-    return bx != 0 || by != 0;
+  bool begin(const StepContext& step) override {
+    bx_ = step.body_force[0];
+    by_ = step.body_force[1];
+    return bx_ != 0 || by_ != 0;
   }
   void add(const ElementGeometry& g, std::size_t e, Mat6&, Vec6& f) override {
     integrators::body_force(g, model_.density(e), bx_, by_, f);
@@ -69,8 +68,8 @@ class Inertia final : public ElementIntegrator {
  public:
   explicit Inertia(const Model& model) : model_(model) {}
   const char* name() const override { return "inertia"; }
-  bool begin(const StepInputs& step) override {
-    c_ = inertia_coefficients(step_beta(model_.scene().solver, step.s), step.dt);
+  bool begin(const StepContext& step) override {
+    c_ = step.inertia;
     s_ = &step.s;
     terms_ = step.config.space().terms();
     return true;
@@ -93,10 +92,10 @@ class Inertia final : public ElementIntegrator {
 /// A boundary term of one function.
 class BoundaryTerm final : public BoundaryIntegrator {
  public:
-  using Term = void (*)(const Model&, const StepInputs&, SystemMatrix&, Eigen::VectorXd&);
+  using Term = void (*)(const Model&, const StepContext&, SystemMatrix&, Eigen::VectorXd&);
   BoundaryTerm(const char* name, Term term) : name_(name), term_(term) {}
   const char* name() const override { return name_; }
-  void add(const Model& model, const StepInputs& step, SystemMatrix& system,
+  void add(const Model& model, const StepContext& step, SystemMatrix& system,
            Eigen::VectorXd& rhs) const override {
     term_(model, step, system, rhs);
   }
@@ -115,7 +114,7 @@ Form::Form(const Model& model) : model_(model) {
   if (scene.has_gravity || !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty())
     element_.push_back(std::make_unique<BodyForce>(model));
   if (model.step_inertia()) element_.push_back(std::make_unique<Inertia>(model));
-  using S = const StepInputs&;
+  using S = const StepContext&;
   if (!model.fixed_points().empty())
     boundary_.push_back(std::make_unique<BoundaryTerm>(
         "fixed_points", [](const Model& m, S st, SystemMatrix& k, Eigen::VectorXd& f) {
@@ -155,7 +154,7 @@ std::vector<std::string> Form::names() const {
   return n;
 }
 
-void Form::assemble(const StepInputs& step, SystemMatrix& system, Eigen::VectorXd& rhs) {
+void Form::assemble(const StepContext& step, SystemMatrix& system, Eigen::VectorXd& rhs) {
   system.set_zero();
   rhs.setZero();
   std::vector<ElementIntegrator*> active;

@@ -27,18 +27,10 @@
 #include "solver/discretisation/integrators.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
+#include "solver/discretisation/step_context.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace nmm::solve {
-
-/// What a step's integrators read besides the model.
-struct StepInputs {
-  const Configuration& config;                ///< the step's frames and bases
-  const RunState& s;                          ///< the state the step starts from
-  const std::vector<std::uint8_t>& removed;   ///< [me] 1: excavated
-  double t_end;                               ///< s, the step's end (tables, moving supports)
-  double dt;                                  ///< s, the step's length
-};
 
 /// A term integrated over each element.
 class ElementIntegrator {
@@ -47,7 +39,7 @@ class ElementIntegrator {
   virtual const char* name() const = 0;
   /// Once per assembly, before the elements: the step's coefficients. False: the term vanishes
   /// in this step (the form skips it).
-  virtual bool begin(const StepInputs& /*step*/) { return true; }
+  virtual bool begin(const StepContext& /*step*/) { return true; }
   /// Adds element e's term: n = 0 the 6×6 fast path, n ≥ 1 the polynomial one.
   virtual void add(const ElementGeometry& g, std::size_t e, Mat6& k, Vec6& f) = 0;
   virtual void add(const ElementGeometry& g, std::size_t e, Eigen::MatrixXd& k, Eigen::VectorXd& f) = 0;
@@ -58,7 +50,7 @@ class BoundaryIntegrator {
  public:
   virtual ~BoundaryIntegrator() = default;
   virtual const char* name() const = 0;
-  virtual void add(const Model& model, const StepInputs& step, SystemMatrix& system,
+  virtual void add(const Model& model, const StepContext& step, SystemMatrix& system,
                    Eigen::VectorXd& rhs) const = 0;
 };
 
@@ -68,7 +60,7 @@ class Form {
   explicit Form(const Model& model);
 
   /// Zeroes the system and rhs and adds every term of the step.
-  void assemble(const StepInputs& step, SystemMatrix& system, Eigen::VectorXd& rhs);
+  void assemble(const StepContext& step, SystemMatrix& system, Eigen::VectorXd& rhs);
 
   /// The integrators' names, element ones first, in the order they are walked.
   std::vector<std::string> names() const;

@@ -51,7 +51,7 @@
 
 #include "solver/discretisation/boundary_conditions.h"
 #include "solver/discretisation/configuration.h"
-#include "solver/contact/contact.h"
+#include "solver/contact/contact_set.h"
 #include "solver/discretisation/cover_space.h"
 #include "solver/discretisation/elasticity.h"
 #include "solver/discretisation/joint_water.h"

@@ -46,9 +46,9 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   summary["max_penetration"] = s.max_penetration;
   summary["max_contacts_at_closure_cap"] = s.max_capped;
   const ContactSet::Events& ev = st.contacts.events;
-  const ContactSet::JointStresses joint = st.contacts.joint_stresses();
+  const ContactSet::Totals joint = st.contacts.totals();
   summary["contacts"] = {{"at_end", st.contacts.contacts().size()},
-                         {"closed_at_end", st.contacts.closed_count()},
+                         {"closed_at_end", joint.closed},
                          // The joint at the end: closed length (m), largest stresses (Pa).
                          {"closed_length_at_end", joint.closed_length},
                          {"max_normal_stress_at_end", joint.max_normal_stress},

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/contact/contact.h"
+#include "solver/contact/contact_set.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
 

@@ -15,7 +15,7 @@
 
 #include "common/mesh.h"
 #include "solver/discretisation/configuration.h"
-#include "solver/contact/contact.h"
+#include "solver/contact/contact_set.h"
 #include "solver/contact/contact_solve.h"
 #include "solver/discretisation/cover_space.h"
 #include "solver/stepping/equilibrium_indicator.h"

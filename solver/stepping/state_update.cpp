@@ -72,8 +72,9 @@ void update_polynomial_element(const Model& model, const Configuration& config, 
 
 }  // namespace
 
-void update_state(const Model& model, const Configuration& config, const Eigen::VectorXd& d,
-                  double dt, RunState& s) {
+void update_state(const Model& model, const StepContext& step, const Eigen::VectorXd& d, RunState& s) {
+  const Configuration& config = step.config;
+  const double dt = step.dt;
   const CoverSpace& space = config.space();
   const int nd = space.element_dofs();
   std::vector<double> de(static_cast<std::size_t>(nd)), phi(static_cast<std::size_t>(nd / 2));
@@ -90,7 +91,7 @@ void update_state(const Model& model, const Configuration& config, const Eigen::
   config.move_cover_nodes(d, s.cover_xy);
   const SolverDef& sv = model.scene().solver;
   const bool dynamic = sv.dynamic;
-  const double beta = step_beta(sv, s);
+  const double beta = step.beta;
   double max_d = 0;
   for (Eigen::Index i = 0; i < d.size(); ++i) max_d = std::max(max_d, std::abs(d[i]));
   // Per cover; a tied cover takes its master's increment (and so keeps its master's velocity).

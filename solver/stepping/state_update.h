@@ -18,11 +18,11 @@
 #include "solver/discretisation/configuration.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
+#include "solver/discretisation/step_context.h"
 
 namespace nmm::solve {
 
-/// Moves s on by the increment d of a step of dt (s), solved in `config` (the step's frames).
-void update_state(const Model& model, const Configuration& config, const Eigen::VectorXd& d,
-                  double dt, RunState& s);
+/// Moves s (the state `step` started from) on by the increment d solved in the step's frames.
+void update_state(const Model& model, const StepContext& step, const Eigen::VectorXd& d, RunState& s);
 
 }  // namespace nmm::solve

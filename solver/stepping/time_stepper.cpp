@@ -80,13 +80,13 @@ constexpr double kDeferredShare = 0.01;
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
     : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name), form_(model_),
-      control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_) {
+      control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_),
+      problem_(contacts_, space_) {
   space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
   config_ = Configuration(mesh, &space_);
   indicator_ = EquilibriumIndicator(mesh, scene, space_);
   momentum_ = BlockMomentum(mesh, space_, indicator_.group_mass());
-  contacts_.use_space(space_);
-  contacts_.set_elastic_predictor(!step_inertia());
+  problem_.set_elastic_predictor(!step_inertia());
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
   if (space_.order() > 0) system_.set_regularised(space_.higher_order_unknowns(), kRegularisation);
   // Contacts change the pattern every few steps: each analysis orders by AMD alone.
@@ -136,26 +136,26 @@ void TimeStepper::update_pattern() {
   // contacts and the step's own contacts detected from them), so a restarted run rebuilds the
   // same patterns.
   const int first = static_cast<int>(mesh_.element_count());
-  const auto now = contacts_.contact_pairs();
+  const auto now = contacts_.element_pairs();
   const auto& had = s_.pattern_pairs;
   const bool holds = std::includes(had.begin(), had.end(), now.begin(), now.end());
   // The groups in the present pattern: final if it holds every pair, else what the deferral counts.
-  if (holds || step_inertia()) contacts_.assign_groups(had, first);
+  if (holds || step_inertia()) problem_.assign_groups(had, first);
   if (holds) return;
   if (step_inertia()) {
-    const double outside = static_cast<double>(contacts_.touching_outside_pattern());
+    const double outside = static_cast<double>(problem_.outside_pattern().touching);
     const double touching = static_cast<double>(contacts_.touching_at_start());
     if (outside <= std::min(static_cast<double>(kDeferredTouching), kDeferredShare * touching)) return;
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   std::set_union(had.begin(), had.end(), now.begin(), now.end(), std::back_inserter(pairs));
-  const auto last = contacts_.accepted_pairs();
+  const auto last = contacts_.element_pairs(true);
   std::vector<std::pair<std::int32_t, std::int32_t>> used;
   std::set_union(now.begin(), now.end(), last.begin(), last.end(), std::back_inserter(used));
   if (static_cast<double>(pairs.size()) > kPatternSlack * static_cast<double>(used.size())) pairs = std::move(used);
   s_.pattern_pairs = std::move(pairs);
   build_pattern_with_pairs();
-  contacts_.assign_groups(s_.pattern_pairs, first);
+  problem_.assign_groups(s_.pattern_pairs, first);
 }
 
 void TimeStepper::build_pattern_with_pairs() {
@@ -174,12 +174,8 @@ void TimeStepper::build_pattern_with_pairs() {
   system_.build_pattern(space_.unknowns(), offsets, dofs);
 }
 
-void TimeStepper::assemble(double dt) {
-  form_.assemble({config_, s_, removed_elem_, s_.time + dt, dt}, system_, rhs_);
-}
-
-void TimeStepper::update(const Eigen::VectorXd& d, double dt) {
-  update_state(model_, config_, d, dt, s_);
+StepContext TimeStepper::step_context(double dt) const {
+  return make_step_context(model_, config_, s_, removed_elem_, dt);
 }
 
 Outcome TimeStepper::attempt(double dt) {
@@ -192,15 +188,15 @@ Outcome TimeStepper::attempt(double dt) {
   if (Outcome folded = compute_frames(); !folded.ok()) return folded;
   timings_.assembly += watch.seconds();
   if (contact) {
-    contacts_.begin_step(
-        s_.loop_xy, config_,
-        control_.search_distance() + contacts_.max_dilation(),
-        kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
+    contacts_.begin_step(s_.loop_xy, control_.search_distance() + contacts_.max_dilation(),
+                         kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
+    problem_.build(s_.loop_xy, config_, model_.w0());
     update_pattern();
   }
-  timings_.contact_detection = contacts_.detection_seconds();
+  timings_.contact_detection = contacts_.detection_stats().seconds;
   watch.restart();
-  assemble(dt);
+  const StepContext context = step_context(dt);  // the attempt's one context (step_context.h)
+  form_.assemble(context, system_, rhs_);
   // The blocks' share of the last step's out-of-balance force (block_momentum.h); not in a
   // static step (a restart may switch a dynamic run to static), whose balance starts afresh.
   if (!s_.block_force.empty() && handed_on_share() > 0) momentum_.add_forces(s_.block_force, s_.cover_xy, rhs_);
@@ -231,22 +227,22 @@ Outcome TimeStepper::attempt(double dt) {
     const ContactSolveStats before = solve_stats_;
     const double tau = scene_.solver.contact_tolerance;
     const auto solve = [&](bool warm) {
-      return solve_contact_step(system_, contacts_, rhs_base_, tau,
+      return solve_contact_step(system_, problem_, rhs_base_, tau,
                                 contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
                                 solve_stats_, handed_on_share() > 0 ? &residual : nullptr, warm);
     };
     Outcome outcome = solve(false);
     // Bonds and cohesion break only at a solution of the step, and the step is solved again with
-    // them broken until no unbroken contact is beyond its peak (contact.h break_at_peak). Each
+    // them broken until no unbroken contact is beyond its peak (contact_problem.h break_at_peak). Each
     // round breaks at least one contact, so this ends.
     for (bool resolved = false; outcome.ok();) {
-      if (!contacts_.break_at_peak().resolve) break;
+      if (!problem_.break_at_peak().resolve) break;
       if (!resolved) ++solve_stats_.steps_resolved_for_breaks;
       resolved = true;
       ++solve_stats_.break_resolves;
       outcome = solve(true);  // from the solution before the breaks
     }
-    if (outcome.ok()) contacts_.settle_states();
+    if (outcome.ok()) problem_.settle_states();
     iterated = solve_stats_.newton > before.newton;
     timings_.factorisations += solve_stats_.factorisations - before.factorisations;
     timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
@@ -265,38 +261,39 @@ Outcome TimeStepper::attempt(double dt) {
                   "the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
   if (contact) {
-    Outcome rejected = control_.rejection(d.cwiseAbs().maxCoeff(), contacts_.max_penetration(), step_inertia());
+    const ContactSet::Totals totals = contacts_.totals();
+    Outcome rejected = control_.rejection(d.cwiseAbs().maxCoeff(), totals.max_penetration, step_inertia());
     if (!rejected.ok()) return stop(rejected.code, std::move(rejected.reason));
-    contacts_.end_step();
+    contacts_.end_step(problem_);
     // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
     // its start hands nothing on, and a direct solve leaves nothing to hand on.
     if (handed_on_share() > 0 && iterated)
       momentum_.net_forces(residual, handed_on_share(), s_.cover_xy, s_.block_force);
     else
       s_.block_force.clear();
-    s_.max_penetration = std::max(s_.max_penetration, contacts_.max_penetration());
-    s_.max_capped = std::max(s_.max_capped, contacts_.capped_count());
+    s_.max_penetration = std::max(s_.max_penetration, totals.max_penetration);
+    s_.max_capped = std::max(s_.max_capped, totals.capped);
   }
   if (!contact) s_.block_force.clear();
   watch.restart();
-  measure_balance(d, dt, contact);
-  update(d, dt);
+  measure_balance(d, context, contact);
+  update_state(model_, context, d, s_);
   timings_.geometry_update += watch.seconds();
   s_.time += dt;
   ++s_.step;
   return {};
 }
 
-void TimeStepper::measure_balance(const Eigen::VectorXd& d, double dt, bool contact) {
-  // The same body force, β and loads as the step's assembly (assemble()), at the step's end.
-  const double t_end = s_.time + dt;
-  const auto [bx, by] = body_force_per_mass(scene_, t_end);
+void TimeStepper::measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact) {
+  // The same body force, β and loads as the step's assembly, at the step's end.
+  const double t_end = step.t_end;
+  const auto [bx, by] = step.body_force;
   StepBalance b;
   b.d = &d;
   b.v0 = &s_.velocity;
   b.a0 = &s_.accel;
-  b.dt = dt;
-  b.beta = step_beta(scene_.solver, s_);
+  b.dt = step.dt;
+  b.beta = step.beta;
   Eigen::VectorXd kd;
   if (!step_inertia()) {
     // No mass: the force the solve balanced, K·d (with contacts: the saved matrix, K without
@@ -370,7 +367,7 @@ void TimeStepper::restore(const RunState& st, const std::string& history, const 
   // round-off.
   if (!s_.pattern_pairs.empty()) {
     build_pattern_with_pairs();
-    contacts_.assign_groups(s_.pattern_pairs, static_cast<int>(mesh_.element_count()));
+    problem_.assign_groups(s_.pattern_pairs, static_cast<int>(mesh_.element_count()));
   }
   apply_removed();
   excavate(scene_.excavate);

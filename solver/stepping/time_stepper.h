@@ -18,7 +18,8 @@
 #include "common/scene.h"
 #include "solver/stepping/block_momentum.h"
 #include "solver/discretisation/configuration.h"
-#include "solver/contact/contact.h"
+#include "solver/contact/contact_problem.h"
+#include "solver/contact/contact_set.h"
 #include "solver/contact/contact_solve.h"
 #include "solver/discretisation/cover_space.h"
 #include "solver/stepping/equilibrium_indicator.h"
@@ -82,12 +83,12 @@ class TimeStepper {
   Outcome compute_frames();
   /// A stop of this attempt: the code and reason at the current state's time.
   Outcome stop(StopCode code, std::string reason) const;
-  void assemble(double dt);
+  /// The context of a step of dt from the current state (step_context.h).
+  StepContext step_context(double dt) const;
   void update_pattern();
-  void update(const Eigen::VectorXd& d, double dt);
   /// The equilibrium indicators of the step just solved (increment d of length dt), before
   /// update() moves the state on.
-  void measure_balance(const Eigen::VectorXd& d, double dt, bool contact);
+  void measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact);
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
   bool step_inertia() const { return model_.step_inertia(); }
   /// –, the share of a step's momentum the next step keeps: solver.dynamic_factor in a dynamic
@@ -117,7 +118,8 @@ class TimeStepper {
   SystemMatrix system_;
   StepTimings timings_;
   // Contact and step control.
-  ContactSet contacts_;
+  ContactSet contacts_;             // detection and the history carried between steps
+  ContactProblem problem_;          // the step's rows and Newton kernels (contact_problem.h)
   Eigen::VectorXd rhs_base_;     // right-hand side without contacts
   std::function<bool()> stop_check_;                     // interrupt.h
   ContactSolveStats solve_stats_;   // what the contact solves cost (contact_solve.h)

@@ -20,6 +20,7 @@ for f in workflow/Snakefile workflow/profiles/slurm/config.yaml data/jointed_slo
   [ -f "$share/$f" ] || { echo "not installed: share/nmm/$f"; exit 1; }
 done
 [ -f "$prefix/share/doc/nmm/docs/guide.md" ] || { echo "not installed: share/doc/nmm/docs/guide.md"; exit 1; }
+[ ! -e "$prefix/share/doc/nmm/docs/notes" ] || { echo "installed: share/doc/nmm/docs/notes (the developers' journal is not for users)"; exit 1; }
 printf '\nonstart:\n    print("nmm install test: the installed Snakefile")\n' >>"$share/workflow/Snakefile"
 
 work=$prefix/work

@@ -1,4 +1,5 @@
-// Contact springs, friction and states (Shi's DDA contacts, solved as a convex problem; docs/physics.md §3).
+// The step's contact problem: rows, springs, friction and states (Shi's DDA contacts, solved as a
+// convex problem: contact_solve.cpp; docs/physics.md §3).
 //
 // A contact is a vertex P of element A facing an edge Q2 → Q3 of element B (contact_detection).
 // With the edge's unit tangent t, outward normal n and P's projection P0 = Q2 + ω(Q3 − Q2), the
@@ -40,179 +41,44 @@
 // (tributary_length.h), or DDA's point penalty (N/m per contact); the force is exactly on the
 // constitutive curve, the matrix gets the tangent.
 //
-// Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
-// the scene's interface_set, else the default interface: kn = 20·E_max/h in Pa/m (a contact of
-// tributary length h gets DDA's point penalty 20·E·(1 m)), ks = kn/2.5, frictionless, no cohesion
-// or tension. (Shi's default point penalty is 50·E; within his recommended 10–100·E, 10–20·E is
-// where the open–close iteration here is accurate and settles quickly: see docs/contact.md.)
-#include "solver/contact/contact.h"
+#include "solver/contact/contact_problem.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
-#include <utility>
 
-#include "solver/contact/contact_tolerances.h"
 #include "common/vec2.h"
-#include "common/error.h"
-#include "solver/contact/tributary_length.h"
+#include "solver/contact/contact_tolerances.h"
 
 namespace nmm::solve {
 
-ContactSet::ContactSet(const Model& model)
-    : mesh_(model.mesh()) {
-  {
-    // The default interface's springs: model.h PenaltyDefaults.
-    const double kn = PenaltyDefaults::kInterface * model.young_max() / mesh_.mesh_size;
-    ContactLaws c = contact_laws(model.scene(), kn, kn / PenaltyDefaults::kInterfaceShearRatio);
-    laws_ = std::move(c.laws);
-    joint_law_ = std::move(c.joint_law);
-    interface_law_ = c.interface_law;
-  }
-  active_ = !model.scene().joints.empty() || mesh_.block_count() > 1;
-  if (!active_) return;
-  topo_ = build_contact_topology(mesh_);
-  interface_used_ = mesh_.block_count() > 1;
-  std::vector<int> used = joint_law_;
-  if (interface_used_) used.push_back(interface_law_);
-  for (int l : used) {
-    nonlinear_ |= laws_[l].normal == NormalModel::bandis_barton || !linear_shear(laws_[l]);
-    memory_laws_ |= laws_[l].shear == ShearModel::barton_bandis || laws_[l].hysteresis;
-    if (laws_[l].normal == NormalModel::bandis_barton)
-      topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
-  }
-}
-
-std::int32_t ContactSet::joint_of(const ContactCandidate& f) const {
-  std::int32_t joint = mesh_.loop_edge_joint[f.edge];
-  if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
-  if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
-  return joint;
-}
-
-ClosedContacts ContactSet::closed_contacts() const {
-  ClosedContacts closed;
-  for (const ContactHistory& h : history_)
-    if (h.state != ContactState::open) closed.pairs.emplace_back(h.vertex, h.block);
-  std::sort(closed.pairs.begin(), closed.pairs.end());
-  closed.pairs.erase(std::unique(closed.pairs.begin(), closed.pairs.end()), closed.pairs.end());
-  closed.index(topo_.next.size());
-  return closed;
-}
-
-void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& config, double d0,
-                            double shallow, double w0) {
-  const auto t0 = std::chrono::steady_clock::now();
-  closed_ = closed_contacts();
+void ContactProblem::build(const std::vector<double>& xy, const Configuration& config, double w0) {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  const ContactTopology& topo = set_.topology();
   eps_ = kContactTolerances.open_gap * w0;
   skin_ = kContactTolerances.skin * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_);
-  detection_seconds_ +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-  // Transfer: a vertex keeps its state while it stays against the same block (on the same edge,
-  // or having slid onto another edge of that block, e.g. the next element's along a joint); a
-  // vertex has at most one contact per block (contact_detection.cpp), so (vertex, block) keys
-  // the history: history_at_[v] heads a chain through history_next_ of v's entries.
-  history_at_.resize(topo_.next.size(), -1);
-  history_next_.resize(history_.size());
-  for (std::size_t i = history_.size(); i-- > 0;) {
-    history_next_[i] = history_at_[history_[i].vertex];
-    history_at_[history_[i].vertex] = static_cast<std::int32_t>(i);
-  }
-  // The last accepted step's rows stay readable (accepted()) while this attempt rebuilds its own
-  // in the other vector: no copies.
-  if (rows_accepted_) std::swap(accepted_, contacts_);
-  if (memory_laws_) index_closed_memory(xy);
-  rows_accepted_ = false;
-  std::vector<Contact>& now = contacts_;
-  now.clear();
-  now.reserve(found.size());
-  for (const ContactCandidate& f : found) {
-    if (!removed_.empty() && (removed_[f.elem_a] || removed_[f.elem_b])) continue;  // excavated
-    Contact c;
-    c.at = f;
-    const std::int32_t joint = joint_of(f);
-    c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
-    const std::int32_t block_a = topo_.block_of[f.elem_a], block_b = topo_.block_of[f.elem_b];
-    std::int32_t at = history_at_[f.vertex];
-    while (at >= 0 && history_[at].block != block_b) at = history_next_[at];
-    // The other face's vertex at this point (contact_detection.cpp keeps one contact per joint
-    // point): its contact against P's block is this contact seen from the other side — the same
-    // gap and normal force, and the same elastic shear with the same sign (the other face's
-    // edge runs the other way, and the relative displacement is reversed). When the point's
-    // contact passes from one face's vertex to the other's (the kept vertex slid a fraction of a
-    // µm past the end of its edge), it keeps its history instead of starting open with no
-    // strength and no elastic shear (measured: 15–30 such passes per step on a settling 20 × 20
-    // wall, each a friction round lost and a change in the Newton matrix).
-    const double same = kContactTolerances.same_point * topo_.mesh_size;
-    for (std::int32_t i = topo_.mirror_offset[f.vertex]; i < topo_.mirror_offset[f.vertex + 1]; ++i) {
-      const std::int32_t m = topo_.mirrors[i];
-      if (topo_.block_of[topo_.element_of[m]] != block_b ||
-          length(xy[2 * m] - xy[2 * f.vertex], xy[2 * m + 1] - xy[2 * f.vertex + 1]) > same)
-        continue;
-      if (topo_.element_of[m] == f.elem_b) c.mirror = m;
-      if (at < 0) {
-        at = history_at_[m];
-        while (at >= 0 && history_[at].block != block_a) at = history_next_[at];
-      }
-    }
-    // A joint's memory belongs to the joint surface (contact.h nearby_joint_memory()): a contact
-    // that is new or was open takes that of the nearest closed contact of the same two blocks.
-    const bool memory = laws_[c.law].shear == ShearModel::barton_bandis || laws_[c.law].hysteresis;
-    if (memory && (at < 0 || history_[at].state == ContactState::open))
-      c.joint = nearby_joint_memory(xy, f.vertex, block_a, block_b, at >= 0 ? history_[at].joint : JointMemory{});
-    if (at >= 0) {
-      const ContactHistory& o = history_[at];
-      c.state = o.state;
-      c.broken = o.broken;
-      c.slip_sign = o.slip_sign;
-      c.normal_force = o.normal_force;
-      c.shear_el = o.shear_el;
-      if (!memory || o.state != ContactState::open) c.joint = o.joint;
-    }
-    // A closed contact whose gap is now positive has separated (or has moved onto an edge it
-    // does not touch): it starts the step open. Kept closed, its spring would pull the faces
-    // together with kn·gap — glue — and, closing the gap within the solve, never show tension.
-    // A bond (unbroken, with tensile strength) holds its faces in tension: it stays closed.
-    const bool bond = !c.broken && laws_[c.law].tensile > 0;
-    // The gap is net of the joint's dilation (Barton–Bandis): sheared asperities hold the faces
-    // apart by it, so the normal spring closes at gap = dilation.
-    if (c.state != ContactState::open && f.gap - c.joint.dilation > eps_ && !bond) c.state = ContactState::open;
-    c.start_state = c.state;
-    now.push_back(c);
-  }
-  for (const ContactHistory& h : history_) history_at_[h.vertex] = -1;
-
   // Linearise each contact in the current configuration: its row over the unknowns of both
   // elements (the element's local unknown 2a + s is shape function a, direction s: cover_space.h).
-  const int nd = space_->element_dofs(), nf = nd / 2;
+  const int nd = space_.element_dofs(), nf = nd / 2;
   row_ = 2 * nd;
-  const std::size_t rows = contacts_.size() * static_cast<std::size_t>(row_);
+  const std::size_t rows = contacts.size() * static_cast<std::size_t>(row_);
   dofs_.resize(rows);
   cn_.resize(rows);
   cs_.resize(rows);
   std::vector<double> phi_a(static_cast<std::size_t>(nf)), phi_b(static_cast<std::size_t>(nf));
-  // Tributary lengths: the joint shared among its contacts (tributary_length.cpp).
-  std::vector<ContactCandidate> kept;
-  kept.reserve(contacts_.size());
-  for (const Contact& c : contacts_) kept.push_back(c.at);
-  const std::vector<double> lengths =
-      tributary_lengths(topo_, xy, kept, kContactTolerances.corner_length * topo_.mesh_size);
-  work_.assign(contacts_.size(), ContactWork{});
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    Contact& c = contacts_[i];
+  work_.assign(contacts.size(), ContactWork{});
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    Contact& c = contacts[i];
     ContactWork& w = work_[i];
-    const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo_.next[q2];
+    const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo.next[q2];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
     const double l = length(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
     const double p0x = xy[2 * q2] + c.at.omega * dx, p0y = xy[2 * q2 + 1] + c.at.omega * dy;
     config.shape_values(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
     config.shape_values(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
-    const int* ga = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_a));
-    const int* gb = space_->element_unknowns(static_cast<std::size_t>(c.at.elem_b));
+    const int* ga = space_.element_unknowns(static_cast<std::size_t>(c.at.elem_a));
+    const int* gb = space_.element_unknowns(static_cast<std::size_t>(c.at.elem_b));
     int* dof = dofs_.data() + i * static_cast<std::size_t>(row_);
     double* cn = cn_.data() + i * static_cast<std::size_t>(row_);
     double* cs = cs_.data() + i * static_cast<std::size_t>(row_);
@@ -232,131 +98,30 @@ void ContactSet::begin_step(const std::vector<double>& xy, const Configuration& 
     w.gap0 = c.at.gap - c.joint.dilation;
     c.gap = w.gap0;
     w.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
-    c.length = lengths[i];
   }
 }
 
-JointMemory ContactSet::nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex,
-                                            std::int32_t block_a, std::int32_t block_b,
-                                            JointMemory own_memory) const {
-  // A joint's memory (shear travel, dilation, largest closure) belongs to the joint surface, not
-  // to the contact that happens to carry a point of it. A contact that opens stops advancing its
-  // own (it carries no load to ride the asperities with), and a new one (a corner coming onto the
-  // joint, or a joint point passing to the other face's vertex once the faces have slid by more
-  // than a vertex spacing) has none: either would stand open, held apart by its neighbours'
-  // dilation, and never close again. Measured on a 2 m joint sheared to 0.9·τp: the last 0.4 m
-  // of it stayed open from 0.7 mm of travel on, and the rest carried the load. Such a contact
-  // takes the memory of the nearest closed contact between the same two blocks within a mesh
-  // size (its own if there is none).
-  JointMemory best = own_memory;
-  const double h = topo_.mesh_size;
-  double best_d = h;
-  std::int64_t best_at = -1;
-  const double px = xy[2 * vertex], py = xy[2 * vertex + 1];
-  const auto cx = static_cast<std::int64_t>(std::floor(px / h)), cy = static_cast<std::int64_t>(std::floor(py / h));
-  for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
-    for (std::int64_t j = cy - 1; j <= cy + 1; ++j) {
-      auto k = std::lower_bound(memory_cells_.begin(), memory_cells_.end(), std::array<std::int64_t, 3>{i, j, -1});
-      for (; k != memory_cells_.end() && (*k)[0] == i && (*k)[1] == j; ++k) {
-        const ContactHistory& e = history_[static_cast<std::size_t>((*k)[2])];
-        const std::int32_t own = topo_.block_of[topo_.element_of[e.vertex]];
-        if (!((own == block_a && e.block == block_b) || (own == block_b && e.block == block_a))) continue;
-        const double d = length(xy[2 * e.vertex] - px, xy[2 * e.vertex + 1] - py);
-        if (d < best_d || (d == best_d && (*k)[2] < best_at)) {  // ties: the first in the history
-          best_d = d;
-          best_at = (*k)[2];
-          best = e.joint;
-        }
-      }
-    }
-  return best;
-}
-
-void ContactSet::index_closed_memory(const std::vector<double>& xy) {
-  const double h = topo_.mesh_size;
-  memory_cells_.clear();
-  for (std::size_t i = 0; i < history_.size(); ++i) {
-    const ContactHistory& e = history_[i];
-    if (e.state == ContactState::open) continue;
-    memory_cells_.push_back({static_cast<std::int64_t>(std::floor(xy[2 * e.vertex] / h)),
-                             static_cast<std::int64_t>(std::floor(xy[2 * e.vertex + 1] / h)),
-                             static_cast<std::int64_t>(i)});
-  }
-  std::sort(memory_cells_.begin(), memory_cells_.end());
-}
-
-std::vector<std::string> ContactSet::effects() const {
-  if (!active_) return {};
-  std::vector<int> used = joint_law_;
-  if (interface_used_) used.push_back(interface_law_);
-  bool friction = false, cohesion = false, tension = false, bb = false, hyp = false, bbs = false;
-  for (int l : used) {
-    friction |= laws_[l].tan_phi > 0;
-    cohesion |= laws_[l].cohesion > 0;
-    tension |= laws_[l].tensile > 0;
-    bb |= laws_[l].normal == NormalModel::bandis_barton;
-    hyp |= laws_[l].shear == ShearModel::hyperbolic;
-    bbs |= laws_[l].shear == ShearModel::barton_bandis;
-  }
-  std::vector<std::string> e{"contact"};
-  if (friction) e.push_back("friction");
-  if (cohesion) e.push_back("cohesion");
-  if (tension) e.push_back("tension");
-  if (bb) e.push_back("bandis_barton");
-  if (hyp) e.push_back("hyperbolic");
-  if (bbs) e.push_back("barton_bandis_shear");
-  return e;
-}
-
-namespace {
-std::vector<std::pair<std::int32_t, std::int32_t>> element_pairs(const std::vector<Contact>& contacts) {
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  pairs.reserve(contacts.size());
-  for (const Contact& c : contacts) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
-}
-}  // namespace
-
-std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::contact_pairs() const { return element_pairs(contacts_); }
-
-std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::accepted_pairs() const {
-  return element_pairs(accepted());
-}
-
-void ContactSet::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+void ContactProblem::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
                                int first_group) {
-  work_.resize(contacts_.size());
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    const Contact& c = contacts_[i];
+  std::vector<Contact>& contacts = set_.step_contacts();
+  work_.resize(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
     const auto key = std::make_pair(c.at.elem_a, c.at.elem_b);
     const auto it = std::lower_bound(pairs.begin(), pairs.end(), key);
     work_[i].group = it != pairs.end() && *it == key ? first_group + static_cast<int>(it - pairs.begin()) : -1;
   }
 }
 
-bool ContactSet::touching_at_start(const Contact& c) const {
-  return c.start_state != ContactState::open || c.at.gap - c.joint.dilation <= eps_;
-}
-
-std::size_t ContactSet::touching_at_start() const {
-  std::size_t n = 0;
-  for (const Contact& c : contacts_) n += touching_at_start(c);
-  return n;
-}
-
-std::size_t ContactSet::touching_outside_pattern() const {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < contacts_.size(); ++i) n += work_[i].group < 0 && touching_at_start(contacts_[i]);
-  return n;
-}
-
-std::size_t ContactSet::springs_outside_pattern() const {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < contacts_.size(); ++i)
-    if (work_[i].group < 0) n += (contacts_[i].kn_now != 0) + (contacts_[i].ks_now != 0);
-  return n;
+ContactProblem::OutsidePattern ContactProblem::outside_pattern() const {
+  const std::vector<Contact>& contacts = set_.contacts();
+  OutsidePattern o;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (work_[i].group >= 0) continue;
+    o.touching += set_.touching_at_start(contacts[i]);
+    o.springs += (contacts[i].kn_now != 0) + (contacts[i].ks_now != 0);
+  }
+  return o;
 }
 
 namespace {
@@ -428,11 +193,13 @@ bool slides(const ContactLaw& law, const Contact& c, const ContactWork& w) {
 }
 }  // namespace
 
-void ContactSet::start_strengths() {
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    const Contact& c = contacts_[i];
+void ContactProblem::start_strengths() {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
     ContactWork& w = work_[i];
-    const ContactLaw& law = laws_[c.law];
+    const ContactLaw& law = laws[c.law];
     const bool closed = c.start_state != ContactState::open;
     w.bonded = closed && !c.broken && law.tensile > 0;
     const double n = closed ? std::max(w.start_normal_force, 0.0) : 0.0;
@@ -444,13 +211,15 @@ void ContactSet::start_strengths() {
   }
 }
 
-void ContactSet::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    Contact& c = contacts_[k];
+void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    Contact& c = contacts[k];
     const ContactWork& w = work_[k];
-    const ContactLaw& law = laws_[c.law];
-    const int* dof = row_dofs(k);
-    const double *cn = row_cn(k), *cs = row_cs(k);
+    const ContactLaw& law = laws[c.law];
+    const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
+    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
     double dg = 0, ds = 0;
     for (int i = 0; i < row_; ++i) {
       dg += cn[i] * d[dof[i]];
@@ -470,25 +239,27 @@ void ContactSet::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   }
 }
 
-void ContactSet::add_tangents(SystemMatrix& k) const {
+void ContactProblem::add_tangents(SystemMatrix& k) const {
+  const std::vector<Contact>& contacts = set_.contacts();
   block_.resize(row_, row_);
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    const Contact& c = contacts_[i];
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
     const int group = work_[i].group;
     if ((c.kn_now == 0 && c.ks_now == 0) || group < 0) continue;  // outside the pattern: CG's
-    const Eigen::Map<const Eigen::VectorXd> cn(row_cn(i), row_), cs(row_cs(i), row_);
+    const Eigen::Map<const Eigen::VectorXd> cn(cn_.data() + i * static_cast<std::size_t>(row_), row_), cs(cs_.data() + i * static_cast<std::size_t>(row_), row_);
     block_.noalias() = c.kn_now * cn * cn.transpose();
     if (c.ks_now != 0) block_.noalias() += c.ks_now * cs * cs.transpose();
     k.add_group(static_cast<std::size_t>(group), block_.data());
   }
 }
 
-void ContactSet::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& c = contacts_[k];
+void ContactProblem::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  const std::vector<Contact>& contacts = set_.contacts();
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
     if (c.kn_now == 0 && c.ks_now == 0) continue;
-    const int* dof = row_dofs(k);
-    const double *cn = row_cn(k), *cs = row_cs(k);
+    const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
+    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
     double a = 0, b = 0;
     for (int i = 0; i < row_; ++i) {
       a += cn[i] * v[dof[i]];
@@ -500,11 +271,12 @@ void ContactSet::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) con
   }
 }
 
-void ContactSet::set_direction(const Eigen::VectorXd& delta) {
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+void ContactProblem::set_direction(const Eigen::VectorXd& delta) {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
     ContactWork& w = work_[k];
-    const int* dof = row_dofs(k);
-    const double *cn = row_cn(k), *cs = row_cs(k);
+    const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
+    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
     double dg = 0, ds = 0;
     for (int i = 0; i < row_; ++i) {
       dg += cn[i] * delta[dof[i]];
@@ -515,12 +287,14 @@ void ContactSet::set_direction(const Eigen::VectorXd& delta) {
   }
 }
 
-double ContactSet::directional_force(double alpha) const {
+double ContactProblem::directional_force(double alpha) const {
+  const std::vector<Contact>& contacts = set_.contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
   double sum = 0;
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& c = contacts_[k];
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
     const ContactWork& w = work_[k];
-    const ContactLaw& law = laws_[c.law];
+    const ContactLaw& law = laws[c.law];
     if (w.rate_gap != 0) sum += normal_at(law, c, w, c.gap + alpha * w.rate_gap, skin_).force * w.rate_gap;
     if (w.rate_shear != 0 && w.strength > 0)
       sum -= shear_at(law, c, w, c.shear + alpha * w.rate_shear).force * w.rate_shear;
@@ -528,16 +302,18 @@ double ContactSet::directional_force(double alpha) const {
   return sum;
 }
 
-ContactSet::LineModelError ContactSet::line_model_error() const {
+ContactProblem::LineModelError ContactProblem::line_model_error() const {
+  const std::vector<Contact>& contacts = set_.contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
   // A normal spring closes when its tangent rises past half the law's initial stiffness between
   // α = 0 and 1 (touching contacts inside the skin included), opens when it falls below; a shear
   // spring slips when its tangent goes to 0, and a sliding one whose force changes sign or that
   // sticks again is "reversed or stuck".
   LineModelError out;
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& c = contacts_[k];
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
     const ContactWork& w = work_[k];
-    const ContactLaw& law = laws_[c.law];
+    const ContactLaw& law = laws[c.law];
     if (w.rate_gap != 0) {
       const Spring a = normal_at(law, c, w, c.gap, skin_), b = normal_at(law, c, w, c.gap + w.rate_gap, skin_);
       const double half = 0.5 * initial_normal_stiffness(law, c.length);
@@ -563,18 +339,21 @@ ContactSet::LineModelError ContactSet::line_model_error() const {
   return out;
 }
 
-double ContactSet::force_scale() const {
+double ContactProblem::force_scale() const {
+  const std::vector<Contact>& contacts = set_.contacts();
   double f = 0;
-  for (const Contact& c : contacts_) f = std::max({f, std::abs(c.normal_force), std::abs(c.shear_force)});
+  for (const Contact& c : contacts) f = std::max({f, std::abs(c.normal_force), std::abs(c.shear_force)});
   return f;
 }
 
-int ContactSet::update_strengths(double force_floor) {
+int ContactProblem::update_strengths(double force_floor) {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
   int changed = 0;
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    Contact& c = contacts_[i];
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    Contact& c = contacts[i];
     ContactWork& w = work_[i];
-    const ContactLaw& law = laws_[c.law];
+    const ContactLaw& law = laws[c.law];
     const bool closed = c.normal_force > 0 || w.bonded;
     // The friction fixed point: the strength follows the normal force of the solution. A change
     // matters only where the shear force is at or near the limit (or on a hyperbola, whose
@@ -606,16 +385,18 @@ int ContactSet::update_strengths(double force_floor) {
   return changed;
 }
 
-ContactSet::Breaks ContactSet::break_at_peak() {
+ContactProblem::Breaks ContactProblem::break_at_peak() {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
   // Only at a solution: an iterate of the friction fixed point may pass through forces the
   // solution does not reach (a strength lagging its normal force, a bond stretched by a
   // direction the line search then shortens), and breaking there lost the cohesion of joints
   // that never slid (a Hoek–Bray wedge at F = 2.26 counted 26 broken bonds).
   Breaks b;
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    Contact& c = contacts_[i];
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    Contact& c = contacts[i];
     ContactWork& w = work_[i];
-    const ContactLaw& law = laws_[c.law];
+    const ContactLaw& law = laws[c.law];
     if (c.broken || !(law.cohesion > 0 || law.tensile > 0)) continue;
     const bool tension = w.bonded && c.normal_force < -law.tensile * c.length;
     const bool closed = c.normal_force > 0 || w.bonded;
@@ -633,11 +414,13 @@ ContactSet::Breaks ContactSet::break_at_peak() {
   return b;
 }
 
-void ContactSet::settle_states() {
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    Contact& c = contacts_[i];
+void ContactProblem::settle_states() {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    Contact& c = contacts[i];
     const ContactWork& w = work_[i];
-    const ContactLaw& law = laws_[c.law];
+    const ContactLaw& law = laws[c.law];
     const bool closed = c.normal_force > 0 || w.bonded;
     ContactState now = ContactState::open;
     if (closed) now = slides(law, c, w) ? ContactState::sliding : ContactState::locked;
@@ -649,19 +432,21 @@ void ContactSet::settle_states() {
       if (c.start_state != ContactState::open) c.broken = true;  // cohesion lost once it opens
     }
     const ContactState before = c.start_state;
-    if (before == ContactState::open && now != ContactState::open) ++events.closed;
-    if (before != ContactState::open && now == ContactState::open) ++events.opened;
-    if (before != ContactState::sliding && now == ContactState::sliding) ++events.slid;
-    if (before == ContactState::sliding && now == ContactState::locked) ++events.stuck;
+    if (before == ContactState::open && now != ContactState::open) ++set_.events.closed;
+    if (before != ContactState::open && now == ContactState::open) ++set_.events.opened;
+    if (before != ContactState::sliding && now == ContactState::sliding) ++set_.events.slid;
+    if (before == ContactState::sliding && now == ContactState::locked) ++set_.events.stuck;
     c.state = now;
   }
 }
 
-void ContactSet::end_step() {
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    Contact& c = contacts_[i];
+void ContactProblem::commit() {
+  std::vector<Contact>& contacts = set_.step_contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    Contact& c = contacts[i];
     const ContactWork& w = work_[i];
-    const ContactLaw& law = laws_[c.law];
+    const ContactLaw& law = laws[c.law];
     // The joint law's memory follows the accepted step (a closed contact's shear travel and
     // dilation, its largest closure).
     const double dilation0 = c.joint.dilation;
@@ -677,50 +462,11 @@ void ContactSet::end_step() {
       c.shear_el = c.slip_sign * shear_at_force(law, w.strength, w.strength, c.length);
     }
   }
-  history_.resize(contacts_.size());
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    const Contact& c = contacts_[i];
-    const ContactLaw& law = laws_[c.law];
-    if (c.broken && !work_[i].start_broken && (law.cohesion > 0 || law.tensile > 0)) ++events.broken;
-    history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
-                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint};
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    const ContactLaw& law = laws[c.law];
+    if (c.broken && !work_[i].start_broken && (law.cohesion > 0 || law.tensile > 0)) ++set_.events.broken;
   }
-  rows_accepted_ = true;
-}
-
-double ContactSet::max_dilation() const {
-  double v = 0;
-  for (const ContactHistory& h : history_) v = std::max(v, h.joint.dilation);
-  return v;
-}
-
-double ContactSet::max_penetration() const {
-  double p = 0;
-  for (const Contact& c : contacts_) p = std::max(p, -c.gap);
-  return p;
-}
-
-std::size_t ContactSet::capped_count() const {
-  std::size_t n = 0;
-  for (const Contact& c : contacts_) n += c.capped && c.state != ContactState::open ? 1 : 0;
-  return n;
-}
-
-ContactSet::JointStresses ContactSet::joint_stresses() const {
-  JointStresses j;
-  for (const Contact& c : contacts_) {
-    if (c.state == ContactState::open || !(c.length > 0)) continue;
-    j.closed_length += c.length;
-    j.max_normal_stress = std::max(j.max_normal_stress, c.normal_force / c.length);
-    j.max_shear_stress = std::max(j.max_shear_stress, std::abs(c.shear_force) / c.length);
-  }
-  return j;
-}
-
-std::size_t ContactSet::closed_count() const {
-  std::size_t n = 0;
-  for (const Contact& c : contacts_) n += c.state != ContactState::open ? 1 : 0;
-  return n;
 }
 
 }  // namespace nmm::solve

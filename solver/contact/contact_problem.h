@@ -1,0 +1,156 @@
+// The step's contact problem: each contact of the step (ContactSet::contacts()) linearised on the
+// unknowns of its two elements, the inner solve's working values, and the kernels of the convex
+// minimisation that contact_solve.cpp iterates with (forces and tangents, line search, friction
+// fixed point, breaking at the peak, the states the step ends in). Built by every attempt after
+// ContactSet::begin_step(); read by ContactSet::end_step() when the step is accepted.
+// Equations: contact_problem.cpp.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/contact/contact.h"
+#include "solver/contact/contact_set.h"
+#include "solver/discretisation/configuration.h"
+#include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/system_matrix.h"
+
+namespace nmm::solve {
+
+/// The inner solve's working values of one contact: set by build(), assign_groups(),
+/// start_strengths() and the Newton iterations, read by nothing after the step but end_step().
+/// Kept apart from Contact (the step's rows and results, what output and the next step's history
+/// read) as Box2D keeps its solver's constraints apart from its contacts: the solve's loops touch
+/// only these and the rows.
+struct ContactWork {
+  double strength = 0;          ///< N, shear strength of the inner solve (tanφ·N + c·L, 0 if open)
+  bool bonded = false;          ///< normal spring holds tension (unbroken, tensile strength, closed)
+  double gap0 = 0, shear0 = 0;  ///< m, gap = gap0 + cnᵀd, shear = shear0 + csᵀd
+  int group = -1;               ///< coupling group of its element pair in the system matrix
+  double start_normal_force = 0;  ///< N, the normal force carried into the step (start_strengths())
+  bool start_broken = false;    ///< broken at the start of the step (end_step() counts new breaks)
+  double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
+};
+
+class ContactProblem {
+ public:
+  /// The problem of `contacts`' steps on `space`'s unknowns (both must outlive it).
+  ContactProblem(ContactSet& contacts, const CoverSpace& space) : set_(contacts), space_(space) {}
+
+  /// Steps without inertia (static_mode "equilibrium"): a block resting on contacts it has just
+  /// met is held sideways only by their shear springs, which have no strength before the
+  /// friction fixed point has a normal force. Touching contacts (gap ≤ 1e-10·w0 at the start of
+  /// the step) that start open then stick in the first inner solve (an elastic predictor, as for a
+  /// contact with unbounded strength); the fixed point gives them their real strength from its
+  /// normal force. Without it the first solve of such a block is singular ("not positive
+  /// definite"). With inertia (dynamic, DDA static) the mass holds the block: off.
+  void set_elastic_predictor(bool on) { elastic_predictor_ = on; }
+
+  // ---- the step's rows -----------------------------------------------------------------------
+  /// Linearises each of the step's contacts with the shape functions of its two elements in the
+  /// step's configuration `config` (configuration.h; loop vertices xy, model half-size w0), and
+  /// resets the working values from what the contacts carry into the step.
+  void build(const std::vector<double>& xy, const Configuration& config, double w0);
+  /// Contact i's row: its unknowns (A's element unknowns, then B's) and the coefficients of its
+  /// gap (cn) and slip (cs) on them, `size` each.
+  struct Row {
+    const int* dofs;
+    const double* cn;
+    const double* cs;
+    int size;
+  };
+  Row row(std::size_t i) const {
+    const std::size_t at = i * static_cast<std::size_t>(row_);
+    return {dofs_.data() + at, cn_.data() + at, cs_.data() + at, row_};
+  }
+  const ContactWork& work(std::size_t i) const { return work_[i]; }
+  /// The step's contacts (ContactSet::contacts()), index-aligned with the rows.
+  const std::vector<Contact>& contacts() const { return set_.contacts(); }
+  /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
+  /// or -1 when its pair is not there (the pattern's growth waits for a few such contacts,
+  /// time_stepper.cpp update_pattern): add_tangents() leaves such a contact out of the matrix,
+  /// and the contact solve takes its springs by CG (tangent_times() has all contacts).
+  void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
+  /// Of the contacts touching at the step's start, those assign_groups() left outside the
+  /// pattern (group -1); and the spring terms (kn, ks) of the last forces_at() that add_tangents()
+  /// leaves out for it.
+  struct OutsidePattern {
+    std::size_t touching = 0, springs = 0;
+  };
+  OutsidePattern outside_pattern() const;
+
+  // ---- the Newton kernels (contact_solve.cpp) -------------------------------------------------
+  /// Sets each contact's shear strength for the step's first inner solve from what it carries
+  /// (warm start): the normal force of the last accepted step where it was closed.
+  void start_strengths();
+  /// Evaluates every contact at the increment d: gap, shear, the forces on the constitutive
+  /// curves and their tangents; adds the contact forces Σ N·cn − Σ T·cs to r (the residual).
+  void forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r);
+  /// Adds the tangent springs of the last forces_at() to the matrix (contacts with a group).
+  void add_tangents(SystemMatrix& k) const;
+  /// y += (Σ kn·cn cnᵀ + ks·cs csᵀ)·v with the tangents of the last forces_at().
+  void tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
+  /// Line search along δ from the point of the last forces_at(): stores each contact's rates
+  /// Δg = cnᵀδ, Δs = csᵀδ.
+  void set_direction(const Eigen::VectorXd& delta);
+  /// Σ N(g + αΔg)·Δg − Σ T(s + αΔs)·Δs, the contacts' part of −dΠ/dα (non-increasing in α).
+  double directional_force(double alpha) const;
+  /// What the Newton model missed along the direction (the contact solve's trace): per kind of
+  /// spring change between α = 0 and α = 1, the contacts and their part of ψ(1) − ψ_model(1),
+  /// ψ_model being linear in α with the tangents at α = 0 (ψ(1) − ψ_model(1) < 0: the change
+  /// stops the step short of α = 1). Kinds: kLineKinds.
+  static constexpr int kLineKinds = 6;
+  static constexpr const char* kLineKindNames[kLineKinds] = {
+      "closing", "opening", "normal other", "stick to slip", "slip reversed or stuck", "shear other"};
+  struct LineModelError {
+    std::array<int, kLineKinds> contacts{};
+    std::array<double, kLineKinds> error{};  ///< N·m per unit α², summed
+  };
+  LineModelError line_model_error() const;
+  /// Largest |N| and |T| of the last forces_at(), N (a scale for the residual tolerance).
+  double force_scale() const;
+  /// After an inner solve: shear strengths follow the normal forces (the friction fixed point).
+  /// Bonds do not break here: an iterate is not the step (break_at_peak()). Returns the number of
+  /// contacts whose strength changed where it matters (at or near the limit) by more than 0.1 %
+  /// and more than `force_floor` (N).
+  int update_strengths(double force_floor);
+
+  // ---- the step's end ------------------------------------------------------------------------
+  /// What break_at_peak() broke.
+  struct Breaks {
+    int tensile = 0;      ///< bonds pulled beyond their tensile strength × length
+    int shear = 0;        ///< contacts whose shear force reached the peak strength c·L + tanφ·N
+    bool resolve = false; ///< a break changed a law's strength: the step must be solved again
+  };
+  /// At a solution of the step's contact problem (solve_contact_step converged): every unbroken
+  /// contact with cohesion or tensile strength whose force reaches its peak — a bond in tension
+  /// beyond T·L, or a shear force at c·L + tanφ·N — breaks (docs/contact.md "Cohesion and
+  /// tensile bonds"). The caller solves the step again while `resolve` (the broken contacts'
+  /// strengths changed), until no unbroken contact is beyond its peak.
+  Breaks break_at_peak();
+  /// The states the step ends in (open, locked, sliding) and the events they make: once per
+  /// attempt, on its last solve. A contact that was closed and ends open loses its cohesion.
+  void settle_states();
+  /// The accepted step's results written into its contacts (ContactSet::end_step() calls it):
+  /// the joint law's memory, the elastic shear (a sliding contact's spring left loaded at the
+  /// friction limit: the return mapping), and the bonds broken in it counted.
+  void commit();
+
+ private:
+  ContactSet& set_;
+  const CoverSpace& space_;
+  int row_ = 0;                  // unknowns per contact row: 2 × element_dofs()
+  std::vector<int> dofs_;        // [contact · row_] this step's rows: unknowns,
+  std::vector<double> cn_, cs_;  // [contact · row_] –, gap and slip per unit unknown
+  mutable Eigen::MatrixXd block_;  // add_tangents()' scratch
+  std::vector<ContactWork> work_;  // [contact] the step's contacts' inner-solve working values
+  bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve
+  double eps_ = 0;                  // m, gap tolerance (contact_tolerances.h open_gap·w0)
+  double skin_ = 0;                 // m, smoothing of the normal spring (skin·w0)
+};
+
+}  // namespace nmm::solve

@@ -1,0 +1,282 @@
+// The contacts of a run: detection, the transfer of each contact's history from one accepted
+// step to the next, and the laws (contact_set.h). The springs, friction and states of a step are
+// its ContactProblem's (contact_problem.cpp).
+//
+// Transfer: a vertex keeps its state while it stays against the same block (begin_step below),
+// with its elastic shear, its bond and the joint law's memory; a contact that is new or was open
+// takes the joint memory of its nearest closed neighbour (nearby_joint_memory).
+//
+// Laws: a contact takes the joint set of the joint its edge lies on (else the joint at P), else
+// the scene's interface_set, else the default interface: kn = 20·E_max/h in Pa/m (a contact of
+// tributary length h gets DDA's point penalty 20·E·(1 m)), ks = kn/2.5, frictionless, no cohesion
+// or tension. (Shi's default point penalty is 50·E; within his recommended 10–100·E, 10–20·E is
+// where the contact solve here is accurate and settles quickly: see docs/contact.md.)
+#include "solver/contact/contact_set.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "common/vec2.h"
+#include "solver/contact/contact_problem.h"
+#include "solver/contact/contact_tolerances.h"
+#include "solver/contact/tributary_length.h"
+
+namespace nmm::solve {
+
+ContactSet::ContactSet(const Model& model)
+    : mesh_(model.mesh()) {
+  {
+    // The default interface's springs: model.h PenaltyDefaults.
+    const double kn = PenaltyDefaults::kInterface * model.young_max() / mesh_.mesh_size;
+    ContactLaws c = contact_laws(model.scene(), kn, kn / PenaltyDefaults::kInterfaceShearRatio);
+    laws_ = std::move(c.laws);
+    joint_law_ = std::move(c.joint_law);
+    interface_law_ = c.interface_law;
+  }
+  active_ = !model.scene().joints.empty() || mesh_.block_count() > 1;
+  if (!active_) return;
+  topo_ = build_contact_topology(mesh_);
+  interface_used_ = mesh_.block_count() > 1;
+  std::vector<int> used = joint_law_;
+  if (interface_used_) used.push_back(interface_law_);
+  for (int l : used) {
+    nonlinear_ |= laws_[l].normal == NormalModel::bandis_barton || !linear_shear(laws_[l]);
+    memory_laws_ |= laws_[l].shear == ShearModel::barton_bandis || laws_[l].hysteresis;
+    if (laws_[l].normal == NormalModel::bandis_barton)
+      topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
+  }
+}
+
+std::int32_t ContactSet::joint_of(const ContactCandidate& f) const {
+  std::int32_t joint = mesh_.loop_edge_joint[f.edge];
+  if (joint < 0) joint = mesh_.loop_edge_joint[f.vertex];
+  if (joint < 0) joint = mesh_.loop_edge_joint[topo_.prev[f.vertex]];
+  return joint;
+}
+
+ClosedContacts ContactSet::closed_contacts() const {
+  ClosedContacts closed;
+  for (const ContactHistory& h : history_)
+    if (h.state != ContactState::open) closed.pairs.emplace_back(h.vertex, h.block);
+  std::sort(closed.pairs.begin(), closed.pairs.end());
+  closed.pairs.erase(std::unique(closed.pairs.begin(), closed.pairs.end()), closed.pairs.end());
+  closed.index(topo_.next.size());
+  return closed;
+}
+
+void ContactSet::begin_step(const std::vector<double>& xy, double d0, double shallow, double w0) {
+  const auto t0 = std::chrono::steady_clock::now();
+  closed_ = closed_contacts();
+  eps_ = kContactTolerances.open_gap * w0;
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_);
+  stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // Transfer: a vertex keeps its state while it stays against the same block (on the same edge,
+  // or having slid onto another edge of that block, e.g. the next element's along a joint); a
+  // vertex has at most one contact per block (contact_detection.cpp), so (vertex, block) keys
+  // the history: history_at_[v] heads a chain through history_next_ of v's entries.
+  history_at_.resize(topo_.next.size(), -1);
+  history_next_.resize(history_.size());
+  for (std::size_t i = history_.size(); i-- > 0;) {
+    history_next_[i] = history_at_[history_[i].vertex];
+    history_at_[history_[i].vertex] = static_cast<std::int32_t>(i);
+  }
+  // The last accepted step's rows stay readable (accepted()) while this attempt rebuilds its own
+  // in the other vector: no copies.
+  if (rows_accepted_) std::swap(accepted_, contacts_);
+  if (memory_laws_) index_closed_memory(xy);
+  rows_accepted_ = false;
+  std::vector<Contact>& now = contacts_;
+  now.clear();
+  now.reserve(found.size());
+  for (const ContactCandidate& f : found) {
+    if (!removed_.empty() && (removed_[f.elem_a] || removed_[f.elem_b])) continue;  // excavated
+    Contact c;
+    c.at = f;
+    const std::int32_t joint = joint_of(f);
+    c.law = joint >= 0 ? joint_law_[joint] : interface_law_;
+    const std::int32_t block_a = topo_.block_of[f.elem_a], block_b = topo_.block_of[f.elem_b];
+    std::int32_t at = history_at_[f.vertex];
+    while (at >= 0 && history_[at].block != block_b) at = history_next_[at];
+    // The other face's vertex at this point (contact_detection.cpp keeps one contact per joint
+    // point): its contact against P's block is this contact seen from the other side — the same
+    // gap and normal force, and the same elastic shear with the same sign (the other face's
+    // edge runs the other way, and the relative displacement is reversed). When the point's
+    // contact passes from one face's vertex to the other's (the kept vertex slid a fraction of a
+    // µm past the end of its edge), it keeps its history instead of starting open with no
+    // strength and no elastic shear (measured: 15–30 such passes per step on a settling 20 × 20
+    // wall, each a friction round lost and a change in the Newton matrix).
+    const double same = kContactTolerances.same_point * topo_.mesh_size;
+    for (std::int32_t i = topo_.mirror_offset[f.vertex]; i < topo_.mirror_offset[f.vertex + 1]; ++i) {
+      const std::int32_t m = topo_.mirrors[i];
+      if (topo_.block_of[topo_.element_of[m]] != block_b ||
+          length(xy[2 * m] - xy[2 * f.vertex], xy[2 * m + 1] - xy[2 * f.vertex + 1]) > same)
+        continue;
+      if (topo_.element_of[m] == f.elem_b) c.mirror = m;
+      if (at < 0) {
+        at = history_at_[m];
+        while (at >= 0 && history_[at].block != block_a) at = history_next_[at];
+      }
+    }
+    // A joint's memory belongs to the joint surface (contact_set.h nearby_joint_memory()): a contact
+    // that is new or was open takes that of the nearest closed contact of the same two blocks.
+    const bool memory = laws_[c.law].shear == ShearModel::barton_bandis || laws_[c.law].hysteresis;
+    if (memory && (at < 0 || history_[at].state == ContactState::open))
+      c.joint = nearby_joint_memory(xy, f.vertex, block_a, block_b, at >= 0 ? history_[at].joint : JointMemory{});
+    if (at >= 0) {
+      const ContactHistory& o = history_[at];
+      c.state = o.state;
+      c.broken = o.broken;
+      c.slip_sign = o.slip_sign;
+      c.normal_force = o.normal_force;
+      c.shear_el = o.shear_el;
+      if (!memory || o.state != ContactState::open) c.joint = o.joint;
+    }
+    // A closed contact whose gap is now positive has separated (or has moved onto an edge it
+    // does not touch): it starts the step open. Kept closed, its spring would pull the faces
+    // together with kn·gap — glue — and, closing the gap within the solve, never show tension.
+    // A bond (unbroken, with tensile strength) holds its faces in tension: it stays closed.
+    const bool bond = !c.broken && laws_[c.law].tensile > 0;
+    // The gap is net of the joint's dilation (Barton–Bandis): sheared asperities hold the faces
+    // apart by it, so the normal spring closes at gap = dilation.
+    if (c.state != ContactState::open && f.gap - c.joint.dilation > eps_ && !bond) c.state = ContactState::open;
+    c.start_state = c.state;
+    now.push_back(c);
+  }
+  for (const ContactHistory& h : history_) history_at_[h.vertex] = -1;
+  // Tributary lengths: the joint shared among its contacts (tributary_length.cpp).
+  std::vector<ContactCandidate> kept;
+  kept.reserve(contacts_.size());
+  for (const Contact& c : contacts_) kept.push_back(c.at);
+  const std::vector<double> lengths =
+      tributary_lengths(topo_, xy, kept, kContactTolerances.corner_length * topo_.mesh_size);
+  for (std::size_t i = 0; i < contacts_.size(); ++i) contacts_[i].length = lengths[i];
+}
+
+JointMemory ContactSet::nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex,
+                                            std::int32_t block_a, std::int32_t block_b,
+                                            JointMemory own_memory) const {
+  // A joint's memory (shear travel, dilation, largest closure) belongs to the joint surface, not
+  // to the contact that happens to carry a point of it. A contact that opens stops advancing its
+  // own (it carries no load to ride the asperities with), and a new one (a corner coming onto the
+  // joint, or a joint point passing to the other face's vertex once the faces have slid by more
+  // than a vertex spacing) has none: either would stand open, held apart by its neighbours'
+  // dilation, and never close again. Measured on a 2 m joint sheared to 0.9·τp: the last 0.4 m
+  // of it stayed open from 0.7 mm of travel on, and the rest carried the load. Such a contact
+  // takes the memory of the nearest closed contact between the same two blocks within a mesh
+  // size (its own if there is none).
+  JointMemory best = own_memory;
+  const double h = topo_.mesh_size;
+  double best_d = h;
+  std::int64_t best_at = -1;
+  const double px = xy[2 * vertex], py = xy[2 * vertex + 1];
+  const auto cx = static_cast<std::int64_t>(std::floor(px / h)), cy = static_cast<std::int64_t>(std::floor(py / h));
+  for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
+    for (std::int64_t j = cy - 1; j <= cy + 1; ++j) {
+      auto k = std::lower_bound(memory_cells_.begin(), memory_cells_.end(), std::array<std::int64_t, 3>{i, j, -1});
+      for (; k != memory_cells_.end() && (*k)[0] == i && (*k)[1] == j; ++k) {
+        const ContactHistory& e = history_[static_cast<std::size_t>((*k)[2])];
+        const std::int32_t own = topo_.block_of[topo_.element_of[e.vertex]];
+        if (!((own == block_a && e.block == block_b) || (own == block_b && e.block == block_a))) continue;
+        const double d = length(xy[2 * e.vertex] - px, xy[2 * e.vertex + 1] - py);
+        if (d < best_d || (d == best_d && (*k)[2] < best_at)) {  // ties: the first in the history
+          best_d = d;
+          best_at = (*k)[2];
+          best = e.joint;
+        }
+      }
+    }
+  return best;
+}
+
+void ContactSet::index_closed_memory(const std::vector<double>& xy) {
+  const double h = topo_.mesh_size;
+  memory_cells_.clear();
+  for (std::size_t i = 0; i < history_.size(); ++i) {
+    const ContactHistory& e = history_[i];
+    if (e.state == ContactState::open) continue;
+    memory_cells_.push_back({static_cast<std::int64_t>(std::floor(xy[2 * e.vertex] / h)),
+                             static_cast<std::int64_t>(std::floor(xy[2 * e.vertex + 1] / h)),
+                             static_cast<std::int64_t>(i)});
+  }
+  std::sort(memory_cells_.begin(), memory_cells_.end());
+}
+
+std::vector<std::string> ContactSet::effects() const {
+  if (!active_) return {};
+  std::vector<int> used = joint_law_;
+  if (interface_used_) used.push_back(interface_law_);
+  bool friction = false, cohesion = false, tension = false, bb = false, hyp = false, bbs = false;
+  for (int l : used) {
+    friction |= laws_[l].tan_phi > 0;
+    cohesion |= laws_[l].cohesion > 0;
+    tension |= laws_[l].tensile > 0;
+    bb |= laws_[l].normal == NormalModel::bandis_barton;
+    hyp |= laws_[l].shear == ShearModel::hyperbolic;
+    bbs |= laws_[l].shear == ShearModel::barton_bandis;
+  }
+  std::vector<std::string> e{"contact"};
+  if (friction) e.push_back("friction");
+  if (cohesion) e.push_back("cohesion");
+  if (tension) e.push_back("tension");
+  if (bb) e.push_back("bandis_barton");
+  if (hyp) e.push_back("hyperbolic");
+  if (bbs) e.push_back("barton_bandis_shear");
+  return e;
+}
+
+std::vector<std::pair<std::int32_t, std::int32_t>> ContactSet::element_pairs(bool accepted) const {
+  const std::vector<Contact>& contacts = accepted ? this->accepted() : contacts_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  pairs.reserve(contacts.size());
+  for (const Contact& c : contacts) pairs.emplace_back(c.at.elem_a, c.at.elem_b);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+bool ContactSet::touching_at_start(const Contact& c) const {
+  return c.start_state != ContactState::open || c.at.gap - c.joint.dilation <= eps_;
+}
+
+std::size_t ContactSet::touching_at_start() const {
+  std::size_t n = 0;
+  for (const Contact& c : contacts_) n += touching_at_start(c);
+  return n;
+}
+
+void ContactSet::end_step(ContactProblem& step) {
+  step.commit();
+  history_.resize(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
+                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint};
+  }
+  rows_accepted_ = true;
+}
+
+double ContactSet::max_dilation() const {
+  double v = 0;
+  for (const ContactHistory& h : history_) v = std::max(v, h.joint.dilation);
+  return v;
+}
+
+ContactSet::Totals ContactSet::totals() const {
+  Totals t;
+  for (const Contact& c : contacts_) {
+    t.max_penetration = std::max(t.max_penetration, -c.gap);
+    if (c.state == ContactState::open) continue;
+    ++t.closed;
+    t.capped += c.capped ? 1 : 0;
+    if (!(c.length > 0)) continue;
+    t.closed_length += c.length;
+    t.max_normal_stress = std::max(t.max_normal_stress, c.normal_force / c.length);
+    t.max_shear_stress = std::max(t.max_shear_stress, std::abs(c.shear_force) / c.length);
+  }
+  return t;
+}
+
+}  // namespace nmm::solve
