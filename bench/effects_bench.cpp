@@ -54,7 +54,7 @@ struct SquareOptions {
 nmm::SceneDef square(const SquareOptions& o, double* side_out = nullptr) {
   const double h = 1.0, side = std::round(std::sqrt(o.unknowns * h * h * std::sqrt(3.0) / 4));
   nmm::SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
   nmm::JointSetDef js;
   js.name = "joint";
   js.friction_deg = 30;

@@ -22,7 +22,7 @@ namespace {
 
 nmm::SceneDef make_scene(double side, int joints, double h, unsigned seed) {
   nmm::SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
   nmm::JointSetDef js;
   js.name = "j";
   js.friction_deg = 30;

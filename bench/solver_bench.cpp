@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   for (double target : targets) {
     const double h = 1.0, side = std::sqrt(target * h * h * std::sqrt(3.0) / 4);
     nmm::SceneDef s;
-    s.materials.push_back({"rock", 2650, 1e10, 0.25});
+    s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
     nmm::BodyDef b;
     b.material = 0;
     b.outer = {{0, 0}, {side, 0}, {side, side}, {0, side}};

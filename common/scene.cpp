@@ -364,13 +364,23 @@ int find_by_name(const std::vector<Def>& defs, const Reader& at, const std::stri
 }
 
 MaterialDef read_material(const std::string& name, const Reader& r) {
-  r.check_keys({"density", "young", "poisson"});
+  r.check_keys({"density", "young", "poisson", "strength"});
   MaterialDef m;
   m.name = name;
   m.density = r.number("density", interval(0, false, kMaxDensity, true));
   m.young = r.number("young", interval(0, false, kMaxModulus, true));
   // 0.5 is incompressible: the plane-strain elasticity matrix blows up.
   m.poisson = r.number("poisson", interval(0, true, 0.5, false));
+  if (const auto st = r.optional("strength")) {
+    st->check_keys({"tensile", "cohesion", "friction_deg", "fracture_energy"});
+    StrengthDef& s = m.strength;
+    s.present = true;
+    s.tensile = st->number("tensile", kStrength);
+    s.cohesion = st->number("cohesion", interval(0, true, kMaxStrength, true));
+    s.friction_deg = st->number("friction_deg", interval(0, true, 90, false));  // tan 90° is infinite
+    // J/m²: rock's is 10–500; the bound only refuses typing accidents.
+    s.fracture_energy = st->optional_number("fracture_energy", 0, interval(0, true, 1e9, true));
+  }
   return m;
 }
 
@@ -979,7 +989,8 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   const Reader root(doc, file, "");
   root.check_keys({"name", "gravity", "plane", "materials", "joint_sets", "bodies", "joints",
                    "interface_set", "mesh", "fixed_points", "loads", "measure_points", "solver",
-                   "supports", "tractions", "insitu_stress", "excavate", "base_acceleration", "water"});
+                   "supports", "tractions", "insitu_stress", "excavate", "base_acceleration", "water",
+                   "fracture"});
   SceneDef scene;
 
   if (root.has("name")) scene.name = root["name"].as_string();
@@ -1079,6 +1090,16 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
     if (const auto t = r->optional("y")) scene.base_acceleration_y = read_time_table(*t);
   }
   if (const auto r = root.optional("water")) scene.water = read_water(*r, scene);
+  if (const auto r = root.optional("fracture")) {
+    r->check_keys({"crack_set"});
+    scene.fracture.present = true;
+    scene.fracture.crack_set = find_by_name(scene.joint_sets, (*r)["crack_set"], "joint set", "joint_sets");
+    // A crack is cut into the covers as they were cut, and its new covers take the cover
+    // function of the cover they came from: constant cover functions only (docs/fracture.md).
+    if (scene.solver.cover_order != 0)
+      (*r).fail("fracturing needs cover order 0 (solver.cover_order is " +
+                std::to_string(scene.solver.cover_order) + ")");
+  }
   return scene;
 }
 

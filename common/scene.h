@@ -36,11 +36,28 @@ enum class PlaneKind { strain, stress };
 /// pure equilibrium K d = F of a body held by fixed points (docs/solver.md, "Static analysis").
 enum class StaticMode { dda, equilibrium };
 
+/// The strength of intact rock (a material's "strength"): where it breaks (docs/fracture.md).
+struct StrengthDef {
+  bool present = false;         ///< the material can break (a scene "fracture" block is needed too)
+  double tensile = 0;           ///< Pa, > 0: the tension cut-off, σ1 ≥ tensile (tension positive)
+  double cohesion = 0;          ///< Pa, ≥ 0: Mohr–Coulomb's c
+  double friction_deg = 0;      ///< degrees, in [0, 90): Mohr–Coulomb's φ
+  double fracture_energy = 0;   ///< J/m², ≥ 0: a new crack's cohesive softening (0: none)
+};
+
 struct MaterialDef {
   std::string name;
   double density = 0;  ///< kg/m³, > 0
   double young = 0;    ///< Pa, > 0
   double poisson = 0;  ///< –, in [0, 0.5)
+  StrengthDef strength;  ///< absent: the material never breaks
+};
+
+/// Fracturing of intact rock (scene key "fracture"; docs/fracture.md): on when present and some
+/// material has a strength.
+struct FractureDef {
+  bool present = false;
+  int crack_set = -1;  ///< joint set whose law the faces of new cracks use
 };
 
 /// constant: kn in Pa/m (joint stress per unit closure, integrated over each contact's tributary
@@ -221,6 +238,7 @@ struct SceneDef {
   TimeTable base_acceleration_x;     ///< m/s², ground acceleration in x over time; empty: none
   TimeTable base_acceleration_y;     ///< m/s², in y
   WaterDef water;                    ///< water pressure in the joints (absent: dry)
+  FractureDef fracture;              ///< intact rock that breaks (absent: it never does)
   SolverDef solver;
 };
 

@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -108,7 +109,9 @@ struct RawMesh {
   std::vector<MeshEdge> edges;
 };
 
-RawMesh make_raw_mesh(const SceneDef& scene) {
+// `region`: when given, only the lattice triangles it lists (their node indices, sorted) are
+// kept (cut_region); otherwise every triangle whose bounding box meets a body's.
+RawMesh make_raw_mesh(const SceneDef& scene, const std::vector<std::array<std::int32_t, 3>>* region = nullptr) {
   RawMesh m;
   m.lat = make_lattice(scene.bodies, scene.mesh_size);  // ranges checked by parse_scene()
   const Lattice& L = m.lat;
@@ -120,6 +123,11 @@ RawMesh make_raw_mesh(const SceneDef& scene) {
     for (std::int64_t i = L.i0; i <= i1; ++i) m.node_xy[L.index(i, j)] = L.node(i, j);
 
   auto keep = [&](const std::array<std::int32_t, 3>& t) {
+    if (region) {
+      std::array<std::int32_t, 3> key = t;
+      std::sort(key.begin(), key.end());
+      return std::binary_search(region->begin(), region->end(), key);
+    }
     Box tb{m.node_xy[t[0]].x, m.node_xy[t[0]].y, m.node_xy[t[0]].x, m.node_xy[t[0]].y};
     for (int k = 1; k < 3; ++k) {
       const Vec2& p = m.node_xy[t[k]];
@@ -190,8 +198,13 @@ struct FaceLabels {
 class Cutter {
  public:
   Cutter(const SceneDef& scene, const std::string& file) : scene_(scene), file_(file) {}
+  /// A cut of the listed lattice triangles only (cut_region; sorted node-index triples).
+  Cutter(const SceneDef& scene, const std::string& file, const std::vector<std::array<std::int32_t, 3>>& region)
+      : scene_(scene), file_(file), region_(&region) {}
 
   Mesh run(CutTimings* timings);
+  /// The lattice node indices of the kept triangles, in the output mesh's triangle order.
+  const std::vector<std::array<std::int32_t, 3>>& kept_triangles() const { return kept_; }
 
  private:
   void insert_curves();
@@ -202,6 +215,9 @@ class Cutter {
 
   const SceneDef& scene_;
   const std::string& file_;
+  const std::vector<std::array<std::int32_t, 3>>* region_ = nullptr;  // cut_region's triangles
+  Box region_box_{0, 0, 0, 0};  // m, their bounding box (region_ only)
+  std::vector<std::array<std::int32_t, 3>> kept_;
   RawMesh raw_;
   std::vector<BoundarySeg> boundary_;
   Arrangement arr_;
@@ -216,14 +232,27 @@ void Cutter::insert_curves() {
     curves.emplace_back(Segment(to_point(raw_.node_xy[me.a]), to_point(raw_.node_xy[me.b])),
                         CurveTag{kEdgeMesh, static_cast<std::int32_t>(e)});
   }
+  // A region cut needs only the joint segments that reach its triangles, and the whole rings of
+  // the bodies that do (a face's body is read off the ring it is enclosed by).
+  auto reaches = [&](const Vec2& p, const Vec2& q) {
+    return !region_ || Box{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)}
+                           .overlaps(region_box_);
+  };
   for (std::size_t j = 0; j < scene_.joints.size(); ++j) {
     const auto& pts = scene_.joints[j].points;
     for (std::size_t k = 0; k + 1 < pts.size(); ++k)
-      curves.emplace_back(Segment(to_point(pts[k]), to_point(pts[k + 1])),
-                          CurveTag{kEdgeJoint, static_cast<std::int32_t>(j)});
+      if (reaches(pts[k], pts[k + 1]))
+        curves.emplace_back(Segment(to_point(pts[k]), to_point(pts[k + 1])),
+                            CurveTag{kEdgeJoint, static_cast<std::int32_t>(j)});
   }
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const BodyDef& body = scene_.bodies[b];
+    if (region_ && !bounding_box(body.outer).overlaps(region_box_)) {
+      // Not inserted, but numbered as in a whole cut (boundary_ indexes the curve tags).
+      for (std::size_t r = 0; r <= body.holes.size(); ++r)
+        boundary_.resize(boundary_.size() + (r == 0 ? body.outer : body.holes[r - 1]).size(), {-1, false});
+      continue;
+    }
     for (std::size_t r = 0; r <= body.holes.size(); ++r) {
       const Ring& ring = r == 0 ? body.outer : body.holes[r - 1];
       // The body lies left of a ring traversed counter-clockwise for the outer boundary and
@@ -332,8 +361,13 @@ void Cutter::label_faces() {
     const std::int32_t b = body_root[body_uf.find(static_cast<std::int32_t>(f))];
     lab_.tri[f] = t == kUnset ? -1 : t;
     lab_.body[f] = b == kUnset ? -1 : b;
-    if (lab_.body[f] >= 0 && lab_.tri[f] < 0)
+    if (lab_.body[f] >= 0 && lab_.tri[f] < 0) {
+      if (region_) {
+        lab_.body[f] = -1;  // inside a body, outside the region's triangles: not cut here
+        continue;
+      }
       throw std::logic_error("cover cutter: a face inside a body lies outside the mesh");
+    }
   }
 }
 
@@ -413,9 +447,12 @@ Mesh Cutter::extract() {
     mesh.node_xy.push_back(raw_.node_xy[n].x);
     mesh.node_xy.push_back(raw_.node_xy[n].y);
   }
+  kept_.clear();
   for (std::size_t t = 0; t < raw_.tri.size(); ++t)
-    if (tri_new[t] >= 0)
+    if (tri_new[t] >= 0) {
       for (std::int32_t n : raw_.tri[t]) mesh.triangle_nodes.push_back(node_new[n]);
+      kept_.push_back(raw_.tri[t]);
+    }
 
   // Element loops: the outer CCB of each face (holes were bridged into it).
   mesh.element_loop_offset.push_back(0);
@@ -501,7 +538,17 @@ Mesh Cutter::extract() {
 Mesh Cutter::run(CutTimings* timings) {
   CutTimings t;
   nmm::Stopwatch t0;
-  raw_ = make_raw_mesh(scene_);
+  raw_ = make_raw_mesh(scene_, region_);
+  if (region_) {
+    region_box_ = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                   -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (const auto& tri : raw_.tri)
+      for (std::int32_t n : tri) {
+        const Vec2& p = raw_.node_xy[n];
+        region_box_ = {std::min(region_box_.x0, p.x), std::min(region_box_.y0, p.y),
+                       std::max(region_box_.x1, p.x), std::max(region_box_.y1, p.y)};
+      }
+  }
   t.mesh_generation = t0.seconds();
 
   t0.restart();
@@ -526,6 +573,19 @@ Mesh Cutter::run(CutTimings* timings) {
 }
 
 }  // namespace
+
+RegionCut cut_region(const SceneDef& scene, const std::vector<std::array<std::int32_t, 3>>& lattice_triangles,
+                     const std::string& file) {
+  std::vector<std::array<std::int32_t, 3>> region = lattice_triangles;
+  for (auto& t : region) std::sort(t.begin(), t.end());
+  std::sort(region.begin(), region.end());
+  Cutter cutter(scene, file, region);
+  RegionCut out;
+  out.mesh = cutter.run(nullptr);
+  out.mesh.tool_version = NMM_VERSION;
+  out.lattice_triangles = cutter.kept_triangles();
+  return out;
+}
 
 Mesh build_mesh(const SceneDef& scene, const std::string& file, CutTimings* timings) {
   if (scene.bodies.empty()) throw InputError(file, "/bodies", "no bodies");

@@ -29,7 +29,7 @@ SceneDef peer_wall(int nx, int ny, bool dynamic, double h) {
   const double e = 1e7;
   SceneDef s = interface_scene(h, 30);
   s.name = "peer wall " + std::to_string(nx) + " x " + std::to_string(ny);
-  s.materials[0] = {"rock", 2500, e, 0.25};
+  s.materials[0] = {"rock", 2500, e, 0.25, {}};
   s.joint_sets[0].name = "mortar";
   s.joint_sets[0].normal.kn = 50 * e;
   s.joint_sets[0].shear.ks = 50 * e / 2.5;

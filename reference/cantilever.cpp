@@ -7,7 +7,7 @@ namespace nmm::reference {
 
 SceneDef beam(double length, double depth, double h) {
   SceneDef s;
-  s.materials.push_back({"rock", 2500, kCantileverYoung, kCantileverPoisson});
+  s.materials.push_back({"rock", 2500, kCantileverYoung, kCantileverPoisson, {}});
   BodyDef b;
   b.material = 0;
   b.outer = {{0, 0}, {length, 0}, {length, depth}, {0, depth}};

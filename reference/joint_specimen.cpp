@@ -43,7 +43,7 @@ JointSetDef seed_shear_joint() {
 
 SceneDef joint_specimen_scene(const JointSetDef& joint, double young, double h) {
   SceneDef s;
-  s.materials.push_back({"rock", 2650, young, 0.25});
+  s.materials.push_back({"rock", 2650, young, 0.25, {}});
   s.joint_sets.push_back(joint);
   s.interface_set = 0;
   s.mesh_size = h;

@@ -15,7 +15,7 @@ constexpr int kArcSides = 48;  // polygon sides per quarter circle
 SceneDef kirsch_scene(const KirschSetup& k) {
   const double a = kKirschRadius, b = k.b_over_a * a, py = kKirschPressure, px = k.k0 * py;
   SceneDef s;
-  s.materials.push_back({"rock", 2500, kKirschYoung, kKirschPoisson});
+  s.materials.push_back({"rock", 2500, kKirschYoung, kKirschPoisson, {}});
   s.mesh_size = k.h;
   s.plane = PlaneKind::strain;
   std::vector<Vec2> arc;  // from (a, 0) to (0, a)

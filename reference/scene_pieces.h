@@ -31,7 +31,7 @@ inline std::vector<Vec2> held_along(double x0, double x1, double y0) {
 /// cover order `order`.
 inline SceneDef interface_scene(double h, double friction_deg, int order = 0) {
   SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
   JointSetDef js;
   js.name = "interface";
   js.friction_deg = friction_deg;

@@ -100,7 +100,7 @@ SceneDef joint_wave_scene(const JointWaveSetup& w) {
   SceneDef s;
   s.name = "joint wave";
   s.plane = PlaneKind::strain;
-  s.materials.push_back({"rock", w.density, w.young, w.poisson});
+  s.materials.push_back({"rock", w.density, w.young, w.poisson, {}});
   JointSetDef js;
   js.name = "joint";
   js.friction_deg = 45;

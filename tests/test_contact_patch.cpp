@@ -70,7 +70,7 @@ std::pair<double, double> joint_extent(Layout setup) {
 
 SceneDef patch_scene(const Case& c) {
   SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
   JointSetDef js;
   js.name = "joint";
   js.friction_deg = kFrictionDeg;
@@ -275,7 +275,7 @@ TEST(ContactPatch, UniformShearBelowTheStrength) {
 // 1.37 GPa/m, Vm 1 cm at 1 MPa). Both ends must now close by the law.
 SceneDef pressed_blocks(double h, const NormalLawDef& normal, double sigma) {
   SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
   JointSetDef js;
   js.name = "j";
   js.friction_deg = 30;

@@ -20,7 +20,7 @@ namespace {
 
 SceneDef box_scene(double x0, double y0, double x1, double y1, double h) {
   SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
   JointSetDef js;
   js.name = "j";
   js.friction_deg = 30;

@@ -109,7 +109,7 @@ TEST(Polynomial, ProductsDerivativesAndShifts) {
 
 SceneDef plate(double h, int order) {
   SceneDef s;
-  s.materials.push_back({"rock", 2500, 1e10, 0.25});
+  s.materials.push_back({"rock", 2500, 1e10, 0.25, {}});
   BodyDef b;
   b.material = 0;
   b.outer = {{0.03, 0.01}, {1.71, 0.13}, {1.93, 1.07}, {0.87, 1.61}, {-0.21, 0.93}};
@@ -488,7 +488,7 @@ TEST(CoverSpace, LinearFieldIsExactAtOrderZeroAndTwo) {
 
 TEST(CoverSpace, FreeFallIsExactAtOrderOne) {
   SceneDef s;
-  s.materials.push_back({"rock", 2500, 1e10, 0.25});
+  s.materials.push_back({"rock", 2500, 1e10, 0.25, {}});
   BodyDef b;
   b.material = 0;
   b.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
@@ -519,7 +519,7 @@ TEST(CoverSpace, EnergyTermsAtOrderOneAndTwo) {
   // kinetic and gravity energies of a body that fell for 1 s: ½ m (g t)² and −m g·½ g t².
   for (int order : {1, 2}) {
     SceneDef s;
-    s.materials.push_back({"rock", 2500, 1e10, 0.25});
+    s.materials.push_back({"rock", 2500, 1e10, 0.25, {}});
     BodyDef b;
     b.material = 0;
     b.outer = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};

@@ -54,7 +54,7 @@ TEST(ElementIntegration, TriangleWeightsAndConsistentMass) {
 }
 
 TEST(Elasticity, PlaneStrainAndStressMatrices) {
-  const MaterialDef m{"r", 2500, 1e10, 0.25};
+  const MaterialDef m{"r", 2500, 1e10, 0.25, {}};
   const Mat3 ds = elasticity_matrix(m, PlaneKind::stress);
   EXPECT_NEAR(ds(0, 0), 1e10 / (1 - 0.0625), 1e-3);
   EXPECT_NEAR(ds(2, 2), 1e10 / 2.5, 1e-3);  // G = E / 2(1+ν)

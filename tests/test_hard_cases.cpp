@@ -57,7 +57,7 @@ constexpr double kRestSpeed = 1e-5;
 // (model "penalty": the cases are stated in Shi's multiples of E), ks = kn/2.5.
 SceneDef contact_scene(double h, double kn_factor) {
   SceneDef s;
-  s.materials.push_back({"rock", 2650, kE, 0.25});
+  s.materials.push_back({"rock", 2650, kE, 0.25, {}});
   JointSetDef js;
   js.name = "interface";
   js.friction_deg = 30;
@@ -287,7 +287,7 @@ TEST(HardCases, BandisBartonJointBeyondMaximumClosureStaysCapped) {
   const double kni = joint.normal.kni, vm = joint.normal.vm;
   for (double sigma_n : {100e6, 1000e6}) {
     SceneDef s;
-    s.materials.push_back({"rock", 2650, 5e11, 0.25});
+    s.materials.push_back({"rock", 2650, 5e11, 0.25, {}});
     s.joint_sets.push_back(joint);
     s.interface_set = 0;
     s.mesh_size = 0.25;

@@ -35,7 +35,7 @@ using studies::KirschWall;
 
 SceneDef rock_scene(double h) {
   SceneDef s;
-  s.materials.push_back({"rock", 2500, 1e10, 0.25});
+  s.materials.push_back({"rock", 2500, 1e10, 0.25, {}});
   s.mesh_size = h;
   s.plane = PlaneKind::strain;
   return s;

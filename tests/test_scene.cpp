@@ -295,7 +295,7 @@ const BadCase kBadCases[] = {
     {R"({"gravity": [0, 1e400]})", "/gravity/1", "number 1e400 is too large", true},
     // Unknown keys, at several levels.
     {R"({"meshh": {"size": 1}})", "/meshh",
-     "unknown key \"meshh\" (allowed: base_acceleration, bodies, excavate, fixed_points, gravity, "
+     "unknown key \"meshh\" (allowed: base_acceleration, bodies, excavate, fixed_points, fracture, gravity, "
      "insitu_stress, interface_set, joint_sets, joints, loads, materials, measure_points, mesh, "
      "name, plane, solver, supports, tractions, water)"},
     {R"({"joint_sets": {"bedding": {"fricton_deg": 20}}})", "/joint_sets/bedding/fricton_deg",

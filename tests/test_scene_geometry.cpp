@@ -10,7 +10,7 @@ namespace {
 
 SceneDef one_body(Ring outer, std::vector<Ring> holes = {}) {
   SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25});
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
   BodyDef b;
   b.material = 0;
   b.outer = std::move(outer);

@@ -78,36 +78,39 @@ constexpr int kDeferredTouching = 5;
 constexpr double kDeferredShare = 0.01;
 }  // namespace
 
+TimeStepper::MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
+    : model(mesh, scene, scene_name), form(model),
+      space(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight), config(mesh, &space),
+      indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()), contacts(model),
+      problem(contacts, space) {
+  problem.set_elastic_predictor(!model.step_inertia());
+}
+
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
-    : mesh_(mesh), scene_(scene), scene_name_(scene_name), model_(mesh, scene, scene_name), form_(model_),
-      control_(scene.solver, model_.w0(), scene.solver.time_step), contacts_(model_),
-      problem_(contacts_, space_) {
-  space_ = CoverSpace(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight);
-  config_ = Configuration(mesh, &space_);
-  indicator_ = EquilibriumIndicator(mesh, scene, space_);
-  momentum_ = BlockMomentum(mesh, space_, indicator_.group_mass());
-  problem_.set_elastic_predictor(!step_inertia());
+    : mesh_(&mesh), scene_(&scene), scene_name_(scene_name),
+      b_(std::make_unique<MeshBound>(mesh, scene, scene_name)),
+      control_(scene.solver, b_->model.w0(), scene.solver.time_step) {
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
-  if (space_.order() > 0) system_.set_regularised(space_.higher_order_unknowns(), kRegularisation);
+  if (b_->space.order() > 0) system_.set_regularised(b_->space.higher_order_unknowns(), kRegularisation);
   // Contacts change the pattern every few steps: each analysis orders by AMD alone.
-  system_.set_amd_only(contacts_.active());
-  s_ = initial_state(model_, space_);
+  system_.set_amd_only(b_->contacts.active());
+  s_ = initial_state(b_->model, b_->space);
   // Fixed points and loads couple only the covers of their element: the element pattern holds
   // until contacts couple pairs of elements (update_pattern).
   build_pattern_with_pairs();
-  rhs_.resize(space_.unknowns());
+  rhs_.resize(b_->space.unknowns());
   set_threads(0);
   excavate(scene.excavate);
 }
 
 void TimeStepper::set_threads(int threads) {
-  threads_ = set_solver_threads(threads > 0 ? threads : default_solver_threads(space_.unknowns()));
+  threads_ = set_solver_threads(threads > 0 ? threads : default_solver_threads(b_->space.unknowns()));
 }
 
 
 
 Outcome TimeStepper::compute_frames() {
-  const std::int64_t e = config_.place(s_.cover_xy);
+  const std::int64_t e = b_->config.place(s_.cover_xy);
   if (e >= 0)
     return stop(StopCode::element_folded, "element " + std::to_string(e) + ": its triangle has folded over at t = " +
                                               std::to_string(s_.time) +
@@ -135,71 +138,71 @@ void TimeStepper::update_pattern() {
   // pattern".) The rule reads only what a checkpoint restores (the pattern's pairs, the accepted
   // contacts and the step's own contacts detected from them), so a restarted run rebuilds the
   // same patterns.
-  const int first = static_cast<int>(mesh_.element_count());
-  const auto now = contacts_.element_pairs();
+  const int first = static_cast<int>(mesh().element_count());
+  const auto now = b_->contacts.element_pairs();
   const auto& had = s_.pattern_pairs;
   const bool holds = std::includes(had.begin(), had.end(), now.begin(), now.end());
   // The groups in the present pattern: final if it holds every pair, else what the deferral counts.
-  if (holds || step_inertia()) problem_.assign_groups(had, first);
+  if (holds || step_inertia()) b_->problem.assign_groups(had, first);
   if (holds) return;
   if (step_inertia()) {
-    const double outside = static_cast<double>(problem_.outside_pattern().touching);
-    const double touching = static_cast<double>(contacts_.touching_at_start());
+    const double outside = static_cast<double>(b_->problem.outside_pattern().touching);
+    const double touching = static_cast<double>(b_->contacts.touching_at_start());
     if (outside <= std::min(static_cast<double>(kDeferredTouching), kDeferredShare * touching)) return;
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   std::set_union(had.begin(), had.end(), now.begin(), now.end(), std::back_inserter(pairs));
-  const auto last = contacts_.element_pairs(true);
+  const auto last = b_->contacts.element_pairs(true);
   std::vector<std::pair<std::int32_t, std::int32_t>> used;
   std::set_union(now.begin(), now.end(), last.begin(), last.end(), std::back_inserter(used));
   if (static_cast<double>(pairs.size()) > kPatternSlack * static_cast<double>(used.size())) pairs = std::move(used);
   s_.pattern_pairs = std::move(pairs);
   build_pattern_with_pairs();
-  problem_.assign_groups(s_.pattern_pairs, first);
+  b_->problem.assign_groups(s_.pattern_pairs, first);
 }
 
 void TimeStepper::build_pattern_with_pairs() {
   const auto& pairs = s_.pattern_pairs;
   std::vector<int> offsets{0}, dofs;
-  const int m = space_.element_dofs();
-  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
-    dofs.insert(dofs.end(), space_.element_unknowns(e), space_.element_unknowns(e) + m);
+  const int m = b_->space.element_dofs();
+  for (std::size_t e = 0; e < mesh().element_count(); ++e) {
+    dofs.insert(dofs.end(), b_->space.element_unknowns(e), b_->space.element_unknowns(e) + m);
     offsets.push_back(static_cast<int>(dofs.size()));
   }
   for (const auto& [a, b] : pairs) {
-    dofs.insert(dofs.end(), space_.element_unknowns(a), space_.element_unknowns(a) + m);
-    dofs.insert(dofs.end(), space_.element_unknowns(b), space_.element_unknowns(b) + m);
+    dofs.insert(dofs.end(), b_->space.element_unknowns(a), b_->space.element_unknowns(a) + m);
+    dofs.insert(dofs.end(), b_->space.element_unknowns(b), b_->space.element_unknowns(b) + m);
     offsets.push_back(static_cast<int>(dofs.size()));
   }
-  system_.build_pattern(space_.unknowns(), offsets, dofs);
+  system_.build_pattern(b_->space.unknowns(), offsets, dofs);
 }
 
 StepContext TimeStepper::step_context(double dt) const {
-  return make_step_context(model_, config_, s_, removed_elem_, dt);
+  return make_step_context(b_->model, b_->config, s_, removed_elem_, dt);
 }
 
 Outcome TimeStepper::attempt(double dt) {
   // Where no two faces can touch (an opening excavated from one unjointed block), the plain
   // solve: no contact detection, no contact problem.
-  const bool contact = contacts_.active() && model_.contacts_can_arise();
+  const bool contact = b_->contacts.active() && b_->model.contacts_can_arise();
   if (!step_inertia() && !contact)
-    if (std::string why = unheld_block(model_, s_); !why.empty()) return stop(StopCode::unconstrained, std::move(why));
+    if (std::string why = unheld_block(b_->model, s_); !why.empty()) return stop(StopCode::unconstrained, std::move(why));
   Stopwatch watch;
   if (Outcome folded = compute_frames(); !folded.ok()) return folded;
   timings_.assembly += watch.seconds();
   if (contact) {
-    contacts_.begin_step(s_.loop_xy, control_.search_distance() + contacts_.max_dilation(),
-                         kContactTolerances.new_depth * mesh_.mesh_size, model_.w0());
-    problem_.build(s_.loop_xy, config_, model_.w0());
+    b_->contacts.begin_step(s_.loop_xy, control_.search_distance() + b_->contacts.max_dilation(),
+                         kContactTolerances.new_depth * mesh().mesh_size, b_->model.w0());
+    b_->problem.build(s_.loop_xy, b_->config, b_->model.w0());
     update_pattern();
   }
-  timings_.contact_detection = contacts_.detection_stats().seconds;
+  timings_.contact_detection = b_->contacts.detection_stats().seconds;
   watch.restart();
   const StepContext context = step_context(dt);  // the attempt's one context (step_context.h)
-  form_.assemble(context, system_, rhs_);
+  b_->form.assemble(context, system_, rhs_);
   // The blocks' share of the last step's out-of-balance force (block_momentum.h); not in a
   // static step (a restart may switch a dynamic run to static), whose balance starts afresh.
-  if (!s_.block_force.empty() && handed_on_share() > 0) momentum_.add_forces(s_.block_force, s_.cover_xy, rhs_);
+  if (!s_.block_force.empty() && handed_on_share() > 0) b_->momentum.add_forces(s_.block_force, s_.cover_xy, rhs_);
   if (contact) {
     system_.save();
     rhs_base_ = rhs_;
@@ -211,7 +214,7 @@ Outcome TimeStepper::attempt(double dt) {
   Eigen::VectorXd d, residual;
   bool iterated = false;  // the contact solve took a Newton direction
   auto not_positive_definite = [&]() {
-    return not_positive_definite_message(mesh_, space_, system_.failed_unknown());
+    return not_positive_definite_message(mesh(), b_->space, system_.failed_unknown());
   };
   if (!contact) {
     watch.restart();
@@ -225,10 +228,10 @@ Outcome TimeStepper::attempt(double dt) {
     timings_.solves += watch.seconds();
   } else {
     const ContactSolveStats before = solve_stats_;
-    const double tau = scene_.solver.contact_tolerance;
+    const double tau = scene().solver.contact_tolerance;
     const auto solve = [&](bool warm) {
-      return solve_contact_step(system_, problem_, rhs_base_, tau,
-                                contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, d,
+      return solve_contact_step(system_, b_->problem, rhs_base_, tau,
+                                b_->contacts.softening() ? displacement_tolerance(tau, b_->model.w0()) : 0.0, d,
                                 solve_stats_, handed_on_share() > 0 ? &residual : nullptr, warm);
     };
     Outcome outcome = solve(false);
@@ -236,13 +239,13 @@ Outcome TimeStepper::attempt(double dt) {
     // them broken until no unbroken contact is beyond its peak (contact_problem.h break_at_peak). Each
     // round breaks at least one contact, so this ends.
     for (bool resolved = false; outcome.ok();) {
-      if (!problem_.break_at_peak().resolve) break;
+      if (!b_->problem.break_at_peak().resolve) break;
       if (!resolved) ++solve_stats_.steps_resolved_for_breaks;
       resolved = true;
       ++solve_stats_.break_resolves;
       outcome = solve(true);  // from the solution before the breaks
     }
-    if (outcome.ok()) problem_.settle_states();
+    if (outcome.ok()) b_->problem.settle_states();
     iterated = solve_stats_.newton > before.newton;
     timings_.factorisations += solve_stats_.factorisations - before.factorisations;
     timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
@@ -258,17 +261,17 @@ Outcome TimeStepper::attempt(double dt) {
   for (Eigen::Index i = 0; i < d.size(); ++i)
     if (!std::isfinite(d[i]))
       return stop(StopCode::displacement_not_finite,
-                  "the displacement of cover " + std::to_string(space_.cover_of_unknown(static_cast<int>(i))) +
+                  "the displacement of cover " + std::to_string(b_->space.cover_of_unknown(static_cast<int>(i))) +
                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
   if (contact) {
-    const ContactSet::Totals totals = contacts_.totals();
+    const ContactSet::Totals totals = b_->contacts.totals();
     Outcome rejected = control_.rejection(d.cwiseAbs().maxCoeff(), totals.max_penetration, step_inertia());
     if (!rejected.ok()) return stop(rejected.code, std::move(rejected.reason));
-    contacts_.end_step(problem_);
+    b_->contacts.end_step(b_->problem);
     // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
     // its start hands nothing on, and a direct solve leaves nothing to hand on.
     if (handed_on_share() > 0 && iterated)
-      momentum_.net_forces(residual, handed_on_share(), s_.cover_xy, s_.block_force);
+      b_->momentum.net_forces(residual, handed_on_share(), s_.cover_xy, s_.block_force);
     else
       s_.block_force.clear();
     s_.max_penetration = std::max(s_.max_penetration, totals.max_penetration);
@@ -277,7 +280,7 @@ Outcome TimeStepper::attempt(double dt) {
   if (!contact) s_.block_force.clear();
   watch.restart();
   measure_balance(d, context, contact);
-  update_state(model_, context, d, s_);
+  update_state(b_->model, context, d, s_);
   timings_.geometry_update += watch.seconds();
   s_.time += dt;
   ++s_.step;
@@ -301,12 +304,12 @@ void TimeStepper::measure_balance(const Eigen::VectorXd& d, const StepContext& s
     if (contact) system_.saved_times(d, kd);
     b.balance = contact ? &kd : &rhs_;
   }
-  b.applied_sum = applied_force_sum(scene_, s_, t_end, std::hypot(bx, by),
-                                    indicator_.active_mass(s_.body_removed), model_.traction_edges(),
-                                    model_.interface_edges(), removed_elem_);
+  b.applied_sum = applied_force_sum(scene(), s_, t_end, std::hypot(bx, by),
+                                    b_->indicator.active_mass(s_.body_removed), b_->model.traction_edges(),
+                                    b_->model.interface_edges(), removed_elem_);
   b.stress = &s_.stress;
   b.stress_terms = stress_terms();
-  balance_ = indicator_.measure(b, s_.body_removed);
+  balance_ = b_->indicator.measure(b, s_.body_removed);
 }
 
 void TimeStepper::step(double dt) {
@@ -318,8 +321,8 @@ Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64
   // Attempts under Shi's step control (step_control.h): without contact nothing is rejected and
   // every step has the full length time_step. What a shorter step may cure is cut and tried
   // again; anything else stops the run at once.
-  const SolverDef& sv = scene_.solver;
-  control_ = StepControl(sv, model_.w0(), s_.dt);
+  const SolverDef& sv = scene().solver;
+  control_ = StepControl(sv, b_->model.w0(), s_.dt);
   std::int64_t done = 0;
   stopped_at_ratio_ = false;
   while (!control_.done(s_.time, t_end)) {
@@ -353,37 +356,37 @@ Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64
 
 void TimeStepper::restart_from(const std::string& path) {
   std::string history, factor;
-  const RunState st = state_from_sections(read_checkpoint_file(path), mesh_, path, history,
-                                          space_.dofs_per_cover(), space_.terms(), &factor);
+  const RunState st = state_from_sections(read_checkpoint_file(path), mesh(), path, history,
+                                          b_->space.dofs_per_cover(), b_->space.terms(), &factor);
   restore(st, history, path);
-  if (!factor.empty() && contacts_.active() && !system_.factor_from_source(factor))
+  if (!factor.empty() && b_->contacts.active() && !system_.factor_from_source(factor))
     throw InputError(path, "section FACTOR", "not the matrix of a factorisation of this run's size");
 }
 
 void TimeStepper::restore(const RunState& st, const std::string& history, const std::string& name) {
-  s_ = restarted_state(st, s_, scene_.bodies.size(), name);
-  load_contact_history(contacts_, history, mesh_, name);
+  s_ = restarted_state(st, s_, scene().bodies.size(), name);
+  load_contact_history(b_->contacts, history, mesh(), name);
   // The same pattern as the run that wrote the checkpoint: the same symbolic analysis, the same
   // round-off.
   if (!s_.pattern_pairs.empty()) {
     build_pattern_with_pairs();
-    problem_.assign_groups(s_.pattern_pairs, static_cast<int>(mesh_.element_count()));
+    b_->problem.assign_groups(s_.pattern_pairs, static_cast<int>(mesh().element_count()));
   }
   apply_removed();
-  excavate(scene_.excavate);
+  excavate(scene().excavate);
 }
 
 void TimeStepper::excavate(const std::vector<int>& bodies) {
-  excavate_bodies(bodies, mesh_, stress_terms(), s_);
+  excavate_bodies(bodies, mesh(), stress_terms(), s_);
   apply_removed();
 }
 
 void TimeStepper::apply_removed() {
-  removed_elem_ = removed_elements(mesh_, s_);
+  removed_elem_ = removed_elements(mesh(), s_);
   const bool any = std::any_of(removed_elem_.begin(), removed_elem_.end(),
                                [](std::uint8_t r) { return r != 0; });
-  contacts_.set_removed_elements(any ? removed_elem_ : std::vector<std::uint8_t>{});
-  hold_removed_covers(mesh_, space_.dofs_per_cover(), s_);
+  b_->contacts.set_removed_elements(any ? removed_elem_ : std::vector<std::uint8_t>{});
+  hold_removed_covers(mesh(), b_->space.dofs_per_cover(), s_);
 }
 
 }  // namespace nmm::solve

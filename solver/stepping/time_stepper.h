@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,7 @@ class TimeStepper {
   /// path, e.g. /fixed_points/2, for a point outside every body), builds the sparsity pattern,
   /// applies the scene's excavate. `scene_name` names the scene in such errors.
   TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
-  // The contacts hold the model and the space by reference: a stepper stays where it was built.
+  // Derived objects hold references into the stepper's mesh and scene: it stays where it was built.
   TimeStepper(const TimeStepper&) = delete;
   TimeStepper& operator=(const TimeStepper&) = delete;
 
@@ -72,8 +73,8 @@ class TimeStepper {
   // ---- read -------------------------------------------------------------------------------
   /// What the outputs read: state, model, space, contacts, system, costs (run_view.h).
   RunView view() const {
-    return {mesh_,    model_,       space_,       config_,  s_,
-            contacts_, system_,     timings_,     solve_stats_, balance_,
+    return {*mesh_,      b_->model,  b_->space,    b_->config,   s_,
+            b_->contacts, system_,   timings_,     solve_stats_, balance_,
             stopped_at_ratio_, threads_};
   }
 
@@ -90,42 +91,51 @@ class TimeStepper {
   /// update() moves the state on.
   void measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact);
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
-  bool step_inertia() const { return model_.step_inertia(); }
+  bool step_inertia() const { return b_->model.step_inertia(); }
   /// –, the share of a step's momentum the next step keeps: solver.dynamic_factor in a dynamic
   /// run, 0 in a static one (block_momentum.h hands on that share of the residual).
-  double handed_on_share() const { return scene_.solver.dynamic ? scene_.solver.dynamic_factor : 0.0; }
+  double handed_on_share() const { return scene().solver.dynamic ? scene().solver.dynamic_factor : 0.0; }
   void build_pattern_with_pairs();
   /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
-  std::size_t stress_terms() const { return static_cast<std::size_t>(space_.terms()); }
+  std::size_t stress_terms() const { return static_cast<std::size_t>(b_->space.terms()); }
   /// ε of the regularised factorisation (system_matrix.h), relative to each diagonal entry.
   static constexpr double kRegularisation = 1e-10;
   /// Removes bodies (excavation) at the current step: excavation.h.
   void excavate(const std::vector<int>& bodies);
   void apply_removed();
 
-  const Mesh& mesh_;
-  const SceneDef& scene_;
+  /// What is derived from the mesh and the scene: built with the stepper, and again when cracks
+  /// change the mesh (the members hold references to each other and to mesh and scene, so the
+  /// whole is replaced at once).
+  struct MeshBound {
+    MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
+    Model model;                      // derived once from mesh and scene (model.h)
+    Form form;                        // the integrators the scene calls for (form.h)
+    CoverSpace space;                 // order, unknowns of each cover and element, shapes
+    Configuration config;             // the space on the step's cover positions: frames, bases
+    EquilibriumIndicator indicator;   // lumped cover masses (derived from the mesh: no run state)
+    BlockMomentum momentum;           // each block's covers and mass shares (block_momentum.h)
+    ContactSet contacts;              // detection and the history carried between steps
+    ContactProblem problem;           // the step's rows and Newton kernels (contact_problem.h)
+  };
+  const Mesh& mesh() const { return *mesh_; }
+  const SceneDef& scene() const { return *scene_; }
+
+  const Mesh* mesh_;                    // the run's mesh: the file's, or own_mesh_ once cracked
+  const SceneDef* scene_;               // the run's scene: the given one, or own_scene_ once cracked
   std::string scene_name_;
-  Model model_;                         // derived once from mesh and scene (model.h)
-  Form form_;                           // the integrators the scene calls for (form.h)
+  std::unique_ptr<MeshBound> b_;        // derived from mesh_ and scene_
   StepControl control_;                 // Shi's step control (step_control.h)
-  CoverSpace space_;                    // order, unknowns of each cover and element, shapes
-  Configuration config_;                // the space on the step's cover positions: frames, bases
   RunState s_;                          // everything a step carries to the next
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   Eigen::VectorXd rhs_;
   SystemMatrix system_;
   StepTimings timings_;
-  // Contact and step control.
-  ContactSet contacts_;             // detection and the history carried between steps
-  ContactProblem problem_;          // the step's rows and Newton kernels (contact_problem.h)
   Eigen::VectorXd rhs_base_;     // right-hand side without contacts
   std::function<bool()> stop_check_;                     // interrupt.h
   ContactSolveStats solve_stats_;   // what the contact solves cost (contact_solve.h)
   int threads_ = 1;                 // of the factorisation (solver_threads.h)
-  EquilibriumIndicator indicator_;  // lumped cover masses (derived from the mesh: no run state)
-  BlockMomentum momentum_;          // each block's covers and mass shares (block_momentum.h)
   EquilibriumSample balance_;       // of the last accepted step (diagnostics, not state)
   bool stopped_at_ratio_ = false;
 };

@@ -17,20 +17,20 @@ class TimeStepperProbe {
   /// frames of the current configuration.
   static void impose_displacement(TimeStepper& st, const Eigen::VectorXd& d) {
     st.compute_frames();
-    update_state(st.model_, st.step_context(1.0), d, st.s_);
+    update_state(st.b_->model, st.step_context(1.0), d, st.s_);
   }
   /// Assembles a step of dt from the current state and returns its right-hand side
   /// −F_int (+ loads, gravity, inertia), N.
   static const Eigen::VectorXd& assemble_rhs(TimeStepper& st, double dt) {
     st.compute_frames();
-    st.form_.assemble(st.step_context(dt), st.system_, st.rhs_);
+    st.b_->form.assemble(st.step_context(dt), st.system_, st.rhs_);
     return st.rhs_;
   }
   /// The right-hand side of the last assembly, N.
   static const Eigen::VectorXd& rhs(const TimeStepper& st) { return st.rhs_; }
   /// The last attempt's contact problem: its rows, working values and what it left outside the
   /// sparse pattern (contact_problem.h).
-  static const ContactProblem& contact_problem(const TimeStepper& st) { return st.problem_; }
+  static const ContactProblem& contact_problem(const TimeStepper& st) { return st.b_->problem; }
 };
 
 }  // namespace nmm::solve

@@ -1,0 +1,192 @@
+// Re-cutting where a new joint crosses (preprocess/recut.h) gives the mesh a whole cut of the
+// scene with that joint gives: the same elements (loops, bodies, edge origins and joints) in every
+// triangle, the same physical covers (the same partition of element corners), the same blocks and
+// contact edges — compared up to the order of elements within a triangle and the start of each
+// loop, which the arrangement may pick differently. And the map back to the old mesh names, for
+// every new element, cover and vertex, the old one it is a piece of.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "common/lattice.h"
+#include "common/ring_geometry.h"
+#include "preprocess/cover_cutter.h"
+#include "preprocess/recut.h"
+#include "reference/scene_pieces.h"
+
+namespace nmm {
+namespace {
+
+using Loop = std::vector<std::tuple<double, double, int, int>>;  // x, y, origin, joint
+
+// Element e's loop, started at its lexicographically smallest vertex.
+Loop canonical_loop(const Mesh& m, std::size_t e) {
+  Loop l;
+  for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v)
+    l.emplace_back(m.loop_xy[2 * v], m.loop_xy[2 * v + 1], m.loop_edge_origin[v], m.loop_edge_joint[v]);
+  std::rotate(l.begin(), std::min_element(l.begin(), l.end()), l.end());
+  return l;
+}
+
+// The mesh up to element order within a triangle and loop starts: per element its triangle,
+// body and loop; covers as sets of (element key, corner); blocks as sets of element keys.
+struct Canonical {
+  std::set<std::tuple<int, int, Loop>> elements;
+  std::set<std::set<std::pair<Loop, int>>> covers;
+  std::set<std::set<Loop>> blocks;
+  std::set<std::tuple<Loop, int, bool>> contact_edges;  // element, vertex within its loop, paired
+};
+
+Canonical canonical(const Mesh& m) {
+  Canonical c;
+  std::vector<Loop> key(m.element_count());
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    key[e] = canonical_loop(m, e);
+    c.elements.emplace(m.element_triangle[e], m.element_body[e], key[e]);
+  }
+  std::map<int, std::set<std::pair<Loop, int>>> covers;
+  std::map<int, std::set<Loop>> blocks;
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    for (int k = 0; k < 3; ++k) covers[m.element_covers[3 * e + k]].emplace(key[e], k);
+    blocks[m.element_block[e]].insert(key[e]);
+  }
+  for (auto& [id, s] : covers) c.covers.insert(s);
+  for (auto& [id, s] : blocks) c.blocks.insert(s);
+  for (std::size_t i = 0; i < m.contact_edge.size(); ++i) {
+    const std::int32_t v = m.contact_edge[i], e = m.contact_edge_element[i];
+    const Loop& l = key[static_cast<std::size_t>(e)];
+    const auto at = std::find(l.begin(), l.end(), std::make_tuple(m.loop_xy[2 * v], m.loop_xy[2 * v + 1],
+                                                                 int{m.loop_edge_origin[v]}, int{m.loop_edge_joint[v]}));
+    c.contact_edges.emplace(l, static_cast<int>(at - l.begin()), m.contact_edge_opposite[i] >= 0);
+  }
+  return c;
+}
+
+SceneDef two_bodies() {
+  SceneDef s = reference::interface_scene(0.5, 30);
+  s.bodies = {reference::box(0, 0, 6, 2), reference::box(1, 2, 5, 4)};
+  JointDef j;  // an older joint ending inside the lower body
+  j.set = 0;
+  j.points = {{0.3, 0.7}, {2.6, 1.3}};
+  s.joints.push_back(j);
+  return s;
+}
+
+// Adds a joint and checks recut against a whole cut; returns the map.
+pre::RecutMap check_recut(SceneDef s, const std::vector<Vec2>& points, const char* what) {
+  const Mesh old = pre::build_mesh(s, "old");
+  JointDef crack;
+  crack.set = 0;
+  crack.points = points;
+  s.joints.push_back(crack);
+  const Mesh whole = pre::build_mesh(s, "whole");
+  pre::RecutMap map;
+  const Mesh m = pre::recut(old, s, s.joints.size() - 1, "recut", map);
+  std::printf("%s: %zu triangles touched, %zu cut again of %zu; elements %zu → %zu (whole cut %zu), covers "
+              "%zu → %zu, blocks %zu → %zu\n",
+              what, map.cut_triangles.size(), map.region_triangles, old.triangle_count(), old.element_count(),
+              m.element_count(), whole.element_count(), old.cover_count(), m.cover_count(), old.block_count(),
+              m.block_count());
+  EXPECT_GT(map.cut_triangles.size(), 0u) << what;
+  EXPECT_LT(map.region_triangles, old.triangle_count() / 2) << what << ": only the neighbourhood is cut again";
+  const Canonical a = canonical(m), b = canonical(whole);
+  EXPECT_EQ(m.element_count(), whole.element_count()) << what;
+  EXPECT_EQ(m.cover_count(), whole.cover_count()) << what;
+  EXPECT_EQ(m.block_count(), whole.block_count()) << what;
+  EXPECT_TRUE(a.elements == b.elements) << what << ": the same elements";
+  EXPECT_TRUE(a.covers == b.covers) << what << ": the same physical covers";
+  EXPECT_TRUE(a.blocks == b.blocks) << what << ": the same blocks";
+  EXPECT_TRUE(a.contact_edges == b.contact_edges) << what << ": the same contact edges";
+  EXPECT_NEAR(total_area(m), total_area(old), 1e-9 * total_area(old)) << what;
+  // The map: every new element lies in its parent (same triangle, area no larger), every new
+  // cover is a piece of an old cover of its node, and a vertex's parent is at the same point.
+  EXPECT_EQ(map.element_parent.size(), m.element_count());
+  EXPECT_EQ(map.cover_parent.size(), m.cover_count());
+  EXPECT_EQ(map.vertex_parent.size(), m.loop_vertex_count());
+  std::vector<double> child_area(old.element_count(), 0.0);
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    const std::int32_t p = map.element_parent[e];
+    EXPECT_GE(p, 0) << what;
+    if (p < 0) continue;
+    EXPECT_EQ(old.element_triangle[p], m.element_triangle[e]) << what;
+    child_area[p] += element_area(m, e);
+  }
+  for (std::size_t p = 0; p < old.element_count(); ++p)
+    EXPECT_NEAR(child_area[p], element_area(old, p), 1e-9 * old.mesh_size * old.mesh_size)
+        << what << ": the pieces of element " << p << " fill it";
+  for (std::size_t c = 0; c < m.cover_count(); ++c) {
+    EXPECT_GE(map.cover_parent[c], 0) << what;
+    if (map.cover_parent[c] < 0) continue;
+    EXPECT_EQ(old.cover_node[map.cover_parent[c]], m.cover_node[c]) << what;
+  }
+  for (std::size_t v = 0; v < m.loop_vertex_count(); ++v)
+    if (map.vertex_parent[v] >= 0) {
+      EXPECT_EQ(old.loop_xy[2 * map.vertex_parent[v]], m.loop_xy[2 * v]);
+      EXPECT_EQ(old.loop_xy[2 * map.vertex_parent[v] + 1], m.loop_xy[2 * v + 1]);
+    }
+  return map;
+}
+
+}  // namespace
+
+// A region of every triangle is the whole cut, array for array.
+TEST(Recut, ARegionOfEveryTriangleIsTheWholeCut) {
+  const SceneDef s = two_bodies();
+  const Mesh whole = pre::build_mesh(s, "whole");
+  const Lattice lat = make_lattice(s.bodies, s.mesh_size);
+  std::vector<std::array<std::int32_t, 3>> all;
+  for (std::size_t t = 0; t < whole.triangle_count(); ++t) {
+    std::array<std::int32_t, 3> key;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t n = whole.triangle_nodes[3 * t + k];
+      const double x = whole.node_xy[2 * n], y = whole.node_xy[2 * n + 1];
+      const std::int64_t j = std::llround(y / lat.dy);
+      key[k] = lat.index(std::llround(x / lat.h - (((j % 2) + 2) % 2 == 1 ? 0.5 : 0.0)), j);
+    }
+    all.push_back(key);
+  }
+  const pre::RegionCut r = pre::cut_region(s, all, "region");
+  EXPECT_EQ(r.mesh.element_loop_offset, whole.element_loop_offset);
+  EXPECT_EQ(r.mesh.loop_xy, whole.loop_xy);
+  EXPECT_EQ(r.mesh.loop_edge_origin, whole.loop_edge_origin);
+  EXPECT_EQ(r.mesh.loop_edge_joint, whole.loop_edge_joint);
+  EXPECT_EQ(r.mesh.element_covers, whole.element_covers);
+  EXPECT_EQ(r.mesh.element_block, whole.element_block);
+  EXPECT_EQ(r.mesh.contact_edge_opposite, whole.contact_edge_opposite);
+}
+
+TEST(Recut, ACrackInsideABlockIsCutAsTheWholeMeshWouldBe) {
+  const pre::RecutMap map = check_recut(two_bodies(), {{3.1, 0.6}, {3.9, 1.45}}, "crack inside the lower body");
+  EXPECT_LT(map.cut_triangles.size(), 12u);
+}
+
+TEST(Recut, ACrackAcrossABodySplitsItsBlock) {
+  // From the upper body's left face to its right face: two blocks where there was one.
+  SceneDef s = two_bodies();
+  const Mesh old = pre::build_mesh(s, "old");
+  check_recut(s, {{1, 3.1}, {5, 3.3}}, "crack across the upper body");
+  JointDef crack;
+  crack.set = 0;
+  crack.points = {{1, 3.1}, {5, 3.3}};
+  s.joints.push_back(crack);
+  pre::RecutMap map;
+  EXPECT_EQ(pre::recut(old, s, s.joints.size() - 1, "recut", map).block_count(), old.block_count() + 1);
+}
+
+TEST(Recut, CracksThroughNodesAlongEdgesAndFromATip) {
+  // Through a lattice node (0.5, 0) + k·(0.5, 0.433): along a mesh edge direction from a node.
+  const double dy = 0.5 * std::sqrt(3.0) / 2;
+  check_recut(two_bodies(), {{2.0, 2 * dy}, {3.0, 4 * dy}}, "crack along mesh edges through nodes");
+  // On from the older joint's tip (2.6, 1.3), bending.
+  check_recut(two_bodies(), {{2.6, 1.3}, {3.4, 1.9}}, "crack continuing a joint from its tip");
+  // A short crack wholly inside one triangle.
+  check_recut(two_bodies(), {{4.1, 0.3}, {4.2, 0.35}}, "crack inside one triangle");
+}
+
+}  // namespace nmm
