@@ -7,14 +7,10 @@
 // error is reported rather than silently accepted.
 #include "common/mesh_file.h"
 
-#include <fcntl.h>
 #include <openssl/evp.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -22,7 +18,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -30,6 +25,7 @@
 #include "common/byte_fields.h"
 #include "common/crc32.h"
 #include "common/error.h"
+#include "common/whole_file.h"
 
 namespace nmm {
 
@@ -182,10 +178,6 @@ bool tag_is_valid(const char* raw) {
   for (int i = len; i < 8; ++i)
     if (raw[i] != '\0') return false;
   return true;
-}
-
-std::string errno_text(int err) {
-  return std::system_category().message(err);
 }
 
 // ---- container: header + section table + sections ----------------------------------------------
@@ -797,26 +789,7 @@ void write_mesh_file(const Mesh& mesh, const std::string& path) {
 }
 
 Mesh read_mesh_file(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(path, "", "cannot read: " + errno_text(errno));
-  std::string bytes;
-  struct stat st {};
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
-    bytes.reserve(static_cast<std::size_t>(st.st_size));  // a hint only; the loop reads to EOF
-  char buf[1 << 16];
-  for (;;) {
-    const ssize_t r = ::read(fd, buf, sizeof buf);
-    if (r < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      throw InputError(path, "", "cannot read: " + errno_text(err));
-    }
-    if (r == 0) break;
-    bytes.append(buf, static_cast<std::size_t>(r));
-  }
-  ::close(fd);
-  return mesh_from_bytes(bytes, path);
+  return mesh_from_bytes(read_whole_file(path), path);
 }
 
 }  // namespace nmm

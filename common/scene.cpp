@@ -16,7 +16,6 @@
 #include "common/scene.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +29,7 @@
 #include "common/error.h"
 #include "common/lattice.h"
 #include "common/number_format.h"
+#include "common/whole_file.h"
 
 namespace nmm {
 
@@ -1080,21 +1080,6 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   }
   if (const auto r = root.optional("water")) scene.water = read_water(*r, scene);
   return scene;
-}
-
-std::string read_text_file(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path, "", std::string("cannot read file: ") + std::strerror(errno));
-  std::string text;
-  char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
-  // A directory opens fine on Linux and fails on the first read (EISDIR).
-  const int error = std::ferror(f) ? errno : 0;
-  std::fclose(f);
-  if (error != 0)
-    throw InputError(path, "", std::string("cannot read file: ") + std::strerror(error));
-  return text;
 }
 
 double ring_signed_area(const Ring& ring) {

@@ -13,6 +13,7 @@
 #include "common/math_constants.h"
 #include "common/scene.h"
 #include "solver/stepping/time_stepper.h"
+#include "common/whole_file.h"
 
 namespace nmm::solve {
 namespace {
