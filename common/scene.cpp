@@ -29,6 +29,7 @@
 #include "common/error.h"
 #include "common/lattice.h"
 #include "common/number_format.h"
+#include "common/ring_geometry.h"
 #include "common/whole_file.h"
 
 namespace nmm {
@@ -1026,15 +1027,10 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   // Generated joint sets: the expected joint count over the bodies' bounding box stays bounded.
   for (const JointSetDef& set : scene.joint_sets) {
     if (!set.generated) continue;
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const BodyDef& b : scene.bodies)
-      for (const Vec2& p : b.outer) {
-        x0 = std::min(x0, p.x); y0 = std::min(y0, p.y);
-        x1 = std::max(x1, p.x); y1 = std::max(y1, p.y);
-      }
+    const Box box = bodies_box(scene.bodies);
     const JointGenerationDef& g = set.generate;
     const double intensity = g.p21 > 0 ? g.p21 : 1 / g.mean_spacing;
-    const double expected = intensity * (x1 - x0) * (y1 - y0) / mean_of(g.length);
+    const double expected = intensity * (box.x1 - box.x0) * (box.y1 - box.y0) / mean_of(g.length);
     if (expected > kMaxGeneratedJoints)
       root["joint_sets"][set.name]["generate"].fail(
           "about " + format_number(expected) + " joints expected over the bodies' box, more than " +

@@ -45,14 +45,7 @@ double ring_perimeter(const Ring& r) {
   return s;
 }
 
-double scene_size(const SceneDef& scene) {
-  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (const BodyDef& b : scene.bodies)
-    for (const Vec2& p : b.outer)
-      xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x), ymin = std::min(ymin, p.y),
-      ymax = std::max(ymax, p.y);
-  return std::max(xmax - xmin, ymax - ymin);
-}
+double scene_size(const SceneDef& scene) { return bodies_box(scene.bodies).longer_side(); }
 
 std::string coords(Vec2 p) {
   char buf[80];
