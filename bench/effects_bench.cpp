@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -89,7 +90,7 @@ struct Measured {
   int unknowns = 0;
   std::size_t elements = 0;
   int steps = 0;  // per batch
-  double step = 1e300, detection = 0, assembly = 0, factorisation = 0, solves = 0, update = 0;  // s/step
+  double step = std::numeric_limits<double>::infinity(), detection = 0, assembly = 0, factorisation = 0, solves = 0, update = 0;  // s/step
   std::size_t analyses = 0;
   double iterations = 0, cuts = 0;  // per step
   double first_step = 0;            // s, the first step, with the symbolic analysis

@@ -468,7 +468,7 @@ NodeJointRun run_node_joint(const NodeJointCase& c, bool wedge_on, double sliver
   s.solver.sliver_cover_weight = sliver_weight;
   const Mesh m = pre::build_mesh(s, c.name);
   NodeJointRun r;
-  double smallest = 1e300;
+  double smallest = std::numeric_limits<double>::infinity();
   for (std::size_t e = 0; e < m.element_count(); ++e) {
     const double a = element_area(m, e);
     smallest = std::min(smallest, a);
