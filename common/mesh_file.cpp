@@ -25,6 +25,7 @@
 #include "common/byte_fields.h"
 #include "common/crc32.h"
 #include "common/error.h"
+#include "common/number_format.h"
 #include "common/whole_file.h"
 
 namespace nmm {
@@ -139,13 +140,6 @@ std::string byte_at(std::uint64_t offset) {
 std::string hex32(std::uint32_t v) {
   char buf[16];
   std::snprintf(buf, sizeof buf, "0x%08x", static_cast<unsigned>(v));
-  return buf;
-}
-
-// Shortest text that reads back as the same double, so messages show the exact offending value.
-std::string fmt_double(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
 
@@ -486,7 +480,7 @@ void check_finite(const std::string& name, const char* tag, const char* what,
     if (!std::isfinite(xy[i]))
       bad(name, tag,
           std::string(what) + " " + n(static_cast<std::int64_t>(i / 2)) + " coordinate " +
-              (i % 2 ? "y" : "x") + " is " + fmt_double(xy[i]));
+              (i % 2 ? "y" : "x") + " is " + format_number(xy[i]));
 }
 
 }  // namespace
@@ -592,7 +586,7 @@ void validate_mesh(const Mesh& mesh, const std::string& name) {
   // ---- META
   if (!(std::isfinite(mesh.mesh_size) && mesh.mesh_size > 0))
     bad(name, kTagMeta,
-        "mesh_size is " + fmt_double(mesh.mesh_size) + "; it must be a positive finite length");
+        "mesh_size is " + format_number(mesh.mesh_size) + "; it must be a positive finite length");
   if (mesh.dofs_per_cover < 1 || mesh.dofs_per_cover > kMaxDofsPerCover)
     bad(name, kTagMeta,
         "dofs_per_cover is " + n(mesh.dofs_per_cover) + "; it must be between 1 and " +

@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "common/error.h"
+#include "common/number_format.h"
 #include "common/ring_geometry.h"
 
 namespace nmm {
@@ -47,11 +48,7 @@ double ring_perimeter(const Ring& r) {
 
 double scene_size(const SceneDef& scene) { return bodies_box(scene.bodies).longer_side(); }
 
-std::string coords(Vec2 p) {
-  char buf[80];
-  std::snprintf(buf, sizeof buf, "(%.6g, %.6g)", p.x, p.y);
-  return buf;
-}
+std::string coords(Vec2 p) { return "(" + format_rough(p.x, 6) + ", " + format_rough(p.y, 6) + ")"; }
 
 }  // namespace
 

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "preprocess/joint_network.h"
 #include "common/math_constants.h"
+#include "common/number_format.h"
 #include "common/ring_geometry.h"
 #include "common/svg_plot.h"
 #include "common/svg_writer.h"
@@ -33,11 +33,8 @@ double crossing(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return t;
 }
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+// Six significant digits throughout the report.
+std::string num(double v) { return format_rough(v, 6); }
 
 Ring bodies_box_ring(const SceneDef& scene) {
   if (scene.bodies.empty()) return {};

@@ -10,20 +10,12 @@
 #include "report/failure_cause.h"
 #include "solver/discretisation/joint_water.h"
 #include "common/math_constants.h"
+#include "common/number_format.h"
 #include "common/svg_plot.h"
 #include "common/svg_writer.h"
 #include "common/vec2.h"
 
 namespace nmm::report {
-namespace {
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
-}
-
-}  // namespace
 
 std::string colour_map(double f) {
   // viridis: perceptually ordered, readable in grey and by most colour-blind readers.
@@ -274,7 +266,8 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
              {colour_map((i + 0.5) / bands), "none", 0, 0, 1});
   double right = bx + bw;  // the picture's right edge, for the wrapped text below
   for (int i = 0; i <= 4; ++i) {
-    const std::string label = number(lo + (hi - lo) * i / 4);
+    const double tick = lo + (hi - lo) * i / 4;
+    const std::string label = format_rough(std::abs(tick) < 1e-12 ? 0.0 : tick, 3);  // not -0
     svg.text({bx + 1.3 * bw, by + bh * i / 4 - 0.3 * font}, label, font, "#000000");
     right = std::max(right, bx + 1.3 * bw + SvgWriter::text_width(label, font));
   }
