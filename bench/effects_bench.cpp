@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "bench/bench_common.h"
+#include "common/number_format.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
 #include "reference/scene_pieces.h"
@@ -213,9 +214,7 @@ void write(std::ofstream& csv, const Measured& r) {
 }
 
 std::string percent(const char* what, double x) {
-  char b[128];
-  std::snprintf(b, sizeof b, "%s %+.1f %%", what, 100 * x);
-  return b;
+  return std::string(what) + " " + nmm::format_signed(100 * x, 1) + " %";
 }
 
 }  // namespace
