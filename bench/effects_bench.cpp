@@ -25,12 +25,14 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "bench/bench_common.h"
+#include "common/number_format.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
 #include "reference/scene_pieces.h"
@@ -89,7 +91,7 @@ struct Measured {
   int unknowns = 0;
   std::size_t elements = 0;
   int steps = 0;  // per batch
-  double step = 1e300, detection = 0, assembly = 0, factorisation = 0, solves = 0, update = 0;  // s/step
+  double step = std::numeric_limits<double>::infinity(), detection = 0, assembly = 0, factorisation = 0, solves = 0, update = 0;  // s/step
   std::size_t analyses = 0;
   double iterations = 0, cuts = 0;  // per step
   double first_step = 0;            // s, the first step, with the symbolic analysis
@@ -212,9 +214,7 @@ void write(std::ofstream& csv, const Measured& r) {
 }
 
 std::string percent(const char* what, double x) {
-  char b[128];
-  std::snprintf(b, sizeof b, "%s %+.1f %%", what, 100 * x);
-  return b;
+  return std::string(what) + " " + nmm::format_signed(100 * x, 1) + " %";
 }
 
 }  // namespace

@@ -36,6 +36,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <tuple>
@@ -108,7 +109,7 @@ struct Pair {
 };
 
 double cpu_ms(const std::function<void()>& f) {
-  double best = 1e300;
+  double best = std::numeric_limits<double>::infinity();
   for (int rep = 0; rep < 2; ++rep) {
     const double c0 = nmm::bench::thread_cpu_seconds();
     f();
@@ -223,7 +224,7 @@ Pair measure(const Sparse& a, const Springs& before, const Springs& after, const
     return c;
   };
   const Sparse c_up = update_matrix(true), c_down = update_matrix(false);
-  double best_updown = 1e300, best_simplicial = 1e300;
+  double best_updown = std::numeric_limits<double>::infinity(), best_simplicial = std::numeric_limits<double>::infinity();
   for (int rep = 0; rep < 2; ++rep) {
     double c0 = nmm::bench::thread_cpu_seconds();
     cholmod_factorize(&v0, l, &cc);

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -55,7 +56,7 @@ int main(int argc, char** argv) {
          "ksection_trials,digits,trials_per_digit,expected_trials_per_digit,trial_wall_seconds\n";
   for (int k : {1, 2})
     for (double tol : {0.1, 0.01, 0.001}) {
-      double best = 1e300;
+      double best = std::numeric_limits<double>::infinity();
       nlohmann::json j;
       for (int r = 0; r < repeats; ++r) {
         const fs::path o = work / ("k" + std::to_string(k) + "_" + std::to_string(r) + "_" + std::to_string(tol));

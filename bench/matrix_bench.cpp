@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,7 @@ struct Ordered {
 // -2 for AMD and METIS both tried, CHOLMOD keeping the better.
 Ordered factorise(const Sparse& a, int ordering, int reps) {
   Ordered r;
-  double best = 1e300;
+  double best = std::numeric_limits<double>::infinity();
   for (int rep = 0; rep < reps; ++rep) {
     Eigen::CholmodSupernodalLLT<Sparse, Eigen::Upper> llt;
     cholmod_common& c = llt.cholmod();

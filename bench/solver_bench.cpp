@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
     Llt llt;
     const auto& k = st.view().system.matrix();
     llt.analyzePattern(k);
-    double ref = 1e300;
+    double ref = std::numeric_limits<double>::infinity();
     for (int r = 0; r < 3; ++r) {
       const nmm::Stopwatch r0;
       llt.factorize(k);

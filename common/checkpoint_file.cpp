@@ -1,21 +1,17 @@
 // The checkpoint container (checkpoint_file.h): header, section table, CRC-32 per section.
 #include "common/checkpoint_file.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstring>
 #include <set>
-#include <system_error>
 
 #include "common/atomic_file.h"
 #include "common/byte_fields.h"
 #include "common/crc32.h"
 #include "common/error.h"
+#include "common/whole_file.h"
 
 namespace nmm {
 
@@ -125,23 +121,7 @@ void write_checkpoint_file(const CheckpointSections& sections, const std::string
 }
 
 CheckpointSections read_checkpoint_file(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(path, "", "cannot read: " + std::system_category().message(errno));
-  std::string bytes;
-  char buf[1 << 16];
-  for (;;) {
-    const ssize_t r = ::read(fd, buf, sizeof buf);
-    if (r < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      throw InputError(path, "", "cannot read: " + std::system_category().message(err));
-    }
-    if (r == 0) break;
-    bytes.append(buf, static_cast<std::size_t>(r));
-  }
-  ::close(fd);
-  return checkpoint_from_bytes(bytes, path);
+  return checkpoint_from_bytes(read_whole_file(path), path);
 }
 
 }  // namespace nmm

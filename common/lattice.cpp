@@ -16,22 +16,11 @@
 #include <stdexcept>
 
 #include "common/number_format.h"
+#include "common/ring_geometry.h"
 
 namespace nmm {
 
 namespace {
-
-// The box of every body's outer ring; empty (x0 > x1) without body points.
-Box bodies_box(const std::vector<BodyDef>& bodies) {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  Box b{inf, inf, -inf, -inf};
-  for (const BodyDef& body : bodies) {
-    if (body.outer.empty()) continue;
-    const Box r = bounding_box(body.outer);
-    b = {std::min(b.x0, r.x0), std::min(b.y0, r.y0), std::max(b.x1, r.x1), std::max(b.y1, r.y1)};
-  }
-  return b;
-}
 
 // Index bounds as doubles: one row and column beyond the box on every side.
 struct IndexRange {

@@ -7,14 +7,10 @@
 // error is reported rather than silently accepted.
 #include "common/mesh_file.h"
 
-#include <fcntl.h>
 #include <openssl/evp.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -22,7 +18,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -30,6 +25,8 @@
 #include "common/byte_fields.h"
 #include "common/crc32.h"
 #include "common/error.h"
+#include "common/number_format.h"
+#include "common/whole_file.h"
 
 namespace nmm {
 
@@ -146,13 +143,6 @@ std::string hex32(std::uint32_t v) {
   return buf;
 }
 
-// Shortest text that reads back as the same double, so messages show the exact offending value.
-std::string fmt_double(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 // A tag from the file as printable text: hostile bytes are shown as \xNN so the one-line error
 // format survives.
 std::string tag_text(const char* raw) {
@@ -182,10 +172,6 @@ bool tag_is_valid(const char* raw) {
   for (int i = len; i < 8; ++i)
     if (raw[i] != '\0') return false;
   return true;
-}
-
-std::string errno_text(int err) {
-  return std::system_category().message(err);
 }
 
 // ---- container: header + section table + sections ----------------------------------------------
@@ -494,7 +480,7 @@ void check_finite(const std::string& name, const char* tag, const char* what,
     if (!std::isfinite(xy[i]))
       bad(name, tag,
           std::string(what) + " " + n(static_cast<std::int64_t>(i / 2)) + " coordinate " +
-              (i % 2 ? "y" : "x") + " is " + fmt_double(xy[i]));
+              (i % 2 ? "y" : "x") + " is " + format_number(xy[i]));
 }
 
 }  // namespace
@@ -600,7 +586,7 @@ void validate_mesh(const Mesh& mesh, const std::string& name) {
   // ---- META
   if (!(std::isfinite(mesh.mesh_size) && mesh.mesh_size > 0))
     bad(name, kTagMeta,
-        "mesh_size is " + fmt_double(mesh.mesh_size) + "; it must be a positive finite length");
+        "mesh_size is " + format_number(mesh.mesh_size) + "; it must be a positive finite length");
   if (mesh.dofs_per_cover < 1 || mesh.dofs_per_cover > kMaxDofsPerCover)
     bad(name, kTagMeta,
         "dofs_per_cover is " + n(mesh.dofs_per_cover) + "; it must be between 1 and " +
@@ -797,26 +783,7 @@ void write_mesh_file(const Mesh& mesh, const std::string& path) {
 }
 
 Mesh read_mesh_file(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(path, "", "cannot read: " + errno_text(errno));
-  std::string bytes;
-  struct stat st {};
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
-    bytes.reserve(static_cast<std::size_t>(st.st_size));  // a hint only; the loop reads to EOF
-  char buf[1 << 16];
-  for (;;) {
-    const ssize_t r = ::read(fd, buf, sizeof buf);
-    if (r < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      throw InputError(path, "", "cannot read: " + errno_text(err));
-    }
-    if (r == 0) break;
-    bytes.append(buf, static_cast<std::size_t>(r));
-  }
-  ::close(fd);
-  return mesh_from_bytes(bytes, path);
+  return mesh_from_bytes(read_whole_file(path), path);
 }
 
 }  // namespace nmm

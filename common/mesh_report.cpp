@@ -1,12 +1,12 @@
 #include "common/mesh_report.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "common/error.h"
 #include "common/mesh_file.h"
+#include "common/number_format.h"
 
 namespace nmm {
 
@@ -14,9 +14,7 @@ namespace {
 
 // %g for people: also drops printf's padded exponent (1e-06 -> 1e-6).
 std::string fmt_g(double v, int digits = 6) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  std::string s = buf;
+  std::string s = format_rough(v, digits);
   const std::size_t e = s.find('e');
   if (e != std::string::npos && e + 2 < s.size() && s[e + 2] == '0' && e + 3 < s.size())
     s.erase(e + 2, 1);

@@ -19,6 +19,24 @@ std::string format_rough(double v, int digits) {
   return buf;
 }
 
+std::string format_fixed(double v, int decimals) {
+  char buf[400];  // %f writes every integer digit: up to 309 for the largest double
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string format_signed(double v, int decimals) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "%+.*f", decimals, v);
+  return buf;
+}
+
+std::string format_scientific(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*e", digits - 1, v);
+  return buf;
+}
+
 std::string format_engineering(double v, const std::string& unit, int digits) {
   const std::string tail = unit.empty() ? "" : " " + unit;
   if (!std::isfinite(v)) return format_rough(v, digits) + tail;
@@ -28,9 +46,7 @@ std::string format_engineering(double v, const std::string& unit, int digits) {
   int exp3 = static_cast<int>(std::floor(std::log10(std::abs(rounded)) / 3)) * 3;
   if (unit.empty()) {
     if (std::abs(rounded) >= 1e-3 && std::abs(rounded) < 1e6) return format_rough(rounded, digits);
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*e", digits - 1, rounded);
-    return buf;
+    return format_scientific(rounded, digits);
   }
   static const char* const kPrefix[] = {"p", "n", "µ", "m", "", "k", "M", "G", "T"};
   exp3 = exp3 < -12 ? -12 : exp3 > 12 ? 12 : exp3;

@@ -16,4 +16,11 @@ bool point_in_ring(const Ring& ring, Vec2 p) {
 
 double ring_area(const Ring& ring) { return std::abs(ring_signed_area(ring)); }
 
+Box bodies_box(const std::vector<BodyDef>& bodies) {
+  Box b = Box::empty();
+  for (const BodyDef& body : bodies)
+    for (const Vec2& p : body.outer) b.add(p.x, p.y);
+  return b;
+}
+
 }  // namespace nmm

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <vector>
 
 #include "common/scene.h"
 
@@ -52,5 +53,8 @@ bool point_in_ring(const Ring& ring, Vec2 p);
 
 /// Area enclosed by the ring, m² (either orientation; 0 for fewer than three vertices).
 double ring_area(const Ring& ring);
+
+/// The box of every body's outer ring, m; Box::empty() without body points.
+Box bodies_box(const std::vector<BodyDef>& bodies);
 
 }  // namespace nmm

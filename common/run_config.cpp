@@ -35,6 +35,7 @@
 
 #include "common/error.h"
 #include "common/json_set.h"
+#include "common/whole_file.h"
 
 namespace nmm::solve {
 

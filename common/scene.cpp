@@ -16,7 +16,6 @@
 #include "common/scene.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +29,8 @@
 #include "common/error.h"
 #include "common/lattice.h"
 #include "common/number_format.h"
+#include "common/ring_geometry.h"
+#include "common/whole_file.h"
 
 namespace nmm {
 
@@ -1037,15 +1038,10 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   // Generated joint sets: the expected joint count over the bodies' bounding box stays bounded.
   for (const JointSetDef& set : scene.joint_sets) {
     if (!set.generated) continue;
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const BodyDef& b : scene.bodies)
-      for (const Vec2& p : b.outer) {
-        x0 = std::min(x0, p.x); y0 = std::min(y0, p.y);
-        x1 = std::max(x1, p.x); y1 = std::max(y1, p.y);
-      }
+    const Box box = bodies_box(scene.bodies);
     const JointGenerationDef& g = set.generate;
     const double intensity = g.p21 > 0 ? g.p21 : 1 / g.mean_spacing;
-    const double expected = intensity * (x1 - x0) * (y1 - y0) / mean_of(g.length);
+    const double expected = intensity * (box.x1 - box.x0) * (box.y1 - box.y0) / mean_of(g.length);
     if (expected > kMaxGeneratedJoints)
       root["joint_sets"][set.name]["generate"].fail(
           "about " + format_number(expected) + " joints expected over the bodies' box, more than " +
@@ -1101,21 +1097,6 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
                 std::to_string(scene.solver.cover_order) + ")");
   }
   return scene;
-}
-
-std::string read_text_file(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path, "", std::string("cannot read file: ") + std::strerror(errno));
-  std::string text;
-  char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
-  // A directory opens fine on Linux and fails on the first read (EISDIR).
-  const int error = std::ferror(f) ? errno : 0;
-  std::fclose(f);
-  if (error != 0)
-    throw InputError(path, "", std::string("cannot read file: ") + std::strerror(error));
-  return text;
 }
 
 double ring_signed_area(const Ring& ring) {

@@ -273,9 +273,6 @@ SceneDef scene_from_json(const nlohmann::json& doc, const std::string& file);
 /// "a string ("10")" (short strings quoted: the quotes are often the mistake), ...
 std::string describe_json_value(const nlohmann::json& v);
 
-/// Reads a whole file into a string; InputError if it cannot be read.
-std::string read_text_file(const std::string& path);
-
 /// Signed area of a ring (shoelace), m². Positive for counter-clockwise.
 double ring_signed_area(const Ring& ring);
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "common/error.h"
+#include "common/number_format.h"
 #include "common/ring_geometry.h"
 
 namespace nmm {
@@ -45,20 +46,9 @@ double ring_perimeter(const Ring& r) {
   return s;
 }
 
-double scene_size(const SceneDef& scene) {
-  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (const BodyDef& b : scene.bodies)
-    for (const Vec2& p : b.outer)
-      xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x), ymin = std::min(ymin, p.y),
-      ymax = std::max(ymax, p.y);
-  return std::max(xmax - xmin, ymax - ymin);
-}
+double scene_size(const SceneDef& scene) { return bodies_box(scene.bodies).longer_side(); }
 
-std::string coords(Vec2 p) {
-  char buf[80];
-  std::snprintf(buf, sizeof buf, "(%.6g, %.6g)", p.x, p.y);
-  return buf;
-}
+std::string coords(Vec2 p) { return "(" + format_rough(p.x, 6) + ", " + format_rough(p.y, 6) + ")"; }
 
 }  // namespace
 

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <limits>
 
 #include "common/svg_writer.h"
 #include "common/atomic_file.h"
+#include "common/number_format.h"
 
 namespace nmm {
 
@@ -26,13 +26,9 @@ std::vector<double> ticks(double lo, double hi, bool log) {
 }  // namespace
 
 std::string tick_label(double v) {
-  char buf[32];
   if (std::abs(v) < 1e-12) v = 0;  // a tick at round-off from zero is labelled 0, not -0
-  if (v != 0 && (std::abs(v) >= 1e4 || std::abs(v) < 1e-2))
-    std::snprintf(buf, sizeof buf, "%.0e", v);
-  else
-    std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  if (v != 0 && (std::abs(v) >= 1e4 || std::abs(v) < 1e-2)) return format_scientific(v, 1);
+  return format_rough(v, 6);
 }
 
 double round_down_125(double v) {

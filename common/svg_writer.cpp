@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <set>
 #include <string>
 #include <utility>
 
 #include "common/error.h"
 #include "common/atomic_file.h"
+#include "common/number_format.h"
 
 namespace nmm {
 
@@ -28,22 +28,13 @@ std::size_t utf8_length(const std::string& s) {
 // Fixed-point with `decimals` digits, trailing zeros trimmed: short, and exact enough at the
 // picture's scale.
 std::string fmt(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  std::string s = buf;
+  std::string s = format_fixed(v, decimals);
   if (s.find('.') != std::string::npos) {
     while (!s.empty() && s.back() == '0') s.pop_back();
     if (!s.empty() && s.back() == '.') s.pop_back();
   }
   if (s == "-0") s = "0";
   return s;
-}
-
-// For numbers shown to people (titles): six significant digits at any scale.
-std::string fmt_g(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
 }
 
 }  // namespace
@@ -210,10 +201,8 @@ std::string SvgWriter::str(double margin_fraction, double pixel_width) const {
         // The font is set at 100 units and scaled down to its size in model units: a font
         // size of 0.1 (a 5 m model) is laid out by Pango (rsvg-convert) in whole 1/1024 pt
         // steps, which garbles the letter spacing; at 100 the layout is exact.
-        char k[32];
-        std::snprintf(k, sizeof k, "%.6g", s.size / 100);
         out += "<text transform=\"translate(" + num(s.pts[0].x) + "," + num(-s.pts[0].y) +
-               ") scale(" + k + ")\" font-size=\"100\" font-family=\"sans-serif\" fill=\"" +
+               ") scale(" + format_rough(s.size / 100, 6) + ")\" font-size=\"100\" font-family=\"sans-serif\" fill=\"" +
                s.style.fill + "\">" + xml_escape(s.text) + "</text>\n";
         break;
       }
@@ -399,7 +388,7 @@ std::string mesh_svg(const Mesh& mesh, const SceneDef* scene, int highlight_cove
   std::vector<std::string> lines;
   std::string title = scene && !scene->name.empty() ? scene->name : mesh.scene_file;
   if (title.empty()) title = "mesh";
-  lines.push_back(title + "  (mesh size " + fmt_g(mesh.mesh_size) + " m)");
+  lines.push_back(title + "  (mesh size " + format_rough(mesh.mesh_size, 6) + " m)");
   lines.push_back(
       std::to_string(mesh.node_count()) + " nodes, " + std::to_string(mesh.triangle_count()) +
       " triangles, " + std::to_string(mesh.cover_count()) + " physical covers, " +

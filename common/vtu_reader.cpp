@@ -16,7 +16,7 @@
 #include <map>
 
 #include "common/error.h"
-#include "common/scene.h"  // read_text_file
+#include "common/whole_file.h"
 
 namespace nmm {
 namespace {

@@ -394,13 +394,9 @@ JointNetwork generate_joint_network(const std::vector<GeneratedSetInput>& sets, 
       const double f = def.p21 > 0 ? def.p21 * s_mean : 1.0;
       st.requested_p21 = f / s_mean;
       const Vec2 d{std::cos(theta0), std::sin(theta0)}, nrm{-d.y, d.x};
-      const Vec2 corners[4] = {{rb.x0, rb.y0}, {rb.x1, rb.y0}, {rb.x1, rb.y1}, {rb.x0, rb.y1}};
-      double n0 = 1e300, n1 = -1e300, d0 = 1e300, d1 = -1e300;
-      for (const Vec2& p : corners) {
-        const double pn = p.x * nrm.x + p.y * nrm.y, pd = p.x * d.x + p.y * d.y;
-        n0 = std::min(n0, pn); n1 = std::max(n1, pn);
-        d0 = std::min(d0, pd); d1 = std::max(d1, pd);
-      }
+      Box frame = Box::empty();  // the region's box in the frame (d, nrm)
+      for (const Vec2& p : box_ring(rb)) frame.add(p.x * d.x + p.y * d.y, p.x * nrm.x + p.y * nrm.y);
+      const double d0 = frame.x0, d1 = frame.x1, n0 = frame.y0, n1 = frame.y1;
       const double gap_mean = mean_len * (1 / f - 1);
       double offset = n0 + rng.uniform() * sample_length(def.spacing_distribution, rng);
       while (offset <= n1) {
@@ -433,13 +429,7 @@ nlohmann::json explicit_scene(const nlohmann::json& doc, const SceneDef& scene,
     if (network) *network = JointNetwork{};
     return doc;
   }
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (const BodyDef& b : scene.bodies)
-    for (const Vec2& p : b.outer) {
-      x0 = std::min(x0, p.x); y0 = std::min(y0, p.y);
-      x1 = std::max(x1, p.x); y1 = std::max(y1, p.y);
-    }
-  const Ring box = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  const Ring box = box_ring(bodies_box(scene.bodies));
   JointNetwork net = generate_joint_network(inputs, box);
   nlohmann::json out = doc;
   nlohmann::json& joints = out["joints"];

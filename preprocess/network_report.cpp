@@ -3,10 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "preprocess/joint_network.h"
 #include "common/math_constants.h"
+#include "common/number_format.h"
+#include "common/ring_geometry.h"
 #include "common/svg_plot.h"
 #include "common/svg_writer.h"
 
@@ -32,21 +33,12 @@ double crossing(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return t;
 }
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+// Six significant digits throughout the report.
+std::string num(double v) { return format_rough(v, 6); }
 
-Ring bodies_box(const SceneDef& scene) {
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (const BodyDef& b : scene.bodies)
-    for (const Vec2& p : b.outer) {
-      x0 = std::min(x0, p.x); y0 = std::min(y0, p.y);
-      x1 = std::max(x1, p.x); y1 = std::max(y1, p.y);
-    }
+Ring bodies_box_ring(const SceneDef& scene) {
   if (scene.bodies.empty()) return {};
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  return box_ring(bodies_box(scene.bodies));
 }
 
 }  // namespace
@@ -78,7 +70,7 @@ SampleStats sample_stats(std::vector<double> v) {
 
 std::vector<JointSetNetworkReport> joint_set_reports(const SceneDef& scene) {
   std::vector<JointSetNetworkReport> out;
-  const Ring box = bodies_box(scene);
+  const Ring box = bodies_box_ring(scene);
   if (box.empty()) return out;
   for (std::size_t si = 0; si < scene.joint_sets.size(); ++si) {
     const JointSetDef& set = scene.joint_sets[si];
@@ -179,19 +171,19 @@ std::vector<JointSetNetworkReport> joint_set_reports(const SceneDef& scene) {
     }
     r.p10_expected = r.region_area > 0 ? cos_sum / r.region_area : 0;
 
-    // Scanlines along n, spread evenly across the region along d.
-    double d0 = 1e300, d1 = -1e300, n0 = 1e300, n1 = -1e300;
+    // Scanlines along n, spread evenly across the region along d: the region's box in the
+    // frame (d, n).
     std::vector<Vec2> extent = region;
     if (by_bodies) {
       extent.clear();
       for (const BodyDef& body : scene.bodies)
         extent.insert(extent.end(), body.outer.begin(), body.outer.end());
     }
-    for (const Vec2& p : extent) {
-      d0 = std::min(d0, p.x * d.x + p.y * d.y); d1 = std::max(d1, p.x * d.x + p.y * d.y);
-      n0 = std::min(n0, p.x * n.x + p.y * n.y); n1 = std::max(n1, p.x * n.x + p.y * n.y);
-    }
-    n0 -= 1; n1 += 1;  // lines start and end outside the region; clipping trims them
+    Box frame = Box::empty();
+    for (const Vec2& p : extent) frame.add(p.x * d.x + p.y * d.y, p.x * n.x + p.y * n.y);
+    const double d0 = frame.x0, d1 = frame.x1;
+    const double n0 = frame.y0 - 1, n1 = frame.y1 + 1;  // lines start and end outside the region;
+                                                        // clipping trims them
     r.scanlines = kScanlines;
     double gap_sum = 0;
     for (int k = 0; k < kScanlines; ++k) {
@@ -404,11 +396,8 @@ std::string block_area_cdf_svg(const NetworkReport& rep) {
 }
 
 std::string network_svg(const SceneDef& scene) {
-  double x0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (const BodyDef& b : scene.bodies)
-    for (const Vec2& p : b.outer) {
-      x0 = std::min(x0, p.x); x1 = std::max(x1, p.x); y1 = std::max(y1, p.y);
-    }
+  const Box box = bodies_box(scene.bodies);
+  const double x0 = box.x0, x1 = box.x1, y1 = box.y1;
   SvgWriter out;
   if (scene.bodies.empty()) {
     out.text({0, 0}, "no bodies", 1, "#000000");

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "common/whole_file.h"
 
 namespace nmm::reference {
 

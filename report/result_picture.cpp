@@ -10,19 +10,12 @@
 #include "report/failure_cause.h"
 #include "solver/discretisation/joint_water.h"
 #include "common/math_constants.h"
+#include "common/number_format.h"
 #include "common/svg_plot.h"
 #include "common/svg_writer.h"
+#include "common/vec2.h"
 
 namespace nmm::report {
-namespace {
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
-}
-
-}  // namespace
 
 std::string colour_map(double f) {
   // viridis: perceptually ordered, readable in grey and by most colour-blind readers.
@@ -137,20 +130,17 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
 
   // The drawn positions: start + F × displacement. F = 1 keeps the positions themselves, so a
   // true-scale picture is the state's geometry bit for bit.
-  double umax = 0, x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  double umax = 0;
   for (std::size_t e = 0; e < ne; ++e) {
     if (gone[e]) continue;
     for (int v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
       umax = std::max(umax, std::hypot(xy[2 * v] - mesh.loop_xy[2 * v],
                                        xy[2 * v + 1] - mesh.loop_xy[2 * v + 1]));
   }
-  for (std::size_t v = 0; v < mesh.loop_xy.size() / 2; ++v) {
-    x0 = std::min(x0, mesh.loop_xy[2 * v]), x1 = std::max(x1, mesh.loop_xy[2 * v]);
-    y0 = std::min(y0, mesh.loop_xy[2 * v + 1]), y1 = std::max(y1, mesh.loop_xy[2 * v + 1]);
-  }
-  const double factor = state.exaggeration > 0
-                            ? state.exaggeration
-                            : automatic_exaggeration(umax, std::max(x1 - x0, y1 - y0));
+  const double factor =
+      state.exaggeration > 0
+          ? state.exaggeration
+          : automatic_exaggeration(umax, bounding_box_xy(mesh.loop_xy).longer_side());
   std::vector<double> drawn(xy);
   if (factor != 1)
     for (std::size_t i = 0; i < xy.size(); ++i)
@@ -158,12 +148,9 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   auto at = [&](int v) { return Vec2{drawn[2 * v], drawn[2 * v + 1]}; };
 
   SvgWriter svg;
-  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (std::size_t v = 0; v < drawn.size() / 2; ++v) {
-    xmin = std::min(xmin, drawn[2 * v]), xmax = std::max(xmax, drawn[2 * v]);
-    ymin = std::min(ymin, drawn[2 * v + 1]), ymax = std::max(ymax, drawn[2 * v + 1]);
-  }
-  const double size = std::max(xmax - xmin, ymax - ymin);
+  const Box view = bounding_box_xy(drawn);
+  const double xmin = view.x0, xmax = view.x1, ymin = view.y0, ymax = view.y1;
+  const double size = view.longer_side();
   const double font = 0.022 * size, line = 0.0012 * size;
 
   // Elements: no outline of their own, so the colour field reads as a field, not a mesh.
@@ -279,7 +266,8 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
              {colour_map((i + 0.5) / bands), "none", 0, 0, 1});
   double right = bx + bw;  // the picture's right edge, for the wrapped text below
   for (int i = 0; i <= 4; ++i) {
-    const std::string label = number(lo + (hi - lo) * i / 4);
+    const double tick = lo + (hi - lo) * i / 4;
+    const std::string label = format_rough(std::abs(tick) < 1e-12 ? 0.0 : tick, 3);  // not -0
     svg.text({bx + 1.3 * bw, by + bh * i / 4 - 0.3 * font}, label, font, "#000000");
     right = std::max(right, bx + 1.3 * bw + SvgWriter::text_width(label, font));
   }

@@ -22,7 +22,7 @@
 #include "common/mesh_file.h"
 #include "common/run_config.h"
 #include "report/run_report.h"
-#include "common/scene.h"  // read_text_file
+#include "common/whole_file.h"
 #include "common/vtk_writer.h"
 #include "common/vtu_reader.h"
 

@@ -292,13 +292,11 @@ ReportFiles make_run_report(const std::string& dir) {
     const std::string verdict = eq->value("verdict", std::string());
     const bool by_velocity = eq->value("criterion", std::string()).rfind("max_velocity", 0) == 0;
     const double figure = eq->value(by_velocity ? "max_velocity_m_s" : "max_unbalanced_ratio", 0.0);
-    char ratio[32];
-    std::snprintf(ratio, sizeof ratio, "%.2g", figure);
     if (!verdict.empty())
       html += "<p>equilibrium: <span class=\"" + std::string(verdict == "at_rest" ? "ok" : "bad") +
               "\">" + (verdict == "at_rest" ? "at rest" : xml_escape(verdict)) + "</span> (" +
               (by_velocity ? "largest velocity " + format_engineering(figure, "m/s")
-                           : "max unbalanced force ratio " + std::string(ratio)) +
+                           : "max unbalanced force ratio " + format_rough(figure, 2)) +
               ")</p>\n";
   }
   if (outcome.failed()) {

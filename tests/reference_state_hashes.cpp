@@ -32,6 +32,7 @@
 #include "reference/wave_bar.h"
 #include "solver/discretisation/blas_info.h"
 #include "nmm_version.h"
+#include "common/whole_file.h"
 
 namespace {
 

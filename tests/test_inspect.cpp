@@ -30,8 +30,10 @@
 #include "common/scene.h"
 #include "common/svg_writer.h"
 #include "common/vtk_writer.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
+using nmm::test::TempDir;
 
 namespace {
 
@@ -178,22 +180,6 @@ std::string read_file(const fs::path& p) {
   s << in.rdbuf();
   return s.str();
 }
-
-class TempDir {
- public:
-  TempDir() {
-    std::string templ = (fs::temp_directory_path() / "nmm-test-inspect-XXXXXX").string();
-    path_ = ::mkdtemp(templ.data());
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
@@ -14,6 +15,7 @@
 #include "common/math_constants.h"
 #include "common/scene.h"
 #include "solver/stepping/time_stepper.h"
+#include "common/whole_file.h"
 
 namespace nmm::solve {
 namespace {
@@ -69,7 +71,7 @@ TEST(JointLaw, HyperbolicShearCurveTangentAndGuards) {
   const ContactLaw law = bb_law();
   const double L = 0.25, strength = 5e6 * law.tan_phi * L;  // N, at σn = 5 MPa
   const double tf = strength / L;
-  double prev_k = 1e300;
+  double prev_k = std::numeric_limits<double>::infinity();
   for (double frac : {0.3, 0.6, 0.9}) {
     const double tau = frac * tf;
     const double us = tau / (law.ksi * (1 - law.rf * tau / tf));

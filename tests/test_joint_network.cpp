@@ -8,6 +8,7 @@
 
 #include "preprocess/joint_network.h"
 #include "common/math_constants.h"
+#include "common/whole_file.h"
 
 namespace nmm::pre {
 namespace {

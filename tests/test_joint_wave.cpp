@@ -14,6 +14,7 @@
 #include "preprocess/cover_cutter.h"
 #include "studies/joint_wave.h"
 #include "common/scene.h"
+#include "common/whole_file.h"
 
 namespace nmm::solve {
 namespace {

@@ -4,7 +4,6 @@
 // The container helpers below (crc32_ref, split, assemble) are written from docs/mesh-format.md
 // alone, with a bitwise CRC-32 rather than zlib, so they double as a check that the document is
 // precise enough to write an independent reader and writer.
-#include <dirent.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -25,9 +24,12 @@
 #include "common/error.h"
 #include "common/mesh.h"
 #include "common/mesh_file.h"
+#include "tests/temp_dir.h"
 
 namespace nmm {
 namespace {
+
+using nmm::test::TempDir;
 
 // ---- a small valid mesh -----------------------------------------------------------------------
 //
@@ -213,40 +215,6 @@ bool contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
 }
 
-// A fresh empty folder per test, removed with its contents at the end.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = ::testing::TempDir() + "nmm_mesh_file_XXXXXX";
-    std::vector<char> buf(pattern.begin(), pattern.end());
-    buf.push_back('\0');
-    const char* made = ::mkdtemp(buf.data());
-    if (!made) throw std::runtime_error("mkdtemp failed");
-    path_ = made;
-  }
-  ~TempDir() {
-    for (const std::string& f : entries()) ::unlink((path_ + "/" + f).c_str());
-    ::rmdir(path_.c_str());
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const std::string& path() const { return path_; }
-  std::set<std::string> entries() const {
-    std::set<std::string> names;
-    if (DIR* d = ::opendir(path_.c_str())) {
-      while (const dirent* ent = ::readdir(d)) {
-        const std::string name = ent->d_name;
-        if (name != "." && name != "..") names.insert(name);
-      }
-      ::closedir(d);
-    }
-    return names;
-  }
-
- private:
-  std::string path_;
-};
-
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream ss;
@@ -286,7 +254,7 @@ TEST(MeshFile, RoundTripKeepsDoubleBits) {
 
 TEST(MeshFile, RoundTripFileAndNoTemporaryLeft) {
   TempDir dir;
-  const std::string path = dir.path() + "/mesh.nmm";
+  const std::string path = dir.path("mesh.nmm");
   const Mesh m = small_mesh();
   write_mesh_file(m, path);
   EXPECT_EQ(dir.entries(), std::set<std::string>{"mesh.nmm"});
@@ -296,7 +264,7 @@ TEST(MeshFile, RoundTripFileAndNoTemporaryLeft) {
 
 TEST(MeshFile, WritingTwiceGivesIdenticalBytes) {
   TempDir dir;
-  const std::string a = dir.path() + "/a.nmm", b = dir.path() + "/b.nmm";
+  const std::string a = dir.path("a.nmm"), b = dir.path("b.nmm");
   write_mesh_file(small_mesh(), a);
   write_mesh_file(small_mesh(), b);
   EXPECT_EQ(slurp(a), slurp(b));
@@ -310,7 +278,7 @@ TEST(MeshFile, WritingTwiceGivesIdenticalBytes) {
 
 TEST(MeshFile, WriteIntoMissingFolderThrowsAndLeavesNothing) {
   TempDir dir;
-  const std::string path = dir.path() + "/missing/mesh.nmm";
+  const std::string path = dir.path("missing/mesh.nmm");
   const InputError e = expect_input_error([&] { write_mesh_file(small_mesh(), path); });
   EXPECT_EQ(e.file(), path);
   EXPECT_EQ(e.where(), "");
@@ -320,7 +288,7 @@ TEST(MeshFile, WriteIntoMissingFolderThrowsAndLeavesNothing) {
 
 TEST(MeshFile, WriteOverAFolderThrowsAndRemovesTemporary) {
   TempDir dir;
-  const std::string path = dir.path() + "/sub";
+  const std::string path = dir.path("sub");
   ASSERT_EQ(::mkdir(path.c_str(), 0700), 0);
   const InputError e = expect_input_error([&] { write_mesh_file(small_mesh(), path); });
   EXPECT_TRUE(contains(e.message(), "cannot write: ")) << e.what();
@@ -330,7 +298,7 @@ TEST(MeshFile, WriteOverAFolderThrowsAndRemovesTemporary) {
 
 TEST(MeshFile, ReadMissingFileThrows) {
   TempDir dir;
-  const InputError e = expect_input_error([&] { read_mesh_file(dir.path() + "/none.nmm"); });
+  const InputError e = expect_input_error([&] { read_mesh_file(dir.path("none.nmm")); });
   EXPECT_EQ(e.message(), "cannot read: No such file or directory");
 }
 
@@ -443,7 +411,7 @@ TEST(MeshFile, EveryTruncationIsDetected) {
 
 TEST(MeshFile, ReadRejectsTruncatedFile) {
   TempDir dir;
-  const std::string path = dir.path() + "/t.nmm";
+  const std::string path = dir.path("t.nmm");
   write_mesh_file(small_mesh(), path);
   const std::string good = slurp(path);
   std::ofstream(path, std::ios::binary | std::ios::trunc) << good.substr(0, good.size() - 5);

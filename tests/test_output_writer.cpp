@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <stdlib.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -26,12 +25,14 @@
 #include "solver/output/output_writer.h"
 #include "common/vtu_compressed.h"
 #include "common/vtu_reader.h"
+#include "tests/temp_dir.h"
 
 namespace nmm::solve {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using nmm::test::TempDir;
 
 // Element 0: the unit square (4 loop vertices); element 1: a triangle to its right (3 vertices),
 // in another block and body so the identifiers are told apart.
@@ -90,25 +91,6 @@ std::string read_file(const fs::path& p) {
 bool contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
 }
-
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "nmm-test-output-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // Every file under `dir` (relative paths), to check what a run leaves behind.
 std::vector<std::string> all_files(const fs::path& dir) {

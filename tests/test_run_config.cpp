@@ -2,7 +2,6 @@
 // the refusal of geometry changes, and the one-line InputError of every kind of mistake. The
 // function reads only Mesh::scene_text, so the mesh here is a scene and nothing else.
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
@@ -16,12 +15,14 @@
 #include "common/mesh.h"
 #include "common/run_config.h"
 #include "common/scene.h"
+#include "tests/temp_dir.h"
 
 namespace nmm::solve {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using nmm::test::TempDir;
 
 const char* const kScene = R"({
   // two bodies, one joint: enough of every part to vary
@@ -48,32 +49,6 @@ Mesh scene_mesh(const std::string& text = kScene) {
   mesh.scene_text = text;
   return mesh;
 }
-
-// A fresh folder per test for the config files, removed at the end.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "nmm-test-run-config-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  /// Writes `text` to a file in the folder and returns its path.
-  std::string file(const std::string& name, const std::string& text) const {
-    const std::string p = (path_ / name).string();
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-
- private:
-  fs::path path_;
-};
 
 RunScene run(const std::vector<std::string>& sets, const std::string& config = "") {
   return make_run_scene(scene_mesh(), "m.nmm", config, sets);

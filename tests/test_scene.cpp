@@ -574,22 +574,6 @@ TEST(Scene, SceneFromJsonRejectsNaN) {
   }
 }
 
-TEST(Scene, ReadTextFile) {
-  const std::string text = read_text_file(std::string(NMM_SOURCE_DIR) + "/common/scene.h");
-  EXPECT_NE(text.find("parse_scene"), std::string::npos);
-
-  const std::string missing = std::string(NMM_SOURCE_DIR) + "/no/such/file.json";
-  try {
-    read_text_file(missing);
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), missing);
-    EXPECT_EQ(e.where(), "");
-    EXPECT_EQ(std::string(e.what()), missing + ": cannot read file: No such file or directory");
-  }
-  EXPECT_THROW(read_text_file(NMM_SOURCE_DIR), InputError);  // a directory
-}
-
 TEST(Scene, RingAreaAndBodyArea) {
   const Ring ccw{{0, 0}, {4, 0}, {4, 3}, {0, 3}};
   const Ring cw{{0, 0}, {0, 3}, {4, 3}, {4, 0}};

@@ -28,6 +28,7 @@
 #include "studies/job_runner.h"
 #include "studies/mechanism_picture.h"
 #include "common/mesh_file.h"
+#include "common/number_format.h"
 #include "nmm_version.h"
 #include "common/png_copy.h"
 #include "common/run_config.h"
@@ -50,11 +51,7 @@ std::vector<std::string> split_commas(const std::string& s) {
   return out;
 }
 
-std::string factor_id(double f) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "F%.6f", f);
-  return buf;
-}
+std::string factor_id(double f) { return "F" + nmm::format_fixed(f, 6); }
 
 }  // namespace
 

@@ -17,6 +17,7 @@
 #include "common/error.h"
 #include "common/scene.h"
 #include "common/svg_plot.h"
+#include "common/whole_file.h"
 
 namespace {
 

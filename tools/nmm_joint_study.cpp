@@ -18,7 +18,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -33,6 +32,7 @@
 #include "reference/joint_specimen.h"
 #include "studies/joint_specimen_run.h"
 #include "common/math_constants.h"
+#include "common/number_format.h"
 #include "common/scene.h"
 #include "common/svg_plot.h"
 #include "solver/stepping/time_stepper.h"
@@ -41,6 +41,9 @@
 namespace {
 
 using nmm::SceneDef;
+using nmm::format_fixed;
+using nmm::format_rough;
+using nmm::format_signed;
 using nmm::kPi;
 
 // Closure and slip (m) of the single-joint scene under σn and τ (Pa) after `seconds`.
@@ -84,17 +87,9 @@ void use_full_model(SceneDef& s, double block_length) {
   }
 }
 
-std::string pct(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%+.2f %%", 100 * v);
-  return b;
-}
-
-std::string num(double v, const char* f = "%.4g") {
-  char b[32];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+// The tables' numbers: a relative error as a signed percentage, everything else to four digits.
+std::string pct(double v) { return format_signed(100 * v, 2) + " %"; }
+std::string num(double v) { return format_rough(v, 4); }
 
 }  // namespace
 
@@ -155,7 +150,7 @@ int main(int argc, char** argv) {
       const double u = joint_response(joint, jm, sn, f * tf, 0.4, &st).second;
       const double want = f * tf / (ksi * (1 - rf * f));
       csv << "shear," << f * tf << "," << u << "," << want << "," << (u - want) / want << "\n";
-      md << "| shear, σn 5 MPa | τ " << num(100 * f, "%.0f") << " % of τf | us " << num(u * 1e3)
+      md << "| shear, σn 5 MPa | τ " << format_fixed(100 * f, 0) << " % of τf | us " << num(u * 1e3)
          << " mm | " << num(want * 1e3) << " mm | " << pct((u - want) / want) << " |\n";
       ss_s.x.push_back(u * 1e3);
       ss_s.y.push_back(f * tf / 1e6);
@@ -177,12 +172,12 @@ int main(int argc, char** argv) {
                                          2.0 / 500 * std::pow(fl.shear.jrc / 2.0, 0.33)};
     const double dp = bj.peak_slip, tau_p = nmm::reference::barton_shear_stress(bj, sn, dp);
     md << "\n### (a) continued: direct shear through the peak, seed's law and full model\n\n"
-       << "σn = 5 MPa held by the loads, the upper block pushed at " << num(dp / 0.34 * 1e3, "%.1f")
-       << " mm/s (δp/340 per 1 ms step). Full model: JRC " << fl.shear.jrc << ", JCS "
-       << fl.shear.jcs / 1e6 << " MPa, φr " << fl.friction_deg << "°, block length 2 m: δp = "
-       << num(dp * 1e3) << " mm, τp = " << num(tau_p / 1e6) << " MPa, d_mob at the peak "
-       << num(0.5 * fl.shear.jrc * std::log10(fl.shear.jcs / sn)) << "°; seed: τf = σn·tan φ = "
-       << num(tf / 1e6) << " MPa.\n\n"
+       << "σn = 5 MPa held by the loads, the upper block pushed at "
+       << format_fixed(dp / 0.34 * 1e3, 1) << " mm/s (δp/340 per 1 ms step). Full model: JRC "
+       << fl.shear.jrc << ", JCS " << fl.shear.jcs / 1e6 << " MPa, φr " << fl.friction_deg
+       << "°, block length 2 m: δp = " << num(dp * 1e3) << " mm, τp = " << num(tau_p / 1e6)
+       << " MPa, d_mob at the peak " << num(0.5 * fl.shear.jrc * std::log10(fl.shear.jcs / sn))
+       << "°; seed: τf = σn·tan φ = " << num(tf / 1e6) << " MPa.\n\n"
        << "| test | model | τ, solver | closed form | error | opening, solver | closed form |\n"
        << "|---|---|---:|---:|---:|---:|---:|\n";
     std::ostringstream dcsv;  // written atomically at the end

@@ -26,6 +26,7 @@
 #include "common/ring_geometry.h"
 #include "preprocess/scene_geometry.h"
 #include "common/stopwatch.h"
+#include "common/whole_file.h"
 
 namespace {
 

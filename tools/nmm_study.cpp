@@ -67,17 +67,19 @@
 #include "common/vtk_writer.h"
 #include "common/stopwatch.h"
 #include "common/math_constants.h"
+#include "common/number_format.h"
 
 namespace {
 
 using nmm::SceneDef;
+using nmm::format_fixed;
+using nmm::format_rough;
+using nmm::format_scientific;
+using nmm::format_signed;
 using nmm::kPi;
 
-std::string num(double v, const char* f = "%.4g") {
-  char b[48];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+// Four significant digits unless a column asks for another format.
+std::string num(double v) { return format_rough(v, 4); }
 
 // What one run gives: the computed value (or why it has none) and what it cost. A run is ok
 // when it ended ok with a finite value; a setting the solver does not support (a cover order it
@@ -180,7 +182,8 @@ Row cantilever(double h, int order = 0) {
   // Cover order n ≥ 1 is its own sweep over h (docs/higher-order-covers.md).
   r.setting = order == 0 ? "mesh_size" : "mesh_size_n" + std::to_string(order);
   r.value = h;
-  r.value_text = "h = " + num(h, "%.6g") + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
+  r.value_text =
+      "h = " + format_rough(h, 6) + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
   r.exact = nmm::reference::timoshenko_tip_deflection();
   r.out = timed_run(s, "cantilever", [](nmm::solve::TimeStepper& st, RunResult& o) {
     st.step(1.0);
@@ -238,7 +241,8 @@ Row kirsch(double h, int order) {
   r.case_name = "kirsch";
   r.setting = order == 0 ? "mesh_size" : "mesh_size_n" + std::to_string(order);
   r.value = h;
-  r.value_text = "h = " + num(h, "%.6g") + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
+  r.value_text =
+      "h = " + format_rough(h, 6) + " m" + (order == 0 ? "" : ", n = " + std::to_string(order));
   r.exact = nmm::reference::kirsch_hoop(k.k0 * nmm::reference::kKirschPressure, nmm::reference::kKirschPressure,
                                      nmm::reference::kKirschRadius, 0);
   const SceneDef s = nmm::reference::kirsch_scene(k);
@@ -302,7 +306,8 @@ Row bandis_barton(const SceneDef& joint, const std::string& setting, double h, d
   if (setting == "settling_time") r.value = seconds;
   if (setting == "contact_model") r.value = joint_law ? 1 : 0;
   if (!joint_law) r.value_text = use_constant_springs(s);
-  r.value_text += "h = " + num(h, "%.6g") + " m, Δt = " + num(dt) + " s, " + num(seconds) + " s";
+  r.value_text +=
+      "h = " + format_rough(h, 6) + " m, Δt = " + num(dt) + " s, " + num(seconds) + " s";
   r.exact = sigma * law.vm / (law.kni * law.vm + sigma);
   r.out = joint_run(s, sigma, 0, seconds, false);
   return r;
@@ -319,7 +324,7 @@ Row hyperbolic_shear(const SceneDef& joint, const std::string& setting, double h
   r.setting = setting;
   r.value = setting == "mesh_size" ? h : setting == "contact_model" ? (joint_law ? 1 : 0) : seconds;
   if (!joint_law) r.value_text = use_constant_springs(s);
-  r.value_text += "h = " + num(h, "%.6g") + " m, Δt = " + num(s.solver.time_step) + " s, " +
+  r.value_text += "h = " + format_rough(h, 6) + " m, Δt = " + num(s.solver.time_step) + " s, " +
                   num(seconds) + " s";
   r.exact = tau / (js.shear.ksi * (1 - js.shear.rf * tau / tf));
   r.out = joint_run(s, sigma, tau, seconds, true);
@@ -346,7 +351,7 @@ Row tight_joint(const SceneDef& joint, double kn_over_e) {
   r.case_name = "tight_joint";
   r.setting = "penalty";
   r.value = kn_over_e;
-  r.value_text = "kn = " + num(kn_over_e) + "·E, h = " + num(s.mesh_size, "%.6g") + " m, 0.3 s";
+  r.value_text = "kn = " + num(kn_over_e) + "·E, h = " + format_rough(s.mesh_size, 6) + " m, 0.3 s";
   r.exact = sigma * 1.0 / e;
   nmm::reference::load_joint_specimen(s, sigma, 0);
   r.out = timed_run(s, "tight joint", [&](nmm::solve::TimeStepper& st, RunResult& o) {
@@ -369,7 +374,7 @@ Row joint_wave(const std::string& setting, double h, double dt) {
   r.case_name = "joint_wave";
   r.setting = setting;
   r.value = setting == "mesh_size" ? h : dt;
-  r.value_text = "h = " + num(h, "%.6g") + " m, Δt = " + num(dt) + " s";
+  r.value_text = "h = " + format_rough(h, 6) + " m, Δt = " + num(dt) + " s";
   const nmm::reference::JointWaveClosedForm cf(w);
   r.exact = cf.transmitted_peak() / cf.impedance();
   const SceneDef s = nmm::reference::joint_wave_scene(w);
@@ -412,17 +417,19 @@ void write_wave_outputs(const std::string& out, bool quick) {
       const nmm::studies::JointWaveHistory hist = nmm::studies::run_joint_wave(m, s);
       if (!hist.outcome.ok()) throw nmm::RunError("joint wave: " + hist.outcome.status());
       const nmm::studies::JointWaveErrors e = nmm::studies::joint_wave_errors(w, hist);
-      md << "| τ = " << num(1e3 * cf.tau(), "%.2g") << " ms (kn = " << num(1e-9 * w.kn, "%.3g")
-         << " GPa/m), h = " << num(h) << " m, Δt = " << num(1e6 * w.dt) << " µs | "
-         << num(100 * e.incident_rms, "%.2f") << " % | " << num(100 * e.before_rms, "%.2f") << " % | "
-         << num(100 * e.after_rms, "%.2f") << " % | "
-         << num(1e3 * (e.half_rise_exact + e.half_rise), "%.3f") << " ("
-         << num(1e3 * e.half_rise_exact, "%.3f") << ") | " << num(1e3 * e.half_rise, "%+.3f") << " | "
-         << num(1e3 * e.peak_velocity, "%.1f") << " (" << num(1e3 * e.peak_velocity_exact, "%.1f")
-         << ") | " << num(100 * e.peak_velocity_error(), "%+.2f") << " % |\n";
+      md << "| τ = " << format_rough(1e3 * cf.tau(), 2)
+         << " ms (kn = " << format_rough(1e-9 * w.kn, 3) << " GPa/m), h = " << num(h)
+         << " m, Δt = " << num(1e6 * w.dt) << " µs | " << format_fixed(100 * e.incident_rms, 2)
+         << " % | " << format_fixed(100 * e.before_rms, 2) << " % | "
+         << format_fixed(100 * e.after_rms, 2) << " % | "
+         << format_fixed(1e3 * (e.half_rise_exact + e.half_rise), 3) << " ("
+         << format_fixed(1e3 * e.half_rise_exact, 3) << ") | "
+         << format_signed(1e3 * e.half_rise, 3) << " | " << format_fixed(1e3 * e.peak_velocity, 1)
+         << " (" << format_fixed(1e3 * e.peak_velocity_exact, 1) << ") | "
+         << format_signed(100 * e.peak_velocity_error(), 2) << " % |\n";
       if (h != 0.5) continue;
-      const std::string tau = "τ = " + num(1e3 * cf.tau(), "%.2g") + " ms";
-      const std::string kn = "kn = " + num(1e-9 * w.kn, "%.3g") + " GPa/m";
+      const std::string tau = "τ = " + format_rough(1e3 * cf.tau(), 2) + " ms";
+      const std::string kn = "kn = " + format_rough(1e-9 * w.kn, 3) + " GPa/m";
       auto add_point = [&](double x, const std::vector<double>& u, const std::string& where,
                            const std::string& colour) {
         nmm::PlotSeries run{"nmm, " + where + ", " + kn, {}, {}, colour, false, true};
@@ -459,8 +466,8 @@ std::string csv_text(const std::vector<Row>& rows) {
   os << "case,setting,value,error,wall_seconds\n";
   for (const Row& r : rows)
     if (r.out.ok())
-      os << r.case_name << "," << r.setting << "," << num(r.value, "%.6g") << ","
-         << num(r.error(), "%.6e") << "," << num(r.wall(), "%.4f") << "\n";
+      os << r.case_name << "," << r.setting << "," << format_rough(r.value, 6) << ","
+         << format_scientific(r.error(), 7) << "," << format_fixed(r.wall(), 4) << "\n";
   return os.str();
 }
 
@@ -483,11 +490,13 @@ double shown(const std::string& case_name, double v) {
 std::string judge(const Row& dear, const Row& cheap) {
   const bool same = std::abs(dear.error() - cheap.error()) <= 1e-3 * cheap.error();
   const bool better = !same && dear.error() < cheap.error();
-  return "costliest run (" + dear.value_text + ", " + num(dear.wall(), "%.3f") + " s) " +
-         (same ? "is **not** more accurate (equal within 0.1 % of the error)"
-               : better ? "**is** more accurate" : "is **not** more accurate") +
-         " than the cheapest (" + cheap.value_text + ", " + num(cheap.wall(), "%.3f") + " s): " +
-         num(100 * dear.error(), "%.3f") + " % against " + num(100 * cheap.error(), "%.3f") + " %.";
+  return "costliest run (" + dear.value_text + ", " + format_fixed(dear.wall(), 3) + " s) " +
+         (same     ? "is **not** more accurate (equal within 0.1 % of the error)"
+          : better ? "**is** more accurate"
+                   : "is **not** more accurate") +
+         " than the cheapest (" + cheap.value_text + ", " + format_fixed(cheap.wall(), 3) +
+         " s): " + format_fixed(100 * dear.error(), 3) + " % against " +
+         format_fixed(100 * cheap.error(), 3) + " %.";
 }
 
 std::string tables_text(const std::vector<Row>& rows, bool quick) {
@@ -503,7 +512,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
         first = &r;
         break;
       }
-    md << "\n### " << c << "\n\nexact: " << num(shown(c, first->exact), "%.6g") << " ("
+    md << "\n### " << c << "\n\nexact: " << format_rough(shown(c, first->exact), 6) << " ("
        << unit_of(c) << ")\n\n"
        << "| setting | run | " << unit_of(c) << " | "
        << (c == "kirsch"       ? "hoop RMS error along the wall"
@@ -515,15 +524,16 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
       if (r.case_name != c) continue;
       md << "| " << r.setting << " | " << r.value_text << " | ";
       if (r.out.ok() && std::isfinite(r.out.own_error))
-        md << num(shown(c, r.out.computed), "%.6g") << " | " << num(100 * r.out.own_error, "%.3f") << " %";
+        md << format_rough(shown(c, r.out.computed), 6) << " | "
+           << format_fixed(100 * r.out.own_error, 3) << " %";
       else if (r.out.ok())
-        md << num(shown(c, r.out.computed), "%.6g") << " | "
-           << num(100 * (r.out.computed - r.exact) / std::abs(r.exact), "%+.3f") << " %";
+        md << format_rough(shown(c, r.out.computed), 6) << " | "
+           << format_signed(100 * (r.out.computed - r.exact) / std::abs(r.exact), 3) << " %";
       else
         md << (!r.out.available ? "not available" : "did not complete") << " | –";
-      md << " | " << num(r.wall(), "%.4f") << " (" << num(r.out.mesh_seconds, "%.4f") << " + "
-         << num(r.out.run_seconds, "%.4f") << ") | " << r.out.unknowns << " | " << r.out.steps
-         << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
+      md << " | " << format_fixed(r.wall(), 4) << " (" << format_fixed(r.out.mesh_seconds, 4)
+         << " + " << format_fixed(r.out.run_seconds, 4) << ") | " << r.out.unknowns << " | "
+         << r.out.steps << " | " << r.out.cuts << " | " << r.out.iterations << " |\n";
     }
     // Per sweep: does the costliest run beat the cheapest?
     std::vector<std::string> sweeps;
@@ -544,9 +554,10 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
         const Row* best = cheap;
         for (const Row& r : rows)
           if (r.case_name == c && r.setting == sw && r.out.ok() && r.error() < best->error()) best = &r;
-        md << "- " << sw << ": the cost does not depend on it (" << num(cheap->wall(), "%.3f")
-           << "–" << num(dear->wall(), "%.3f") << " s, within timing noise); the most accurate run is "
-           << best->value_text << ": " << num(100 * best->error(), "%.3f") << " %.\n";
+        md << "- " << sw << ": the cost does not depend on it (" << format_fixed(cheap->wall(), 3)
+           << "–" << format_fixed(dear->wall(), 3)
+           << " s, within timing noise); the most accurate run is " << best->value_text << ": "
+           << format_fixed(100 * best->error(), 3) << " %.\n";
         continue;
       }
       md << "- " << sw << ": " << judge(*dear, *cheap) << "\n";
@@ -563,7 +574,7 @@ std::string tables_text(const std::vector<Row>& rows, bool quick) {
   std::ostringstream failed;
   for (const Row& r : rows)
     if (!r.out.ok())
-      failed << "| " << r.case_name << " | " << r.value_text << " | " << num(r.wall(), "%.3f")
+      failed << "| " << r.case_name << " | " << r.value_text << " | " << format_fixed(r.wall(), 3)
              << " | " << r.out.reason() << " |\n";
   md << "\n### Runs that did not complete (not in the CSV or the picture)\n\n";
   if (failed.str().empty())
@@ -637,10 +648,11 @@ int main(int argc, char** argv) {
 
     std::vector<Row> rows;
     auto add = [&rows](Row r) {
-      std::fprintf(stderr, "%-16s %-14s %-52s %s  %.3f s\n", r.case_name.c_str(), r.setting.c_str(),
-                   r.value_text.c_str(),
-                   r.out.ok() ? (num(100 * r.error(), "%.4f") + " %").c_str() : r.out.reason().c_str(),
-                   r.wall());
+      std::fprintf(
+          stderr, "%-16s %-14s %-52s %s  %.3f s\n", r.case_name.c_str(), r.setting.c_str(),
+          r.value_text.c_str(),
+          r.out.ok() ? (format_fixed(100 * r.error(), 4) + " %").c_str() : r.out.reason().c_str(),
+          r.wall());
       rows.push_back(std::move(r));
     };
 

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace nmm::solve {
 
@@ -45,7 +46,7 @@ JointWater::JointWater(const Mesh& mesh, const SceneDef& scene) : scene_(&scene)
   for (std::size_t i = 0; i < w.joints.size(); ++i) {
     const JointWaterDef& e = w.joints[i];
     entry_[static_cast<std::size_t>(e.joint)] = static_cast<int>(i);
-    double low = 1e300;
+    double low = std::numeric_limits<double>::infinity();
     for (const Vec2& p : scene.joints[static_cast<std::size_t>(e.joint)].points)
       low = std::min(low, height(p.x, p.y));
     fill_top_.push_back(low + e.fill_depth);
@@ -74,7 +75,7 @@ double JointWater::phreatic_height(double s) const {
 double JointWater::along_joint(int joint, double x, double y) const {
   // Distance from the joint's first point to the point's projection on its nearest segment.
   const std::vector<Vec2>& p = scene_->joints[static_cast<std::size_t>(joint)].points;
-  double best = 1e300, at = 0, before = 0;
+  double best = std::numeric_limits<double>::infinity(), at = 0, before = 0;
   for (std::size_t i = 0; i + 1 < p.size(); ++i) {
     const double dx = p[i + 1].x - p[i].x, dy = p[i + 1].y - p[i].y, l = std::hypot(dx, dy);
     const double t = std::clamp(((x - p[i].x) * dx + (y - p[i].y) * dy) / (l * l), 0.0, 1.0);

@@ -85,14 +85,7 @@ Model::Model(const Mesh& mesh, const SceneDef& scene, const std::string& scene_n
   for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
     measure_.push_back(locate(scene.measure_points[i], "/measure_points/" + std::to_string(i)));
 
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (std::size_t i = 0; i < mesh.loop_xy.size(); i += 2) {
-    x0 = std::min(x0, mesh.loop_xy[i]);
-    x1 = std::max(x1, mesh.loop_xy[i]);
-    y0 = std::min(y0, mesh.loop_xy[i + 1]);
-    y1 = std::max(y1, mesh.loop_xy[i + 1]);
-  }
-  w0_ = 0.5 * std::max(x1 - x0, y1 - y0);
+  w0_ = 0.5 * bounding_box_xy(mesh.loop_xy).longer_side();
 }
 
 }  // namespace nmm::solve

@@ -27,10 +27,16 @@ struct TrackedPoint {
   std::array<double, 2> displacement() const { return {x - x0, y - y0}; }
 };
 
+/// s, RunState::dt before the first step: longer than any time_step, so step control starts at
+/// time_step (StepControl takes the smaller). Finite, not infinity, because Δt is saved in the
+/// checkpoint's META section and hashed into state hashes: a checkpoint written before the first
+/// step keeps the bytes it has always had.
+constexpr double kDtBeforeFirstStep = 1e300;
+
 struct RunState {
   std::int64_t step = 0;  ///< steps completed since step 0 of the first run
   double time = 0;        ///< s, simulated time
-  double dt = 1e300;      ///< s, the step length step control has arrived at
+  double dt = kDtBeforeFirstStep;  ///< s, the step length step control has arrived at
   std::vector<double> cover_xy;  ///< [2·pc] m, current position of each cover's node
   /// Per cover, its cover-function coefficients (m per cover = 2, 6, 12 at order 0, 1, 2;
   /// cover_space.h): [m·pc]

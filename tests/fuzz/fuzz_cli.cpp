@@ -41,6 +41,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/scene.h"
+#include "common/whole_file.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
