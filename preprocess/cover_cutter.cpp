@@ -26,7 +26,9 @@
 //    Blocks: components of all MEs joined across every mesh-only edge.
 // 6. Coordinates go to double once, at output (CGAL::to_double of the exact point), so the same
 //    scene always gives the same bytes. Sliver elements (a joint passing 1e-9·h beside a node)
-//    are kept as they are: dropping or merging them would lose area or change the topology.
+//    are kept as they are: dropping or merging them would lose area or change the topology. Only
+//    specks are dropped: faces that, rounded, enclose no positive area or fit in 1e-9·h (Cutter::
+//    speck), where three cuts meet within round-off of one point.
 #include "preprocess/cover_cutter.h"
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
@@ -212,6 +214,7 @@ class Cutter {
   void label_faces();
   void bridge_holes();
   Mesh extract();
+  bool speck(Face_handle face) const;
 
   const SceneDef& scene_;
   const std::string& file_;
@@ -414,6 +417,23 @@ void Cutter::bridge_holes() {
   for (const Curve& c : bridges) CGAL::insert(arr_, c);
 }
 
+// A face that is no rock in doubles: its loop, rounded, fits in a box of side 1e-9·h or encloses
+// no positive area. Exact arithmetic gives such specks where three cuts meet within round-off of
+// one point (a crack ending on a joint beside a mesh edge); as an element it would have zero or
+// negative mass and stiffness, and its covers no stiffness at all.
+bool Cutter::speck(Face_handle face) const {
+  Box box = Box::empty();
+  double twice_area = 0;  // m², about the first vertex (less cancellation)
+  auto c = *face->outer_ccbs_begin(), start = c;
+  const Vec2 o = to_vec(c->source()->point());
+  do {
+    const Vec2 p = to_vec(c->source()->point()), q = to_vec(c->target()->point());
+    box.add(p.x, p.y);
+    twice_area += (p.x - o.x) * (q.y - o.y) - (q.x - o.x) * (p.y - o.y);
+  } while (++c != start);
+  return twice_area <= 0 || box.longer_side() < 1e-9 * scene_.mesh_size;
+}
+
 Mesh Cutter::extract() {
   Mesh mesh;
   mesh.mesh_size = scene_.mesh_size;
@@ -423,7 +443,7 @@ Mesh Cutter::extract() {
   // Manifold elements: faces inside a body, ordered by triangle (stable in face order).
   std::vector<std::int32_t> me_faces;
   for (std::size_t f = 0; f < nf; ++f)
-    if (lab_.body[f] >= 0) me_faces.push_back(static_cast<std::int32_t>(f));
+    if (lab_.body[f] >= 0 && !speck(lab_.faces[f])) me_faces.push_back(static_cast<std::int32_t>(f));
   std::stable_sort(me_faces.begin(), me_faces.end(),
                    [&](std::int32_t a, std::int32_t b) { return lab_.tri[a] < lab_.tri[b]; });
   std::vector<std::int32_t> face_me(nf, -1);

@@ -6,8 +6,9 @@
   preprocess/              -> common/
   solver/discretisation/   -> common/
   solver/contact/          -> common/, solver/discretisation/
-  solver/stepping/         -> common/, solver/discretisation/, solver/contact/
-  solver/output/           -> common/, solver/discretisation/, solver/contact/, solver/stepping/
+  solver/fracture/         -> common/, preprocess/, solver/discretisation/, solver/contact/
+  solver/stepping/         -> the same and solver/fracture/
+  solver/output/           -> the same and solver/stepping/
   report/                  -> common/, solver/...
   studies/                 -> common/, reference/, preprocess/, solver/..., report/
   tools/                   -> anything (the command-line tools' mains)
@@ -25,12 +26,14 @@ import pathlib
 import re
 import sys
 
-SOLVER = ["solver/discretisation", "solver/contact", "solver/stepping", "solver/output"]
+SOLVER = ["solver/discretisation", "solver/contact", "solver/fracture", "solver/stepping", "solver/output"]
 ALLOWED = {
     "common": set(),
     "reference": {"common"},
     "preprocess": {"common"},
-    **{w: {"common", *SOLVER[:i]} for i, w in enumerate(SOLVER)},
+    # From the fracture wing on, the solver re-cuts covers with the preprocessor's cutting code
+    # (one cutting code: preprocess/recut.h).
+    **{w: {"common", *SOLVER[:i]} | ({"preprocess"} if i >= 2 else set()) for i, w in enumerate(SOLVER)},
     "report": {"common", *SOLVER},
     "studies": {"common", "reference", "preprocess", *SOLVER, "report"},
     "tools": {"common", "reference", "preprocess", *SOLVER, "report", "studies"},

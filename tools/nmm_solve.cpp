@@ -178,7 +178,12 @@ int main(int argc, char** argv) {
       cuts = st.state.cuts;
       t_prev = t;
     });
+    std::size_t topology = view.topology;  // the mesh the meter's records are of
     nmm::solve::StepFunction energy_terms([&](const nmm::solve::RunView& st, std::int64_t n, bool) {
+      if (st.topology != topology) {  // cracks re-cut the mesh in this step
+        energy.carry_over(st.model, &st.space, st.last_recut, st.state);
+        topology = st.topology;
+      }
       energy.after_step(st.state, st.contacts.contacts(), n % sv.output_every == 0);
     });
     nmm::solve::StepFunction progress_line([&](const nmm::solve::RunView& st, std::int64_t, bool) {

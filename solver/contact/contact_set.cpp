@@ -56,6 +56,30 @@ std::int32_t ContactSet::joint_of(const ContactCandidate& f) const {
   return joint;
 }
 
+void ContactSet::restore(std::vector<ContactHistory> history, std::vector<Contact> rows) {
+  if (rows.empty() && !history.empty()) {
+    std::vector<std::int32_t> first_of_block(mesh_.block_count(), -1);
+    for (std::size_t e = mesh_.element_count(); e-- > 0;) first_of_block[mesh_.element_block[e]] = static_cast<std::int32_t>(e);
+    rows.reserve(history.size());
+    for (const ContactHistory& h : history) {
+      Contact c;
+      c.at.vertex = c.at.edge = h.vertex;
+      c.at.elem_a = topo_.element_of[h.vertex];
+      c.at.elem_b = first_of_block[h.block];
+      c.state = c.start_state = h.state;
+      c.broken = h.broken;
+      c.slip_sign = h.slip_sign;
+      c.shear_el = h.shear_el;
+      c.normal_force = h.normal_force;
+      c.joint = h.joint;
+      rows.push_back(c);
+    }
+  }
+  history_ = std::move(history);
+  contacts_ = std::move(rows);
+  rows_accepted_ = true;
+}
+
 ClosedContacts ContactSet::closed_contacts() const {
   ClosedContacts closed;
   for (const ContactHistory& h : history_)

@@ -72,12 +72,10 @@ class ContactSet {
   /// detection is given to let a vertex stay inside a block it was against).
   ClosedContacts closed_contacts() const;
   /// A restart: the next step starts from this history; `rows` (the accepted step's contacts,
-  /// one per history entry) are shown until then.
-  void restore(std::vector<ContactHistory> history, std::vector<Contact> rows) {
-    history_ = std::move(history);
-    contacts_ = std::move(rows);
-    rows_accepted_ = true;
-  }
+  /// one per history entry) are shown until then. Without rows (a mesh cracks re-cut: no step on
+  /// it yet) each entry's row holds only what the history says (its vertex, state, forces), at a
+  /// zero gap against the first element of its block.
+  void restore(std::vector<ContactHistory> history, std::vector<Contact> rows);
   /// [me] 1 for elements of excavated bodies: no contact is detected on them.
   void set_removed_elements(std::vector<std::uint8_t> removed) { removed_ = std::move(removed); }
   /// Largest dilation a contact carries (Barton–Bandis), m: its faces stand apart by it, so
@@ -104,6 +102,12 @@ class ContactSet {
   Totals totals() const;
   /// Detection's counts and its seconds so far.
   const DetectionStats& detection_stats() const { return stats_; }
+  /// A set built for a re-cut mesh goes on counting where `before` (the old mesh's) stopped:
+  /// its events and detection's counts.
+  void continue_from(const ContactSet& before) {
+    events = before.events;
+    stats_ = before.stats_;
+  }
 
   /// The topology detection works on (the problem's rows need the edges' next vertices).
   const ContactTopology& topology() const { return topo_; }

@@ -24,14 +24,18 @@ std::vector<std::uint8_t> removed_elements(const Mesh& mesh, const RunState& s) 
   return r;
 }
 
-void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, RunState& s) {
+void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, const std::vector<std::uint8_t>& removed,
+                         RunState& s) {
   const std::size_t dpc = static_cast<std::size_t>(dofs_per_cover);
-  for (std::size_t c = 0; c < mesh.cover_count(); ++c)
-    if (s.body_removed[mesh.cover_body[c]])
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    if (!removed[e]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t c = static_cast<std::size_t>(mesh.element_covers[3 * e + k]);
       for (std::size_t i = 0; i < dpc; ++i) s.velocity[c * dpc + i] = s.accel[c * dpc + i] = 0;
-  if (!s.block_force.empty())
-    for (std::size_t b = 0; b < mesh.block_count(); ++b)
-      if (s.body_removed[mesh.block_body[b]]) std::fill_n(s.block_force.begin() + static_cast<long>(3 * b), 3, 0.0);
+    }
+    if (!s.block_force.empty())
+      std::fill_n(s.block_force.begin() + static_cast<long>(3 * mesh.element_block[e]), 3, 0.0);
+  }
 }
 
 double interface_traction_factor(const RunState& s, std::int32_t body, std::int64_t release_steps) {

@@ -39,9 +39,11 @@ void excavate_bodies(const std::vector<int>& bodies, const Mesh& mesh, std::size
 /// [me] 1 for elements of removed bodies.
 std::vector<std::uint8_t> removed_elements(const Mesh& mesh, const RunState& s);
 
-/// Removed covers keep no velocity: they stand still, held at zero (dofs_per_cover unknowns per
-/// cover in s.velocity and s.accel); removed blocks hand no force on (s.block_force).
-void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, RunState& s);
+/// The covers of removed elements (`removed` [me] 1: removed_elements, or debris the cracks cut
+/// off: fracture.h) keep no velocity: they stand still, held at zero (dofs_per_cover unknowns
+/// per cover in s.velocity and s.accel); their blocks hand no force on (s.block_force).
+void hold_removed_covers(const Mesh& mesh, int dofs_per_cover, const std::vector<std::uint8_t>& removed,
+                         RunState& s);
 
 /// Fraction of the locked-in traction on a face towards `body` still applied in the step after
 /// `s.step`: 1 while the body is there, then 1 − k/N.

@@ -139,9 +139,12 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
   if (carry) ++next;
   const bool factor = sections.size() > next && sections[next].first == "FACTOR";
   if (factor) ++next;
+  // A cracked run's mesh and cracks (read by the time stepper before this: restart.h).
+  if (sections.size() > next + 1 && sections[next].first == "MESH" && sections[next + 1].first == "FRACTURE")
+    next += 2;
   if (sections.size() < kCount || sections.size() != next)
     throw InputError(name, "section table", "expected " + std::to_string(kCount) +
-                                                " sections (and CARRY, FACTOR), found " +
+                                                " sections (and CARRY, FACTOR, MESH with FRACTURE), found " +
                                                 std::to_string(sections.size()));
   for (std::size_t i = 0; i < kCount; ++i)
     if (sections[i].first != kTags[i])
@@ -231,7 +234,7 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
     r.expect_end();
   }
   contact_history = sections[11].second;
-  if (factor_source) *factor_source = factor ? sections.back().second : std::string();
+  if (factor_source) *factor_source = factor ? sections[kCount + (carry ? 1 : 0)].second : std::string();
   if (carry) {
     ByteReader r(sections[kCount].second, name, "CARRY");
     s.block_force = r.get_vector<double>(3 * mesh.block_count(), "block forces");

@@ -13,12 +13,16 @@
 namespace nmm::solve {
 
 EnergyMeter::EnergyMeter(const Model& model, const CoverSpace* space)
-    : model_(model), mesh_(model.mesh()), scene_(model.scene()),
+    : model_(&model), mesh_(&model.mesh()), scene_(&model.scene()),
       space_(space && space->order() > 0 ? space : nullptr) {
-  const SceneDef& scene = scene_;
-  const Mesh& mesh = mesh_;
+  const SceneDef& scene = *scene_;
+  initial_geometry();
   shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
   for (const SupportDef& sd : scene.supports) moving_supports_ |= sd.velocity.x != 0 || sd.velocity.y != 0;
+}
+
+void EnergyMeter::initial_geometry() {
+  const Mesh& mesh = *mesh_;
   const std::size_t ne = mesh.element_count();
   area0_.resize(ne);
   cx0_.resize(ne);
@@ -32,21 +36,61 @@ EnergyMeter::EnergyMeter(const Model& model, const CoverSpace* space)
   }
 }
 
+void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const pre::RecutMap& map,
+                             const RunState& s) {
+  model_ = &model;
+  mesh_ = &model.mesh();
+  scene_ = &model.scene();
+  space_ = space && space->order() > 0 ? space : nullptr;
+  initial_geometry();  // a piece starts as it was cut: its share of its parent's area and centroid
+  // A vertex kept its place: its last displacement is the one it had; a vertex the crack made
+  // starts from where it is (the step's work there is left out: it is the crack's few vertices).
+  if (!prev_loop_u_.empty()) {
+    std::vector<double> prev = s.loop_u;
+    for (std::size_t v = 0; v < map.vertex_parent.size(); ++v)
+      if (map.vertex_parent[v] >= 0)
+        for (int d = 0; d < 2; ++d) prev[2 * v + d] = prev_loop_u_[2 * static_cast<std::size_t>(map.vertex_parent[v]) + d];
+    prev_loop_u_ = std::move(prev);
+  }
+  // A piece's last centroid: its centroid now less its parent's move since (the parent's centroid
+  // now being the area-weighted one of its pieces).
+  if (!prev_cx_.empty()) {
+    std::vector<double> cx, cy;
+    centroids(s, cx, cy);
+    const std::size_t parents = prev_cx_.size();
+    std::vector<double> area(parents, 0), mx(parents, 0), my(parents, 0);
+    for (std::size_t e = 0; e < cx.size(); ++e) {
+      const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
+      area[p] += area0_[e];
+      mx[p] += area0_[e] * cx[e];
+      my[p] += area0_[e] * cy[e];
+    }
+    std::vector<double> px(cx.size()), py(cx.size());
+    for (std::size_t e = 0; e < cx.size(); ++e) {
+      const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
+      px[e] = cx[e] - (mx[p] / area[p] - prev_cx_[p]);
+      py[e] = cy[e] - (my[p] / area[p] - prev_cy_[p]);
+    }
+    prev_cx_ = std::move(px);
+    prev_cy_ = std::move(py);
+  }
+}
+
 EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>& contacts) const {
   EnergyRow r;
   r.step = s.step;
   r.time = s.time;
-  const double gx = scene_.has_gravity ? scene_.gravity.x : 0.0;
-  const double gy = scene_.has_gravity ? scene_.gravity.y : 0.0;
+  const double gx = scene_->has_gravity ? scene_->gravity.x : 0.0;
+  const double gy = scene_->has_gravity ? scene_->gravity.y : 0.0;
   // The state's own configuration (its cover positions, not those of the step's start).
-  Configuration config(mesh_, space_);
+  Configuration config(*mesh_, space_);
   config.place(s.cover_xy);
-  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+  for (std::size_t e = 0; e < mesh_->element_count(); ++e) {
     if (removed(s, static_cast<std::int32_t>(e))) continue;
-    const double density = model_.density(e);
-    const std::int32_t* ec = &mesh_.element_covers[3 * e];
+    const double density = model_->density(e);
+    const std::int32_t* ec = &mesh_->element_covers[3 * e];
     const double ox = config.frame(e).ox, oy = config.frame(e).oy;
-    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
+    const std::size_t b = mesh_->element_loop_offset[e], n = mesh_->element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
     const TriangleWeights& w = config.frame(e).w;
     if (space_ && w.twice_area > 0) {
@@ -75,7 +119,7 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
         sig[q].degree = order;
         for (std::size_t t = 0; t < T; ++t) sig[q].c[t] = s.stress[3 * (T * e + t) + q];
       }
-      const Mat3& c = model_.compliance(e);
+      const Mat3& c = model_->compliance(e);
       for (int q = 0; q < 3; ++q)
         for (int l = 0; l < 3; ++l)
           if (c(q, l) != 0) r.strain += 0.5 * c(q, l) * integral(sig[q], sig[l], mm);
@@ -90,7 +134,7 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
           }
       // Strain: ½ A σᵀ D⁻¹ σ.
       const Vec3 sigma(s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
-      r.strain += 0.5 * m.a * sigma.dot(model_.compliance(e) * sigma);
+      r.strain += 0.5 * m.a * sigma.dot(model_->compliance(e) * sigma);
     }
     // Gravity: the centroid's drop, times the element's (conserved) mass.
     if (m.a != 0) {
@@ -100,20 +144,20 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
   }
   for (const TrackedPoint& f : s.fixed) {
     const double dx = f.x - f.x0, dy = f.y - f.y0;
-    r.springs += 0.5 * model_.fixed_point_stiffness() * (dx * dx + dy * dy);
+    r.springs += 0.5 * model_->fixed_point_stiffness() * (dx * dx + dy * dy);
   }
   // Supports: e = u − h linear along the edge, ∫ e² ds = L (ea² + ea·eb + eb²) / 3 per component.
-  for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
+  for (std::size_t i = 0; i < model_->support_edges().size(); ++i) {
     const std::array<double, 2> h = held(i, s.time);
-    for (const BoundaryEdge& be : model_.support_edges()[i]) {
+    for (const BoundaryEdge& be : model_->support_edges()[i]) {
       if (removed(s, be.element)) continue;
       const std::int32_t a = be.vertex, b = be.next;
       const double len = std::hypot(s.loop_xy[2 * b] - s.loop_xy[2 * a],
                                     s.loop_xy[2 * b + 1] - s.loop_xy[2 * a + 1]);
       for (int d = 0; d < 2; ++d) {
-        if (!(d == 0 ? scene_.supports[i].fix_x : scene_.supports[i].fix_y)) continue;
+        if (!(d == 0 ? scene_->supports[i].fix_x : scene_->supports[i].fix_y)) continue;
         const double ua = s.loop_u[2 * a + d] - h[d], ub = s.loop_u[2 * b + d] - h[d];
-        r.springs += 0.5 * model_.support_stiffness() * len * (ua * ua + ua * ub + ub * ub) / 3;
+        r.springs += 0.5 * model_->support_stiffness() * len * (ua * ua + ua * ub + ub * ub) / 3;
       }
     }
   }
@@ -126,11 +170,11 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
 void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& contacts, bool keep) {
   EnergyRow r = state_terms(s, contacts);
   if (started_) {
-    for (std::size_t l = 0; l < s.loads.size() && l < scene_.loads.size(); ++l) {
+    for (std::size_t l = 0; l < s.loads.size() && l < scene_->loads.size(); ++l) {
       const double factor =
-          l < scene_.load_tables.size() ? table_value(scene_.load_tables[l], s.time) : 1.0;
-      load_work_ += factor * (scene_.loads[l].force.x * (s.loads[l].x - load_x_[l]) +
-                              scene_.loads[l].force.y * (s.loads[l].y - load_y_[l]));
+          l < scene_->load_tables.size() ? table_value(scene_->load_tables[l], s.time) : 1.0;
+      load_work_ += factor * (scene_->loads[l].force.x * (s.loads[l].x - load_x_[l]) +
+                              scene_->loads[l].force.y * (s.loads[l].y - load_y_[l]));
     }
     for (const Contact& c : contacts) {
       if (c.state == ContactState::sliding) friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
@@ -140,7 +184,7 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     support_work_ += supports;
     load_work_ += traction_work(s) + shaking_work(s) + water_work(s) + supports;
   }
-  if (!model_.traction_edges().empty() || model_.water().active() || moving_supports_) prev_loop_u_ = s.loop_u;
+  if (!model_->traction_edges().empty() || model_->water().active() || moving_supports_) prev_loop_u_ = s.loop_u;
   prev_time_ = s.time;
   if (shaking_) centroids(s, prev_cx_, prev_cy_);
   load_x_.resize(s.loads.size());
@@ -164,16 +208,16 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
 }
 
 bool EnergyMeter::removed(const RunState& s, std::int32_t element) const {
-  const std::int32_t body = mesh_.element_body[element];
+  const std::int32_t body = mesh_->element_body[element];
   return static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body];
 }
 
 void EnergyMeter::centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const {
-  const std::size_t ne = mesh_.element_count();
+  const std::size_t ne = mesh_->element_count();
   cx.assign(ne, 0);
   cy.assign(ne, 0);
   for (std::size_t e = 0; e < ne; ++e) {
-    const std::size_t b = mesh_.element_loop_offset[e], n = mesh_.element_loop_offset[e + 1] - b;
+    const std::size_t b = mesh_->element_loop_offset[e], n = mesh_->element_loop_offset[e + 1] - b;
     const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, 0, 0);
     if (m.a != 0) cx[e] = m.sx / m.a, cy[e] = m.sy / m.a;
   }
@@ -185,10 +229,10 @@ double EnergyMeter::traction_work(const RunState& s) const {
   static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
   double w = 0;
   if (prev_loop_u_.size() != s.loop_u.size()) return 0;
-  for (std::size_t i = 0; i < model_.traction_edges().size(); ++i) {
-    const TractionDef& td = scene_.tractions[i];
+  for (std::size_t i = 0; i < model_->traction_edges().size(); ++i) {
+    const TractionDef& td = scene_->tractions[i];
     const double factor = table_value(td.table, s.time);
-    for (const BoundaryEdge& be : model_.traction_edges()[i]) {
+    for (const BoundaryEdge& be : model_->traction_edges()[i]) {
       if (removed(s, be.element)) continue;
       const double* a = s.loop_xy.data() + 2 * be.vertex;
       const double* b = s.loop_xy.data() + 2 * be.next;
@@ -199,7 +243,7 @@ double EnergyMeter::traction_work(const RunState& s) const {
         double t[2];
         if (td.from_insitu) {
           const double uy = (1 - xi) * s.loop_u[2 * be.vertex + 1] + xi * s.loop_u[2 * be.next + 1];
-          const auto sg = insitu_stress_at(scene_.insitu_stress, a[0] + xi * dx, a[1] + xi * dy - uy);
+          const auto sg = insitu_stress_at(scene_->insitu_stress, a[0] + xi * dx, a[1] + xi * dy - uy);
           t[0] = sg[0] * nx + sg[2] * ny;
           t[1] = sg[2] * nx + sg[1] * ny;
         } else {
@@ -221,7 +265,7 @@ double EnergyMeter::water_work(const RunState& s) const {
   // ∫ −p·n·Δu ds on each wet face, per piece where p is linear (joint_water.h): the two-point
   // Gauss rule is exact for p times the linear Δu.
   static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
-  const JointWater& water = model_.water();
+  const JointWater& water = model_->water();
   if (!water.active() || prev_loop_u_.size() != s.loop_u.size()) return 0;
   double w = 0;
   for (std::size_t i = 0; i < water.edges().size(); ++i) {
@@ -248,7 +292,7 @@ double EnergyMeter::water_work(const RunState& s) const {
 }
 
 std::array<double, 2> EnergyMeter::held(std::size_t support, double t) const {
-  const SupportDef& sd = scene_.supports[support];
+  const SupportDef& sd = scene_->supports[support];
   const double travel = table_integral(sd.table, t);  // as solver/discretisation/integrators.cpp holds it
   return {sd.velocity.x * travel, sd.velocity.y * travel};
 }
@@ -258,11 +302,11 @@ double EnergyMeter::support_work(const RunState& s) const {
   // edge and Δh uniform: L·Δh·(ē_a + ē_b)/2.
   if (!moving_supports_ || prev_loop_u_.size() != s.loop_u.size()) return 0;
   double w = 0;
-  for (std::size_t i = 0; i < model_.support_edges().size(); ++i) {
-    const SupportDef& sd = scene_.supports[i];
+  for (std::size_t i = 0; i < model_->support_edges().size(); ++i) {
+    const SupportDef& sd = scene_->supports[i];
     if (sd.velocity.x == 0 && sd.velocity.y == 0) continue;
     const std::array<double, 2> h0 = held(i, prev_time_), h1 = held(i, s.time);
-    for (const BoundaryEdge& be : model_.support_edges()[i]) {
+    for (const BoundaryEdge& be : model_->support_edges()[i]) {
       if (removed(s, be.element)) continue;
       const std::int32_t a = be.vertex, b = be.next;
       const double len = std::hypot(s.loop_xy[2 * b] - s.loop_xy[2 * a], s.loop_xy[2 * b + 1] - s.loop_xy[2 * a + 1]);
@@ -271,7 +315,7 @@ double EnergyMeter::support_work(const RunState& s) const {
         auto mean_e = [&](std::int32_t v) {
           return 0.5 * ((prev_loop_u_[2 * v + d] - h0[d]) + (s.loop_u[2 * v + d] - h1[d]));
         };
-        w -= model_.support_stiffness() * len * (h1[d] - h0[d]) * 0.5 * (mean_e(a) + mean_e(b));
+        w -= model_->support_stiffness() * len * (h1[d] - h0[d]) * 0.5 * (mean_e(a) + mean_e(b));
       }
     }
   }
@@ -279,15 +323,15 @@ double EnergyMeter::support_work(const RunState& s) const {
 }
 
 double EnergyMeter::shaking_work(const RunState& s) const {
-  if (!shaking_ || prev_cx_.size() != mesh_.element_count()) return 0;
-  const double bx = -table_value(scene_.base_acceleration_x, s.time, 0.0);
-  const double by = -table_value(scene_.base_acceleration_y, s.time, 0.0);
+  if (!shaking_ || prev_cx_.size() != mesh_->element_count()) return 0;
+  const double bx = -table_value(scene_->base_acceleration_x, s.time, 0.0);
+  const double by = -table_value(scene_->base_acceleration_y, s.time, 0.0);
   std::vector<double> cx, cy;
   centroids(s, cx, cy);
   double w = 0;
-  for (std::size_t e = 0; e < mesh_.element_count(); ++e) {
+  for (std::size_t e = 0; e < mesh_->element_count(); ++e) {
     if (removed(s, static_cast<std::int32_t>(e))) continue;
-    w += model_.density(e) * area0_[e] * (bx * (cx[e] - prev_cx_[e]) + by * (cy[e] - prev_cy_[e]));
+    w += model_->density(e) * area0_[e] * (bx * (cx[e] - prev_cx_[e]) + by * (cy[e] - prev_cy_[e]));
   }
   return w;
 }

@@ -58,6 +58,7 @@
 #include "common/mesh.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
+#include "preprocess/recut.h"
 #include "common/scene.h"
 
 namespace nmm::solve {
@@ -93,6 +94,11 @@ class EnergyMeter {
   /// Keeps the last measured row if it is not kept yet (the run's final state).
   void keep_last();
 
+  /// Cracks re-cut the run's mesh (RunView::topology changed): the meter follows the run onto
+  /// `model`'s mesh (and `space`), carrying its per-element and per-vertex records over by `map`
+  /// (preprocess/recut.h) so that the cut itself changes no energy term (docs/fracture.md).
+  void carry_over(const Model& model, const CoverSpace* space, const pre::RecutMap& map, const RunState& s);
+
   const std::vector<EnergyRow>& rows() const { return rows_; }
 
   /// Writes DIR/energy.csv: "step,time,kinetic,strain,gravity,springs,load_work,friction,residual".
@@ -108,9 +114,11 @@ class EnergyMeter {
   // m, where support i holds its edges at time t (velocity·∫f dt; 0 for a fixed support)
   std::array<double, 2> held(std::size_t support, double t) const;
 
-  const Model& model_;
-  const Mesh& mesh_;
-  const SceneDef& scene_;
+  void initial_geometry();  // area0_, cx0_, cy0_ of mesh_ as cut
+
+  const Model* model_;
+  const Mesh* mesh_;
+  const SceneDef* scene_;
   const CoverSpace* space_;  // null or order 0: the constant-cover formulas
   std::vector<double> prev_loop_u_;  // [2·v] m, loop displacements at the previous call
   double prev_time_ = 0;             // s, time of the previous call

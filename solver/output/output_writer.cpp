@@ -96,7 +96,8 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
   }
   for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "contacts.csv.gz", "summary.json",
                            "result.svg", "result.png", "history.svg", "run_history.svg",
-                           "index.html", "checkpoint.nmmstate", "energy.csv"})
+                           "index.html", "checkpoint.nmmstate", "energy.csv", "cracks.csv",
+                           "cracked_mesh.nmm"})
     fs::remove(join_path(dir_, name), ec);
 }
 
@@ -118,7 +119,7 @@ void OutputWriter::add_history(std::int64_t step, double time,
 }
 
 void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
-                               const FrameFields& fields) {
+                               const FrameFields& fields, std::size_t topology) {
   const std::size_t nv = mesh.loop_vertex_count();
   const std::size_t ne = mesh.element_count();
   check_size(fields.loop_xy, 2 * nv, "loop_xy");
@@ -127,10 +128,12 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   if (fields.extra_cell != nullptr) check_size(fields.extra_cell, ne, "extra_cell");
   if (fields.vertex_stress != nullptr) check_size(fields.vertex_stress, 3 * nv, "vertex_stress");
 
-  if (grid_mesh_ != &mesh) {
-    // Once per run: the cells never change (near-duplicate vertices dropped by mesh_to_grid).
+  if (grid_mesh_ != &mesh || grid_topology_ != topology) {
+    // Once per mesh of the run: the cells change only where cracks re-cut it (near-duplicate
+    // vertices dropped by mesh_to_grid).
     grid_ = mesh_to_grid(mesh);
     grid_mesh_ = &mesh;
+    grid_topology_ = topology;
     // mesh_to_grid keeps one point per loop vertex (it drops near-duplicates from the cells
     // only), so point v is loop vertex v; a different layout would silently misplace every value.
     if (grid_.point_count() != nv)

@@ -71,7 +71,10 @@ class OutputWriter {
   /// Writes frames/frame_<step>.vtu (ME polygons, point data "displacement" (3 components),
   /// cell data "stress" (σxx, σyy, σxy as 3 components), "block", "body") and rewrites
   /// frames.pvd listing every frame so far with its time.
-  void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields);
+  /// `topology`: which mesh of the run this is (RunView::topology: cracks re-cut it); the cells
+  /// are built again when it changes.
+  void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields,
+                   std::size_t topology = 0);
 
   /// Keep the contacts of every n-th output step only (n >= 1; the last one is always kept):
   /// contacts.csv is the largest text output of a long run (nmm-solve --contacts-every).
@@ -115,6 +118,7 @@ class OutputWriter {
   // The frame grid: mesh_to_grid of the mesh as cut, with the identifier cell arrays only; every
   // frame overwrites its points and adds its fields (the connectivity never changes).
   const Mesh* grid_mesh_ = nullptr;
+  std::size_t grid_topology_ = 0;  // of grid_mesh_ (a new mesh may take the old one's address)
   PolygonGrid grid_;
   std::size_t grid_cell_arrays_ = 0;  // element, block, body
 };

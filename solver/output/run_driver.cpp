@@ -4,6 +4,10 @@
 #include "solver/stepping/restart.h"
 #include "solver/output/run_summary.h"
 #include "common/stopwatch.h"
+#include "common/atomic_file.h"
+#include "common/mesh_file.h"
+
+#include <cstdio>
 
 namespace nmm::solve {
 
@@ -56,7 +60,7 @@ class FrameOutput : public StepObserver {
         }
       fields.vertex_stress = &at_vertex;
     }
-    out_.write_frame(step, s.time, mesh, fields);
+    out_.write_frame(step, s.time, mesh, fields, st.topology);
     const ContactSet& contacts = st.contacts;
     if (!contacts.active()) return;
     std::vector<ContactSample> rows;
@@ -94,6 +98,20 @@ class CheckpointOutput : public StepObserver {
   std::int64_t every_;
 };
 
+// cracks.csv (a row per crack segment, where its ends were when it formed: docs/interface.md)
+// and, once the rock has cracked, cracked_mesh.nmm: the mesh the run ended on, for nmm-inspect.
+void write_cracks(const RunView& v, const std::string& dir) {
+  std::string csv = "step,time,x0,y0,x1,y1,mode\n";
+  char row[256];
+  for (const CrackSegment& c : v.fracture.segments()) {
+    std::snprintf(row, sizeof row, "%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", static_cast<long long>(c.step), c.time,
+                  c.a_now.x, c.a_now.y, c.b_now.x, c.b_now.y, c.mode == CrackMode::tensile ? "tensile" : "shear");
+    csv += row;
+  }
+  write_file_atomically(dir + "/cracks.csv", csv);
+  if (!v.fracture.segments().empty()) write_mesh_file(v.mesh, dir + "/cracked_mesh.nmm");
+}
+
 }  // namespace
 
 RunDriver::RunDriver(TimeStepper& stepper, OutputWriter& out) : stepper_(stepper), out_(out) {}
@@ -129,6 +147,7 @@ nlohmann::json RunDriver::run() {
     checkpoint.finish(stepper_.view(), record.outcome, record.done);
   });
   for (StepObserver* o : observers_) o->finish(stepper_.view(), record.outcome, record.done);
+  if (stepper_.view().fracture.active()) timed([&] { write_cracks(stepper_.view(), out_.dir()); });
   record.wall_seconds = wall.seconds();
   outcome_ = record.outcome;
   nlohmann::json summary = run_summary(stepper_.view(), record);

@@ -1,6 +1,8 @@
 // summary.json of a run: see run_summary.h.
 #include "solver/output/run_summary.h"
 
+#include <cmath>
+
 #include "nmm_version.h"
 #include "solver/discretisation/blas_info.h"
 
@@ -95,7 +97,8 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
                         {"factorisation", t.factorisation},
                         {"solves", t.solves},
                         {"geometry_update", t.geometry_update},
-                        {"output", t.output}};
+                        {"output", t.output},
+                        {"fracture", t.fracture}};
   summary["unknowns"] = st.space.unknowns();
   summary["threads"] = st.threads;
   summary["physical_covers"] = st.mesh.cover_count();
@@ -108,6 +111,28 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   summary["max_step_displacement"] = s.max_step_displacement;
   summary["fixed_point_stiffness"] = st.model.fixed_point_stiffness();
   if (!st.model.scene().supports.empty()) summary["support_stiffness"] = st.model.support_stiffness();
+  if (st.fracture.active()) {
+    // Intact rock that breaks (docs/fracture.md): the cracks so far.
+    const std::vector<CrackSegment>& cracks = st.fracture.segments();
+    double length = 0;
+    long tensile = 0;
+    for (const CrackSegment& c : cracks) {
+      length += std::hypot(c.b.x - c.a.x, c.b.y - c.a.y);
+      tensile += c.mode == CrackMode::tensile;
+    }
+    summary["fracture"] = {{"segments", cracks.size()},
+                           {"cracks", st.fracture.crack_count()},
+                           {"length_m", length},
+                           {"tensile_segments", tensile},
+                           {"shear_segments", static_cast<long>(cracks.size()) - tensile},
+                           {"first_crack_step", cracks.empty() ? nlohmann::json(nullptr) : nlohmann::json(cracks.front().step)},
+                           {"elements", st.mesh.element_count()},
+                           // Splinters the cracks cut off, taken out of the model (fracture.h).
+                           {"debris_blocks", st.fracture.debris_blocks()},
+                           {"debris_area_m2", st.fracture.debris_area()},
+                           // Steps taken again because their solution broke the rock.
+                           {"steps_resolved", st.fracture.resolves()}};
+  }
   summary["tool_version"] = NMM_VERSION;
   // What the last bits of the results depend on besides the inputs (tests/state_hashes.py), and
   // what the factorisation's speed depends on (docs/performance.md "BLAS kernels").

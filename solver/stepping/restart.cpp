@@ -1,7 +1,9 @@
 // Continuing a run from a checkpoint: see restart.h.
 #include "solver/stepping/restart.h"
 
+#include "common/checkpoint_file.h"
 #include "common/error.h"
+#include "common/mesh_file.h"
 #include "solver/contact/contact_history.h"
 
 namespace nmm::solve {
@@ -32,9 +34,14 @@ RunState restarted_state(const RunState& checkpoint, const RunState& scene_start
 }
 
 void write_checkpoint(const RunView& v, const std::string& path) {
-  write_state_file(path, v.state, save_contact_history(v.contacts), v.mesh,
-                   v.contacts.active() && v.model.contacts_can_arise() ? v.system.factor_source()
-                                                                       : std::string());
+  CheckpointSections sections = state_to_sections(v.state, save_contact_history(v.contacts), v.mesh);
+  if (v.contacts.active() && v.model.contacts_can_arise()) sections.emplace_back("FACTOR", v.system.factor_source());
+  // A cracked run's mesh is no longer the file's: it travels with the state, with the cracks.
+  if (!v.fracture.segments().empty()) {
+    sections.emplace_back("MESH", mesh_to_bytes(v.mesh));
+    sections.emplace_back("FRACTURE", v.fracture.save());
+  }
+  write_checkpoint_file(sections, path);
 }
 
 }  // namespace nmm::solve

@@ -5,7 +5,8 @@
 
 namespace nmm::solve {
 
-std::vector<std::string> run_effects(const Model& model, const RunState& s, const ContactSet& contacts) {
+std::vector<std::string> run_effects(const Model& model, const RunState& s, const ContactSet& contacts,
+                                     bool fracture) {
   const SceneDef& scene = model.scene();
   std::vector<std::string> e;
   if (model.mesh().element_count() > 0) e.push_back("elasticity");
@@ -23,6 +24,7 @@ std::vector<std::string> run_effects(const Model& model, const RunState& s, cons
   if (std::any_of(s.body_removed.begin(), s.body_removed.end(), [](std::uint8_t r) { return r != 0; }))
     e.push_back("excavation");
   for (const std::string& c : contacts.effects()) e.push_back(c);
+  if (fracture) e.push_back("fracture");
   return e;
 }
 

@@ -16,6 +16,7 @@
 namespace nmm::solve {
 
 /// The effects of a run of `model` in state s with `contacts`, in the order above.
-std::vector<std::string> run_effects(const Model& model, const RunState& s, const ContactSet& contacts);
+std::vector<std::string> run_effects(const Model& model, const RunState& s, const ContactSet& contacts,
+                                     bool fracture = false);
 
 }  // namespace nmm::solve

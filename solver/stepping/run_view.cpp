@@ -14,7 +14,7 @@ std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, doubl
 }
 
 std::vector<std::string> run_effects(const RunView& v) {
-  return run_effects(v.model, v.state, v.contacts);
+  return run_effects(v.model, v.state, v.contacts, v.fracture.active());
 }
 
 std::string state_hash(const RunView& v) {

@@ -17,6 +17,8 @@
 #include "solver/discretisation/configuration.h"
 #include "solver/contact/contact_set.h"
 #include "solver/contact/contact_solve.h"
+#include "solver/fracture/fracture.h"
+#include "preprocess/recut.h"
 #include "solver/discretisation/cover_space.h"
 #include "solver/stepping/equilibrium_indicator.h"
 #include "solver/discretisation/model.h"
@@ -44,6 +46,12 @@ struct RunView {
   const EquilibriumSample& equilibrium;
   const bool& stopped_at_ratio;        ///< the last run_until stopped at solver.stop_at_ratio
   const int& threads;                  ///< threads the factorisation uses (solver_threads.h)
+  /// Intact rock that breaks: the cracks so far (fracture.h; inactive without a fracture block).
+  const Fracture& fracture;
+  /// How many times cracks have re-cut the mesh (0: the mesh as preprocessed); an observer that
+  /// keeps arrays of the mesh carries them over with last_recut when it changes.
+  const std::size_t& topology;
+  const pre::RecutMap& last_recut;     ///< from the mesh of the last re-cut back to the one before
 };
 
 /// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).

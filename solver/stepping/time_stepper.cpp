@@ -41,6 +41,9 @@
 #include "solver/stepping/restart.h"
 #include "solver/stepping/state_update.h"
 #include "solver/stepping/static_support.h"
+#include "solver/fracture/state_transfer.h"
+#include "common/checkpoint_file.h"
+#include "common/mesh_file.h"
 
 namespace nmm::solve {
 
@@ -88,7 +91,7 @@ TimeStepper::MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
     : mesh_(&mesh), scene_(&scene), scene_name_(scene_name),
-      b_(std::make_unique<MeshBound>(mesh, scene, scene_name)),
+      b_(std::make_unique<MeshBound>(mesh, scene, scene_name)), fracture_(scene),
       control_(scene.solver, b_->model.w0(), scene.solver.time_step) {
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
   if (b_->space.order() > 0) system_.set_regularised(b_->space.higher_order_unknowns(), kRegularisation);
@@ -181,7 +184,7 @@ StepContext TimeStepper::step_context(double dt) const {
   return make_step_context(b_->model, b_->config, s_, removed_elem_, dt);
 }
 
-Outcome TimeStepper::attempt(double dt) {
+Outcome TimeStepper::attempt_once(double dt) {
   // Where no two faces can touch (an opening excavated from one unjointed block), the plain
   // solve: no contact detection, no contact problem.
   const bool contact = b_->contacts.active() && b_->model.contacts_can_arise();
@@ -287,6 +290,67 @@ Outcome TimeStepper::attempt(double dt) {
   return {};
 }
 
+Outcome TimeStepper::attempt(double dt) {
+  if (!fracture_.active()) return attempt_once(dt);
+  // Intact rock that breaks (fracture.h): the rock breaks where the step's solution exceeds its
+  // strength, and the step is taken again from its start on the cracked mesh, until its solution
+  // breaks nothing more — as contacts' bonds break (contact_problem.h break_at_peak).
+  for (;;) {
+    RunState start = s_;
+    std::vector<ContactHistory> history = b_->contacts.history();
+    const Outcome o = attempt_once(dt);
+    if (!o.ok()) return o;
+    Stopwatch watch;
+    std::vector<CrackSegment> segments = fracture_.find(mesh(), scene(), s_, removed_elem_);
+    if (segments.empty()) {
+      timings_.fracture += watch.seconds();
+      return o;
+    }
+    // The diagnostics count both solves.
+    start.iterations = s_.iterations;
+    start.cuts = s_.cuts;
+    start.friction_unsettled = s_.friction_unsettled;
+    start.max_capped = s_.max_capped;
+    start.max_penetration = s_.max_penetration;
+    start.max_step_displacement = s_.max_step_displacement;
+    s_ = std::move(start);
+    break_rock(segments, std::move(history));
+    fracture_.count_resolve();
+    timings_.fracture += watch.seconds();
+  }
+}
+
+void TimeStepper::break_rock(const std::vector<CrackSegment>& segments, std::vector<ContactHistory> history) {
+  auto cracked = std::make_unique<SceneDef>(scene());
+  const std::size_t first = cracked->joints.size();
+  for (const CrackSegment& c : segments) cracked->joints.push_back({cracked->fracture.crack_set, {c.a, c.b}});
+  pre::RecutMap map;
+  auto mesh = std::make_unique<Mesh>(pre::recut(this->mesh(), *cracked, first, scene_name_, map));
+  transfer_state(this->mesh(), *mesh, map, b_->space.dofs_per_cover(), s_);
+  history = transfer_history(history, this->mesh(), *mesh, map, first);
+  fracture_.cut(segments, *mesh, map);
+  last_recut_ = std::move(map);
+  ++topology_;
+  replace_mesh(std::move(mesh), std::move(cracked), std::move(history));
+  apply_removed();
+}
+
+void TimeStepper::replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,
+                               std::vector<ContactHistory> history) {
+  auto bound = std::make_unique<MeshBound>(*mesh, *scene, scene_name_);
+  bound->contacts.restore(std::move(history), {});
+  bound->contacts.continue_from(b_->contacts);
+  b_ = std::move(bound);  // before the mesh and scene it referred to go
+  own_mesh_ = std::move(mesh);
+  own_scene_ = std::move(scene);
+  mesh_ = own_mesh_.get();
+  scene_ = own_scene_.get();
+  // A new pattern of the elements (the contacts grow it again) and no factorisation to reuse.
+  build_pattern_with_pairs();
+  system_.drop_factor();
+  rhs_.resize(b_->space.unknowns());
+}
+
 void TimeStepper::measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact) {
   // The same body force, β and loads as the step's assembly, at the step's end.
   const double t_end = step.t_end;
@@ -356,8 +420,26 @@ Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64
 
 void TimeStepper::restart_from(const std::string& path) {
   std::string history, factor;
-  const RunState st = state_from_sections(read_checkpoint_file(path), mesh(), path, history,
-                                          b_->space.dofs_per_cover(), b_->space.terms(), &factor);
+  const CheckpointSections sections = read_checkpoint_file(path);
+  // A cracked run: its mesh and cracks come with the state.
+  const auto section = [&](const char* tag) {
+    const auto it = std::find_if(sections.begin(), sections.end(), [&](const auto& s) { return s.first == tag; });
+    return it == sections.end() ? nullptr : &it->second;
+  };
+  if (const std::string* mesh_bytes = section("MESH")) {
+    if (!scene().fracture.present || !section("FRACTURE"))
+      throw InputError(path, "section MESH", "a cracked run's checkpoint: the scene needs its fracture block");
+    auto cracked_mesh = std::make_unique<Mesh>(mesh_from_bytes(*mesh_bytes, path + " section MESH"));
+    if (cracked_mesh->scene_sha256 != mesh().scene_sha256)
+      throw InputError(path, "section MESH", "the cracked mesh of another scene");
+    fracture_.load(*section("FRACTURE"), *cracked_mesh, path);
+    auto cracked = std::make_unique<SceneDef>(scene());
+    for (const CrackSegment& c : fracture_.segments()) cracked->joints.push_back({cracked->fracture.crack_set, {c.a, c.b}});
+    s_.pattern_pairs.clear();  // of the mesh before; the checkpoint's own follow in restore
+    replace_mesh(std::move(cracked_mesh), std::move(cracked), {});
+  }
+  const RunState st = state_from_sections(sections, mesh(), path, history, b_->space.dofs_per_cover(),
+                                          b_->space.terms(), &factor);
   restore(st, history, path);
   if (!factor.empty() && b_->contacts.active() && !system_.factor_from_source(factor))
     throw InputError(path, "section FACTOR", "not the matrix of a factorisation of this run's size");
@@ -383,10 +465,13 @@ void TimeStepper::excavate(const std::vector<int>& bodies) {
 
 void TimeStepper::apply_removed() {
   removed_elem_ = removed_elements(mesh(), s_);
+  // Debris the cracks cut off leaves the model like an excavated body (fracture.h).
+  const std::vector<std::uint8_t>& debris = fracture_.debris();
+  for (std::size_t e = 0; e < debris.size(); ++e) removed_elem_[e] = removed_elem_[e] || debris[e];
   const bool any = std::any_of(removed_elem_.begin(), removed_elem_.end(),
                                [](std::uint8_t r) { return r != 0; });
   b_->contacts.set_removed_elements(any ? removed_elem_ : std::vector<std::uint8_t>{});
-  hold_removed_covers(mesh(), b_->space.dofs_per_cover(), s_);
+  hold_removed_covers(mesh(), b_->space.dofs_per_cover(), removed_elem_, s_);
 }
 
 }  // namespace nmm::solve

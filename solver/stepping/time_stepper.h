@@ -30,6 +30,8 @@
 #include "solver/stepping/run_view.h"
 #include "solver/stepping/step_control.h"
 #include "solver/stepping/step_timings.h"
+#include "solver/fracture/fracture.h"
+#include "preprocess/recut.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace nmm::solve {
@@ -75,7 +77,7 @@ class TimeStepper {
   RunView view() const {
     return {*mesh_,      b_->model,  b_->space,    b_->config,   s_,
             b_->contacts, system_,   timings_,     solve_stats_, balance_,
-            stopped_at_ratio_, threads_};
+            stopped_at_ratio_, threads_, fracture_, topology_, last_recut_};
   }
 
  private:
@@ -103,6 +105,18 @@ class TimeStepper {
   /// Removes bodies (excavation) at the current step: excavation.h.
   void excavate(const std::vector<int>& bodies);
   void apply_removed();
+  /// One attempt of a step of dt (attempt() repeats it while the rock breaks).
+  Outcome attempt_once(double dt);
+  /// The segments a step's solution breaks (fracture.h) are cut into the mesh
+  /// (preprocess/recut.h), the state s_ (the step's start) and the contact history `history` (of
+  /// the step's start) are carried over (state_transfer.h) and what is derived from the mesh is
+  /// built again.
+  void break_rock(const std::vector<CrackSegment>& segments, std::vector<ContactHistory> history);
+  /// mesh_ and scene_ become `mesh` and `scene` (owned), and what is derived from them is built
+  /// again, with the contact history `history`. The state s_ is not touched: the caller carries
+  /// it onto the new mesh (or restores it) and then applies the removed elements.
+  void replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,
+                    std::vector<ContactHistory> history);
 
   /// What is derived from the mesh and the scene: built with the stepper, and again when cracks
   /// change the mesh (the members hold references to each other and to mesh and scene, so the
@@ -124,7 +138,12 @@ class TimeStepper {
   const Mesh* mesh_;                    // the run's mesh: the file's, or own_mesh_ once cracked
   const SceneDef* scene_;               // the run's scene: the given one, or own_scene_ once cracked
   std::string scene_name_;
+  std::unique_ptr<Mesh> own_mesh_;      // the cracked mesh (null: mesh_ is the file's)
+  std::unique_ptr<SceneDef> own_scene_; // the scene with the crack joints (null: none yet)
   std::unique_ptr<MeshBound> b_;        // derived from mesh_ and scene_
+  Fracture fracture_;                   // cracks so far and their tips (fracture.h)
+  std::size_t topology_ = 0;            // re-cuts so far (RunView::topology)
+  pre::RecutMap last_recut_;            // of the last re-cut
   StepControl control_;                 // Shi's step control (step_control.h)
   RunState s_;                          // everything a step carries to the next
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated

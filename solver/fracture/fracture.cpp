@@ -1,0 +1,343 @@
+// Which elements an accepted step breaks, and the crack segments through them: see fracture.h.
+#include "solver/fracture/fracture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/ring_geometry.h"
+#include "solver/discretisation/state_bytes.h"
+#include "solver/fracture/element_geometry.h"
+
+namespace nmm::solve {
+
+namespace {
+
+// Elements by cell of a uniform grid of side h over their loops' bounding boxes: where a point is.
+class ElementGrid {
+ public:
+  explicit ElementGrid(const Mesh& mesh) : mesh_(mesh), h_(mesh.mesh_size) {
+    x0_ = y0_ = std::numeric_limits<double>::infinity();
+    double x1 = -x0_, y1 = -y0_;
+    for (std::size_t v = 0; v < mesh.loop_vertex_count(); ++v) {
+      x0_ = std::min(x0_, mesh.loop_xy[2 * v]);
+      y0_ = std::min(y0_, mesh.loop_xy[2 * v + 1]);
+      x1 = std::max(x1, mesh.loop_xy[2 * v]);
+      y1 = std::max(y1, mesh.loop_xy[2 * v + 1]);
+    }
+    nx_ = static_cast<std::int64_t>((x1 - x0_) / h_) + 1;
+    ny_ = static_cast<std::int64_t>((y1 - y0_) / h_) + 1;
+    std::vector<std::pair<std::int64_t, std::int32_t>> cells;
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+      double bx0 = std::numeric_limits<double>::infinity(), by0 = bx0, bx1 = -bx0, by1 = -bx0;
+      for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
+        bx0 = std::min(bx0, mesh.loop_xy[2 * v]);
+        by0 = std::min(by0, mesh.loop_xy[2 * v + 1]);
+        bx1 = std::max(bx1, mesh.loop_xy[2 * v]);
+        by1 = std::max(by1, mesh.loop_xy[2 * v + 1]);
+      }
+      for (std::int64_t j = cell_y(by0); j <= cell_y(by1); ++j)
+        for (std::int64_t i = cell_x(bx0); i <= cell_x(bx1); ++i)
+          cells.emplace_back(j * nx_ + i, static_cast<std::int32_t>(e));
+    }
+    std::sort(cells.begin(), cells.end());
+    offset_.assign(static_cast<std::size_t>(nx_ * ny_) + 1, 0);
+    for (const auto& c : cells) ++offset_[static_cast<std::size_t>(c.first) + 1];
+    for (std::size_t k = 1; k < offset_.size(); ++k) offset_[k] += offset_[k - 1];
+    element_.reserve(cells.size());
+    for (const auto& c : cells) element_.push_back(c.second);
+  }
+  /// The element holding p, or -1.
+  std::int32_t at(const Vec2& p) const {
+    const std::int64_t i = cell_x(p.x), j = cell_y(p.y);
+    if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return -1;
+    const std::size_t c = static_cast<std::size_t>(j * nx_ + i);
+    const std::vector<std::int32_t> candidates(element_.begin() + offset_[c], element_.begin() + offset_[c + 1]);
+    return element_holding(mesh_, candidates, p);
+  }
+
+ private:
+  std::int64_t cell_x(double x) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x - x0_) / h_)), -1, nx_); }
+  std::int64_t cell_y(double y) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((y - y0_) / h_)), -1, ny_); }
+  const Mesh& mesh_;
+  double h_, x0_ = 0, y0_ = 0;
+  std::int64_t nx_ = 0, ny_ = 0;
+  std::vector<std::size_t> offset_;
+  std::vector<std::int32_t> element_;
+};
+
+Vec2 plus(const Vec2& a, double t, const Vec2& d) { return {a.x + t * d.x, a.y + t * d.y}; }
+double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
+
+// Where a crack leaves element e (`exit` from ray_exit), made safe to cut:
+// - an exit within kSnap·h of a loop vertex moves onto the vertex, so that a crack passing a
+//   node or the end of another crack does not cut off a splinter of rock a hundredth of an
+//   element wide (the crack turns by at most about a degree for it);
+// - the crack stops there when it reached a body boundary or a joint (a crack's own faces
+//   included): the edge it leaves through, or at a vertex either edge meeting there, is one;
+// - a stopping crack is cut on by kOvershoot·h past that edge. In doubles its end is not exactly
+//   on the edge; cut exactly, it would stop a round-off short — the rock would not part — or
+//   cross a round-off beyond near other cuts and leave specks. Overshot, it crosses the edge at
+//   one exact point and its hair beyond is a slit of no area.
+constexpr double kSnap = 1e-2, kOvershoot = 1e-8;
+struct CrackEnd {
+  Vec2 at;          // m, where the crack leaves the element (as cut)
+  Vec2 cut_to;      // m, where its segment ends (past `at` when it stops)
+  bool stops = false;
+};
+CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayExit& exit) {
+  const std::int32_t b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
+  const std::int32_t v = exit.edge, w = v + 1 < end ? v + 1 : b, u = v > b ? v - 1 : end - 1;
+  const double h = mesh.mesh_size;
+  auto vertex = [&](std::int32_t k) { return Vec2{mesh.loop_xy[2 * k], mesh.loop_xy[2 * k + 1]}; };
+  auto stop_edge = [&](std::int32_t k) { return (mesh.loop_edge_origin[k] & (kEdgeBoundary | kEdgeJoint)) != 0; };
+  CrackEnd c;
+  c.at = exit.at;
+  c.stops = stop_edge(v);
+  const Vec2 pv = vertex(v), pw = vertex(w);
+  const double dv = std::hypot(exit.at.x - pv.x, exit.at.y - pv.y), dw = std::hypot(exit.at.x - pw.x, exit.at.y - pw.y);
+  if (std::min(dv, dw) < kSnap * h) {
+    const bool at_v = dv <= dw;
+    const Vec2 snapped = at_v ? pv : pw;
+    if (std::hypot(snapped.x - from.x, snapped.y - from.y) > kSnap * h) {  // not back onto its start
+      c.at = snapped;
+      c.stops = c.stops || stop_edge(at_v ? u : w);
+    }
+  }
+  c.cut_to = c.at;
+  if (c.stops) {
+    const double dx = c.at.x - from.x, dy = c.at.y - from.y, l = std::hypot(dx, dy);
+    if (l > 0) c.cut_to = plus(c.at, kOvershoot * h / l, {dx, dy});
+  }
+  return c;
+}
+
+}  // namespace
+
+Fracture::Fracture(const SceneDef& scene) {
+  if (!scene.fracture.present) return;
+  for (const MaterialDef& m : scene.materials) active_ = active_ || m.strength.present;
+}
+
+void Fracture::start_tips(const Mesh& mesh, const SceneDef& scene) {
+  // The ends of the scene's joints that lie inside a body (not on its boundary): a crack grows on
+  // from them as from its own tips.
+  const double tol = 1e-9 * mesh.mesh_size;
+  auto inside_a_body = [&](const Vec2& p) {
+    for (const BodyDef& b : scene.bodies) {
+      if (!point_in_ring(b.outer, p)) continue;
+      bool in_hole = false;
+      for (const Ring& hole : b.holes) in_hole = in_hole || point_in_ring(hole, p);
+      if (in_hole) continue;
+      std::vector<double> xy;
+      for (const Vec2& q : b.outer) xy.insert(xy.end(), {q.x, q.y});
+      return distance_to_loop(xy.data(), b.outer.size(), p.x, p.y) > tol;
+    }
+    return false;
+  };
+  for (const JointDef& j : scene.joints) {
+    const std::size_t n = j.points.size();
+    const Vec2 ends[2][2] = {{j.points[0], j.points[1]}, {j.points[n - 1], j.points[n - 2]}};
+    for (const auto& [end, before] : ends) {
+      if (!inside_a_body(end)) continue;
+      const double dx = end.x - before.x, dy = end.y - before.y, l = std::hypot(dx, dy);
+      tips_.push_back({end, {dx / l, dy / l}, -1, true});
+    }
+  }
+  tips_started_ = true;
+}
+
+std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene, const RunState& s,
+                                         const std::vector<std::uint8_t>& removed) {
+  std::vector<CrackSegment> out;
+  if (!active_) return out;
+  if (!tips_started_) start_tips(mesh, scene);
+  const std::size_t n = mesh.element_count();
+  if (armed_.size() != n) armed_.assign(n, 1);
+  // Each element's strength check on the accepted state; an element back inside its strength is
+  // armed again.
+  std::vector<RockFailure> failure(n);
+  std::vector<std::uint8_t> can(n, 0);
+  for (std::size_t e = 0; e < n; ++e) {
+    const StrengthDef& st = scene.materials[scene.bodies[mesh.element_body[e]].material].strength;
+    if (!st.present || (!removed.empty() && removed[e])) continue;
+    can[e] = 1;
+    failure[e] = rock_failure(st, s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
+    if (failure[e].ratio < 1) armed_[e] = 1;
+  }
+  crossed_.assign(n, 0);
+  const double h = mesh.mesh_size, tol = 1e-9 * h;
+  const ElementGrid grid(mesh);
+  // The crack direction in element e (as cut) closest to `along`.
+  auto direction = [&](std::size_t e, const Vec2& along) {
+    const RockFailure& f = failure[e];
+    Vec2 best{};
+    double best_dot = -2;
+    for (const Vec2& d : {f.direction, f.conjugate})
+      for (const double sign : {1.0, -1.0}) {
+        Vec2 r = direction_as_cut(mesh, s.cover_xy, e, {sign * d.x, sign * d.y});
+        if (dot(r, along) > best_dot) best_dot = dot(r, along), best = r;
+      }
+    return best;
+  };
+  auto add = [&](std::size_t e, const Vec2& a, const Vec2& b, std::int32_t crack) {
+    CrackSegment seg;
+    seg.a = a;
+    seg.b = b;
+    seg.a_now = current_point(mesh, s.cover_xy, e, a);
+    seg.b_now = current_point(mesh, s.cover_xy, e, b);
+    seg.mode = failure[e].mode;
+    seg.crack = crack;
+    seg.step = s.step;
+    seg.time = s.time;
+    out.push_back(seg);
+    crossed_[e] = 1;
+  };
+  // On from a tip while the element ahead breaks; a tip that reaches a body boundary or a joint,
+  // or leaves the bodies, stops growing for good.
+  auto grow = [&](Tip& tip) {
+    for (std::size_t guard = 0; guard < n; ++guard) {
+      const std::int32_t e = grid.at(plus(tip.at, 1e-6 * h, tip.dir));
+      if (e < 0) {
+        tip.active = false;
+        return;
+      }
+      if (crossed_[e] || !can[e] || failure[e].ratio < 1) return;
+      const Vec2 d = direction(static_cast<std::size_t>(e), tip.dir);
+      RayExit exit;
+      if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
+      const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
+      add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack);
+      const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
+      tip.at = c.at;
+      tip.dir = l > 0 ? Vec2{dx / l, dy / l} : d;
+      if (c.stops) {
+        tip.active = false;
+        return;
+      }
+    }
+  };
+  for (std::size_t t = 0; t < tips_.size(); ++t)
+    if (tips_[t].active) grow(tips_[t]);
+  // At most one new crack, and only where no crack grew: the step is solved again with what grew
+  // (time_stepper.cpp attempt), and the stress a grown crack relieves must not start another.
+  if (!out.empty()) return out;
+  std::int32_t best = -1;
+  for (std::size_t e = 0; e < n; ++e)
+    if (can[e] && armed_[e] && !crossed_[e] && failure[e].ratio >= 1 &&
+        (best < 0 || failure[e].ratio > failure[static_cast<std::size_t>(best)].ratio))
+      best = static_cast<std::int32_t>(e);
+  if (best >= 0) {
+    const std::size_t e = static_cast<std::size_t>(best);
+    const Vec2 p = inside_point(mesh, e);
+    const Vec2 d = direction_as_cut(mesh, s.cover_xy, e, failure[e].direction);
+    RayExit fwd, back;
+    if (ray_exit(mesh, e, p, d, 0, fwd) && ray_exit(mesh, e, p, {-d.x, -d.y}, 0, back)) {
+      const std::int32_t crack = cracks_++;
+      // Each end as a crack leaving the element from the other end.
+      const CrackEnd f = crack_end(mesh, e, back.at, fwd), r = crack_end(mesh, e, f.at, back);
+      add(e, r.cut_to, f.cut_to, crack);
+      const std::size_t first = tips_.size();
+      for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
+        tips_.push_back({end.at, dir, crack, !end.stops});
+      for (std::size_t t = first; t < tips_.size(); ++t)
+        if (tips_[t].active) grow(tips_[t]);
+    }
+  }
+  return out;
+}
+
+void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, const pre::RecutMap& map) {
+  segments_.insert(segments_.end(), segments.begin(), segments.end());
+  const std::size_t n = mesh.element_count();
+  std::vector<std::uint8_t> armed(n, 1), debris(n, 0);
+  // Blocks holding an element a segment crossed are new: those below kDebrisArea·h² are debris.
+  std::vector<double> block_area(mesh.block_count(), 0.0);
+  std::vector<std::uint8_t> block_new(mesh.block_count(), 0);
+  for (std::size_t e = 0; e < n; ++e) {
+    const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
+    armed[e] = crossed_[p] ? 0 : armed_[p];
+    debris[e] = debris_.empty() ? 0 : debris_[p];
+    const std::size_t b = static_cast<std::size_t>(mesh.element_block[e]);
+    block_area[b] += element_area(mesh, e);
+    block_new[b] = block_new[b] || crossed_[p];
+  }
+  const double limit = kDebrisArea * mesh.mesh_size * mesh.mesh_size;
+  std::vector<std::uint8_t> block_debris(mesh.block_count(), 0);
+  for (std::size_t b = 0; b < block_area.size(); ++b)
+    if (block_new[b] && block_area[b] < limit) {
+      block_debris[b] = 1;
+      ++debris_blocks_;
+      debris_area_ += block_area[b];
+    }
+  for (std::size_t e = 0; e < n; ++e)
+    debris[e] = debris[e] || block_debris[static_cast<std::size_t>(mesh.element_block[e])];
+  armed_ = std::move(armed);
+  debris_ = std::move(debris);
+  crossed_.clear();
+}
+
+std::string Fracture::save() const {
+  ByteWriter w;
+  w.put<std::uint8_t>(tips_started_ ? 1 : 0);
+  w.put<std::int32_t>(cracks_);
+  w.put<std::uint64_t>(tips_.size());
+  for (const Tip& t : tips_) {
+    w.put(t.at.x), w.put(t.at.y), w.put(t.dir.x), w.put(t.dir.y);
+    w.put<std::int32_t>(t.crack);
+    w.put<std::uint8_t>(t.active ? 1 : 0);
+  }
+  w.put_vector(armed_);
+  w.put_vector(debris_);
+  w.put<std::int32_t>(debris_blocks_);
+  w.put(debris_area_);
+  w.put<std::uint64_t>(segments_.size());
+  for (const CrackSegment& c : segments_) {
+    for (const Vec2& p : {c.a, c.b, c.a_now, c.b_now}) w.put(p.x), w.put(p.y);
+    w.put<std::uint8_t>(c.mode == CrackMode::tensile ? 0 : 1);
+    w.put<std::int32_t>(c.crack);
+    w.put<std::int64_t>(c.step);
+    w.put(c.time);
+  }
+  return w.take();
+}
+
+void Fracture::load(const std::string& bytes, const Mesh& mesh, const std::string& name) {
+  ByteReader r(bytes, name, "FRACTURE");
+  tips_started_ = r.get<std::uint8_t>() != 0;
+  cracks_ = r.get<std::int32_t>();
+  const std::uint64_t tips = r.get<std::uint64_t>();
+  if (tips > bytes.size()) r.fail("too many tips");
+  tips_.clear();
+  for (std::uint64_t i = 0; i < tips; ++i) {
+    Tip t;
+    t.at.x = r.get<double>(), t.at.y = r.get<double>(), t.dir.x = r.get<double>(), t.dir.y = r.get<double>();
+    t.crack = r.get<std::int32_t>();
+    t.active = r.get<std::uint8_t>() != 0;
+    tips_.push_back(t);
+  }
+  armed_ = r.get_vector<std::uint8_t>(mesh.element_count(), "armed elements");
+  debris_ = r.get_vector<std::uint8_t>(mesh.element_count(), "debris elements");
+  for (const std::uint8_t d : debris_)
+    if (d > 1) r.fail("a debris flag is neither 0 nor 1");
+  debris_blocks_ = r.get<std::int32_t>();
+  debris_area_ = r.get<double>();
+  const std::uint64_t segments = r.get<std::uint64_t>();
+  if (segments > bytes.size()) r.fail("too many crack segments");
+  segments_.clear();
+  for (std::uint64_t i = 0; i < segments; ++i) {
+    CrackSegment c;
+    for (Vec2* p : {&c.a, &c.b, &c.a_now, &c.b_now}) p->x = r.get<double>(), p->y = r.get<double>();
+    const std::uint8_t mode = r.get<std::uint8_t>();
+    if (mode > 1) r.fail("crack mode " + std::to_string(mode) + " is neither tensile (0) nor shear (1)");
+    c.mode = mode == 0 ? CrackMode::tensile : CrackMode::shear;
+    c.crack = r.get<std::int32_t>();
+    c.step = r.get<std::int64_t>();
+    c.time = r.get<double>();
+    segments_.push_back(c);
+  }
+  r.expect_end();
+  active_ = true;
+}
+
+}  // namespace nmm::solve

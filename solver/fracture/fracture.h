@@ -1,0 +1,108 @@
+// Intact rock that breaks (docs/fracture.md): which elements an accepted step breaks, the crack
+// segments that break them, and the cracks' tips carried from step to step.
+//
+// The rule, after each accepted solution of a step (the new faces are contacts of the fracture
+// block's crack_set):
+//   1. every crack tip grows: the element ahead of it, if its stress breaks it (rock_strength.h),
+//      is crossed from the tip along its crack direction (turned to continue the crack) to where
+//      the line leaves it, and so on through the next element, until an element holds or the
+//      crack reaches a body boundary or a joint; tips lie on element edges;
+//   2. if no tip grew, at most one new crack starts: in the element most beyond its strength
+//      (largest ratio, then lowest index) that is armed, a segment through the element (its
+//      centroid) along its crack direction, both of whose ends then grow as in 1;
+//   3. the step is solved again from its start on the cracked mesh (time_stepper.cpp attempt),
+//      and 1–3 repeat until its solution breaks nothing more. A crack thus grows and relieves
+//      the stress at the load of the step that broke the rock, whatever the step's length.
+// An element a crack crosses is disarmed — its pieces keep the stress it had when it broke, which
+// the next steps relax — until its stress falls back inside the strength; a disarmed element may
+// still be crossed by a growing tip. Tips start at the ends of the scene's joints that lie inside
+// a body, so a crack grows on from a joint as from a crack.
+// Cracks are cut in the mesh as cut (the reference configuration); their directions come from
+// the current stress, turned into that configuration by each element's own affine map
+// (element_geometry.h).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/mesh.h"
+#include "common/scene.h"
+#include "common/vec2.h"
+#include "preprocess/recut.h"
+#include "solver/discretisation/run_state.h"
+#include "solver/fracture/rock_strength.h"
+
+namespace nmm::solve {
+
+/// One segment of crack, cut into the mesh as one joint of the crack set.
+struct CrackSegment {
+  Vec2 a, b;            ///< m, its ends as cut (reference configuration)
+  Vec2 a_now, b_now;    ///< m, where its ends were when it formed (current configuration)
+  CrackMode mode = CrackMode::tensile;
+  std::int32_t crack = -1;  ///< which crack it belongs to (0, 1, ... in order of starting)
+  std::int64_t step = 0;    ///< the accepted step whose state broke the rock
+  double time = 0;          ///< s, that step's end
+};
+
+class Fracture {
+ public:
+  Fracture() = default;
+  /// Active when the scene has a fracture block and some material a strength.
+  explicit Fracture(const SceneDef& scene);
+  bool active() const { return active_; }
+
+  /// After an accepted step: the segments its state breaks (the rule above), on `mesh` with the
+  /// state's stresses and cover nodes; `removed` [me] 1: excavated (never breaks).
+  std::vector<CrackSegment> find(const Mesh& mesh, const SceneDef& scene, const RunState& s,
+                                 const std::vector<std::uint8_t>& removed);
+  /// The segments `find` returned were cut into `mesh` (`map`: from it to the mesh they were
+  /// found on): they join the record, the elements they crossed are disarmed, and the blocks
+  /// they cut off that are smaller than kDebrisArea·h² become debris.
+  void cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, const pre::RecutMap& map);
+
+  /// [me] 1: debris — an element of a block the cracks cut off smaller than kDebrisArea·h². It
+  /// leaves the model like an excavated body (excavation.h): no stiffness, mass, load or
+  /// contact, its covers held. A splinter a thousandth of an element in area, held by stiff
+  /// crack contacts at a mass four orders below its neighbours', is squeezed out at speed where
+  /// cracks converge and stops the run on penetration; its mass is negligible.
+  const std::vector<std::uint8_t>& debris() const { return debris_; }
+  static constexpr double kDebrisArea = 1e-3;
+  int debris_blocks() const { return debris_blocks_; }
+  double debris_area() const { return debris_area_; }  ///< m²
+
+  /// Every segment cut so far, in order: the run's crack joints follow the scene's joints in it.
+  const std::vector<CrackSegment>& segments() const { return segments_; }
+  int crack_count() const { return cracks_; }
+  /// Steps taken again because their solution broke the rock (this invocation: diagnostics).
+  long resolves() const { return resolves_; }
+  void count_resolve() { ++resolves_; }
+
+  /// The checkpoint's FRACTURE section (tips, armed elements, segments), and back; `mesh`: the
+  /// cracked mesh the section belongs to.
+  std::string save() const;
+  void load(const std::string& bytes, const Mesh& mesh, const std::string& name);
+
+ private:
+  struct Tip {
+    Vec2 at;            // m, as cut
+    Vec2 dir;           // unit, the direction it grows in (as cut)
+    std::int32_t crack = -1;
+    bool active = true;
+  };
+  void start_tips(const Mesh& mesh, const SceneDef& scene);
+
+  bool active_ = false;
+  bool tips_started_ = false;
+  std::vector<Tip> tips_;
+  std::vector<std::uint8_t> armed_;        // [me] 1: may start a crack
+  std::vector<std::uint8_t> crossed_;      // [me of the mesh find() saw] crossed in that step
+  std::vector<std::uint8_t> debris_;       // [me]
+  std::vector<CrackSegment> segments_;
+  int cracks_ = 0;
+  int debris_blocks_ = 0;
+  double debris_area_ = 0;                 // m²
+  long resolves_ = 0;
+};
+
+}  // namespace nmm::solve

@@ -1,0 +1,115 @@
+// A run's state carried onto a re-cut mesh: see state_transfer.h.
+#include "solver/fracture/state_transfer.h"
+
+#include <algorithm>
+
+#include "common/ring_geometry.h"
+#include "solver/fracture/element_geometry.h"
+
+namespace nmm::solve {
+
+namespace {
+
+// The element of `now` that holds a tracked point's start (as cut), among the pieces of the old
+// element it was in; the first piece when none holds it (a point on a crack face).
+std::int32_t piece_holding(const Mesh& now, const std::vector<std::vector<std::int32_t>>& pieces,
+                           const TrackedPoint& p) {
+  const std::vector<std::int32_t>& of = pieces[static_cast<std::size_t>(p.element)];
+  const std::int32_t e = element_holding(now, of, {p.x0, p.y0});
+  return e >= 0 ? e : of.front();
+}
+
+}  // namespace
+
+void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, int dofs_per_cover, RunState& s) {
+  const std::size_t nc = now.cover_count(), ne = now.element_count(), nv = now.loop_vertex_count();
+  const std::size_t m = static_cast<std::size_t>(dofs_per_cover);
+  RunState t = s;  // scalars and per-body data unchanged
+  t.cover_xy.resize(2 * nc);
+  for (auto* v : {&t.cover_u, &t.velocity, &t.accel}) v->resize(m * nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::size_t p = static_cast<std::size_t>(map.cover_parent[c]);
+    for (int k = 0; k < 2; ++k) t.cover_xy[2 * c + k] = s.cover_xy[2 * p + k];
+    for (std::size_t k = 0; k < m; ++k) {
+      t.cover_u[m * c + k] = s.cover_u[m * p + k];
+      t.velocity[m * c + k] = s.velocity[m * p + k];
+      t.accel[m * c + k] = s.accel[m * p + k];
+    }
+  }
+  t.stress.resize(3 * ne);
+  std::vector<std::vector<std::int32_t>> pieces(old.element_count());
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
+    for (int k = 0; k < 3; ++k) t.stress[3 * e + k] = s.stress[3 * p + k];
+    pieces[p].push_back(static_cast<std::int32_t>(e));
+  }
+  t.loop_xy.resize(2 * nv);
+  t.loop_u.resize(2 * nv);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
+    for (std::int32_t v = now.element_loop_offset[e]; v < now.element_loop_offset[e + 1]; ++v) {
+      const std::int32_t was = map.vertex_parent[v];
+      const std::size_t i = static_cast<std::size_t>(v);
+      if (was >= 0) {
+        for (int k = 0; k < 2; ++k) {
+          t.loop_xy[2 * i + k] = s.loop_xy[2 * static_cast<std::size_t>(was) + k];
+          t.loop_u[2 * i + k] = s.loop_u[2 * static_cast<std::size_t>(was) + k];
+        }
+        continue;
+      }
+      const Vec2 X{now.loop_xy[2 * i], now.loop_xy[2 * i + 1]};
+      const Vec2 x = current_point(old, s.cover_xy, p, X);
+      t.loop_xy[2 * i] = x.x;
+      t.loop_xy[2 * i + 1] = x.y;
+      t.loop_u[2 * i] = x.x - X.x;
+      t.loop_u[2 * i + 1] = x.y - X.y;
+    }
+  }
+  for (auto* points : {&t.fixed, &t.loads, &t.measure})
+    for (TrackedPoint& p : *points) p.element = piece_holding(now, pieces, p);
+  t.pattern_pairs.clear();
+  t.block_force.clear();
+  s = std::move(t);
+}
+
+std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& history, const Mesh& old,
+                                             const Mesh& now, const pre::RecutMap& map,
+                                             std::size_t first_new_joint) {
+  std::vector<std::int32_t> vertex_now(old.loop_vertex_count(), -1);
+  for (std::size_t v = 0; v < now.loop_vertex_count(); ++v) {
+    const std::int32_t was = map.vertex_parent[v];
+    if (was >= 0 && vertex_now[static_cast<std::size_t>(was)] < 0) vertex_now[static_cast<std::size_t>(was)] = static_cast<std::int32_t>(v);
+  }
+  // A block of the old mesh → the block of its first piece (a block a crack split keeps the name
+  // of one piece: an entry against the other starts afresh).
+  std::vector<std::int32_t> block_now(old.block_count(), -1);
+  for (std::size_t e = 0; e < now.element_count(); ++e) {
+    const std::int32_t b = old.element_block[static_cast<std::size_t>(map.element_parent[e])];
+    if (block_now[static_cast<std::size_t>(b)] < 0) block_now[static_cast<std::size_t>(b)] = now.element_block[e];
+  }
+  std::vector<ContactHistory> out;
+  out.reserve(history.size());
+  for (ContactHistory h : history) {
+    const std::int32_t v = vertex_now[static_cast<std::size_t>(h.vertex)];
+    if (v < 0) continue;
+    h.vertex = v;
+    h.block = block_now[static_cast<std::size_t>(h.block)];
+    out.push_back(h);
+  }
+  for (std::size_t i = 0; i < now.contact_edge.size(); ++i) {
+    const std::int32_t v = now.contact_edge[i], across = now.contact_edge_opposite[i];
+    if (across < 0 || now.loop_edge_joint[static_cast<std::size_t>(v)] < static_cast<std::int32_t>(first_new_joint))
+      continue;
+    const std::int32_t block = now.element_block[static_cast<std::size_t>(across)];
+    const bool has = std::any_of(out.begin(), out.end(), [&](const ContactHistory& h) { return h.vertex == v && h.block == block; });
+    if (has) continue;
+    ContactHistory h;
+    h.vertex = v;
+    h.block = block;
+    h.state = ContactState::locked;
+    out.push_back(h);
+  }
+  return out;
+}
+
+}  // namespace nmm::solve

@@ -1,0 +1,33 @@
+// What a run carries over when cracks re-cut its mesh (docs/fracture.md "What a new crack
+// inherits"): every new physical cover takes the cover function of the cover it is a piece of
+// (cover order 0: its displacement, velocity, acceleration and node), every new element the
+// stress of the element it is a piece of, so the displacement, velocity and stress fields are the
+// same functions before and after the cut and no energy appears or vanishes with it. A vertex the
+// crack made is placed where its element's affine map puts it (element_geometry.h); the others
+// keep their place.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/mesh.h"
+#include "preprocess/recut.h"
+#include "solver/contact/contact.h"
+#include "solver/discretisation/run_state.h"
+
+namespace nmm::solve {
+
+/// s, a state on `old`, carried onto `now` (map: preprocess/recut.h); dofs_per_cover: the run's
+/// (2 at cover order 0). The sparse pattern's element pairs and the blocks' handed-on forces are
+/// dropped: the next step grows the pattern again, and a step's hand-on is no state of the rock.
+void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, int dofs_per_cover, RunState& s);
+
+/// The contact history carried onto `now`: an entry follows its vertex (dropped where the vertex is
+/// gone) and the block of the element it was against; a vertex at the start of a new crack face's
+/// edge (a joint from `first_new_joint` on) starts closed and locked against the element across —
+/// a fresh crack starts closed, and opens, slides or closes again as its contacts decide.
+std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& history, const Mesh& old,
+                                             const Mesh& now, const pre::RecutMap& map,
+                                             std::size_t first_new_joint);
+
+}  // namespace nmm::solve
