@@ -1,0 +1,277 @@
+// Intact rock that breaks (docs/fracture.md), checked against the strength it was given:
+//   - a bar pulled apart cracks once its stress reaches the tensile strength (within 2 %), across
+//     the bar, normal to σ1, and unloads;
+//   - a specimen in uniaxial compression peaks at UCS = 2c·cosφ/(1 − sinφ) (within 5 %) and its
+//     first crack runs on the Mohr–Coulomb plane, 45° + φ/2 from the minor principal stress;
+//   - cutting a crack into a stressed mesh carries the state over: the displacement field and the
+//     strain energy are the same before and after (no jump in energy.csv);
+//   - a run restarted from a checkpoint written after cracks formed continues bit for bit;
+//   - a scene without a fracture block does not crack, however far past the strength it is loaded.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "common/math_constants.h"
+#include "common/scene.h"
+#include "common/mesh_file.h"
+#include "preprocess/cover_cutter.h"
+#include "preprocess/recut.h"
+#include "solver/fracture/state_transfer.h"
+#include "solver/stepping/restart.h"
+#include "solver/stepping/time_stepper.h"
+#include "tests/ended_ok.h"
+
+namespace nmm {
+namespace {
+
+using solve::CrackMode;
+using solve::CrackSegment;
+using solve::RunState;
+using solve::TimeStepper;
+
+// A w × h rectangle of rock (E 10 GPa, ν 0.2, plane stress, static) with the given strength,
+// mesh size `size`; crack faces: constant springs, φ 30°. `axis` 0: its ends x = 0 and x = w are
+// held in x and the end x = w moves at `speed` (m/s, + pulls); axis 1: the same along y.
+nlohmann::json specimen(double w, double h, double size, int axis, double speed, const nlohmann::json& strength,
+                        bool fracture = true) {
+  nlohmann::json d;
+  d["plane"] = "stress";
+  d["materials"]["rock"] = {{"density", 2500}, {"young", 1e10}, {"poisson", 0.2}, {"strength", strength}};
+  d["joint_sets"]["crack"] = {{"friction_deg", 30},
+                              {"normal", {{"model", "constant"}, {"kn", 1e11}}},
+                              {"shear", {{"model", "constant"}, {"ks", 4e10}}}};
+  d["bodies"] = {{{"material", "rock"}, {"outer", {{0, 0}, {w, 0}, {w, h}, {0, h}}}}};
+  if (fracture) d["fracture"] = {{"crack_set", "crack"}};
+  d["mesh"]["size"] = size;
+  const char* fix = axis == 0 ? "x" : "y";
+  const nlohmann::json near = axis == 0 ? nlohmann::json{{0, 0}, {0, h}} : nlohmann::json{{0, 0}, {w, 0}};
+  const nlohmann::json far = axis == 0 ? nlohmann::json{{w, 0}, {w, h}} : nlohmann::json{{0, h}, {w, h}};
+  nlohmann::json v = axis == 0 ? nlohmann::json{speed, 0} : nlohmann::json{0, speed};
+  d["supports"] = {{{"points", near}, {"fix", fix}}, {{"points", far}, {"fix", fix}, {"velocity", v}}};
+  d["fixed_points"] = {axis == 0 ? nlohmann::json{0, h / 2} : nlohmann::json{w / 2, 0}};
+  d["solver"] = {{"time_step", 1e-3}, {"steps", 1}, {"dynamic", false}};
+  return d;
+}
+
+// Pa, the area-weighted mean of stress component k (0 σxx, 1 σyy) over the elements left in the
+// model. In equilibrium without body force it is the end reaction per unit width: ∫σ dA = ∮ t⊗x ds.
+double mean_stress(const TimeStepper& st, int k) {
+  const auto& v = st.view();
+  const std::vector<double> s = solve::mean_stress(v);
+  const std::vector<std::uint8_t>& debris = v.fracture.debris();
+  double sum = 0, area = 0;
+  for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
+    if (!debris.empty() && debris[e]) continue;
+    const double a = element_area(v.mesh, e);
+    sum += a * s[3 * e + static_cast<std::size_t>(k)];
+    area += a;
+  }
+  return sum / area;
+}
+
+struct LoadRun {
+  Outcome status;
+  double peak = 0;          // Pa, largest |mean stress| along the loading axis
+  std::int64_t peak_step = 0;
+  double last = 0;          // Pa, |mean stress| at the end
+  std::vector<CrackSegment> segments;
+};
+
+LoadRun load(TimeStepper& st, int axis, double seconds) {
+  LoadRun r;
+  r.status = st.run_until(seconds, [&](std::int64_t n) {
+    const double s = std::abs(mean_stress(st, axis));
+    if (s > r.peak) r.peak = s, r.peak_step = n;
+    r.last = s;
+  });
+  r.segments = st.view().fracture.segments();
+  return r;
+}
+
+double angle_deg(const CrackSegment& c) {  // of the segment's line, in [0°, 180°) from x
+  double a = std::atan2(c.b.y - c.a.y, c.b.x - c.a.x) * 180 / kPi;
+  if (a < 0) a += 180;
+  if (a >= 180) a -= 180;
+  return a;
+}
+
+}  // namespace
+
+// σt 1 MPa, E 10 GPa: the bar's stress grows 2.5 kPa a step (1 mm/s over 4 m, Δt 1 ms), so the
+// tension cut-off is reached at step 400. The crack forms where the stress first reaches it, runs
+// across the bar normal to σ1 = σxx, and the bar unloads.
+TEST(Fracture, BarInTensionCracksAcrossAtTheTensileStrength) {
+  const double st_ = 1e6;
+  const nlohmann::json strength = {{"tensile", st_}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  const SceneDef s = scene_from_json(specimen(4, 1, 0.25, 0, 1e-3, strength), "bar");
+  const Mesh m = pre::build_mesh(s, "bar");
+  TimeStepper st(m, s, "bar");
+  const LoadRun r = load(st, 0, 0.6);
+  double length = 0, worst = 0;
+  for (const CrackSegment& c : r.segments) {
+    length += std::hypot(c.b.x - c.a.x, c.b.y - c.a.y);
+    worst = std::max(worst, std::abs(angle_deg(c) - 90));
+  }
+  std::printf("bar: peak %.5g Pa at step %lld (σt %.5g), end %.4g Pa; %zu segments, %.4f m of crack, "
+              "furthest %.2f° from normal to σ1; %zu → %zu elements\n",
+              r.peak, static_cast<long long>(r.peak_step), st_, r.last, r.segments.size(), length, worst,
+              m.element_count(), st.view().mesh.element_count());
+  ASSERT_PRED1(test::ended_ok, r.status);
+  ASSERT_FALSE(r.segments.empty());
+  EXPECT_NEAR(r.peak, st_, 0.02 * st_);
+  EXPECT_LT(r.last, 0.02 * st_);  // cracked through: it carries nothing
+  for (const CrackSegment& c : r.segments) EXPECT_EQ(c.mode, CrackMode::tensile);
+  EXPECT_LT(worst, 5.0);
+  EXPECT_NEAR(length, 1.0, 0.02);  // one crack across the 1 m bar
+  EXPECT_EQ(st.view().fracture.crack_count(), 1);
+  EXPECT_GT(st.view().mesh.element_count(), m.element_count());
+}
+
+// c 2 MPa, φ 30°: UCS = 2c·cosφ/(1 − sinφ) = 6.93 MPa, reached at step 1386 (1 mm/s over 2 m).
+// The tension cut-off is out of reach (100 MPa), so every segment is shear, and the first runs on
+// a Mohr–Coulomb plane: 45° + φ/2 = 60° from the minor principal stress σxx.
+TEST(Fracture, UniaxialCompressionPeaksAtTheUcsOnTheCriticalPlane) {
+  const double c = 2e6, phi = 30 * kPi / 180;
+  const double ucs = 2 * c * std::cos(phi) / (1 - std::sin(phi));
+  const nlohmann::json strength = {{"tensile", 1e8}, {"cohesion", c}, {"friction_deg", 30}};
+  const SceneDef s = scene_from_json(specimen(1, 2, 0.125, 1, -1e-3, strength), "ucs");
+  const Mesh m = pre::build_mesh(s, "ucs");
+  TimeStepper st(m, s, "ucs");
+  const LoadRun r = load(st, 1, 1.8);
+  ASSERT_FALSE(r.segments.empty());
+  const CrackSegment& first = r.segments.front();
+  const double a = angle_deg(first);
+  std::printf("ucs: peak %.5g Pa at step %lld (UCS %.5g, %+.2f %%), end %.4g Pa; %zu segments in %d cracks, "
+              "first at step %lld at %.2f° from x (60° or 120° expected)\n",
+              r.peak, static_cast<long long>(r.peak_step), ucs, 100 * (r.peak / ucs - 1), r.last,
+              r.segments.size(), st.view().fracture.crack_count(), static_cast<long long>(first.step), a);
+  ASSERT_PRED1(test::ended_ok, r.status);
+  EXPECT_NEAR(r.peak, ucs, 0.05 * ucs);
+  for (const CrackSegment& k : r.segments) EXPECT_EQ(k.mode, CrackMode::shear);
+  EXPECT_NEAR(std::min(std::abs(a - 60), std::abs(a - 120)), 0.0, 3.0);
+  EXPECT_LT(r.last, 0.9 * r.peak);  // it lost strength where it cracked
+}
+
+// Without a fracture block the same specimen is elastic to the end: 9 MPa, 30 % past its UCS.
+TEST(Fracture, NothingBreaksWithoutAFractureBlock) {
+  const nlohmann::json strength = {{"tensile", 1e8}, {"cohesion", 2e6}, {"friction_deg", 30}};
+  const SceneDef s = scene_from_json(specimen(1, 2, 0.25, 1, -1e-3, strength, false), "ucs");
+  const Mesh m = pre::build_mesh(s, "ucs");
+  TimeStepper st(m, s, "ucs");
+  const LoadRun r = load(st, 1, 1.8);
+  ASSERT_PRED1(test::ended_ok, r.status);
+  EXPECT_FALSE(st.view().fracture.active());
+  EXPECT_TRUE(r.segments.empty());
+  EXPECT_NEAR(r.last, 1e10 * 1.8e-3 / 2, 0.01 * 9e6);
+  EXPECT_EQ(st.view().mesh.element_count(), m.element_count());
+}
+
+namespace {
+// m, the displacement field of element e of `m` (cover order 0: Σ_k λ_k(p)·u_k over its
+// triangle's nodes) at p, as cut.
+std::array<double, 2> field(const Mesh& m, const std::vector<double>& cover_u, std::size_t e, Vec2 p) {
+  const std::int32_t t = m.element_triangle[e];
+  Vec2 n[3];
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t i = static_cast<std::size_t>(m.triangle_nodes[3 * static_cast<std::size_t>(t) + k]);
+    n[k] = {m.node_xy[2 * i], m.node_xy[2 * i + 1]};
+  }
+  const double area2 = (n[1].x - n[0].x) * (n[2].y - n[0].y) - (n[2].x - n[0].x) * (n[1].y - n[0].y);
+  std::array<double, 2> u{0, 0};
+  for (int k = 0; k < 3; ++k) {
+    const Vec2 b = n[(k + 1) % 3], c = n[(k + 2) % 3];
+    const double l = ((b.x - p.x) * (c.y - p.y) - (c.x - p.x) * (b.y - p.y)) / area2;
+    const std::size_t pc = static_cast<std::size_t>(m.element_covers[3 * e + static_cast<std::size_t>(k)]);
+    u[0] += l * cover_u[2 * pc];
+    u[1] += l * cover_u[2 * pc + 1];
+  }
+  return u;
+}
+
+// J/m, ½ Σ_e A_e σ_eᵀ D⁻¹ σ_e in plane stress (E, ν).
+double strain_energy(const Mesh& m, const std::vector<double>& stress, double E, double nu) {
+  double U = 0;
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    const double sx = stress[3 * e], sy = stress[3 * e + 1], txy = stress[3 * e + 2];
+    const double w = (sx * sx + sy * sy - 2 * nu * sx * sy + 2 * (1 + nu) * txy * txy) / E;
+    U += 0.5 * element_area(m, e) * w;
+  }
+  return U;
+}
+}  // namespace
+
+// A crack cut across the bar at 75 % of its strength, through elements and nodes' stars: every
+// loop vertex of the new mesh moves as the field of the element it came from moved it (the crack's
+// own vertices included), and the strain energy is the same to round-off.
+TEST(Fracture, CuttingACrackCarriesTheStateOver) {
+  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  const SceneDef s = scene_from_json(specimen(4, 1, 0.25, 0, 1e-3, strength), "bar");
+  const Mesh m = pre::build_mesh(s, "bar");
+  TimeStepper st(m, s, "bar");
+  ASSERT_PRED1(test::ended_ok, st.run_until(0.3, [](std::int64_t) {}));
+  ASSERT_TRUE(st.view().fracture.segments().empty());
+  SceneDef cracked = s;
+  const std::size_t first = cracked.joints.size();
+  cracked.joints.push_back({cracked.fracture.crack_set, {{2.03, -0.01}, {2.11, 1.01}}});
+  pre::RecutMap map;
+  const Mesh now = pre::recut(m, cracked, first, "bar", map);
+  RunState after = st.view().state;
+  solve::transfer_state(m, now, map, 2, after);
+  const RunState& before = st.view().state;
+  ASSERT_GT(now.element_count(), m.element_count());
+
+  double worst = 0, scale = 0;
+  for (std::size_t e = 0; e < now.element_count(); ++e) {
+    const std::size_t parent = static_cast<std::size_t>(map.element_parent[e]);
+    for (std::int32_t v = now.element_loop_offset[e]; v < now.element_loop_offset[e + 1]; ++v) {
+      const Vec2 p{now.loop_xy[2 * v], now.loop_xy[2 * v + 1]};
+      const auto was = field(m, before.cover_u, parent, p);   // the old element's field there
+      const auto is = field(now, after.cover_u, e, p);        // the new element's
+      const std::size_t i = static_cast<std::size_t>(v);
+      for (int k = 0; k < 2; ++k) {
+        worst = std::max({worst, std::abs(is[k] - was[k]), std::abs(after.loop_u[2 * i + k] - was[k])});
+        scale = std::max(scale, std::abs(was[k]));
+      }
+    }
+  }
+  const double U0 = strain_energy(m, before.stress, 1e10, 0.2), U1 = strain_energy(now, after.stress, 1e10, 0.2);
+  std::printf("insertion: %zu → %zu elements; displacement differs by at most %.3g m (of %.3g m); strain "
+              "energy %.10g → %.10g J/m\n", m.element_count(), now.element_count(), worst, scale, U0, U1);
+  EXPECT_GT(scale, 1e-4);
+  EXPECT_LT(worst, 1e-12 * scale * 1e3);
+  EXPECT_NEAR(U1, U0, 1e-12 * U0);
+  EXPECT_GT(U0, 0.5 * 0.75e6 * 0.75e6 / 1e10 * 4 * 0.9);  // the bar is loaded: ½σ²/E·V
+}
+
+// A run restarted from a checkpoint written after its first cracks (MESH and FRACTURE sections)
+// continues bit for bit as the run that went straight on — cracks, mesh and state.
+TEST(Fracture, RestartMidCrackingContinuesBitForBit) {
+  const nlohmann::json strength = {{"tensile", 1e8}, {"cohesion", 2e6}, {"friction_deg", 30}};
+  const nlohmann::json doc = specimen(1, 2, 0.25, 1, -1e-3, strength);
+  const SceneDef s = scene_from_json(doc, "ucs");
+  Mesh m = pre::build_mesh(s, "ucs");
+  m.scene_text = doc.dump();  // as nmm-preprocess records it: the checkpoint's MESH section checks it
+  m.scene_sha256 = sha256(m.scene_text);
+  TimeStepper straight(m, s, "ucs"), first(m, s, "ucs"), second(m, s, "ucs");
+  ASSERT_PRED1(test::ended_ok, straight.run_until(1.5, [](std::int64_t) {}));
+  ASSERT_PRED1(test::ended_ok, first.run_until(1.42, [](std::int64_t) {}));
+  const std::size_t at_checkpoint = first.view().fracture.segments().size();
+  ASSERT_GT(at_checkpoint, 0u) << "the checkpoint must hold cracks";
+  const std::string path = ::testing::TempDir() + "/cracked.nmmstate";
+  solve::write_checkpoint(first.view(), path);
+  second.restart_from(path);
+  EXPECT_EQ(solve::state_hash(second.view()), solve::state_hash(first.view()));
+  ASSERT_PRED1(test::ended_ok, second.run_until(1.5, [](std::int64_t) {}));
+  std::printf("restart with %zu segments at the checkpoint, %zu at the end\n", at_checkpoint,
+              straight.view().fracture.segments().size());
+  EXPECT_GT(straight.view().fracture.segments().size(), at_checkpoint) << "cracks must grow after the restart";
+  EXPECT_EQ(second.view().fracture.segments().size(), straight.view().fracture.segments().size());
+  EXPECT_EQ(second.view().mesh.element_count(), straight.view().mesh.element_count());
+  EXPECT_EQ(solve::state_hash(second.view()), solve::state_hash(straight.view()));
+}
+
+}  // namespace nmm
