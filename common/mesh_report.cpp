@@ -12,6 +12,14 @@ namespace nmm {
 
 namespace {
 
+// Joints the mesh's edges name beyond the scene's own: the crack segments of a cracked mesh.
+std::size_t crack_segments(const Mesh& mesh, const SceneDef& scene) {
+  std::int32_t last = -1;
+  for (const std::int32_t j : mesh.loop_edge_joint) last = std::max(last, j);
+  const auto n = static_cast<std::size_t>(last + 1);
+  return n > scene.joints.size() ? n - scene.joints.size() : 0;
+}
+
 // %g for people: also drops printf's padded exponent (1e-06 -> 1e-6).
 std::string fmt_g(double v, int digits = 6) {
   std::string s = format_rough(v, digits);
@@ -104,6 +112,10 @@ std::string mesh_summary_text(const Mesh& mesh, const SceneDef* scene) {
   if (scene) {
     row(out, "bodies", std::to_string(scene->bodies.size()));
     row(out, "joints", std::to_string(scene->joints.size()));
+    // A mesh the run's cracks re-cut (nmm-solve's cracked_mesh.nmm, docs/fracture.md): its edges
+    // name the crack segments as joints after the scene's.
+    if (const std::size_t cracks = crack_segments(mesh, *scene); cracks > 0)
+      row(out, "crack segments", std::to_string(cracks) + "  (cut by the run: joints after the scene's)");
   }
   std::string area = fmt_g(s.area, 10) + " m²";
   if (scene) area += "  (scene bodies: " + fmt_g(s.scene_area, 10) + " m²)";
@@ -120,7 +132,7 @@ std::string mesh_summary_text(const Mesh& mesh, const SceneDef* scene) {
           " with an element across)");
   std::string version = std::to_string(kMeshFormatVersion);
   if (!mesh.tool_version.empty())
-    version += "  (written by nmm-preprocess " + mesh.tool_version + ")";
+    version += "  (written by " + (mesh.tool.empty() ? std::string("nmm-preprocess") : mesh.tool) + " " + mesh.tool_version + ")";
   row(out, "file format version", version);
   row(out, "scene SHA-256", to_hex(mesh.scene_sha256));
   return out;
@@ -153,6 +165,7 @@ nlohmann::json mesh_report_json(const Mesh& mesh, const SceneDef* scene, bool fu
   j["dofs_per_cover"] = mesh.dofs_per_cover;
   j["bodies"] = scene ? json(scene->bodies.size()) : json(nullptr);
   j["joints"] = scene ? json(scene->joints.size()) : json(nullptr);
+  if (scene && crack_segments(mesh, *scene) > 0) j["crack_segments"] = crack_segments(mesh, *scene);
   j["scene_area"] = scene ? json(s.scene_area) : json(nullptr);
   j["loop_vertices"] = mesh.loop_vertex_count();
   j["contact_edges"] = mesh.contact_edge.size();

@@ -90,6 +90,12 @@ std::vector<int> edge_contact_states(const Mesh& mesh,
   return state;
 }
 
+namespace {
+// Open cracks by how they formed (docs/fracture.md).
+constexpr const char* kTensileCrack = "#e41a1c";
+constexpr const char* kShearCrack = "#7b3294";
+}  // namespace
+
 std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureState& state,
                        PictureField field) {
   const std::vector<double>& xy = *state.loop_xy;
@@ -166,8 +172,13 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   // Joints and boundaries where they are now, coloured by the state of their contacts; the
   // legend's lengths are the true ones.
   const std::vector<int> edge_state = edge_contact_states(mesh, state.contacts);
-  std::vector<std::pair<Vec2, Vec2>> joints, bounds, stick_edges, slide_edges, excavated;
+  std::vector<std::pair<Vec2, Vec2>> joints, bounds, stick_edges, slide_edges, excavated, tensile, shear;
   JointStateLengths len;
+  double tensile_length = 0, shear_length = 0;  // m, of open cracks
+  const auto crack_mode = [&](int v) -> std::uint8_t {
+    const auto j = static_cast<std::size_t>(mesh.loop_edge_joint[static_cast<std::size_t>(v)]);
+    return mesh.loop_edge_joint[static_cast<std::size_t>(v)] >= 0 && j < state.joint_crack.size() ? state.joint_crack[j] : 0;
+  };
   for (std::size_t e = 0; e < ne; ++e) {
     const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
     for (int v = b; v < end; ++v) {
@@ -189,6 +200,12 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
       } else if (edge_state[v] == 1) {
         stick_edges.push_back(seg);
         len.sticking += l;
+      } else if (joint && crack_mode(v) == 1) {
+        tensile.push_back(seg);
+        tensile_length += l;
+      } else if (joint && crack_mode(v) == 2) {
+        shear.push_back(seg);
+        shear_length += l;
       } else if (joint) {
         joints.push_back(seg);
         len.open += l;
@@ -220,6 +237,8 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   svg.segments(excavated, {"none", "#999999", line, 6 * line, 1});
   svg.segments(bounds, {"none", "#000000", 1.5 * line, 0, 1});
   svg.segments(joints, {"none", joint_colour, 1.2 * line, 0, 1});
+  svg.segments(tensile, {"none", kTensileCrack, 1.8 * line, 0, 1});
+  svg.segments(shear, {"none", kShearCrack, 1.8 * line, 0, 1});
   svg.segments(stick_edges, {"none", "#1f77b4", 3 * line, 0, 1});
   svg.segments(slide_edges, {"none", "#ff7f0e", 3 * line, 0, 1});
   // Contact points on top, in the colour of their state, at their vertex's drawn position.
@@ -370,6 +389,12 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     entry("#1f77b4", 3 * line, buf);
     std::snprintf(buf, sizeof buf, "open joints: %.3g m", len.open);
     entry("#8b0000", 1.2 * line, buf);
+    if (!state.joint_crack.empty()) {
+      std::snprintf(buf, sizeof buf, "open tensile cracks: %.3g m", tensile_length);
+      entry(kTensileCrack, 1.8 * line, buf);
+      std::snprintf(buf, sizeof buf, "open shear cracks: %.3g m", shear_length);
+      entry(kShearCrack, 1.8 * line, buf);
+    }
   } else {
     entry("#888888", 1.2 * line,
           "joints: contact state not recorded at this step (contacts.csv sampled, --contacts-every)");

@@ -26,6 +26,10 @@
 // A run that stopped on a failure gets a short title ("stopped, reason below"); the reason and
 // its likely cause (failure_cause.h) are written under the picture, wrapped to its width.
 //
+// Cracks the run made (docs/fracture.md) are joints too: closed, they show their contacts' state
+// like any joint; open, they are drawn by how they formed — tensile red, shear purple — with
+// their lengths in the legend.
+//
 // Excavated bodies (excavation.h) are gone from the model: the solver only holds their covers
 // still so that the system stays regular. They are not filled, not in the colour scale, and
 // their outline is drawn thin, grey and dashed where they were, the legend saying "excavated".
@@ -67,6 +71,9 @@ struct PictureState {
   bool contacts_known = true;           ///< false: this state's contacts were not recorded
   std::vector<Vec2> measure_points;     ///< m, current positions
   std::vector<std::uint8_t> excavated_body;  ///< [body] 1: excavated by this state (empty: none)
+  /// [joint of the mesh] what each joint is: 0 a scene joint, 1 a tensile crack, 2 a shear crack
+  /// (the run's cracks follow the scene's joints, docs/fracture.md); empty: no cracks
+  std::vector<std::uint8_t> joint_crack;
   /// m, where each measure point started (empty: drawn where it is, not exaggerated)
   std::vector<Vec2> measure_start;
   /// Factor the drawn displacements are multiplied by (1: true scale); 0: automatic_exaggeration.

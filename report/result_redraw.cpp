@@ -11,6 +11,8 @@
 #include "report/failure_cause.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -68,6 +70,33 @@ nlohmann::json read_run_summary(const std::string& dir) {
   }
 }
 
+namespace {
+// RUN/cracks.csv (step,time,x0,y0,x1,y1,mode): each row's segment appended to `scene`'s joints
+// (of its crack set) and its mode to `joint_crack` (1 tensile, 2 shear), in the run's order.
+void read_crack_rows(const std::string& dir, SceneDef& scene, std::vector<std::uint8_t>& joint_crack) {
+  const std::string path = (fs::path(dir) / "cracks.csv").string();
+  std::istringstream in(read_text_file(path));
+  std::string line;
+  std::getline(in, line);
+  if (line != "step,time,x0,y0,x1,y1,mode") throw InputError(path, "line 1", "is not the header of cracks.csv");
+  for (int row = 2; std::getline(in, line); ++row) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    double v[4];
+    bool ok = f.size() == 7 && (f[6] == "tensile" || f[6] == "shear");
+    for (int k = 0; ok && k < 4; ++k) {
+      char* end = nullptr;
+      v[k] = std::strtod(f[static_cast<std::size_t>(2 + k)].c_str(), &end);
+      ok = end != f[static_cast<std::size_t>(2 + k)].c_str() && *end == 0 && std::isfinite(v[k]);
+    }
+    if (!ok) throw InputError(path, "line " + std::to_string(row), "is not step,time,x0,y0,x1,y1,tensile|shear");
+    scene.joints.push_back({scene.fracture.crack_set, {{v[0], v[1]}, {v[2], v[3]}}});
+    joint_crack.push_back(f[6] == "tensile" ? 1 : 2);
+  }
+}
+}  // namespace
+
 RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_given) {
   const std::string summary_path = (fs::path(dir) / "summary.json").string();
   RunInputs r;
@@ -98,9 +127,7 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
   const RunInputs run_inputs = load_run_inputs(dir, options.mesh_path);
   const nlohmann::json& summary = run_inputs.summary;
   const nlohmann::json inputs = summary.value("inputs", nlohmann::json::object());
-  const Mesh& mesh = run_inputs.mesh;
   const std::string& mesh_path = run_inputs.mesh_path;
-  const SceneDef& scene = run_inputs.scene;
 
   std::string field_name = options.field;
   if (field_name.empty()) field_name = inputs.value("picture_field", std::string("displacement"));
@@ -127,12 +154,30 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
   std::snprintf(name, sizeof name, "frames/frame_%06lld.vtu", static_cast<long long>(step));
   const std::string frame_path = (fs::path(dir) / name).string();
   const PolygonGrid grid = read_vtu(frame_path);
-  if (grid.point_count() != mesh.loop_vertex_count() || grid.cell_count() != mesh.element_count())
+  const auto fits = [&](const Mesh& m) {
+    return grid.point_count() == m.loop_vertex_count() && grid.cell_count() == m.element_count();
+  };
+  // A cracked run (docs/fracture.md): its frames after the last re-cut are of the mesh the cracks
+  // cut (RUN/cracked_mesh.nmm), whose joints after the scene's are the cracks of cracks.csv.
+  const fs::path cracked_path = fs::path(dir) / "cracked_mesh.nmm";
+  const bool cracked = !fits(run_inputs.mesh) && fs::exists(cracked_path);
+  const Mesh cracked_mesh = cracked ? read_mesh_file(cracked_path.string()) : Mesh{};
+  const Mesh& mesh = cracked ? cracked_mesh : run_inputs.mesh;
+  SceneDef cracked_scene;
+  std::vector<std::uint8_t> joint_crack;
+  if (cracked) {
+    cracked_scene = run_inputs.scene;
+    joint_crack.assign(cracked_scene.joints.size(), 0);
+    read_crack_rows(dir, cracked_scene, joint_crack);
+  }
+  const SceneDef& scene = cracked ? cracked_scene : run_inputs.scene;
+  if (!fits(mesh))
     throw InputError(frame_path, "",
-                     "is not a frame of " + mesh_path + " (" + std::to_string(grid.point_count()) +
-                         " points, " + std::to_string(grid.cell_count()) + " cells; the mesh has " +
-                         std::to_string(mesh.loop_vertex_count()) + " loop vertices, " +
-                         std::to_string(mesh.element_count()) + " elements)");
+                     "is not a frame of " + (cracked ? cracked_path.string() : mesh_path) + " (" +
+                         std::to_string(grid.point_count()) + " points, " + std::to_string(grid.cell_count()) +
+                         " cells; the mesh has " + std::to_string(mesh.loop_vertex_count()) + " loop vertices, " +
+                         std::to_string(mesh.element_count()) + " elements)" +
+                         (cracked ? "; a cracked run's frames before its last crack have meshes not kept" : ""));
   const GridArray* stress_array = find_array(grid.cell_data, "stress");
   if (stress_array == nullptr || stress_array->components != 3)
     throw InputError(frame_path, "", "has no 3-component cell array 'stress'");
@@ -150,6 +195,7 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
   if (last) state.stop = run_outcome(summary).code;  // an earlier frame is no stop
   state.loop_xy = &loop_xy;
   state.stress = &stress;
+  state.joint_crack = std::move(joint_crack);
   // Bodies excavated by this frame's step (summary.json "excavated_bodies", cumulative across
   // restarts): left out of the picture as nmm-solve --pictures leaves them out.
   if (summary.contains("excavated_bodies") && summary["excavated_bodies"].is_array())

@@ -6,6 +6,10 @@
 //   - cutting a crack into a stressed mesh carries the state over: the displacement field and the
 //     strain energy are the same before and after (no jump in energy.csv);
 //   - a run restarted from a checkpoint written after cracks formed continues bit for bit;
+//   - the Brazilian disc of data/brazilian_disc.json splits along its loaded diameter at a load
+//     within 15 % of P = πDtσt/2 (7 % of it corrected for the loading flats);
+//   - the step-path slope of data/step_path_slope.json slides once its rock bridges break, and
+//     stands when they are ten times stronger;
 //   - a scene without a fracture block does not crack, however far past the strength it is loaded.
 #include <gtest/gtest.h>
 
@@ -18,6 +22,7 @@
 #include "common/math_constants.h"
 #include "common/scene.h"
 #include "common/mesh_file.h"
+#include "common/whole_file.h"
 #include "preprocess/cover_cutter.h"
 #include "preprocess/recut.h"
 #include "solver/fracture/state_transfer.h"
@@ -154,6 +159,74 @@ TEST(Fracture, UniaxialCompressionPeaksAtTheUcsOnTheCriticalPlane) {
   for (const CrackSegment& k : r.segments) EXPECT_EQ(k.mode, CrackMode::shear);
   EXPECT_NEAR(std::min(std::abs(a - 60), std::abs(a - 120)), 0.0, 3.0);
   EXPECT_LT(r.last, 0.9 * r.peak);  // it lost strength where it cracked
+}
+
+// data/brazilian_disc.json: D = 1 m, σt = 5 MPa, squeezed between two smooth flats (held in y
+// only, a fixed point at the bottom) of 2α = 20° of arc, 2R·cosα = 0.985 m apart. The load per
+// metre is P = A·mean σyy / H (∫σyy dA = P·H in equilibrium). The standard formula, for a line
+// load, splits it at P = πDtσt/2 = 7.85 MN/m; a load spread over 2α (Hondros 1959) lowers the
+// centre's tension to 2P/(πDt)·(sin2α − α)/sinα = 0.965 of it, so P = 8.14 MN/m. Measured with
+// h = 0.05 m (D/h = 20): 8.57 MN/m, +9.1 % and +5.3 %; the centre's element stress before it
+// cracks is 0.916 of the line-load value (0.909 at h = 0.1 m): constant-strain elements.
+TEST(Fracture, BrazilianDiscSplitsAtItsTensileStrength) {
+  const std::string path = std::string(NMM_SOURCE_DIR) + "/data/brazilian_disc.json";
+  const SceneDef s = parse_scene(read_text_file(path), path);
+  const Mesh m = pre::build_mesh(s, path);
+  TimeStepper st(m, s, path);
+  const double D = 1, H = 2 * 0.5 * std::cos(10 * kPi / 180), sigma_t = 5e6;
+  const double expected = kPi * D * sigma_t / 2;
+  const double area = total_area(m);
+  double peak = 0;
+  std::int64_t peak_step = 0;
+  const Outcome o = st.run_until(1.1, [&](std::int64_t n) {
+    const double P = area * std::abs(mean_stress(st, 1)) / H;
+    if (P > peak) peak = P, peak_step = n;
+  });
+  ASSERT_PRED1(test::ended_ok, o);
+  const std::vector<CrackSegment>& cracks = st.view().fracture.segments();
+  ASSERT_FALSE(cracks.empty());
+  const CrackSegment& first = cracks.front();
+  const Vec2 mid{0.5 * (first.a.x + first.b.x), 0.5 * (first.a.y + first.b.y)};
+  std::printf("Brazilian disc: peak P %.4g N/m at step %lld (πDσt/2 = %.4g, %+.2f %%); first crack at step %lld "
+              "at (%.3f, %.3f), %.2f° from x; %zu segments\n",
+              peak, static_cast<long long>(peak_step), expected, 100 * (peak / expected - 1),
+              static_cast<long long>(first.step), mid.x, mid.y, angle_deg(first), cracks.size());
+  const double alpha = 10 * kPi / 180;
+  const double hondros = expected * std::sin(alpha) / (std::sin(2 * alpha) - alpha);
+  std::printf("with the flats' correction (Hondros): %.4g N/m, %+.2f %%\n", hondros, 100 * (peak / hondros - 1));
+  EXPECT_NEAR(peak, expected, 0.15 * expected);
+  EXPECT_NEAR(peak, hondros, 0.07 * hondros);
+  EXPECT_EQ(first.mode, CrackMode::tensile);
+  EXPECT_NEAR(angle_deg(first), 90, 2);
+  EXPECT_LT(std::hypot(mid.x - 0.5, mid.y - 0.5), 0.1);  // at the centre
+}
+
+// data/step_path_slope.json: friction alone (15° on joints dipping 45°) cannot hold the wedge;
+// the rock bridges between the stepped joints do until they break. As given (σt 100 kPa, c
+// 300 kPa) they crack in the first steps and the wedge slides; ten times stronger they hold and
+// the slope stands: what holds it is the intact rock, and what lets it go is the rock breaking.
+TEST(Fracture, RockBridgesBreakIntoAStepPathOnlyWhenWeakEnough) {
+  const std::string path = std::string(NMM_SOURCE_DIR) + "/data/step_path_slope.json";
+  double moved[2] = {0, 0};
+  std::size_t segments[2] = {0, 0};
+  for (int strong = 0; strong < 2; ++strong) {
+    SceneDef s = parse_scene(read_text_file(path), path);
+    if (strong) {
+      s.materials[0].strength.tensile *= 10;
+      s.materials[0].strength.cohesion *= 10;
+    }
+    const Mesh m = pre::build_mesh(s, path);
+    TimeStepper st(m, s, path);
+    ASSERT_PRED1(test::ended_ok, st.run_until(1.0, [](std::int64_t) {}));
+    const auto u = st.view().state.measure[0].displacement();
+    moved[strong] = std::hypot(u[0], u[1]);
+    segments[strong] = st.view().fracture.segments().size();
+  }
+  std::printf("step-path slope after 1 s: wedge moved %.4g m with %zu crack segments; %.4g m with %zu when the "
+              "rock is ten times stronger\n", moved[0], segments[0], moved[1], segments[1]);
+  EXPECT_GT(moved[0], 0.015);
+  EXPECT_GE(segments[0], 10u);
+  EXPECT_LT(moved[1], 1e-3);
 }
 
 // Without a fracture block the same specimen is elastic to the end: 9 MPa, 30 % past its UCS.

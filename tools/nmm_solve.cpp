@@ -69,8 +69,15 @@ nmm::report::ReportFiles write_pictures(const nmm::solve::RunView& run, const nm
   }
   state.exaggeration = exaggerate;
   state.excavated_body = run.state.body_removed;
+  // A cracked run: its mesh has the cracks as joints after the scene's, and its scene with them.
+  const std::vector<nmm::solve::CrackSegment>& cracks = run.fracture.segments();
+  if (!cracks.empty()) {
+    state.joint_crack.assign(scene.joints.size(), 0);
+    for (const nmm::solve::CrackSegment& c : cracks)
+      state.joint_crack.push_back(c.mode == nmm::solve::CrackMode::tensile ? 1 : 2);
+  }
   nmm::write_file_atomically(out_dir + "/result.svg",
-                             nmm::report::result_svg(run.mesh, scene, state, field));
+                             nmm::report::result_svg(run.mesh, cracks.empty() ? scene : run.model.scene(), state, field));
   return nmm::report::make_run_report(out_dir);
 }
 

@@ -109,7 +109,11 @@ void write_cracks(const RunView& v, const std::string& dir) {
     csv += row;
   }
   write_file_atomically(dir + "/cracks.csv", csv);
-  if (!v.fracture.segments().empty()) write_mesh_file(v.mesh, dir + "/cracked_mesh.nmm");
+  if (!v.fracture.segments().empty()) {
+    Mesh cracked = v.mesh;
+    cracked.tool = "nmm-solve";  // the cracks were cut by the run, not by nmm-preprocess
+    write_mesh_file(cracked, dir + "/cracked_mesh.nmm");
+  }
 }
 
 }  // namespace
