@@ -10,3 +10,11 @@ build/bin/nmm-study docs/figures --data data
 # The doc pages carry copies of these tables: their rows follow the fresh ones.
 python3 docs/sync_tables.py docs/figures/joint_studies_tables.md docs/joint-studies.md
 python3 docs/sync_tables.py docs/figures/accuracy_tables.md docs/accuracy.md
+# The fracturing examples' pictures (docs/fracture.md): about 8 s.
+tmp=$(mktemp -d)
+for s in brazilian_disc step_path_slope; do
+  build/bin/nmm-preprocess data/$s.json -o "$tmp/$s.nmm" > /dev/null
+  build/bin/nmm-solve "$tmp/$s.nmm" -o "$tmp/$s" --pictures --quiet
+  cp "$tmp/$s/result.svg" docs/figures/$s.svg
+done
+rm -rf "$tmp"

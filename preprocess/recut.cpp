@@ -1,6 +1,8 @@
 // Re-cutting where new joints cross: see recut.h for the method.
 #include "preprocess/recut.h"
 
+#include "common/stopwatch.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -163,6 +165,7 @@ void link_elements(Mesh& m) {
 
 Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, const std::string& file,
            RecutMap& map) {
+  Stopwatch watch;
   const Lattice lat = make_lattice(scene.bodies, scene.mesh_size);
   const std::size_t nt = old.triangle_count();
   // T: the triangles the new joints touch.
@@ -212,7 +215,11 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
     triangle_of_key[key] = static_cast<std::int32_t>(t);
   }
   map.region_triangles = region.size();
+  map.seconds_find = watch.seconds();
+  watch.restart();
   RegionCut cut = cut_region(scene, region, file);
+  map.seconds_cut = watch.seconds();
+  watch.restart();
   const Mesh& rc = cut.mesh;
   std::vector<std::int32_t> rc_triangle(rc.triangle_count());  // cut's triangle → old triangle
   for (std::size_t t = 0; t < rc.triangle_count(); ++t) {
@@ -379,6 +386,7 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
               : old_cover_new[old.element_covers[3 * static_cast<std::size_t>(map.element_parent[e]) + c]];
     }
   link_elements(m);
+  map.seconds_splice = watch.seconds();
   return m;
 }
 

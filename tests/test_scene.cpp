@@ -452,6 +452,8 @@ const BadCase kBadCases[] = {
      "/materials/rock/strength", "missing required key \"friction_deg\""},
     {R"({"materials": {"rock": {"strength": {"tensile": 1e6, "cohesion": 1e6, "friction_deg": 30, "gf": 1}}}})",
      "/materials/rock/strength/gf", "unknown key \"gf\" (allowed: cohesion, fracture_energy, friction_deg, tensile)"},
+    {R"({"materials": {"rock": {"strength": {"tensile": 1e6, "cohesion": 1e6, "friction_deg": 30, "fracture_energy": 60}}}})",
+     "/materials/rock/strength/fracture_energy", "cohesive softening of new cracks is not built yet"},
     {R"({"fracture": {"crack_set": "fresh"}})", "/fracture/crack_set",
      "unknown joint set \"fresh\" (known: bedding, fault)"},
     {R"({"fracture": {"crack_set": "bedding"}, "solver": {"cover_order": 1}})", "/fracture",

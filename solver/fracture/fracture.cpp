@@ -251,21 +251,26 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
   segments_.insert(segments_.end(), segments.begin(), segments.end());
   const std::size_t n = mesh.element_count();
   std::vector<std::uint8_t> armed(n, 1), debris(n, 0);
-  // Blocks holding an element a segment crossed are new: those below kDebrisArea·h² are debris.
+  // Blocks holding an element in a triangle the segments touched are new (a segment's overshoot
+  // past the edge it stops on may clip a corner off the element beyond: a crossed element's
+  // neighbour): those below kDebrisArea·h² are debris.
+  std::vector<std::uint8_t> touched(mesh.triangle_count(), 0);
+  for (const std::int32_t t : map.cut_triangles) touched[static_cast<std::size_t>(t)] = 1;
   std::vector<double> block_area(mesh.block_count(), 0.0);
-  std::vector<std::uint8_t> block_new(mesh.block_count(), 0);
+  std::vector<std::uint8_t> block_new(mesh.block_count(), 0), block_old_debris(mesh.block_count(), 1);
   for (std::size_t e = 0; e < n; ++e) {
     const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
     armed[e] = crossed_[p] ? 0 : armed_[p];
     debris[e] = debris_.empty() ? 0 : debris_[p];
     const std::size_t b = static_cast<std::size_t>(mesh.element_block[e]);
     block_area[b] += element_area(mesh, e);
-    block_new[b] = block_new[b] || crossed_[p];
+    block_new[b] = block_new[b] || crossed_[p] || touched[static_cast<std::size_t>(mesh.element_triangle[e])];
+    block_old_debris[b] = block_old_debris[b] && debris[e];
   }
   const double limit = kDebrisArea * mesh.mesh_size * mesh.mesh_size;
   std::vector<std::uint8_t> block_debris(mesh.block_count(), 0);
   for (std::size_t b = 0; b < block_area.size(); ++b)
-    if (block_new[b] && block_area[b] < limit) {
+    if (block_new[b] && !block_old_debris[b] && block_area[b] < limit) {
       block_debris[b] = 1;
       ++debris_blocks_;
       debris_area_ += block_area[b];

@@ -1,6 +1,7 @@
 // The quantities derived from a run's view: see run_view.h.
 #include "solver/stepping/run_view.h"
 
+#include "common/mesh_file.h"
 #include "solver/contact/contact_history.h"
 #include "solver/stepping/run_effects.h"
 #include "solver/discretisation/stress_field.h"
@@ -18,7 +19,11 @@ std::vector<std::string> run_effects(const RunView& v) {
 }
 
 std::string state_hash(const RunView& v) {
-  return state_hash(v.state, save_contact_history(v.contacts), v.mesh);
+  const std::string hash = state_hash(v.state, save_contact_history(v.contacts), v.mesh);
+  // A cracked run: its cracks and tips are state too (the checkpoint's FRACTURE section); a run
+  // that has not cracked hashes as it always has.
+  if (v.fracture.segments().empty()) return hash;
+  return to_hex(sha256(hash + v.fracture.save()));
 }
 
 }  // namespace nmm::solve
