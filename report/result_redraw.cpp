@@ -89,7 +89,12 @@ RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_g
   if (inputs.contains("set") && inputs["set"].is_array())
     for (const auto& s : inputs["set"])
       if (s.is_string()) sets.push_back(s.get<std::string>());
-  r.scene = solve::make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
+  // A merge patch given in memory (the Python module's config={...}) is kept in the summary.
+  if (inputs.contains("config_patch") && inputs["config_patch"].is_object())
+    r.scene = solve::make_run_scene(r.mesh, r.mesh_path, inputs["config_patch"].dump(),
+                                    summary_path + " /inputs/config_patch", sets).scene;
+  else
+    r.scene = solve::make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
   return r;
 }
 
