@@ -21,6 +21,7 @@
 #include "common/error.h"
 #include "common/mesh_file.h"
 #include "common/run_config.h"
+#include "solver/output/output_writer.h"
 #include "report/run_report.h"
 #include "common/scene.h"  // read_text_file
 #include "common/vtk_writer.h"
@@ -128,9 +129,7 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
                            std::to_string(frames.back().second) + ")");
   }
   const auto [time, step] = frames[pick];
-  char name[48];
-  std::snprintf(name, sizeof name, "frames/frame_%06lld.vtu", static_cast<long long>(step));
-  const std::string frame_path = (fs::path(dir) / name).string();
+  const std::string frame_path = (fs::path(dir) / solve::frame_file_name(step)).string();
   const PolygonGrid grid = read_vtu(frame_path);
   if (grid.point_count() != mesh.loop_vertex_count() || grid.cell_count() != mesh.element_count())
     throw InputError(frame_path, "",
