@@ -67,7 +67,10 @@ class PySolver {
       o.inputs = as_scene_error([&] { return solve::run_inputs(m.path, o, "displacement", nullptr); });
     py::gil_scoped_release release;
     // The variants first, so that every mistake in them is a SceneError (they are a scene's).
-    as_scene_error([&] { return solve::make_run_scene(*mesh_, m.name, o.config_path, o.sets); });
+    as_scene_error([&] {
+      return o.config_text ? solve::make_run_scene(*mesh_, m.name, *o.config_text, o.config_path, o.sets)
+                           : solve::make_run_scene(*mesh_, m.name, o.config_path, o.sets);
+    });
     try {
       run_ = std::make_unique<SolveRun>(*mesh_, m.name, std::move(o));
     } catch (const InputError& e) {
