@@ -77,6 +77,8 @@ SKIP = [
      "benchmark of minutes (30 x 30 wall, 3 repetitions)"),
     ("performance.md", r"OPENBLAS_CORETYPE=\$c .*matrix_bench --sizes 30,50 ",
      "benchmark of minutes (30 x 30 wall and 50 x 50 monolith, three kernel sets)"),
+    ("python.md", r"^ctest --test-dir build -L python",
+     "the module's tests: CTest entries of the suite this test is part of"),
     ("performance.md", r"^NTDDA_RUN=/path/to/ntdda_run ",
      "needs a DDA runner built by hand outside the repository (its header says how it is called)"),
 ]
@@ -91,6 +93,9 @@ SHORTEN = [
     ("performance.md", r"(factor_update_bench) --sizes 10,20,30 --mesh 2 --steps 30 --from 10 ",
      r"\1 --sizes 10 --mesh 2 --steps 4 --from 2 ",
      "the 30 x 30 walls take minutes; the 10 x 10 wall's steps 3-4 run every method once"),
+    ("python.md", r"(python_overhead\.py) --reps 7 ", r"\1 --reps 1 --steps 10 ",
+     "21 runs of 500 steps take over a minute; one repetition of 10 steps runs the three ways "
+     "and checks their state hashes"),
     ("fos-and-sweeps.md", r"(--workers 2 --set solver\.steps=)300",
      r"\g<1>100 --max-factor 4",
      "the search up to F = 64 takes 77 s on the loaded machine; trials of 100 steps up to F = 4 "
