@@ -88,6 +88,13 @@ void check_generation_unchanged(const json& base, const json& doc, const std::st
 
 RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
                         const std::string& config_path, const std::vector<std::string>& sets) {
+  return make_run_scene(mesh, mesh_path, config_path.empty() ? "" : read_text_file(config_path),
+                        config_path, sets);
+}
+
+RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
+                        const std::string& config_text, const std::string& config_path,
+                        const std::vector<std::string>& sets) {
   const std::string embedded_name = mesh_path + " (embedded scene)";
   const json base = parse_json_text(mesh.scene_text, embedded_name);
   // Rule 1: a fault already in the embedded scene is not the variants' doing.
@@ -96,7 +103,7 @@ RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
 
   json doc = base;
   if (!config_path.empty()) {
-    const json patch = parse_json_text(read_text_file(config_path), config_path);
+    const json patch = parse_json_text(config_text, config_path);
     if (!patch.is_object())
       throw InputError(
           config_path, "top level",

@@ -27,4 +27,10 @@ struct RunScene {
 RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
                         const std::string& config_path, const std::vector<std::string>& sets);
 
+/// The same with the merge patch's text in memory (the Python module's config={...}):
+/// `config_name` names it in errors as config_path does ("" for none).
+RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
+                        const std::string& config_text, const std::string& config_name,
+                        const std::vector<std::string>& sets);
+
 }  // namespace nmm::solve

@@ -23,6 +23,7 @@
 #include "common/error.h"
 #include "common/mesh_file.h"
 #include "common/run_config.h"
+#include "solver/output/output_writer.h"
 #include "report/run_report.h"
 #include "common/whole_file.h"
 #include "common/vtk_writer.h"
@@ -118,7 +119,12 @@ RunInputs load_run_inputs(const std::string& dir, const std::string& mesh_path_g
   if (inputs.contains("set") && inputs["set"].is_array())
     for (const auto& s : inputs["set"])
       if (s.is_string()) sets.push_back(s.get<std::string>());
-  r.scene = solve::make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
+  // A merge patch given in memory (the Python module's config={...}) is kept in the summary.
+  if (inputs.contains("config_patch") && inputs["config_patch"].is_object())
+    r.scene = solve::make_run_scene(r.mesh, r.mesh_path, inputs["config_patch"].dump(),
+                                    summary_path + " /inputs/config_patch", sets).scene;
+  else
+    r.scene = solve::make_run_scene(r.mesh, r.mesh_path, config_path, sets).scene;
   return r;
 }
 
@@ -150,9 +156,7 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
                            std::to_string(frames.back().second) + ")");
   }
   const auto [time, step] = frames[pick];
-  char name[48];
-  std::snprintf(name, sizeof name, "frames/frame_%06lld.vtu", static_cast<long long>(step));
-  const std::string frame_path = (fs::path(dir) / name).string();
+  const std::string frame_path = (fs::path(dir) / solve::frame_file_name(step)).string();
   const PolygonGrid grid = read_vtu(frame_path);
   const auto fits = [&](const Mesh& m) {
     return grid.point_count() == m.loop_vertex_count() && grid.cell_count() == m.element_count();

@@ -136,21 +136,6 @@ NumberTable read_number_csv(const std::string& path) {
   return t;
 }
 
-void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows) {
-  std::string s = "step,time,dt,iterations,cuts,closed_contacts,max_unbalanced_ratio,"
-                  "mean_unbalanced_ratio,max_velocity\n";
-  char buf[256];
-  for (const StepRecord& r : rows) {
-    std::snprintf(buf, sizeof buf, "%lld,%.17g,%.17g,%lld,%lld,%lld,%.6g,%.6g,%.6g\n",
-                  static_cast<long long>(r.step), r.time, r.dt,
-                  static_cast<long long>(r.iterations), static_cast<long long>(r.cuts),
-                  static_cast<long long>(r.closed_contacts), r.max_unbalanced_ratio,
-                  r.mean_unbalanced_ratio, r.max_velocity);
-    s += buf;
-  }
-  write_file_atomically((fs::path(dir) / "run_history.csv").string(), s);
-}
-
 ReportFiles make_run_report(const std::string& dir) {
   ReportFiles files;
   const nlohmann::json summary = read_run_summary(dir);

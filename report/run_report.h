@@ -2,8 +2,9 @@
 // `nmm-report OUTDIR` can remake it at any time and nmm-solve --pictures makes it at the end:
 //   history.svg      measure points' displacements ux, uy (mm) against time (from history.csv)
 //   run_history.svg  panels: open–close iterations per step and step length against time
-//                    (from run_history.csv); the equilibrium indicators — maximum and mean
-//                    unbalanced force ratio and largest velocity, log scale (run_history.csv,
+//                    (from run_history.csv, solver/output/run_history.h); the equilibrium
+//                    indicators — maximum and mean unbalanced force ratio and largest
+//                    velocity, log scale (run_history.csv,
 //                    equilibrium_indicator.h); the energy terms against time (from energy.csv,
 //                    energy.h: kinetic, strain, gravity, springs, work of loads, friction, residual)
 //   index.html       the pictures (result.svg when nmm-solve drew it) and summary.json's
@@ -19,19 +20,6 @@
 
 namespace nmm::report {
 
-/// One accepted step's solver effort (run_history.csv).
-struct StepRecord {
-  std::int64_t step;     ///< accepted step number, from 1
-  double time;           ///< s, simulated time after the step
-  double dt;             ///< s, the step's length
-  std::int64_t iterations;  ///< open–close iterations (solves) the step took, cut attempts included
-  std::int64_t cuts;     ///< time-step cuts before the step was accepted
-  std::int64_t closed_contacts;  ///< contacts closed after the step
-  double max_unbalanced_ratio = 0;   ///< –, equilibrium_indicator.h
-  double mean_unbalanced_ratio = 0;  ///< –
-  double max_velocity = 0;           ///< m/s, largest cover velocity
-};
-
 /// A CSV of numbers with a header line (history.csv, contacts.csv, run_history.csv, energy.csv).
 struct NumberTable {
   std::vector<std::string> names;         ///< the header's column names
@@ -43,10 +31,6 @@ struct NumberTable {
 /// Reads such a CSV, plain or gzip-compressed (contacts.csv.gz). InputError naming the file (and
 /// line) when it is missing, damaged or a cell is not a number.
 NumberTable read_number_csv(const std::string& path);
-
-/// Writes OUTDIR/run_history.csv ("step,time,dt,iterations,cuts,closed_contacts,
-/// max_unbalanced_ratio,mean_unbalanced_ratio,max_velocity").
-void write_run_history(const std::string& dir, const std::vector<StepRecord>& rows);
 
 /// What make_run_report wrote (file names relative to the folder).
 struct ReportFiles {

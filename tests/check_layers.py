@@ -12,6 +12,8 @@
   report/                  -> common/, solver/...
   studies/                 -> common/, reference/, preprocess/, solver/..., report/
   tools/                   -> anything (the command-line tools' mains)
+  python/                  -> common/, preprocess/, solver/..., report/ (the Python module's
+                              bindings: the library the tools call, no studies/)
   tests/, bench/: anything
 No exceptions.
 
@@ -37,6 +39,7 @@ ALLOWED = {
     "report": {"common", *SOLVER},
     "studies": {"common", "reference", "preprocess", *SOLVER, "report"},
     "tools": {"common", "reference", "preprocess", *SOLVER, "report", "studies"},
+    "python": {"common", "preprocess", *SOLVER, "report"},
 }
 
 

@@ -3,12 +3,14 @@
    docs_commands.py --self-test --bin BIN --work DIR
 
 Runs the shell commands a documentation page shows, as a user would type them on a fresh clone
-after the README's set-up (the tools on PATH: `export PATH=$PWD/build/bin:$PATH`), and fails
-when one of them fails. CTest runs it once per page (docs.commands.PAGE, label "docs").
+after the README's set-up (the tools on PATH: `export PATH=$PWD/build/bin:$PATH`; the module nmm
+importable: `export PYTHONPATH=$PWD/build/python`), and fails when one of them fails. CTest runs it once per page (docs.commands.PAGE, label "docs").
 
 Which fenced blocks are commands:
   ```            (no language), ```sh, ```bash, ```shell: every line is a command;
   ```console     only the lines starting with "$ " are commands (the rest is their output);
+  ```python      the whole block is one command, a script given to `python3` (its exit status
+                 counts as a command's: an exception fails it);
   ```text, ```json, ```jsonc, ```csv, ... : not run (synopses, output, file contents).
 So a block of output or a synopsis ("nmm-fos MESH.nmm -o OUT [--tol T]") must say ```text.
 
@@ -78,6 +80,8 @@ SKIP = [
      "benchmark of minutes (30 x 30 wall, 3 repetitions)"),
     ("performance.md", r"OPENBLAS_CORETYPE=\$c .*matrix_bench --sizes 30,50 ",
      "benchmark of minutes (30 x 30 wall and 50 x 50 monolith, three kernel sets)"),
+    ("python.md", r"^ctest --test-dir build -L python",
+     "the module's tests: CTest entries of the suite this test is part of"),
     ("performance.md", r"^NTDDA_RUN=/path/to/ntdda_run ",
      "needs a DDA runner built by hand outside the repository (its header says how it is called)"),
 ]
@@ -92,6 +96,9 @@ SHORTEN = [
     ("performance.md", r"(factor_update_bench) --sizes 10,20,30 --mesh 2 --steps 30 --from 10 ",
      r"\1 --sizes 10 --mesh 2 --steps 4 --from 2 ",
      "the 30 x 30 walls take minutes; the 10 x 10 wall's steps 3-4 run every method once"),
+    ("python.md", r"(python_overhead\.py) --reps 7 ", r"\1 --reps 1 --steps 10 ",
+     "21 runs of 500 steps take over a minute; one repetition of 10 steps runs the three ways "
+     "and checks their state hashes"),
     ("fos-and-sweeps.md", r"(--workers 2 --set solver\.steps=)300",
      r"\g<1>100 --max-factor 4",
      "the search up to F = 64 takes 77 s on the loaded machine; trials of 100 steps up to F = 4 "
@@ -143,6 +150,8 @@ def blocks(text):
 
 def shell_lines(lang, body):
     """The lines of a block that are shell input, as (index in the block, text)."""
+    if lang == "python":  # one command: the block as python3's script, a quoted here-document
+        return [(0, "python3 - <<'__NMM_PYTHON__'")] + list(enumerate(body)) + [(len(body), "__NMM_PYTHON__")]
     if lang in RUN_LANGS:
         return list(enumerate(body))
     if lang == "console":
@@ -205,6 +214,8 @@ SELF_TEST = [
     ("```\nfor k in 1 2; do echo $k; done\nnmm-solve --help > /dev/null\n```\n", 0),
     ("```\nnmm-solve no_such_mesh.nmm -o out   # exit 2: no mesh\n```\n", 0),
     ("```\nnmm-solve no_such_mesh.nmm -o out   # exit 3: wrong status\n```\n", 1),
+    ("```python\nimport sys\nfor k in range(2):\n    pass\nsys.exit(1)\n```\n", 1),
+    ("```python\nimport json\nprint(json.dumps({'a': 1}))\n```\n```\ntrue\n```\n", 0),
     ("```\ntrue   # exit 3: a command that succeeds where the page says it fails\n```\n", 1),
 ]
 
@@ -312,7 +323,9 @@ def main():
                     ignore=lambda d, names: [x for x in names if os.path.samefile(d, source) and
                                              (x in top_skip or x.startswith("build"))])
     os.symlink(build_dir, os.path.join(work, "build"))
-    env = dict(os.environ, PATH=bindir + os.pathsep + os.environ.get("PATH", ""), LC_ALL="C")
+    env = dict(os.environ, PATH=bindir + os.pathsep + os.environ.get("PATH", ""), LC_ALL="C",
+               PYTHONPATH=os.pathsep.join(p for p in (os.path.join(build_dir, "python"),
+                                                      os.environ.get("PYTHONPATH")) if p))
     t0 = time.time()
     rc = subprocess.run(["bash", "-c", "\n".join(script)], cwd=work, env=env).returncode
     print(f"{page}: {'all commands ran' if rc == 0 else 'FAILED'} ({time.time() - t0:.1f} s, in {work})")

@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "solver/output/progress.h"
+#include "solver/output/run_history.h"
 #include "report/result_picture.h"
 #include "report/run_report.h"
 
@@ -142,7 +143,7 @@ TEST(RunReport, PlotsHistoryAndWritesIndex) {
                                              "max_unbalanced_ratio": 1.1}})";
   std::ofstream(dir / "history.csv") << "step,time,point,x,y,ux,uy\n0,0,0,1,1,0,0\n"
                                         "1,0.001,0,1,0.999,0,-0.001\n2,0.002,0,1,0.998,0,-0.002\n";
-  write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3, 0.2, 0.01, 0.3},
+  nmm::solve::write_run_history(dir.string(), {{1, 0.001, 0.001, 5, 0, 3, 0.2, 0.01, 0.3},
                                    {2, 0.002, 0.001, 7, 1, 4, 3e-6, 1e-7, 2e-5}});
   std::ofstream(dir / "energy.csv") << "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n"
                                        "0,0,0,0,0,0,0,0,0\n2,0.002,5,1,-6,0,0,0,0\n";

@@ -1,40 +1,29 @@
 // nmm-preprocess SCENE.json -o MESH.nmm
 //
-// Reads a scene, checks it, cuts the covers (cover_cutter.h) and writes the binary mesh file
-// atomically. Bad input of any kind: one line on stderr, exit status 2, no output file.
+// Reads a scene, checks it and cuts the covers (preprocess_scene.h, as the Python module does),
+// and writes the binary mesh file atomically. Bad input of any kind: one line on stderr, exit status 2, no output file.
 #include <CLI/CLI.hpp>
 
-#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "common/atomic_file.h"
-#include "preprocess/cover_cutter.h"
-#include "preprocess/joint_network.h"
-#include "common/json_set.h"
-#include "common/vtk_writer.h"
 #include "common/command_line.h"
 #include "common/error.h"
 #include "common/mesh_file.h"
-#include "nmm_version.h"
 #include "common/scene.h"
-#include "common/scene_checks.h"
-#include "common/ring_geometry.h"
-#include "preprocess/scene_geometry.h"
 #include "common/stopwatch.h"
 #include "common/whole_file.h"
+#include "nmm_version.h"
+#include "preprocess/preprocess_scene.h"
 
 namespace {
 
-// Sizes past which the preprocessor talks (docs/preprocess.md, "Large meshes"): stages are
-// reported from kStagesFrom triangles on (a few seconds of cutting), and a warning is printed
-// from kWarnFrom, where a cut takes minutes and the mesh file tens of MB (measured there).
+// Stages are reported from kStagesFrom triangles on, a few seconds of cutting (docs/preprocess.md,
+// "Large meshes"; the warning of a cut that takes minutes comes from scene_warnings()).
 constexpr double kStagesFrom = 2e4;
-constexpr double kWarnFrom = 5e5;
 
 }  // namespace
 
@@ -61,78 +50,34 @@ int main(int argc, char** argv) {
 
   try {
     const nmm::Stopwatch t0;
-    const std::string scene_file = scene_path;
-    std::string text = nmm::read_text_file(scene_path);
-    nlohmann::json base;
-    if (!sets.empty()) {
-      // --set edits the scene before anything is built (json_set.h); the mesh embeds the result.
-      nlohmann::json doc = nmm::parse_json_text(text, scene_path);
-      base = doc;
-      for (const std::string& set : sets) nmm::apply_set(doc, set);
-      text = doc.dump(1) + "\n";
-      scene_path += " with --set";
-    }
-    nmm::SceneDef scene;
-    try {
-      scene = nmm::parse_scene(text, scene_path);
-    } catch (const nmm::InputError& e) {
-      // A misspelt joint set or material in a --set: "no joint set 'beding'; joint sets are: ..."
-      if (!sets.empty()) nmm::throw_if_misspelt_name(base, nmm::parse_json_text(text, scene_path), e);
-      throw;
-    }
-    // Generated joint sets (docs/joint-networks.md): the mesh embeds the explicit scene, with
-    // the generated joints listed and the generate blocks removed, so that nmm-solve and
-    // nmm-inspect re-parse exactly the geometry that was cut.
-    bool has_generated = false;
-    for (const auto& set : scene.joint_sets) has_generated = has_generated || set.generated;
-    if (has_generated || !export_path.empty()) {
-      const nlohmann::json doc = nmm::parse_json_text(text, scene_path);
-      const nlohmann::json expanded = nmm::pre::explicit_scene(doc, scene);
-      if (has_generated) {
-        text = expanded.dump(1) + "\n";
-        scene = nmm::scene_from_json(expanded, scene_path + " (generated joints)");
-      }
-    }
-    nmm::pre::check_scene_geometry(scene, scene_path);
+    // The scene as cut (preprocess_scene.h): --set applied, generated joints listed, checked.
+    const nmm::pre::PreparedScene scene =
+        nmm::pre::prepare_scene(nmm::read_text_file(scene_path), scene_path, sets);
     // The warnings go out once the cut has succeeded, so that a scene the cut refuses gets its
     // one error line alone (bad input: one line on stderr); a large cut, which takes minutes,
     // gives them at its start instead.
-    std::vector<std::string> warnings = nmm::check_scene_usability(scene, scene_path, !strict_joints);
+    std::vector<std::string> warnings = nmm::pre::scene_warnings(scene, strict_joints);
     auto flush_warnings = [&warnings] {
       for (const std::string& w : warnings) std::cerr << w << "\n";
       warnings.clear();
     };
-    // Triangles of side h covering the bodies' bounding area: the cost driver of the cut.
-    double area = 0;
-    for (const nmm::BodyDef& b : scene.bodies) area += nmm::ring_area(b.outer);
-    const double triangles = area / (0.4330127 * scene.mesh_size * scene.mesh_size);
-    if (triangles >= kWarnFrom) {
-      char buf[300];
-      std::snprintf(buf, sizeof buf,
-                    "%s: /mesh/size: warning: about %.3g triangles at mesh size %g m: the cut takes "
-                    "minutes and the mesh file is large (docs/preprocess.md, Large meshes)",
-                    scene_path.c_str(), triangles, scene.mesh_size);
-      warnings.emplace_back(buf);
-    }
+    const double triangles = nmm::pre::estimated_triangles(scene.scene);
     const bool stages = triangles >= kStagesFrom;
     if (stages) {
       flush_warnings();
       std::fprintf(stderr, "nmm-preprocess: cutting covers (about %.3g triangles)...\n", triangles);
     }
     nmm::pre::CutTimings cut;
-    nmm::Mesh mesh = nmm::pre::build_mesh(scene, scene_path, &cut);
+    const nmm::Mesh mesh = nmm::pre::cut_scene(scene, &cut);
     flush_warnings();
     if (stages)
       std::fprintf(stderr,
                    "nmm-preprocess: cut in %.1f s (arrangement %.1f s, covers %.1f s); writing %s...\n",
                    cut.mesh_generation + cut.arrangement + cut.labelling + cut.covers,
                    cut.arrangement, cut.covers, out_path.c_str());
-    mesh.scene_file = scene_file;
-    mesh.scene_text = text;
-    mesh.scene_sha256 = nmm::sha256(text);
     const nmm::Stopwatch t1;
     nmm::write_mesh_file(mesh, out_path);
-    if (!export_path.empty()) nmm::write_file_atomically(export_path, text);
+    if (!export_path.empty()) nmm::write_file_atomically(export_path, scene.text);
     const double write_s = t1.seconds();
     const double total_s = t0.seconds();
     if (!quiet)

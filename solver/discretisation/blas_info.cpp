@@ -6,6 +6,8 @@
 #include <cctype>
 #include <cstring>
 
+#include "solver/discretisation/loaded_symbol.h"
+
 namespace nmm::solve {
 
 namespace {
@@ -31,9 +33,9 @@ BlasInfo blas_info() {
   BlasInfo b;
   using Text = char* (*)();
   using Count = int (*)();
-  const auto corename = reinterpret_cast<Text>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
-  const auto config = reinterpret_cast<Text>(dlsym(RTLD_DEFAULT, "openblas_get_config"));
-  const auto threads = reinterpret_cast<Count>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  const auto corename = reinterpret_cast<Text>(loaded_symbol("openblas_get_corename"));
+  const auto config = reinterpret_cast<Text>(loaded_symbol("openblas_get_config"));
+  const auto threads = reinterpret_cast<Count>(loaded_symbol("openblas_get_num_threads"));
   b.cpu_avx2 = cpu_has_avx2();
   if (corename && config) {
     b.core = corename();
@@ -49,7 +51,7 @@ BlasInfo blas_info() {
   }
   // Another BLAS: name the shared object that holds dgemm_.
   Dl_info where{};
-  void* dgemm = dlsym(RTLD_DEFAULT, "dgemm_");
+  void* dgemm = loaded_symbol("dgemm_");
   b.library = dgemm && dladdr(dgemm, &where) && where.dli_fname ? where.dli_fname : "unknown";
   return b;
 }

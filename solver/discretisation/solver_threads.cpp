@@ -4,6 +4,8 @@
 
 #include <thread>
 
+#include "solver/discretisation/loaded_symbol.h"
+
 namespace nmm::solve {
 namespace {
 // The count set_solver_threads() set on this thread (0: never set, libgomp decides).
@@ -22,10 +24,11 @@ int set_solver_threads(int threads) {
   if (threads < 1) threads = 1;
   solver_threads = threads;
   // Looked up at run time: the functions exist only when OpenBLAS / libgomp are the libraries
-  // loaded behind CHOLMOD, and linking them by name would tie the build to one BLAS.
+  // loaded behind CHOLMOD, and linking them by name would tie the build to one BLAS
+  // (loaded_symbol.h: also where the Python module keeps them local).
   using SetThreads = void (*)(int);
-  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(threads);
-  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) f(threads);
+  if (auto f = reinterpret_cast<SetThreads>(loaded_symbol("openblas_set_num_threads"))) f(threads);
+  if (auto f = reinterpret_cast<SetThreads>(loaded_symbol("omp_set_num_threads"))) f(threads);
   // CHOLMOD's supernodal factorisation opens its parallel loops with a fixed
   // num_threads(CHOLMOD_OMP_NUM_THREADS) clause (4 in Debian's build), which overrides
   // omp_set_num_threads: one thread asked for still ran 4 OpenMP threads in every factorisation,
@@ -34,8 +37,8 @@ int set_solver_threads(int threads) {
   // bodies are called directly, GOMP_parallel below). More: dynamic adjustment, under which
   // libgomp caps a clause's count at the count set above.
   using SetInt = void (*)(int);
-  if (auto f = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"))) f(threads > 1 ? 1 : 0);
-  if (auto f = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_dynamic"))) f(threads > 1 ? 1 : 0);
+  if (auto f = reinterpret_cast<SetInt>(loaded_symbol("omp_set_max_active_levels"))) f(threads > 1 ? 1 : 0);
+  if (auto f = reinterpret_cast<SetInt>(loaded_symbol("omp_set_dynamic"))) f(threads > 1 ? 1 : 0);
   return threads;
 }
 

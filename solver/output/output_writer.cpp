@@ -72,14 +72,14 @@ void check_size(const std::vector<double>* v, std::size_t expected, const char* 
                            std::to_string(expected));
 }
 
-/// "frames/frame_000010.vtu": zero-padded so that a plain listing sorts the frames in order.
+
+}  // namespace
+
 std::string frame_file_name(std::int64_t step) {
   char buf[48];
   std::snprintf(buf, sizeof buf, "frames/frame_%06lld.vtu", static_cast<long long>(step));
   return buf;
 }
-
-}  // namespace
 
 OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
     : dir_(out_dir), format_(format) {

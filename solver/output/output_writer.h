@@ -54,6 +54,10 @@ struct FrameFields {
   const std::vector<double>* vertex_stress = nullptr;
 };
 
+/// The frame of a step, relative to the output folder: "frames/frame_000010.vtu" (zero-padded
+/// so that a plain listing sorts the frames in order).
+std::string frame_file_name(std::int64_t step);
+
 /// How frames are written: binary zlib-compressed appended data (vtu_compressed.h, the default:
 /// a tenth of the size or less) or ASCII text (nmm-solve --text-frames).
 enum class FrameFormat { compressed, text };

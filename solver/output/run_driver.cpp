@@ -11,12 +11,10 @@
 
 namespace nmm::solve {
 
-namespace {
-
 // Frames (and contacts.csv) every output_every steps, history.csv rows every history_every: a
-// history at every step costs no frame. The last step, and the last good state of a run that
-// stopped early, always get a frame.
-class FrameOutput : public StepObserver {
+// history at every step costs no frame. The last step, and the last state of a run that stopped
+// (or that the caller finished) between output steps, always get a frame.
+class RunDriver::FrameOutput : public StepObserver {
  public:
   FrameOutput(OutputWriter& out, std::int64_t first_step, const SolverDef& sv)
       : out_(out), first_step_(first_step), output_every_(sv.output_every),
@@ -27,8 +25,8 @@ class FrameOutput : public StepObserver {
     if (n % output_every_ == 0 || last) frame(st, n);
     else if (n % history_every_ == 0) history(st, n);
   }
-  void finish(const RunView& st, const Outcome& outcome, std::int64_t done) override {
-    if (!outcome.ok() && done % output_every_ != 0) frame(st, done);  // the last good state
+  void finish(const RunView& st, const Outcome&, std::int64_t done) override {
+    if (done != last_frame_) frame(st, done);  // the last good state
     out_.flush_history();
   }
 
@@ -42,6 +40,7 @@ class FrameOutput : public StepObserver {
   }
   void frame(const RunView& st, std::int64_t n) {
     const std::int64_t step = first_step_ + n;
+    last_frame_ = n;
     history(st, n);
     const RunState& s = st.state;
     const Mesh& mesh = st.mesh;
@@ -61,29 +60,19 @@ class FrameOutput : public StepObserver {
       fields.vertex_stress = &at_vertex;
     }
     out_.write_frame(step, s.time, mesh, fields, st.topology);
-    const ContactSet& contacts = st.contacts;
-    if (!contacts.active()) return;
-    std::vector<ContactSample> rows;
-    for (const Contact& c : contacts.contacts()) {
-      if (c.state == ContactState::open) continue;  // closed contacts only: they carry force
-      const double x = s.loop_xy[2 * c.at.vertex], y = s.loop_xy[2 * c.at.vertex + 1];
-      const JointLawOutput j = joint_law_output(contacts.laws()[c.law], c.normal_force, c.length, c.joint);
-      rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
-                      c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
-                      st.model.water().pressure_at(contacts.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
-    }
-    out_.add_contacts(step, s.time, rows);
+    if (st.contacts.active()) out_.add_contacts(step, s.time, contact_samples(st));
   }
 
   OutputWriter& out_;
   std::int64_t first_step_;
   std::int64_t output_every_, history_every_;
   std::int64_t last_history_ = -1;
+  std::int64_t last_frame_ = -1;
 };
 
 // checkpoint.nmmstate every checkpoint_every steps (0: never), and after the last completed
 // step, also when the run stopped early.
-class CheckpointOutput : public StepObserver {
+class RunDriver::CheckpointOutput : public StepObserver {
  public:
   CheckpointOutput(std::string path, std::int64_t every) : path_(std::move(path)), every_(every) {}
   void after_step(const RunView& st, std::int64_t n, bool) override {
@@ -98,8 +87,24 @@ class CheckpointOutput : public StepObserver {
   std::int64_t every_;
 };
 
+std::vector<ContactSample> contact_samples(const RunView& st, bool open_too) {
+  const RunState& s = st.state;
+  const ContactSet& contacts = st.contacts;
+  std::vector<ContactSample> rows;
+  for (const Contact& c : contacts.contacts()) {
+    if (c.state == ContactState::open && !open_too) continue;  // closed contacts carry force
+    const double x = s.loop_xy[2 * c.at.vertex], y = s.loop_xy[2 * c.at.vertex + 1];
+    const JointLawOutput j = joint_law_output(contacts.laws()[c.law], c.normal_force, c.length, c.joint);
+    rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
+                    c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
+                    st.model.water().pressure_at(contacts.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
+  }
+  return rows;
+}
+
 // cracks.csv (a row per crack segment, where its ends were when it formed: docs/interface.md)
 // and, once the rock has cracked, cracked_mesh.nmm: the mesh the run ended on, for nmm-inspect.
+namespace {
 void write_cracks(const RunView& v, const std::string& dir) {
   std::string csv = "step,time,x0,y0,x1,y1,mode\n";
   char row[256];
@@ -118,46 +123,81 @@ void write_cracks(const RunView& v, const std::string& dir) {
 
 }  // namespace
 
-RunDriver::RunDriver(TimeStepper& stepper, OutputWriter& out) : stepper_(stepper), out_(out) {}
+RunDriver::RunDriver(TimeStepper& stepper, OutputWriter* out) : stepper_(stepper), out_(out) {}
 
-nlohmann::json RunDriver::run() {
+RunDriver::~RunDriver() = default;
+
+void RunDriver::start() {
   const Stopwatch wall;
   const SolverDef& sv = stepper_.view().model.scene().solver;
-  RunRecord record;
-  record.first_step = stepper_.view().state.step;  // a restart continues from the checkpoint's
-  FrameOutput frames(out_, record.first_step, sv);
-  CheckpointOutput checkpoint(out_.dir() + "/checkpoint.nmmstate", sv.checkpoint_every);
-  // Output seconds: the frames', histories' and checkpoints' (summary.json timings.output).
-  auto timed = [&record](auto&& write) {
+  record_.first_step = stepper_.view().state.step;  // a restart continues from the checkpoint's
+  if (out_) {
+    frames_ = std::make_unique<FrameOutput>(*out_, record_.first_step, sv);
+    checkpoint_ = std::make_unique<CheckpointOutput>(out_->dir() + "/checkpoint.nmmstate", sv.checkpoint_every);
     const Stopwatch sw;
-    write();
-    record.output_seconds += sw.seconds();
-  };
-  timed([&] { frames.start(stepper_.view()); });
+    frames_->start(stepper_.view());
+    record_.output_seconds += sw.seconds();
+  }
   for (StepObserver* o : observers_) o->start(stepper_.view());
-  const double t_end = stepper_.view().state.time + static_cast<double>(sv.steps) * sv.time_step;
-  record.outcome = stepper_.run_until(t_end, [&](std::int64_t n) {
-    record.done = n;
-    const bool last =
-        stepper_.view().state.time >= t_end - StepControl::kRoundOff * sv.time_step || stepper_.view().stopped_at_ratio;
-    timed([&] {
-      frames.after_step(stepper_.view(), n, last);
-      checkpoint.after_step(stepper_.view(), n, last);
-    });
-    for (StepObserver* o : observers_) o->after_step(stepper_.view(), n, last);
-  });
-  timed([&] {
-    frames.finish(stepper_.view(), record.outcome, record.done);
-    checkpoint.finish(stepper_.view(), record.outcome, record.done);
-  });
-  for (StepObserver* o : observers_) o->finish(stepper_.view(), record.outcome, record.done);
-  if (stepper_.view().fracture.active()) timed([&] { write_cracks(stepper_.view(), out_.dir()); });
-  record.wall_seconds = wall.seconds();
-  outcome_ = record.outcome;
-  nlohmann::json summary = run_summary(stepper_.view(), record);
-  out_.write_summary(summary);
+  started_ = true;
+  record_.wall_seconds += wall.seconds();
+}
+
+Outcome RunDriver::advance(double t_end, std::int64_t max_steps) {
+  if (!started_) start();
+  const Stopwatch wall;
+  const SolverDef& sv = stepper_.view().model.scene().solver;
+  const std::int64_t before = record_.done;
+  record_.outcome = stepper_.run_until(
+      t_end,
+      [&](std::int64_t k) {
+        const std::int64_t n = before + k;
+        record_.done = n;
+        const bool last = stepper_.view().state.time >= t_end - StepControl::kRoundOff * sv.time_step ||
+                          stepper_.view().stopped_at_ratio;
+        if (out_) {
+          // Output seconds: the frames', histories' and checkpoints' (summary.json timings.output).
+          const Stopwatch sw;
+          frames_->after_step(stepper_.view(), n, last);
+          checkpoint_->after_step(stepper_.view(), n, last);
+          record_.output_seconds += sw.seconds();
+        }
+        for (StepObserver* o : observers_) o->after_step(stepper_.view(), n, last);
+      },
+      max_steps);
+  record_.wall_seconds += wall.seconds();
+  return record_.outcome;
+}
+
+nlohmann::json RunDriver::finish() {
+  if (!started_) start();
+  const Stopwatch wall;
+  if (out_) {
+    const Stopwatch sw;
+    frames_->finish(stepper_.view(), record_.outcome, record_.done);
+    checkpoint_->finish(stepper_.view(), record_.outcome, record_.done);
+    record_.output_seconds += sw.seconds();
+  }
+  for (StepObserver* o : observers_) o->finish(stepper_.view(), record_.outcome, record_.done);
+  if (out_ && stepper_.view().fracture.active()) {
+    const Stopwatch sw;
+    write_cracks(stepper_.view(), out_->dir());
+    record_.output_seconds += sw.seconds();
+  }
+  record_.wall_seconds += wall.seconds();
+  nlohmann::json summary = run_summary(stepper_.view(), record_);
+  if (out_) out_->write_summary(summary);
   return summary;
 }
+
+nlohmann::json RunDriver::run() {
+  start();
+  const SolverDef& sv = stepper_.view().model.scene().solver;
+  advance(stepper_.view().state.time + static_cast<double>(sv.steps) * sv.time_step);
+  return finish();
+}
+
+nlohmann::json RunDriver::summary() const { return run_summary(stepper_.view(), record_); }
 
 nlohmann::json run_to_end(TimeStepper& stepper, OutputWriter& out) { return RunDriver(stepper, out).run(); }
 

@@ -10,10 +10,17 @@
 // The stepping core knows nothing of files: what a run writes is the driver's and its
 // observers', each reading the run's view (run_view.h), never the stepper itself. Output seconds (summary.json timings.output) are those of the frames, histories
 // and checkpoints.
+//
+// A run has three phases: start() (frame 0), advance() as often as the caller likes (nmm-solve:
+// once, to the end of solver.steps; the Python module: step(), run(), run_until()), and finish()
+// (the last frame, history.csv, the checkpoint, summary.json); run() is all three. Steps are
+// counted over the whole run, so frames fall every output_every steps however it was advanced.
+// Without an OutputWriter nothing is written, and summary() is still the run's summary.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +28,7 @@
 
 #include "common/outcome.h"
 #include "solver/output/output_writer.h"
+#include "solver/output/run_summary.h"
 #include "solver/stepping/run_view.h"
 #include "solver/stepping/time_stepper.h"
 
@@ -52,25 +60,50 @@ class StepFunction : public StepObserver {
 
 class RunDriver {
  public:
-  /// A run of `stepper` (solver.steps steps on from its current time) writing into `out`.
-  RunDriver(TimeStepper& stepper, OutputWriter& out);
+  /// A run of `stepper` writing into `out` (null: nothing is written).
+  RunDriver(TimeStepper& stepper, OutputWriter* out);
+  RunDriver(TimeStepper& stepper, OutputWriter& out) : RunDriver(stepper, &out) {}
+  ~RunDriver();
 
-  /// Adds an observer, called after the frames and the checkpoint (it must outlive run()).
+  /// Adds an observer, called after the frames and the checkpoint (it must outlive the run).
   void add(StepObserver& observer) { observers_.push_back(&observer); }
 
-  /// Runs all steps, calling the observers; writes and returns the summary.
+  /// Before the first step: frame 0 and the observers' start. Once, before advance().
+  void start();
+  /// Steps until simulated time t_end (s), after `max_steps` accepted steps at the most (< 0: no
+  /// limit), calling the observers after each; a step that reaches t_end (or stops at
+  /// solver.stop_at_ratio) is a last step (it gets a frame). Returns how the steps ended.
+  Outcome advance(double t_end, std::int64_t max_steps = -1);
+  /// The end of the run so far: the last frame, history.csv, the checkpoint, the observers'
+  /// finish and summary.json; returns the summary. The run may advance again after it.
+  nlohmann::json finish();
+  /// start(), advance() by solver.steps steps of solver.time_step, finish(): nmm-solve's run.
   nlohmann::json run();
-  /// How the last run() ended.
-  const Outcome& outcome() const { return outcome_; }
+
+  /// The summary of the run so far (summary.json's keys).
+  nlohmann::json summary() const;
+  /// How the last advance() ended.
+  const Outcome& outcome() const { return record_.outcome; }
+  /// Accepted steps since start().
+  std::int64_t steps_done() const { return record_.done; }
 
  private:
+  class FrameOutput;
+  class CheckpointOutput;
   TimeStepper& stepper_;
-  OutputWriter& out_;
+  OutputWriter* out_;
   std::vector<StepObserver*> observers_;
-  Outcome outcome_;
+  std::unique_ptr<FrameOutput> frames_;           // with an OutputWriter
+  std::unique_ptr<CheckpointOutput> checkpoint_;  // with an OutputWriter
+  RunRecord record_;
+  bool started_ = false;
 };
 
 /// The whole run without further observers (tests, benches): RunDriver(stepper, out).run().
 nlohmann::json run_to_end(TimeStepper& stepper, OutputWriter& out);
+
+/// The rows contacts.csv gets of the current state: its closed contacts (all of them with
+/// `open_too`), where they are, their state, forces, stiffnesses, lengths and joint-law state.
+std::vector<ContactSample> contact_samples(const RunView& run, bool open_too = false);
 
 }  // namespace nmm::solve

@@ -381,7 +381,8 @@ void TimeStepper::step(double dt) {
   if (!o.ok()) throw RunError(o.reason);
 }
 
-Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step) {
+Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64_t)>& on_step,
+                               std::int64_t max_steps) {
   // Attempts under Shi's step control (step_control.h): without contact nothing is rejected and
   // every step has the full length time_step. What a shorter step may cure is cut and tried
   // again; anything else stops the run at once.
@@ -413,7 +414,7 @@ Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64
     stopped_at_ratio_ = sv.stop_at_ratio > 0 && balance_.max_ratio < sv.stop_at_ratio &&
                         (!sv.dynamic || balance_.max_velocity < RestCriterion::kVelocity);
     on_step(++done);
-    if (stopped_at_ratio_) break;
+    if (stopped_at_ratio_ || done == max_steps) break;
   }
   return stop(StopCode::ok, "");
 }

@@ -67,10 +67,12 @@ class TimeStepper {
   /// One step of length dt. Throws RunError when it cannot be taken.
   void step(double dt);
   /// Steps until simulated time t_end (s) with step control, calling on_step(n) after the n-th
-  /// accepted step. Returns ok (also when solver.stop_at_ratio is met), interrupted (the stop
+  /// accepted step, and after `max_steps` accepted steps at the most (< 0: no limit). Returns ok
+  /// (also when solver.stop_at_ratio is met or max_steps are taken), interrupted (the stop
   /// check said so), or why the run cannot go on: what no shorter step cures, or what step
   /// control cut to its floor (the reason says so).
-  Outcome run_until(double t_end, const std::function<void(std::int64_t)>& on_step);
+  Outcome run_until(double t_end, const std::function<void(std::int64_t)>& on_step,
+                    std::int64_t max_steps = -1);
 
   // ---- read -------------------------------------------------------------------------------
   /// What the outputs read: state, model, space, contacts, system, costs (run_view.h).

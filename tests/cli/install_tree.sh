@@ -5,7 +5,7 @@
 # cut and run, and a sweep through Snakemake, which must use the installed workflow
 # (PREFIX/share/nmm/workflow/Snakefile, found relative to the installed nmm-sweep), not the
 # source tree's. The installed Snakefile gets an onstart handler that prints a marker, and the
-# sweep's snakemake.log must show it.
+# sweep's snakemake.log must show it. The Python module, when built, is imported from PREFIX.
 set -euo pipefail
 build=$1 prefix=$2
 rm -rf "$prefix"
@@ -36,4 +36,20 @@ ok=$(grep -c ',0,ok,' sweep/sweep.csv)
 [ "$ok" = 6 ] || { echo "sweep: $ok of 6 runs ok"; exit 1; }
 grep -q "nmm install test: the installed Snakefile" sweep/snakemake.log ||
   { echo "the sweep did not run the installed Snakefile (sweep/snakemake.log)"; exit 1; }
+# The Python module (when built): installed into PREFIX's site-packages (a scratch prefix is
+# not on sys.path: PYTHONPATH names it, as docs/python.md says), imported from there, and an
+# installed example run against the installed scenes.
+if [ -e "$build/python/nmm/__init__.py" ]; then
+  site=$(ls -d "$prefix"/lib/python3*/site-packages)
+  [ -f "$site/nmm/__init__.py" ] && ls "$site"/nmm/_nmm*.so >/dev/null ||
+    { echo "not installed: the package nmm in $prefix/lib/python3*/site-packages"; exit 1; }
+  PYTHONPATH=$site "$build/bin/python3" -c "
+import nmm, sys
+assert nmm.__file__.startswith('$site'), nmm.__file__
+mesh = nmm.Mesh.load('incline.nmm')
+s = nmm.Solver(mesh, set={'solver.steps': 5}); s.run()
+import json; assert s.state_hash == json.load(open('incline_run/summary.json'))['state_hash']"
+  PYTHONPATH=$site "$build/bin/python3" "$share/examples/python/friction_sweep.py" py >/dev/null
+  [ -s py/friction_sweep.png ] || { echo "the installed example wrote no py/friction_sweep.png"; exit 1; }
+fi
 echo "installed into $prefix: tools run from $work, the sweep used the installed workflow"
