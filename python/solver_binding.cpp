@@ -175,10 +175,16 @@ class PySolver {
 
 void PythonProgress::after_step(const solve::RunView&, std::int64_t, bool) { solver_.call_progress(); }
 
-/// A view of one of the run state's arrays (it is updated in place step after step: the view
-/// follows it), shaped (n / columns, columns).
+/// One of the run state's arrays shaped `shape`: a view (it is updated in place step after
+/// step: the view follows it), or a copy in a run that can crack — a crack re-cuts the mesh and
+/// the state's arrays are replaced by longer ones (docs/fracture.md), which a view would outlive.
+py::array state_array(py::handle self, const std::vector<double>& v, std::vector<py::ssize_t> shape) {
+  if (self.cast<PySolver&>().run().view().fracture.active()) return copy(v, std::move(shape));
+  return view(v.data(), std::move(shape), self);
+}
+
 py::array state_view(py::handle self, const std::vector<double>& v, py::ssize_t columns) {
-  return view(v.data(), {static_cast<py::ssize_t>(v.size()) / columns, columns}, self);
+  return state_array(self, v, {static_cast<py::ssize_t>(v.size()) / columns, columns});
 }
 
 const solve::RunState& state_of(py::handle self) { return self.cast<PySolver&>().run().view().state; }
@@ -288,7 +294,7 @@ nmm.InputError.)")
         const PySolver& s = self.cast<PySolver&>();
         const auto terms = static_cast<py::ssize_t>(s.run().view().space.terms());
         const std::vector<double>& v = state_of(self).stress;
-        return view(v.data(), {static_cast<py::ssize_t>(v.size()) / (3 * terms), terms, 3}, self);
+        return state_array(self, v, {static_cast<py::ssize_t>(v.size()) / (3 * terms), terms, 3});
       }, "(me, T, 3) Pa: each element's stress polynomial (σxx, σyy, τxy; tension positive), "
          "T = 1, 3, 6 terms at cover order 0, 1, 2. A view")
       .def_property_readonly("element_stress", [](const PySolver& s) {
