@@ -6,8 +6,10 @@
   preprocess/              -> common/
   solver/discretisation/   -> common/
   solver/contact/          -> common/, solver/discretisation/
-  solver/stepping/         -> common/, solver/discretisation/, solver/contact/
-  solver/output/           -> common/, solver/discretisation/, solver/contact/, solver/stepping/
+  solver/reinforcement/    -> common/, solver/discretisation/, solver/contact/
+  solver/stepping/         -> common/, solver/discretisation/, solver/contact/, solver/reinforcement/
+  solver/output/           -> common/, solver/discretisation/, solver/contact/, solver/reinforcement/,
+                              solver/stepping/
   report/                  -> common/, solver/...
   studies/                 -> common/, reference/, preprocess/, solver/..., report/
   tools/                   -> anything (the command-line tools' mains)
@@ -25,7 +27,7 @@ import pathlib
 import re
 import sys
 
-SOLVER = ["solver/discretisation", "solver/contact", "solver/stepping", "solver/output"]
+SOLVER = ["solver/discretisation", "solver/contact", "solver/reinforcement", "solver/stepping", "solver/output"]
 ALLOWED = {
     "common": set(),
     "reference": {"common"},

@@ -39,6 +39,7 @@
 #include "report/result_picture.h"
 #include "common/run_config.h"
 #include "solver/output/run_driver.h"
+#include "solver/reinforcement/bolt_readout.h"
 #include "report/run_report.h"
 #include "solver/stepping/time_stepper.h"
 #include "common/atomic_file.h"
@@ -66,6 +67,16 @@ nmm::report::ReportFiles write_pictures(const nmm::solve::RunView& run, const nm
     // x − (x − x0): what nmm-report computes from history.csv (x, ux), so its redraw of an
     // exaggerated picture is this one byte for byte.
     state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
+  }
+  for (std::size_t b = 0; b < run.state.bolts.size(); ++b) {
+    nmm::report::PictureBolt pb;
+    pb.broken = run.state.bolts[b].broken != 0;
+    for (const nmm::solve::BoltReading& r : nmm::solve::bolt_readout(scene.bolts[b], run.state.bolts[b])) {
+      pb.points.push_back({r.x, r.y});
+      pb.start.push_back({r.x - r.ux, r.y - r.uy});  // as nmm-report computes it from bolts.csv
+      pb.axial.push_back(r.axial);
+    }
+    state.bolts.push_back(std::move(pb));
   }
   state.exaggeration = exaggerate;
   state.excavated_body = run.state.body_removed;

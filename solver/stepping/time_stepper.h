@@ -30,6 +30,7 @@
 #include "solver/stepping/step_control.h"
 #include "solver/stepping/step_timings.h"
 #include "solver/discretisation/system_matrix.h"
+#include "solver/reinforcement/bolt_system.h"
 
 namespace nmm::solve {
 
@@ -89,6 +90,20 @@ class TimeStepper {
   /// The equilibrium indicators of the step just solved (increment d of length dt), before
   /// update() moves the state on.
   void measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact);
+  /// Solves the assembled step (rhs_, system_): one factorisation, or the step's contact
+  /// problem with its breaks; `again`: the same step solved again from d (the bolts' modes
+  /// changed at its solution). Sets d, the residual handed on and whether Newton iterated.
+  Outcome solve_step(bool contact, bool again, Eigen::VectorXd& d, Eigen::VectorXd& residual, bool& iterated);
+  /// Takes the absorbing boundaries' carried reaction from the state the step starts from
+  /// (absorbing_boundary.h): its out-of-balance force with d = 0, without inertia.
+  void take_absorbing_reaction(bool contact);
+  /// The bolts of the run's scene on state s_ (installed now or carried on), their unknowns
+  /// numbered and the pattern built with their groups.
+  void place_bolts(const std::vector<BoltState>& previous);
+  /// The system's first contact-pair group: after the elements' and the bolts' groups.
+  int first_pair_group() const { return static_cast<int>(mesh_.element_count() + bolts_.groups()); }
+  /// Unknowns of the system: the covers', then the bolts' own (bolt_system.h).
+  int system_unknowns() const { return space_.unknowns() + bolts_.unknowns(); }
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
   bool step_inertia() const { return model_.step_inertia(); }
   /// –, the share of a step's momentum the next step keeps: solver.dynamic_factor in a dynamic
@@ -112,6 +127,8 @@ class TimeStepper {
   CoverSpace space_;                    // order, unknowns of each cover and element, shapes
   Configuration config_;                // the space on the step's cover positions: frames, bases
   RunState s_;                          // everything a step carries to the next
+  BoltSystem bolts_;                    // the bolts' unknowns, groups and each step's springs
+  bool bolts_renumbered_ = false;       // a restart installed bolts: its FACTOR is of another size
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   Eigen::VectorXd rhs_;
