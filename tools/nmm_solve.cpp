@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
   try {
     const nmm::Mesh mesh = nmm::read_mesh_file(mesh_path);
     const nmm::solve::RunScene run = nmm::solve::make_run_scene(mesh, mesh_path, config_path, sets);
-    nmm::solve::TimeStepper stepper(mesh, run.scene, mesh_path + " (embedded scene)");
+    nmm::solve::TimeStepper stepper(mesh, run.scene, run.name);
     stepper.set_threads(threads);
     if (!restart_path.empty()) stepper.restart_from(restart_path);
     nmm::solve::OutputWriter out(out_dir, text_frames ? nmm::solve::FrameFormat::text
