@@ -122,6 +122,22 @@ TEST(Bolts, GroutedCablePullsOutAtItsBondOrYieldCapacity) {
   EXPECT_TRUE(yielded);
 }
 
+// A 2 m × 1 m block on a 4 m × 1 m base held along its bottom, joint friction 30° (constant
+// springs, Pa/m), gravity; dynamic, Δt = 2 ms.
+json block_on_base() {
+  return json::parse(R"({
+    "gravity": [0, -9.81],
+    "materials": { "rock": { "density": 2650, "young": 1e10, "poisson": 0.25 } },
+    "joint_sets": { "base": { "friction_deg": 30, "normal": { "model": "constant", "kn": 4e11 },
+                              "shear": { "model": "constant", "ks": 1.6e11 } } },
+    "interface_set": "base",
+    "bodies": [ { "material": "rock", "outer": [[0,0],[4,0],[4,1],[0,1]] },
+                { "material": "rock", "outer": [[1,1],[3,1],[3,2],[1,2]] } ],
+    "mesh": { "size": 0.25 },
+    "supports": [ { "points": [[0,0],[4,0]], "fix": "xy" } ],
+    "solver": { "time_step": 2e-3 } })");
+}
+
 // A 2 m × 1 m block on a base, friction 30°, gravity; a horizontal force H on it ramped up over
 // 0.1 s from t = 0.05 s and then held; an anchored bolt from the block into the base at θ = 30°
 // to the joint's normal, pretensioned to P (its tension pulls the block down and back: against
@@ -134,18 +150,8 @@ struct Slide {
 Slide bolted_block(double h_force, double pretension, double strength, double stiffness = 1e4) {
   const double theta = rad(30), l = 1.2;
   const double hx = 2.3, hy = 1.6;  // the bolt's head in the block
-  json doc = json::parse(R"({
-    "gravity": [0, -9.81],
-    "materials": { "rock": { "density": 2650, "young": 1e10, "poisson": 0.25 } },
-    "joint_sets": { "base": { "friction_deg": 30, "normal": { "model": "constant", "kn": 4e11 },
-                              "shear": { "model": "constant", "ks": 1.6e11 } } },
-    "interface_set": "base",
-    "bodies": [ { "material": "rock", "outer": [[0,0],[4,0],[4,1],[0,1]] },
-                { "material": "rock", "outer": [[1,1],[3,1],[3,2],[1,2]] } ],
-    "mesh": { "size": 0.25 },
-    "supports": [ { "points": [[0,0],[4,0]], "fix": "xy" } ],
-    "measure_points": [[2, 1.5]],
-    "solver": { "time_step": 2e-3, "steps": 200 } })");
+  json doc = block_on_base();
+  doc["measure_points"] = {{2, 1.5}};
   doc["loads"] = json::array({{{"point", {2, 1.5}}, {"force", {h_force, 0}},
                                {"table", {{0, 0}, {0.05, 0}, {0.15, 1}}}}});
   json bolt = {{"points", {{hx, hy}, {hx - l * std::sin(theta), hy - l * std::cos(theta)}}},
@@ -229,17 +235,7 @@ TEST(Bolts, RestartContinuesBoltsBitwiseAndAddsThemAtARestart) {
   // with their own pretension only: 2 × 40 steps through a checkpoint in memory, against 80
   // straight: bitwise equal states.
   const double w = 2650 * 9.81 * 2, tan_phi = std::tan(rad(30));
-  json doc = json::parse(R"({
-    "gravity": [0, -9.81],
-    "materials": { "rock": { "density": 2650, "young": 1e10, "poisson": 0.25 } },
-    "joint_sets": { "base": { "friction_deg": 30, "normal": { "model": "constant", "kn": 4e11 },
-                              "shear": { "model": "constant", "ks": 1.6e11 } } },
-    "interface_set": "base",
-    "bodies": [ { "material": "rock", "outer": [[0,0],[4,0],[4,1],[0,1]] },
-                { "material": "rock", "outer": [[1,1],[3,1],[3,2],[1,2]] } ],
-    "mesh": { "size": 0.25 },
-    "supports": [ { "points": [[0,0],[4,0]], "fix": "xy" } ],
-    "solver": { "time_step": 2e-3 } })");
+  json doc = block_on_base();
   doc["loads"] = json::array({{{"point", {2, 1.5}}, {"force", {1.3 * w * tan_phi, 0}}}});
   const Built plain = make(doc, "plain");
   json bolted = doc;
