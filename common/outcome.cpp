@@ -17,6 +17,7 @@ constexpr Named kNames[] = {
     {StopCode::penetration, "penetration"},
     {StopCode::contact_not_converged, "contact_not_converged"},
     {StopCode::direction_not_finite, "direction_not_finite"},
+    {StopCode::bolts_not_settled, "bolts_not_settled"},
     {StopCode::unconstrained, "unconstrained"},
     {StopCode::element_folded, "element_folded"},
     {StopCode::displacement_not_finite, "displacement_not_finite"},
@@ -44,7 +45,8 @@ bool cured_by_shorter_step(StopCode code) {
     case StopCode::step_displacement:
     case StopCode::penetration:
     case StopCode::contact_not_converged:
-    case StopCode::direction_not_finite: return true;
+    case StopCode::direction_not_finite:
+    case StopCode::bolts_not_settled: return true;
     default: return false;
   }
 }

@@ -99,7 +99,7 @@ RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
   const json base = parse_json_text(mesh.scene_text, embedded_name);
   // Rule 1: a fault already in the embedded scene is not the variants' doing.
   SceneDef embedded = scene_from_json(base, embedded_name);
-  if (config_path.empty() && sets.empty()) return RunScene{std::move(embedded), base};
+  if (config_path.empty() && sets.empty()) return RunScene{std::move(embedded), base, embedded_name};
 
   json doc = base;
   if (!config_path.empty()) {
@@ -131,6 +131,7 @@ RunScene make_run_scene(const Mesh& mesh, const std::string& mesh_path,
     throw;
   }
   run.effective = std::move(doc);
+  run.name = name;
   return run;
 }
 

@@ -20,6 +20,9 @@ namespace nmm::solve {
 struct RunScene {
   SceneDef scene;            ///< validated scene the solver runs
   nlohmann::json effective;  ///< the scene document after all variants (written to the output)
+  /// What errors found later (by the solver) call it: "MESH (embedded scene)", or "scene in
+  /// MESH with --config FILE and --set" when variants made it
+  std::string name;
 };
 
 /// Applies the variants to mesh.scene_text. mesh_path names the embedded scene in errors,

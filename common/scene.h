@@ -156,6 +156,39 @@ struct TractionDef {
   TimeTable table;           ///< factor on the traction over time; empty: 1
 };
 
+/// What a bolt is (docs/reinforcement.md): DDA's point-anchored bolt, an axial spring between
+/// its two ends; or UDEC's fully grouted cable, axial segments tied along their length to the
+/// rock by a grout shear spring.
+enum class BoltType { anchored, grouted };
+
+/// A straight rock bolt or cable from `a` to `b` (solver/reinforcement/). Forces and stiffnesses
+/// are per bolt; in the plane-strain model each acts per metre of thickness divided by `spacing`.
+/// A strength or yield force that is not given is none (infinity: never breaks, never yields).
+struct BoltDef {
+  Vec2 a, b;                         ///< m, its first and second point, both inside bodies
+  BoltType type = BoltType::anchored;
+  double spacing = 1;                ///< m between bolts out of the plane
+  // anchored
+  double stiffness = 0;              ///< N/m per bolt, of the axial spring
+  double pretension = 0;             ///< N per bolt, its axial force when installed (tension > 0)
+  double strength = 0;               ///< N per bolt: |axial force| at which it breaks (force 0 after)
+  // grouted
+  double ea = 0;                     ///< N per bolt, axial rigidity E·A of the steel
+  double yield = 0;                  ///< N per bolt, axial yield force (tension and compression)
+  double bond_stiffness = 0;         ///< N/m per m of bolt (Pa): grout shear stiffness
+  double bond_strength = 0;          ///< N per m of bolt: grout shear strength
+  int segments = 0;                  ///< axial segments; 0: the default (solver/reinforcement/bolt_layout.h)
+};
+
+/// Lysmer–Kuhlemeyer dashpots on the body boundary under a polyline
+/// (solver/discretisation/absorbing_boundary.h); with an input velocity the boundary is compliant
+/// and lets that incoming wave in.
+struct AbsorbingDef {
+  std::vector<Vec2> points;  ///< polyline, >= 2 points, m
+  TimeTable input_x;         ///< m/s, the incoming wave's particle velocity in x over time; empty: none
+  TimeTable input_y;         ///< m/s, in y
+};
+
 /// Initial stress σ(x, y) = σ0 + (y_ref − y)·gradient, Pa, tension positive.
 struct InsituStressDef {
   bool present = false;
@@ -239,6 +272,8 @@ struct SceneDef {
   TimeTable base_acceleration_y;     ///< m/s², in y
   WaterDef water;                    ///< water pressure in the joints (absent: dry)
   FractureDef fracture;              ///< intact rock that breaks (absent: it never does)
+  std::vector<BoltDef> bolts;        ///< rock bolts and cables, numbered from 0 in this order
+  std::vector<AbsorbingDef> absorbing;  ///< absorbing (viscous) boundaries
   SolverDef solver;
 };
 

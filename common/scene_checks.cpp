@@ -103,6 +103,11 @@ std::vector<std::string> check_scene_usability(const SceneDef& scene, const std:
     check_point(scene.loads[i].point, "/loads/" + std::to_string(i) + "/point", "load point");
   for (std::size_t i = 0; i < scene.measure_points.size(); ++i)
     check_point(scene.measure_points[i], "/measure_points/" + std::to_string(i), "measure point");
+  for (std::size_t i = 0; i < scene.bolts.size(); ++i) {
+    const std::string at = "/bolts/" + std::to_string(i) + "/points/";
+    check_point(scene.bolts[i].a, at + "0", "bolt end");
+    check_point(scene.bolts[i].b, at + "1", "bolt end");
+  }
 
   for (std::size_t j = 0; j < scene.joints.size(); ++j) {
     const JointDef& joint = scene.joints[j];

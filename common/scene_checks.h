@@ -1,7 +1,7 @@
 // Mistakes in a scene that parse and cut fine but make a useless or surprising model, caught
 // before the cut (nmm-preprocess) instead of by the solver or not at all:
-//   - a fixed, load or measure point outside every body (error: the solver could not hold,
-//     load or measure anything there);
+//   - a fixed, load or measure point, or a bolt's end, outside every body (error: the solver
+//     could not hold, load, measure or anchor anything there);
 //   - a joint touching no body (a warning naming it, an error with nmm-preprocess
 //     --strict-joints: it is dropped — a coordinate typo, or a generated joint beyond the bodies);
 //   - a mesh size larger than a body's inradius (warning: the body gets a handful of elements and

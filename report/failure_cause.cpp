@@ -50,6 +50,9 @@ std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, StopCo
   if (code == StopCode::contact_not_converged)
     return "contacts keep changing state: try a smaller solver.time_step, a lower "
            "max_displacement_ratio or a softer penalty (joint_sets.NAME.normal.kn).";
+  if (code == StopCode::bolts_not_settled)
+    return "the bolts' springs kept switching between elastic and yielding or slipping within a "
+           "step: try a smaller solver.time_step, or more segments (bolts[].segments).";
   if (code == StopCode::unconstrained)
     return "a block is held by nothing: give it fixed points or supports, or run dynamic.";
   return "";

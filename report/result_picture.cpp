@@ -17,6 +17,21 @@
 
 namespace nmm::report {
 
+namespace {
+/// A bolt's colour for f = force / the picture's largest |force| in [−1, 1]: white to dark red
+/// for tension, white to dark blue for compression (linear in |f|, from a pale tint).
+std::string bolt_colour(double f) {
+  const double t = std::clamp(std::abs(f), 0.0, 1.0);
+  static const int kTension[2][3] = {{252, 210, 200}, {165, 0, 38}}, kCompression[2][3] = {{200, 215, 245}, {49, 54, 149}};
+  const int(*ends)[3] = f >= 0 ? kTension : kCompression;
+  int rgb[3];
+  for (int k = 0; k < 3; ++k) rgb[k] = static_cast<int>(std::lround(ends[0][k] * (1 - t) + ends[1][k] * t));
+  char c[16];
+  std::snprintf(c, sizeof c, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
+  return c;
+}
+}  // namespace
+
 std::string colour_map(double f) {
   // viridis: perceptually ordered, readable in grey and by most colour-blind readers.
   static const double stops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140},
@@ -250,6 +265,26 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     const Vec2 p = factor != 1 && known ? at(c.vertex) : Vec2{c.x, c.y};
     svg.circle(p, 2.5 * line, {slides ? "#ff7f0e" : "#1f77b4", "none", 0, 0, 1});
   }
+  // Bolts, over the rock and its joints.
+  double bolt_max = 0;
+  for (const PictureBolt& b : state.bolts)
+    for (double f : b.axial) bolt_max = std::max(bolt_max, std::abs(f));
+  for (const PictureBolt& b : state.bolts) {
+    const auto drawn_point = [&](std::size_t i) {
+      const Vec2 p = b.points[i];
+      if (factor == 1 || i >= b.start.size()) return p;
+      return Vec2{b.start[i].x + factor * (p.x - b.start[i].x), b.start[i].y + factor * (p.y - b.start[i].y)};
+    };
+    for (std::size_t i = 0; i + 1 < b.points.size(); ++i) {
+      const std::pair<Vec2, Vec2> seg{drawn_point(i), drawn_point(i + 1)};
+      if (b.broken) {
+        svg.segments({seg}, {"none", "#777777", 3 * line, 3 * line, 1});
+        continue;
+      }
+      const double f = i + 1 < b.axial.size() ? 0.5 * (b.axial[i] + b.axial[i + 1]) : 0.0;
+      svg.segments({seg}, {"none", bolt_colour(bolt_max > 0 ? f / bolt_max : 0.0), 4 * line, 0, 1});
+    }
+  }
   // Supports (rollers and pins along the boundary): a thick green line where they hold, with
   // what they hold ("x", "y", "xy") at the middle of their polyline. Drawn where the scene puts
   // them: a support holds its boundary still (to within its spring's give).
@@ -402,6 +437,11 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   if (water_max > 0) {
     std::snprintf(buf, sizeof buf, "water pressure: light to dark cyan, up to %.3g kPa", water_max / 1e3);
     entry("#00bfe6", 7 * line, buf);
+  }
+  if (!state.bolts.empty()) {
+    std::snprintf(buf, sizeof buf, "bolts: axial force, tension red, compression blue, darkest %.3g kN",
+                  bolt_max / 1e3);
+    entry(bolt_colour(1.0), 4 * line, buf);
   }
   ly -= 1.4 * font;
   std::string excavated_note;

@@ -30,6 +30,10 @@
 // like any joint; open, they are drawn by how they formed — tensile red, shear purple — with
 // their lengths in the legend.
 //
+// Bolts: each segment a thick line in the colour of its axial force (the mean of its two
+// points'), red for tension and blue for compression, from light (none) to dark (the largest
+// |force| of the picture, stated in the legend); a broken bolt grey and dashed.
+//
 // Excavated bodies (excavation.h) are gone from the model: the solver only holds their covers
 // still so that the system stays regular. They are not filled, not in the colour scale, and
 // their outline is drawn thin, grey and dashed where they were, the legend saying "excavated".
@@ -59,6 +63,14 @@ struct PictureContact {
   int edge = -1;    ///< first loop vertex of the edge P faces (-1: unknown)
 };
 
+/// One bolt to draw (solver/reinforcement/bolt_readout.h): coloured by its axial force.
+struct PictureBolt {
+  std::vector<Vec2> points;   ///< m, its points now, first to last
+  std::vector<Vec2> start;    ///< m, where each was when the mesh was cut (the exaggerated drawing)
+  std::vector<double> axial;  ///< N per bolt at each point, tension positive
+  bool broken = false;        ///< drawn grey and dashed
+};
+
 struct PictureState {
   double time = 0;                      ///< s, simulated time of the state
   std::string status;                   ///< run status ("ok", "interrupted", "step 30", or a
@@ -69,6 +81,7 @@ struct PictureState {
   const std::vector<double>* stress;    ///< [3·me] Pa, σxx σyy σxy (tension positive)
   std::vector<PictureContact> contacts;
   bool contacts_known = true;           ///< false: this state's contacts were not recorded
+  std::vector<PictureBolt> bolts;       ///< rock bolts and cables
   std::vector<Vec2> measure_points;     ///< m, current positions
   std::vector<std::uint8_t> excavated_body;  ///< [body] 1: excavated by this state (empty: none)
   /// [joint of the mesh] what each joint is: 0 a scene joint, 1 a tensile crack, 2 a shear crack

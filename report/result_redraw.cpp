@@ -238,6 +238,33 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
     state.contacts_known = pick % static_cast<std::size_t>(every) == 0 || pick + 1 == frames.size();
   }
 
+  // Bolts of that step (bolts.csv), each a run of rows of one bolt, and whether it had broken
+  // (summary.json "bolts": known for the run's last state).
+  const std::string bolts_path = (fs::path(dir) / "bolts.csv").string();
+  if (fs::exists(bolts_path)) {
+    const NumberTable b = read_number_csv(bolts_path);
+    const int bs = b.column("step"), bb = b.column("bolt"), bx = b.column("x"), by = b.column("y"),
+              bf = b.column("axial_force"), bux = b.column("ux"), buy = b.column("uy");
+    if (bs < 0 || bb < 0 || bx < 0 || by < 0 || bf < 0 || bux < 0 || buy < 0)
+      throw InputError(bolts_path, "line 1", "header lacks step, bolt, axial_force, x, y, ux or uy");
+    for (const auto& r : b.rows) {
+      if (r.size() < b.names.size() || static_cast<std::int64_t>(r[bs]) != step) continue;
+      const std::size_t i = static_cast<std::size_t>(r[bb]);
+      if (i >= scene.bolts.size()) continue;
+      if (state.bolts.size() <= i) state.bolts.resize(i + 1);
+      PictureBolt& pb = state.bolts[i];
+      pb.points.push_back({r[bx], r[by]});
+      pb.start.push_back({r[bx] - r[bux], r[by] - r[buy]});
+      pb.axial.push_back(r[bf]);
+    }
+    if (last && summary.contains("bolts") && summary["bolts"].is_array())
+      for (const auto& x : summary["bolts"]) {
+        if (!x.is_object() || !x.contains("bolt") || !x["bolt"].is_number_unsigned()) continue;
+        const std::size_t i = x["bolt"].get<std::size_t>();
+        if (i < state.bolts.size()) state.bolts[i].broken = x.value("broken", false);
+      }
+  }
+
   // Measure points of that step, and where they started (x − ux: the exaggerated drawing).
   const NumberTable h = read_number_csv((fs::path(dir) / "history.csv").string());
   const int hs = h.column("step"), hx = h.column("x"), hy = h.column("y");

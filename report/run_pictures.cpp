@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "solver/reinforcement/bolt_readout.h"
 
 namespace nmm::report {
 
@@ -27,6 +28,16 @@ ReportFiles write_run_pictures(const solve::RunView& run, const SceneDef& scene,
     state.measure_start.push_back({p.x - (p.x - p.x0), p.y - (p.y - p.y0)});
   }
   state.exaggeration = exaggerate;
+  for (std::size_t b = 0; b < run.state.bolts.size(); ++b) {
+    PictureBolt pb;
+    pb.broken = run.state.bolts[b].broken != 0;
+    for (const solve::BoltReading& r : solve::bolt_readout(scene.bolts[b], run.state.bolts[b])) {
+      pb.points.push_back({r.x, r.y});
+      pb.start.push_back({r.x - r.ux, r.y - r.uy});  // as nmm-report computes it from bolts.csv
+      pb.axial.push_back(r.axial);
+    }
+    state.bolts.push_back(std::move(pb));
+  }
   state.excavated_body = run.state.body_removed;
   // A cracked run: its mesh has the cracks as joints after the scene's, and its scene with them.
   const std::vector<solve::CrackSegment>& cracks = run.fracture.segments();

@@ -7,7 +7,9 @@
   solver/discretisation/   -> common/
   solver/contact/          -> common/, solver/discretisation/
   solver/fracture/         -> common/, preprocess/, solver/discretisation/, solver/contact/
-  solver/stepping/         -> the same and solver/fracture/
+  solver/reinforcement/    -> the same and solver/fracture/
+  solver/stepping/         -> common/, preprocess/, solver/discretisation/, solver/contact/,
+                              solver/fracture/, solver/reinforcement/
   solver/output/           -> the same and solver/stepping/
   report/                  -> common/, solver/...
   studies/                 -> common/, reference/, preprocess/, solver/..., report/
@@ -28,7 +30,8 @@ import pathlib
 import re
 import sys
 
-SOLVER = ["solver/discretisation", "solver/contact", "solver/fracture", "solver/stepping", "solver/output"]
+SOLVER = ["solver/discretisation", "solver/contact", "solver/fracture", "solver/reinforcement", "solver/stepping",
+          "solver/output"]
 ALLOWED = {
     "common": set(),
     "reference": {"common"},

@@ -241,6 +241,35 @@ TEST(FosPlanarSlide, MatchesHoekBrayWithCohesion) {
   EXPECT_NEAR(f, ref.fos, 0.03 * ref.fos);
 }
 
+// The same slide held by a pretensioned bolt: a force T at θ = 30° to the plane's normal, from
+// the wedge down into the base, presses the wedge on the plane with T·cosθ and pulls it back up
+// the plane with T·sinθ (Hoek & Bray):
+//   F = [c·A + (W cos ψp + T cosθ) tan φ] / (W sin ψp − T sinθ)
+// Strength reduction divides c and tan φ, not the bolt (docs/reinforcement.md). The bolt is soft
+// (2e4 N/m: a long tendon), so its force stays T while a trial wedge starts to slide (a stiff one
+// would hold back a wedge that moved and raise F). Two forces, each within 2 % (the search's
+// bracket is 1 %); measured 1.7469 against 1.7460 and 2.5556 against 2.5483. A model that took
+// only T's share across the plane, or only its share along it, would be 11–39 % low.
+TEST(FosPlanarSlide, MatchesHoekBrayWithABoltForce) {
+  const double theta = 30 * nmm::kPi / 180, psi = 30 * nmm::kPi / 180, tan_phi = std::tan(25 * nmm::kPi / 180);
+  for (double t : {5e4, 1e5}) {
+    ReferenceSlide ref = planar_slide(5, 60, 30, 5, 25, 1e4);
+    ref.scene["bolts"] = {{{"points", {{4.5, 1.9}, {4.5 - 1.6 * std::sin(theta), 1.9 - 1.6 * std::cos(theta)}}},
+                           {"type", "anchored"}, {"stiffness", 2e4}, {"pretension", t}}};
+    const double w = ref.weight, a = ref.plane_length;
+    const double closed = (1e4 * a + (w * std::cos(psi) + t * std::cos(theta)) * tan_phi) /
+                          (w * std::sin(psi) - t * std::sin(theta));
+    const fs::path dir = work_dir("planar_slide_bolt_" + std::to_string(int(t / 1e3)));
+    const std::string mesh = mesh_of(ref.scene, dir);
+    const nlohmann::json j = fos_json(mesh, dir / "fos", "--tol 0.01 --workers 2");
+    ASSERT_FALSE(j["fos"].is_null()) << j.dump();
+    const double f = j["fos"].get<double>();
+    std::printf("planar slide with a bolt of %.0f kN/m at 30°: F = %.4f, Hoek-Bray %.4f (without it %.4f), error %.2f %%\n",
+                t / 1e3, f, closed, ref.fos, 100 * (f / closed - 1));
+    EXPECT_NEAR(f, closed, 0.02 * closed);
+  }
+}
+
 // Water in the tension crack and on the plane (Hoek & Bray's crack filled to z_w, draining at the
 // toe; reference/slides.h): the water is a load, so strength reduction keeps it while it
 // divides c and tan φ. Three depths up to a full crack, each within 2 % of the closed form

@@ -208,7 +208,8 @@ TEST(Pictures, RunOutcomeFromSummary) {
   EXPECT_EQ(report::run_outcome(json::object()).code, StopCode::failed);
   // Every code's name reads back as the code.
   for (StopCode c : {StopCode::ok, StopCode::interrupted, StopCode::step_displacement, StopCode::penetration,
-                     StopCode::contact_not_converged, StopCode::direction_not_finite, StopCode::unconstrained,
+                     StopCode::contact_not_converged, StopCode::direction_not_finite, StopCode::bolts_not_settled,
+                     StopCode::unconstrained,
                      StopCode::element_folded, StopCode::displacement_not_finite, StopCode::failed}) {
     StopCode back = StopCode::ok;
     EXPECT_TRUE(stop_code_from_name(stop_code_name(c), back)) << stop_code_name(c);

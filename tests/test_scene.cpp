@@ -295,8 +295,8 @@ const BadCase kBadCases[] = {
     {R"({"gravity": [0, 1e400]})", "/gravity/1", "number 1e400 is too large", true},
     // Unknown keys, at several levels.
     {R"({"meshh": {"size": 1}})", "/meshh",
-     "unknown key \"meshh\" (allowed: base_acceleration, bodies, excavate, fixed_points, fracture, gravity, "
-     "insitu_stress, interface_set, joint_sets, joints, loads, materials, measure_points, mesh, "
+     "unknown key \"meshh\" (allowed: absorbing, base_acceleration, bodies, bolts, excavate, fixed_points, "
+     "fracture, gravity, insitu_stress, interface_set, joint_sets, joints, loads, materials, measure_points, mesh, "
      "name, plane, solver, supports, tractions, water)"},
     {R"({"joint_sets": {"bedding": {"fricton_deg": 20}}})", "/joint_sets/bedding/fricton_deg",
      "unknown key \"fricton_deg\" (allowed: cohesion, friction_deg, generate, generated_from, "
@@ -456,6 +456,8 @@ const BadCase kBadCases[] = {
      "/materials/rock/strength/fracture_energy", "cohesive softening of new cracks is not built yet"},
     {R"({"fracture": {"crack_set": "fresh"}})", "/fracture/crack_set",
      "unknown joint set \"fresh\" (known: bedding, fault)"},
+    {R"({"fracture": {"crack_set": "bedding"}, "bolts": [{"points": [[1, 1], [2, 2]], "type": "anchored", "stiffness": 1e7}]})",
+     "/fracture", "fracturing with bolts is not built yet"},
     {R"({"fracture": {"crack_set": "bedding"}, "solver": {"cover_order": 1}})", "/fracture",
      "fracturing needs cover order 0 (solver.cover_order is 1)"},
     {R"({"joint_sets": {"bedding": {"cohesion": 1e4, "residual_cohesion": 2e4}}})",
@@ -493,6 +495,42 @@ const BadCase kBadCases[] = {
     // At 1/3 an element could have all three covers tied (its weights sum to 1).
     {R"({"solver": {"sliver_cover_weight": 0.34}})", "/solver/sliver_cover_weight",
      "must be in [0, 0.3) (got 0.34)"},
+    // Bolts (docs/reinforcement.md): a type, two points, the keys of that type only.
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "stiffness": 1e7}]})", "/bolts/0", "missing required key \"type\""},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "rockbolt"}]})", "/bolts/0/type",
+     "unknown bolt type \"rockbolt\" (known: anchored, grouted)"},
+    {R"({"bolts": [{"points": [[1,1],[2,2],[3,3]], "type": "anchored", "stiffness": 1e7}]})", "/bolts/0/points",
+     "a bolt is straight: exactly 2 points"},
+    {R"({"bolts": [{"points": [[1,1],[1,1]], "type": "anchored", "stiffness": 1e7}]})", "/bolts/0/points/1",
+     "zero-length segment"},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "anchored", "stiffness": 1e7, "ea": 1e7}]})", "/bolts/0/ea",
+     "unknown key \"ea\" (allowed for type \"anchored\": points, pretension, spacing, stiffness, strength, type)"},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "grouted", "ea": 1e7, "bond_stiffness": 1e8, "stiffness": 1}]})",
+     "/bolts/0/stiffness", "unknown key \"stiffness\" (allowed for type \"grouted\": bond_stiffness, bond_strength, ea, points, segments, spacing, type, yield)"},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "anchored"}]})", "/bolts/0", "missing required key \"stiffness\""},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "anchored", "stiffness": 0}]})", "/bolts/0/stiffness",
+     "must be in (0, 1e+17] (got 0)"},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "anchored", "stiffness": 1e7, "pretension": 3e5, "strength": 2e5}]})",
+     "/bolts/0/pretension", "must be below the bolt's strength (2e+05 N)"},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "anchored", "stiffness": 1e7, "spacing": 0}]})", "/bolts/0/spacing",
+     "must be in (0, 1000] (got 0)"},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "grouted", "ea": 1e7}]})", "/bolts/0",
+     "missing required key \"bond_stiffness\""},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "grouted", "ea": 1e7, "bond_stiffness": 1e8, "yield": -1}]})",
+     "/bolts/0/yield", "must be in (0, 1e+15] (got -1)"},
+    {R"({"bolts": [{"points": [[1,1],[2,2]], "type": "grouted", "ea": 1e7, "bond_stiffness": 1e8, "segments": 0}]})",
+     "/bolts/0/segments", "must be >= 1 (got 0)"},
+    {R"({"bolts": {"points": [[1,1],[2,2]]}})", "/bolts", "expected an array, got an object"},
+    // Absorbing boundaries: a polyline, an input velocity of time tables.
+    {R"({"absorbing": [{"points": [[0,0]]}]})", "/absorbing/0/points", "an absorbing boundary needs at least 2 points"},
+    {R"({"absorbing": [{"points": [[0,0],[10,0]], "input_velocity": {}}]})", "/absorbing/0/input_velocity",
+     "an input velocity needs \"x\" and/or \"y\""},
+    {R"({"absorbing": [{"points": [[0,0],[10,0]], "input_velocity": {"z": [[0, 1]]}}]})",
+     "/absorbing/0/input_velocity/z", "unknown key \"z\" (allowed: x, y)"},
+    {R"({"absorbing": [{"points": [[0,0],[10,0]], "input_velocity": {"x": [[0, 1], [0, 2]]}}]})",
+     "/absorbing/0/input_velocity/x/1/0", "times must increase strictly"},
+    {R"({"absorbing": [{"points": [[0,0],[10,0]], "damping": 1}]})", "/absorbing/0/damping",
+     "unknown key \"damping\" (allowed: input_velocity, points)"},
     // Keys with '/' or '~' are escaped in the path (RFC 6901).
     {R"({"joint_sets": {"a/b~c": {"friction_deg": -1, "normal": {"model": "constant", "kn": 1},
                                   "shear": {"model": "constant", "ks": 1}}}})",
@@ -530,6 +568,48 @@ TEST(BadSceneTable, BaseSceneIsValid) {
   const SceneDef s = parse_scene(kBase, "base.json");
   EXPECT_EQ(s.joints.size(), 2u);
   EXPECT_EQ(s.joints[1].set, 1);
+}
+
+// Bolts and absorbing boundaries as the contract writes them (docs/interface.md): every key
+// read, the optional strengths absent as none (infinite), the defaults.
+TEST(Scene, BoltsAndAbsorbingBoundariesParse) {
+  const SceneDef s = parse_scene(R"({
+    "materials": {"rock": {"density": 2650, "young": 1e10, "poisson": 0.25}},
+    "bodies": [{"material": "rock", "outer": [[0,0],[10,0],[10,10],[0,10]]}], "mesh": {"size": 1},
+    "bolts": [
+      { "points": [[1, 1], [3, 1]], "type": "anchored", "stiffness": 5e7,
+        "pretension": 0, "strength": 2e5, "spacing": 1.0 },
+      { "points": [[1, 2], [4, 2]], "type": "grouted", "ea": 1.8e7, "yield": 2.5e5,
+        "bond_stiffness": 1.1e8, "bond_strength": 1.75e5, "spacing": 1.5, "segments": 12 },
+      { "points": [[1, 3], [4, 3]], "type": "anchored", "stiffness": 1e6, "pretension": 5e4 },
+      { "points": [[1, 4], [4, 4]], "type": "grouted", "ea": 1e7, "bond_stiffness": 1e8 } ],
+    "absorbing": [ { "points": [[0, 0], [10, 0]], "input_velocity": { "x": [[0, 0], [0.1, 1]] } },
+                   { "points": [[0, 0], [0, 10]] } ] })",
+                                 "bolts.json");
+  ASSERT_EQ(s.bolts.size(), 4u);
+  EXPECT_EQ(s.bolts[0].type, BoltType::anchored);
+  EXPECT_EQ(s.bolts[0].a, (Vec2{1, 1}));
+  EXPECT_EQ(s.bolts[0].b, (Vec2{3, 1}));
+  EXPECT_EQ(s.bolts[0].stiffness, 5e7);
+  EXPECT_EQ(s.bolts[0].strength, 2e5);
+  EXPECT_EQ(s.bolts[1].type, BoltType::grouted);
+  EXPECT_EQ(s.bolts[1].ea, 1.8e7);
+  EXPECT_EQ(s.bolts[1].yield, 2.5e5);
+  EXPECT_EQ(s.bolts[1].bond_stiffness, 1.1e8);
+  EXPECT_EQ(s.bolts[1].bond_strength, 1.75e5);
+  EXPECT_EQ(s.bolts[1].spacing, 1.5);
+  EXPECT_EQ(s.bolts[1].segments, 12);
+  EXPECT_EQ(s.bolts[2].pretension, 5e4);
+  EXPECT_TRUE(std::isinf(s.bolts[2].strength));  // never breaks
+  EXPECT_EQ(s.bolts[2].spacing, 1.0);
+  EXPECT_TRUE(std::isinf(s.bolts[3].yield));
+  EXPECT_TRUE(std::isinf(s.bolts[3].bond_strength));
+  EXPECT_EQ(s.bolts[3].segments, 0);  // the default, chosen by the solver
+  ASSERT_EQ(s.absorbing.size(), 2u);
+  EXPECT_EQ(s.absorbing[0].points.size(), 2u);
+  EXPECT_EQ(s.absorbing[0].input_x.time.size(), 2u);
+  EXPECT_TRUE(s.absorbing[0].input_y.empty());
+  EXPECT_TRUE(s.absorbing[1].input_x.empty());
 }
 
 // A support's velocity table: held at velocity·∫0^t f, the integral exact on the linear rows

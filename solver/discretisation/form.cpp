@@ -2,6 +2,7 @@
 // integrators.h's kernels, which hold the equations.
 #include "solver/discretisation/form.h"
 
+#include "solver/discretisation/absorbing_boundary.h"
 #include "solver/discretisation/newmark.h"
 
 namespace nmm::solve {
@@ -145,6 +146,7 @@ Form::Form(const Model& model) : model_(model) {
         "interface_traction", [](const Model& m, S st, SystemMatrix&, Eigen::VectorXd& f) {
           interface_traction_terms(m, st.config, st.s, st.removed, f);
         }));
+  if (!scene.absorbing.empty()) boundary_.push_back(std::make_unique<BoundaryTerm>("absorbing", absorbing_terms));
 }
 
 std::vector<std::string> Form::names() const {

@@ -11,7 +11,8 @@
 //                                                step where b = g − a_base(t) is zero)
 //              inertia                           dynamic runs and DDA static ones (newmark.h)
 //   boundary   fixed points, point loads         where the scene has them
-//              supports, tractions, water, in-situ traction of faces between bodies
+//              supports, tractions, water, in-situ traction of faces between bodies,
+//              absorbing boundaries (dashpots in dynamic steps, their carried reaction)
 //
 // An excavated element adds no term: its covers' unknowns are pinned (K += k_pin I, excavation.h).
 #pragma once

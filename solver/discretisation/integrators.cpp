@@ -135,20 +135,17 @@ void inertia(const ElementGeometry& g, double rho, const InertiaCoefficients& c,
 
 }  // namespace integrators
 
-namespace {
-
-/// The edge frame of element e: its basis in the configuration's scratch (valid until the next
-/// call), and a Gauss rule exact for the shape functions (degree n + 1) and the linear field.
 EdgeFrame edge_frame(const Configuration& config, std::int32_t e) {
   return EdgeFrame{&config.basis(static_cast<std::size_t>(e)), config.space().order() + 2};
 }
 
-/// rhs += factor·f over element e's unknowns.
 void add_edge_force(const CoverSpace& space, std::int32_t e, const std::vector<double>& f, double factor,
                     Eigen::VectorXd& rhs) {
   const int* g = space.element_unknowns(static_cast<std::size_t>(e));
   for (int i = 0; i < space.element_dofs(); ++i) rhs[g[i]] += factor * f[i];
 }
+
+namespace {
 
 /// The in-situ traction σ_insitu·n on the edge a–b (loop displacements ua, ub): the field at a
 /// point's position in the mesh as cut (x − u), with n current.

@@ -74,6 +74,13 @@ void inertia(const ElementGeometry& g, double rho, const InertiaCoefficients& c,
 
 }  // namespace integrators
 
+/// The edge frame of element e: its basis in the configuration's scratch (valid until the next
+/// call), and a Gauss rule exact for the shape functions (degree n + 1) and the linear field.
+EdgeFrame edge_frame(const Configuration& config, std::int32_t e);
+/// rhs += factor·f (N) over element e's unknowns.
+void add_edge_force(const CoverSpace& space, std::int32_t e, const std::vector<double>& f, double factor,
+                    Eigen::VectorXd& rhs);
+
 // The point and edge terms, each into the system's element groups and rhs (N); `removed`: [me] 1
 // for excavated elements, whose edges carry nothing; t_end: s, the step's end (load tables,
 // moving supports).

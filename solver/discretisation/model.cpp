@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "common/ring_geometry.h"
+#include "solver/discretisation/point_location.h"
 
 namespace nmm::solve {
 
@@ -55,28 +55,20 @@ Model::Model(const Mesh& mesh, const SceneDef& scene, const std::string& scene_n
   for (std::size_t i = 0; i < scene.tractions.size(); ++i)
     traction_edges_.push_back(edges_under(mesh, scene.tractions[i].points, scene_name,
                                           "/tractions/" + std::to_string(i) + "/points"));
+  for (std::size_t i = 0; i < scene.absorbing.size(); ++i)
+    absorbing_edges_.push_back(edges_under(mesh, scene.absorbing[i].points, scene_name,
+                                           "/absorbing/" + std::to_string(i) + "/points"));
 
   // Points: the element that contains each one, else the nearest within 1e-6·h (a point on a
   // boundary), else bad input.
   auto locate = [&](const Vec2& p, const std::string& path) {
-    std::int32_t best = -1;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t e = 0; e < ne; ++e) {
-      const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
-      const double* xy = mesh.loop_xy.data() + 2 * b;
-      if (point_in_loop(xy, n, p.x, p.y)) return TrackedPoint{static_cast<std::int32_t>(e), p.x, p.y, p.x, p.y};
-      const double d = distance_to_loop(xy, n, p.x, p.y);
-      if (d < best_d) {
-        best_d = d;
-        best = static_cast<std::int32_t>(e);
-      }
-    }
-    if (best < 0 || best_d > 1e-6 * mesh.mesh_size) {
+    const PointLocation at = locate_point(mesh, mesh.loop_xy, p);
+    if (at.element < 0 || at.distance > 1e-6 * mesh.mesh_size) {
       std::ostringstream os;
       os << "point (" << p.x << ", " << p.y << ") lies outside every body";
       throw InputError(scene_name, path, os.str());
     }
-    return TrackedPoint{best, p.x, p.y, p.x, p.y};
+    return TrackedPoint{at.element, p.x, p.y, p.x, p.y};
   };
   for (std::size_t i = 0; i < scene.fixed_points.size(); ++i)
     fixed_.push_back(locate(scene.fixed_points[i], "/fixed_points/" + std::to_string(i)));

@@ -12,7 +12,7 @@
 //            ks_int = kn_int/2.5
 //   w0       half the model size (DDA's w0): the scale of the displacement ratio and of the
 //            contact tolerances
-// plus the boundary edges under each support and traction,
+// plus the boundary edges under each support, traction and absorbing boundary,
 // the faces between bodies (in-situ traction) and the water in the joints (joint_water.h).
 //
 // Why 100·E: a penalty spring stands for a rigid constraint, so it must be much stiffer than the
@@ -90,6 +90,8 @@ class Model {
   const std::vector<std::vector<BoundaryEdge>>& support_edges() const { return support_edges_; }
   /// [traction] the boundary edges under it.
   const std::vector<std::vector<BoundaryEdge>>& traction_edges() const { return traction_edges_; }
+  /// [absorbing boundary] the boundary edges under it (absorbing_boundary.h).
+  const std::vector<std::vector<BoundaryEdge>>& absorbing_edges() const { return absorbing_edges_; }
   /// Faces between bodies (the in-situ stress's traction while a neighbour is excavated); empty
   /// without in-situ stress.
   const std::vector<InterfaceEdge>& interface_edges() const { return interface_edges_; }
@@ -126,6 +128,7 @@ class Model {
   bool contacts_can_arise_ = false;
   std::vector<std::vector<BoundaryEdge>> support_edges_;
   std::vector<std::vector<BoundaryEdge>> traction_edges_;
+  std::vector<std::vector<BoundaryEdge>> absorbing_edges_;
   std::vector<InterfaceEdge> interface_edges_;
   std::vector<TrackedPoint> fixed_, loads_, measure_;
   double w0_ = 0;                   // m

@@ -32,6 +32,25 @@ struct TrackedPoint {
 /// checkpoint's META section and hashed into state hashes: a checkpoint written before the first
 /// step keeps the bytes it has always had.
 constexpr double kDtBeforeFirstStep = 1e300;
+/// A rock bolt's or cable's state carried from step to step (solver/reinforcement/bolt_step.h;
+/// docs/reinforcement.md). Forces are per bolt; the model feels them divided by its spacing.
+struct BoltState {
+  std::uint8_t type = 0;        ///< 0 anchored, 1 grouted (BoltType)
+  /// m, the scene's points it was installed for: a restart continues a bolt whose type and
+  /// points are still the scene's, and installs any other afresh (bolt_layout.h)
+  double ax = 0, ay = 0, bx = 0, by = 0;
+  std::int64_t installed_step = 0;  ///< the step it was installed at (0, or a restart's)
+  std::uint8_t broken = 0;      ///< anchored: its axial force reached its strength (0 since)
+  std::uint8_t yielded = 0;     ///< grouted: a segment's axial force reached the yield force
+  double max_axial = 0;         ///< N per bolt, the largest |axial force| so far
+  double plastic_work = 0;      ///< J/m, work of grout slip and steel yield so far (per m of model)
+  /// The rock points the bolt is tied to, carried by the rock: anchored its two ends, grouted
+  /// its n + 1 segment points (element, installed and current position)
+  std::vector<TrackedPoint> nodes;
+  std::vector<double> axial;    ///< [segments] N per bolt, axial force, tension positive (anchored: 1)
+  std::vector<double> slip;     ///< [nodes] m, the cable's displacement along its axis relative to the rock (grouted)
+  std::vector<double> bond;     ///< [nodes] N per bolt, the grout's force on the cable at each node (grouted)
+};
 
 struct RunState {
   std::int64_t step = 0;  ///< steps completed since step 0 of the first run
@@ -58,6 +77,14 @@ struct RunState {
   /// on each block, applied in the next step (block_momentum.h); empty: none (static runs, steps
   /// in balance at their start)
   std::vector<double> block_force;
+  /// [bolt] the scene's rock bolts and cables (solver/reinforcement/); empty: none
+  std::vector<BoltState> bolts;
+  /// Absorbing boundaries (absorbing_boundary.h): the polylines the carried reaction was taken
+  /// for (absorbing_key(); empty: none taken), and the reaction, [cover unknowns] N/m
+  std::vector<double> absorbing_key;
+  std::vector<double> absorbing_reaction;
+  double absorbed_work = 0;        ///< J/m since step 0 of the first run: taken out by the dashpots
+  double absorbing_load_work = 0;  ///< J/m, likewise: done by the input traction and the carried reaction
   std::vector<std::uint8_t> body_removed;      ///< [body] 1: excavated
   std::vector<std::int64_t> body_removed_at;   ///< [body] step at which it was excavated, or -1
   // Diagnostics over all runs (summary.json), not physics:

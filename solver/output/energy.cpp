@@ -9,6 +9,7 @@
 #include "solver/discretisation/insitu_stress.h"
 #include "common/time_table.h"
 #include "common/atomic_file.h"
+#include "solver/reinforcement/bolt_system.h"
 
 namespace nmm::solve {
 
@@ -164,6 +165,7 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
   for (const Contact& c : contacts)
     if (c.state != ContactState::open)
       r.springs += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+  for (std::size_t b = 0; b < s.bolts.size(); ++b) r.springs += bolt_elastic_energy(scene_->bolts[b], s.bolts[b]);
   return r;
 }
 
@@ -194,12 +196,22 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     load_y_[l] = s.loads[l].y;
   }
   const double mech = r.kinetic + r.strain + r.gravity + r.springs;
-  if (!started_) mech0_ = mech;
+  // The bolts' plastic work and the absorbing boundaries' work, as the steps counted them in the
+  // state (bolt_system.h, absorbing_boundary.h), since this run's first call.
+  double plastic = 0;
+  for (const BoltState& b : s.bolts) plastic += b.plastic_work;
+  if (!started_) {
+    mech0_ = mech;
+    plastic0_ = plastic;
+    absorbed0_ = s.absorbed_work;
+    absorbing_load0_ = s.absorbing_load_work;
+  }
   started_ = true;
-  r.load_work = load_work_;
+  r.load_work = load_work_ + (s.absorbing_load_work - absorbing_load0_);
   r.support_work = support_work_;
-  r.friction = friction_;
-  r.residual = load_work_ - friction_ - (mech - mech0_);
+  r.friction = friction_ + (plastic - plastic0_);
+  r.absorbed = s.absorbed_work - absorbed0_;
+  r.residual = r.load_work - r.friction - r.absorbed - (mech - mech0_);
   last_ = r;
   if (keep) {
     rows_.push_back(r);
@@ -344,16 +356,21 @@ void EnergyMeter::keep_last() {
 }
 
 void EnergyMeter::write_csv(const std::string& dir) const {
-  std::string out = "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n";
+  // The absorbed column only where absorbing boundaries take energy out.
+  const bool absorbing = !scene_->absorbing.empty();
+  std::string out = absorbing ? "step,time,kinetic,strain,gravity,springs,load_work,friction,absorbed,residual\n"
+                              : "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n";
   char buf[32];
+  const auto put = [&](double v) {
+    const auto res = std::to_chars(buf, buf + sizeof buf, v);
+    out += ',';
+    out.append(buf, res.ptr);
+  };
   for (const EnergyRow& r : rows_) {
     out += std::to_string(r.step);
-    for (double v : {r.time, r.kinetic, r.strain, r.gravity, r.springs, r.load_work, r.friction,
-                     r.residual}) {
-      const auto res = std::to_chars(buf, buf + sizeof buf, v);
-      out += ',';
-      out.append(buf, res.ptr);
-    }
+    for (double v : {r.time, r.kinetic, r.strain, r.gravity, r.springs, r.load_work, r.friction}) put(v);
+    if (absorbing) put(r.absorbed);
+    put(r.residual);
     out += '\n';
   }
   write_file_atomically((std::filesystem::path(dir) / "energy.csv").string(), out);

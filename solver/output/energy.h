@@ -36,7 +36,12 @@
 //                  step's slip), less what the asperities return as opening: a Barton–Bandis
 //                  joint that dilates by Δv (joint_law.h) pushes its faces apart with N over it
 //                  (and takes N·|Δv| back sliding down toward its start)
-//   residual   R = W − D − [(K + U + V + S) − (K + U + V + S)_first row]
+//   bolts      S includes their springs' elastic energy (bolt_elastic_energy), D their plastic
+//              work (grout slip, steel yield: BoltState::plastic_work, counted by each step)
+//   absorbed   A = Σ_steps v1ᵀ C_e d over absorbing edges: what the dashpots took out, and W the
+//                  work of their input traction and carried reaction (absorbing_boundary.h);
+//                  a column of its own (between friction and residual) only with absorbing boundaries
+//   residual   R = W − D − A − [(K + U + V + S) − (K + U + V + S)_first row]
 //                  energy lost elsewhere: the time scheme's numerical damping (Newmark γ = 1), the
 //                  in-situ traction on faces between bodies (not metered), contact springs unloading.
 // At cover order n ≥ 1 the traction work and the support springs still take the displacement
@@ -72,7 +77,8 @@ struct EnergyRow {
   double springs = 0;     ///< J/m, penalty springs of fixed points and closed contacts
   double load_work = 0;   ///< J/m, work of loads, tractions, base shaking, moving supports since this run's start
   double support_work = 0;  ///< J/m, the moving supports' part of load_work (not in energy.csv)
-  double friction = 0;    ///< J/m, work of friction since the start of this run
+  double friction = 0;    ///< J/m, work of friction (and the bolts' plastic work) since the start of this run
+  double absorbed = 0;    ///< J/m, taken out by absorbing boundaries since the start of this run
   double residual = 0;    ///< J/m, W − D − Δ(K + U + V + S)
 };
 
@@ -101,7 +107,8 @@ class EnergyMeter {
 
   const std::vector<EnergyRow>& rows() const { return rows_; }
 
-  /// Writes DIR/energy.csv: "step,time,kinetic,strain,gravity,springs,load_work,friction,residual".
+  /// Writes DIR/energy.csv: "step,time,kinetic,strain,gravity,springs,load_work,friction,residual"
+  /// ("...,friction,absorbed,residual" with absorbing boundaries).
   void write_csv(const std::string& dir) const;
 
  private:
@@ -130,6 +137,8 @@ class EnergyMeter {
   std::vector<double> load_x_, load_y_;  // [load] m, position at the previous call
   bool started_ = false;
   double mech0_ = 0;                 // J/m, K + U + V + S of the first call
+  double plastic0_ = 0;              // J/m, the bolts' plastic work at the first call
+  double absorbed0_ = 0, absorbing_load0_ = 0;  // J/m, the absorbing boundaries' work at the first call
   double load_work_ = 0, friction_ = 0, support_work_ = 0;
   EnergyRow last_;
   std::int64_t last_kept_step_ = -1;

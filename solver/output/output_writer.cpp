@@ -94,7 +94,7 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
     if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".vtu")
       fs::remove(entry.path(), ec);
   }
-  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "contacts.csv.gz", "summary.json",
+  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "contacts.csv.gz", "bolts.csv", "summary.json",
                            "result.svg", "result.png", "history.svg", "run_history.svg",
                            "index.html", "checkpoint.nmmstate", "energy.csv", "cracks.csv",
                            "cracked_mesh.nmm"})
@@ -233,10 +233,26 @@ void OutputWriter::add_contacts(std::int64_t step, double time,
   }
 }
 
+void OutputWriter::add_bolts(std::int64_t step, double time, const std::vector<BoltSample>& points) {
+  for (const BoltSample& b : points) {
+    bolts_ += std::to_string(step);
+    bolts_ += ',';
+    append_double(bolts_, time);
+    bolts_ += ',' + std::to_string(b.bolt);
+    for (double v : {b.s, b.axial_force, b.bond_force, b.x, b.y, b.ux, b.uy}) {
+      bolts_ += ',';
+      append_double(bolts_, v);
+    }
+    bolts_ += '\n';
+  }
+}
+
 void OutputWriter::flush_history() {
   contacts_ += pending_contacts_;
   pending_contacts_.clear();
   write_file_atomically(join_path(dir_, "history.csv"), "step,time,point,x,y,ux,uy\n" + history_);
+  if (!bolts_.empty())
+    write_file_atomically(join_path(dir_, "bolts.csv"), "step,time,bolt,s,axial_force,bond_force,x,y,ux,uy\n" + bolts_);
   if (!contacts_.empty()) {
     const std::string csv =
         "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"

@@ -39,6 +39,16 @@ struct ContactSample {
   double dilation = 0;     ///< m, the joint's opening from shearing (Barton–Bandis; else 0)
 };
 
+/// One point of a bolt at one output step (bolts.csv; solver/reinforcement/bolt_readout.h).
+struct BoltSample {
+  int bolt;            ///< the scene's bolt, from 0
+  double s;            ///< m, along the bolt from its first point
+  double axial_force;  ///< N per bolt, tension positive
+  double bond_force;   ///< N per m of bolt, the grout's force (0 for an anchored bolt)
+  double x, y;         ///< m, current position
+  double ux, uy;       ///< m, displacement since the mesh was cut
+};
+
 /// What a frame shows: the element loops in their current position.
 struct FrameFields {
   const std::vector<double>* loop_xy;      ///< [2·v] m, current loop vertex positions
@@ -91,7 +101,11 @@ class OutputWriter {
   /// Appends one output step's contacts to contacts.csv (in memory until flush_history()).
   void add_contacts(std::int64_t step, double time, const std::vector<ContactSample>& contacts);
 
-  /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, and
+  /// Appends one output step's bolt points to bolts.csv (in memory until flush_history()).
+  void add_bolts(std::int64_t step, double time, const std::vector<BoltSample>& points);
+
+  /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, bolts.csv
+  /// ("step,time,bolt,s,axial_force,bond_force,x,y,ux,uy") if any bolt rows were added, and
   /// contacts.csv ("step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,
   /// length,vertex,edge,normal_stress,shear_stress,pressure,effective_normal_stress,jrc_mob,
   /// dilation": forces in N, stiffnesses N/m, the tributary length in m, the joint stresses N/L,
@@ -113,6 +127,7 @@ class OutputWriter {
   FrameFormat format_;
   std::string history_;   // CSV rows so far
   std::string contacts_;  // contacts.csv rows so far
+  std::string bolts_;     // bolts.csv rows so far
   std::string pending_contacts_;  // the last skipped output step's rows (sampling)
   int contacts_every_ = 1;
   bool contacts_gzip_ = false;

@@ -1,6 +1,7 @@
 // A run as a pipeline of the stepping core and observers: see run_driver.h.
 #include "solver/output/run_driver.h"
 
+#include "solver/reinforcement/bolt_readout.h"
 #include "solver/stepping/restart.h"
 #include "solver/output/run_summary.h"
 #include "common/stopwatch.h"
@@ -60,6 +61,11 @@ class RunDriver::FrameOutput : public StepObserver {
       fields.vertex_stress = &at_vertex;
     }
     out_.write_frame(step, s.time, mesh, fields, st.topology);
+    std::vector<BoltSample> bolts;
+    for (std::size_t b = 0; b < s.bolts.size(); ++b)
+      for (const BoltReading& r : bolt_readout(st.model.scene().bolts[b], s.bolts[b]))
+        bolts.push_back({static_cast<int>(b), r.s, r.axial, r.bond, r.x, r.y, r.ux, r.uy});
+    if (!bolts.empty()) out_.add_bolts(step, s.time, bolts);
     if (st.contacts.active()) out_.add_contacts(step, s.time, contact_samples(st));
   }
 

@@ -70,7 +70,7 @@ nlohmann::json run_inputs(const std::string& mesh_path, const SolveOptions& o,
 SolveRun::SolveRun(const Mesh& mesh, const std::string& mesh_name, SolveOptions options)
     : options_(std::move(options)),
       run_(run_scene(mesh, mesh_name, options_)),
-      stepper_(mesh, run_.scene, mesh_name + " (embedded scene)") {
+      stepper_(mesh, run_.scene, run_.name) {
   stepper_.set_threads(options_.threads);
   if (!options_.restart_path.empty()) stepper_.restart_from(options_.restart_path);
   if (!options_.out_dir.empty()) {

@@ -24,6 +24,8 @@ std::vector<std::string> run_effects(const Model& model, const RunState& s, cons
   if (std::any_of(s.body_removed.begin(), s.body_removed.end(), [](std::uint8_t r) { return r != 0; }))
     e.push_back("excavation");
   for (const std::string& c : contacts.effects()) e.push_back(c);
+  if (!s.bolts.empty()) e.push_back("bolts");
+  if (!scene.absorbing.empty()) e.push_back("absorbing");
   if (fracture) e.push_back("fracture");
   return e;
 }

@@ -42,6 +42,8 @@
 #include "solver/stepping/state_update.h"
 #include "solver/stepping/static_support.h"
 #include "solver/fracture/state_transfer.h"
+#include "solver/discretisation/absorbing_boundary.h"
+#include "solver/reinforcement/bolt_layout.h"
 #include "common/checkpoint_file.h"
 #include "common/mesh_file.h"
 
@@ -85,7 +87,7 @@ TimeStepper::MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const
     : model(mesh, scene, scene_name), form(model),
       space(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight), config(mesh, &space),
       indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()), contacts(model),
-      problem(contacts, space) {
+      problem(contacts, space), bolts(model, space) {
   problem.set_elastic_predictor(!model.step_inertia());
 }
 
@@ -98,12 +100,18 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   // Contacts change the pattern every few steps: each analysis orders by AMD alone.
   system_.set_amd_only(b_->contacts.active());
   s_ = initial_state(b_->model, b_->space);
-  // Fixed points and loads couple only the covers of their element: the element pattern holds
-  // until contacts couple pairs of elements (update_pattern).
-  build_pattern_with_pairs();
-  rhs_.resize(b_->space.unknowns());
-  set_threads(0);
   excavate(scene.excavate);
+  // Fixed points and loads couple only the covers of their element: the element pattern holds
+  // until contacts couple pairs of elements (update_pattern); bolts couple theirs from the start.
+  place_bolts({});
+  set_threads(0);
+}
+
+void TimeStepper::place_bolts(const std::vector<BoltState>& previous) {
+  s_.bolts = bolts_for_run(scene(), mesh(), s_, previous, scene_name_);
+  b_->bolts.number(s_.bolts, b_->space.unknowns());
+  build_pattern_with_pairs();
+  rhs_.resize(system_unknowns());
 }
 
 void TimeStepper::set_threads(int threads) {
@@ -141,7 +149,7 @@ void TimeStepper::update_pattern() {
   // pattern".) The rule reads only what a checkpoint restores (the pattern's pairs, the accepted
   // contacts and the step's own contacts detected from them), so a restarted run rebuilds the
   // same patterns.
-  const int first = static_cast<int>(mesh().element_count());
+  const int first = first_pair_group();
   const auto now = b_->contacts.element_pairs();
   const auto& had = s_.pattern_pairs;
   const bool holds = std::includes(had.begin(), had.end(), now.begin(), now.end());
@@ -172,12 +180,13 @@ void TimeStepper::build_pattern_with_pairs() {
     dofs.insert(dofs.end(), b_->space.element_unknowns(e), b_->space.element_unknowns(e) + m);
     offsets.push_back(static_cast<int>(dofs.size()));
   }
+  b_->bolts.add_groups(offsets, dofs);
   for (const auto& [a, b] : pairs) {
     dofs.insert(dofs.end(), b_->space.element_unknowns(a), b_->space.element_unknowns(a) + m);
     dofs.insert(dofs.end(), b_->space.element_unknowns(b), b_->space.element_unknowns(b) + m);
     offsets.push_back(static_cast<int>(dofs.size()));
   }
-  system_.build_pattern(b_->space.unknowns(), offsets, dofs);
+  system_.build_pattern(system_unknowns(), offsets, dofs);
 }
 
 StepContext TimeStepper::step_context(double dt) const {
@@ -200,75 +209,46 @@ Outcome TimeStepper::attempt_once(double dt) {
     update_pattern();
   }
   timings_.contact_detection = b_->contacts.detection_stats().seconds;
-  watch.restart();
   const StepContext context = step_context(dt);  // the attempt's one context (step_context.h)
-  b_->form.assemble(context, system_, rhs_);
-  // The blocks' share of the last step's out-of-balance force (block_momentum.h); not in a
-  // static step (a restart may switch a dynamic run to static), whose balance starts afresh.
-  if (!s_.block_force.empty() && handed_on_share() > 0) b_->momentum.add_forces(s_.block_force, s_.cover_xy, rhs_);
-  if (contact) {
-    system_.save();
-    rhs_base_ = rhs_;
-  }
-  timings_.assembly += watch.seconds();
+  if (absorbing_reaction_due(scene(), s_)) take_absorbing_reaction(contact);
+  b_->bolts.begin_step(b_->config, s_, removed_elem_);
 
   // Without contact: one factorisation and solve. With contact: the step's convex contact
-  // problem (contact_solve.cpp), Newton iterations on a reused factorisation.
+  // problem (contact_solve.cpp), Newton iterations on a reused factorisation. Bolts whose springs
+  // yield, slip or break at the solution solve the step again from there (bolt_system.h).
   Eigen::VectorXd d, residual;
   bool iterated = false;  // the contact solve took a Newton direction
-  auto not_positive_definite = [&]() {
-    return not_positive_definite_message(mesh(), b_->space, system_.failed_unknown());
-  };
-  if (!contact) {
+  for (int round = 0;; ++round) {
     watch.restart();
-    const bool ok = system_.factorize();
-    ++timings_.factorisations;
-    timings_.factorisation += watch.seconds();
-    if (!ok) return stop(StopCode::unconstrained, not_positive_definite());
-    watch.restart();
-    d = system_.solve(rhs_);
-    ++timings_.solves_count;
-    timings_.solves += watch.seconds();
-  } else {
-    const ContactSolveStats before = solve_stats_;
-    const double tau = scene().solver.contact_tolerance;
-    const auto solve = [&](bool warm) {
-      return solve_contact_step(system_, b_->problem, rhs_base_, tau,
-                                b_->contacts.softening() ? displacement_tolerance(tau, b_->model.w0()) : 0.0, d,
-                                solve_stats_, handed_on_share() > 0 ? &residual : nullptr, warm);
-    };
-    Outcome outcome = solve(false);
-    // Bonds and cohesion break only at a solution of the step, and the step is solved again with
-    // them broken until no unbroken contact is beyond its peak (contact_problem.h break_at_peak). Each
-    // round breaks at least one contact, so this ends.
-    for (bool resolved = false; outcome.ok();) {
-      if (!b_->problem.break_at_peak().resolve) break;
-      if (!resolved) ++solve_stats_.steps_resolved_for_breaks;
-      resolved = true;
-      ++solve_stats_.break_resolves;
-      outcome = solve(true);  // from the solution before the breaks
+    b_->form.assemble(context, system_, rhs_);
+    b_->bolts.assemble(system_, rhs_, mesh().element_count());
+    // The blocks' share of the last step's out-of-balance force (block_momentum.h); not in a
+    // static step (a restart may switch a dynamic run to static), whose balance starts afresh.
+    if (!s_.block_force.empty() && handed_on_share() > 0) b_->momentum.add_forces(s_.block_force, s_.cover_xy, rhs_);
+    if (contact) {
+      system_.save();
+      rhs_base_ = rhs_;
     }
-    if (outcome.ok()) b_->problem.settle_states();
-    iterated = solve_stats_.newton > before.newton;
-    timings_.factorisations += solve_stats_.factorisations - before.factorisations;
-    timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
-    timings_.solves_count += solve_stats_.cg_iterations - before.cg_iterations +
-                             (solve_stats_.factorisations - before.factorisations);
-    timings_.solves += solve_stats_.cg_seconds - before.cg_seconds +
-                       solve_stats_.line_search_seconds - before.line_search_seconds;
-    s_.iterations += static_cast<std::uint64_t>(solve_stats_.newton - before.newton);
-    s_.friction_unsettled += static_cast<std::uint64_t>(solve_stats_.unsettled - before.unsettled);
-    if (outcome.code == StopCode::unconstrained) return stop(StopCode::unconstrained, not_positive_definite());
-    if (!outcome.ok()) return stop(outcome.code, std::move(outcome.reason));
+    timings_.assembly += watch.seconds();
+    if (Outcome solved = solve_step(contact, round > 0, d, residual, iterated); !solved.ok()) return solved;
+    if (!b_->bolts.judge(d)) break;
+    if (round + 1 >= BoltSystem::kMaxRounds)
+      return stop(StopCode::bolts_not_settled, "the bolts' springs were still switching between elastic and "
+                                               "yielding or slipping after " +
+                                                   std::to_string(BoltSystem::kMaxRounds) + " solves of the step");
   }
   for (Eigen::Index i = 0; i < d.size(); ++i)
     if (!std::isfinite(d[i]))
       return stop(StopCode::displacement_not_finite,
-                  "the displacement of cover " + std::to_string(b_->space.cover_of_unknown(static_cast<int>(i))) +
+                  (i < b_->space.unknowns() ? "the displacement of cover " +
+                                                  std::to_string(b_->space.cover_of_unknown(static_cast<int>(i)))
+                                            : b_->bolts.describe_unknown(static_cast<int>(i))) +
                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
+  // The covers' motion: a cable's slip (its own unknowns, after them) is no block moving.
+  const Eigen::VectorXd covers_d = d.head(b_->space.unknowns());
   if (contact) {
     const ContactSet::Totals totals = b_->contacts.totals();
-    Outcome rejected = control_.rejection(d.cwiseAbs().maxCoeff(), totals.max_penetration, step_inertia());
+    Outcome rejected = control_.rejection(covers_d.cwiseAbs().maxCoeff(), totals.max_penetration, step_inertia());
     if (!rejected.ok()) return stop(rejected.code, std::move(rejected.reason));
     b_->contacts.end_step(b_->problem);
     // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
@@ -283,11 +263,92 @@ Outcome TimeStepper::attempt_once(double dt) {
   if (!contact) s_.block_force.clear();
   watch.restart();
   measure_balance(d, context, contact);
-  update_state(b_->model, context, d, s_);
+  if (!scene().absorbing.empty()) {
+    const AbsorbingWork w = absorbing_work(b_->model, context, d);
+    s_.absorbed_work += w.absorbed;
+    s_.absorbing_load_work += w.loads;
+  }
+  b_->bolts.commit(d, b_->config, s_.bolts);
+  update_state(b_->model, context, covers_d, s_);
   timings_.geometry_update += watch.seconds();
   s_.time += dt;
   ++s_.step;
   return {};
+}
+
+Outcome TimeStepper::solve_step(bool contact, bool again, Eigen::VectorXd& d, Eigen::VectorXd& residual,
+                                bool& iterated) {
+  auto not_positive_definite = [&]() {
+    const int u = system_.failed_unknown();
+    if (u >= b_->space.unknowns())
+      return "the system matrix is not positive definite at " + b_->bolts.describe_unknown(u) + ": a cable held by nothing";
+    return not_positive_definite_message(mesh(), b_->space, u);
+  };
+  Stopwatch watch;
+  if (!contact) {
+    const bool ok = system_.factorize();
+    ++timings_.factorisations;
+    timings_.factorisation += watch.seconds();
+    if (!ok) return stop(StopCode::unconstrained, not_positive_definite());
+    watch.restart();
+    d = system_.solve(rhs_);
+    ++timings_.solves_count;
+    timings_.solves += watch.seconds();
+    return {};
+  }
+  const ContactSolveStats before = solve_stats_;
+  const double tau = scene().solver.contact_tolerance;
+  const auto solve = [&](bool warm) {
+    return solve_contact_step(system_, b_->problem, rhs_base_, tau,
+                              b_->contacts.softening() ? displacement_tolerance(tau, b_->model.w0()) : 0.0, d,
+                              solve_stats_, handed_on_share() > 0 ? &residual : nullptr, warm);
+  };
+  Outcome outcome = solve(again);
+  // Bonds and cohesion break only at a solution of the step, and the step is solved again with
+  // them broken until no unbroken contact is beyond its peak (contact_problem.h break_at_peak). Each
+  // round breaks at least one contact, so this ends.
+  for (bool resolved = false; outcome.ok();) {
+    if (!b_->problem.break_at_peak().resolve) break;
+    if (!resolved) ++solve_stats_.steps_resolved_for_breaks;
+    resolved = true;
+    ++solve_stats_.break_resolves;
+    outcome = solve(true);  // from the solution before the breaks
+  }
+  if (outcome.ok()) b_->problem.settle_states();
+  iterated = iterated || solve_stats_.newton > before.newton;
+  timings_.factorisations += solve_stats_.factorisations - before.factorisations;
+  timings_.factorisation += solve_stats_.factorisation_seconds - before.factorisation_seconds;
+  timings_.solves_count += solve_stats_.cg_iterations - before.cg_iterations +
+                           (solve_stats_.factorisations - before.factorisations);
+  timings_.solves += solve_stats_.cg_seconds - before.cg_seconds +
+                     solve_stats_.line_search_seconds - before.line_search_seconds;
+  s_.iterations += static_cast<std::uint64_t>(solve_stats_.newton - before.newton);
+  s_.friction_unsettled += static_cast<std::uint64_t>(solve_stats_.unsettled - before.unsettled);
+  if (outcome.code == StopCode::unconstrained) return stop(StopCode::unconstrained, not_positive_definite());
+  if (!outcome.ok()) return stop(outcome.code, std::move(outcome.reason));
+  return {};
+}
+
+void TimeStepper::take_absorbing_reaction(bool contact) {
+  // The state's out-of-balance force with d = 0 and no inertia: the step's form at the state's
+  // own time with zero inertia coefficients (no mass term, no dashpots: absorbing_boundary.h),
+  // the bolts' start forces and, with contact, the contacts' forces at d = 0.
+  s_.absorbing_key.clear();
+  s_.absorbing_reaction.clear();
+  StepContext rest = step_context(0.0);
+  rest.dt = 0;
+  rest.t_end = s_.time;
+  rest.body_force = body_force_per_mass(scene(), s_.time);
+  rest.inertia = InertiaCoefficients{};
+  b_->bolts.begin_step(b_->config, s_, removed_elem_);
+  b_->form.assemble(rest, system_, rhs_);
+  b_->bolts.assemble(system_, rhs_, mesh().element_count());
+  if (contact) {
+    b_->problem.start_strengths();
+    b_->problem.forces_at(Eigen::VectorXd::Zero(rhs_.size()), rhs_);
+  }
+  s_.absorbing_reaction = absorbing_reaction_of(b_->model, b_->config, rhs_, b_->space.unknowns());
+  s_.absorbing_key = absorbing_key(scene());
 }
 
 Outcome TimeStepper::attempt(double dt) {
@@ -346,9 +407,11 @@ void TimeStepper::replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<Scene
   mesh_ = own_mesh_.get();
   scene_ = own_scene_.get();
   // A new pattern of the elements (the contacts grow it again) and no factorisation to reuse.
+  // (A scene with fracturing has no bolts: scene.cpp refuses the two together.)
+  b_->bolts.number(s_.bolts, b_->space.unknowns());
   build_pattern_with_pairs();
   system_.drop_factor();
-  rhs_.resize(b_->space.unknowns());
+  rhs_.resize(system_unknowns());
 }
 
 void TimeStepper::measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact) {
@@ -442,21 +505,35 @@ void TimeStepper::restart_from(const std::string& path) {
   const RunState st = state_from_sections(sections, mesh(), path, history, b_->space.dofs_per_cover(),
                                           b_->space.terms(), &factor);
   restore(st, history, path);
-  if (!factor.empty() && b_->contacts.active() && !system_.factor_from_source(factor))
+  // Bolts installed at this restart change the system's size: its first step factorises anew.
+  if (!factor.empty() && b_->contacts.active() && !bolts_renumbered_ && !system_.factor_from_source(factor))
     throw InputError(path, "section FACTOR", "not the matrix of a factorisation of this run's size");
 }
 
 void TimeStepper::restore(const RunState& st, const std::string& history, const std::string& name) {
   s_ = restarted_state(st, s_, scene().bodies.size(), name);
   load_contact_history(b_->contacts, history, mesh(), name);
-  // The same pattern as the run that wrote the checkpoint: the same symbolic analysis, the same
-  // round-off.
-  if (!s_.pattern_pairs.empty()) {
-    build_pattern_with_pairs();
-    b_->problem.assign_groups(s_.pattern_pairs, static_cast<int>(mesh().element_count()));
-  }
   apply_removed();
   excavate(scene().excavate);
+  // Absorbing boundaries: the checkpoint's carried reaction where its scene had the same
+  // polylines, else it is taken again at the first step (absorbing_boundary.h).
+  if (!s_.absorbing_key.empty() && s_.absorbing_key == absorbing_key(scene()) &&
+      s_.absorbing_reaction.size() != static_cast<std::size_t>(b_->space.unknowns()))
+    throw InputError(name, "section ABSORB", "the carried reaction has " + std::to_string(s_.absorbing_reaction.size()) +
+                                                 " unknowns, the run " + std::to_string(b_->space.unknowns()));
+  if (scene().absorbing.empty()) s_.absorbing_key.clear(), s_.absorbing_reaction.clear(), s_.absorbed_work = 0,
+                                 s_.absorbing_load_work = 0;
+  // Bolts: the checkpoint's where the scene still has them, the others installed now
+  // (bolt_layout.h); then the same pattern as the run that wrote the checkpoint (its pairs, and
+  // the bolts' groups): the same symbolic analysis, the same round-off.
+  const std::vector<BoltState> carried = s_.bolts;
+  place_bolts(carried);
+  bolts_renumbered_ = s_.bolts.size() != carried.size() ||
+                      !std::equal(carried.begin(), carried.end(), s_.bolts.begin(), [](const BoltState& a, const BoltState& b) {
+                        return a.type == b.type && a.ax == b.ax && a.ay == b.ay && a.bx == b.bx && a.by == b.by &&
+                               a.installed_step == b.installed_step;
+                      });
+  if (!s_.pattern_pairs.empty()) b_->problem.assign_groups(s_.pattern_pairs, first_pair_group());
 }
 
 void TimeStepper::excavate(const std::vector<int>& bodies) {

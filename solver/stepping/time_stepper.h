@@ -33,6 +33,7 @@
 #include "solver/fracture/fracture.h"
 #include "preprocess/recut.h"
 #include "solver/discretisation/system_matrix.h"
+#include "solver/reinforcement/bolt_system.h"
 
 namespace nmm::solve {
 
@@ -94,6 +95,20 @@ class TimeStepper {
   /// The equilibrium indicators of the step just solved (increment d of length dt), before
   /// update() moves the state on.
   void measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact);
+  /// Solves the assembled step (rhs_, system_): one factorisation, or the step's contact
+  /// problem with its breaks; `again`: the same step solved again from d (the bolts' modes
+  /// changed at its solution). Sets d, the residual handed on and whether Newton iterated.
+  Outcome solve_step(bool contact, bool again, Eigen::VectorXd& d, Eigen::VectorXd& residual, bool& iterated);
+  /// Takes the absorbing boundaries' carried reaction from the state the step starts from
+  /// (absorbing_boundary.h): its out-of-balance force with d = 0, without inertia.
+  void take_absorbing_reaction(bool contact);
+  /// The bolts of the run's scene on state s_ (installed now or carried on), their unknowns
+  /// numbered and the pattern built with their groups.
+  void place_bolts(const std::vector<BoltState>& previous);
+  /// The system's first contact-pair group: after the elements' and the bolts' groups.
+  int first_pair_group() const { return static_cast<int>(mesh().element_count() + b_->bolts.groups()); }
+  /// Unknowns of the system: the covers', then the bolts' own (bolt_system.h).
+  int system_unknowns() const { return b_->space.unknowns() + b_->bolts.unknowns(); }
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
   bool step_inertia() const { return b_->model.step_inertia(); }
   /// –, the share of a step's momentum the next step keeps: solver.dynamic_factor in a dynamic
@@ -133,6 +148,7 @@ class TimeStepper {
     BlockMomentum momentum;           // each block's covers and mass shares (block_momentum.h)
     ContactSet contacts;              // detection and the history carried between steps
     ContactProblem problem;           // the step's rows and Newton kernels (contact_problem.h)
+    BoltSystem bolts;                 // the bolts' unknowns, groups and each step's springs
   };
   const Mesh& mesh() const { return *mesh_; }
   const SceneDef& scene() const { return *scene_; }
@@ -148,6 +164,7 @@ class TimeStepper {
   pre::RecutMap last_recut_;            // of the last re-cut
   StepControl control_;                 // Shi's step control (step_control.h)
   RunState s_;                          // everything a step carries to the next
+  bool bolts_renumbered_ = false;       // a restart installed bolts: its FACTOR is of another size
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   Eigen::VectorXd rhs_;
