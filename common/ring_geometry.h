@@ -36,6 +36,24 @@ inline bool point_in_loop(const double* xy, std::size_t n, double x, double y) {
 }
 
 /// m, the distance from (x, y) to the nearest edge of the loop of n vertices xy[2i], xy[2i+1].
+/// A point strictly inside a counter-clockwise loop of n vertices and area `area` (m²): a little
+/// inside the middle of its longest edge, by a thousandth of the loop's mean width (area over that
+/// edge's length) along the edge's inward normal, so that thin slivers get a point inside them too.
+inline Vec2 point_inside_longest_edge(const double* xy, std::size_t n, double area) {
+  std::size_t best = 0;
+  double longest = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    const double l = std::hypot(xy[2 * j] - xy[2 * i], xy[2 * j + 1] - xy[2 * i + 1]);
+    if (l > longest) longest = l, best = i;
+  }
+  const std::size_t j = (best + 1) % n;
+  const double dx = xy[2 * j] - xy[2 * best], dy = xy[2 * j + 1] - xy[2 * best + 1];
+  const double width = area / longest;
+  const double step = 1e-3 * width / longest;
+  return {0.5 * (xy[2 * best] + xy[2 * j]) - step * dy, 0.5 * (xy[2 * best + 1] + xy[2 * j + 1]) + step * dx};
+}
+
 inline double distance_to_loop(const double* xy, std::size_t n, double x, double y) {
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++) {

@@ -72,19 +72,7 @@ bool touches(const Mesh& m, std::size_t t, const Vec2& a, const Vec2& b, double 
 // get a point inside them too.
 Vec2 inner_point(const Mesh& m, std::size_t e) {
   const std::int32_t b = m.element_loop_offset[e], n = m.element_loop_offset[e + 1] - b;
-  const double* xy = m.loop_xy.data() + 2 * b;
-  std::int32_t best = 0;
-  double longest = -1;
-  for (std::int32_t i = 0; i < n; ++i) {
-    const std::int32_t j = (i + 1) % n;
-    const double l = std::hypot(xy[2 * j] - xy[2 * i], xy[2 * j + 1] - xy[2 * i + 1]);
-    if (l > longest) longest = l, best = i;
-  }
-  const std::int32_t j = (best + 1) % n;
-  const double dx = xy[2 * j] - xy[2 * best], dy = xy[2 * j + 1] - xy[2 * best + 1];
-  const double width = element_area(m, e) / longest;
-  const double step = 1e-3 * width / longest;  // along the left (inward) normal of a CCW loop
-  return {0.5 * (xy[2 * best] + xy[2 * j]) - step * dy, 0.5 * (xy[2 * best + 1] + xy[2 * j + 1]) + step * dx};
+  return point_inside_longest_edge(m.loop_xy.data() + 2 * b, static_cast<std::size_t>(n), element_area(m, e));
 }
 
 // A directed loop edge's end points, as a key.

@@ -82,17 +82,7 @@ Vec2 inside_point(const Mesh& mesh, std::size_t e) {
   }
   const Vec2 centroid{cx / (3 * a2), cy / (3 * a2)};
   if (point_in_loop(xy, static_cast<std::size_t>(n), centroid.x, centroid.y)) return centroid;
-  std::int32_t best = 0;
-  double longest = -1;
-  for (std::int32_t i = 0; i < n; ++i) {
-    const std::int32_t j = (i + 1) % n;
-    const double l = std::hypot(xy[2 * j] - xy[2 * i], xy[2 * j + 1] - xy[2 * i + 1]);
-    if (l > longest) longest = l, best = i;
-  }
-  const std::int32_t j = (best + 1) % n;
-  const double dx = xy[2 * j] - xy[2 * best], dy = xy[2 * j + 1] - xy[2 * best + 1];
-  const double step = 1e-3 * 0.5 * a2 / (longest * longest);  // a thousandth of the mean width
-  return {0.5 * (xy[2 * best] + xy[2 * j]) - step * dy, 0.5 * (xy[2 * best + 1] + xy[2 * j + 1]) + step * dx};
+  return point_inside_longest_edge(xy, static_cast<std::size_t>(n), 0.5 * a2);
 }
 
 std::int32_t element_holding(const Mesh& mesh, const std::vector<std::int32_t>& candidates, const Vec2& p) {
