@@ -11,7 +11,28 @@
 #include <string>
 #include <vector>
 
+#include "common/scene.h"
+
 namespace nmm::bench {
+
+/// A square body of rock (side m, corner at the origin; 2650 kg/m³, E 10 GPa, ν 0.25) with one
+/// joint set "j" (φ 30°, kn 1e11 Pa/m, ks 4e10 Pa/m) and no joints yet, cut at mesh size h (m).
+inline SceneDef square_rock(double side, double h) {
+  SceneDef s;
+  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
+  JointSetDef js;
+  js.name = "j";
+  js.friction_deg = 30;
+  js.normal.kn = 1e11;
+  js.shear.ks = 4e10;
+  s.joint_sets.push_back(js);
+  BodyDef b;
+  b.material = 0;
+  b.outer = {{0, 0}, {side, 0}, {side, side}, {0, side}};
+  s.bodies.push_back(b);
+  s.mesh_size = h;
+  return s;
+}
 
 /// "10,20,30" → {10, 20, 30}.
 inline std::vector<int> parse_sizes(const char* s) {

@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "bench/bench_common.h"
 #include "preprocess/cover_cutter.h"
 #include "common/mesh.h"
 #include "common/scene.h"
@@ -21,19 +22,7 @@
 namespace {
 
 nmm::SceneDef make_scene(double side, int joints, double h, unsigned seed) {
-  nmm::SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
-  nmm::JointSetDef js;
-  js.name = "j";
-  js.friction_deg = 30;
-  js.normal.kn = 1e11;
-  js.shear.ks = 4e10;
-  s.joint_sets.push_back(js);
-  nmm::BodyDef b;
-  b.material = 0;
-  b.outer = {{0, 0}, {side, 0}, {side, side}, {0, side}};
-  s.bodies.push_back(b);
-  s.mesh_size = h;
+  nmm::SceneDef s = nmm::bench::square_rock(side, h);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> centre(0, side), len(2, 10), scatter(-10, 10);
   const double pi = std::acos(-1.0);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_common.h"
 #include "common/mesh.h"
 #include "common/scene.h"
 #include "common/stopwatch.h"
@@ -27,22 +28,10 @@
 namespace {
 
 nmm::SceneDef square(double side) {
-  nmm::SceneDef s;
-  s.materials.push_back({"rock", 2650, 1e10, 0.25, {}});
+  nmm::SceneDef s = nmm::bench::square_rock(side, 1);  // its joint set: the cracks'
   s.materials[0].strength = {true, 5e6, 12e6, 35, 0};
-  nmm::JointSetDef js;
-  js.name = "crack";
-  js.friction_deg = 30;
-  js.normal.kn = 1e11;
-  js.shear.ks = 4e10;
-  s.joint_sets.push_back(js);
-  nmm::BodyDef b;
-  b.material = 0;
-  b.outer = {{0, 0}, {side, 0}, {side, side}, {0, side}};
-  s.bodies.push_back(b);
   s.fracture.present = true;
   s.fracture.crack_set = 0;
-  s.mesh_size = 1;
   nmm::SupportDef base;
   base.points = {{0, 0}, {side, 0}};
   base.fix_x = base.fix_y = true;

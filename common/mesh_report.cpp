@@ -165,7 +165,7 @@ nlohmann::json mesh_report_json(const Mesh& mesh, const SceneDef* scene, bool fu
   j["dofs_per_cover"] = mesh.dofs_per_cover;
   j["bodies"] = scene ? json(scene->bodies.size()) : json(nullptr);
   j["joints"] = scene ? json(scene->joints.size()) : json(nullptr);
-  if (scene && crack_segments(mesh, *scene) > 0) j["crack_segments"] = crack_segments(mesh, *scene);
+  if (const std::size_t cracks = scene ? crack_segments(mesh, *scene) : 0; cracks > 0) j["crack_segments"] = cracks;
   j["scene_area"] = scene ? json(s.scene_area) : json(nullptr);
   j["loop_vertices"] = mesh.loop_vertex_count();
   j["contact_edges"] = mesh.contact_edge.size();
