@@ -14,6 +14,8 @@
 #include <utility>
 
 #include "common/lattice.h"
+#include "common/mesh_file.h"
+#include <cstdlib>
 #include "common/ring_geometry.h"
 #include "preprocess/cover_cutter.h"
 
@@ -214,13 +216,24 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
       map.cut_triangles.push_back(static_cast<std::int32_t>(t));
       for (int c = 0; c < 3; ++c) t_node[old.triangle_nodes[3 * t + c]] = 1;
     }
-  std::vector<std::array<std::int32_t, 3>> region;
-  std::map<std::array<std::int32_t, 3>, std::int32_t> triangle_of_key;  // R's, lattice key → old triangle
+  // R, and the ring of triangles around it (sharing a node with it) that is cut too but not
+  // taken: an element of R \ T is cut as its neighbours outside R see it — a face that holds a
+  // crack ending inside it is bridged to its boundary (cover_cutter.cpp step 4), and the bridge's
+  // end is a vertex of the element across that boundary too.
+  std::vector<std::uint8_t> r_node(old.node_count(), 0);
   for (std::size_t t = 0; t < nt; ++t) {
     bool near = false;
     for (int c = 0; c < 3; ++c) near = near || t_node[old.triangle_nodes[3 * t + c]];
     if (!near) continue;
     in_r[t] = 1;
+    for (int c = 0; c < 3; ++c) r_node[old.triangle_nodes[3 * t + c]] = 1;
+  }
+  std::vector<std::array<std::int32_t, 3>> region;
+  std::map<std::array<std::int32_t, 3>, std::int32_t> triangle_of_key;  // lattice key → old triangle
+  for (std::size_t t = 0; t < nt; ++t) {
+    bool ring = false;
+    for (int c = 0; c < 3; ++c) ring = ring || r_node[old.triangle_nodes[3 * t + c]];
+    if (!ring) continue;
     std::array<std::int32_t, 3> key;
     for (int c = 0; c < 3; ++c) {
       const std::int32_t n = old.triangle_nodes[3 * t + c];
@@ -234,6 +247,11 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
   map.seconds_find = watch.seconds();
   watch.restart();
   RegionCut cut = cut_region(scene, region, file);
+  if (std::getenv("NMM_DUMP_RC")) {
+    Mesh d = cut.mesh;
+    d.scene_file = old.scene_file, d.scene_text = old.scene_text, d.scene_sha256 = old.scene_sha256;
+    write_mesh_file(d, std::getenv("NMM_DUMP_RC"));
+  }
   map.seconds_cut = watch.seconds();
   watch.restart();
   const Mesh& rc = cut.mesh;

@@ -117,6 +117,24 @@ bool inside_element(const ContactTopology& t, const std::vector<double>& xy, std
   return in;
 }
 
+// Whether (x, y) lies within eps of the loop starting at `first`: on its boundary, as far as
+// round-off can tell. A point there is no deeper in the element than on its rim — the corner of a
+// hairline element a crack cut a round-off from a mesh edge — and makes no deep contact.
+bool on_loop(const ContactTopology& t, const std::vector<double>& xy, std::int32_t first, double x, double y,
+             double eps) {
+  std::int32_t i = first;
+  do {
+    const std::int32_t j = t.next[i];
+    const double ax = xy[2 * i], ay = xy[2 * i + 1], dx = xy[2 * j] - ax, dy = xy[2 * j + 1] - ay;
+    const double l2 = dx * dx + dy * dy;
+    const double s = l2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+    const double ox = ax + s * dx - x, oy = ay + s * dy - y;
+    if (ox * ox + oy * oy <= eps * eps) return true;
+    i = j;
+  } while (i != first);
+  return false;
+}
+
 // How far the elements of element e's block around it (those sharing a mesh node with it: a
 // sliver's full neighbours too) reach behind the line through (qx, qy) with outward normal
 // (ex, ey): the largest depth of their loop vertices below that line.
@@ -484,7 +502,8 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       // lost its tributary length: it closed more there than in the middle.
       const double shift = (std::clamp(omega, tl.beside_edge, 1 - tl.beside_edge) - omega) * eg.l;
       const double ix = px + shift * tx, iy = py + shift * ty;
-      if (g < -eps && !inside_element(topo, xy, topo.first_vertex[eb], ix, iy)) {
+      if (g < -eps && (!inside_element(topo, xy, topo.first_vertex[eb], ix, iy) ||
+                       on_loop(topo, xy, topo.first_vertex[eb], ix, iy, eps))) {
         // Sunk at a mesh node, next to an end of the edge: the element below the node may hold
         // it instead. Only there, and only shallow; elsewhere a vertex outside B is not in contact.
         const bool near_end = omega < tl.node_sink_omega || omega > 1 - tl.node_sink_omega;

@@ -288,6 +288,15 @@ double ContactSet::max_dilation() const {
   return v;
 }
 
+double ContactSet::judged_penetration(double limit) const {
+  double judged = 0;
+  for (const Contact& c : contacts_) {
+    const double depth = -c.gap, start = -c.at.gap;
+    judged = std::max(judged, start > limit ? depth - start : depth);
+  }
+  return judged;
+}
+
 ContactSet::Totals ContactSet::totals() const {
   Totals t;
   for (const Contact& c : contacts_) {

@@ -100,6 +100,11 @@ class ContactSet {
     double max_shear_stress = 0;    ///< Pa, largest |T|/L of a closed contact
   };
   Totals totals() const;
+  /// m, the penetration the step is judged by (step_control.h rejection): a contact's depth at the
+  /// step's end — or, where it was already deeper than `limit` at the step's start (a crack cut
+  /// through a loaded contact, or faces cut within round-off of each other), how much deeper the
+  /// step made it: a shorter step cannot undo what it started with, only what it adds.
+  double judged_penetration(double limit) const;
   /// Detection's counts and its seconds so far.
   const DetectionStats& detection_stats() const { return stats_; }
   /// A set built for a re-cut mesh goes on counting where `before` (the old mesh's) stopped:

@@ -46,6 +46,8 @@ class StepControl {
 
   /// m, how far contact detection looks for contacts a step can make (before dilation).
   double search_distance() const { return kSearch * g2w0_; }
+  /// m, the penetration a step may reach (g2·w0): rejection() cuts a step beyond it.
+  double penetration_limit() const { return g2w0_; }
   /// Whether the run has reached t_end (s) within round-off.
   bool done(double t, double t_end) const { return !(t < t_end - kRoundOff * time_step_); }
   /// s, the length of the next attempt from t: Δt, or what is left to t_end.

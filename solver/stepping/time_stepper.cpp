@@ -250,7 +250,16 @@ Outcome TimeStepper::attempt_once(double dt) {
   const Eigen::VectorXd covers_d = d.head(b_->space.unknowns());
   if (contact) {
     const ContactSet::Totals totals = b_->contacts.totals();
-    Outcome rejected = control_.rejection(covers_d.cwiseAbs().maxCoeff(), totals.max_penetration, step_inertia());
+    Outcome rejected = control_.rejection(covers_d.cwiseAbs().maxCoeff(),
+                                          b_->contacts.judged_penetration(control_.penetration_limit()), step_inertia());
+    if (!rejected.ok() && std::getenv("NMM_TRACE_PEN")) {
+      for (const Contact& c : b_->contacts.contacts())
+        if (-c.gap > 0.5 * totals.max_penetration)
+          std::fprintf(stderr, "pen: v %d (elem %d blk %d, at %.9g %.9g) edge %d (elem %d blk %d) gap0 %.3g gap %.3g state0 %d len %.3g\n",
+                       c.at.vertex, c.at.elem_a, mesh().element_block[c.at.elem_a], s_.loop_xy[2 * c.at.vertex],
+                       s_.loop_xy[2 * c.at.vertex + 1], c.at.edge, c.at.elem_b, mesh().element_block[c.at.elem_b],
+                       c.at.gap, c.gap, static_cast<int>(c.start_state), c.length);
+    }
     if (!rejected.ok()) return stop(rejected.code, std::move(rejected.reason));
     b_->contacts.end_step(b_->problem);
     // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
@@ -394,7 +403,19 @@ void TimeStepper::break_rock(const std::vector<CrackSegment>& segments, std::vec
   // re-cut, not of the run's physics: it ends the run (RunError) with the difference in words.
   static const bool check = std::getenv("NMM_CHECK_RECUT") != nullptr && std::string(std::getenv("NMM_CHECK_RECUT")) != "0";
   if (check) {
-    const std::string diff = mesh_difference(*mesh, pre::build_mesh(*cracked, scene_name_));
+    const Mesh full = pre::build_mesh(*cracked, scene_name_);
+    const std::string diff = mesh_difference(*mesh, full);
+    if (!diff.empty() && std::getenv("NMM_CHECK_RECUT_DUMP")) {
+      write_mesh_file(this->mesh(), std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".before.nmm");
+      write_mesh_file(*mesh, std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".recut.nmm");
+      write_mesh_file(full, std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".full.nmm");
+      FILE* f = std::fopen((std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".joints.txt").c_str(), "w");
+      for (std::size_t j = 0; j < cracked->joints.size(); ++j)
+        for (std::size_t k = 0; k + 1 < cracked->joints[j].points.size(); ++k)
+          std::fprintf(f, "%zu %.17g %.17g %.17g %.17g\n", j, cracked->joints[j].points[k].x, cracked->joints[j].points[k].y,
+                       cracked->joints[j].points[k + 1].x, cracked->joints[j].points[k + 1].y);
+      std::fclose(f);
+    }
     if (!diff.empty())
       throw RunError("NMM_CHECK_RECUT: at t = " + std::to_string(s_.time) + " s the re-cut of " +
                      std::to_string(segments.size()) + " crack segment(s) is not the full cut: " + diff);
