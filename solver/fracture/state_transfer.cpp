@@ -2,6 +2,8 @@
 #include "solver/fracture/state_transfer.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "common/ring_geometry.h"
 #include "solver/fracture/element_geometry.h"
@@ -80,20 +82,43 @@ std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& 
     const std::int32_t was = map.vertex_parent[v];
     if (was >= 0 && vertex_now[static_cast<std::size_t>(was)] < 0) vertex_now[static_cast<std::size_t>(was)] = static_cast<std::int32_t>(v);
   }
-  // A block of the old mesh → the block of its first piece (a block a crack split keeps the name
-  // of one piece: an entry against the other starts afresh).
-  std::vector<std::int32_t> block_now(old.block_count(), -1);
+  // A block of the old mesh → its pieces in the new one. An entry against a block a crack split
+  // follows the piece that holds the contact edge nearest its vertex (as cut): the face it was
+  // closed against. (Taken by the first piece instead, an entry against the other piece let the
+  // vertex count as closed against every edge of the wrong one, up to closed_depth deep.)
+  std::vector<std::vector<std::int32_t>> pieces(old.block_count());
   for (std::size_t e = 0; e < now.element_count(); ++e) {
-    const std::int32_t b = old.element_block[static_cast<std::size_t>(map.element_parent[e])];
-    if (block_now[static_cast<std::size_t>(b)] < 0) block_now[static_cast<std::size_t>(b)] = now.element_block[e];
+    auto& p = pieces[static_cast<std::size_t>(old.element_block[static_cast<std::size_t>(map.element_parent[e])])];
+    if (std::find(p.begin(), p.end(), now.element_block[e]) == p.end()) p.push_back(now.element_block[e]);
   }
+  auto piece_near = [&](std::int32_t old_block, std::int32_t v) {
+    const auto& p = pieces[static_cast<std::size_t>(old_block)];
+    if (p.size() == 1) return p.front();
+    if (p.empty()) return std::int32_t{-1};
+    const double x = now.loop_xy[2 * static_cast<std::size_t>(v)], y = now.loop_xy[2 * static_cast<std::size_t>(v) + 1];
+    std::int32_t best = p.front();
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < now.contact_edge.size(); ++i) {
+      const auto e = static_cast<std::size_t>(now.contact_edge_element[i]);
+      if (std::find(p.begin(), p.end(), now.element_block[e]) == p.end()) continue;
+      const std::int32_t a = now.contact_edge[i], first = now.element_loop_offset[e], end = now.element_loop_offset[e + 1];
+      const std::int32_t b = a + 1 < end ? a + 1 : first;
+      const double ax = now.loop_xy[2 * a], ay = now.loop_xy[2 * a + 1];
+      const double dx = now.loop_xy[2 * b] - ax, dy = now.loop_xy[2 * b + 1] - ay, l2 = dx * dx + dy * dy;
+      const double t = l2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+      const double d = std::hypot(ax + t * dx - x, ay + t * dy - y);
+      if (d < best_d) best_d = d, best = now.element_block[e];
+    }
+    return best;
+  };
   std::vector<ContactHistory> out;
   out.reserve(history.size());
   for (ContactHistory h : history) {
     const std::int32_t v = vertex_now[static_cast<std::size_t>(h.vertex)];
     if (v < 0) continue;
     h.vertex = v;
-    h.block = block_now[static_cast<std::size_t>(h.block)];
+    h.block = piece_near(h.block, v);
+    if (h.block < 0) continue;
     out.push_back(h);
   }
   for (std::size_t i = 0; i < now.contact_edge.size(); ++i) {
