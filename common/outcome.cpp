@@ -18,6 +18,7 @@ constexpr Named kNames[] = {
     {StopCode::contact_not_converged, "contact_not_converged"},
     {StopCode::direction_not_finite, "direction_not_finite"},
     {StopCode::bolts_not_settled, "bolts_not_settled"},
+    {StopCode::fracture_cascade, "fracture_cascade"},
     {StopCode::unconstrained, "unconstrained"},
     {StopCode::element_folded, "element_folded"},
     {StopCode::displacement_not_finite, "displacement_not_finite"},
@@ -46,7 +47,8 @@ bool cured_by_shorter_step(StopCode code) {
     case StopCode::penetration:
     case StopCode::contact_not_converged:
     case StopCode::direction_not_finite:
-    case StopCode::bolts_not_settled: return true;
+    case StopCode::bolts_not_settled:
+    case StopCode::fracture_cascade: return true;
     default: return false;
   }
 }

@@ -14,8 +14,6 @@
 #include <utility>
 
 #include "common/lattice.h"
-#include "common/mesh_file.h"
-#include <cstdlib>
 #include "common/ring_geometry.h"
 #include "preprocess/cover_cutter.h"
 
@@ -247,11 +245,6 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
   map.seconds_find = watch.seconds();
   watch.restart();
   RegionCut cut = cut_region(scene, region, file);
-  if (std::getenv("NMM_DUMP_RC")) {
-    Mesh d = cut.mesh;
-    d.scene_file = old.scene_file, d.scene_text = old.scene_text, d.scene_sha256 = old.scene_sha256;
-    write_mesh_file(d, std::getenv("NMM_DUMP_RC"));
-  }
   map.seconds_cut = watch.seconds();
   watch.restart();
   const Mesh& rc = cut.mesh;

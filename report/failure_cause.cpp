@@ -53,6 +53,9 @@ std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, StopCo
   if (code == StopCode::bolts_not_settled)
     return "the bolts' springs kept switching between elastic and yielding or slipping within a "
            "step: try a smaller solver.time_step, or more segments (bolts[].segments).";
+  if (code == StopCode::fracture_cascade)
+    return "cracks kept growing through the rock within one step even at the shortest step: the "
+           "load rate may be too high for a quasi-static run (a slower support velocity, or run dynamic).";
   if (code == StopCode::unconstrained)
     return "a block is held by nothing: give it fixed points or supports, or run dynamic.";
   return "";

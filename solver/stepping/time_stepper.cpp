@@ -41,13 +41,12 @@
 #include "solver/stepping/restart.h"
 #include "solver/stepping/state_update.h"
 #include "solver/stepping/static_support.h"
+#include "solver/fracture/recut_check.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/discretisation/absorbing_boundary.h"
 #include "solver/reinforcement/bolt_layout.h"
 #include "common/checkpoint_file.h"
 #include "common/mesh_file.h"
-#include "common/mesh_compare.h"
-#include "preprocess/cover_cutter.h"
 
 namespace nmm::solve {
 
@@ -252,7 +251,10 @@ Outcome TimeStepper::attempt_once(double dt) {
     const ContactSet::Totals totals = b_->contacts.totals();
     Outcome rejected = control_.rejection(covers_d.cwiseAbs().maxCoeff(),
                                           b_->contacts.judged_penetration(control_.penetration_limit()), step_inertia());
-    if (!rejected.ok() && std::getenv("NMM_TRACE_PEN")) {
+    // NMM_TRACE_PEN: the contacts a rejected step found deepest (which vertex, which edge, how deep
+    // at the start and the end), for finding why a run cuts its step (docs/fracture.md).
+    static const bool trace_pen = std::getenv("NMM_TRACE_PEN") != nullptr;
+    if (!rejected.ok() && trace_pen) {
       for (const Contact& c : b_->contacts.contacts())
         if (-c.gap > 0.5 * totals.max_penetration)
           std::fprintf(stderr, "pen: v %d (elem %d blk %d, at %.9g %.9g) edge %d (elem %d blk %d) gap0 %.3g gap %.3g state0 %d len %.3g\n",
@@ -366,8 +368,14 @@ Outcome TimeStepper::attempt(double dt) {
   if (!fracture_.active()) return attempt_once(dt);
   // Intact rock that breaks (fracture.h): the rock breaks where the step's solution exceeds its
   // strength, and the step is taken again from its start on the cracked mesh, until its solution
-  // breaks nothing more — as contacts' bonds break (contact_problem.h break_at_peak).
-  for (;;) {
+  // breaks nothing more — as contacts' bonds break (contact_problem.h break_at_peak). A cascade
+  // is bounded: past kMaxRecutsPerStep re-cuts the step is cut (a shorter step loads the rock
+  // less, so fewer elements break at its solution) and tried again on the cracked mesh; the run
+  // goes on.
+  for (int recuts = 0;; ++recuts) {
+    if (recuts >= kMaxRecutsPerStep)
+      return stop(StopCode::fracture_cascade, "cracks were still growing after " + std::to_string(kMaxRecutsPerStep) +
+                                                  " re-cuts of the mesh within one step");
     RunState start = s_;
     std::vector<ContactHistory> history = b_->contacts.history();
     const Outcome o = attempt_once(dt);
@@ -398,28 +406,12 @@ void TimeStepper::break_rock(const std::vector<CrackSegment>& segments, std::vec
   for (const CrackSegment& c : segments) cracked->joints.push_back({cracked->fracture.crack_set, {c.a, c.b}});
   pre::RecutMap map;
   auto mesh = std::make_unique<Mesh>(pre::recut(this->mesh(), *cracked, first, scene_name_, map));
-  // The check mode (docs/fracture.md "Re-cutting"): the re-cut against a full cut of the scene
-  // with every crack segment as a joint, after every re-cut. A difference is a defect of the
-  // re-cut, not of the run's physics: it ends the run (RunError) with the difference in words.
-  static const bool check = std::getenv("NMM_CHECK_RECUT") != nullptr && std::string(std::getenv("NMM_CHECK_RECUT")) != "0";
-  if (check) {
-    const Mesh full = pre::build_mesh(*cracked, scene_name_);
-    const std::string diff = mesh_difference(*mesh, full);
-    if (!diff.empty() && std::getenv("NMM_CHECK_RECUT_DUMP")) {
-      write_mesh_file(this->mesh(), std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".before.nmm");
-      write_mesh_file(*mesh, std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".recut.nmm");
-      write_mesh_file(full, std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".full.nmm");
-      FILE* f = std::fopen((std::string(std::getenv("NMM_CHECK_RECUT_DUMP")) + ".joints.txt").c_str(), "w");
-      for (std::size_t j = 0; j < cracked->joints.size(); ++j)
-        for (std::size_t k = 0; k + 1 < cracked->joints[j].points.size(); ++k)
-          std::fprintf(f, "%zu %.17g %.17g %.17g %.17g\n", j, cracked->joints[j].points[k].x, cracked->joints[j].points[k].y,
-                       cracked->joints[j].points[k + 1].x, cracked->joints[j].points[k + 1].y);
-      std::fclose(f);
-    }
-    if (!diff.empty())
+  // The check mode (docs/fracture.md "Re-cutting"): a re-cut that is not the full cut is a
+  // defect of the re-cut, not of the run's physics: it ends the run with the difference.
+  if (recut_check_enabled())
+    if (const std::string diff = recut_difference(this->mesh(), *mesh, *cracked, scene_name_); !diff.empty())
       throw RunError("NMM_CHECK_RECUT: at t = " + std::to_string(s_.time) + " s the re-cut of " +
                      std::to_string(segments.size()) + " crack segment(s) is not the full cut: " + diff);
-  }
   transfer_state(this->mesh(), *mesh, map, b_->space.dofs_per_cover(), s_);
   history = transfer_history(history, this->mesh(), *mesh, map, first);
   fracture_.cut(segments, *mesh, map);

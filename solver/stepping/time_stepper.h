@@ -160,6 +160,10 @@ class TimeStepper {
   std::unique_ptr<SceneDef> own_scene_; // the scene with the crack joints (null: none yet)
   std::unique_ptr<MeshBound> b_;        // derived from mesh_ and scene_
   Fracture fracture_;                   // cracks so far and their tips (fracture.h)
+  /// Re-cuts one attempt of a step may make before it is cut (attempt): a shorter step breaks
+  /// fewer elements at once. The uniaxial specimen of docs/fracture.md's matrix took up to 54 at
+  /// its peak; a bound far above that only stops a cascade that a shorter step would spread.
+  static constexpr int kMaxRecutsPerStep = 200;
   std::size_t topology_ = 0;            // re-cuts so far (RunView::topology)
   pre::RecutMap last_recut_;            // of the last re-cut
   StepControl control_;                 // Shi's step control (step_control.h)
