@@ -86,6 +86,15 @@ void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const 
     prev_velocity_ = start.velocity;
     prev_accel_ = start.accel;
   }
+  // The velocity the last step threw away, on its pieces (a new cover takes its parent's, as the
+  // step's start takes its parent's cover function: state_transfer.h).
+  if (!prev_v1_.empty()) {
+    const std::size_t m = prev_v1_.size() / std::max<std::size_t>(1, map.cover_parent.empty() ? 1 : prev_cover_count_);
+    std::vector<double> v(m * map.cover_parent.size());
+    for (std::size_t c = 0; c < map.cover_parent.size(); ++c)
+      for (std::size_t k = 0; k < m; ++k) v[m * c + k] = prev_v1_.at(m * static_cast<std::size_t>(map.cover_parent[c]) + k);
+    prev_v1_ = std::move(v);
+  }
   // What the crack-closure sum of the step needs of its start (fracture_release).
   crack_start_.first_new_joint = joints_;
   crack_start_.loop_xy = start.loop_xy;
@@ -94,10 +103,11 @@ void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const 
   crack_start_.pending = true;
 }
 
-double EnergyMeter::damped_kinetic(const RunState& s) const {
+double EnergyMeter::damped_kinetic(const RunState& s, double kept) {
   // The velocity v1 = v0 + Δt·a1 the step reached (newmark.h: a1 = (d − Δt·v0 − (½ − β)Δt²·a0)
   // / (βΔt²)), before a static run's next step starts from rest (v0 = a0 = 0, β = ½: v1 = 2d/Δt)
-  // or a dynamic one's from dynamic_factor·v1; its kinetic energy with the consistent mass.
+  // or a dynamic one's from dynamic_factor·v1 (`kept`: the kinetic energy of what it keeps).
+  // Static: ½ K(v1) + ¼ (Δt/Δt_prev) v1_prevᵀM v1 (energy.h); dynamic: K(v1) − kept.
   const SolverDef& sv = scene_->solver;
   const double dt = s.time - prev_time_;
   if (!(dt > 0)) return 0;
@@ -110,7 +120,20 @@ double EnergyMeter::damped_kinetic(const RunState& s) const {
     const double a1 = (d - dt * v0 - (0.5 - beta) * dt * dt * a0) / (beta * dt * dt);
     v1[i] = v0 + dt * a1;
   }
-  return kinetic(s, v1);
+  const double k1 = kinetic(s, v1);
+  double q = k1 - kept;
+  if (!sv.dynamic) {
+    q = 0.5 * k1;
+    if (prev_v1_.size() == v1.size() && prev_dt_ > 0) {
+      // ¼ uᵀM w = ¼ [K(u + w) − K(u) − K(w)], K(x) = ½ xᵀM x
+      std::vector<double> sum(v1.size());
+      for (std::size_t i = 0; i < v1.size(); ++i) sum[i] = v1[i] + prev_v1_[i];
+      q += 0.25 * (dt / prev_dt_) * (kinetic(s, sum) - k1 - kinetic(s, prev_v1_));
+    }
+  }
+  prev_v1_ = std::move(v1);
+  prev_dt_ = dt;
+  return q;
 }
 
 double EnergyMeter::fracture_release(const RunState& s) const {
@@ -267,9 +290,10 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     support_work_ += supports;
     load_work_ += traction_work(s) + shaking_work(s) + water_work(s) + supports;
     if (crack_start_.pending) released_ += fracture_release(s);
-    if (damping_ && prev_cover_u_.size() == s.cover_u.size()) damped_ += damped_kinetic(s) - r.kinetic;
+    if (damping_ && prev_cover_u_.size() == s.cover_u.size()) damped_ += damped_kinetic(s, r.kinetic);
   }
   if (damping_) {
+    prev_cover_count_ = mesh_->cover_count();
     prev_cover_u_ = s.cover_u;
     prev_velocity_ = s.velocity;
     prev_accel_ = s.accel;

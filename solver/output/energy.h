@@ -170,7 +170,7 @@ class EnergyMeter {
   double water_work(const RunState& s) const;     // J/m, since the previous call
   double support_work(const RunState& s) const;   // J/m, since the previous call
   double fracture_release(const RunState& s) const;  // J/m, ½ r·d of the step's new faces
-  double damped_kinetic(const RunState& s) const;    // J/m, ½ v1ᵀM v1 of the step's end velocity
+  double damped_kinetic(const RunState& s, double kept);  // J/m, what the step threw away (Q's step)
   // J/m, ½ vᵀM v of the cover velocities `velocity` (laid out as RunState::velocity) on s's covers
   double kinetic(const RunState& s, const std::vector<double>& velocity) const;
   // m, where support i holds its edges at time t (velocity·∫f dt; 0 for a fixed support)
@@ -200,6 +200,9 @@ class EnergyMeter {
   bool damping_ = false;             // the steps throw motion away: energy.csv has the damped column
   std::vector<double> prev_cover_u_, prev_velocity_, prev_accel_;  // at the previous call (damping_)
   bool prev_accel_known_ = false;
+  std::vector<double> prev_v1_;       // m/s, the velocity the last step threw away (static runs)
+  double prev_dt_ = 0;                // s, that step's length
+  std::size_t prev_cover_count_ = 0;  // covers of the mesh prev_v1_ is on
   bool fracturing_ = false;          // the rock can break: energy.csv has the fracture column
   std::size_t joints_ = 0;           // the scene's joints at the last call (the cracks' come after)
   // The start of a step that re-cut the mesh, carried onto the new mesh (carry_over), for the
