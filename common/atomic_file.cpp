@@ -26,7 +26,7 @@ void write_file_atomically(const std::string& path, const std::string& contents,
   auto fail = [&](int err) {
     if (fd >= 0) ::close(fd);
     ::unlink(tmp.c_str());
-    throw InputError(path, "", "cannot write: " + std::system_category().message(err));
+    throw WriteError(path, "", "cannot write: " + std::system_category().message(err));
   };
   if (fd < 0) fail(errno);
   const char* p = contents.data();

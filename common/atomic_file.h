@@ -19,8 +19,8 @@ enum class Durability {
 
 /// Writes `contents` to `path.tmp.<pid>` in the target's folder, flushes it to disk (fsync,
 /// unless Durability::renamed), renames it over `path` (atomic within one file system) and
-/// flushes the folder. On failure the temporary is removed and InputError(path, "", "cannot
-/// write: <reason>") is thrown. Shared by the mesh file, the checkpoint and every output writer.
+/// flushes the folder. On failure the temporary is removed and WriteError(path, "", "cannot
+/// write: <reason>") is thrown (an InputError: common/error.h). Shared by the mesh file, the checkpoint and every output writer.
 void write_file_atomically(const std::string& path, const std::string& contents,
                            Durability durability = Durability::synced);
 

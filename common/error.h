@@ -4,6 +4,10 @@
 // as one line on stderr and exit with status 2. The line names the file, the place inside it (a
 // JSON path such as /joints/3/points/1, or a byte offset) and what is wrong.
 // RunError: a simulation that cannot go on (exit status 3).
+// WriteError: an output file that cannot be written (write_file_atomically: a full disk, a
+// folder gone). It is an InputError — a tool whose output path is unusable before any work is
+// done reports bad input (2) — and nmm-solve's run turns one thrown after its first step into a
+// stop with StopCode::output_failed (exit status 3, run_driver.h).
 #pragma once
 
 #include <stdexcept>
@@ -27,6 +31,11 @@ class InputError : public std::runtime_error {
 
  private:
   std::string file_, where_, message_;
+};
+
+class WriteError : public InputError {
+ public:
+  using InputError::InputError;
 };
 
 class RunError : public std::runtime_error {

@@ -22,6 +22,7 @@ constexpr Named kNames[] = {
     {StopCode::unconstrained, "unconstrained"},
     {StopCode::element_folded, "element_folded"},
     {StopCode::displacement_not_finite, "displacement_not_finite"},
+    {StopCode::output_failed, "output_failed"},
     {StopCode::failed, "failed"},
 };
 }  // namespace

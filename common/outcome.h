@@ -29,6 +29,7 @@ enum class StopCode : std::uint8_t {
   unconstrained,            ///< the system is singular: a cover or block held by nothing
   element_folded,           ///< an element's triangle folded over
   displacement_not_finite,  ///< a solved displacement was not finite
+  output_failed,            ///< an output file could not be written (a full disk): the run cannot go on
   failed,                   ///< a stopped run whose summary.json names no stop_code (older files)
 };
 

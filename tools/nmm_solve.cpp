@@ -101,12 +101,19 @@ int main(int argc, char** argv) {
     const std::string status = outcome.status();
     const std::string verdict = nmm::solve::equilibrium_line(summary["equilibrium"]);
 
-    if (pictures) {
-      const nmm::report::ReportFiles files =
-          nmm::report::write_run_pictures(run.view(), run.scene().scene, outcome, out_dir, exaggerate, field);
-      if (!quiet)
-        std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
-                  << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";
+    // Not where the output could not be written: the pictures would fail as it did.
+    if (pictures && outcome.code != nmm::StopCode::output_failed) {
+      try {
+        const nmm::report::ReportFiles files =
+            nmm::report::write_run_pictures(run.view(), run.scene().scene, outcome, out_dir, exaggerate, field);
+        if (!quiet)
+          std::cerr << "nmm-solve: pictures in " << out_dir << ": result.svg"
+                    << (files.png ? " (and .png)" : "") << ", open " << out_dir << "/index.html\n";
+      } catch (const nmm::WriteError& e) {
+        // The run's results are written (summary.json says how it ended); its pictures are not.
+        std::cerr << "nmm-solve: the run's files are written but its pictures are not: " << e.what() << "\n";
+        return nmm::kExitRunFailed;
+      }
     }
     if (outcome.code == nmm::StopCode::interrupted) {
       std::cerr << "nmm-solve: interrupted after " << summary["steps_completed"].get<long long>()

@@ -74,6 +74,29 @@ void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, 
   s = std::move(t);
 }
 
+pre::RecutMap compose(const pre::RecutMap& later, const pre::RecutMap& earlier) {
+  // An index of the middle mesh outside `earlier`'s range is a bug of the caller (maps of two
+  // unrelated re-cuts): std::vector::at throws rather than reading another piece's parent.
+  pre::RecutMap m;
+  m.element_parent.reserve(later.element_parent.size());
+  for (const std::int32_t p : later.element_parent)
+    m.element_parent.push_back(earlier.element_parent.at(static_cast<std::size_t>(p)));
+  m.cover_parent.reserve(later.cover_parent.size());
+  for (const std::int32_t p : later.cover_parent) m.cover_parent.push_back(earlier.cover_parent.at(static_cast<std::size_t>(p)));
+  m.vertex_parent.reserve(later.vertex_parent.size());
+  for (const std::int32_t p : later.vertex_parent)
+    m.vertex_parent.push_back(p < 0 ? -1 : earlier.vertex_parent.at(static_cast<std::size_t>(p)));
+  m.cut_triangles = earlier.cut_triangles;
+  m.cut_triangles.insert(m.cut_triangles.end(), later.cut_triangles.begin(), later.cut_triangles.end());
+  std::sort(m.cut_triangles.begin(), m.cut_triangles.end());
+  m.cut_triangles.erase(std::unique(m.cut_triangles.begin(), m.cut_triangles.end()), m.cut_triangles.end());
+  m.region_triangles = earlier.region_triangles + later.region_triangles;
+  m.seconds_find = earlier.seconds_find + later.seconds_find;
+  m.seconds_cut = earlier.seconds_cut + later.seconds_cut;
+  m.seconds_splice = earlier.seconds_splice + later.seconds_splice;
+  return m;
+}
+
 std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& history, const Mesh& old,
                                              const Mesh& now, const pre::RecutMap& map,
                                              std::size_t first_new_joint) {

@@ -22,6 +22,14 @@ namespace nmm::solve {
 /// dropped: the next step grows the pattern again, and a step's hand-on is no state of the rock.
 void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, int dofs_per_cover, RunState& s);
 
+/// The map from the mesh after two re-cuts back to the mesh before both: `later` leads from the
+/// newest mesh to the middle one, `earlier` from the middle one to the oldest. Each index of
+/// `later` is an index into the middle mesh, so it is read through `earlier` (a vertex the later
+/// cut made stays -1); T and R's diagnostics are summed. A step that re-cuts several times hands
+/// its observers this composition, so that what they kept of the mesh at the last accepted step
+/// is read at the right index (energy.h carry_over).
+pre::RecutMap compose(const pre::RecutMap& later, const pre::RecutMap& earlier);
+
 /// The contact history carried onto `now`: an entry follows its vertex (dropped where the vertex is
 /// gone) and the block of the element it was against; a vertex at the start of a new crack face's
 /// edge (a joint from `first_new_joint` on) starts closed and locked against the element across —

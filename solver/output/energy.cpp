@@ -4,12 +4,14 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include "solver/discretisation/element_integration.h"
 #include "solver/discretisation/insitu_stress.h"
 #include "common/time_table.h"
 #include "common/atomic_file.h"
 #include "solver/reinforcement/bolt_system.h"
+#include "solver/fracture/fracture.h"
 
 namespace nmm::solve {
 
@@ -20,6 +22,12 @@ EnergyMeter::EnergyMeter(const Model& model, const CoverSpace* space)
   initial_geometry();
   shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
   for (const SupportDef& sd : scene.supports) moving_supports_ |= sd.velocity.x != 0 || sd.velocity.y != 0;
+  fracturing_ = Fracture(scene).active();  // the column where the rock can break
+  // Where the steps throw motion away: DDA's static steps (inertia in the matrix, each step
+  // from rest) and dynamic ones that keep a share of their velocity.
+  damping_ = scene.solver.dynamic ? scene.solver.dynamic_factor < 1
+                                  : scene.solver.static_mode == StaticMode::dda;
+  joints_ = scene.joints.size();
 }
 
 void EnergyMeter::initial_geometry() {
@@ -38,52 +46,124 @@ void EnergyMeter::initial_geometry() {
 }
 
 void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const pre::RecutMap& map,
-                             const RunState& s) {
+                             const RunState& start) {
+  // The map leads back to the mesh of the last call (RunView::recut, composed over every re-cut
+  // of the step): its indices must lie within the records of that mesh.
+  const std::size_t old_vertices = prev_loop_u_.size() / 2, old_elements = prev_cx_.size();
+  // The model, mesh and scene of the last call are gone with the mesh the cracks replaced: only
+  // the meter's own records of them are read.
   model_ = &model;
   mesh_ = &model.mesh();
   scene_ = &model.scene();
   space_ = space && space->order() > 0 ? space : nullptr;
+  if (map.element_parent.size() != mesh_->element_count() || map.vertex_parent.size() != mesh_->loop_vertex_count() ||
+      start.loop_u.size() != 2 * mesh_->loop_vertex_count())
+    throw std::logic_error("EnergyMeter::carry_over: the re-cut map or the step's start is not of the new mesh");
   initial_geometry();  // a piece starts as it was cut: its share of its parent's area and centroid
   // A vertex kept its place: its last displacement is the one it had; a vertex the crack made
-  // starts from where it is (the step's work there is left out: it is the crack's few vertices).
+  // starts where the step's start put it (its parent element's field there, state_transfer.h).
   if (!prev_loop_u_.empty()) {
-    std::vector<double> prev = s.loop_u;
-    for (std::size_t v = 0; v < map.vertex_parent.size(); ++v)
-      if (map.vertex_parent[v] >= 0)
-        for (int d = 0; d < 2; ++d) prev[2 * v + d] = prev_loop_u_[2 * static_cast<std::size_t>(map.vertex_parent[v]) + d];
+    std::vector<double> prev = start.loop_u;
+    for (std::size_t v = 0; v < map.vertex_parent.size(); ++v) {
+      const std::int32_t was = map.vertex_parent[v];
+      if (was < 0) continue;
+      if (static_cast<std::size_t>(was) >= old_vertices)
+        throw std::logic_error("EnergyMeter::carry_over: a vertex's parent lies beyond the mesh it was cut from");
+      for (int d = 0; d < 2; ++d) prev[2 * v + d] = prev_loop_u_[2 * static_cast<std::size_t>(was) + d];
+    }
     prev_loop_u_ = std::move(prev);
   }
-  // A piece's last centroid: its centroid now less its parent's move since (the parent's centroid
-  // now being the area-weighted one of its pieces).
+  // A piece's last centroid: where the step's start put it.
   if (!prev_cx_.empty()) {
-    std::vector<double> cx, cy;
-    centroids(s, cx, cy);
-    const std::size_t parents = prev_cx_.size();
-    std::vector<double> area(parents, 0), mx(parents, 0), my(parents, 0);
-    for (std::size_t e = 0; e < cx.size(); ++e) {
-      const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
-      area[p] += area0_[e];
-      mx[p] += area0_[e] * cx[e];
-      my[p] += area0_[e] * cy[e];
-    }
-    std::vector<double> px(cx.size()), py(cx.size());
-    for (std::size_t e = 0; e < cx.size(); ++e) {
-      const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
-      px[e] = cx[e] - (mx[p] / area[p] - prev_cx_[p]);
-      py[e] = cy[e] - (my[p] / area[p] - prev_cy_[p]);
-    }
-    prev_cx_ = std::move(px);
-    prev_cy_ = std::move(py);
+    for (const std::int32_t p : map.element_parent)
+      if (static_cast<std::size_t>(p) >= old_elements)
+        throw std::logic_error("EnergyMeter::carry_over: an element's parent lies beyond the mesh it was cut from");
+    centroids(start, prev_cx_, prev_cy_);
   }
+  // The step's start as the step saw it (damped_kinetic).
+  if (!prev_cover_u_.empty()) {
+    prev_cover_u_ = start.cover_u;
+    prev_velocity_ = start.velocity;
+    prev_accel_ = start.accel;
+  }
+  // The velocity the last step threw away, on its pieces (a new cover takes its parent's, as the
+  // step's start takes its parent's cover function: state_transfer.h).
+  if (!prev_v1_.empty()) {
+    const std::size_t m = prev_v1_.size() / std::max<std::size_t>(1, map.cover_parent.empty() ? 1 : prev_cover_count_);
+    std::vector<double> v(m * map.cover_parent.size());
+    for (std::size_t c = 0; c < map.cover_parent.size(); ++c)
+      for (std::size_t k = 0; k < m; ++k) v[m * c + k] = prev_v1_.at(m * static_cast<std::size_t>(map.cover_parent[c]) + k);
+    prev_v1_ = std::move(v);
+  }
+  // What the crack-closure sum of the step needs of its start (fracture_release).
+  crack_start_.first_new_joint = joints_;
+  crack_start_.loop_xy = start.loop_xy;
+  crack_start_.loop_u = start.loop_u;
+  crack_start_.stress = start.stress;
+  crack_start_.pending = true;
 }
 
-EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>& contacts) const {
-  EnergyRow r;
-  r.step = s.step;
-  r.time = s.time;
-  const double gx = scene_->has_gravity ? scene_->gravity.x : 0.0;
-  const double gy = scene_->has_gravity ? scene_->gravity.y : 0.0;
-  // The state's own configuration (its cover positions, not those of the step's start).
+double EnergyMeter::damped_kinetic(const RunState& s, double kept) {
+  // The velocity v1 = v0 + Δt·a1 the step reached (newmark.h: a1 = (d − Δt·v0 − (½ − β)Δt²·a0)
+  // / (βΔt²)), before a static run's next step starts from rest (v0 = a0 = 0, β = ½: v1 = 2d/Δt)
+  // or a dynamic one's from dynamic_factor·v1 (`kept`: the kinetic energy of what it keeps).
+  // Static: ½ K(v1) + ¼ (Δt/Δt_prev) v1_prevᵀM v1 (energy.h); dynamic: K(v1) − kept.
+  const SolverDef& sv = scene_->solver;
+  const double dt = s.time - prev_time_;
+  if (!(dt > 0)) return 0;
+  const bool from_rest = !sv.dynamic || prev_velocity_.size() != s.cover_u.size();
+  const double beta = sv.dynamic && prev_accel_known_ ? sv.newmark_beta : 0.5;  // step_beta (newmark.h)
+  std::vector<double> v1(s.cover_u.size());
+  for (std::size_t i = 0; i < v1.size(); ++i) {
+    const double v0 = from_rest ? 0 : prev_velocity_[i], a0 = from_rest || prev_accel_.size() != v1.size() ? 0 : prev_accel_[i];
+    const double d = s.cover_u[i] - prev_cover_u_[i];
+    const double a1 = (d - dt * v0 - (0.5 - beta) * dt * dt * a0) / (beta * dt * dt);
+    v1[i] = v0 + dt * a1;
+  }
+  const double k1 = kinetic(s, v1);
+  double q = k1 - kept;
+  if (!sv.dynamic) {
+    q = 0.5 * k1;
+    if (prev_v1_.size() == v1.size() && prev_dt_ > 0) {
+      // ¼ uᵀM w = ¼ [K(u + w) − K(u) − K(w)], K(x) = ½ xᵀM x
+      std::vector<double> sum(v1.size());
+      for (std::size_t i = 0; i < v1.size(); ++i) sum[i] = v1[i] + prev_v1_[i];
+      q += 0.25 * (dt / prev_dt_) * (kinetic(s, sum) - k1 - kinetic(s, prev_v1_));
+    }
+  }
+  prev_v1_ = std::move(v1);
+  prev_dt_ = dt;
+  return q;
+}
+
+double EnergyMeter::fracture_release(const RunState& s) const {
+  // ½ r·d = −½ Σ_faces Σ_sides ∫ (σ0 n)·Δu ds (energy.h): on each side of each new face, the
+  // traction σ0·n its element carried across it at the step's start (n outward, from the start
+  // positions: the internal force the step started from) times the side's displacement in the
+  // step, linear along the edge (cover order 0: exact).
+  const CrackStart& c = crack_start_;
+  double w = 0;
+  for (std::size_t e = 0; e < mesh_->element_count(); ++e) {
+    if (removed(s, static_cast<std::int32_t>(e))) continue;
+    const std::int32_t b = mesh_->element_loop_offset[e], end = mesh_->element_loop_offset[e + 1];
+    const double sx = c.stress[3 * e], sy = c.stress[3 * e + 1], txy = c.stress[3 * e + 2];
+    for (std::int32_t v = b; v < end; ++v) {
+      if (mesh_->loop_edge_joint[v] < static_cast<std::int32_t>(c.first_new_joint)) continue;
+      const std::int32_t n = v + 1 < end ? v + 1 : b;
+      // (dy, −dx): the outward normal times the edge's length (CCW loop: outside on the right).
+      const double lnx = c.loop_xy[2 * n + 1] - c.loop_xy[2 * v + 1], lny = -(c.loop_xy[2 * n] - c.loop_xy[2 * v]);
+      const double tx = sx * lnx + txy * lny, ty = txy * lnx + sy * lny;  // N/m · m: ∫ σ0·n ds
+      const double dux = 0.5 * (s.loop_u[2 * v] - c.loop_u[2 * v] + s.loop_u[2 * n] - c.loop_u[2 * n]);
+      const double duy = 0.5 * (s.loop_u[2 * v + 1] - c.loop_u[2 * v + 1] + s.loop_u[2 * n + 1] - c.loop_u[2 * n + 1]);
+      w -= 0.5 * (tx * dux + ty * duy);
+    }
+  }
+  return w;
+}
+
+double EnergyMeter::kinetic(const RunState& s, const std::vector<double>& velocity) const {
+  double k = 0;
+  if (velocity.empty()) return k;
   Configuration config(*mesh_, space_);
   config.place(s.cover_xy);
   for (std::size_t e = 0; e < mesh_->element_count(); ++e) {
@@ -92,28 +172,60 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
     const std::int32_t* ec = &mesh_->element_covers[3 * e];
     const double ox = config.frame(e).ox, oy = config.frame(e).oy;
     const std::size_t b = mesh_->element_loop_offset[e], n = mesh_->element_loop_offset[e + 1] - b;
-    const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
     const TriangleWeights& w = config.frame(e).w;
     if (space_ && w.twice_area > 0) {
-      // Cover order n ≥ 1: the velocity field and the stress polynomial, integrated exactly.
+      // Cover order n ≥ 1: the velocity field, integrated exactly.
       const int P = space_->terms(), nf = 3 * P, order = space_->order();
       const std::size_t dpc = static_cast<std::size_t>(space_->dofs_per_cover());
       const ElementBasis& basis = config.basis(e);
       const MonomialMoments mm = monomial_moments(s.loop_xy.data() + 2 * b, n, ox, oy,
                                                   space_->scale(), 2 * order + 2);
-      if (!s.velocity.empty()) {
-        Poly vx, vy;
-        vx.degree = vy.degree = order + 1;
-        for (int a = 0; a < nf; ++a) {
-          // v of term j of the element's cover k (its own copy, equal to its master's)
-          const std::size_t va = dpc * static_cast<std::size_t>(ec[a / P]) + 2 * static_cast<std::size_t>(a % P);
-          for (int i = 0; i < basis.phi[a].size(); ++i) {
-            vx.c[i] += basis.phi[a].c[i] * s.velocity[va];
-            vy.c[i] += basis.phi[a].c[i] * s.velocity[va + 1];
-          }
+      Poly vx, vy;
+      vx.degree = vy.degree = order + 1;
+      for (int a = 0; a < nf; ++a) {
+        // v of term j of the element's cover k (its own copy, equal to its master's)
+        const std::size_t va = dpc * static_cast<std::size_t>(ec[a / P]) + 2 * static_cast<std::size_t>(a % P);
+        for (int i = 0; i < basis.phi[a].size(); ++i) {
+          vx.c[i] += basis.phi[a].c[i] * velocity[va];
+          vy.c[i] += basis.phi[a].c[i] * velocity[va + 1];
         }
-        r.kinetic += 0.5 * density * (integral(vx, vx, mm) + integral(vy, vy, mm));
       }
+      k += 0.5 * density * (integral(vx, vx, mm) + integral(vy, vy, mm));
+    } else if (!space_ && w.twice_area > 0) {
+      // The consistent mass, as the step assembles it.
+      const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
+      for (int i = 0; i < 3; ++i)
+        for (int l = 0; l < 3; ++l) {
+          const double vv = velocity[2 * ec[i]] * velocity[2 * ec[l]] + velocity[2 * ec[i] + 1] * velocity[2 * ec[l] + 1];
+          k += 0.5 * density * integral_ww(w, m, i, l) * vv;
+        }
+    }
+  }
+  return k;
+}
+
+EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>& contacts) const {
+  EnergyRow r;
+  r.step = s.step;
+  r.time = s.time;
+  r.kinetic = kinetic(s, s.velocity);
+  const double gx = scene_->has_gravity ? scene_->gravity.x : 0.0;
+  const double gy = scene_->has_gravity ? scene_->gravity.y : 0.0;
+  // The state's own configuration (its cover positions, not those of the step's start).
+  Configuration config(*mesh_, space_);
+  config.place(s.cover_xy);
+  for (std::size_t e = 0; e < mesh_->element_count(); ++e) {
+    if (removed(s, static_cast<std::int32_t>(e))) continue;
+    const double density = model_->density(e);
+    const double ox = config.frame(e).ox, oy = config.frame(e).oy;
+    const std::size_t b = mesh_->element_loop_offset[e], n = mesh_->element_loop_offset[e + 1] - b;
+    const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
+    const TriangleWeights& w = config.frame(e).w;
+    if (space_ && w.twice_area > 0) {
+      // Cover order n ≥ 1: the stress polynomial, integrated exactly.
+      const int P = space_->terms(), order = space_->order();
+      const MonomialMoments mm = monomial_moments(s.loop_xy.data() + 2 * b, n, ox, oy,
+                                                  space_->scale(), 2 * order + 2);
       const std::size_t T = static_cast<std::size_t>(P);
       Poly sig[3];
       for (int q = 0; q < 3; ++q) {
@@ -125,14 +237,6 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
         for (int l = 0; l < 3; ++l)
           if (c(q, l) != 0) r.strain += 0.5 * c(q, l) * integral(sig[q], sig[l], mm);
     } else if (!space_) {
-      // Kinetic: the consistent mass, as the step assembles it.
-      if (w.twice_area > 0 && !s.velocity.empty())
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l) {
-            const double vv = s.velocity[2 * ec[k]] * s.velocity[2 * ec[l]] +
-                              s.velocity[2 * ec[k] + 1] * s.velocity[2 * ec[l] + 1];
-            r.kinetic += 0.5 * density * integral_ww(w, m, k, l) * vv;
-          }
       // Strain: ½ A σᵀ D⁻¹ σ.
       const Vec3 sigma(s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
       r.strain += 0.5 * m.a * sigma.dot(model_->compliance(e) * sigma);
@@ -185,7 +289,18 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     const double supports = support_work(s);
     support_work_ += supports;
     load_work_ += traction_work(s) + shaking_work(s) + water_work(s) + supports;
+    if (crack_start_.pending) released_ += fracture_release(s);
+    if (damping_ && prev_cover_u_.size() == s.cover_u.size()) damped_ += damped_kinetic(s, r.kinetic);
   }
+  if (damping_) {
+    prev_cover_count_ = mesh_->cover_count();
+    prev_cover_u_ = s.cover_u;
+    prev_velocity_ = s.velocity;
+    prev_accel_ = s.accel;
+    prev_accel_known_ = s.accel_known;
+  }
+  crack_start_ = {};
+  joints_ = scene_->joints.size();
   if (!model_->traction_edges().empty() || model_->water().active() || moving_supports_) prev_loop_u_ = s.loop_u;
   prev_time_ = s.time;
   if (shaking_) centroids(s, prev_cx_, prev_cy_);
@@ -211,7 +326,11 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
   r.support_work = support_work_;
   r.friction = friction_ + (plastic - plastic0_);
   r.absorbed = s.absorbed_work - absorbed0_;
-  r.residual = r.load_work - r.friction - r.absorbed - (mech - mech0_);
+  // Cracking: the strain energy released where cracks opened without softening (cohesive faces
+  // will add the work their softening tractions take, docs/fracture.md).
+  r.fracture = released_;
+  r.damped = damped_;
+  r.residual = r.load_work - r.friction - r.absorbed - r.damped - r.fracture - (mech - mech0_);
   last_ = r;
   if (keep) {
     rows_.push_back(r);
@@ -356,10 +475,14 @@ void EnergyMeter::keep_last() {
 }
 
 void EnergyMeter::write_csv(const std::string& dir) const {
-  // The absorbed column only where absorbing boundaries take energy out.
+  // The absorbed column only where absorbing boundaries take energy out, the fracture column only
+  // where the rock can break.
   const bool absorbing = !scene_->absorbing.empty();
-  std::string out = absorbing ? "step,time,kinetic,strain,gravity,springs,load_work,friction,absorbed,residual\n"
-                              : "step,time,kinetic,strain,gravity,springs,load_work,friction,residual\n";
+  std::string out = "step,time,kinetic,strain,gravity,springs,load_work,friction";
+  if (absorbing) out += ",absorbed";
+  if (damping_) out += ",damped";
+  if (fracturing_) out += ",fracture";
+  out += ",residual\n";
   char buf[32];
   const auto put = [&](double v) {
     const auto res = std::to_chars(buf, buf + sizeof buf, v);
@@ -370,6 +493,8 @@ void EnergyMeter::write_csv(const std::string& dir) const {
     out += std::to_string(r.step);
     for (double v : {r.time, r.kinetic, r.strain, r.gravity, r.springs, r.load_work, r.friction}) put(v);
     if (absorbing) put(r.absorbed);
+    if (damping_) put(r.damped);
+    if (fracturing_) put(r.fracture);
     put(r.residual);
     out += '\n';
   }

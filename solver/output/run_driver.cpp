@@ -6,6 +6,7 @@
 #include "solver/output/run_summary.h"
 #include "common/stopwatch.h"
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "common/mesh_file.h"
 
 #include <cstdio>
@@ -135,64 +136,96 @@ RunDriver::~RunDriver() = default;
 
 void RunDriver::start() {
   const Stopwatch wall;
+  std::exception_ptr write_failed;  // frame 0 could not be written: advance() takes no step
   const SolverDef& sv = stepper_.view().model.scene().solver;
   record_.first_step = stepper_.view().state.step;  // a restart continues from the checkpoint's
   if (out_) {
     frames_ = std::make_unique<FrameOutput>(*out_, record_.first_step, sv);
     checkpoint_ = std::make_unique<CheckpointOutput>(out_->dir() + "/checkpoint.nmmstate", sv.checkpoint_every);
     const Stopwatch sw;
-    frames_->start(stepper_.view());
+    guarded([&] { frames_->start(stepper_.view()); }, write_failed);
     record_.output_seconds += sw.seconds();
   }
-  for (StepObserver* o : observers_) o->start(stepper_.view());
+  for (StepObserver* o : observers_) guarded([&] { o->start(stepper_.view()); }, write_failed);
   started_ = true;
   record_.wall_seconds += wall.seconds();
 }
 
+void RunDriver::guarded(const std::function<void()>& f, std::exception_ptr& first) {
+  try {
+    f();
+  } catch (const WriteError& e) {
+    if (!first) first = std::current_exception();
+    output_failed_ = true;
+    if (!record_.outcome.failed())
+      record_.outcome = Outcome::stop(StopCode::output_failed, e.what(), stepper_.view().state.time);
+  }
+}
+
 Outcome RunDriver::advance(double t_end, std::int64_t max_steps) {
   if (!started_) start();
+  if (output_failed_) return record_.outcome;  // a run whose output cannot be written does not go on
   const Stopwatch wall;
   const SolverDef& sv = stepper_.view().model.scene().solver;
   const std::int64_t before = record_.done;
-  record_.outcome = stepper_.run_until(
-      t_end,
-      [&](std::int64_t k) {
-        const std::int64_t n = before + k;
-        record_.done = n;
-        const bool last = stepper_.view().state.time >= t_end - StepControl::kRoundOff * sv.time_step ||
-                          stepper_.view().stopped_at_ratio;
-        if (out_) {
-          // Output seconds: the frames', histories' and checkpoints' (summary.json timings.output).
-          const Stopwatch sw;
-          frames_->after_step(stepper_.view(), n, last);
-          checkpoint_->after_step(stepper_.view(), n, last);
-          record_.output_seconds += sw.seconds();
-        }
-        for (StepObserver* o : observers_) o->after_step(stepper_.view(), n, last);
-      },
-      max_steps);
+  std::exception_ptr write_failed;
+  try {
+    record_.outcome = stepper_.run_until(
+        t_end,
+        [&](std::int64_t k) {
+          const std::int64_t n = before + k;
+          record_.done = n;
+          const bool last = stepper_.view().state.time >= t_end - StepControl::kRoundOff * sv.time_step ||
+                            stepper_.view().stopped_at_ratio;
+          // Every observer sees the step, whichever write of it fails; then the run stops.
+          if (out_) {
+            // Output seconds: the frames', histories' and checkpoints' (summary.json timings.output).
+            const Stopwatch sw;
+            guarded([&] { frames_->after_step(stepper_.view(), n, last); }, write_failed);
+            guarded([&] { checkpoint_->after_step(stepper_.view(), n, last); }, write_failed);
+            record_.output_seconds += sw.seconds();
+          }
+          for (StepObserver* o : observers_) guarded([&] { o->after_step(stepper_.view(), n, last); }, write_failed);
+          if (write_failed) std::rethrow_exception(write_failed);
+        },
+        max_steps);
+  } catch (const WriteError&) {
+    // The step is complete and the stepper between steps; record_.outcome says why it stopped.
+    if (!write_failed) throw;  // not an observer's write: not ours to turn into a stop
+  }
   record_.wall_seconds += wall.seconds();
   return record_.outcome;
+}
+
+nlohmann::json RunDriver::full_summary() const {
+  nlohmann::json summary = run_summary(stepper_.view(), record_);
+  for (const StepObserver* o : observers_) o->summarise(summary);
+  return summary;
 }
 
 nlohmann::json RunDriver::finish() {
   if (!started_) start();
   const Stopwatch wall;
+  std::exception_ptr write_failed;
+  // A run the output stopped: summary.json first, while there may still be room for it.
+  if (out_ && output_failed_)
+    guarded([&] { out_->write_summary(full_summary()); }, write_failed);
   if (out_) {
     const Stopwatch sw;
-    frames_->finish(stepper_.view(), record_.outcome, record_.done);
-    checkpoint_->finish(stepper_.view(), record_.outcome, record_.done);
+    guarded([&] { frames_->finish(stepper_.view(), record_.outcome, record_.done); }, write_failed);
+    guarded([&] { checkpoint_->finish(stepper_.view(), record_.outcome, record_.done); }, write_failed);
     record_.output_seconds += sw.seconds();
   }
-  for (StepObserver* o : observers_) o->finish(stepper_.view(), record_.outcome, record_.done);
+  for (StepObserver* o : observers_) guarded([&] { o->finish(stepper_.view(), record_.outcome, record_.done); }, write_failed);
   if (out_ && stepper_.view().fracture.active()) {
     const Stopwatch sw;
-    write_cracks(stepper_.view(), out_->dir());
+    guarded([&] { write_cracks(stepper_.view(), out_->dir()); }, write_failed);
     record_.output_seconds += sw.seconds();
   }
   record_.wall_seconds += wall.seconds();
-  nlohmann::json summary = run_summary(stepper_.view(), record_);
-  if (out_) out_->write_summary(summary);
+  nlohmann::json summary = full_summary();
+  if (out_) guarded([&] { out_->write_summary(summary); }, write_failed);
+  if (write_failed) summary = full_summary();  // the stop the failed write made
   return summary;
 }
 
@@ -203,7 +236,7 @@ nlohmann::json RunDriver::run() {
   return finish();
 }
 
-nlohmann::json RunDriver::summary() const { return run_summary(stepper_.view(), record_); }
+nlohmann::json RunDriver::summary() const { return full_summary(); }
 
 nlohmann::json run_to_end(TimeStepper& stepper, OutputWriter& out) { return RunDriver(stepper, out).run(); }
 

@@ -16,9 +16,20 @@
 // (the last frame, history.csv, the checkpoint, summary.json); run() is all three. Steps are
 // counted over the whole run, so frames fall every output_every steps however it was advanced.
 // Without an OutputWriter nothing is written, and summary() is still the run's summary.
+//
+// An output that cannot be written (common/error.h WriteError: a full disk, a folder gone) ends
+// the run: the step it failed after is complete and every observer still sees it, then the run
+// stops with StopCode::output_failed and the file and why in its reason (nmm-solve: exit status
+// 3). finish() then writes summary.json first — the one file that says what happened, so it is
+// the one that gets the room there is — then the rest as before, each on its own (a file that
+// cannot be written does not keep the others from being tried); the checkpoint is written whole
+// or not at all (common/atomic_file.h), so a failed write leaves the last one written whole. A
+// write that fails in finish() itself turns an ended run into one stopped with output_failed,
+// and summary.json is written again to say so.
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -45,6 +56,8 @@ class StepObserver {
   virtual void after_step(const RunView& run, std::int64_t n, bool last) = 0;
   /// Once the run has stopped after `done` steps, with how it ended.
   virtual void finish(const RunView&, const Outcome& /*outcome*/, std::int64_t /*done*/) {}
+  /// Adds what it measured to the run's summary (summary.json), after run_summary().
+  virtual void summarise(nlohmann::json& /*summary*/) const {}
 };
 
 /// An observer of one function (after_step only).
@@ -90,6 +103,11 @@ class RunDriver {
  private:
   class FrameOutput;
   class CheckpointOutput;
+  /// The run's summary with the observers' parts (summarise).
+  nlohmann::json full_summary() const;
+  /// Calls f; a WriteError it throws becomes the run's stop (output_failed) unless the run has
+  /// already stopped on a failure, and is kept in `first` (null: the first so far).
+  void guarded(const std::function<void()>& f, std::exception_ptr& first);
   TimeStepper& stepper_;
   OutputWriter* out_;
   std::vector<StepObserver*> observers_;
@@ -97,6 +115,7 @@ class RunDriver {
   std::unique_ptr<CheckpointOutput> checkpoint_;  // with an OutputWriter
   RunRecord record_;
   bool started_ = false;
+  bool output_failed_ = false;  // a write failed (guarded): the run takes no more steps
 };
 
 /// The whole run without further observers (tests, benches): RunDriver(stepper, out).run().

@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "common/scene.h"
@@ -21,7 +23,11 @@ class SolveRun::EnergyOutput : public StepObserver {
   }
   void after_step(const RunView& st, std::int64_t n, bool) override {
     if (st.topology != topology_) {  // cracks re-cut the mesh in this step (docs/fracture.md)
-      meter_.carry_over(st.model, &st.space, st.last_recut, st.state);
+      // The step's re-cuts, composed back to the mesh the meter last saw (run_view.h).
+      if (st.recut_from != topology_)
+        throw std::logic_error("energy meter: the re-cut map leads back to mesh " + std::to_string(st.recut_from) +
+                               ", the meter's is " + std::to_string(topology_));
+      meter_.carry_over(st.model, &st.space, st.recut, st.recut_start);
       topology_ = st.topology;
     }
     meter_.after_step(st.state, st.contacts.contacts(), n % output_every_ == 0);
@@ -29,6 +35,10 @@ class SolveRun::EnergyOutput : public StepObserver {
   void finish(const RunView&, const Outcome&, std::int64_t) override {
     meter_.keep_last();
     meter_.write_csv(dir_);
+  }
+  // summary.json fracture.dissipated_j: energy.csv's fracture column at the last step.
+  void summarise(nlohmann::json& summary) const override {
+    if (summary.contains("fracture")) summary["fracture"]["dissipated_j"] = meter_.fracture();
   }
 
  private:

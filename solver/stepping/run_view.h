@@ -49,9 +49,17 @@ struct RunView {
   /// Intact rock that breaks: the cracks so far (fracture.h; inactive without a fracture block).
   const Fracture& fracture;
   /// How many times cracks have re-cut the mesh (0: the mesh as preprocessed); an observer that
-  /// keeps arrays of the mesh carries them over with last_recut when it changes.
+  /// keeps arrays of the mesh carries them over with `recut` when it changes.
   const std::size_t& topology;
-  const pre::RecutMap& last_recut;     ///< from the mesh of the last re-cut back to the one before
+  /// From the mesh now back to the mesh of topology `recut_from`: that of the last accepted step
+  /// before the last step that re-cut it, composed over every re-cut of that step (a step may
+  /// re-cut several times). An observer called after every accepted step sees topology change
+  /// from recut_from to topology.
+  const pre::RecutMap& recut;
+  const std::size_t& recut_from;
+  /// The state the last step that re-cut the mesh started from, carried onto the mesh now
+  /// (fracture/state_transfer.h): its fields are those of the accepted state before that step.
+  const RunState& recut_start;
 };
 
 /// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).

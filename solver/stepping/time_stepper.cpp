@@ -415,10 +415,19 @@ void TimeStepper::break_rock(const std::vector<CrackSegment>& segments, std::vec
   transfer_state(this->mesh(), *mesh, map, b_->space.dofs_per_cover(), s_);
   history = transfer_history(history, this->mesh(), *mesh, map, first);
   fracture_.cut(segments, *mesh, map);
-  last_recut_ = std::move(map);
+  // Composed with the step's earlier re-cuts: the observers last saw the mesh of the last
+  // accepted step, not the one this cut started from.
+  if (recut_step_ == s_.step && recut_.element_parent.size() == this->mesh().element_count()) {
+    recut_ = compose(map, recut_);
+  } else {
+    recut_ = std::move(map);
+    recut_from_ = topology_;
+    recut_step_ = s_.step;
+  }
   ++topology_;
   replace_mesh(std::move(mesh), std::move(cracked), std::move(history));
   apply_removed();
+  recut_start_ = s_;
 }
 
 void TimeStepper::replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,

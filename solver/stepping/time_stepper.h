@@ -80,7 +80,7 @@ class TimeStepper {
   RunView view() const {
     return {*mesh_,      b_->model,  b_->space,    b_->config,   s_,
             b_->contacts, system_,   timings_,     solve_stats_, balance_,
-            stopped_at_ratio_, threads_, fracture_, topology_, last_recut_};
+            stopped_at_ratio_, threads_, fracture_, topology_, recut_, recut_from_, recut_start_};
   }
 
  private:
@@ -165,7 +165,15 @@ class TimeStepper {
   /// its peak; a bound far above that only stops a cascade that a shorter step would spread.
   static constexpr int kMaxRecutsPerStep = 200;
   std::size_t topology_ = 0;            // re-cuts so far (RunView::topology)
-  pre::RecutMap last_recut_;            // of the last re-cut
+  // The re-cuts of the step being taken (RunView::recut): the map from the mesh now back to the
+  // mesh at the last accepted step, composed over every re-cut since (a step may re-cut several
+  // times, and a step cut shorter keeps the cracks its longer attempt cut); recut_from_ is that
+  // mesh's topology_, recut_step_ the accepted steps (s_.step) the composition started at, and
+  // recut_start_ the state the step starts from, carried onto the mesh now.
+  pre::RecutMap recut_;
+  std::size_t recut_from_ = 0;
+  std::int64_t recut_step_ = -1;
+  RunState recut_start_;
   StepControl control_;                 // Shi's step control (step_control.h)
   RunState s_;                          // everything a step carries to the next
   bool bolts_renumbered_ = false;       // a restart installed bolts: its FACTOR is of another size
