@@ -28,7 +28,8 @@
 //    scene always gives the same bytes. Sliver elements (a joint passing 1e-9·h beside a node)
 //    are kept as they are: dropping or merging them would lose area or change the topology. Only
 //    specks are dropped: faces that, rounded, enclose no positive area or fit in 1e-9·h (Cutter::
-//    speck), where three cuts meet within round-off of one point.
+//    speck), where three cuts meet within round-off of one point. A piece of mesh edge that
+//    rounds to one point joins neither covers nor blocks (the re-cut links by rounded edges).
 #include "preprocess/cover_cutter.h"
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
@@ -510,6 +511,10 @@ Mesh Cutter::extract() {
   UnionFind slot_uf(3 * ne), block_uf(ne);
   for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e) {
     if (edge_kinds(e) != kEdgeMesh) continue;
+    // A piece of mesh edge that rounds to one point (three cuts meeting within round-off of it)
+    // joins nothing: in doubles it is no edge, and the re-cut (recut.cpp), which links elements
+    // by their rounded edges, must find the same blocks and covers as this cut.
+    if (to_vec(e->source()->point()) == to_vec(e->target()->point())) continue;
     const std::int32_t m1 = face_me[e->face()->data()], m2 = face_me[e->twin()->face()->data()];
     if (m1 < 0 || m2 < 0) continue;
     block_uf.unite(m1, m2);

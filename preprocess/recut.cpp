@@ -94,11 +94,13 @@ struct EdgeHash {
   }
 };
 
-// Blocks and contact edges of a mesh whose elements and loops are set, from the loops alone:
-// elements joined across mesh-only edges are one block (numbered by their first element), and a
-// joint or boundary edge's opposite element runs the same edge the other way (build_mesh's
-// arrangement says the same).
-void link_elements(Mesh& m) {
+// Blocks of a mesh whose elements and loops are set, from the loops alone: elements joined across
+// mesh-only edges are one block (numbered by their first element). Two elements share a mesh
+// edge where one's loop runs the other's edge the other way, to the bit: the cut rounds each
+// exact point once, so equal pieces round alike, and two different pieces of a mesh line can
+// round alike only where both round to one point — such a piece joins nothing, here and in the
+// full cut (cover_cutter.cpp extract), so that the two give the same blocks.
+void link_blocks(Mesh& m) {
   const std::size_t ne = m.element_count();
   std::unordered_map<EdgeKey, std::int32_t, EdgeHash> owner;
   owner.reserve(m.loop_vertex_count());
@@ -109,32 +111,27 @@ void link_elements(Mesh& m) {
     if (reversed) k = {k.x1, k.y1, k.x0, k.y0};
     return k;
   };
+  auto joins = [&](std::int32_t v, std::int32_t e) {
+    if (m.loop_edge_origin[v] != kEdgeMesh) return false;
+    const EdgeKey k = edge(v, e, false);
+    return k.x0 != k.x1 || k.y0 != k.y1;
+  };
   for (std::size_t e = 0; e < ne; ++e)
     for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v)
-      owner.emplace(edge(v, static_cast<std::int32_t>(e), false), static_cast<std::int32_t>(e));
+      if (joins(v, static_cast<std::int32_t>(e))) owner.emplace(edge(v, static_cast<std::int32_t>(e), false), static_cast<std::int32_t>(e));
   std::vector<std::int32_t> parent(ne);
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](std::int32_t a) {
     while (parent[a] != a) a = parent[a] = parent[parent[a]];
     return a;
   };
-  m.contact_edge.clear();
-  m.contact_edge_element.clear();
-  m.contact_edge_opposite.clear();
   for (std::size_t e = 0; e < ne; ++e)
     for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v) {
+      if (!joins(v, static_cast<std::int32_t>(e))) continue;
       const auto it = owner.find(edge(v, static_cast<std::int32_t>(e), true));
-      const std::int32_t other = it == owner.end() ? -1 : it->second;
-      const std::uint8_t o = m.loop_edge_origin[v];
-      if (o == kEdgeMesh && other >= 0) {
-        const std::int32_t a = find(static_cast<std::int32_t>(e)), b = find(other);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-      }
-      if (o & (kEdgeJoint | kEdgeBoundary)) {
-        m.contact_edge.push_back(v);
-        m.contact_edge_element.push_back(static_cast<std::int32_t>(e));
-        m.contact_edge_opposite.push_back(other);
-      }
+      if (it == owner.end()) continue;
+      const std::int32_t a = find(static_cast<std::int32_t>(e)), b = find(it->second);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
   m.block_body.clear();
   m.element_block.assign(ne, -1);
@@ -148,6 +145,37 @@ void link_elements(Mesh& m) {
     m.element_block[e] = block_of_root[r];
   }
 }
+
+// Whether element `re` of `a` has the loop of element `oe` of `b` (vertex for vertex, with the
+// same edge origins and joints, from whichever vertex each starts).
+bool same_loop(const Mesh& a, std::size_t re, const Mesh& b, std::size_t oe) {
+  const std::int32_t ab = a.element_loop_offset[re], n = a.element_loop_offset[re + 1] - ab;
+  const std::int32_t bb = b.element_loop_offset[oe];
+  if (b.element_loop_offset[oe + 1] - bb != n) return false;
+  for (std::int32_t r = 0; r < n; ++r) {
+    bool all = true;
+    for (std::int32_t k = 0; k < n && all; ++k) {
+      const std::int32_t v = ab + k, w = bb + (r + k) % n;
+      all = a.loop_xy[2 * v] == b.loop_xy[2 * w] && a.loop_xy[2 * v + 1] == b.loop_xy[2 * w + 1] &&
+            a.loop_edge_origin[v] == b.loop_edge_origin[w] && a.loop_edge_joint[v] == b.loop_edge_joint[w];
+    }
+    if (all) return true;
+  }
+  return false;
+}
+
+// m's contact edges element by element: `first` [element + 1] CSR into `index` (into the
+// contact-edge arrays, in their order).
+struct ContactEdgesOf {
+  std::vector<std::int32_t> first, index;
+  explicit ContactEdgesOf(const Mesh& m) : first(m.element_count() + 1, 0), index(m.contact_edge.size()) {
+    for (const std::int32_t e : m.contact_edge_element) ++first[static_cast<std::size_t>(e) + 1];
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    std::vector<std::int32_t> at(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < m.contact_edge.size(); ++i)
+      index[static_cast<std::size_t>(at[static_cast<std::size_t>(m.contact_edge_element[i])]++)] = static_cast<std::int32_t>(i);
+  }
+};
 
 }  // namespace
 
@@ -271,6 +299,8 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
   map.element_parent.clear();
   map.vertex_parent.clear();
   std::vector<std::int32_t> source_rc;  // [new me] the cut's element, or -1 (an old one kept)
+  std::vector<std::int32_t> old_new(old.element_count(), -1);  // [old me] the new element it is, or -1
+  std::vector<std::uint8_t> matched;    // [new me] 1: an old element, kept or matched loop for loop
   m.element_loop_offset.push_back(0);
   // Appends element e of `from` (the old mesh: kept as it is; the cut: a piece of `parent`).
   auto add_loop = [&](const Mesh& from, std::size_t e, std::int32_t parent) {
@@ -292,6 +322,8 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
   for (std::size_t t = 0; t < nt; ++t) {
     if (!in_r[t]) {
       for (std::int32_t oe = first_old[t]; oe < first_old[t + 1]; ++oe) {
+        old_new[oe] = static_cast<std::int32_t>(m.element_count());
+        matched.push_back(1);
         m.element_triangle.push_back(static_cast<std::int32_t>(t));
         m.element_body.push_back(old.element_body[oe]);
         map.element_parent.push_back(oe);
@@ -302,7 +334,16 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
     }
     for (std::int32_t k = first_rc[t]; k < first_rc[t + 1]; ++k) {
       const std::size_t re = static_cast<std::size_t>(rc_by_triangle[k]);
-      const std::int32_t parent = parent_of(re);
+      // An element the new joints left as it was is that old element (in a triangle of R \ T
+      // every one is): matched loop for loop, not by a point inside it, which for a sliver a
+      // round-off wide can land on the edge it shares with its neighbour and take the
+      // neighbour's covers.
+      std::int32_t parent = -1;
+      for (std::int32_t oe = first_old[t]; oe < first_old[t + 1] && parent < 0; ++oe)
+        if (old_new[oe] < 0 && same_loop(rc, re, old, static_cast<std::size_t>(oe))) parent = oe;
+      if (parent >= 0) old_new[parent] = static_cast<std::int32_t>(m.element_count());
+      else parent = parent_of(re);
+      matched.push_back(old_new[parent] == static_cast<std::int32_t>(m.element_count()) ? 1 : 0);
       m.element_triangle.push_back(static_cast<std::int32_t>(t));
       m.element_body.push_back(rc.element_body[re]);
       map.element_parent.push_back(parent);
@@ -373,7 +414,63 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
               ? rc_cover_new[rc.element_covers[3 * static_cast<std::size_t>(source_rc[e]) + c]]
               : old_cover_new[old.element_covers[3 * static_cast<std::size_t>(map.element_parent[e]) + c]];
     }
-  link_elements(m);
+  // Contact edges from the cuts' own topology, not from rounded coordinates (an edge that rounds
+  // to a point would run "the other way" in its own element): a kept element's from the old mesh,
+  // a cut element's from the cut, where the element across lies outside R the old mesh's (such
+  // an element is matched: only R \ T borders the outside).
+  {
+    const ContactEdgesOf old_ce(old), rc_ce(rc);
+    std::vector<std::int32_t> rc_new(rc.element_count(), -1);
+    for (std::size_t e = 0; e < ne; ++e)
+      if (source_rc[e] >= 0) rc_new[static_cast<std::size_t>(source_rc[e])] = static_cast<std::int32_t>(e);
+    m.contact_edge.clear();
+    m.contact_edge_element.clear();
+    m.contact_edge_opposite.clear();
+    auto add = [&](std::size_t e, std::int32_t v, std::int32_t across) {
+      m.contact_edge.push_back(v);
+      m.contact_edge_element.push_back(static_cast<std::int32_t>(e));
+      m.contact_edge_opposite.push_back(across);
+    };
+    // The old contact edge of old element oe from (x0, y0) to (x1, y1), or -1.
+    auto old_edge = [&](std::int32_t oe, double x0, double y0, double x1, double y1) {
+      const std::int32_t b = old.element_loop_offset[oe], end = old.element_loop_offset[oe + 1];
+      for (std::int32_t k = old_ce.first[oe]; k < old_ce.first[oe + 1]; ++k) {
+        const std::int32_t i = old_ce.index[static_cast<std::size_t>(k)], v = old.contact_edge[i], w = v + 1 < end ? v + 1 : b;
+        if (old.loop_xy[2 * v] == x0 && old.loop_xy[2 * v + 1] == y0 && old.loop_xy[2 * w] == x1 && old.loop_xy[2 * w + 1] == y1)
+          return i;
+      }
+      return -1;
+    };
+    auto across_old = [&](std::int32_t i) {
+      const std::int32_t o = old.contact_edge_opposite[i];
+      return o < 0 ? -1 : old_new[o];
+    };
+    for (std::size_t e = 0; e < ne; ++e) {
+      const std::int32_t nb = m.element_loop_offset[e], nend = m.element_loop_offset[e + 1];
+      if (source_rc[e] < 0) {
+        const std::int32_t oe = map.element_parent[e], ob = old.element_loop_offset[oe];
+        for (std::int32_t k = old_ce.first[oe]; k < old_ce.first[oe + 1]; ++k) {
+          const std::int32_t i = old_ce.index[static_cast<std::size_t>(k)];
+          add(e, nb + (old.contact_edge[i] - ob), across_old(i));
+        }
+        continue;
+      }
+      const std::size_t re = static_cast<std::size_t>(source_rc[e]);
+      const std::int32_t rb = rc.element_loop_offset[re];
+      for (std::int32_t k = rc_ce.first[re]; k < rc_ce.first[re + 1]; ++k) {
+        const std::int32_t i = rc_ce.index[static_cast<std::size_t>(k)];
+        const std::int32_t v = nb + (rc.contact_edge[i] - rb), w = v + 1 < nend ? v + 1 : nb;
+        std::int32_t across = rc.contact_edge_opposite[i] >= 0 ? rc_new[static_cast<std::size_t>(rc.contact_edge_opposite[i])] : -1;
+        if (across < 0 && matched[e]) {
+          const std::int32_t oi = old_edge(map.element_parent[e], m.loop_xy[2 * v], m.loop_xy[2 * v + 1], m.loop_xy[2 * w],
+                                           m.loop_xy[2 * w + 1]);
+          if (oi >= 0) across = across_old(oi);
+        }
+        add(e, v, across);
+      }
+    }
+  }
+  link_blocks(m);
   map.seconds_splice = watch.seconds();
   return m;
 }

@@ -46,6 +46,8 @@
 #include "solver/reinforcement/bolt_layout.h"
 #include "common/checkpoint_file.h"
 #include "common/mesh_file.h"
+#include "common/mesh_compare.h"
+#include "preprocess/cover_cutter.h"
 
 namespace nmm::solve {
 
@@ -387,6 +389,16 @@ void TimeStepper::break_rock(const std::vector<CrackSegment>& segments, std::vec
   for (const CrackSegment& c : segments) cracked->joints.push_back({cracked->fracture.crack_set, {c.a, c.b}});
   pre::RecutMap map;
   auto mesh = std::make_unique<Mesh>(pre::recut(this->mesh(), *cracked, first, scene_name_, map));
+  // The check mode (docs/fracture.md "Re-cutting"): the re-cut against a full cut of the scene
+  // with every crack segment as a joint, after every re-cut. A difference is a defect of the
+  // re-cut, not of the run's physics: it ends the run (RunError) with the difference in words.
+  static const bool check = std::getenv("NMM_CHECK_RECUT") != nullptr && std::string(std::getenv("NMM_CHECK_RECUT")) != "0";
+  if (check) {
+    const std::string diff = mesh_difference(*mesh, pre::build_mesh(*cracked, scene_name_));
+    if (!diff.empty())
+      throw RunError("NMM_CHECK_RECUT: at t = " + std::to_string(s_.time) + " s the re-cut of " +
+                     std::to_string(segments.size()) + " crack segment(s) is not the full cut: " + diff);
+  }
   transfer_state(this->mesh(), *mesh, map, b_->space.dofs_per_cover(), s_);
   history = transfer_history(history, this->mesh(), *mesh, map, first);
   fracture_.cut(segments, *mesh, map);
