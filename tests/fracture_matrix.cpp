@@ -1,0 +1,222 @@
+// The fracturing robustness matrix (docs/fracture.md, "Robustness matrix"): one cell per run,
+//   fracture_matrix CASE --csv FILE        e.g. CASE = uniaxial.h1.static.slow
+//   fracture_matrix CASE --scene FILE      writes the cell's scene (for nmm-preprocess, nmm-solve)
+// runs the rock test of reference/rock_tests.h in process (TimeStepper, as tests/test_fracture.cpp
+// does), prints one line — case, h, kernel (OPENBLAS_CORETYPE), status, steps, first crack against
+// its closed form, peak load — writes the same as one CSV row to FILE, and exits 1 unless:
+//   - the run reaches its end time (a run never stops because the rock broke);
+//   - something cracked, and the first crack came within 5 % of the closed-form load
+//     (tension bar, compression, discs); the load of the first crack is the one the intact rock
+//     carried at the accepted step before the step that cracked it (the load grows 0.7 % a step
+//     at the slow rate, 1.3 % at the fast one);
+//   - the notched beam (no closed form: a sharp notch): the elastic compliance before cracking
+//     between 0.95× beam theory's with a notch a − 2h and 1.05× with a notch a (reference/
+//     rock_tests.h: at order 0 the faces are tied within a star of the tip), the first crack
+//     within 2h of the notch tip, the peak below the net-section load of a notch a − 2h;
+//   - the step-path slope: the first crack at a joint tip within the first 5 steps, and the wedge
+//     moves (more than 1 mm, ten times the rock behind the crest).
+// The load is the moving support's reaction per metre, read as the mean stress of the loaded
+// body: P = |Σ_e A_e σ_e,kk| / lever over its elements that are not debris (rock_tests.h).
+// NMM_CHECK_RECUT=1 in the environment is passed on to the stepper (the re-cut checked against
+// a full cut after every re-cut, where the solver has that mode).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "common/mesh.h"
+#include "common/scene.h"
+#include "preprocess/cover_cutter.h"
+#include "reference/rock_tests.h"
+#include "solver/stepping/time_stepper.h"
+#include "tests/ended_ok.h"
+
+namespace nmm {
+namespace {
+
+using reference::RockTest;
+using reference::RockTestCase;
+using reference::RockTestSpecimen;
+
+constexpr double kFirstCrackTolerance = 0.05;  // –, of the closed-form load
+constexpr double kComplianceTolerance = 0.05;  // –, beyond beam theory with the notch a − 2h … a
+
+// Load units: |Σ A_e σ_e,k| / lever over the body's elements that are not debris.
+double load_of(const solve::RunView& v, const RockTestSpecimen& sp) {
+  const std::vector<double> s = solve::mean_stress(v);
+  const std::vector<std::uint8_t>& debris = v.fracture.debris();
+  double sum = 0;
+  for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
+    if (!debris.empty() && debris[e]) continue;
+    if (v.mesh.element_body[e] != sp.load_body) continue;
+    sum += element_area(v.mesh, e) * s[3 * e + static_cast<std::size_t>(sp.load_component)];
+  }
+  return std::abs(sum) / sp.load_lever;
+}
+
+// m, the beam's deflection at the quarter points against the line through the points above the
+// supports (measure points 0, 1 above the supports, 2, 3 at the quarter points), positive down.
+double beam_deflection(const solve::RunView& v) {
+  const auto& m = v.state.measure;
+  return -(0.5 * (m[2].displacement()[1] + m[3].displacement()[1]) -
+           0.5 * (m[0].displacement()[1] + m[1].displacement()[1]));
+}
+
+double distance_to_nearest(const std::vector<Vec2>& pts, Vec2 p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const Vec2& q : pts) d = std::min(d, std::hypot(p.x - q.x, p.y - q.y));
+  return d;
+}
+
+std::string csv_quote(const std::string& s) {
+  std::string q = "\"";
+  for (const char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch == '\n' ? ' ' : ch);
+  return q + "\"";
+}
+
+std::string num(double x) {
+  if (!std::isfinite(x)) return "";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
+
+int run(const std::string& name, const std::string& csv) {
+  RockTestCase c;
+  if (!reference::rock_test_case_from_name(name, c)) {
+    std::fprintf(stderr, "fracture_matrix: %s: no such case (TEST.hN.static|dynamic.slow|fast)\n", name.c_str());
+    return 2;
+  }
+  std::remove(csv.c_str());  // a run that dies leaves no row: the table says so
+  const RockTestSpecimen sp = reference::rock_test(c);
+  const char* core = std::getenv("OPENBLAS_CORETYPE");
+  const std::string kernel = core && *core ? core : "default";
+  const auto t0 = std::chrono::steady_clock::now();
+
+  const SceneDef scene = scene_from_json(sp.scene, name);
+  const Mesh mesh = pre::build_mesh(scene, name);
+  solve::TimeStepper st(mesh, scene, name);
+
+  double load = sp.initial_load, previous = sp.initial_load, peak = 0, first_load = NAN, compliance = NAN;
+  double peak_time = 0, intact_deflection = 0, intact_load = 0;
+  std::int64_t steps = 0, first_step = -1, peak_step = 0;
+  const bool beam = c.test == RockTest::notched_beam, slope = c.test == RockTest::step_path_slope;
+  Outcome outcome;
+  std::string error;
+  try {
+    outcome = st.run_until(sp.end_time * (1 - 1e-9), [&](std::int64_t n) {
+      const solve::RunView v = st.view();
+      steps = n;
+      previous = load;
+      load = slope ? 0 : load_of(v, sp);
+      if (!v.fracture.segments().empty() && first_step < 0) {
+        first_step = v.fracture.segments().front().step;
+        first_load = previous;  // the last accepted load of the intact rock
+        if (beam && intact_load > 0) compliance = intact_deflection / intact_load;
+      }
+      if (first_step < 0 && beam) intact_deflection = beam_deflection(v), intact_load = load;
+      if (load > peak) peak = load, peak_step = n, peak_time = v.state.time;
+    });
+  } catch (const std::exception& e) {
+    error = e.what();
+    outcome = Outcome::stop(StopCode::failed, std::string("exception: ") + e.what(), st.view().state.time);
+  }
+  if (beam && first_step < 0 && intact_load > 0) compliance = intact_deflection / intact_load;
+  const solve::RunView v = st.view();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto& segs = v.fracture.segments();
+  const double end_time = v.state.time;
+
+  // The checks.
+  std::string failed;
+  auto check = [&](bool ok, const std::string& what) {
+    if (!ok) failed += (failed.empty() ? "" : "; ") + what;
+  };
+  check(outcome.ok(), "stopped");
+  check(!segs.empty(), "nothing cracked");
+  double error_pct = NAN, travel = NAN, behind = NAN, tip_distance = NAN;
+  if (sp.closed_form > 0 && first_step >= 0) {
+    error_pct = 100 * (first_load / sp.closed_form - 1);
+    check(std::abs(error_pct) <= 100 * kFirstCrackTolerance, "first crack off its closed form");
+  }
+  if (!segs.empty() && !sp.tips.empty())
+    tip_distance = std::min(distance_to_nearest(sp.tips, segs.front().a), distance_to_nearest(sp.tips, segs.front().b));
+  if (beam) {
+    check(std::isfinite(compliance) && compliance >= (1 - kComplianceTolerance) * sp.compliance_low &&
+              compliance <= (1 + kComplianceTolerance) * sp.compliance,
+          "compliance off beam theory");
+    check(std::isfinite(tip_distance) && tip_distance <= 2 * sp.mesh_size, "first crack not at the notch tip");
+    check(peak <= sp.net_section_load, "peak above the net-section load");
+  }
+  if (slope) {
+    const auto u0 = v.state.measure[0].displacement(), u1 = v.state.measure[1].displacement();
+    travel = std::hypot(u0[0], u0[1]);
+    behind = std::hypot(u1[0], u1[1]);
+    peak = travel;  // compared across kernels
+    check(std::isfinite(tip_distance) && tip_distance <= sp.mesh_size, "first crack not at a joint tip");
+    check(first_step >= 0 && first_step <= 5, "first crack after step 5");
+    check(travel > 1e-3 && travel > 10 * behind, "the wedge did not slide");
+  }
+  const bool pass = failed.empty();
+  const std::string status = outcome.ok() ? "ok" : stop_code_name(outcome.code);
+  const std::string reason = outcome.ok() ? "" : outcome.reason;
+
+  std::printf("%-34s h %-7.4g %-8s %-7s %s steps %lld to t %.4g s (end %.4g s); first crack step %lld at %s %s "
+              "(closed form %s, %s %%); peak %s %s at step %lld",
+              name.c_str(), sp.mesh_size, kernel.c_str(), pass ? "PASS" : "FAIL", status.c_str(),
+              static_cast<long long>(steps), end_time, sp.end_time, static_cast<long long>(first_step),
+              num(first_load).c_str(), sp.load_unit.c_str(), num(sp.closed_form).c_str(), num(error_pct).c_str(),
+              num(peak).c_str(), sp.load_unit.c_str(), static_cast<long long>(peak_step));
+  if (beam)
+    std::printf("; compliance %s m/(N/m) (beam theory %s … %s), P_net %s", num(compliance).c_str(),
+                num(sp.compliance_low).c_str(), num(sp.compliance).c_str(), num(sp.net_section_load).c_str());
+  if (slope) std::printf("; wedge %.4g m, behind the crest %.3g m", travel, behind);
+  std::printf("; %zu segments, %d debris; %.1f s\n", segs.size(), v.fracture.debris_blocks(), wall);
+  if (!outcome.ok()) std::printf("  stop: %s\n", test::text(outcome).c_str());
+  if (!pass) std::printf("  failed: %s\n", failed.c_str());
+  std::fflush(stdout);
+
+  std::ofstream out(csv);
+  out << "case,test,h_m,mode,rate,kernel,pass,status,reason,steps,end_time_s,planned_end_s,first_crack_step,"
+         "first_crack_load,closed_form,closed_form_name,first_crack_error_pct,peak_load,peak_step,peak_time_s,"
+         "load_unit,compliance,compliance_theory_low,compliance_theory,net_section_load,first_crack_tip_distance_m,segments,debris_blocks,"
+         "elements,wall_s,failed_checks\n";
+  out << name << ',' << reference::rock_test_name(c.test) << ',' << num(sp.mesh_size) << ','
+      << (c.dynamic ? "dynamic" : "static") << ',' << (c.rate ? "fast" : "slow") << ',' << kernel << ','
+      << (pass ? 1 : 0) << ',' << status << ',' << csv_quote(reason) << ',' << steps << ',' << num(end_time) << ','
+      << num(sp.end_time) << ',' << first_step << ',' << num(first_load) << ',' << num(sp.closed_form) << ','
+      << csv_quote(sp.closed_form_name) << ',' << num(error_pct) << ',' << num(peak) << ',' << peak_step << ','
+      << num(peak_time) << ',' << sp.load_unit << ',' << num(compliance) << ',' << num(beam ? sp.compliance_low : NAN) << ',' << num(beam ? sp.compliance : NAN)
+      << ',' << num(beam ? sp.net_section_load : NAN) << ',' << num(tip_distance) << ',' << segs.size() << ','
+      << v.fracture.debris_blocks() << ',' << v.mesh.element_count() << ',' << num(wall) << ','
+      << csv_quote(failed) << '\n';
+  return pass ? 0 : 1;
+}
+
+}  // namespace
+}  // namespace nmm
+
+int main(int argc, char** argv) {
+  if (argc == 4 && std::strcmp(argv[2], "--scene") == 0) {  // the cell's scene, for nmm-preprocess
+    nmm::reference::RockTestCase c;
+    if (!nmm::reference::rock_test_case_from_name(argv[1], c)) return 2;
+    std::ofstream(argv[3]) << nmm::reference::rock_test(c).scene.dump(2) << '\n';
+    return 0;
+  }
+  if (argc == 4 && std::strcmp(argv[2], "--csv") == 0) {
+    try {
+      return nmm::run(argv[1], argv[3]);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "fracture_matrix: %s: %s\n", argv[1], e.what());
+      return 2;
+    }
+  }
+  std::fprintf(stderr, "usage: fracture_matrix CASE --csv FILE   (CASE: TEST.hN.static|dynamic.slow|fast)\n");
+  return 2;
+}
