@@ -5,42 +5,71 @@
 // there. The cable is massless (UDEC's cable nodes carry a mass for its explicit scheme; the
 // implicit step needs none), so it is in balance at the end of every step.
 //
-// Linearisation at the step's start, from the current positions p_i of the bolt's points (a
-// block that turns turns its bolts with it, so large rotations keep their direction right).
-// The rock's displacement at a point is u_i = Σ_a φ_a(p_i)·d_a over its element's shape
-// functions (configuration.h).
-//   anchored bolt, ends A and B, e = (p_B − p_A)/|p_B − p_A| (DDA's point-anchored bolt):
-//       Δℓ = eᵀ(u_B − u_A),                  N = N0 + k·Δℓ                 k = stiffness
-//   grouted cable (UDEC's cable), segment j from point j to j+1, e_j its direction, L_j its
-//   installed length, t_i the cable's axis at point i (e_0 and e_n−1 at the ends, the bisector
-//   of e_i−1 and e_i inside), L_i = ½(L_i−1 + L_i) the grout's tributary length there:
-//       Δℓ_j = e_jᵀ(u_j+1 − u_j) + (t_j+1·e_j)·Δδ_j+1 − (t_j·e_j)·Δδ_j
-//       N_j = N_j0 + (EA/L_j)·Δℓ_j,  |N_j| ≤ yield                  (steel: elastic–perfectly plastic)
-//       G_i = G_i0 + k_bond·L_i·Δδ_i,  |G_i| ≤ bond_strength·L_i     (grout: elastic–perfectly plastic)
+// Kinematics at the step's start, from the current positions p_i of the bolt's points (a block
+// that turns turns its bolts with it). The rock's displacement in the step at a point is
+// u_i = Σ_a φ_a(p_i)·d_a over its element's shape functions (configuration.h), linear in d, and
+// its turn there ω_i = ½(∂u_y/∂x − ∂u_x/∂y), also linear in d.
+//   anchored bolt, ends A and B (DDA's point-anchored bolt): the chord r = p_B − p_A, ℓs = |r|,
+//       e = r/ℓs, e⊥ = ẑ × e; w = u_B − u_A the ends' relative motion in the step
+//   grouted cable (UDEC's cable), segment j from point j to j+1: r_j, ℓs_j, e_j as above;
+//       t_i the cable's axis at point i (e_0 and e_n−1 at the ends, the bisector of e_i−1 and
+//       e_i inside); the cable's point moves by u_i + t_i·Δδ_i, so
+//       w_j = u_j+1 − u_j + t_j+1·Δδ_j+1 − t_j·Δδ_j
+//   Each axial spring's end-of-step chord, taken relative to the rock's turn at it
+//   (ω̄ = ½(ω_A + ω_B)):
+//       m(d) = r + w − ω̄·(ẑ × r) = (ℓs + x)·e + y·e⊥,   x = eᵀw = cᵀd,  y = e⊥ᵀw − ℓs·ω̄ = c⊥ᵀd
+//       ℓ(d) = |m(d)| = √((ℓs + x)² + y²)      its exact length, m and c, c⊥ linear in d
+//   The rock's own turn is taken out because the rock is updated with the linearised field:
+//   its points drift apart by (√(1 + ω²) − 1)·ℓ in a step that turns it by ω, a dilation its
+//   stress (σ += D·B·d) does not see; a bolt turned with the rock around it must not see it
+//   either (a pretensioned bolt in a block turned by 127° keeps its force). A segment across an
+//   opening joint whose far block sways sideways (ω = 0) sees its full length.
+//
+// Forces from the length (not increments of a projected stretch): each step adds k times the
+// exact change of the spring's length, ℓ(d) − ℓs, to the force it started with. The rock chords'
+// exact changes telescope over the steps (the next step's ℓs is |r + u_B − u_A| of this one's
+// end), so in the elastic range
+//       anchored:  N = N_p + k·(|r| − |r_installed|)                 k = stiffness, N_p pretension
+//       segment:   N = (EA/L_j)·(|r_j| − L_j + δ_j+1 − δ_j),  |N| ≤ yield   (L_j installed;
+//                  δ the slips, along a straight cable; t·e < 1 at a bend)
+//       grout:     G_i = k_bond·L_i·δ_i^el,  |G_i| ≤ bond_strength·L_i   (L_i tributary)
+// — a bolt's force is that of its current length, not of the sum of its steps' projections
+// eᵀw, which misses each step's (e⊥ᵀw)²/(2ℓ): a segment across a joint that sways to and fro
+// lengthens at a constant force (0.05 → 0.139 m at 40 kN) — less only what yield, slip and the
+// rock's turn take out; those
+// are the history (the last accepted step's forces and slips, BoltState), committed on the
+// accepted step.
 //   G_i is the grout's force on the rock along t_i (and −G_i on the cable), so in balance the
 //   cable's axial force falls along it by what the grout takes: N_j−1 − N_j ≈ G_i, the shear
 //   lag that test_bolts checks against N(x) = P0·sinh(λ(L − x))/sinh(λL), λ = √(k_bond/EA).
-//   Increments are linear in the step's unknowns and the forces are carried incrementally, as the
-//   element stresses are (σ += D·B·d, state_update.h): a rigid turn of a bolted block then
-//   loads neither the rock nor its bolts, where N = k·(|p_B − p_A| − ℓ0) would see the step's
-//   linearised displacement field stretch the block and the bolt alike by O(ω²) per step.
 //
-// Each spring is f = f0 + k·Δ, Δ = cᵀd its row (c over the unknowns of its elements' covers and
-// slips), capped at |f| ≤ cap: a convex energy in the step. Per metre of the plane-strain model
-// every force and stiffness is divided by the bolt's spacing s. In the step's equation:
-//   elastic:        K += (k/s)·c cᵀ,       F −= (f0/s)·c
-//   at the cap ±:   K += (εk/s)·c cᵀ,      F −= (±cap/s)·c          ε = kCapTangent
-// The modes by an active set, as contacts' states were decided before the convex contact
-// solve: each spring starts the step in the mode of its start force (at the cap if |f0| ≥ cap,
-// elastic otherwise); after each solve the trial force f0 + k·Δ decides (|trial| ≤ cap: elastic,
-// else at the cap of its sign), and a step whose solution changed a mode is solved again, from
-// that solution, at most kMaxRounds times (then it is cut: bolts_not_settled). An anchored bolt
-// does not yield: at a solution where its |trial| reaches its strength it breaks, and the step
-// is solved again without it (as contact bonds break, contact_problem.h break_at_peak). What
-// lasts — forces, slips, yielded, broken, the plastic work — is written into the state by
-// commit() on the accepted step only: an attempt that is cut leaves nothing behind.
-// No geometric stiffness (N/ℓ)(I − eeᵀ): a bolt's direction is renewed every step instead, and
-// a step's rotations are small.
+// The step's equation. Per metre of the plane-strain model every force and stiffness is divided
+// by the bolt's spacing s. An axial spring pulls on the unknowns with f(d) = N(ℓ(d))·∇ℓ, and
+// ∇ℓ = cosα·c + sinα·c⊥ =: c_k,  ∂²ℓ = c⊥_k c⊥_kᵀ/ℓ,  c⊥_k := −sinα·c + cosα·c⊥, with
+// (cosα, sinα) = (ℓs + x, y)/ℓ: linearised at d_k (x_k, y_k; d_0 = 0, the step's start),
+//   K += (k_t·c_k c_kᵀ + (N_k⁺/ℓ_k)·c⊥_k c⊥_kᵀ)/s,   F −= (N_k·c_k − K_k·d_k)/s
+// with k_t = k elastic, ε·k at the cap ±(N_k = ±cap + ε·k·(ℓ_k − ℓs), ε = kCapTangent), and the
+// geometric stiffness (N/ℓ)(I − e eᵀ) — rank one in 2-D — of a spring in tension only
+// (N⁺ = max(N, 0)): a compressed segment's negative one would make the matrix indefinite on a
+// free block, where the grout and the rock around a real cable (no dowel action here) hold it.
+// Across an opening joint this is what holds the far block sideways: a sway v of the segment's
+// far end turns its force by v/ℓ, a stiffness N/ℓ (40 kN over a 5 cm segment: 8e5 N/m), in the
+// matrix, so the step is stable at any Δt, static or dynamic. The grout is linear in its slip:
+// K += (k_t/s), F −= (G0/s) elastic, (±cap/s) at the cap.
+//   Modes by an active set, as contacts' states were decided before the convex contact solve:
+// each spring starts the step in the mode of its start force (at the cap if |f0| ≥ cap, elastic
+// otherwise); after each solve the trial force f0 + k·(ℓ(d) − ℓs) (f0 + k·Δδ: grout) decides
+// (|trial| ≤ cap: elastic, else at the cap of its sign). The same judge compares each axial
+// spring's exact force vector N(d)·∇ℓ(d) with the linearised one; where they differ by more than
+// kNewtonTolerance·|N| + 1e-9·k·ℓs (the step turned a segment far enough for the linearisation to
+// miss), or a mode changed, every axial spring is linearised again at the solution and the step
+// solved again from it: Newton's method on the bolts, whose other terms (the rock, the grout) are
+// linear in d. A step whose segments turn little (every step of a bolted tunnel) needs no second
+// solve; at most kMaxRounds solves (then the step is cut: bolts_not_settled). An anchored bolt
+// does not yield: at a solution where its |trial| reaches its strength it breaks, and the step is
+// solved again without it (as contact bonds break, contact_problem.h break_at_peak). What lasts —
+// forces, slips, yielded, broken, the plastic work — is written into the state by commit() on
+// the accepted step only: an attempt that is cut leaves nothing behind.
 #include "solver/reinforcement/bolt_system.h"
 
 #include <algorithm>
@@ -56,6 +85,42 @@ namespace {
 std::array<double, 2> direction(const TrackedPoint& a, const TrackedPoint& b) {
   const double dx = b.x - a.x, dy = b.y - a.y, l = std::hypot(dx, dy);
   return {dx / l, dy / l};
+}
+
+/// The rock's turn in the step at (x, y) in element e, ω = ½(∂u_y/∂x − ∂u_x/∂y), as
+/// coefficients over the element's unknowns (local order 2a + component, configuration.h).
+void turn_row(const Configuration& config, std::size_t e, double x, double y, double* out) {
+  const CoverSpace& space = config.space();
+  const int nf = space.element_dofs() / 2;
+  if (space.order() == 0) {  // the triangle's weights: constant gradients
+    const TriangleWeights& w = config.frame(e).w;
+    for (int a = 0; a < nf; ++a) {
+      out[2 * a] = -0.5 * w.c[a];
+      out[2 * a + 1] = 0.5 * w.b[a];
+    }
+    return;
+  }
+  const ElementBasis& basis = config.basis(e);
+  const double xi = (x - basis.ox) / basis.h, eta = (y - basis.oy) / basis.h;
+  for (int a = 0; a < nf; ++a) {
+    out[2 * a] = -0.5 * basis.dy[static_cast<std::size_t>(a)](xi, eta);      // −½·∂φ_a/∂y on u_x
+    out[2 * a + 1] = 0.5 * basis.dx[static_cast<std::size_t>(a)](xi, eta);   // ½·∂φ_a/∂x on u_y
+  }
+}
+
+/// An axial spring's exact length at the step's end and its direction, from x = cᵀd, y = c⊥ᵀd.
+struct Chord {
+  double l = 0;           ///< m, ℓ(d)
+  double cos = 1, sin = 0;  ///< its direction in the step-start frame (e, e⊥)
+};
+Chord chord(const BoltSpring& s, double x, double y) {
+  Chord c;
+  c.l = std::hypot(s.length + x, y);
+  if (c.l > 0) {
+    c.cos = (s.length + x) / c.l;
+    c.sin = y / c.l;
+  }
+  return c;
 }
 
 }  // namespace
@@ -126,17 +191,33 @@ void BoltSystem::begin_step(const Configuration& config, const RunState& s, cons
   springs_.clear();
   dofs_.clear();
   c_.clear();
+  cp_.clear();
   active_.assign(s.bolts.size(), 1);
   std::vector<double> phi_a(static_cast<std::size_t>(nf)), phi_b(static_cast<std::size_t>(nf));
-  // Appends the rock part of a row: −φ(p_a)·e on a's element, +φ(p_b)·e on b's.
-  const auto rock_row = [&](const TrackedPoint& a, const TrackedPoint& b, const std::array<double, 2>& e) {
+  std::vector<double> turn_a(static_cast<std::size_t>(ed)), turn_b(static_cast<std::size_t>(ed));
+  // Appends the rock part of an axial spring's rows from a to b (e its direction, l its length):
+  // along it −φ(p_a)·e on a's element, +φ(p_b)·e on b's; across it the same with e⊥, less
+  // l·ω̄, the mean of the rock's turns at a and b (the header's m(d)).
+  const auto rock_rows = [&](const TrackedPoint& a, const TrackedPoint& b, const std::array<double, 2>& e, double l) {
+    const std::array<double, 2> n{-e[1], e[0]};
     config.shape_values(static_cast<std::size_t>(a.element), a.x, a.y, phi_a.data());
     config.shape_values(static_cast<std::size_t>(b.element), b.x, b.y, phi_b.data());
+    turn_row(config, static_cast<std::size_t>(a.element), a.x, a.y, turn_a.data());
+    turn_row(config, static_cast<std::size_t>(b.element), b.x, b.y, turn_b.data());
     const int* ga = space_->element_unknowns(static_cast<std::size_t>(a.element));
     const int* gb = space_->element_unknowns(static_cast<std::size_t>(b.element));
-    for (int i = 0; i < ed; ++i) dofs_.push_back(ga[i]), c_.push_back(-phi_a[i / 2] * e[i % 2]);
-    for (int i = 0; i < ed; ++i) dofs_.push_back(gb[i]), c_.push_back(phi_b[i / 2] * e[i % 2]);
+    for (int i = 0; i < ed; ++i) {
+      dofs_.push_back(ga[i]);
+      c_.push_back(-phi_a[i / 2] * e[i % 2]);
+      cp_.push_back(-phi_a[i / 2] * n[i % 2] - 0.5 * l * turn_a[i]);
+    }
+    for (int i = 0; i < ed; ++i) {
+      dofs_.push_back(gb[i]);
+      c_.push_back(phi_b[i / 2] * e[i % 2]);
+      cp_.push_back(phi_b[i / 2] * n[i % 2] - 0.5 * l * turn_b[i]);
+    }
   };
+  const auto chord_length = [](const TrackedPoint& a, const TrackedPoint& b) { return std::hypot(b.x - a.x, b.y - a.y); };
   // The mode of a start force against its cap.
   const auto start_mode = [](double f0, double cap) { return std::abs(f0) >= cap ? (f0 > 0 ? 1 : -1) : 0; };
   int group = 0;
@@ -159,7 +240,8 @@ void BoltSystem::begin_step(const Configuration& config, const RunState& s, cons
       sp.breaks = true;
       sp.f0 = bs.axial[0];
       sp.per_m = per_m;
-      rock_row(bs.nodes[0], bs.nodes[1], direction(bs.nodes[0], bs.nodes[1]));
+      sp.length = chord_length(bs.nodes[0], bs.nodes[1]);
+      rock_rows(bs.nodes[0], bs.nodes[1], direction(bs.nodes[0], bs.nodes[1]), sp.length);
       springs_.push_back(sp);
       continue;
     }
@@ -188,11 +270,15 @@ void BoltSystem::begin_step(const Configuration& config, const RunState& s, cons
       sp.f0 = bs.axial[j];
       sp.per_m = per_m;
       sp.mode = start_mode(sp.f0, sp.cap);
-      rock_row(bs.nodes[j], bs.nodes[j + 1], e[j]);
+      sp.length = chord_length(bs.nodes[j], bs.nodes[j + 1]);
+      rock_rows(bs.nodes[j], bs.nodes[j + 1], e[j], sp.length);
+      const std::array<double, 2> nj{-e[j][1], e[j][0]};
       dofs_.push_back(first_slip_[b] + static_cast<int>(j));
       c_.push_back(-(t[j][0] * e[j][0] + t[j][1] * e[j][1]));
+      cp_.push_back(-(t[j][0] * nj[0] + t[j][1] * nj[1]));
       dofs_.push_back(first_slip_[b] + static_cast<int>(j) + 1);
       c_.push_back(t[j + 1][0] * e[j][0] + t[j + 1][1] * e[j][1]);
+      cp_.push_back(t[j + 1][0] * nj[0] + t[j + 1][1] * nj[1]);
       springs_.push_back(sp);
     }
     for (std::size_t i = 0; i < n; ++i) {
@@ -210,6 +296,7 @@ void BoltSystem::begin_step(const Configuration& config, const RunState& s, cons
       sp.mode = start_mode(sp.f0, sp.cap);
       dofs_.push_back(first_slip_[b] + static_cast<int>(i));
       c_.push_back(1.0);
+      cp_.push_back(0.0);
       springs_.push_back(sp);
     }
   }
@@ -217,19 +304,33 @@ void BoltSystem::begin_step(const Configuration& config, const RunState& s, cons
 
 void BoltSystem::assemble(SystemMatrix& system, Eigen::VectorXd& rhs, std::size_t first_group) const {
   Eigen::MatrixXd block;
+  Eigen::VectorXd along, across;
   for (const BoltSpring& s : springs_) {
     if (s.broken) continue;
-    const double k = (s.mode == 0 ? s.k : kCapTangent * s.k) * s.per_m;
-    const double f = (s.mode == 0 ? s.f0 : s.mode * s.cap) * s.per_m;
+    const double kt = (s.mode == 0 ? s.k : kCapTangent * s.k) * s.per_m;  // N/m per m, its tangent
     const int* dofs = dofs_.data() + s.row;
-    const double* c = c_.data() + s.row;
-    for (int i = 0; i < s.size; ++i) rhs[dofs[i]] -= f * c[i];
-    if (s.group < 0) {
-      system.add_diagonal(dofs[0], k * c[0] * c[0]);
+    const Eigen::Map<const Eigen::VectorXd> c(c_.data() + s.row, s.size);
+    if (s.kind == BoltSpring::grout) {  // linear in its slip: f0 (or the cap) is its force at d = 0
+      const double f = (s.mode == 0 ? s.f0 : s.mode * s.cap) * s.per_m;
+      system.add_diagonal(dofs[0], kt * c[0] * c[0]);
+      rhs[dofs[0]] -= f * c[0];
       continue;
     }
-    const Eigen::Map<const Eigen::VectorXd> cv(c, s.size);
-    block.noalias() = k * cv * cv.transpose();
+    // An axial spring linearised at d_k: its force N_k along ∇ℓ = c_k, material and geometric
+    // tangents, and the right-hand side −(N_k·c_k − K_k·d_k).
+    const Eigen::Map<const Eigen::VectorXd> cp(cp_.data() + s.row, s.size);
+    const Chord at = chord(s, s.xk, s.yk);
+    const double stretch = at.l - s.length;
+    const double n = (s.mode == 0 ? s.f0 + s.k * stretch : s.mode * s.cap + kCapTangent * s.k * stretch) * s.per_m;
+    const double g = std::max(n, 0.0) / at.l;  // N/m per m, the geometric stiffness of a spring in tension
+    along.noalias() = at.cos * c + at.sin * cp;
+    across.noalias() = at.cos * cp - at.sin * c;
+    // K_k·d_k in the rows: c_kᵀd_k = cos·x_k + sin·y_k, c⊥_kᵀd_k = cos·y_k − sin·x_k.
+    const double along_k = at.cos * s.xk + at.sin * s.yk, across_k = at.cos * s.yk - at.sin * s.xk;
+    const double f_along = n - kt * along_k, f_across = -g * across_k;
+    for (int i = 0; i < s.size; ++i) rhs[dofs[i]] -= f_along * along[i] + f_across * across[i];
+    block.noalias() = kt * along * along.transpose();
+    if (g > 0) block.noalias() += g * across * across.transpose();
     system.add_group(first_group + static_cast<std::size_t>(s.group), block.data());
   }
   // The slips of a bolt that carries nothing (a point in an excavated body) are held at zero,
@@ -242,7 +343,14 @@ void BoltSystem::assemble(SystemMatrix& system, Eigen::VectorXd& rhs, std::size_
 double BoltSystem::stretch(const BoltSpring& s, const Eigen::VectorXd& d) const {
   double x = 0;
   for (int i = 0; i < s.size; ++i) x += c_[s.row + static_cast<std::size_t>(i)] * d[dofs_[s.row + static_cast<std::size_t>(i)]];
-  return x;
+  if (s.kind == BoltSpring::grout) return x;
+  return chord(s, x, across(s, d)).l - s.length;
+}
+
+double BoltSystem::across(const BoltSpring& s, const Eigen::VectorXd& d) const {
+  double y = 0;
+  for (int i = 0; i < s.size; ++i) y += cp_[s.row + static_cast<std::size_t>(i)] * d[dofs_[s.row + static_cast<std::size_t>(i)]];
+  return y;
 }
 
 double BoltSystem::force(const BoltSpring& s, const Eigen::VectorXd& d) const {
@@ -253,6 +361,31 @@ double BoltSystem::force(const BoltSpring& s, const Eigen::VectorXd& d) const {
 
 bool BoltSystem::judge(const Eigen::VectorXd& d) {
   bool changed = false;
+  // Newton: the axial springs' exact force vectors at d against the linearisation the solve
+  // used (in its modes, before they switch), in the step-start frame (e, e⊥) of each.
+  for (const BoltSpring& s : springs_) {
+    if (s.broken || s.kind == BoltSpring::grout) continue;
+    double x = 0, y = 0;
+    for (int i = 0; i < s.size; ++i) {
+      const double di = d[dofs_[s.row + static_cast<std::size_t>(i)]];
+      x += c_[s.row + static_cast<std::size_t>(i)] * di;
+      y += cp_[s.row + static_cast<std::size_t>(i)] * di;
+    }
+    const Chord now = chord(s, x, y), at = chord(s, s.xk, s.yk);
+    const double kt = s.mode == 0 ? s.k : kCapTangent * s.k;
+    const double base = s.mode == 0 ? s.f0 : s.mode * s.cap;
+    const double n = base + kt * (now.l - s.length), n_k = base + kt * (at.l - s.length);
+    const double g = std::max(n_k, 0.0) / at.l;
+    // Linearised: N_k·c_k + k_t·(c_kᵀΔ)·c_k + g·(c⊥_kᵀΔ)·c⊥_k, Δ = d − d_k, in (e, e⊥).
+    const double dx = x - s.xk, dy = y - s.yk;
+    const double da = at.cos * dx + at.sin * dy, dp = at.cos * dy - at.sin * dx;
+    const double lin_a = n_k + kt * da, lin_p = g * dp;  // along c_k, across c⊥_k
+    const double lin_x = at.cos * lin_a - at.sin * lin_p, lin_y = at.sin * lin_a + at.cos * lin_p;
+    // A compressed spring has no geometric stiffness in the matrix (the header): only its
+    // force along it is judged; the turn of its push follows from the next step's geometry.
+    const double miss = n_k > 0 ? std::hypot(n * now.cos - lin_x, n * now.sin - lin_y) : std::abs(n - lin_a);
+    if (miss > kNewtonTolerance * std::max(std::abs(n), std::abs(n_k)) + 1e-9 * s.k * s.length) changed = true;
+  }
   for (BoltSpring& s : springs_) {
     if (s.broken) continue;
     const double trial = s.f0 + s.k * stretch(s, d);
@@ -266,6 +399,17 @@ bool BoltSystem::judge(const Eigen::VectorXd& d) {
       changed = true;
     }
   }
+  if (changed)  // the next solve linearised at this solution
+    for (BoltSpring& s : springs_) {
+      if (s.broken || s.kind == BoltSpring::grout) continue;
+      s.xk = 0;
+      s.yk = 0;
+      for (int i = 0; i < s.size; ++i) {
+        const double di = d[dofs_[s.row + static_cast<std::size_t>(i)]];
+        s.xk += c_[s.row + static_cast<std::size_t>(i)] * di;
+        s.yk += cp_[s.row + static_cast<std::size_t>(i)] * di;
+      }
+    }
   return changed;
 }
 

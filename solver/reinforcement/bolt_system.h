@@ -1,9 +1,11 @@
 // The bolts in the step's system (docs/reinforcement.md; equations at the top of
 // bolt_system.cpp): their own unknowns (a grouted cable's slips), their coupling groups in the
-// sparse pattern, and each step's rows, springs and modes — linearised at the step's start,
-// assembled into the matrix and right-hand side, judged at the step's solution (a spring that
-// yields or slips, an anchored bolt that breaks: the step is solved again), and committed into
-// the bolts' state (run_state.h BoltState) once the step is accepted, never on an iterate.
+// sparse pattern, and each step's rows, springs and modes — linearised at the step's start and
+// again at each solution of the step (Newton on a bolt's exact length), assembled into the matrix
+// (material and geometric stiffness) and right-hand side, judged at the step's solution (a spring
+// that yields or slips, an anchored bolt that breaks, a length the linearisation missed: the step
+// is solved again), and committed into the bolts' state (run_state.h BoltState) once the step is
+// accepted, never on an iterate.
 #pragma once
 
 #include <array>
@@ -22,8 +24,9 @@
 namespace nmm::solve {
 
 /// One spring of a bolt in a step: an anchored bolt's axial spring, a cable segment's, or the
-/// grout at a cable point. Its force is f = f0 + k·cᵀd while elastic (c: its row, on `size`
-/// unknowns from `row` in the rows' storage).
+/// grout at a cable point. The grout's force is f = f0 + k·cᵀd while elastic (c: its row, on
+/// `size` unknowns from `row` in the rows' storage); an axial spring's is f = f0 + k·(ℓ(d) − ℓs),
+/// ℓ(d) = √((ℓs + cᵀd)² + (c⊥ᵀd)²) its exact length at the step's end (c⊥: its row across).
 struct BoltSpring {
   enum Kind : int { anchor, segment, grout };
   Kind kind = anchor;
@@ -37,6 +40,8 @@ struct BoltSpring {
   bool breaks = false;       ///< at the cap it breaks (anchored) instead of yielding or slipping
   double f0 = 0;             ///< N per bolt, force at the step's start
   double per_m = 1;          ///< 1/m, 1/spacing: what one bolt is per metre of the model
+  double length = 0;         ///< m, ℓs: its length at the step's start (anchor, segment)
+  double xk = 0, yk = 0;     ///< m, where the step is linearised: cᵀd_k, c⊥ᵀd_k (0 at the start)
   int mode = 0;              ///< 0 elastic, ±1 at the cap in tension / compression (or slip sign)
   bool broken = false;       ///< broken in this attempt (anchored)
 };
@@ -51,8 +56,13 @@ class BoltSystem {
   /// whole cable's grout slips (its slips would otherwise slide freely: a mechanism); the force
   /// then exceeds the cap by ε·k times the step's plastic motion.
   static constexpr double kCapTangent = 1e-6;
-  /// Solves of one step the modes may take before the step is cut (bolts_not_settled).
+  /// Solves of one step the modes and the Newton rounds may take before the step is cut
+  /// (bolts_not_settled).
   static constexpr int kMaxRounds = 25;
+  /// A step is solved again, linearised at its solution, while an axial spring's exact force
+  /// there differs from the linearised one by more than this × its force (plus a nanostrain's:
+  /// 1e-9·k·ℓs): the geometric nonlinearity of a segment that turns within the step.
+  static constexpr double kNewtonTolerance = 1e-4;
 
   BoltSystem() = default;
   /// The bolts of `model`'s scene on `space` (both must outlive it).
@@ -78,8 +88,10 @@ class BoltSystem {
   /// Adds the springs in their modes to the matrix (group first_group + the spring's) and the rhs.
   void assemble(SystemMatrix& system, Eigen::VectorXd& rhs, std::size_t first_group) const;
   /// At a solution d of the step: switches each spring whose trial force contradicts its mode,
-  /// breaks each anchored bolt whose |force| reached its strength. True: something changed and
-  /// the step must be solved again.
+  /// breaks each anchored bolt whose |force| reached its strength, and checks the axial springs'
+  /// exact forces against their linearisation (kNewtonTolerance). True: something changed or the
+  /// linearisation missed, the springs are linearised again at d, and the step must be solved
+  /// again.
   bool judge(const Eigen::VectorXd& d);
   /// The accepted step's results into `bolts`: forces, slips, broken and yielded flags, largest
   /// force, plastic work; their points moved with the rock (in `config`, the step's).
@@ -89,7 +101,8 @@ class BoltSystem {
 
  private:
   double force(const BoltSpring& s, const Eigen::VectorXd& d) const;  ///< N per bolt at d, in its mode
-  double stretch(const BoltSpring& s, const Eigen::VectorXd& d) const;  ///< cᵀd
+  double stretch(const BoltSpring& s, const Eigen::VectorXd& d) const;  ///< cᵀd: a grout's slip; an axial spring's ℓ(d) − ℓs
+  double across(const BoltSpring& s, const Eigen::VectorXd& d) const;   ///< c⊥ᵀd
   const Model* model_ = nullptr;
   const CoverSpace* space_ = nullptr;
   int first_unknown_ = 0;                // the bolts' first unknown
@@ -101,7 +114,8 @@ class BoltSystem {
   std::vector<std::uint8_t> active_;     // [bolt] this step: no point in an excavated element
   std::vector<BoltSpring> springs_;      // this step's
   std::vector<int> dofs_;                // rows: unknowns
-  std::vector<double> c_;                // rows: coefficients, m per unit unknown
+  std::vector<double> c_;                // rows: coefficients along the bolt (e), m per unit unknown
+  std::vector<double> cp_;               // rows: across it (e⊥, less the rock's turn), m per unit unknown
 };
 
 }  // namespace nmm::solve
