@@ -245,7 +245,9 @@ void Cutter::insert_curves() {
   for (std::size_t j = 0; j < scene_.joints.size(); ++j) {
     const auto& pts = scene_.joints[j].points;
     for (std::size_t k = 0; k + 1 < pts.size(); ++k)
-      if (reaches(pts[k], pts[k + 1]))
+      // A segment of no length (a crack grown by a round-off) cuts nothing, and CGAL's sweep
+      // takes no degenerate segment.
+      if (!(pts[k] == pts[k + 1]) && reaches(pts[k], pts[k + 1]))
         curves.emplace_back(Segment(to_point(pts[k]), to_point(pts[k + 1])),
                             CurveTag{kEdgeJoint, static_cast<std::int32_t>(j)});
   }

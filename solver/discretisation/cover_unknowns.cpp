@@ -12,8 +12,8 @@
 // two share. The tie d_s = d_m is a master–slave constraint, so the field stays conforming and a
 // rigid translation stays exact (Σ w = 1); what is lost is w_s·(d_s − d_m), below min_weight
 // times the displacement difference across one element, in a strip of width ≤ min_weight·h.
-// Every element keeps a significant cover (its three weights sum to 1 > 3·min_weight), so a
-// master always exists. The slave keeps its own weight function and node (which moves by d_m).
+// An element keeps a significant cover by weight (its three weights sum to 1 > 3·min_weight);
+// covers of next to no support are tied too (below min_weight·h² of area, see below). The slave keeps its own weight function and node (which moves by d_m).
 #include "solver/discretisation/cover_unknowns.h"
 
 #include <algorithm>
@@ -23,7 +23,7 @@
 
 namespace nmm::solve {
 
-CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover) {
+CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover, double min_support) {
   const std::size_t nc = mesh.cover_count(), ne = mesh.element_count();
   CoverUnknowns u;
   u.dofs_per_cover = dofs_per_cover;
@@ -53,7 +53,21 @@ CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dof
         m = std::max(m, w.at(k, mesh.loop_xy[2 * v] - ox, mesh.loop_xy[2 * v + 1] - oy));
       }
   }
-  auto sliver = [&](std::int32_t c) { return u.max_weight[c] < min_weight; };
+  // In a run that can crack, a cover with next to no support is as void as a sliver: a corner of
+  // a triangle that cracks cut off at a node, a ten-thousandth of an element in area, whose own
+  // cover carries stiffness and mass of that size between crack faces whose springs are a hundred
+  // times stiffer (a uniaxial specimen past its peak: such a cover moved 6 mm, then 3 cm, as its
+  // step was cut shorter). Below min_support·h² of support it shares a neighbour's unknowns too.
+  // A cover of a block that small altogether has no significant neighbour and keeps its own: that
+  // block is debris (fracture.h). (Scenes that cannot crack keep every such cover of their joints'
+  // corners, as they always did: min_support 0.)
+  std::vector<double> support(nc, 0.0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const double a = element_area(mesh, e);
+    for (int k = 0; k < 3; ++k) support[static_cast<std::size_t>(mesh.element_covers[3 * e + k])] += a;
+  }
+  const double least = min_support * mesh.mesh_size * mesh.mesh_size;  // m²
+  auto sliver = [&](std::int32_t c) { return u.max_weight[c] < min_weight || support[c] < least; };
 
   // Overlap of each sliver with the significant covers of its elements.
   std::map<std::pair<std::int32_t, std::int32_t>, double> overlap;  // (sliver, cover) → m²

@@ -19,9 +19,11 @@ struct CoverUnknowns {
   int unknowns() const { return dofs_per_cover * static_cast<int>(cover_of_unknown.size()); }
 };
 
-/// Covers whose weight is below min_weight (in [0, 1/3)) on all of their support share the
-/// unknowns of a neighbour; the others get theirs in cover order (so without slivers cover c
-/// owns unknowns m·c .. m·c + m − 1, m = dofs_per_cover).
-CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover = 2);
+/// Covers whose weight is below min_weight (in [0, 1/3)) on all of their support, or whose
+/// support is smaller than min_support·h² (a run that can crack: cover_unknowns.cpp), share the
+/// unknowns of a neighbour; the others get theirs in cover order (so without slivers cover c owns
+/// unknowns m·c .. m·c + m − 1, m = dofs_per_cover).
+CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover = 2,
+                                    double min_support = 0);
 
 }  // namespace nmm::solve

@@ -86,7 +86,11 @@ constexpr double kDeferredShare = 0.01;
 
 TimeStepper::MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
     : model(mesh, scene, scene_name), form(model),
-      space(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight), config(mesh, &space),
+      // A run that can crack also ties covers of next to no support (cover_unknowns.cpp): the
+      // corners its cracks cut off at nodes, clamped between stiff crack faces.
+      space(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight,
+            Fracture(scene).active() ? scene.solver.sliver_cover_weight : 0.0),
+      config(mesh, &space),
       indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()), contacts(model),
       problem(contacts, space), bolts(model, space) {
   problem.set_elastic_predictor(!model.step_inertia());
@@ -255,6 +259,17 @@ Outcome TimeStepper::attempt_once(double dt) {
     // at the start and the end), for finding why a run cuts its step (docs/fracture.md).
     static const bool trace_pen = std::getenv("NMM_TRACE_PEN") != nullptr;
     if (!rejected.ok() && trace_pen) {
+      Eigen::Index worst = 0;
+      covers_d.cwiseAbs().maxCoeff(&worst);
+      const int cover = b_->space.cover_of_unknown(static_cast<int>(worst));
+      double support = 0;
+      int elements = 0;
+      for (std::size_t e = 0; e < mesh().element_count(); ++e)
+        for (int k = 0; k < 3; ++k)
+          if (mesh().element_covers[3 * e + k] == cover) support += element_area(mesh(), e), ++elements;
+      std::fprintf(stderr, "moved most: cover %d (node %d at %.9g %.9g) by %.3g m; %d elements, support %.3g m2\n", cover,
+                   mesh().cover_node[cover], mesh().node_xy[2 * mesh().cover_node[cover]],
+                   mesh().node_xy[2 * mesh().cover_node[cover] + 1], covers_d.cwiseAbs().maxCoeff(), elements, support);
       for (const Contact& c : b_->contacts.contacts())
         if (-c.gap > 0.5 * totals.max_penetration)
           std::fprintf(stderr, "pen: v %d (elem %d blk %d, at %.9g %.9g) edge %d (elem %d blk %d) gap0 %.3g gap %.3g state0 %d len %.3g\n",
