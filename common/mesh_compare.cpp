@@ -62,8 +62,12 @@ Canonical canonical(const Mesh& m) {
 std::string where(const Mesh& m, std::size_t e) {
   std::ostringstream os;
   const std::int32_t v = m.element_loop_offset[e];
-  os << "element " << e << " (triangle " << m.element_triangle[e] << ", first vertex (" << m.loop_xy[2 * v] << ", "
-     << m.loop_xy[2 * v + 1] << "), " << (m.element_loop_offset[e + 1] - v) << " vertices)";
+  os.precision(17);
+  os << "element " << e << " (triangle " << m.element_triangle[e] << ", block " << m.element_block[e] << ", loop";
+  for (std::int32_t w = v; w < m.element_loop_offset[e + 1]; ++w)
+    os << " (" << m.loop_xy[2 * w] << ", " << m.loop_xy[2 * w + 1] << ")" << int{m.loop_edge_origin[w]} << "/"
+       << m.loop_edge_joint[w];
+  os << ")";
   return os.str();
 }
 
