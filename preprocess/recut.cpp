@@ -147,11 +147,12 @@ void link_blocks(Mesh& m) {
 }
 
 // Whether element `re` of `a` has the loop of element `oe` of `b` (vertex for vertex, with the
-// same edge origins and joints, from whichever vertex each starts).
-bool same_loop(const Mesh& a, std::size_t re, const Mesh& b, std::size_t oe) {
+// same edge origins and joints, from whichever vertex each starts): the rotation r that takes
+// a's loop vertex k to b's (k + r) mod n, or -1.
+std::int32_t same_loop(const Mesh& a, std::size_t re, const Mesh& b, std::size_t oe) {
   const std::int32_t ab = a.element_loop_offset[re], n = a.element_loop_offset[re + 1] - ab;
   const std::int32_t bb = b.element_loop_offset[oe];
-  if (b.element_loop_offset[oe + 1] - bb != n) return false;
+  if (b.element_loop_offset[oe + 1] - bb != n) return -1;
   for (std::int32_t r = 0; r < n; ++r) {
     bool all = true;
     for (std::int32_t k = 0; k < n && all; ++k) {
@@ -159,9 +160,9 @@ bool same_loop(const Mesh& a, std::size_t re, const Mesh& b, std::size_t oe) {
       all = a.loop_xy[2 * v] == b.loop_xy[2 * w] && a.loop_xy[2 * v + 1] == b.loop_xy[2 * w + 1] &&
             a.loop_edge_origin[v] == b.loop_edge_origin[w] && a.loop_edge_joint[v] == b.loop_edge_joint[w];
     }
-    if (all) return true;
+    if (all) return r;
   }
-  return false;
+  return -1;
 }
 
 // m's contact edges element by element: `first` [element + 1] CSR into `index` (into the
@@ -312,6 +313,7 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
   std::vector<std::int32_t> source_rc;  // [new me] the cut's element, or -1 (an old one kept)
   std::vector<std::int32_t> old_new(old.element_count(), -1);  // [old me] the new element it is, or -1
   std::vector<std::uint8_t> matched;    // [new me] 1: an old element, kept or matched loop for loop
+  std::vector<std::int32_t> match_rotation;  // [new me] its loop vertex k is the old one's k + this
   m.element_loop_offset.push_back(0);
   // Appends element e of `from` (the old mesh: kept as it is; the cut: a piece of `parent`).
   auto add_loop = [&](const Mesh& from, std::size_t e, std::int32_t parent) {
@@ -335,6 +337,7 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
       for (std::int32_t oe = first_old[t]; oe < first_old[t + 1]; ++oe) {
         old_new[oe] = static_cast<std::int32_t>(m.element_count());
         matched.push_back(1);
+        match_rotation.push_back(0);
         m.element_triangle.push_back(static_cast<std::int32_t>(t));
         m.element_body.push_back(old.element_body[oe]);
         map.element_parent.push_back(oe);
@@ -349,12 +352,13 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
       // every one is): matched loop for loop, not by a point inside it, which for a sliver a
       // round-off wide can land on the edge it shares with its neighbour and take the
       // neighbour's covers.
-      std::int32_t parent = -1;
+      std::int32_t parent = -1, rotation = -1;
       for (std::int32_t oe = first_old[t]; oe < first_old[t + 1] && parent < 0; ++oe)
-        if (old_new[oe] < 0 && same_loop(rc, re, old, static_cast<std::size_t>(oe))) parent = oe;
+        if (old_new[oe] < 0 && (rotation = same_loop(rc, re, old, static_cast<std::size_t>(oe))) >= 0) parent = oe;
       if (parent >= 0) old_new[parent] = static_cast<std::int32_t>(m.element_count());
       else parent = parent_of(re);
       matched.push_back(old_new[parent] == static_cast<std::int32_t>(m.element_count()) ? 1 : 0);
+      match_rotation.push_back(matched.back() ? rotation : -1);
       m.element_triangle.push_back(static_cast<std::int32_t>(t));
       m.element_body.push_back(rc.element_body[re]);
       map.element_parent.push_back(parent);
@@ -427,8 +431,7 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
     }
   // Contact edges from the cuts' own topology, not from rounded coordinates (an edge that rounds
   // to a point would run "the other way" in its own element): a kept element's from the old mesh,
-  // a cut element's from the cut, where the element across lies outside R the old mesh's (such
-  // an element is matched: only R \ T borders the outside).
+  // a cut element's from the cut.
   {
     const ContactEdgesOf old_ce(old), rc_ce(rc);
     std::vector<std::int32_t> rc_new(rc.element_count(), -1);
@@ -442,13 +445,13 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
       m.contact_edge_element.push_back(static_cast<std::int32_t>(e));
       m.contact_edge_opposite.push_back(across);
     };
-    // The old contact edge of old element oe from (x0, y0) to (x1, y1), or -1.
-    auto old_edge = [&](std::int32_t oe, double x0, double y0, double x1, double y1) {
-      const std::int32_t b = old.element_loop_offset[oe], end = old.element_loop_offset[oe + 1];
+    // The old contact edge of old element oe that starts at its loop vertex `local`, or -1 (by
+    // position in the loop, not by coordinates: an edge that rounds to a point has company).
+    auto old_edge = [&](std::int32_t oe, std::int32_t local) {
+      const std::int32_t v = old.element_loop_offset[oe] + local;
       for (std::int32_t k = old_ce.first[oe]; k < old_ce.first[oe + 1]; ++k) {
-        const std::int32_t i = old_ce.index[static_cast<std::size_t>(k)], v = old.contact_edge[i], w = v + 1 < end ? v + 1 : b;
-        if (old.loop_xy[2 * v] == x0 && old.loop_xy[2 * v + 1] == y0 && old.loop_xy[2 * w] == x1 && old.loop_xy[2 * w + 1] == y1)
-          return i;
+        const std::int32_t i = old_ce.index[static_cast<std::size_t>(k)];
+        if (old.contact_edge[i] == v) return i;
       }
       return -1;
     };
@@ -470,13 +473,18 @@ Mesh recut(const Mesh& old, const SceneDef& scene, std::size_t first_new_joint, 
       const std::int32_t rb = rc.element_loop_offset[re];
       for (std::int32_t k = rc_ce.first[re]; k < rc_ce.first[re + 1]; ++k) {
         const std::int32_t i = rc_ce.index[static_cast<std::size_t>(k)];
-        const std::int32_t v = nb + (rc.contact_edge[i] - rb), w = v + 1 < nend ? v + 1 : nb;
-        std::int32_t across = rc.contact_edge_opposite[i] >= 0 ? rc_new[static_cast<std::size_t>(rc.contact_edge_opposite[i])] : -1;
-        if (across < 0 && matched[e]) {
-          const std::int32_t oi = old_edge(map.element_parent[e], m.loop_xy[2 * v], m.loop_xy[2 * v + 1], m.loop_xy[2 * w],
-                                           m.loop_xy[2 * w + 1]);
+        const std::int32_t local = rc.contact_edge[i] - rb, n = nend - nb;
+        // The cut saw R and the ring around it, so it knows whether anything lies across (an
+        // edge's other side is in the next triangle); an element across in the ring is an old
+        // one, named by the old mesh (this element is then an old one too: only R \ T borders
+        // the ring).
+        const std::int32_t rc_across = rc.contact_edge_opposite[i];
+        std::int32_t across = rc_across >= 0 ? rc_new[static_cast<std::size_t>(rc_across)] : -1;
+        if (rc_across >= 0 && across < 0 && matched[e]) {
+          const std::int32_t oi = old_edge(map.element_parent[e], (local + match_rotation[e]) % n);
           if (oi >= 0) across = across_old(oi);
         }
+        const std::int32_t v = nb + local;
         add(e, v, across);
       }
     }

@@ -17,11 +17,13 @@ void ElementBasis::values(double x, double y, double* out) const {
   for (int a = 0; a < functions(); ++a) out[a] = phi[a](xi, eta);
 }
 
-CoverSpace::CoverSpace(const Mesh& mesh, int order, double min_weight, double min_support) : order_(order) {
+CoverSpace::CoverSpace(const Mesh& mesh, int order, double min_weight, double min_support,
+                       std::int32_t first_crack_joint)
+    : order_(order) {
   if (order < 0 || order > 2)
     throw std::invalid_argument("cover order " + std::to_string(order) + " (0, 1 or 2)");
   h_ = mesh.mesh_size > 0 ? mesh.mesh_size : 1.0;
-  ties_ = assign_cover_unknowns(mesh, min_weight, dofs_per_cover(), min_support);
+  ties_ = assign_cover_unknowns(mesh, min_weight, dofs_per_cover(), min_support, first_crack_joint);
   unknowns_ = ties_.unknowns();
   const std::size_t ne = mesh.element_count();
   const int m = dofs_per_cover();

@@ -49,7 +49,8 @@ class CoverSpace {
   CoverSpace() = default;
   /// Order 0, 1 or 2; sliver covers (weight below min_weight everywhere, or support below
   /// min_support·h²) are tied as in cover_unknowns.h.
-  CoverSpace(const Mesh& mesh, int order, double min_weight, double min_support = 0);
+  CoverSpace(const Mesh& mesh, int order, double min_weight, double min_support = 0,
+             std::int32_t first_crack_joint = -1);
 
   int order() const { return order_; }
   int terms() const { return monomial_count(order_); }      ///< P: polynomial terms per cover

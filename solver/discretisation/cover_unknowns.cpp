@@ -23,7 +23,8 @@
 
 namespace nmm::solve {
 
-CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover, double min_support) {
+CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover, double min_support,
+                                    std::int32_t first_crack_joint) {
   const std::size_t nc = mesh.cover_count(), ne = mesh.element_count();
   CoverUnknowns u;
   u.dofs_per_cover = dofs_per_cover;
@@ -54,20 +55,32 @@ CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dof
       }
   }
   // In a run that can crack, a cover with next to no support is as void as a sliver: a corner of
-  // a triangle that cracks cut off at a node, a ten-thousandth of an element in area, whose own
-  // cover carries stiffness and mass of that size between crack faces whose springs are a hundred
-  // times stiffer (a uniaxial specimen past its peak: such a cover moved 6 mm, then 3 cm, as its
-  // step was cut shorter). Below min_support·h² of support it shares a neighbour's unknowns too.
+  // a triangle that cracks cut off at a node, a ten-thousandth to a hundredth of an element in
+  // area, whose own cover carries stiffness and mass of that size between crack faces whose
+  // springs are a hundred times stiffer (a uniaxial specimen past its peak: such a cover moved
+  // 6 mm, then 3 cm, as its step was cut shorter; fracture.h kLeastCoverSupport). Below min_support·h² of support it shares a neighbour's unknowns too.
   // A cover of a block that small altogether has no significant neighbour and keeps its own: that
   // block is debris (fracture.h). (Scenes that cannot crack keep every such cover of their joints'
   // corners, as they always did: min_support 0.)
+  // Only covers a crack bounds: the scene's own small covers (a body's boundary or a joint
+  // passing near a node, a support or traction on them) keep their unknowns as they always did.
   std::vector<double> support(nc, 0.0);
+  std::vector<std::uint8_t> cracked(nc, 0);
   for (std::size_t e = 0; e < ne; ++e) {
     const double a = element_area(mesh, e);
-    for (int k = 0; k < 3; ++k) support[static_cast<std::size_t>(mesh.element_covers[3 * e + k])] += a;
+    bool crack = false;
+    for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1] && first_crack_joint >= 0; ++v)
+      crack = crack || ((mesh.loop_edge_origin[v] & kEdgeJoint) && mesh.loop_edge_joint[v] >= first_crack_joint);
+    for (int k = 0; k < 3; ++k) {
+      const auto c = static_cast<std::size_t>(mesh.element_covers[3 * e + k]);
+      support[c] += a;
+      cracked[c] = cracked[c] || crack;
+    }
   }
   const double least = min_support * mesh.mesh_size * mesh.mesh_size;  // m²
-  auto sliver = [&](std::int32_t c) { return u.max_weight[c] < min_weight || support[c] < least; };
+  auto sliver = [&](std::int32_t c) {
+    return u.max_weight[c] < min_weight || (cracked[c] && support[c] < least);
+  };
 
   // Overlap of each sliver with the significant covers of its elements.
   std::map<std::pair<std::int32_t, std::int32_t>, double> overlap;  // (sliver, cover) → m²

@@ -20,10 +20,11 @@ struct CoverUnknowns {
 };
 
 /// Covers whose weight is below min_weight (in [0, 1/3)) on all of their support, or whose
-/// support is smaller than min_support·h² (a run that can crack: cover_unknowns.cpp), share the
-/// unknowns of a neighbour; the others get theirs in cover order (so without slivers cover c owns
-/// unknowns m·c .. m·c + m − 1, m = dofs_per_cover).
+/// support is smaller than min_support·h² and bounded by a crack (an element of it has an edge on
+/// joint first_crack_joint or a later one: the cracks a run grew; -1: none), share the unknowns
+/// of a neighbour; the others get theirs in cover order (so without slivers cover c owns unknowns
+/// m·c .. m·c + m − 1, m = dofs_per_cover).
 CoverUnknowns assign_cover_unknowns(const Mesh& mesh, double min_weight, int dofs_per_cover = 2,
-                                    double min_support = 0);
+                                    double min_support = 0, std::int32_t first_crack_joint = -1);
 
 }  // namespace nmm::solve

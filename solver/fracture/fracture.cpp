@@ -278,6 +278,28 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
     }
   for (std::size_t e = 0; e < n; ++e)
     debris[e] = debris[e] || block_debris[static_cast<std::size_t>(mesh.element_block[e])];
+  // An element of next to no area none of whose covers reaches beyond a speck is debris too,
+  // whatever its block: nothing significant moves it (cover_unknowns.cpp ties a small cover to a
+  // significant one of its element, and it has none), so its covers would be left with no
+  // stiffness or mass of any size (a needle of 7.8e-20 m² whose edges to the rest round to
+  // points stopped a dynamic uniaxial run as "not positive definite").
+  {
+    std::vector<double> support(mesh.cover_count(), 0.0);
+    std::vector<double> area(n);
+    for (std::size_t e = 0; e < n; ++e) {
+      area[e] = element_area(mesh, e);
+      for (int k = 0; k < 3; ++k) support[static_cast<std::size_t>(mesh.element_covers[3 * e + k])] += area[e];
+    }
+    const double least = kLeastCoverSupport * mesh.mesh_size * mesh.mesh_size;
+    for (std::size_t e = 0; e < n; ++e) {
+      if (debris[e] || area[e] >= limit) continue;
+      bool held = false;
+      for (int k = 0; k < 3; ++k) held = held || support[static_cast<std::size_t>(mesh.element_covers[3 * e + k])] >= least;
+      if (held) continue;
+      debris[e] = 1;
+      debris_area_ += area[e];
+    }
+  }
   armed_ = std::move(armed);
   debris_ = std::move(debris);
   crossed_.clear();

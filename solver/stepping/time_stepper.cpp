@@ -84,12 +84,13 @@ constexpr int kDeferredTouching = 5;
 constexpr double kDeferredShare = 0.01;
 }  // namespace
 
-TimeStepper::MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
+TimeStepper::MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name,
+                                  std::size_t cracks)
     : model(mesh, scene, scene_name), form(model),
-      // A run that can crack also ties covers of next to no support (cover_unknowns.cpp): the
-      // corners its cracks cut off at nodes, clamped between stiff crack faces.
-      space(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight,
-            Fracture(scene).active() ? scene.solver.sliver_cover_weight : 0.0),
+      // A run that can crack also ties covers of next to no support that its cracks cut
+      // (cover_unknowns.cpp): corners cut off at nodes, clamped between stiff crack faces.
+      space(mesh, scene.solver.cover_order, scene.solver.sliver_cover_weight, Fracture::kLeastCoverSupport,
+            static_cast<std::int32_t>(scene.joints.size() - cracks)),
       config(mesh, &space),
       indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()), contacts(model),
       problem(contacts, space), bolts(model, space) {
@@ -447,7 +448,7 @@ void TimeStepper::break_rock(const std::vector<CrackSegment>& segments, std::vec
 
 void TimeStepper::replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,
                                std::vector<ContactHistory> history) {
-  auto bound = std::make_unique<MeshBound>(*mesh, *scene, scene_name_);
+  auto bound = std::make_unique<MeshBound>(*mesh, *scene, scene_name_, fracture_.segments().size());
   bound->contacts.restore(std::move(history), {});
   bound->contacts.continue_from(b_->contacts);
   b_ = std::move(bound);  // before the mesh and scene it referred to go

@@ -139,7 +139,8 @@ class TimeStepper {
   /// change the mesh (the members hold references to each other and to mesh and scene, so the
   /// whole is replaced at once).
   struct MeshBound {
-    MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name);
+    /// `cracks`: how many of the scene's joints (its last ones) are cracks grown in the run.
+    MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, std::size_t cracks = 0);
     Model model;                      // derived once from mesh and scene (model.h)
     Form form;                        // the integrators the scene calls for (form.h)
     CoverSpace space;                 // order, unknowns of each cover and element, shapes
