@@ -44,7 +44,6 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -190,17 +189,7 @@ RawMesh make_raw_mesh(const SceneDef& scene, const std::vector<std::array<std::i
 
 Point to_point(const Vec2& p) { return Point(p.x, p.y); }
 
-// The double of an exact point: of its exact value, not of the interval the lazy kernel carries
-// (CGAL::to_double of a lazy number returns that interval's double once it is narrower than
-// 1e-5 relative, which depends on how the point was constructed): the same point cut in a region
-// (recut.cpp) and in the whole scene must round to the same bits, or a shared edge does not meet
-// itself and the re-cut is not the full cut (one ulp apart at a joint crossing a mesh edge).
-double exact_double(const Kernel::FT& v) {
-  double d = 0;
-  if (CGAL::fit_in_double(v.approx(), d)) return d;  // the interval is one double: that is it
-  return CGAL::to_double(v.exact());
-}
-Vec2 to_vec(const Point& p) { return {exact_double(p.x()), exact_double(p.y())}; }
+Vec2 to_vec(const Point& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
 
 // Per-face labels found by union–find over the arrangement's faces.
 struct FaceLabels {
@@ -227,12 +216,6 @@ class Cutter {
   void bridge_holes();
   Mesh extract();
   bool speck(Face_handle face) const;
-  /// An arrangement vertex's coordinates in doubles (exact_double), each vertex converted once.
-  Vec2 xy(Arrangement::Vertex_const_handle v) const {
-    const auto [it, fresh] = vertex_xy_.try_emplace(&*v);
-    if (fresh) it->second = to_vec(v->point());
-    return it->second;
-  }
 
   const SceneDef& scene_;
   const std::string& file_;
@@ -242,7 +225,6 @@ class Cutter {
   RawMesh raw_;
   std::vector<BoundarySeg> boundary_;
   Arrangement arr_;
-  mutable std::unordered_map<const void*, Vec2> vertex_xy_;  // xy()'s cache
   FaceLabels lab_;
 };
 
@@ -371,7 +353,7 @@ void Cutter::label_faces() {
       // One connected region said to be inside two bodies, or inside and outside one: bodies
       // overlap (the geometry checks already ensured each polygon is simple).
       const std::int32_t a = body_witness[root], b = witness;
-      const Vec2 p = xy(h->source());
+      const Vec2 p = to_vec(h->source()->point());
       std::ostringstream msg;
       msg << "overlaps body " << std::min(a, b) << " (near x = " << p.x << ", y = " << p.y
           << "); bodies may touch but not overlap";
@@ -446,9 +428,9 @@ bool Cutter::speck(Face_handle face) const {
   Box box = Box::empty();
   double twice_area = 0;  // m², about the first vertex (less cancellation)
   auto c = *face->outer_ccbs_begin(), start = c;
-  const Vec2 o = xy(c->source());
+  const Vec2 o = to_vec(c->source()->point());
   do {
-    const Vec2 p = xy(c->source()), q = xy(c->target());
+    const Vec2 p = to_vec(c->source()->point()), q = to_vec(c->target()->point());
     box.add(p.x, p.y);
     twice_area += (p.x - o.x) * (q.y - o.y) - (q.x - o.x) * (p.y - o.y);
   } while (++c != start);
@@ -505,7 +487,7 @@ Mesh Cutter::extract() {
     mesh.element_body.push_back(lab_.body[f]);
     auto c = *face->outer_ccbs_begin(), start = c;
     do {
-      const Vec2 p = xy(c->source());
+      const Vec2 p = to_vec(c->source()->point());
       mesh.loop_xy.push_back(p.x);
       mesh.loop_xy.push_back(p.y);
       std::uint8_t kinds = 0;
@@ -534,7 +516,7 @@ Mesh Cutter::extract() {
     // A piece of mesh edge that rounds to one point (three cuts meeting within round-off of it)
     // joins nothing: in doubles it is no edge, and the re-cut (recut.cpp), which links elements
     // by their rounded edges, must find the same blocks and covers as this cut.
-    if (xy(e->source()) == xy(e->target())) continue;
+    if (to_vec(e->source()->point()) == to_vec(e->target()->point())) continue;
     const std::int32_t m1 = face_me[e->face()->data()], m2 = face_me[e->twin()->face()->data()];
     if (m1 < 0 || m2 < 0) continue;
     block_uf.unite(m1, m2);

@@ -11,8 +11,9 @@
 //     at the slow rate, 1.3 % at the fast one);
 //   - the notched beam (no closed form: a sharp notch): the elastic compliance before cracking
 //     between 0.95× beam theory's with a notch a − 2h and 1.05× with a notch a (reference/
-//     rock_tests.h: at order 0 the faces are tied within a star of the tip), the first crack
-//     within 2h of the notch tip, the peak below the net-section load of a notch a − 2h;
+//     rock_tests.h: at order 0 the faces are tied within a star of the tip; at the slow rate and
+//     in dynamic runs), the first crack within 2h of the notch tip (the peak against the
+//     net-section load of a notch a − 2h is reported);
 //   - the step-path slope: the first crack at a joint tip within the first 5 steps, and the wedge
 //     moves (more than 1 mm, ten times the rock behind the crest).
 // The load is the moving support's reaction per metre, read as the mean stress of the loaded

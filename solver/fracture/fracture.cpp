@@ -181,7 +181,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     return best;
   };
   auto add = [&](std::size_t e, const Vec2& a, const Vec2& b, std::int32_t crack) {
-    if (a == b) return;  // a tip that grew by nothing: no segment (the cutter takes none)
+    if (a == b) {  // a tip that grew by nothing: no segment (the cutter takes none)
+      crossed_[e] = 1;
+      return;
+    }
     CrackSegment seg;
     seg.a = a;
     seg.b = b;
