@@ -49,15 +49,21 @@ std::string not_positive_definite_message(const Mesh& mesh, const CoverSpace& sp
   if (failed_unknown < 0) return m;
   const int c = space.cover_of_unknown(failed_unknown);
   // Its support says whether it is a block held by nothing or a cover next to void.
-  double support = 0;  // m²
   int elements = 0;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e)
-    for (int k = 0; k < 3; ++k)
-      if (mesh.element_covers[3 * e + k] == c) support += element_area(mesh, e), ++elements;
+  const double support = cover_support(mesh, c, elements);
   return m + " at cover " + std::to_string(c) + " (node " + cover_node_text(mesh, c) + "; " +
          std::to_string(elements) + (elements == 1 ? " element, " : " elements, ") + format_rough(support, 3) +
          " m² of support): it is unconstrained (held by no fixed point or closed contact); add fixed points or "
          "run dynamic";
+}
+
+double cover_support(const Mesh& mesh, int cover, int& elements) {
+  double support = 0;
+  elements = 0;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.element_covers[3 * e + k] == cover) support += element_area(mesh, e), ++elements;
+  return support;
 }
 
 }  // namespace nmm::solve

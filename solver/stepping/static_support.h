@@ -22,8 +22,11 @@ namespace nmm::solve {
 std::string unheld_block(const Model& model, const RunState& s);
 
 /// Why a factorisation failed at unknown `failed_unknown` (-1: not known): the cover and its
-/// node, unconstrained.
+/// node, its elements and support, unconstrained.
 std::string not_positive_definite_message(const Mesh& mesh, const CoverSpace& space,
                                           int failed_unknown);
+
+/// m², the area of physical cover `cover`'s support (its elements'); `elements`: how many.
+double cover_support(const Mesh& mesh, int cover, int& elements);
 
 }  // namespace nmm::solve

@@ -256,28 +256,7 @@ Outcome TimeStepper::attempt_once(double dt) {
     const ContactSet::Totals totals = b_->contacts.totals();
     Outcome rejected = control_.rejection(covers_d.cwiseAbs().maxCoeff(),
                                           b_->contacts.judged_penetration(control_.penetration_limit()), step_inertia());
-    // NMM_TRACE_PEN: the contacts a rejected step found deepest (which vertex, which edge, how deep
-    // at the start and the end), for finding why a run cuts its step (docs/fracture.md).
-    static const bool trace_pen = std::getenv("NMM_TRACE_PEN") != nullptr;
-    if (!rejected.ok() && trace_pen) {
-      Eigen::Index worst = 0;
-      covers_d.cwiseAbs().maxCoeff(&worst);
-      const int cover = b_->space.cover_of_unknown(static_cast<int>(worst));
-      double support = 0;
-      int elements = 0;
-      for (std::size_t e = 0; e < mesh().element_count(); ++e)
-        for (int k = 0; k < 3; ++k)
-          if (mesh().element_covers[3 * e + k] == cover) support += element_area(mesh(), e), ++elements;
-      std::fprintf(stderr, "moved most: cover %d (node %d at %.9g %.9g) by %.3g m; %d elements, support %.3g m2\n", cover,
-                   mesh().cover_node[cover], mesh().node_xy[2 * mesh().cover_node[cover]],
-                   mesh().node_xy[2 * mesh().cover_node[cover] + 1], covers_d.cwiseAbs().maxCoeff(), elements, support);
-      for (const Contact& c : b_->contacts.contacts())
-        if (-c.gap > 0.5 * totals.max_penetration)
-          std::fprintf(stderr, "pen: v %d (elem %d blk %d, at %.9g %.9g) edge %d (elem %d blk %d) gap0 %.3g gap %.3g state0 %d len %.3g\n",
-                       c.at.vertex, c.at.elem_a, mesh().element_block[c.at.elem_a], s_.loop_xy[2 * c.at.vertex],
-                       s_.loop_xy[2 * c.at.vertex + 1], c.at.edge, c.at.elem_b, mesh().element_block[c.at.elem_b],
-                       c.at.gap, c.gap, static_cast<int>(c.start_state), c.length);
-    }
+    if (!rejected.ok()) trace_rejected_step(covers_d, totals.max_penetration);
     if (!rejected.ok()) return stop(rejected.code, std::move(rejected.reason));
     b_->contacts.end_step(b_->problem);
     // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
@@ -303,6 +282,28 @@ Outcome TimeStepper::attempt_once(double dt) {
   s_.time += dt;
   ++s_.step;
   return {};
+}
+
+void TimeStepper::trace_rejected_step(const Eigen::VectorXd& covers_d, double max_penetration) const {
+  // NMM_TRACE_PEN: the cover a rejected step moved most (its node and support) and the contacts it
+  // found deepest (which vertex, which edge, how deep at the start and the end), on stderr: for
+  // finding why a run cuts its step (docs/fracture.md).
+  static const bool trace = std::getenv("NMM_TRACE_PEN") != nullptr;
+  if (!trace) return;
+  Eigen::Index worst = 0;
+  const double moved = covers_d.cwiseAbs().maxCoeff(&worst);
+  const int cover = b_->space.cover_of_unknown(static_cast<int>(worst));
+  const std::int32_t node = mesh().cover_node[static_cast<std::size_t>(cover)];
+  int elements = 0;
+  const double support = cover_support(mesh(), cover, elements);
+  std::fprintf(stderr, "moved most: cover %d (node %d at %.9g %.9g) by %.3g m; %d elements, support %.3g m2\n", cover,
+               node, mesh().node_xy[2 * node], mesh().node_xy[2 * node + 1], moved, elements, support);
+  for (const Contact& c : b_->contacts.contacts())
+    if (-c.gap > 0.5 * max_penetration)
+      std::fprintf(stderr, "pen: v %d (elem %d blk %d, at %.9g %.9g) edge %d (elem %d blk %d) gap0 %.3g gap %.3g state0 %d len %.3g\n",
+                   c.at.vertex, c.at.elem_a, mesh().element_block[c.at.elem_a], s_.loop_xy[2 * c.at.vertex],
+                   s_.loop_xy[2 * c.at.vertex + 1], c.at.edge, c.at.elem_b, mesh().element_block[c.at.elem_b], c.at.gap,
+                   c.gap, static_cast<int>(c.start_state), c.length);
 }
 
 Outcome TimeStepper::solve_step(bool contact, bool again, Eigen::VectorXd& d, Eigen::VectorXd& residual,

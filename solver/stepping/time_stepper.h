@@ -165,6 +165,8 @@ class TimeStepper {
   /// fewer elements at once. The uniaxial specimen of docs/fracture.md's matrix took up to 54 at
   /// its peak; a bound far above that only stops a cascade that a shorter step would spread.
   static constexpr int kMaxRecutsPerStep = 200;
+  /// With NMM_TRACE_PEN set: what a rejected step moved most and its deepest contacts, on stderr.
+  void trace_rejected_step(const Eigen::VectorXd& covers_d, double max_penetration) const;
   std::size_t topology_ = 0;            // re-cuts so far (RunView::topology)
   // The re-cuts of the step being taken (RunView::recut): the map from the mesh now back to the
   // mesh at the last accepted step, composed over every re-cut since (a step may re-cut several
