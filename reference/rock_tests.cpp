@@ -45,6 +45,18 @@ nlohmann::json springs(double E, double h, double friction_deg) {
           {"shear", {{"model", "constant"}, {"ks", kn / 2.5}}}};
 }
 
+// The scene of a specimen of the laboratory rock (kE, kNu, kRho, kSt, kC, kPhiDeg) in plane
+// strain, named after its case, whose new cracks are springs(kE, h, 30): the document to add its
+// bodies and loading to.
+nlohmann::json& lab_rock_scene(RockTestSpecimen& s, const RockTestCase& c, double h) {
+  nlohmann::json& d = s.scene;
+  d["name"] = rock_test_case_name(c);
+  d["plane"] = "strain";
+  d["materials"]["rock"] = rock(kE, kNu, kRho, kSt, kC, kPhiDeg);
+  d["joint_sets"]["crack"] = springs(kE, h, 30);
+  return d;
+}
+
 nlohmann::json support(const std::vector<Vec2>& pts, const char* fix, Vec2 velocity = {0, 0}) {
   nlohmann::json s = {{"points", ring(pts)}, {"fix", fix}};
   if (velocity.x != 0 || velocity.y != 0) s["velocity"] = {velocity.x, velocity.y};
@@ -119,11 +131,7 @@ RockTestSpecimen rectangle_test(const RockTestCase& c) {
   s.load_rate = (s.closed_form - s.initial_load) / t_crack;
   s.end_time = kPastCrack * t_crack;
 
-  nlohmann::json& d = s.scene;
-  d["name"] = rock_test_case_name(c);
-  d["plane"] = "strain";
-  d["materials"]["rock"] = rock(kE, kNu, kRho, kSt, kC, kPhiDeg);
-  d["joint_sets"]["crack"] = springs(kE, h, 30);
+  nlohmann::json& d = lab_rock_scene(s, c, h);
   d["bodies"] = {{{"material", "rock"}, {"outer", rect(0, 0, w, ht)}}};
   d["fracture"] = {{"crack_set", "crack"}};
   d["mesh"]["size"] = h;
@@ -259,11 +267,7 @@ RockTestSpecimen beam_test(const RockTestCase& c) {
   s.load_rate = s.net_section_load / t_crack;
   s.end_time = kPastCrack * t_crack;
 
-  nlohmann::json& d = s.scene;
-  d["name"] = rock_test_case_name(c);
-  d["plane"] = "strain";
-  d["materials"]["rock"] = rock(kE, kNu, kRho, kSt, kC, kPhiDeg);
-  d["joint_sets"]["crack"] = springs(kE, h, 30);
+  nlohmann::json& d = lab_rock_scene(s, c, h);
   const double e = 2e-3;  // m, the notch's width: a slot sawn into the beam
   d["bodies"] = {{{"material", "rock"},
                   {"outer", ring({{0, 0}, {xm - e / 2, 0}, {xm - e / 2, a}, {xm + e / 2, a}, {xm + e / 2, 0}, {L, 0},

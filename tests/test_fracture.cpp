@@ -317,26 +317,43 @@ double strain_energy(const Mesh& m, const std::vector<double>& stress, double E,
   }
   return U;
 }
+// The bar of BarInTensionCracksAcross… loaded to 75 % of its strength (0.3 s), and the same state
+// carried onto the mesh with a crack cut across it, through elements and nodes' stars.
+struct CutBar {
+  SceneDef scene, cracked;
+  Mesh before_mesh, now;
+  pre::RecutMap map;
+  RunState before, after;
+  bool cracked_in_run = false;  // the run itself cracked (it must not, at 75 %)
+};
+CutBar cut_stressed_bar() {
+  CutBar c;
+  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  c.scene = scene_from_json(specimen(4, 1, 0.25, 0, 1e-3, strength), "bar");
+  c.before_mesh = pre::build_mesh(c.scene, "bar");
+  TimeStepper st(c.before_mesh, c.scene, "bar");
+  EXPECT_PRED1(test::ended_ok, st.run_until(0.3, [](std::int64_t) {}));
+  c.cracked_in_run = !st.view().fracture.segments().empty();
+  c.before = st.view().state;
+  c.cracked = c.scene;
+  const std::size_t first = c.cracked.joints.size();
+  c.cracked.joints.push_back({c.cracked.fracture.crack_set, {{2.03, -0.01}, {2.11, 1.01}}});
+  c.now = pre::recut(c.before_mesh, c.cracked, first, "bar", c.map);
+  c.after = c.before;
+  solve::transfer_state(c.before_mesh, c.now, c.map, 2, c.after);
+  return c;
+}
 }  // namespace
 
 // A crack cut across the bar at 75 % of its strength, through elements and nodes' stars: every
 // loop vertex of the new mesh moves as the field of the element it came from moved it (the crack's
 // own vertices included), and the strain energy is the same to round-off.
 TEST(Fracture, CuttingACrackCarriesTheStateOver) {
-  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
-  const SceneDef s = scene_from_json(specimen(4, 1, 0.25, 0, 1e-3, strength), "bar");
-  const Mesh m = pre::build_mesh(s, "bar");
-  TimeStepper st(m, s, "bar");
-  ASSERT_PRED1(test::ended_ok, st.run_until(0.3, [](std::int64_t) {}));
-  ASSERT_TRUE(st.view().fracture.segments().empty());
-  SceneDef cracked = s;
-  const std::size_t first = cracked.joints.size();
-  cracked.joints.push_back({cracked.fracture.crack_set, {{2.03, -0.01}, {2.11, 1.01}}});
-  pre::RecutMap map;
-  const Mesh now = pre::recut(m, cracked, first, "bar", map);
-  RunState after = st.view().state;
-  solve::transfer_state(m, now, map, 2, after);
-  const RunState& before = st.view().state;
+  const CutBar c = cut_stressed_bar();
+  ASSERT_FALSE(c.cracked_in_run);
+  const Mesh &m = c.before_mesh, &now = c.now;
+  const pre::RecutMap& map = c.map;
+  const RunState &before = c.before, &after = c.after;
   ASSERT_GT(now.element_count(), m.element_count());
 
   double worst = 0, scale = 0;
@@ -560,22 +577,10 @@ TEST(Fracture, NotchedBeamBalancesItsEnergyThroughCracking) {
 // state carried onto the mesh with a crack cut across it, have the same strain and spring
 // energies (energy.h's state terms: what the meter reads on either side of a re-cut).
 TEST(Fracture, TheCutItselfMovesNoEnergy) {
-  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
-  const nlohmann::json doc = specimen(4, 1, 0.25, 0, 1e-3, strength);
-  const SceneDef s = scene_from_json(doc, "bar");
-  const Mesh m = pre::build_mesh(s, "bar");
-  TimeStepper st(m, s, "bar");
-  ASSERT_PRED1(test::ended_ok, st.run_until(0.3, [](std::int64_t) {}));
-  SceneDef cracked = s;
-  const std::size_t first = cracked.joints.size();
-  cracked.joints.push_back({cracked.fracture.crack_set, {{2.03, -0.01}, {2.11, 1.01}}});
-  pre::RecutMap map;
-  const Mesh now = pre::recut(m, cracked, first, "bar", map);
-  RunState after = st.view().state;
-  solve::transfer_state(m, now, map, 2, after);
-  const solve::Model before_model(m, s, "bar"), after_model(now, cracked, "bar");
-  const solve::EnergyRow a = solve::EnergyMeter(before_model).state_terms(st.view().state, {});
-  const solve::EnergyRow b = solve::EnergyMeter(after_model).state_terms(after, {});
+  const CutBar c = cut_stressed_bar();
+  const solve::Model before_model(c.before_mesh, c.scene, "bar"), after_model(c.now, c.cracked, "bar");
+  const solve::EnergyRow a = solve::EnergyMeter(before_model).state_terms(c.before, {});
+  const solve::EnergyRow b = solve::EnergyMeter(after_model).state_terms(c.after, {});
   std::printf("cut: K %.10g → %.10g, U %.10g → %.10g, V %.10g → %.10g, S %.10g → %.10g J/m\n", a.kinetic,
               b.kinetic, a.strain, b.strain, a.gravity, b.gravity, a.springs, b.springs);
   EXPECT_GT(a.strain, 100.0);
