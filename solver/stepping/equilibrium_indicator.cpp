@@ -170,6 +170,24 @@ EquilibriumSample EquilibriumIndicator::measure(const StepBalance& st,
   return out;
 }
 
+EquilibriumSample EquilibriumIndicator::measure_step(const Model& model, const StepContext& step,
+                                                     const Eigen::VectorXd& d, const Eigen::VectorXd* balance) const {
+  const RunState& s = step.s;
+  const auto [bx, by] = step.body_force;
+  StepBalance b;
+  b.d = &d;
+  b.v0 = &s.velocity;
+  b.a0 = &s.accel;
+  b.dt = step.dt;
+  b.beta = step.beta;
+  b.balance = balance;
+  b.applied_sum = applied_force_sum(model.scene(), s, step.t_end, std::hypot(bx, by), active_mass(s.body_removed),
+                                    model.traction_edges(), model.interface_edges(), step.removed);
+  b.stress = &s.stress;
+  b.stress_terms = static_cast<std::size_t>(step.config.space().terms());
+  return measure(b, s.body_removed);
+}
+
 double applied_force_sum(const SceneDef& scene, const RunState& s, double t, double body_force,
                          double active_mass,
                          const std::vector<std::vector<BoundaryEdge>>& traction_edges,

@@ -13,7 +13,9 @@
 #include "solver/discretisation/boundary_conditions.h"
 #include "solver/discretisation/cover_space.h"
 #include "common/mesh.h"
+#include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
+#include "solver/discretisation/step_context.h"
 #include "common/scene.h"
 
 namespace nmm::solve {
@@ -62,6 +64,11 @@ class EquilibriumIndicator {
 
   /// The indicators of one step (covers of excavated bodies left out).
   EquilibriumSample measure(const StepBalance& step, const std::vector<std::uint8_t>& body_removed) const;
+  /// The indicators of a step of `model` just solved (d: its increment) in the context it was
+  /// assembled in — the same body force, β and loads, at the step's end, before the state moves
+  /// on; `balance`: without inertia, the force the solve balanced, K·d (StepBalance).
+  EquilibriumSample measure_step(const Model& model, const StepContext& step, const Eigen::VectorXd& d,
+                                 const Eigen::VectorXd* balance) const;
 
   /// kg/m, the mass of the bodies not excavated.
   double active_mass(const std::vector<std::uint8_t>& body_removed) const;

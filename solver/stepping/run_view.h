@@ -23,7 +23,7 @@
 #include "solver/stepping/equilibrium_indicator.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
-#include "solver/stepping/step_timings.h"
+#include "solver/discretisation/step_timings.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace nmm::solve {

@@ -17,27 +17,19 @@
 #include "common/mesh.h"
 #include "common/outcome.h"
 #include "common/scene.h"
-#include "solver/stepping/block_momentum.h"
-#include "solver/discretisation/configuration.h"
-#include "solver/contact/contact_problem.h"
-#include "solver/contact/contact_set.h"
-#include "solver/contact/contact_solve.h"
-#include "solver/discretisation/cover_space.h"
-#include "solver/stepping/equilibrium_indicator.h"
-#include "solver/discretisation/form.h"
-#include "solver/discretisation/model.h"
+#include "preprocess/recut.h"
+#include "solver/discretisation/effect.h"
 #include "solver/discretisation/run_state.h"
+#include "solver/discretisation/step_timings.h"
+#include "solver/discretisation/system_matrix.h"
+#include "solver/stepping/equilibrium_indicator.h"
+#include "solver/stepping/mesh_bound.h"
 #include "solver/stepping/run_view.h"
 #include "solver/stepping/step_control.h"
-#include "solver/stepping/step_timings.h"
-#include "solver/fracture/fracture.h"
-#include "preprocess/recut.h"
-#include "solver/discretisation/system_matrix.h"
-#include "solver/reinforcement/bolt_system.h"
 
 namespace nmm::solve {
 
-class TimeStepper {
+class TimeStepper : private StepHost {
  public:
   /// Prepares a run: locates the scene's points in the elements (InputError naming the scene
   /// path, e.g. /fixed_points/2, for a point outside every body), builds the sparsity pattern,
@@ -78,9 +70,8 @@ class TimeStepper {
   // ---- read -------------------------------------------------------------------------------
   /// What the outputs read: state, model, space, contacts, system, costs (run_view.h).
   RunView view() const {
-    return {*mesh_,      b_->model,  b_->space,    b_->config,   s_,
-            b_->contacts, system_,   timings_,     solve_stats_, balance_,
-            stopped_at_ratio_, threads_, fracture_, topology_, recut_, recut_from_, recut_start_};
+    return {*mesh_,  b_->model, b_->space, b_->config, s_, b_->contact.set(), system_, timings_, b_->contact.stats(),
+            balance_, stopped_at_ratio_, threads_, changes_.fracture.fracture(), topology_, recut_, recut_from_, recut_start_};
   }
 
  private:
@@ -91,30 +82,25 @@ class TimeStepper {
   Outcome stop(StopCode code, std::string reason) const;
   /// The context of a step of dt from the current state (step_context.h).
   StepContext step_context(double dt) const;
-  void update_pattern();
-  /// The equilibrium indicators of the step just solved (increment d of length dt), before
-  /// update() moves the state on.
-  void measure_balance(const Eigen::VectorXd& d, const StepContext& step, bool contact);
-  /// Solves the assembled step (rhs_, system_): one factorisation, or the step's contact
-  /// problem with its breaks; `again`: the same step solved again from d (the bolts' modes
-  /// changed at its solution). Sets d, the residual handed on and whether Newton iterated.
-  Outcome solve_step(bool contact, bool again, Eigen::VectorXd& d, Eigen::VectorXd& residual, bool& iterated);
-  /// Takes the absorbing boundaries' carried reaction from the state the step starts from
-  /// (absorbing_boundary.h): its out-of-balance force with d = 0, without inertia.
-  void take_absorbing_reaction(bool contact);
-  /// The bolts of the run's scene on state s_ (installed now or carried on), their unknowns
-  /// numbered and the pattern built with their groups.
-  void place_bolts(const std::vector<BoltState>& previous);
-  /// The system's first contact-pair group: after the elements' and the bolts' groups.
-  int first_pair_group() const { return static_cast<int>(mesh().element_count() + b_->bolts.groups()); }
-  /// Unknowns of the system: the covers', then the bolts' own (bolt_system.h).
-  int system_unknowns() const { return b_->space.unknowns() + b_->bolts.unknowns(); }
+  /// Solves the assembled step (rhs_, system_): one factorisation, or `solver`'s own way (the
+  /// contacts' problem); `again`: the same step solved again from x.d (an effect judged its
+  /// solution). Sets x.
+  Outcome solve_step(EffectStep& step, Effect* solver, bool again, StepSolution& x);
+  /// StepHost: the force at rest of s_ (effect.h).
+  const Eigen::VectorXd& force_at_rest() override;
+  /// The effects installed or carried on from s_ (a start, a restart), numbered, and the pattern
+  /// built with their groups (`name`: the scene's or checkpoint's, for errors); false: an effect's
+  /// unknowns no longer fit a checkpoint's factorisation.
+  bool place_effects(const std::string& name);
+  /// Numbers the effects on s_ and builds the pattern with their groups.
+  void number_effects();
   /// The step's matrix has the inertia term: dynamic runs and DDA static ones.
   bool step_inertia() const { return b_->model.step_inertia(); }
   /// –, the share of a step's momentum the next step keeps: solver.dynamic_factor in a dynamic
   /// run, 0 in a static one (block_momentum.h hands on that share of the residual).
   double handed_on_share() const { return scene().solver.dynamic ? scene().solver.dynamic_factor : 0.0; }
-  void build_pattern_with_pairs();
+  /// The sparse pattern of the elements' and the effects' coupling groups on s_.
+  void build_pattern();
   /// Polynomial stress coefficients per element: (n+1)(n+2)/2.
   std::size_t stress_terms() const { return static_cast<std::size_t>(b_->space.terms()); }
   /// ε of the regularised factorisation (system_matrix.h), relative to each diagonal entry.
@@ -122,35 +108,18 @@ class TimeStepper {
   /// Removes bodies (excavation) at the current step: excavation.h.
   void excavate(const std::vector<int>& bodies);
   void apply_removed();
-  /// One attempt of a step of dt (attempt() repeats it while the rock breaks).
+  /// One attempt of a step of dt (attempt() repeats it while an effect changes the mesh).
   Outcome attempt_once(double dt);
-  /// The segments a step's solution breaks (fracture.h) are cut into the mesh
-  /// (preprocess/recut.h), the state s_ (the step's start) and the contact history `history` (of
-  /// the step's start) are carried over (state_transfer.h) and what is derived from the mesh is
-  /// built again.
-  void break_rock(const std::vector<CrackSegment>& segments, std::vector<ContactHistory> history);
+  /// The run goes on on the new mesh `m` an effect made at a step's solution (mesh_change.h), s_
+  /// already carried onto it (the step's start): what is derived from the mesh is built again and
+  /// the observers' map of the step's re-cuts composed.
+  void change_mesh(NewMesh m);
   /// mesh_ and scene_ become `mesh` and `scene` (owned), and what is derived from them is built
   /// again, with the contact history `history`. The state s_ is not touched: the caller carries
   /// it onto the new mesh (or restores it) and then applies the removed elements.
   void replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,
                     std::vector<ContactHistory> history);
 
-  /// What is derived from the mesh and the scene: built with the stepper, and again when cracks
-  /// change the mesh (the members hold references to each other and to mesh and scene, so the
-  /// whole is replaced at once).
-  struct MeshBound {
-    /// `cracks`: how many of the scene's joints (its last ones) are cracks grown in the run.
-    MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, std::size_t cracks = 0);
-    Model model;                      // derived once from mesh and scene (model.h)
-    Form form;                        // the integrators the scene calls for (form.h)
-    CoverSpace space;                 // order, unknowns of each cover and element, shapes
-    Configuration config;             // the space on the step's cover positions: frames, bases
-    EquilibriumIndicator indicator;   // lumped cover masses (derived from the mesh: no run state)
-    BlockMomentum momentum;           // each block's covers and mass shares (block_momentum.h)
-    ContactSet contacts;              // detection and the history carried between steps
-    ContactProblem problem;           // the step's rows and Newton kernels (contact_problem.h)
-    BoltSystem bolts;                 // the bolts' unknowns, groups and each step's springs
-  };
   const Mesh& mesh() const { return *mesh_; }
   const SceneDef& scene() const { return *scene_; }
 
@@ -160,13 +129,7 @@ class TimeStepper {
   std::unique_ptr<Mesh> own_mesh_;      // the cracked mesh (null: mesh_ is the file's)
   std::unique_ptr<SceneDef> own_scene_; // the scene with the crack joints (null: none yet)
   std::unique_ptr<MeshBound> b_;        // derived from mesh_ and scene_
-  Fracture fracture_;                   // cracks so far and their tips (fracture.h)
-  /// Re-cuts one attempt of a step may make before it is cut (attempt): a shorter step breaks
-  /// fewer elements at once. The uniaxial specimen of docs/fracture.md's matrix took up to 54 at
-  /// its peak; a bound far above that only stops a cascade that a shorter step would spread.
-  static constexpr int kMaxRecutsPerStep = 200;
-  /// With NMM_TRACE_PEN set: what a rejected step moved most and its deepest contacts, on stderr.
-  void trace_rejected_step(const Eigen::VectorXd& covers_d, double max_penetration) const;
+  MeshChanges changes_;                 // the effects that change the mesh: cracks (mesh_bound.h)
   std::size_t topology_ = 0;            // re-cuts so far (RunView::topology)
   // The re-cuts of the step being taken (RunView::recut): the map from the mesh now back to the
   // mesh at the last accepted step, composed over every re-cut since (a step may re-cut several
@@ -179,15 +142,13 @@ class TimeStepper {
   RunState recut_start_;
   StepControl control_;                 // Shi's step control (step_control.h)
   RunState s_;                          // everything a step carries to the next
-  bool bolts_renumbered_ = false;       // a restart installed bolts: its FACTOR is of another size
+  bool factor_fits_ = true;             // false: a restart installed effects' unknowns, its FACTOR is of another size
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   Eigen::VectorXd rhs_;
   SystemMatrix system_;
   StepTimings timings_;
-  Eigen::VectorXd rhs_base_;     // right-hand side without contacts
   std::function<bool()> stop_check_;                     // interrupt.h
-  ContactSolveStats solve_stats_;   // what the contact solves cost (contact_solve.h)
   int threads_ = 1;                 // of the factorisation (solver_threads.h)
   EquilibriumSample balance_;       // of the last accepted step (diagnostics, not state)
   bool stopped_at_ratio_ = false;

@@ -30,7 +30,7 @@ class TimeStepperProbe {
   static const Eigen::VectorXd& rhs(const TimeStepper& st) { return st.rhs_; }
   /// The last attempt's contact problem: its rows, working values and what it left outside the
   /// sparse pattern (contact_problem.h).
-  static const ContactProblem& contact_problem(const TimeStepper& st) { return st.b_->problem; }
+  static const ContactProblem& contact_problem(const TimeStepper& st) { return st.b_->contact.problem(); }
 };
 
 }  // namespace nmm::solve

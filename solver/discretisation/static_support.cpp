@@ -1,5 +1,5 @@
 // Whether a step's system is held: see static_support.h.
-#include "solver/stepping/static_support.h"
+#include "solver/discretisation/static_support.h"
 
 #include "common/number_format.h"
 

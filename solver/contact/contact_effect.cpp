@@ -1,0 +1,210 @@
+// The contacts as an effect of the step: see contact_effect.h. The step's contact problem is
+// solved by contact_solve.cpp; this file is what the step does around it — detection, the sparse
+// pattern's growth, breaking at the peak, step control's penetration, the commit.
+#include "solver/contact/contact_effect.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <iterator>
+
+#include "solver/contact/contact_tolerances.h"
+#include "solver/discretisation/static_support.h"
+
+namespace nmm::solve {
+
+namespace {
+// How many times the pairs the contacts use (this step's and the last accepted step's) the
+// sparse pattern may hold before a growth rebuilds it from those alone (ContactEffect::update_pattern).
+// Measured on the DDA code's walls (contact_bench --peer, 100 steps, one thread): at 1.1 the
+// 30 × 30 wall took 117 ms per static step and 332 dynamic against 132 and 423 with a pattern
+// that only grew. 1.0 (rebuilt from the used pairs at every growth) and 1.05 were within a few
+// per cent of it either way (1.0: 122 / 336 ms at 30 × 30, 116 dynamic at 20 × 20 against 122,
+// with 80–92 analyses per 100 static steps against 54–56), and 1.3 kept most of the growth
+// (dynamic 20 × 20: 148 ms against 152 and 122 at 1.1).
+constexpr double kPatternSlack = 1.1;
+
+// How many of a step's touching contacts (closed at its start, or within the gap tolerance of
+// touching) may lie outside the sparse pattern before it grows, in a run with inertia: at most
+// kDeferredTouching, and at most kDeferredShare of the touching contacts (ContactEffect::update_pattern). Each
+// costs the CG runs on the kept factorisation up to two iterations (its two springs: H − P of
+// rank 2); a growth that adds entries costs a symbolic analysis, 0.3–0.5 of a factorisation, at
+// the next factorisation. Open contacts outside the pattern cost nothing unless they close.
+// Measured on the DDA code's walls (contact_bench --peer, h = 2 m, 100 steps, one thread,
+// 2026-11-28, paired runs), ms per step at 10 / 20 / 30, symbolic analyses in brackets:
+//   static, growth at every new pair   4.13 (30)  20.8 (33)  50.8 (27)
+//   static, this rule                  3.67 (14)  17.9 (20)  47.2 (20)
+//   dynamic, growth at every new pair  8.45 (88)  49.9 (99)  148 (98)
+//   dynamic, this rule                 8.05 (44)  50.5 (94)  147 (95)
+// ("this rule" also with detection's lengths by sqrt, not std::hypot: 0.1 / 0.4 / 1.0 ms of
+// each static step's difference). Counting every contact outside, open or closed, against 20
+// or 40 gave fewer analyses (static 5–9, 2–6) and more CG iterations: summed over the three
+// walls, static steps 5–7 % slower than with 5 contacts closed at the start (this rule's first
+// form), dynamic ones 2 % faster and 3 % slower. The share keeps a scene of a few contacts (a
+// block on an incline) growing its pattern at once; without inertia it always grows (the
+// contacts' springs are what makes the matrix positive definite there).
+constexpr int kDeferredTouching = 5;
+constexpr double kDeferredShare = 0.01;
+}  // namespace
+
+ContactEffect::ContactEffect(const Model& model, const CoverSpace& space)
+    : model_(model), space_(space), contacts_(model), problem_(contacts_, space) {
+  problem_.set_elastic_predictor(!model.step_inertia());
+}
+
+void ContactEffect::number(const RunState& s, int /*first_unknown*/, std::size_t first_group) {
+  first_group_ = static_cast<int>(first_group);
+  // A restarted run: the groups of the checkpoint's pattern, as the run that wrote it had them.
+  if (!s.pattern_pairs.empty()) problem_.assign_groups(s.pattern_pairs, first_group_);
+}
+
+void ContactEffect::add_groups(const RunState& s, std::vector<int>& offsets, std::vector<int>& dofs) const {
+  // One coupling group per pair of elements the pattern holds: their unknowns together.
+  const int m = space_.element_dofs();
+  for (const auto& [a, b] : s.pattern_pairs) {
+    dofs.insert(dofs.end(), space_.element_unknowns(a), space_.element_unknowns(a) + m);
+    dofs.insert(dofs.end(), space_.element_unknowns(b), space_.element_unknowns(b) + m);
+    offsets.push_back(static_cast<int>(dofs.size()));
+  }
+}
+
+Outcome ContactEffect::begin_step(EffectStep& step) {
+  RunState& s = step.s;
+  contacts_.begin_step(s.loop_xy, step.search_distance + contacts_.max_dilation(),
+                       kContactTolerances.new_depth * model_.mesh().mesh_size, model_.w0());
+  problem_.build(s.loop_xy, step.context.config, model_.w0());
+  step.pattern_changed = update_pattern(s);
+  step.timings.contact_detection = contacts_.detection_stats().seconds;
+  return {};
+}
+
+void ContactEffect::add_at_rest(EffectStep& rest) {
+  // The contacts' forces at d = 0: their start forces, at their strengths of the step's start.
+  problem_.start_strengths();
+  problem_.forces_at(Eigen::VectorXd::Zero(rest.rhs.size()), rest.rhs);
+}
+
+Outcome ContactEffect::solve(EffectStep& step, bool again, StepSolution& x) {
+  // The step's convex contact problem (contact_solve.cpp): Newton iterations on a factorisation
+  // of the saved matrix without contacts, reused from step to step.
+  step.system.save();
+  rhs_base_ = step.rhs;
+  const ContactSolveStats before = stats_;
+  const SolverDef& sv = model_.scene().solver;
+  const double tau = sv.contact_tolerance;
+  // A dynamic run hands the blocks' share of the residual on to the next step (block_momentum.h).
+  const bool hand_on = sv.dynamic && sv.dynamic_factor > 0;
+  const auto solve = [&](bool warm) {
+    return solve_contact_step(step.system, problem_, rhs_base_, tau,
+                              contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, x.d, stats_,
+                              hand_on ? &x.residual : nullptr, warm);
+  };
+  Outcome outcome = solve(again);
+  // Bonds and cohesion break only at a solution of the step, and the step is solved again with
+  // them broken until no unbroken contact is beyond its peak (contact_problem.h break_at_peak). Each
+  // round breaks at least one contact, so this ends.
+  for (bool resolved = false; outcome.ok();) {
+    if (!problem_.break_at_peak().resolve) break;
+    if (!resolved) ++stats_.steps_resolved_for_breaks;
+    resolved = true;
+    ++stats_.break_resolves;
+    outcome = solve(true);  // from the solution before the breaks
+  }
+  if (outcome.ok()) problem_.settle_states();
+  x.iterated = x.iterated || stats_.newton > before.newton;
+  StepTimings& t = step.timings;
+  t.factorisations += stats_.factorisations - before.factorisations;
+  t.factorisation += stats_.factorisation_seconds - before.factorisation_seconds;
+  t.solves_count += stats_.cg_iterations - before.cg_iterations + (stats_.factorisations - before.factorisations);
+  t.solves += stats_.cg_seconds - before.cg_seconds + stats_.line_search_seconds - before.line_search_seconds;
+  step.s.iterations += static_cast<std::uint64_t>(stats_.newton - before.newton);
+  step.s.friction_unsettled += static_cast<std::uint64_t>(stats_.unsettled - before.unsettled);
+  return outcome;
+}
+
+double ContactEffect::penetration(EffectStep& step) const {
+  return contacts_.judged_penetration(step.penetration_limit);
+}
+
+void ContactEffect::rejected(const EffectStep& step, const Eigen::VectorXd& covers_d) const {
+  trace_rejected_step(step.s, covers_d);
+}
+
+void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& /*d*/) {
+  const ContactSet::Totals totals = contacts_.totals();
+  contacts_.end_step(problem_);
+  step.s.max_penetration = std::max(step.s.max_penetration, totals.max_penetration);
+  step.s.max_capped = std::max(step.s.max_capped, totals.capped);
+}
+
+void ContactEffect::continue_from(const ContactEffect& before, std::vector<ContactHistory> history) {
+  contacts_.restore(std::move(history), {});
+  contacts_.continue_from(before.contacts_);
+  stats_ = before.stats_;
+}
+
+bool ContactEffect::update_pattern(RunState& s) {
+  // Elements, then one coupling group per pair of elements with a contact (open or closed: all
+  // the step's contacts can close within it). Pairs that part keep their (zero) entries, so the
+  // pattern — and with it CHOLMOD's symbolic analysis — changes only when a contact reaches a
+  // pair the pattern lacks, and, in a run with inertia, not even then while only a few touching
+  // contacts lie outside it (kDeferredTouching): their springs are left to CG (H − P of small
+  // rank) instead of a symbolic analysis at the next factorisation. Then it grows by the new
+  // pairs, unless it already holds more than kPatternSlack times the pairs this step's and the
+  // last accepted step's contacts use: then it is built from those alone. A pattern that only
+  // grew kept every pair a contact had ever touched, and its factor's fill grew faster than its
+  // entries (a dynamic 20 × 20 wall: +5 % entries, +24 % factor nonzeros, +46 % flops over 100
+  // steps). (Pairs merely within the search distance are not added in advance: that margin
+  // doubled to tripled the factorisation's flops on brick walls, docs/contact.md "Sparse
+  // pattern".) The rule reads only what a checkpoint restores (the pattern's pairs, the accepted
+  // contacts and the step's own contacts detected from them), so a restarted run rebuilds the
+  // same patterns.
+  const int first = first_group_;
+  const auto now = contacts_.element_pairs();
+  const auto& had = s.pattern_pairs;
+  const bool holds = std::includes(had.begin(), had.end(), now.begin(), now.end());
+  // The groups in the present pattern: final if it holds every pair, else what the deferral counts.
+  if (holds || model_.step_inertia()) problem_.assign_groups(had, first);
+  if (holds) return false;
+  if (model_.step_inertia()) {
+    const double outside = static_cast<double>(problem_.outside_pattern().touching);
+    const double touching = static_cast<double>(contacts_.touching_at_start());
+    if (outside <= std::min(static_cast<double>(kDeferredTouching), kDeferredShare * touching)) return false;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  std::set_union(had.begin(), had.end(), now.begin(), now.end(), std::back_inserter(pairs));
+  const auto last = contacts_.element_pairs(true);
+  std::vector<std::pair<std::int32_t, std::int32_t>> used;
+  std::set_union(now.begin(), now.end(), last.begin(), last.end(), std::back_inserter(used));
+  if (static_cast<double>(pairs.size()) > kPatternSlack * static_cast<double>(used.size())) pairs = std::move(used);
+  s.pattern_pairs = std::move(pairs);
+  // The stepper builds the pattern again (EffectStep::pattern_changed).
+  problem_.assign_groups(s.pattern_pairs, first);
+  return true;
+}
+
+void ContactEffect::trace_rejected_step(const RunState& s, const Eigen::VectorXd& covers_d) const {
+  // NMM_TRACE_PEN: the cover a rejected step moved most (its node and support) and the contacts it
+  // found deepest (which vertex, which edge, how deep at the start and the end), on stderr: for
+  // finding why a run cuts its step (docs/fracture.md).
+  static const bool trace = std::getenv("NMM_TRACE_PEN") != nullptr;
+  if (!trace) return;
+  const Mesh& mesh = model_.mesh();
+  const double max_penetration = contacts_.totals().max_penetration;
+  Eigen::Index worst = 0;
+  const double moved = covers_d.cwiseAbs().maxCoeff(&worst);
+  const int cover = space_.cover_of_unknown(static_cast<int>(worst));
+  const std::int32_t node = mesh.cover_node[static_cast<std::size_t>(cover)];
+  int elements = 0;
+  const double support = cover_support(mesh, cover, elements);
+  std::fprintf(stderr, "moved most: cover %d (node %d at %.9g %.9g) by %.3g m; %d elements, support %.3g m2\n", cover,
+               node, mesh.node_xy[2 * node], mesh.node_xy[2 * node + 1], moved, elements, support);
+  for (const Contact& c : contacts_.contacts())
+    if (-c.gap > 0.5 * max_penetration)
+      std::fprintf(stderr, "pen: v %d (elem %d blk %d, at %.9g %.9g) edge %d (elem %d blk %d) gap0 %.3g gap %.3g state0 %d len %.3g\n",
+                   c.at.vertex, c.at.elem_a, mesh.element_block[c.at.elem_a], s.loop_xy[2 * c.at.vertex],
+                   s.loop_xy[2 * c.at.vertex + 1], c.at.edge, c.at.elem_b, mesh.element_block[c.at.elem_b], c.at.gap,
+                   c.gap, static_cast<int>(c.start_state), c.length);
+}
+
+}  // namespace nmm::solve

@@ -1,0 +1,70 @@
+// The contacts as an effect of the step (solver/discretisation/effect.h): the ContactSet
+// (contact_set.h: detection, each contact's history from one accepted step to the next) and the
+// step's ContactProblem (contact_problem.h: rows, the Newton kernels) behind the one interface
+// the stepper loops over. At the step's start it detects the contacts within the search distance
+// and grows the sparse pattern by the element pairs they couple (the rule below, update_pattern);
+// it solves the step's system its own way — the convex contact problem by Newton iterations on a
+// reused factorisation (contact_solve.cpp), solved again while bonds break at the peak; step
+// control judges its penetration; the accepted step commits its contacts' history.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/contact/contact_problem.h"
+#include "solver/contact/contact_set.h"
+#include "solver/contact/contact_solve.h"
+#include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/effect.h"
+#include "solver/discretisation/model.h"
+
+namespace nmm::solve {
+
+class ContactEffect final : public Effect {
+ public:
+  /// The contacts of `model`'s scene on `space` (both outlive it).
+  ContactEffect(const Model& model, const CoverSpace& space);
+
+  /// Contacts are detected where the scene has them and two faces can touch (a block with an
+  /// opening excavated from it and no joint has none: the plain solve).
+  bool active() const override { return contacts_.active() && model_.contacts_can_arise(); }
+  void number(const RunState& s, int first_unknown, std::size_t first_group) override;
+  std::size_t groups(const RunState& s) const override { return s.pattern_pairs.size(); }
+  void add_groups(const RunState& s, std::vector<int>& offsets, std::vector<int>& dofs) const override;
+  Outcome begin_step(EffectStep& step) override;
+  void add_at_rest(EffectStep& rest) override;
+  bool solves() const override { return true; }
+  Outcome solve(EffectStep& step, bool again, StepSolution& x) override;
+  double penetration(EffectStep& step) const override;
+  void rejected(const EffectStep& step, const Eigen::VectorXd& covers_d) const override;
+  void commit(EffectStep& step, const Eigen::VectorXd& d) override;
+
+  /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
+  /// new mesh), the events and what the solves have cost.
+  void continue_from(const ContactEffect& before, std::vector<ContactHistory> history);
+  ContactSet& set() { return contacts_; }
+  const ContactSet& set() const { return contacts_; }
+  const ContactProblem& problem() const { return problem_; }
+  /// What the contact solves of the run have cost (summary.json "contact_solve").
+  const ContactSolveStats& stats() const { return stats_; }
+
+ private:
+  /// Grows the pattern by the step's new element pairs (the rule at update_pattern in
+  /// contact_effect.cpp); true: s.pattern_pairs changed.
+  bool update_pattern(RunState& s);
+  /// With NMM_TRACE_PEN set: what a rejected step moved most and its deepest contacts, on stderr.
+  void trace_rejected_step(const RunState& s, const Eigen::VectorXd& covers_d) const;
+
+  const Model& model_;
+  const CoverSpace& space_;
+  ContactSet contacts_;         // detection and the history carried between steps
+  ContactProblem problem_;      // the step's rows and Newton kernels
+  ContactSolveStats stats_;     // what the contact solves of the run have cost
+  Eigen::VectorXd rhs_base_;    // N/m, the right-hand side without contacts
+  int first_group_ = 0;         // the first contact-pair group: after the elements' and the bolts'
+};
+
+}  // namespace nmm::solve

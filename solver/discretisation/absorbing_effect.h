@@ -1,0 +1,34 @@
+// The absorbing boundaries as an effect of the step (effect.h): their dashpots and input traction
+// are integrators of the form (absorbing_boundary.h absorbing_terms); what they keep from step to
+// step is the carried reaction — the force that balances the state's out-of-balance force on the
+// boundary's elements, taken once at the step that starts the run (or when the polylines change:
+// absorbing_reaction_due) from the host's force at rest — and the work the dashpots take out and
+// the input traction and the reaction do, summed on each accepted step (absorbing_work).
+#pragma once
+
+#include <string>
+
+#include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/effect.h"
+#include "solver/discretisation/model.h"
+
+namespace nmm::solve {
+
+class AbsorbingEffect final : public Effect {
+ public:
+  /// The absorbing boundaries of `model`'s scene on `space` (both outlive it).
+  AbsorbingEffect(const Model& model, const CoverSpace& space) : model_(model), space_(space) {}
+
+  bool active() const override { return !model_.scene().absorbing.empty(); }
+  /// A checkpoint's carried reaction where its scene had the same polylines (else it is taken
+  /// again at the first step); none kept, and no work, when the scene has no absorbing boundary.
+  bool install(RunState& s, const std::string& name) override;
+  Outcome begin_step(EffectStep& step) override;
+  void commit(EffectStep& step, const Eigen::VectorXd& d) override;
+
+ private:
+  const Model& model_;
+  const CoverSpace& space_;
+};
+
+}  // namespace nmm::solve

@@ -1,0 +1,126 @@
+// An effect with state of its own in the step (docs/code-layout.md "Effects"): contacts, bolts,
+// absorbing boundaries — each behind this one interface, so the stepper (time_stepper.cpp)
+// loops over the effects a scene calls for (solver/stepping/mesh_bound.h builds the list) and names none.
+//
+// Effects without state of their own (elasticity, gravity, loads, supports, tractions, water
+// pressure, in-situ traction) are integrators of the step's form instead (form.h,
+// integrators.h): they only add terms to K and F. An Effect is what does more than that in a
+// step — keeps unknowns of its own, solves the system its own way, judges the solution (a bolt
+// that yields: solve again), rejects a step (a contact that penetrated: cut it), commits on the
+// accepted state — as Box2D v3's solver stages share one step context (b2StepContext): here
+// EffectStep.
+//
+// A step calls the effects in the list's order at each stage:
+//   number        unknowns of its own after the covers' (and earlier effects'), its coupling
+//                 groups after the elements' (and earlier effects')
+//   begin_step    linearise at the step's start, detect; may change the pattern
+//   assemble      its terms into K and F (every solve round)
+//   solve         at most one effect solves the system its own way (the contacts' problem)
+//   judge         at the solution: true → the step is solved again from there
+//   penetration   how deep the solved step penetrates: step control rejects it (cuts Δt) beyond
+//                 its limit (step_control.h)
+//   commit        the accepted step into the state (history is committed here, never on an iterate)
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "common/outcome.h"
+#include "solver/discretisation/run_state.h"
+#include "solver/discretisation/step_context.h"
+#include "solver/discretisation/system_matrix.h"
+#include "solver/discretisation/step_timings.h"
+
+namespace nmm::solve {
+
+/// What the stepper offers the effects beyond a step's context.
+class StepHost {
+ public:
+  /// N/m per unknown: the out-of-balance force of the state the step starts from with d = 0 and no
+  /// inertia — the form at the state's own time and every effect's terms at rest (add_at_rest).
+  /// Overwrites the step's system and right-hand side (it is taken before the step's assembly).
+  virtual const Eigen::VectorXd& force_at_rest() = 0;
+
+ protected:
+  ~StepHost() = default;
+};
+
+/// One stage of one step attempt, as the effects see it.
+struct EffectStep {
+  const StepContext& context;  ///< Δt, the step's end, frames, the state it starts from (read)
+  RunState& s;                 ///< the state the step starts from: an effect writes its own fields
+  SystemMatrix& system;        ///< the step's system (pattern, matrix, factorisation)
+  Eigen::VectorXd& rhs;        ///< N/m per unknown, the step's right-hand side
+  double search_distance;      ///< m, how far apart two faces may be and still touch within the step (step_control.h)
+  double penetration_limit;    ///< m, the penetration a step may reach before step control cuts it
+  StepTimings& timings;        ///< s, what the step's parts cost
+  StepHost& host;
+  bool pattern_changed = false;  ///< set by begin_step: the coupling groups changed, the stepper builds the pattern again
+};
+
+/// What a solve of the step gives back (Effect::solve).
+struct StepSolution {
+  Eigen::VectorXd d;         ///< the increment of every unknown
+  Eigen::VectorXd residual;  ///< N/m, the out-of-balance force handed on (block_momentum.h)
+  bool iterated = false;     ///< the solve took an iterative (Newton) direction
+};
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  Effect() = default;
+  Effect(const Effect&) = delete;
+  Effect& operator=(const Effect&) = delete;
+
+  /// Takes part in the steps of this run (false: the scene does not call for it).
+  virtual bool active() const = 0;
+
+  // ---- unknowns and coupling groups ----------------------------------------------------------
+  /// State installed or carried on: called when the run starts and after a restart, with the
+  /// state read from the checkpoint (`name` names it in an InputError). False: what it carried no
+  /// longer fits the checkpoint's factorisation (a bolt installed now adds unknowns).
+  virtual bool install(RunState& /*s*/, const std::string& /*name*/) { return true; }
+  /// Numbers its unknowns from first_unknown and its coupling groups from first_group.
+  virtual void number(const RunState& /*s*/, int /*first_unknown*/, std::size_t /*first_group*/) {}
+  virtual int unknowns() const { return 0; }
+  /// How many coupling groups it adds to the pattern (after number()).
+  virtual std::size_t groups(const RunState& /*s*/) const { return 0; }
+  /// Appends its coupling groups' unknowns to a pattern's offsets and dofs (system_matrix.h).
+  virtual void add_groups(const RunState& /*s*/, std::vector<int>& /*offsets*/, std::vector<int>& /*dofs*/) const {}
+  /// "the slip of bolt 2 at its point 5" for an unknown of its own, "" for another.
+  virtual std::string describe_unknown(int /*unknown*/) const { return {}; }
+
+  // ---- a step -------------------------------------------------------------------------------
+  /// At the start of an attempt, before assembly; a stop ends the attempt.
+  virtual Outcome begin_step(EffectStep& /*step*/) { return {}; }
+  /// Its terms of the state at rest (StepHost::force_at_rest): d = 0, no inertia.
+  virtual void add_at_rest(EffectStep& /*rest*/) {}
+  /// Its terms into step.system and step.rhs, in every solve round.
+  virtual void assemble(EffectStep& /*step*/) {}
+  /// True: it solves the step's system its own way (solve), keeping a factorisation from step
+  /// to step (a checkpoint's FACTOR section) and changing the pattern as it goes; at most one
+  /// effect of a run does.
+  virtual bool solves() const { return false; }
+  /// Solves the assembled system; `again`: a further round of the same step (from x.d).
+  virtual Outcome solve(EffectStep& /*step*/, bool /*again*/, StepSolution& /*x*/) { return {}; }
+  /// At a solution d of the step: true → what it assembles changed, solve the step again.
+  virtual bool judge(const Eigen::VectorXd& /*d*/) { return false; }
+  /// Solves of one step its judging may ask for; past them the step stops with not_settled().
+  virtual int max_solves() const { return 1; }
+  /// Why the step stops when judge() still asks for another solve after max_solves() solves, at
+  /// time t (s).
+  virtual Outcome not_settled(double /*t*/) const { return {}; }
+  /// m, how deep the solved step penetrates as step control judges it (the contacts'), or < 0:
+  /// this effect does not judge the step. Step control (step_control.h rejection) runs when an
+  /// effect judges; it also bounds the covers' largest move.
+  virtual double penetration(EffectStep& /*step*/) const { return -1; }
+  /// The solved step was rejected: covers_d its covers' increment (for a trace).
+  virtual void rejected(const EffectStep& /*step*/, const Eigen::VectorXd& /*covers_d*/) const {}
+  /// The accepted step into the state step.s (before the covers move: state_update.h).
+  virtual void commit(EffectStep& /*step*/, const Eigen::VectorXd& /*d*/) {}
+};
+
+}  // namespace nmm::solve

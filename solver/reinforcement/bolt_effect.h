@@ -1,0 +1,49 @@
+// The bolts as an effect of the step (effect.h): a BoltSystem (bolt_system.h) behind the one
+// interface the stepper loops over — the bolts a run installs or carries on (bolt_layout.h),
+// their slips as unknowns of their own after the covers', their coupling groups after the
+// elements', each step's springs linearised at its start, judged at its solution (solve again
+// while a spring switches, up to BoltSystem::kMaxRounds solves) and committed on the accepted
+// step into RunState::bolts.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "solver/discretisation/effect.h"
+#include "solver/discretisation/model.h"
+#include "solver/reinforcement/bolt_system.h"
+
+namespace nmm::solve {
+
+class BoltEffect final : public Effect {
+ public:
+  /// The bolts of `model`'s scene on `space` (both outlive it); `scene_name` names the scene in
+  /// an error about a bolt's points.
+  BoltEffect(const Model& model, const CoverSpace& space, const std::string& scene_name)
+      : model_(model), scene_name_(scene_name), bolts_(model, space) {}
+
+  bool active() const override { return count_ > 0; }
+  bool install(RunState& s, const std::string& name) override;
+  void number(const RunState& s, int first_unknown, std::size_t first_group) override;
+  int unknowns() const override { return bolts_.unknowns(); }
+  std::size_t groups(const RunState& /*s*/) const override { return bolts_.groups(); }
+  void add_groups(const RunState& s, std::vector<int>& offsets, std::vector<int>& dofs) const override;
+  std::string describe_unknown(int unknown) const override { return bolts_.describe_unknown(unknown); }
+  Outcome begin_step(EffectStep& step) override;
+  void add_at_rest(EffectStep& rest) override;
+  void assemble(EffectStep& step) override;
+  bool judge(const Eigen::VectorXd& d) override { return bolts_.judge(d); }
+  int max_solves() const override { return BoltSystem::kMaxRounds; }
+  Outcome not_settled(double t) const override;
+  void commit(EffectStep& step, const Eigen::VectorXd& d) override;
+
+ private:
+  const Model& model_;
+  std::string scene_name_;
+  BoltSystem bolts_;
+  std::size_t first_group_ = 0;  // the bolts' first coupling group: after the elements'
+  std::size_t count_ = 0;        // bolts of the run (0: none installed, nothing to do)
+};
+
+}  // namespace nmm::solve

@@ -1,0 +1,75 @@
+// Intact rock that breaks, as a change of the run's mesh: see fracture_effect.h.
+#include "solver/stepping/fracture_effect.h"
+
+#include <algorithm>
+
+#include "common/error.h"
+#include "common/mesh_file.h"
+#include "common/stopwatch.h"
+#include "solver/fracture/recut_check.h"
+#include "solver/fracture/state_transfer.h"
+
+namespace nmm::solve {
+
+namespace {
+/// The run's scene with the crack segments as joints of its crack set (appended in order).
+std::unique_ptr<SceneDef> cracked_scene(const SceneDef& scene, const std::vector<CrackSegment>& segments) {
+  auto cracked = std::make_unique<SceneDef>(scene);
+  for (const CrackSegment& c : segments) cracked->joints.push_back({cracked->fracture.crack_set, {c.a, c.b}});
+  return cracked;
+}
+}  // namespace
+
+Outcome FractureEffect::cascade(double t) const {
+  return Outcome::stop(StopCode::fracture_cascade,
+                       "cracks were still growing after " + std::to_string(max_per_step()) +
+                           " re-cuts of the mesh within one step",
+                       t);
+}
+
+bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name,
+                            const RunState& solved, const std::vector<std::uint8_t>& removed, int dofs_per_cover,
+                            RunState& start, std::vector<ContactHistory> history, NewMesh& out,
+                            StepTimings& timings) {
+  Stopwatch watch;
+  const std::vector<CrackSegment> segments = fracture_.find(mesh, scene, solved, removed);
+  if (segments.empty()) {
+    timings.fracture += watch.seconds();
+    return false;
+  }
+  out.scene = cracked_scene(scene, segments);
+  const std::size_t first = scene.joints.size();
+  out.mesh = std::make_unique<Mesh>(pre::recut(mesh, *out.scene, first, scene_name, out.map));
+  // The check mode (docs/fracture.md "Re-cutting"): a re-cut that is not the full cut is a
+  // defect of the re-cut, not of the run's physics: it ends the run with the difference.
+  if (recut_check_enabled())
+    if (const std::string diff = recut_difference(mesh, *out.mesh, *out.scene, scene_name); !diff.empty())
+      throw RunError("NMM_CHECK_RECUT: at t = " + std::to_string(start.time) + " s the re-cut of " +
+                     std::to_string(segments.size()) + " crack segment(s) is not the full cut: " + diff);
+  transfer_state(mesh, *out.mesh, out.map, dofs_per_cover, start);
+  out.history = transfer_history(history, mesh, *out.mesh, out.map, first);
+  fracture_.cut(segments, *out.mesh, out.map);
+  timings.fracture += watch.seconds();
+  return true;
+}
+
+bool FractureEffect::restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene,
+                             const std::string& path, NewMesh& out) {
+  // A cracked run's checkpoint: its mesh and cracks come with the state.
+  const auto section = [&](const char* tag) {
+    const auto it = std::find_if(sections.begin(), sections.end(), [&](const auto& s) { return s.first == tag; });
+    return it == sections.end() ? nullptr : &it->second;
+  };
+  const std::string* mesh_bytes = section("MESH");
+  if (!mesh_bytes) return false;
+  if (!scene.fracture.present || !section("FRACTURE"))
+    throw InputError(path, "section MESH", "a cracked run's checkpoint: the scene needs its fracture block");
+  out.mesh = std::make_unique<Mesh>(mesh_from_bytes(*mesh_bytes, path + " section MESH"));
+  if (out.mesh->scene_sha256 != mesh.scene_sha256)
+    throw InputError(path, "section MESH", "the cracked mesh of another scene");
+  fracture_.load(*section("FRACTURE"), *out.mesh, path);
+  out.scene = cracked_scene(scene, fracture_.segments());
+  return true;
+}
+
+}  // namespace nmm::solve

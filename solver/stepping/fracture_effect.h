@@ -1,0 +1,42 @@
+// Intact rock that breaks, as a change of the run's mesh (mesh_change.h; docs/fracture.md): at
+// the solution of a step the rock breaks where its stress exceeds its strength (Fracture::find,
+// solver/fracture/fracture.h), the new crack segments are cut into the mesh as joints of the
+// scene's crack set (preprocess/recut.h, the one cutting code), and the state and contact history
+// of the step's start are carried onto the cracked mesh (solver/fracture/state_transfer.h). With
+// NMM_CHECK_RECUT set every re-cut is compared with a full cut (recut_check.h).
+#pragma once
+
+#include "solver/fracture/fracture.h"
+#include "solver/stepping/mesh_change.h"
+
+namespace nmm::solve {
+
+class FractureEffect final : public MeshChange {
+ public:
+  explicit FractureEffect(const SceneDef& scene) : fracture_(scene) {}
+
+  bool active() const override { return fracture_.active(); }
+  std::size_t joints_added() const override { return fracture_.segments().size(); }
+  const std::vector<std::uint8_t>& removed() const override { return fracture_.debris(); }
+  /// The uniaxial specimen of docs/fracture.md's matrix took up to 54 re-cuts at its peak; a
+  /// bound far above that only stops a cascade that a shorter step would spread.
+  int max_per_step() const override { return 200; }
+  Outcome cascade(double t) const override;
+  bool change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, const RunState& solved,
+              const std::vector<std::uint8_t>& removed, int dofs_per_cover, RunState& start,
+              std::vector<ContactHistory> history, NewMesh& out, StepTimings& timings) override;
+  void resolved(double seconds, StepTimings& timings) override {
+    fracture_.count_resolve();
+    timings.fracture += seconds;
+  }
+  bool restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene, const std::string& path,
+               NewMesh& out) override;
+
+  /// The cracks so far and their tips (RunView::fracture).
+  const Fracture& fracture() const { return fracture_; }
+
+ private:
+  Fracture fracture_;
+};
+
+}  // namespace nmm::solve

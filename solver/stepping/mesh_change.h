@@ -1,0 +1,63 @@
+// An effect that changes the mesh a run steps on (docs/code-layout.md "Effects"): at the solution
+// of a step it may re-cut the mesh — cracks that grow through intact rock (fracture_effect.h) are
+// the first of its kind — and the step is then taken again from its start on the new mesh, with
+// the state and the contact history of the step's start carried onto it, until the step's
+// solution changes nothing more. The stepper (time_stepper.cpp) builds again what is derived from
+// the mesh (mesh_bound.h) and keeps the map of the re-cuts for the observers (run_view.h); it
+// names no such effect.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/checkpoint_file.h"
+#include "common/mesh.h"
+#include "common/outcome.h"
+#include "common/scene.h"
+#include "preprocess/recut.h"
+#include "solver/contact/contact_history.h"
+#include "solver/discretisation/run_state.h"
+#include "solver/discretisation/step_timings.h"
+
+namespace nmm::solve {
+
+/// A new mesh and scene for the run, with what is carried onto it.
+struct NewMesh {
+  std::unique_ptr<Mesh> mesh;
+  std::unique_ptr<SceneDef> scene;            ///< the run's scene with what made the mesh (crack joints)
+  pre::RecutMap map;                          ///< from the new mesh back to the one it replaces
+  std::vector<ContactHistory> history;        ///< the contact history, carried onto the new mesh
+};
+
+class MeshChange {
+ public:
+  virtual ~MeshChange() = default;
+  /// Takes part in the run (false: the scene does not call for it).
+  virtual bool active() const = 0;
+  /// How many of the scene's joints (its last ones) it added (MeshBound: cracks tie small covers).
+  virtual std::size_t joints_added() const = 0;
+  /// [me] 1: elements it took out of the model (debris), or empty.
+  virtual const std::vector<std::uint8_t>& removed() const = 0;
+  /// Re-cuts a step may make before the step is cut (a cascade that a shorter step spreads).
+  virtual int max_per_step() const = 0;
+  /// Why the step is cut after max_per_step() re-cuts, at time t (s).
+  virtual Outcome cascade(double t) const = 0;
+  /// At the solution `solved` of a step on mesh and scene (removed: [me] 1 out of the model):
+  /// false, nothing changes; true, `out` is the new mesh and `start` (the state the step started
+  /// from) and `out.history` (its contact history, given in `history`) are carried onto it.
+  virtual bool change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, const RunState& solved,
+                      const std::vector<std::uint8_t>& removed, int dofs_per_cover, RunState& start,
+                      std::vector<ContactHistory> history, NewMesh& out, StepTimings& timings) = 0;
+  /// A step was taken again after a change, which took `seconds` (summary.json's count and
+  /// timings).
+  virtual void resolved(double seconds, StepTimings& timings) = 0;
+  /// From a checkpoint's sections (`path` names it in errors): true, `out` is the changed mesh it
+  /// was written on (its history empty: the checkpoint's follows).
+  virtual bool restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene,
+                       const std::string& path, NewMesh& out) = 0;
+};
+
+}  // namespace nmm::solve
