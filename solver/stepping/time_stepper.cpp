@@ -389,29 +389,25 @@ Outcome TimeStepper::attempt(double dt) {
   // is bounded: past kMaxRecutsPerStep re-cuts the step is cut (a shorter step loads the rock
   // less, so fewer elements break at its solution) and tried again on the cracked mesh; the run
   // goes on.
+  // The step's start is kept in buffers that live from step to step (step_start.h): a quiet
+  // step copies it into memory already there and allocates nothing.
   for (int recuts = 0;; ++recuts) {
     if (recuts >= kMaxRecutsPerStep)
       return stop(StopCode::fracture_cascade, "cracks were still growing after " + std::to_string(kMaxRecutsPerStep) +
                                                   " re-cuts of the mesh within one step");
-    RunState start = s_;
-    std::vector<ContactHistory> history = b_->contacts.history();
+    Stopwatch watch;
+    step_start_.keep(s_, b_->contacts.history());
+    timings_.fracture += watch.seconds();
     const Outcome o = attempt_once(dt);
     if (!o.ok()) return o;
-    Stopwatch watch;
+    watch.restart();
     std::vector<CrackSegment> segments = fracture_.find(mesh(), scene(), s_, removed_elem_);
     if (segments.empty()) {
       timings_.fracture += watch.seconds();
       return o;
     }
-    // The diagnostics count both solves.
-    start.iterations = s_.iterations;
-    start.cuts = s_.cuts;
-    start.friction_unsettled = s_.friction_unsettled;
-    start.max_capped = s_.max_capped;
-    start.max_penetration = s_.max_penetration;
-    start.max_step_displacement = s_.max_step_displacement;
-    s_ = std::move(start);
-    break_rock(segments, std::move(history));
+    step_start_.restore(s_);  // with the diagnostics of this solve: they count both
+    break_rock(segments, step_start_.take_history());
     fracture_.count_resolve();
     timings_.fracture += watch.seconds();
   }

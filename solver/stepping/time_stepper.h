@@ -31,6 +31,7 @@
 #include "solver/stepping/step_control.h"
 #include "solver/stepping/step_timings.h"
 #include "solver/fracture/fracture.h"
+#include "solver/fracture/step_start.h"
 #include "preprocess/recut.h"
 #include "solver/discretisation/system_matrix.h"
 #include "solver/reinforcement/bolt_system.h"
@@ -161,6 +162,7 @@ class TimeStepper {
   std::unique_ptr<SceneDef> own_scene_; // the scene with the crack joints (null: none yet)
   std::unique_ptr<MeshBound> b_;        // derived from mesh_ and scene_
   Fracture fracture_;                   // cracks so far and their tips (fracture.h)
+  StepStart step_start_;                // a cracking run's step start, to take the step again (step_start.h)
   /// Re-cuts one attempt of a step may make before it is cut (attempt): a shorter step breaks
   /// fewer elements at once. The uniaxial specimen of docs/fracture.md's matrix took up to 54 at
   /// its peak; a bound far above that only stops a cascade that a shorter step would spread.
