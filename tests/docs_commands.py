@@ -95,6 +95,8 @@ SHORTEN = [
      "settings"),
     ("performance.md", r"(effects_bench) --csv ", r"\1 --quick --csv ",
      "the full benchmark takes about 45 s; --quick runs every effect once"),
+    ("performance.md", r"(fracture_quiet_bench) --csv ", r"\1 --elements 2000 --rounds 2 --steps 2 --csv ",
+     "the 10^5-element bars take about 2 min; 2,000 elements run both pairs and every check"),
     ("performance.md", r"(factor_update_bench) --sizes 10,20,30 --mesh 2 --steps 30 --from 10 ",
      r"\1 --sizes 10 --mesh 2 --steps 4 --from 2 ",
      "the 30 x 30 walls take minutes; the 10 x 10 wall's steps 3-4 run every method once"),

@@ -12,6 +12,11 @@
 //   - the step-path slope of data/step_path_slope.json slides once its rock bridges break, and
 //     stands when they are ten times stronger;
 //   - a scene without a fracture block does not crack, however far past the strength it is loaded;
+//   - a run that can crack computes, while nothing cracks, bit for bit what the intact run does
+//     (the step's start kept for taking it again and the strength checks touch no figure), with
+//     and without crack tips to look ahead of; the strength screen passes every stress at or
+//     beyond the strength on to the full check, and settles those a little inside it; a step
+//     taken again starts from its start exactly;
 //   - energy balances across cracking (energy.h): the tension bar's crack releases the strain
 //     energy σt²·A·L/(2E) it held, booked in energy.csv's fracture column (within 2 %), the moving
 //     support's load_work is its reaction times its travel (within 0.5 %), and the residual stays
@@ -24,6 +29,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,7 +40,9 @@
 #include "common/whole_file.h"
 #include "preprocess/cover_cutter.h"
 #include "preprocess/recut.h"
+#include "solver/fracture/rock_strength.h"
 #include "solver/fracture/state_transfer.h"
+#include "solver/fracture/step_start.h"
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
 #include "solver/output/solve_run.h"
@@ -47,6 +55,7 @@ namespace nmm {
 namespace {
 
 using solve::CrackMode;
+using solve::ContactHistory;
 using solve::CrackSegment;
 using solve::RunState;
 using solve::TimeStepper;
@@ -283,6 +292,123 @@ TEST(Fracture, NothingBreaksWithoutAFractureBlock) {
   EXPECT_TRUE(r.segments.empty());
   EXPECT_NEAR(r.last, 1e10 * 1.8e-3 / 2, 0.01 * 9e6);
   EXPECT_EQ(st.view().mesh.element_count(), m.element_count());
+}
+
+// While nothing cracks, a run that can crack is the intact run: the same state bit for bit after
+// every step (state hashes equal), in a bar without joints (no tips, no contacts) and in one with
+// an edge notch (a joint whose tip the rule looks ahead of after every step, contacts on its
+// faces: the contact history is kept with the state). σt 1 MPa; the bar's nominal stress reaches
+// 0.2 MPa by the end, the notch tip's elements stay below σt (checked: no segment).
+TEST(Fracture, AQuietStepIsTheIntactStepBitForBit) {
+  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  for (const bool notch : {false, true}) {
+    nlohmann::json can = specimen(4, 1, 0.125, 0, 1e-3, strength), intact = specimen(4, 1, 0.125, 0, 1e-3, strength, false);
+    if (notch)
+      for (nlohmann::json* d : {&can, &intact}) (*d)["joints"] = {{{"set", "crack"}, {"points", {{2, 1}, {2, 0.8}}}}};
+    const SceneDef sc = scene_from_json(can, "bar"), si = scene_from_json(intact, "bar");
+    const Mesh mc = pre::build_mesh(sc, "bar"), mi = pre::build_mesh(si, "bar");
+    TimeStepper a(mc, sc, "bar"), b(mi, si, "bar");
+    ASSERT_TRUE(a.view().fracture.active());
+    ASSERT_FALSE(b.view().fracture.active());
+    for (int k = 0; k < 80; ++k) {
+      ASSERT_PRED1(test::ended_ok, a.attempt(1e-3));
+      ASSERT_PRED1(test::ended_ok, b.attempt(1e-3));
+      ASSERT_EQ(solve::state_hash(a.view()), solve::state_hash(b.view())) << "notch " << notch << ", step " << k + 1;
+    }
+    EXPECT_TRUE(a.view().fracture.segments().empty()) << "notch " << notch << ": not a quiet run";
+    EXPECT_NEAR(mean_stress(a, 0), 1e10 * 80e-6 / 4, 0.05 * 2e5) << "notch " << notch;
+    EXPECT_EQ(b.view().contacts.active(), notch);
+  }
+}
+
+// The screen before the full strength check (rock_strength.h) may only settle stresses whose
+// ratio is below 1: on stresses scaled onto the strength surface (bisected to the last double
+// inside and the first at or beyond), in tension, compression and shear, for strong and weak
+// friction, every stress at or beyond 1 goes on to rock_failure, and every stress 1e-6 inside is
+// settled by the screen (a screen settling nothing would be safe and useless; one with a wrong
+// Nφ or UCS settles stresses beyond the surface and fails here).
+TEST(Fracture, TheStrengthScreenPassesOnEveryStressAtOrBeyondTheStrength) {
+  std::mt19937_64 rng(49);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int beyond = 0, inside = 0;
+  for (const double phi : {0.0, 30.0, 55.0})
+    for (const double tensile : {1e4, 5e6, 1e9}) {
+      StrengthDef st;
+      st.present = true;
+      st.tensile = tensile;
+      st.cohesion = 12e6;
+      st.friction_deg = phi;
+      const solve::StrengthScreen screen(st);
+      for (int i = 0; i < 2000; ++i) {
+        const double sxx = unit(rng), syy = unit(rng), sxy = unit(rng);
+        auto ratio = [&](double l) { return solve::rock_failure(st, l * sxx, l * syy, l * sxy).ratio; };
+        // The ratio is homogeneous of degree 1 in the stress: a direction whose ratio is not
+        // positive never reaches the strength (compression that Mohr–Coulomb holds at any size).
+        if (!(ratio(1) > 0)) continue;
+        double lo = 0, hi = 2 / ratio(1);
+        for (int k = 0; k < 200 && std::nextafter(lo, hi) < hi; ++k) {
+          const double mid = 0.5 * (lo + hi);
+          (ratio(mid) < 1 ? lo : hi) = mid;
+        }
+        ASSERT_GE(ratio(hi), 1);
+        ASSERT_LT(ratio(lo), 1);
+        for (const double l : {hi, hi * (1 + 1e-15), 2 * hi}) {
+          ASSERT_FALSE(screen.surely_holds(l * sxx, l * syy, l * sxy))
+              << "φ " << phi << ", σt " << tensile << ": ratio " << ratio(l) << " settled by the screen";
+          ++beyond;
+        }
+        EXPECT_TRUE(screen.surely_holds(lo * (1 - 1e-6) * sxx, lo * (1 - 1e-6) * syy, lo * (1 - 1e-6) * sxy))
+            << "φ " << phi << ", σt " << tensile << ": ratio " << ratio(lo * (1 - 1e-6)) << " not settled";
+        ++inside;
+      }
+    }
+  EXPECT_FALSE(solve::StrengthScreen(StrengthDef{}).surely_holds(0, 0, 0));  // no strength: never settled
+  StrengthDef st{};
+  st.present = true;
+  st.tensile = 5e6;
+  st.cohesion = 12e6;
+  st.friction_deg = 35;
+  EXPECT_FALSE(solve::StrengthScreen(st).surely_holds(std::nan(""), 0, 0));
+  EXPECT_FALSE(solve::StrengthScreen(st).surely_holds(1e308, -1e308, 1e308));
+  std::printf("%d stresses at or beyond the strength passed on, %d just inside settled\n", beyond, inside);
+}
+
+// A step taken again starts from its start exactly: the state and contact history kept before
+// the step come back bit for bit (state hash), with the diagnostics of the solve that broke the
+// rock; and a second step keeps its own start in the same buffers.
+TEST(Fracture, TakingAStepAgainRestoresItsStartExactly) {
+  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  const SceneDef s = scene_from_json(specimen(4, 1, 0.25, 0, 1e-3, strength), "bar");
+  const Mesh m = pre::build_mesh(s, "bar");
+  TimeStepper st(m, s, "bar");
+  for (int k = 0; k < 3; ++k) ASSERT_PRED1(test::ended_ok, st.attempt(1e-3));
+  solve::StepStart start;
+  for (int round = 0; round < 2; ++round) {
+    RunState s0 = st.view().state;
+    std::vector<ContactHistory> h0(2);
+    h0[1].vertex = 7 + round, h0[1].shear_el = 1e-5 * (round + 1);
+    const std::string hash0 = solve::state_hash(s0, "", m);
+    start.keep(s0, h0);
+    // The step's solution: moved on, with more of everything, and its diagnostics.
+    RunState s1 = s0;
+    for (double& u : s1.cover_u) u += 1e-4;
+    s1.stress.push_back(1);
+    s1.time += 1e-3;
+    ++s1.step;
+    s1.iterations = s0.iterations + 5;
+    s1.cuts = s0.cuts + 2;
+    s1.max_penetration = 3e-4;
+    ASSERT_NE(solve::state_hash(RunState(s1), "", m), hash0);
+    start.restore(s1);
+    EXPECT_EQ(solve::state_hash(s1, "", m), hash0) << "round " << round;
+    EXPECT_EQ(s1.iterations, s0.iterations + 5);
+    EXPECT_EQ(s1.cuts, s0.cuts + 2);
+    EXPECT_EQ(s1.max_penetration, 3e-4);
+    const std::vector<ContactHistory>& h1 = start.history();
+    ASSERT_EQ(h1.size(), 2u);
+    EXPECT_EQ(h1[1].vertex, 7 + round);
+    EXPECT_EQ(h1[1].shear_el, 1e-5 * (round + 1));
+  }
 }
 
 namespace {

@@ -12,7 +12,7 @@ struct StepTimings {
   double solves = 0;
   double geometry_update = 0;  ///< stresses, loop vertices, covers and points moved after a solve
   double output = 0;
-  double fracture = 0;         ///< strength checks, crack paths, re-cutting and carrying the state over
+  double fracture = 0;         ///< keeping each step's start, strength checks, crack paths, re-cutting and carrying the state over
   long factorisations = 0;     ///< numeric factorisations of the system matrix
   long solves_count = 0;       ///< triangular solve pairs (direct solves and preconditioner applications)
 };

@@ -13,59 +13,6 @@ namespace nmm::solve {
 
 namespace {
 
-// Elements by cell of a uniform grid of side h over their loops' bounding boxes: where a point is.
-class ElementGrid {
- public:
-  explicit ElementGrid(const Mesh& mesh) : mesh_(mesh), h_(mesh.mesh_size) {
-    x0_ = y0_ = std::numeric_limits<double>::infinity();
-    double x1 = -x0_, y1 = -y0_;
-    for (std::size_t v = 0; v < mesh.loop_vertex_count(); ++v) {
-      x0_ = std::min(x0_, mesh.loop_xy[2 * v]);
-      y0_ = std::min(y0_, mesh.loop_xy[2 * v + 1]);
-      x1 = std::max(x1, mesh.loop_xy[2 * v]);
-      y1 = std::max(y1, mesh.loop_xy[2 * v + 1]);
-    }
-    nx_ = static_cast<std::int64_t>((x1 - x0_) / h_) + 1;
-    ny_ = static_cast<std::int64_t>((y1 - y0_) / h_) + 1;
-    std::vector<std::pair<std::int64_t, std::int32_t>> cells;
-    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-      double bx0 = std::numeric_limits<double>::infinity(), by0 = bx0, bx1 = -bx0, by1 = -bx0;
-      for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
-        bx0 = std::min(bx0, mesh.loop_xy[2 * v]);
-        by0 = std::min(by0, mesh.loop_xy[2 * v + 1]);
-        bx1 = std::max(bx1, mesh.loop_xy[2 * v]);
-        by1 = std::max(by1, mesh.loop_xy[2 * v + 1]);
-      }
-      for (std::int64_t j = cell_y(by0); j <= cell_y(by1); ++j)
-        for (std::int64_t i = cell_x(bx0); i <= cell_x(bx1); ++i)
-          cells.emplace_back(j * nx_ + i, static_cast<std::int32_t>(e));
-    }
-    std::sort(cells.begin(), cells.end());
-    offset_.assign(static_cast<std::size_t>(nx_ * ny_) + 1, 0);
-    for (const auto& c : cells) ++offset_[static_cast<std::size_t>(c.first) + 1];
-    for (std::size_t k = 1; k < offset_.size(); ++k) offset_[k] += offset_[k - 1];
-    element_.reserve(cells.size());
-    for (const auto& c : cells) element_.push_back(c.second);
-  }
-  /// The element holding p, or -1.
-  std::int32_t at(const Vec2& p) const {
-    const std::int64_t i = cell_x(p.x), j = cell_y(p.y);
-    if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return -1;
-    const std::size_t c = static_cast<std::size_t>(j * nx_ + i);
-    const std::vector<std::int32_t> candidates(element_.begin() + offset_[c], element_.begin() + offset_[c + 1]);
-    return element_holding(mesh_, candidates, p);
-  }
-
- private:
-  std::int64_t cell_x(double x) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x - x0_) / h_)), -1, nx_); }
-  std::int64_t cell_y(double y) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((y - y0_) / h_)), -1, ny_); }
-  const Mesh& mesh_;
-  double h_, x0_ = 0, y0_ = 0;
-  std::int64_t nx_ = 0, ny_ = 0;
-  std::vector<std::size_t> offset_;
-  std::vector<std::int32_t> element_;
-};
-
 Vec2 plus(const Vec2& a, double t, const Vec2& d) { return {a.x + t * d.x, a.y + t * d.y}; }
 double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 
@@ -155,22 +102,44 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   const std::size_t n = mesh.element_count();
   if (armed_.size() != n) armed_.assign(n, 1);
   // Each element's strength check on the accepted state; an element back inside its strength is
-  // armed again.
-  std::vector<RockFailure> failure(n);
-  std::vector<std::uint8_t> can(n, 0);
+  // armed again. The screen settles the elements surely inside their strength; rock_failure
+  // checks the others (rock_strength.h: the same decisions as checking all of them).
+  std::vector<StrengthScreen> screen(scene.bodies.size());
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const StrengthDef& st = scene.materials[scene.bodies[b].material].strength;
+    if (st.present) screen[b] = StrengthScreen(st);
+  }
+  ratio_.resize(n);
+  failure_.resize(n);
+  over_.clear();
   for (std::size_t e = 0; e < n; ++e) {
-    const StrengthDef& st = scene.materials[scene.bodies[mesh.element_body[e]].material].strength;
-    if (!st.present || (!removed.empty() && removed[e])) continue;
-    can[e] = 1;
-    failure[e] = rock_failure(st, s.stress[3 * e], s.stress[3 * e + 1], s.stress[3 * e + 2]);
-    if (failure[e].ratio < 1) armed_[e] = 1;
+    const std::int32_t body = mesh.element_body[e];
+    const StrengthDef& st = scene.materials[scene.bodies[body].material].strength;
+    if (!st.present || (!removed.empty() && removed[e])) {
+      ratio_[e] = -std::numeric_limits<double>::infinity();  // cannot break
+      continue;
+    }
+    const double sxx = s.stress[3 * e], syy = s.stress[3 * e + 1], sxy = s.stress[3 * e + 2];
+    if (screen[static_cast<std::size_t>(body)].surely_holds(sxx, syy, sxy)) {
+      ratio_[e] = 0;  // below 1: all the rule asks of an element inside its strength
+      armed_[e] = 1;
+      continue;
+    }
+    failure_[e] = rock_failure(st, sxx, syy, sxy);
+    ratio_[e] = failure_[e].ratio;
+    if (ratio_[e] < 1) armed_[e] = 1;
+    if (ratio_[e] >= 1) over_.push_back(static_cast<std::int32_t>(e));
   }
   crossed_.assign(n, 0);
   const double h = mesh.mesh_size, tol = 1e-9 * h;
-  const ElementGrid grid(mesh);
+  // The mesh's element grid, built at the first look ahead of a tip on this mesh.
+  auto grid = [&]() -> const ElementGrid& {
+    if (!grid_ || !grid_->of(mesh)) grid_ = std::make_shared<const ElementGrid>(mesh);
+    return *grid_;
+  };
   // The crack direction in element e (as cut) closest to `along`.
   auto direction = [&](std::size_t e, const Vec2& along) {
-    const RockFailure& f = failure[e];
+    const RockFailure& f = failure_[e];
     Vec2 best{};
     double best_dot = -2;
     for (const Vec2& d : {f.direction, f.conjugate})
@@ -190,7 +159,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     seg.b = b;
     seg.a_now = current_point(mesh, s.cover_xy, e, a);
     seg.b_now = current_point(mesh, s.cover_xy, e, b);
-    seg.mode = failure[e].mode;
+    seg.mode = failure_[e].mode;
     seg.crack = crack;
     seg.step = s.step;
     seg.time = s.time;
@@ -201,12 +170,12 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // or leaves the bodies, stops growing for good.
   auto grow = [&](Tip& tip) {
     for (std::size_t guard = 0; guard < n; ++guard) {
-      const std::int32_t e = grid.at(plus(tip.at, 1e-6 * h, tip.dir));
+      const std::int32_t e = grid().at(plus(tip.at, 1e-6 * h, tip.dir));
       if (e < 0) {
         tip.active = false;
         return;
       }
-      if (crossed_[e] || !can[e] || failure[e].ratio < 1) return;
+      if (crossed_[e] || ratio_[e] < 1) return;
       const Vec2 d = direction(static_cast<std::size_t>(e), tip.dir);
       RayExit exit;
       if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
@@ -227,14 +196,12 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // (time_stepper.cpp attempt), and the stress a grown crack relieves must not start another.
   if (!out.empty()) return out;
   std::int32_t best = -1;
-  for (std::size_t e = 0; e < n; ++e)
-    if (can[e] && armed_[e] && !crossed_[e] && failure[e].ratio >= 1 &&
-        (best < 0 || failure[e].ratio > failure[static_cast<std::size_t>(best)].ratio))
-      best = static_cast<std::int32_t>(e);
+  for (const std::int32_t e : over_)  // ascending: the lowest index wins a tie
+    if (armed_[e] && !crossed_[e] && (best < 0 || ratio_[e] > ratio_[static_cast<std::size_t>(best)])) best = e;
   if (best >= 0) {
     const std::size_t e = static_cast<std::size_t>(best);
     const Vec2 p = inside_point(mesh, e);
-    const Vec2 d = direction_as_cut(mesh, s.cover_xy, e, failure[e].direction);
+    const Vec2 d = direction_as_cut(mesh, s.cover_xy, e, failure_[e].direction);
     RayExit fwd, back;
     if (ray_exit(mesh, e, p, d, 0, fwd) && ray_exit(mesh, e, p, {-d.x, -d.y}, 0, back)) {
       const std::int32_t crack = cracks_++;
@@ -306,6 +273,7 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
   armed_ = std::move(armed);
   debris_ = std::move(debris);
   crossed_.clear();
+  grid_.reset();  // of the mesh before the cut
 }
 
 std::string Fracture::save() const {
@@ -369,6 +337,7 @@ void Fracture::load(const std::string& bytes, const Mesh& mesh, const std::strin
   }
   r.expect_end();
   active_ = true;
+  grid_.reset();
 }
 
 }  // namespace nmm::solve

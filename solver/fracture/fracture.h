@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@
 #include "common/vec2.h"
 #include "preprocess/recut.h"
 #include "solver/discretisation/run_state.h"
+#include "solver/fracture/element_grid.h"
 #include "solver/fracture/rock_strength.h"
 
 namespace nmm::solve {
@@ -53,7 +55,9 @@ class Fracture {
   bool active() const { return active_; }
 
   /// After an accepted step: the segments its state breaks (the rule above), on `mesh` with the
-  /// state's stresses and cover nodes; `removed` [me] 1: excavated (never breaks).
+  /// state's stresses and cover nodes; `removed` [me] 1: excavated (never breaks). A quiet step
+  /// costs one screen per element (StrengthScreen: a square root, no trigonometry) and, where
+  /// tips are active, a lookup ahead of each in the mesh's element grid (built once per mesh).
   std::vector<CrackSegment> find(const Mesh& mesh, const SceneDef& scene, const RunState& s,
                                  const std::vector<std::uint8_t>& removed);
   /// The segments `find` returned were cut into `mesh` (`map`: from it to the mesh they were
@@ -106,6 +110,14 @@ class Fracture {
   std::vector<std::uint8_t> armed_;        // [me] 1: may start a crack
   std::vector<std::uint8_t> crossed_;      // [me of the mesh find() saw] crossed in that step
   std::vector<std::uint8_t> debris_;       // [me]
+  // Kept between calls so that a quiet step allocates nothing: the elements by cell of the mesh
+  // as cut (built when a tip first looks ahead, dropped when the mesh is cut again), and each
+  // element's strength ratio from the last find (−∞: cannot break; below 1 where the screen
+  // says it holds) with rock_failure's full check for those the screen passed on.
+  std::shared_ptr<const ElementGrid> grid_;
+  std::vector<double> ratio_;              // [me] –
+  std::vector<RockFailure> failure_;       // [me] valid where the last find's ratio_ came from rock_failure
+  std::vector<std::int32_t> over_;         // elements of the last find at or beyond their strength, ascending
   std::vector<CrackSegment> segments_;
   int cracks_ = 0;
   int debris_blocks_ = 0;

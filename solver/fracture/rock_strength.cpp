@@ -34,4 +34,13 @@ RockFailure rock_failure(const StrengthDef& st, double sxx, double syy, double s
   return f;
 }
 
+StrengthScreen::StrengthScreen(const StrengthDef& st) {
+  const double phi = st.friction_deg * kPi / 180, sn = std::sin(phi);
+  n_phi_ = (1 + sn) / (1 - sn);
+  ucs_ = 2 * st.cohesion * std::cos(phi) / (1 - sn);
+  tensile_ = st.tensile;
+  usable_ = st.present && tensile_ > 0 && ucs_ > 0 && std::isfinite(n_phi_) && std::isfinite(ucs_);
+  if (usable_) slack_ = 1e-13 * (1 + n_phi_) / std::min(tensile_, ucs_);
+}
+
 }  // namespace nmm::solve

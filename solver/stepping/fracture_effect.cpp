@@ -29,7 +29,7 @@ Outcome FractureEffect::cascade(double t) const {
 
 bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name,
                             const RunState& solved, const std::vector<std::uint8_t>& removed, int dofs_per_cover,
-                            RunState& start, std::vector<ContactHistory> history, NewMesh& out,
+                            RunState& start, const std::vector<ContactHistory>& history, NewMesh& out,
                             StepTimings& timings) {
   Stopwatch watch;
   const std::vector<CrackSegment> segments = fracture_.find(mesh, scene, solved, removed);

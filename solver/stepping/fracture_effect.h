@@ -24,11 +24,9 @@ class FractureEffect final : public MeshChange {
   Outcome cascade(double t) const override;
   bool change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, const RunState& solved,
               const std::vector<std::uint8_t>& removed, int dofs_per_cover, RunState& start,
-              std::vector<ContactHistory> history, NewMesh& out, StepTimings& timings) override;
-  void resolved(double seconds, StepTimings& timings) override {
-    fracture_.count_resolve();
-    timings.fracture += seconds;
-  }
+              const std::vector<ContactHistory>& history, NewMesh& out, StepTimings& timings) override;
+  void book(double seconds, StepTimings& timings) const override { timings.fracture += seconds; }
+  void count_resolve() override { fracture_.count_resolve(); }
   bool restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene, const std::string& path,
                NewMesh& out) override;
 

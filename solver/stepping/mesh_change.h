@@ -50,10 +50,12 @@ class MeshChange {
   /// from) and `out.history` (its contact history, given in `history`) are carried onto it.
   virtual bool change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, const RunState& solved,
                       const std::vector<std::uint8_t>& removed, int dofs_per_cover, RunState& start,
-                      std::vector<ContactHistory> history, NewMesh& out, StepTimings& timings) = 0;
-  /// A step was taken again after a change, which took `seconds` (summary.json's count and
-  /// timings).
-  virtual void resolved(double seconds, StepTimings& timings) = 0;
+                      const std::vector<ContactHistory>& history, NewMesh& out, StepTimings& timings) = 0;
+  /// What the stepper spent for it (keeping each step's start, taking the new mesh), booked in
+  /// its timing.
+  virtual void book(double seconds, StepTimings& timings) const = 0;
+  /// A step was taken again after a change (summary.json).
+  virtual void count_resolve() = 0;
   /// From a checkpoint's sections (`path` names it in errors): true, `out` is the changed mesh it
   /// was written on (its history empty: the checkpoint's follows).
   virtual bool restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene,

@@ -241,27 +241,24 @@ Outcome TimeStepper::attempt(double dt) {
   // break_at_peak). A cascade is bounded: past max_per_step() changes the step is cut (a shorter
   // step loads the rock less, so fewer elements break at its solution) and tried again on the
   // new mesh; the run goes on.
+  // The step's start is kept in buffers that live from step to step (step_start.h): a quiet
+  // step copies it into memory already there and allocates nothing.
   for (int changes = 0;; ++changes) {
     if (changes >= change->max_per_step()) return change->cascade(s_.time);
-    RunState start = s_;
-    std::vector<ContactHistory> history = b_->contact_history();
+    Stopwatch watch;
+    step_start_.keep(s_, b_->contact_history());
+    change->book(watch.seconds(), timings_);
     const Outcome o = attempt_once(dt);
     if (!o.ok()) return o;
     NewMesh m;
-    if (!change->change(mesh(), scene(), scene_name_, s_, removed_elem_, b_->space.dofs_per_cover(), start,
-                        std::move(history), m, timings_))
+    if (!change->change(mesh(), scene(), scene_name_, s_, removed_elem_, b_->space.dofs_per_cover(),
+                        step_start_.state(), step_start_.history(), m, timings_))
       return o;
-    // The diagnostics count both solves.
-    start.iterations = s_.iterations;
-    start.cuts = s_.cuts;
-    start.friction_unsettled = s_.friction_unsettled;
-    start.max_capped = s_.max_capped;
-    start.max_penetration = s_.max_penetration;
-    start.max_step_displacement = s_.max_step_displacement;
-    s_ = std::move(start);
-    Stopwatch watch;
+    step_start_.restore(s_);  // the start, carried onto the new mesh, with this solve's diagnostics
+    watch.restart();
     change_mesh(std::move(m));
-    change->resolved(watch.seconds(), timings_);
+    change->count_resolve();
+    change->book(watch.seconds(), timings_);
   }
 }
 

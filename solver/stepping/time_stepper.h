@@ -22,6 +22,7 @@
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_timings.h"
 #include "solver/discretisation/system_matrix.h"
+#include "solver/fracture/step_start.h"
 #include "solver/stepping/equilibrium_indicator.h"
 #include "solver/stepping/mesh_bound.h"
 #include "solver/stepping/run_view.h"
@@ -130,6 +131,7 @@ class TimeStepper : private StepHost {
   std::unique_ptr<SceneDef> own_scene_; // the scene with the crack joints (null: none yet)
   std::unique_ptr<MeshBound> b_;        // derived from mesh_ and scene_
   MeshChanges changes_;                 // the effects that change the mesh: cracks (mesh_bound.h)
+  StepStart step_start_;                // the step's start, to take it again on a new mesh (step_start.h)
   std::size_t topology_ = 0;            // re-cuts so far (RunView::topology)
   // The re-cuts of the step being taken (RunView::recut): the map from the mesh now back to the
   // mesh at the last accepted step, composed over every re-cut since (a step may re-cut several
