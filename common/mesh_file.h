@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/mesh.h"
+#include "common/mesh_validation.h"  // validate_mesh(), which the reader runs on every file
 
 namespace nmm {
 
@@ -22,10 +23,6 @@ Mesh read_mesh_file(const std::string& path);
 /// Serialises to / parses from bytes (the same as the file contents); `name` is used in errors.
 std::string mesh_to_bytes(const Mesh& mesh);
 Mesh mesh_from_bytes(const std::string& bytes, const std::string& name);
-
-/// Checks the internal consistency of a mesh (index ranges, CSR offsets, counts) and throws
-/// InputError(name, array name, what) on the first violation.
-void validate_mesh(const Mesh& mesh, const std::string& name);
 
 /// SHA-256 of a byte string (OpenSSL), as 32 bytes, and as 64 lowercase hex characters.
 std::array<std::uint8_t, 32> sha256(const std::string& bytes);

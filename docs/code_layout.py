@@ -68,12 +68,13 @@ def sources(folders):
     return out
 
 
-def concepts(files):
-    """File stems with their kinds: a .h/.cpp pair is one concept; a lone header or source says so."""
+def concepts(folder, files):
+    """File stems with their kinds: a .h/.cpp pair is one concept; a lone header or source says so.
+    A file in a subfolder that is not a layer of its own (common/scene/) is named with it."""
     kinds = collections.defaultdict(set)
     for rel in files:
         p = pathlib.PurePosixPath(rel)
-        kinds[p.stem].add(p.suffix)
+        kinds[p.relative_to(folder).with_suffix("").as_posix()].add(p.suffix)
     return [stem if len(k) == 2 else f"{stem}{next(iter(k))}" for stem, k in sorted(kinds.items())]
 
 
@@ -134,7 +135,7 @@ def generate():
         else:
             may = ", ".join(f"{f}/" for f in sorted(allowed[folder], key=order.get)) or "nothing"
         out += para(f"**{folder}/**: {len(rels)} files; includes {reached} (allowed: {may}). "
-                    f"Concepts: {', '.join(concepts(rels))}.", "- ", "  ")
+                    f"Concepts: {', '.join(concepts(folder, rels))}.", "- ", "  ")
     out += ["", "## Libraries and programs", ""]
     out += para("What each folder's CMakeLists.txt builds (the wings of solver/ are one library, "
                 "built by solver/CMakeLists.txt), and the project libraries each links.")

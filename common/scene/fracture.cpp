@@ -1,0 +1,32 @@
+// Fracturing in a scene: see fracture.h.
+#include "common/scene/fracture.h"
+
+#include <string>
+
+#include "common/scene.h"
+#include "common/scene/json_reader.h"
+
+namespace nmm {
+
+FractureDef read_fracture(const JsonReader& r, const SceneDef& scene) {
+  r.check_keys({"crack_set"});
+  FractureDef f;
+  f.present = true;
+  f.crack_set = find_by_name(scene.joint_sets, r["crack_set"], "joint set", "joint_sets");
+  // A crack is cut into the covers as they were cut, and its new covers take the cover
+  // function of the cover they came from: constant cover functions only (docs/fracture.md).
+  if (scene.solver.cover_order != 0)
+    r.fail("fracturing needs cover order 0 (solver.cover_order is " +
+           std::to_string(scene.solver.cover_order) + ")");
+  return f;
+}
+
+void check_fracture_combinations(const JsonReader& r, const SceneDef& scene) {
+  // A crack re-cuts the elements a bolt is tied to and the boundary edges a dashpot acts on; the
+  // solver carries neither over yet (docs/fracture.md "Not yet").
+  if (scene.fracture.present && (!scene.bolts.empty() || !scene.absorbing.empty()))
+    r.fail(std::string("fracturing with ") + (!scene.bolts.empty() ? "bolts" : "absorbing boundaries") +
+           " is not built yet: leave out one or the other");
+}
+
+}  // namespace nmm

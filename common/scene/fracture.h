@@ -1,0 +1,26 @@
+// Fracturing of intact rock in a scene ("fracture": {crack_set}; docs/fracture.md): on when the
+// block is present and some material has a strength (common/scene/materials.h). The solver's
+// side is solver/fracture/.
+#pragma once
+
+namespace nmm {
+
+class JsonReader;
+struct SceneDef;
+
+/// Fracturing of intact rock (scene key "fracture"; docs/fracture.md): on when present and some
+/// material has a strength.
+struct FractureDef {
+  bool present = false;
+  int crack_set = -1;  ///< joint set whose law the faces of new cracks use
+};
+
+/// fracture: {crack_set}. Reads the scene's joint sets and solver settings (read before):
+/// fracturing needs cover order 0.
+FractureDef read_fracture(const JsonReader& r, const SceneDef& scene);
+
+/// Refuses, at `r` (the fracture block), what fracturing cannot be combined with yet: bolts
+/// and absorbing boundaries (read after the block).
+void check_fracture_combinations(const JsonReader& r, const SceneDef& scene);
+
+}  // namespace nmm
