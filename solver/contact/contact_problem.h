@@ -72,7 +72,7 @@ class ContactProblem {
   const std::vector<Contact>& contacts() const { return set_.contacts(); }
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
   /// or -1 when its pair is not there (the pattern's growth waits for a few such contacts,
-  /// time_stepper.cpp update_pattern): add_tangents() leaves such a contact out of the matrix,
+  /// contact_effect.cpp update_pattern): add_tangents() leaves such a contact out of the matrix,
   /// and the contact solve takes its springs by CG (tangent_times() has all contacts).
   void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
   /// Of the contacts touching at the step's start, those assign_groups() left outside the

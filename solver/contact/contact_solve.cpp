@@ -56,7 +56,7 @@
 // Cohesion and tensile bonds do not break within this solve: the strengths are those of the
 // bonds the step started with (or broke at an earlier solution of the same step); the time
 // stepper breaks the contacts that reach their peak at the solution and solves again
-// (ContactProblem::break_at_peak, time_stepper.cpp).
+// (ContactProblem::break_at_peak, contact_effect.cpp).
 //
 // Linear solves. H differs from the matrix P of the last factorisation by the springs that
 // switched and, from one step to the next, by the small change of A with the geometry. Conjugate
@@ -72,7 +72,7 @@
 // docs/notes/2026-11-linear-algebra.md).
 //
 // The system matrix's pattern holds the element pairs of the step's contacts, but for a few
-// (time_stepper.cpp update_pattern: with inertia it grows once more than a few touching
+// (contact_effect.cpp update_pattern: with inertia it grows once more than a few touching
 // contacts lie outside it, and it sheds the unused pairs now and then). A contact whose pair is missing is left out of
 // P by add_tangents(), and the direction after a factorisation is CG's with the new P (H − P of
 // the rank of the left-out springs).

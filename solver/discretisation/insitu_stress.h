@@ -3,7 +3,7 @@
 //   σ(x, y) = σ0 + (y_ref − y)·gradient      (σxx, σyy, σxy; Pa, tension positive)
 //
 // or the overburden shortcut {k0, y_ref, density, syy, g}: σyy = syy − ρ·g·(y_ref − y),
-// σxx = k0·σyy, σxy = 0 (common/scene.cpp turns it into σ0 and the gradient).
+// σxx = k0·σyy, σxy = 0 (common/scene/insitu_stress.cpp turns it into σ0 and the gradient).
 //
 // Cover order n = 0: each element takes the field at its centroid. Its stress is constant
 // (constant strain elements) and B is constant, so ∫ Bᵀσ dA over the element equals

@@ -38,7 +38,7 @@ JointWater::JointWater(const Mesh& mesh, const SceneDef& scene) : scene_(&scene)
     ph_s_.push_back(across(p.x, p.y));
     ph_z_.push_back(height(p.x, p.y));
   }
-  if (ph_s_.size() > 1 && ph_s_.front() > ph_s_.back()) {  // ascending in s (monotone: scene.cpp)
+  if (ph_s_.size() > 1 && ph_s_.front() > ph_s_.back()) {  // ascending in s (monotone: common/scene/water.cpp)
     std::reverse(ph_s_.begin(), ph_s_.end());
     std::reverse(ph_z_.begin(), ph_z_.end());
   }

@@ -69,7 +69,7 @@ struct RunState {
   std::vector<double> loop_xy;   ///< [2·v] m, current loop vertices
   std::vector<double> loop_u;    ///< [2·v] m, displacement since the start
   std::vector<TrackedPoint> fixed, loads, measure;
-  /// element pairs the system matrix pattern holds (time_stepper.cpp update_pattern; kept so
+  /// element pairs the system matrix pattern holds (contact_effect.cpp update_pattern; kept so
   /// that a restarted run factorises the same pattern, hence the same round-off, as the
   /// straight run)
   std::vector<std::pair<std::int32_t, std::int32_t>> pattern_pairs;
