@@ -15,7 +15,10 @@
 # the bricks, where a brick lies in one or two triangles, as near DDA's 6 as NMM's covers come).
 # SIZES: wall sizes, default "10 20 30". Writes bench/results/peer_compare.csv (one row per wall,
 # mode and mesh size: both codes' ms per step, nmm's counts) from the repository root, after
-# building.
+# building. Both sides are CPU time: nmm's is the thread's CPU over its 100 steps (contact_bench);
+# the DDA code's is its process's user + system time (/usr/bin/time) over the run, cutting
+# included, per step. The runner's own ms_per_step is wall-clock (CLOCK_MONOTONIC), which on a
+# loaded machine counts the time it waited: it is kept beside it (ntdda_wall_ms_per_step).
 set -e
 cd "$(dirname "$0")/.."
 : "${NTDDA_RUN:?set NTDDA_RUN to the DDA code's runner}"
@@ -27,7 +30,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 out=bench/results/peer_compare.csv
-echo "date,mode,wall_n,nmm_mesh_size,ntdda_blocks,ntdda_ms_per_step,nmm_blocks,nmm_unknowns,nmm_ms_per_step,ratio,nmm_solves_per_step,nmm_factorisations_per_step,nmm_cg_per_step,nmm_detection_ms_per_step,nmm_cuts,load_average" > "$out"
+echo "date,mode,wall_n,nmm_mesh_size,ntdda_blocks,ntdda_ms_per_step,nmm_blocks,nmm_unknowns,nmm_ms_per_step,ratio,nmm_solves_per_step,nmm_factorisations_per_step,nmm_cg_per_step,nmm_detection_ms_per_step,nmm_cuts,load_average,ntdda_wall_ms_per_step,nmm_analyses" > "$out"
 for n in $SIZES; do
   for h in $MESHES; do
     build/bin/contact_bench --peer --sizes "$n" --steps $STEPS --mesh "$h" --csv "$work/nmm_$n.part" > /dev/null
@@ -38,15 +41,20 @@ for n in $SIZES; do
     python3 "$GEN_WALL" "$d" "$n" "$n" --steps $STEPS > /dev/null
     sed -i 's|<Unitmass> 2.5 </Unitmass> <Unitweight> 24.525 </Unitweight>|<Unitmass> 2500 </Unitmass> <Unitweight> 24525 </Unitweight>|' "$d/wall.ana"
     [ "$mode" = static ] && sed -i 's|<Analysistype type="dynamic"/>|<Analysistype type="static"/>|' "$d/wall.ana"
-    line=$(cd "$d" && ulimit -f 1000000 && timeout 600 "$NTDDA_RUN" wall.geo wall.ana 2>&1 | grep '^NTDDA' || true)
+    (cd "$d" && ulimit -f 1000000 && /usr/bin/time -f 'NTDDA_CPU %U %S' timeout 600 "$NTDDA_RUN" wall.geo wall.ana \
+       > /dev/null 2> run.txt) || true
+    line=$(grep '^NTDDA ' "$d/run.txt" || true)
     nt_blocks=$(echo "$line" | sed -n 's/.*blocks=\([0-9]*\).*/\1/p')
-    nt_ms=$(echo "$line" | sed -n 's/.*ms_per_step=\([0-9.]*\).*/\1/p')
+    nt_wall=$(echo "$line" | sed -n 's/.*ms_per_step=\([0-9.]*\).*/\1/p')
+    nt_steps=$(echo "$line" | sed -n 's/.*steps=\([0-9]*\)\/.*/\1/p')
+    nt_ms=$(awk -v s="$nt_steps" '/^NTDDA_CPU/ && s > 0 { printf "%.4f", ($2 + $3) * 1000 / s }' "$d/run.txt")
     # contact_bench --peer: mode,wall_n,mesh_size,blocks,unknowns,contacts,steps,cpu_ms_per_step,
     # solves_per_step,factorisations_per_step,cg_per_step,friction_updates_per_step,
-    # detection_ms_per_step,factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average
-    grep "^$mode," "$work/nmm_$n.csv" | awk -F, -v d="$(date +%F)" -v nb="$nt_blocks" -v nm="$nt_ms" '{
-      ratio = (nm > 0) ? sprintf("%.1f", $8 / nm) : "";
-      printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", d, $1, $2, $3, nb, (nm == "" ? "crashed" : nm), $4, $5, $8, ratio, $9, $10, $11, $13, $16, $18 }' >> "$out"
+    # detection_ms_per_step,factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average,
+    # threads,wall_ms_per_step,line_search_ms_per_step,assembly_ms_per_step,update_ms_per_step,analyses
+    grep "^$mode," "$work/nmm_$n.csv" | awk -F, -v d="$(date +%F)" -v nb="$nt_blocks" -v nm="$nt_ms" -v nw="$nt_wall" '{
+      ratio = (nm > 0) ? sprintf("%.2f", $8 / nm) : "";
+      printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", d, $1, $2, $3, nb, (nm == "" ? "crashed" : nm), $4, $5, $8, ratio, $9, $10, $11, $13, $16, $18, nw, $24 }' >> "$out"
   done
 done
 cat "$out"

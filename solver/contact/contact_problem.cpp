@@ -339,6 +339,46 @@ ContactProblem::LineModelError ContactProblem::line_model_error() const {
   return out;
 }
 
+std::array<double, ContactProblem::kLineKinds> ContactProblem::line_model_residual(double alpha,
+                                                                                 Eigen::VectorXd& total) const {
+  const Eigen::Index unknowns = total.size();
+  const std::vector<Contact>& contacts = set_.contacts();
+  const std::vector<ContactLaw>& laws = set_.laws();
+  std::array<Eigen::VectorXd, kLineKinds> r;
+  for (Eigen::VectorXd& v : r) v.setZero(unknowns);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    const ContactWork& w = work_[k];
+    const ContactLaw& law = laws[c.law];
+    const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
+    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
+    // The kinds as line_model_error() sorts them, between α = 0 and the α taken.
+    if (w.rate_gap != 0) {
+      const Spring a = normal_at(law, c, w, c.gap, skin_), b = normal_at(law, c, w, c.gap + alpha * w.rate_gap, skin_);
+      const double half = 0.5 * initial_normal_stiffness(law, c.length);
+      const double e = b.force - (a.force - a.stiffness * alpha * w.rate_gap);
+      const int kind = a.stiffness < half && b.stiffness > half ? 0 : a.stiffness > half && b.stiffness < half ? 1 : 2;
+      if (e != 0)
+        for (int i = 0; i < row_; ++i) r[kind][dof[i]] += e * cn[i];
+    }
+    if (w.rate_shear != 0 && w.strength > 0) {
+      const Spring a = shear_at(law, c, w, c.shear), b = shear_at(law, c, w, c.shear + alpha * w.rate_shear);
+      const double e = b.force - (a.force + a.stiffness * alpha * w.rate_shear);
+      const int kind = a.stiffness > 0 && b.stiffness == 0                          ? 3
+                       : a.stiffness == 0 && (b.stiffness > 0 || a.force * b.force < 0) ? 4
+                                                                                      : 5;
+      if (e != 0)
+        for (int i = 0; i < row_; ++i) r[kind][dof[i]] -= e * cs[i];
+    }
+  }
+  std::array<double, kLineKinds> out{};
+  for (int kind = 0; kind < kLineKinds; ++kind) {
+    out[kind] = r[kind].lpNorm<Eigen::Infinity>();
+    total += r[kind];
+  }
+  return out;
+}
+
 double ContactProblem::force_scale() const {
   const std::vector<Contact>& contacts = set_.contacts();
   double f = 0;

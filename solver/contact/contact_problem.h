@@ -111,6 +111,13 @@ class ContactProblem {
     std::array<double, kLineKinds> error{};  ///< N·m per unit α², summed
   };
   LineModelError line_model_error() const;
+  /// What the Newton model missed at the point the line search took (α along the direction of
+  /// set_direction()), as forces on the unknowns (the contact solve's trace): per kind of spring
+  /// change between 0 and α (kLineKinds), the largest |r_i| (N) of the residual those contacts'
+  /// departure from their linear model leaves, Σ (N − N_lin)·cn − (T − T_lin)·cs over the kind.
+  /// All kinds are also added to `total` (given: the linear model's residual r − αHδ; then the
+  /// residual at the point taken, which the next iterate evaluates).
+  std::array<double, kLineKinds> line_model_residual(double alpha, Eigen::VectorXd& total) const;
   /// Largest |N| and |T| of the last forces_at(), N (a scale for the residual tolerance).
   double force_scale() const;
   /// After an inner solve: shear strengths follow the normal forces (the friction fixed point).

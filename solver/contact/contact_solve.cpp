@@ -410,6 +410,19 @@ Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const
       for (int kind = 0; kind < ContactProblem::kLineKinds; ++kind)
         std::fprintf(stderr, " %s %d %.2e%s", ContactProblem::kLineKindNames[kind], m.contacts[kind], m.error[kind] / psi0,
                      kind + 1 < ContactProblem::kLineKinds ? " |" : "\n");
+      // The residual at the point taken, over F_tol, and its parts: what the linear model leaves
+      // (r − αHδ: CG's inexact direction, and 1 − α of it when the search stopped short) and
+      // each kind's departure from it (they may cancel: the parts do not add up in the ∞-norm).
+      Eigen::VectorXd model(n);
+      hessian_times(system, contacts, delta, model);
+      model = r - alpha * model;
+      const double linear = model.lpNorm<Eigen::Infinity>();
+      const std::array<double, ContactProblem::kLineKinds> left = contacts.line_model_residual(alpha, model);
+      std::fprintf(stderr, "  model residual over tol: all %.2e | linear %.2e |", model.lpNorm<Eigen::Infinity>() / tol,
+                   linear / tol);
+      for (int kind = 0; kind < ContactProblem::kLineKinds; ++kind)
+        std::fprintf(stderr, " %s %.2e%s", ContactProblem::kLineKindNames[kind], left[kind] / tol,
+                     kind + 1 < ContactProblem::kLineKinds ? " |" : "\n");
     }
     d.noalias() += alpha * delta;
     ra.noalias() -= alpha * adelta;
