@@ -436,14 +436,19 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     const std::int32_t p = topo.vertices[vi];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const std::int32_t ea = topo.element_of[p];
-    // P's own outward normal: the mean of its candidate edges' normals.
+    // P's own outward normal: the mean of its candidate edges' normals. An edge of no length (two
+    // loop vertices a round-off apart, where a crack was cut within round-off of a mesh node) has
+    // no direction: its unit normal is noise, and counted it turned P's normal by up to 90°, so
+    // that the corner of a crack face "faced" an edge it lies beside and the real vertex at that
+    // point faced none (a uniaxial specimen, h 0.125 m, dynamic: such a corner sank 1 mm into
+    // the fragment beside it, over steps, held by nothing).
     double nx = 0, ny = 0;
     for (std::int32_t s : {topo.prev[p], p}) {
       if (!topo.edge_candidate[s]) continue;
       const std::int32_t f = topo.next[s];
       const double dx = xy[2 * f] - xy[2 * s], dy = xy[2 * f + 1] - xy[2 * s + 1];
       const double l = length(dx, dy);
-      if (l > 0) {
+      if (l > tl.degenerate_edge * topo.mesh_size) {
         nx += dy / l;
         ny -= dx / l;
       }
