@@ -28,6 +28,7 @@
 #include "tests/ended_ok.h"
 #include "preprocess/cover_cutter.h"
 #include "solver/contact/joint_law.h"
+#include "solver/contact/tributary_length.h"
 #include "common/math_constants.h"
 #include "common/scene.h"
 #include "solver/stepping/time_stepper.h"
@@ -356,6 +357,45 @@ TEST(ContactPatch, TwoBlocksPressedTogetherInUniaxialStrain) {
       EXPECT_NEAR(length, 2.0, 1e-6) << what;  // the side rollers give way by ~1e-8 m
       for (int i = 0; i < 3; ++i) EXPECT_NEAR(jump[i], want, 0.01 * want) << what << ", jump " << i;
     }
+}
+
+// Two vertices at one point against the same face (where cracks meet within round-off): one has
+// 0.5 m of face on one side, the other a half-edge of 2.6e-10 m on the same side. The first keeps
+// its 0.5 m whichever has the lower index; split at the point by index, it lost the face when it
+// had the lower index and was a bare corner (1e-3·h), and the corner of a crack whose load it
+// carried sank 1 mm (biaxial, h 0.0625 m, dynamic). An edge of no length next to a vertex is no half-edge either.
+TEST(ContactPatch, TwoContactsAtOnePointCountTheFaceOnce) {
+  // Element 0 (block 0): triangle (−1, 0) (0, 0) (−0.5, 1); element 1 (block 0): a sliver
+  // (−5.2e-10, 0) (0, 0) (−2.6e-10, 1e-10); element 2 (block 1): the square below y = 0, its top
+  // edge (1, 0) → (−1, 0) the face both vertices (1 and 4) touch.
+  const std::vector<double> xy = {-1, 0, 0, 0, -0.5, 1,                     // 0 1 2
+                                  -5.2e-10, 0, 0, 0, -2.6e-10, 1e-10,       // 3 4 5
+                                  -1, -1, 1, -1, 1, 0, -1, 0};              // 6 7 8 9
+  ContactTopology t;
+  t.mesh_size = 0.0625;  // h: two contacts within 1e-9·h of each other are at one point
+  t.next = {1, 2, 0, 4, 5, 3, 7, 8, 9, 6};
+  t.prev = {2, 0, 1, 5, 3, 4, 9, 6, 7, 8};
+  t.element_of = {0, 0, 0, 1, 1, 1, 2, 2, 2, 2};
+  t.block_of = {0, 0, 1};
+  t.corner.assign(10, 1);
+  t.edge_candidate = {1, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // the bottoms of 0 and 1, the top of 2
+  const double corner_length = 1e-3 * t.mesh_size;
+  for (const bool face_first : {true, false}) {
+    std::vector<ContactCandidate> contacts = {{1, 8, 0, 2, 0.5, 0}, {4, 8, 1, 2, 0.5, 0}};
+    if (!face_first) std::swap(contacts[0], contacts[1]);
+    const std::vector<double> l = tributary_lengths(t, xy, contacts, corner_length);
+    const double face = face_first ? l[0] : l[1], sliver = face_first ? l[1] : l[0];
+    std::printf("face first %d: L %.12g (face's vertex) + %.3g (sliver's)\n", face_first ? 1 : 0, face, sliver);
+    // The face's vertex keeps its 0.5 m (less what the sliver's already holds); the sliver's
+    // is its 2.6e-10 m or, left with nothing, a bare corner.
+    EXPECT_NEAR(face + std::min(sliver, 2.6e-10), 0.5, 1e-9);
+    EXPECT_LE(sliver, corner_length);
+  }
+  // The sliver's vertex alone, its half-edge of no length (1e-17 m): a bare corner.
+  std::vector<double> degenerate = xy;
+  degenerate[6] = -1e-17;
+  const std::vector<double> l = tributary_lengths(t, degenerate, {{4, 8, 1, 2, 0.5, 0}}, corner_length);
+  EXPECT_EQ(l[0], corner_length);
 }
 
 }  // namespace

@@ -31,6 +31,12 @@ struct ContactHistory {
   double shear_el = 0;       ///< m, elastic shear of the shear spring (return mapping)
   double normal_force = 0;   ///< N, compression > 0: the next step's first friction strength
   JointMemory joint;         ///< the joint law's own history (travel, dilation, largest closure)
+  /// m, how deep the vertex was (−gap, ≥ 0) at the end of the last accepted step: the step after
+  /// finds it against that block no deeper than this and a new contact's depth (closed_contacts())
+  double depth = 0;
+  /// a crack's face cut in this step (state_transfer.cpp): it starts locked, but it was never
+  /// pressed in, so it licenses no depth beyond a new contact's (closed_contacts())
+  bool fresh = false;
 };
 
 /// One contact of the step being solved: rebuilt by every ContactSet::begin_step() from the

@@ -21,7 +21,9 @@
 //     block, or next to a crack tip whose covers are not split);
 //   - ω = (P − Q2)·t / l in [0, 1] (within 1e-3): P lies beside the edge;
 //   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (1e-3·h: a vertex missed for a step) unless
-//     P was in closed contact with B's block after the last step, then g ≥ −p_max,
+//     P was in closed contact with B's block after the last step, then g ≥ −min(p_max, d_last
+//     + shallow), d_last how deep P was against that block at the end of the last step (a
+//     contact sinks step by step; it does not jump onto another face of the block deeper down),
 //     p_max = min(0.3·h, d0) (an accepted step leaves no contact deeper than g2·w0 < d0, and the
 //     list holds no edge farther than that; a vertex deep inside another element without having
 //     come in through a contact is near that edge from the wrong side, e.g. a corner of a block
@@ -99,6 +101,13 @@ bool ClosedContacts::with(std::int32_t v, std::int32_t block) const {
   for (std::size_t i = lo; i < hi; ++i)
     if (pairs[i].second == block) return true;
   return false;
+}
+
+double ClosedContacts::depth_with(std::int32_t v, std::int32_t block, double unknown) const {
+  const auto [lo, hi] = range(v);
+  for (std::size_t i = lo; i < hi; ++i)
+    if (pairs[i].second == block) return depth.empty() ? unknown : depth[i];
+  return -1;
 }
 
 namespace {
@@ -436,14 +445,19 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     const std::int32_t p = topo.vertices[vi];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const std::int32_t ea = topo.element_of[p];
-    // P's own outward normal: the mean of its candidate edges' normals.
+    // P's own outward normal: the mean of its candidate edges' normals. An edge of no length (two
+    // loop vertices a round-off apart, where a crack was cut within round-off of a mesh node) has
+    // no direction: its unit normal is noise, and counted it turned P's normal by up to 90°, so
+    // that the corner of a crack face "faced" an edge it lies beside and the real vertex at that
+    // point faced none (a uniaxial specimen, h 0.125 m, dynamic: such a corner sank 1 mm into
+    // the fragment beside it, over steps, held by nothing).
     double nx = 0, ny = 0;
     for (std::int32_t s : {topo.prev[p], p}) {
       if (!topo.edge_candidate[s]) continue;
       const std::int32_t f = topo.next[s];
       const double dx = xy[2 * f] - xy[2 * s], dy = xy[2 * f + 1] - xy[2 * s + 1];
       const double l = length(dx, dy);
-      if (l > 0) {
+      if (l > tl.degenerate_edge * topo.mesh_size) {
         nx += dy / l;
         ny -= dx / l;
       }
@@ -460,12 +474,15 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     // expansion — the other face's vertex there takes over: its depth is that contact's closure,
     // not a new contact's (which must be shallow). mirror_closed: the blocks of coincident vertices closed against P's block (at most a few).
     std::int32_t mirror_closed[4];
+    double mirror_depth[4];
     int n_mirror_closed = 0;
     for (std::int32_t i = topo.mirror_offset[p]; !closed.pairs.empty() && i < topo.mirror_offset[p + 1]; ++i) {
       const std::int32_t m = topo.mirrors[i];
-      if (n_mirror_closed < 4 && closed.with(m, topo.block_of[ea]) &&
-          length(xy[2 * m] - px, xy[2 * m + 1] - py) <= tl.same_point * topo.mesh_size)
+      const double d = closed.depth_with(m, topo.block_of[ea], p_max);
+      if (n_mirror_closed < 4 && d >= 0 && length(xy[2 * m] - px, xy[2 * m + 1] - py) <= tl.same_point * topo.mesh_size) {
+        mirror_depth[n_mirror_closed] = d;
         mirror_closed[n_mirror_closed++] = topo.block_of[topo.element_of[m]];
+      }
     }
     const auto [closed_lo, closed_hi] = closed.range(p);
     bests.clear();
@@ -486,12 +503,21 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (g > d0 || (g < -d0 && g < -p_max)) continue;
       if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
       const std::int32_t block_b = topo.block_of[eb];
-      bool was_closed = false;
-      for (std::size_t i = closed_lo; i < closed_hi; ++i) was_closed |= closed.pairs[i].second == block_b;
-      for (int i = 0; i < n_mirror_closed; ++i) was_closed |= mirror_closed[i] == block_b;
+      // How deep P may be against B's block: a new contact's depth, or — closed against that
+      // block after the last step — as deep as it was then plus a new contact's depth, at most
+      // p_max. (Against the block at any depth up to p_max, a vertex that slid off its own face
+      // took another face of the same block 47 mm deep at the step's start, and its spring threw
+      // a cover 5 cm at every Δt: the step-path slope, h 0.5 m, dynamic.)
+      double was_depth = -1;
+      for (std::size_t i = closed_lo; i < closed_hi; ++i)
+        if (closed.pairs[i].second == block_b) was_depth = std::max(was_depth, closed.depth.empty() ? p_max : closed.depth[i]);
+      for (int i = 0; i < n_mirror_closed; ++i)
+        if (mirror_closed[i] == block_b) was_depth = std::max(was_depth, mirror_depth[i]);
+      const bool was_closed = was_depth >= 0;
       const double eps = tl.gap_round_off * topo.mesh_size;
+      const double new_depth = std::max(shallow, eps);
       if (master_side && g >= -topo.master_depth) continue;
-      if (g > d0 || g < (was_closed ? -p_max : -std::max(shallow, eps))) continue;
+      if (g > d0 || g < -(was_closed ? std::min(p_max, was_depth + new_depth) : new_depth)) continue;
       if (g < -eps && -g > tl.closed_extent * reach_behind(topo, xy, eb, eg.x, eg.y, ex, ey))
         continue;
       // Inside B: tested at P moved onto the edge's span (ω within [β, 1 − β], β = beside_edge),

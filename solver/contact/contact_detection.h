@@ -61,6 +61,9 @@ struct DetectionStats {
 /// (vertex, block) pairs (a vertex at a concave junction can be closed against two blocks).
 struct ClosedContacts {
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  /// m, [pairs]: how deep each pair's vertex was against that block at the end of the last step
+  /// (empty: as deep as closed_depth allows)
+  std::vector<double> depth;
   /// [vertices + 1] where each vertex's pairs start (index()); empty: range() and with() search
   /// `pairs` instead. Detection looks up every vertex and its coincident ones: with a binary
   /// search each it took 70 ms per step of the 10,000-block wall (85,000 pairs), 45 ms indexed.
@@ -70,6 +73,8 @@ struct ClosedContacts {
   /// [first, last) of vertex v's pairs.
   std::pair<std::size_t, std::size_t> range(std::int32_t v) const;
   bool with(std::int32_t v, std::int32_t block) const;
+  /// m, how deep v was against `block` (`unknown` where `depth` is empty); −1: not closed.
+  double depth_with(std::int32_t v, std::int32_t block, double unknown) const;
 };
 
 /// Detection's Verlet list: for each candidate vertex (ContactTopology::vertices, in order), the

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "common/vec2.h"
@@ -75,6 +76,9 @@ void ContactSet::restore(std::vector<ContactHistory> history, std::vector<Contac
       rows.push_back(c);
     }
   }
+  // A checkpoint keeps each contact's gap after the last solve, index-aligned with its history.
+  if (rows.size() == history.size())
+    for (std::size_t i = 0; i < history.size(); ++i) history[i].depth = std::max(-rows[i].gap, 0.0);
   history_ = std::move(history);
   contacts_ = std::move(rows);
   rows_accepted_ = true;
@@ -82,10 +86,24 @@ void ContactSet::restore(std::vector<ContactHistory> history, std::vector<Contac
 
 ClosedContacts ContactSet::closed_contacts() const {
   ClosedContacts closed;
+  // A closed contact may be found as deep as closed_depth (it sank there under load, step by
+  // step). A fresh crack's entry is closed too, but its faces were cut together this step: against
+  // it a vertex may be no deeper than a new contact. (Counted, its vertex could take any edge of
+  // its own block up to 0.3·h deep — a crack's corner 2 mm behind another face of the same
+  // uncracked block, locked, threw a cover 3–7 mm at every Δt: uniaxial h 0.0625 m dynamic.)
+  // Each pair with the deepest its vertex was against that block at the end of the last step.
+  std::vector<std::tuple<std::int32_t, std::int32_t, double>> entries;
   for (const ContactHistory& h : history_)
-    if (h.state != ContactState::open) closed.pairs.emplace_back(h.vertex, h.block);
-  std::sort(closed.pairs.begin(), closed.pairs.end());
-  closed.pairs.erase(std::unique(closed.pairs.begin(), closed.pairs.end()), closed.pairs.end());
+    if (h.state != ContactState::open && !h.fresh) entries.emplace_back(h.vertex, h.block, h.depth);
+  std::sort(entries.begin(), entries.end());
+  for (const auto& [v, block, depth] : entries) {
+    if (!closed.pairs.empty() && closed.pairs.back() == std::make_pair(v, block)) {
+      closed.depth.back() = std::max(closed.depth.back(), depth);
+      continue;
+    }
+    closed.pairs.emplace_back(v, block);
+    closed.depth.push_back(depth);
+  }
   closed.index(topo_.next.size());
   return closed;
 }
@@ -277,7 +295,7 @@ void ContactSet::end_step(ContactProblem& step) {
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
-                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint};
+                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint, std::max(-c.gap, 0.0), false};
   }
   rows_accepted_ = true;
 }

@@ -19,8 +19,12 @@
 // within 10°, on the same line, and whose own halves overlap P's):
 //     L = min(hi, min u_j/2 over u_j > 0) − max(lo, max u_j/2 over u_j < 0),  u_j = (P_j − P)·t
 // a one-dimensional Voronoi cell of the contact points, bounded by P's own faces. Neighbours that
-// tile already (matching vertices) do not overlap, so nothing changes there; two contacts at one
-// point whose halves overlap split it by index. Where the faces have slid, the corner of one face
+// tile already (matching vertices) do not overlap, so nothing changes there. Two contacts at one
+// point whose halves overlap split it by index, the lower taking the side before the point and
+// the higher the side beyond — except what one's halves reach past the other's on the other's
+// side, which stays its own (at a crack's corner that two vertices a round-off apart share, one
+// with a round-off of face and one with 0.5 mm on the same side, the split left the corner
+// 1e-3·h of face). An edge of no length (degenerate_edge) is no half-edge. Where the faces have slid, the corner of one face
 // and the first contact point of the other stand more than their two halves apart: a gap of up
 // to h between P's halves and the next contact's on the same joint is shared at its middle. A
 // contact with no length of its own (a bare corner touching a face) is a point: `corner_length`.
@@ -73,7 +77,10 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
       const std::int32_t e = topo.next[s];
       const double ex = xy[2 * e] - xy[2 * s], ey = xy[2 * e + 1] - xy[2 * s + 1];
       const double el = length(ex, ey);
-      if (!(el > 0) || (ey / el) * nx + (-ex / el) * ny >= kContactTolerances.tributary_cos) continue;
+      // An edge of no length stands for no joint, and its direction is noise (contact_detection.cpp).
+      if (!(el > kContactTolerances.degenerate_edge * topo.mesh_size) ||
+          (ey / el) * nx + (-ex / el) * ny >= kContactTolerances.tributary_cos)
+        continue;
       const std::int32_t other = s == p ? e : s;
       const double a = 0.5 * ((xy[2 * other] - fr.px) * fr.tx + (xy[2 * other + 1] - fr.py) * fr.ty);
       fr.lo = std::min(fr.lo, a);
@@ -128,6 +135,10 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
     double lo = a.lo, hi = a.hi;
     // Nearest own-half boundaries of the neighbours beyond P's halves (no overlap), each side.
     double next_hi = std::numeric_limits<double>::infinity(), next_lo = -next_hi;
+    // m, along t: P's cell without the contacts at P itself, and how far those reach (a lower
+    // index's half below P, a higher index's above): P keeps what lies past them.
+    double lo_v = a.lo, hi_v = a.hi;
+    double beyond_lo = std::numeric_limits<double>::infinity(), beyond_hi = -beyond_lo;
     const std::int64_t ci = cell(a.px), cj = cell(a.py);
     for (std::int64_t di = -1; di <= 1; ++di) {
       const Key last{a.b0, a.b1, ci + di, cj + 1, std::numeric_limits<std::uint32_t>::max()};
@@ -149,12 +160,26 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
           if (b_hi <= a.lo + tie) next_lo = std::max(next_lo, b_hi);
           continue;
         }
-        // Two contacts at one point split it by index: the higher takes the side beyond.
+        // Two contacts at one point split it by index: the higher takes the side beyond, the
+        // lower the side before; what either half reaches past the other's stays its own.
         const bool same_point = std::abs(u) <= tie;
-        if (same_point ? j > i : u > 0)
-          hi = std::min(hi, same_point ? 0.0 : 0.5 * u);
-        else
-          lo = std::max(lo, same_point ? 0.0 : 0.5 * u);
+        if (same_point) {
+          if (j > i) {
+            hi = std::min(hi, 0.0);
+            beyond_hi = std::max(beyond_hi, b_hi);
+          } else {
+            lo = std::max(lo, 0.0);
+            beyond_lo = std::min(beyond_lo, b_lo);
+          }
+          continue;
+        }
+        if (u > 0) {
+          hi = std::min(hi, 0.5 * u);
+          hi_v = std::min(hi_v, 0.5 * u);
+        } else {
+          lo = std::max(lo, 0.5 * u);
+          lo_v = std::max(lo_v, 0.5 * u);
+        }
       }
     }
     // A gap of at most h between P's halves and the next contact's on the same joint (the faces
@@ -163,6 +188,11 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
     if (hi == a.hi && next_hi - a.hi > tie && next_hi - a.hi <= h) hi = 0.5 * (a.hi + next_hi);
     if (lo == a.lo && a.lo - next_lo > tie && a.lo - next_lo <= h) lo = 0.5 * (a.lo + next_lo);
     length[i] = std::max(hi - lo, 0.0);
+    // A corner of a crack that two vertices a round-off apart share: split at the point, the one
+    // whose only half-edge lay on the other's side kept none of it (1e-3·h where 0.5 mm bore on
+    // the face; it sank 1 mm). What P's own halves reach past the others' at P stays P's.
+    if (std::isfinite(beyond_lo)) length[i] += std::max(std::min(beyond_lo, 0.0) - lo_v, 0.0);
+    if (std::isfinite(beyond_hi)) length[i] += std::max(hi_v - std::max(beyond_hi, 0.0), 0.0);
     if (!(length[i] > 0)) length[i] = corner_length;
   }
   return length;

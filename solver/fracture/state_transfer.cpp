@@ -155,6 +155,7 @@ std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& 
     h.vertex = v;
     h.block = block;
     h.state = ContactState::locked;
+    h.fresh = true;
     out.push_back(h);
   }
   return out;
