@@ -20,6 +20,7 @@
 //   penetration   how deep the solved step penetrates: step control rejects it (cuts Δt) beyond
 //                 its limit (step_control.h)
 //   commit        the accepted step into the state (history is committed here, never on an iterate)
+//   summarise     its part of summary.json
 #pragma once
 
 #include <cstddef>
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <nlohmann/json_fwd.hpp>
 
 #include "common/outcome.h"
 #include "solver/discretisation/run_state.h"
@@ -121,6 +123,11 @@ class Effect {
   virtual void rejected(const EffectStep& /*step*/, const Eigen::VectorXd& /*covers_d*/) const {}
   /// The accepted step into the state step.s (before the covers move: state_update.h).
   virtual void commit(EffectStep& /*step*/, const Eigen::VectorXd& /*d*/) {}
+
+  // ---- what the run reports -----------------------------------------------------------------
+  /// Its part of summary.json for the run in state s (the bolts' "bolts"), added to `summary`.
+  /// (Its carried state is RunState's, and so the checkpoint's: run_state.h.)
+  virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
 };
 
 }  // namespace nmm::solve

@@ -40,26 +40,8 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   for (std::size_t b = 0; b < s.body_removed.size(); ++b)
     if (s.body_removed[b])
       summary["excavated_bodies"].push_back({{"body", b}, {"step", s.body_removed_at[b]}});
-  // Bolts (docs/interface.md "Rock bolts and cables"): per bolt its largest axial force so far
-  // (N per bolt), whether its steel yielded (grouted) or it broke (anchored); and beyond the
-  // contract its type, the step it was installed at and a cable's largest grout slip (m).
-  if (!s.bolts.empty()) {
-    nlohmann::json bolts = nlohmann::json::array();
-    for (std::size_t b = 0; b < s.bolts.size(); ++b) {
-      const BoltState& bs = s.bolts[b];
-      double slip = 0;
-      for (double x : bs.slip) slip = std::max(slip, std::abs(x));
-      nlohmann::json j = {{"bolt", b},
-                          {"max_axial_force", bs.max_axial},
-                          {"yielded", bs.yielded != 0},
-                          {"broken", bs.broken != 0},
-                          {"type", bs.type == 0 ? "anchored" : "grouted"},
-                          {"installed_step", bs.installed_step}};
-      if (bs.type != 0) j["max_slip_m"] = slip;
-      bolts.push_back(j);
-    }
-    summary["bolts"] = bolts;
-  }
+  // The effects' own parts (effect.h summarise: the bolts').
+  for (const Effect* e : st.effects) e->summarise(s, summary);
   summary["analysis"] = sv.dynamic                                ? "dynamic"
                         : sv.static_mode == StaticMode::dda ? "static_dda"
                                                                        : "static_equilibrium";

@@ -2,6 +2,9 @@
 #include "solver/reinforcement/bolt_effect.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
 
 #include "solver/reinforcement/bolt_layout.h"
 
@@ -51,6 +54,25 @@ Outcome BoltEffect::not_settled(double t) const {
 
 void BoltEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   bolts_.commit(d, step.context.config, step.s.bolts);
+}
+
+void BoltEffect::summarise(const RunState& s, nlohmann::json& summary) const {
+  if (s.bolts.empty()) return;
+  nlohmann::json bolts = nlohmann::json::array();
+  for (std::size_t b = 0; b < s.bolts.size(); ++b) {
+    const BoltState& bs = s.bolts[b];
+    double slip = 0;
+    for (double x : bs.slip) slip = std::max(slip, std::abs(x));
+    nlohmann::json j = {{"bolt", b},
+                        {"max_axial_force", bs.max_axial},
+                        {"yielded", bs.yielded != 0},
+                        {"broken", bs.broken != 0},
+                        {"type", bs.type == 0 ? "anchored" : "grouted"},
+                        {"installed_step", bs.installed_step}};
+    if (bs.type != 0) j["max_slip_m"] = slip;
+    bolts.push_back(j);
+  }
+  summary["bolts"] = bolts;
 }
 
 }  // namespace nmm::solve

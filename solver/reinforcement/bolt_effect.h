@@ -37,6 +37,10 @@ class BoltEffect final : public Effect {
   int max_solves() const override { return BoltSystem::kMaxRounds; }
   Outcome not_settled(double t) const override;
   void commit(EffectStep& step, const Eigen::VectorXd& d) override;
+  /// summary.json "bolts" (docs/interface.md "Rock bolts and cables"): per bolt its largest axial
+  /// force so far (N per bolt), whether its steel yielded (grouted) or it broke (anchored); and
+  /// beyond the contract its type, the step it was installed at and a cable's largest grout slip (m).
+  void summarise(const RunState& s, nlohmann::json& summary) const override;
 
  private:
   const Model& model_;

@@ -20,6 +20,7 @@
 #include "solver/fracture/fracture.h"
 #include "preprocess/recut.h"
 #include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/effect.h"
 #include "solver/stepping/equilibrium_indicator.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
@@ -60,6 +61,8 @@ struct RunView {
   /// The state the last step that re-cut the mesh started from, carried onto the mesh now
   /// (fracture/state_transfer.h): its fields are those of the accepted state before that step.
   const RunState& recut_start;
+  /// The effects with state the run's steps call (effect.h; mesh_bound.h lists them).
+  const std::vector<Effect*>& effects;
 };
 
 /// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).
