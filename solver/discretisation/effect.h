@@ -1,6 +1,7 @@
 // An effect with state of its own in the step (docs/code-layout.md "Effects"): contacts, bolts,
-// absorbing boundaries — each behind this one interface, so the stepper (time_stepper.cpp)
-// loops over the effects a scene calls for (solver/stepping/mesh_bound.h builds the list) and names none.
+// absorbing boundaries — each behind this one interface, so the stepper
+// (solver/stepping/time_stepper.cpp) loops over the effects a scene calls for
+// (solver/stepping/mesh_bound.h builds the list) and names none.
 //
 // Effects without state of their own (elasticity, gravity, loads, supports, tractions, water
 // pressure, in-situ traction) are integrators of the step's form instead (form.h,
