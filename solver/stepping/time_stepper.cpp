@@ -105,6 +105,10 @@ void TimeStepper::build_pattern() {
   system_.build_pattern(static_cast<int>(rhs_.size()), offsets, dofs);
 }
 
+EffectStep TimeStepper::effect_step(const StepContext& context) {
+  return {context, s_, system_, rhs_, control_.search_distance(), control_.penetration_limit(), timings_, *this};
+}
+
 StepContext TimeStepper::step_context(double dt) const {
   return make_step_context(b_->model, b_->config, s_, removed_elem_, dt);
 }
@@ -126,7 +130,7 @@ Outcome TimeStepper::attempt_once(double dt) {
   if (Outcome folded = compute_frames(); !folded.ok()) return folded;
   timings_.assembly += watch.seconds();
   const StepContext context = step_context(dt);  // the attempt's one context (step_context.h)
-  EffectStep step{context, s_, system_, rhs_, control_.search_distance(), control_.penetration_limit(), timings_, *this};
+  EffectStep step = effect_step(context);
   for (Effect* e : active) {
     if (Outcome o = e->begin_step(step); !o.ok()) return o;
     if (step.pattern_changed) build_pattern();
@@ -226,7 +230,7 @@ const Eigen::VectorXd& TimeStepper::force_at_rest() {
   rest.body_force = body_force_per_mass(scene(), s_.time);
   rest.inertia = InertiaCoefficients{};
   b_->form.assemble(rest, system_, rhs_);
-  EffectStep step{rest, s_, system_, rhs_, control_.search_distance(), control_.penetration_limit(), timings_, *this};
+  EffectStep step = effect_step(rest);
   for (Effect* e : b_->effects)
     if (e->active()) e->add_at_rest(step);
   return rhs_;

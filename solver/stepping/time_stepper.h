@@ -84,6 +84,8 @@ class TimeStepper : private StepHost {
   Outcome stop(StopCode code, std::string reason) const;
   /// The context of a step of dt from the current state (step_context.h).
   StepContext step_context(double dt) const;
+  /// What the effects see of a stage of the attempt in `context` (effect.h).
+  EffectStep effect_step(const StepContext& context);
   /// Solves the assembled step (rhs_, system_): one factorisation, or `solver`'s own way (the
   /// contacts' problem); `again`: the same step solved again from x.d (an effect judged its
   /// solution). Sets x.
