@@ -2,6 +2,8 @@
 #include "common/mesh_compare.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <iterator>
 #include <cstdint>
 #include <map>
@@ -13,50 +15,38 @@ namespace nmm {
 
 namespace {
 
-// One loop edge as compared: its start vertex, origin flags and joint.
-using EdgeKey = std::tuple<double, double, std::uint8_t, std::int32_t>;
+// Two coordinates of one point as two cuts rounded it. A point the cut constructs (a joint across
+// a mesh edge, two joints crossing) is exact inside CGAL; its double is the midpoint of whatever
+// interval the construction left (CGAL::to_double of a lazy number), so a region re-cut and a
+// whole cut that build the same exact point by different constructions may round it a few ulps
+// apart (docs/fracture.md "Re-cutting": the step-path slope's joint across a mesh edge, 16.785144270341430
+// against 16.785144270341434). kUlps bounds that: far below any distance a cut decides (a vertex
+// snaps to another within 1e-2·h), far above the rounding.
+constexpr double kUlps = 64;
+bool same_coordinate(double x, double y) {
+  return std::abs(x - y) <= kUlps * std::numeric_limits<double>::epsilon() * std::max(std::abs(x), std::abs(y));
+}
 
-// An element as compared: its triangle, body and loop, rotated to its least rotation (a loop may
-// start at any of its vertices; a bridged loop repeats vertices, so the whole sequence decides).
-struct ElementKey {
-  std::int32_t triangle = -1, body = -1;
-  std::vector<EdgeKey> loop;
-  bool operator<(const ElementKey& o) const {
-    return std::tie(triangle, body, loop) < std::tie(o.triangle, o.body, o.loop);
+// Whether element ea of a and eb of b have the same loop (vertices within kUlps, the same edge
+// origins and joints), the loop of b starting `offset` vertices on from a's.
+bool same_loop(const Mesh& a, std::size_t ea, const Mesh& b, std::size_t eb, std::int32_t& offset) {
+  const std::int32_t fa = a.element_loop_offset[ea], n = a.element_loop_offset[ea + 1] - fa;
+  const std::int32_t fb = b.element_loop_offset[eb];
+  if (b.element_loop_offset[eb + 1] - fb != n) return false;
+  for (std::int32_t r = 0; r < n; ++r) {
+    bool all = true;
+    for (std::int32_t k = 0; k < n && all; ++k) {
+      const std::int32_t va = fa + k, vb = fb + (k + r) % n;
+      all = a.loop_edge_origin[va] == b.loop_edge_origin[vb] && a.loop_edge_joint[va] == b.loop_edge_joint[vb] &&
+            same_coordinate(a.loop_xy[2 * va], b.loop_xy[2 * vb]) &&
+            same_coordinate(a.loop_xy[2 * va + 1], b.loop_xy[2 * vb + 1]);
+    }
+    if (all) {
+      offset = r;
+      return true;
+    }
   }
-  bool operator==(const ElementKey& o) const {
-    return triangle == o.triangle && body == o.body && loop == o.loop;
-  }
-};
-
-struct Canonical {
-  std::vector<ElementKey> key;       // [me]
-  std::vector<std::int32_t> shift;   // [me] the loop vertex (local) the least rotation starts at
-};
-
-Canonical canonical(const Mesh& m) {
-  Canonical c;
-  const std::size_t ne = m.element_count();
-  c.key.resize(ne);
-  c.shift.resize(ne);
-  for (std::size_t e = 0; e < ne; ++e) {
-    const std::int32_t b = m.element_loop_offset[e], n = m.element_loop_offset[e + 1] - b;
-    std::vector<EdgeKey> loop;
-    for (std::int32_t v = b; v < b + n; ++v)
-      loop.emplace_back(m.loop_xy[2 * v], m.loop_xy[2 * v + 1], m.loop_edge_origin[v], m.loop_edge_joint[v]);
-    std::int32_t best = 0;
-    for (std::int32_t r = 1; r < n; ++r)
-      for (std::int32_t k = 0; k < n; ++k) {
-        const EdgeKey &x = loop[(r + k) % n], &y = loop[(best + k) % n];
-        if (x == y) continue;
-        if (x < y) best = r;
-        break;
-      }
-    std::rotate(loop.begin(), loop.begin() + best, loop.end());
-    c.key[e] = {m.element_triangle[e], m.element_body[e], std::move(loop)};
-    c.shift[e] = best;
-  }
-  return c;
+  return false;
 }
 
 std::string where(const Mesh& m, std::size_t e) {
@@ -96,19 +86,26 @@ std::string mesh_difference(const Mesh& a, const Mesh& b) {
   const std::size_t ne = a.element_count();
   if (ne != b.element_count())
     return std::to_string(ne) + " elements against " + std::to_string(b.element_count());
-  const Canonical ca = canonical(a), cb = canonical(b);
-  std::vector<std::int32_t> oa(ne), ob(ne);
-  for (std::size_t e = 0; e < ne; ++e) oa[e] = ob[e] = static_cast<std::int32_t>(e);
-  std::sort(oa.begin(), oa.end(), [&](std::int32_t x, std::int32_t y) { return ca.key[x] < ca.key[y]; });
-  std::sort(ob.begin(), ob.end(), [&](std::int32_t x, std::int32_t y) { return cb.key[x] < cb.key[y]; });
-  std::vector<std::int32_t> to_b(ne);  // [a's me] b's me
-  for (std::size_t k = 0; k < ne; ++k) {
-    if (!(ca.key[oa[k]] == cb.key[ob[k]])) {
-      os << where(a, static_cast<std::size_t>(oa[k])) << " has no equal; the nearest is "
-         << where(b, static_cast<std::size_t>(ob[k]));
+  // Elements: matched within their triangle and body (a triangle holds a few), loop by loop.
+  std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::int32_t>> in_b;  // (triangle, body) → b's MEs
+  for (std::size_t e = 0; e < ne; ++e)
+    in_b[{b.element_triangle[e], b.element_body[e]}].push_back(static_cast<std::int32_t>(e));
+  std::vector<std::int32_t> to_b(ne, -1), offset(ne, 0);  // [a's me] b's me, its loop's start
+  std::vector<std::uint8_t> taken(ne, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto it = in_b.find({a.element_triangle[e], a.element_body[e]});
+    if (it != in_b.end())
+      for (const std::int32_t f : it->second)
+        if (!taken[static_cast<std::size_t>(f)] && same_loop(a, e, b, static_cast<std::size_t>(f), offset[e])) {
+          to_b[e] = f;
+          taken[static_cast<std::size_t>(f)] = 1;
+          break;
+        }
+    if (to_b[e] < 0) {
+      os << where(a, e) << " has no equal";
+      if (it != in_b.end()) os << "; its triangle's first is " << where(b, static_cast<std::size_t>(it->second.front()));
       return os.str();
     }
-    to_b[oa[k]] = ob[k];
   }
   // Covers: as sets of element corners (element, corner), one to one, on the same node and body.
   if (a.cover_count() != b.cover_count())
@@ -141,20 +138,20 @@ std::string mesh_difference(const Mesh& a, const Mesh& b) {
       return os.str();
     }
   }
-  // Contact edges: (element, its loop edge counted from the least rotation, the element across).
-  auto edges = [](const Mesh& m, const Canonical& c, const std::vector<std::int32_t>* to) {
+  // Contact edges: (element, its loop edge, the element across), a's in b's numbering.
+  auto edges = [](const Mesh& m, const std::vector<std::int32_t>* to, const std::vector<std::int32_t>* start) {
     std::vector<std::tuple<std::int32_t, std::int32_t, std::int32_t>> out;
     for (std::size_t i = 0; i < m.contact_edge.size(); ++i) {
       const auto e = static_cast<std::size_t>(m.contact_edge_element[i]);
       const std::int32_t first = m.element_loop_offset[e], n = m.element_loop_offset[e + 1] - first;
-      const std::int32_t local = ((m.contact_edge[i] - first - c.shift[e]) % n + n) % n;
+      const std::int32_t local = (m.contact_edge[i] - first + (start ? (*start)[e] : 0)) % n;
       const std::int32_t opp = m.contact_edge_opposite[i];
       out.emplace_back(to ? (*to)[e] : static_cast<std::int32_t>(e), local, opp < 0 || !to ? opp : (*to)[static_cast<std::size_t>(opp)]);
     }
     std::sort(out.begin(), out.end());
     return out;
   };
-  const auto ea = edges(a, ca, &to_b), eb = edges(b, cb, nullptr);
+  const auto ea = edges(a, &to_b, &offset), eb = edges(b, nullptr, nullptr);
   if (ea != eb) {
     std::vector<std::tuple<std::int32_t, std::int32_t, std::int32_t>> only_a, only_b;
     std::set_difference(ea.begin(), ea.end(), eb.begin(), eb.end(), std::back_inserter(only_a));

@@ -2,7 +2,8 @@
 // manifold elements (loops with their edges' origins and joints, whatever vertex a loop starts at
 // and whatever order a triangle's elements come in), the same physical covers (as sets of element
 // corners), the same blocks (as sets of elements) and the same contact edges (with the element
-// across). Numbering may differ; nothing else may.
+// across). Numbering may differ, and a vertex's coordinates by the rounding of a point the cut
+// constructs (64 ulps: mesh_compare.cpp); nothing else may.
 //
 // Used to check that re-cutting a mesh where cracks grew (preprocess/recut.h) gives exactly the
 // mesh a full cut of the scene with the crack segments as joints gives (docs/fracture.md

@@ -88,6 +88,32 @@ pre::RecutMap check_recut(SceneDef s, const std::vector<Vec2>& points, const cha
 }  // namespace
 
 // A region of every triangle is the whole cut, array for array.
+// The comparison itself: a loop vertex moved by the rounding of a constructed point (a few ulps)
+// is the same cut, by a micrometre it is not; another joint flag, another block or one element
+// less is not either.
+TEST(MeshDifference, ToleratesRoundingOfConstructedPointsAndNothingMore) {
+  const Mesh m = pre::build_mesh(two_bodies(), "m");
+  ASSERT_EQ(mesh_difference(m, m), "");
+  std::size_t v = 0;  // a vertex the older joint constructed (on its edge, inside the body)
+  while (v < m.loop_vertex_count() && m.loop_edge_joint[v] < 0) ++v;
+  ASSERT_LT(v, m.loop_vertex_count());
+  Mesh ulps = m, micro = m, flag = m;
+  for (Mesh* x : {&ulps, &micro, &flag})
+    for (std::size_t w = 0; w < m.loop_vertex_count(); ++w)  // every copy of the point moves
+      if (m.loop_xy[2 * w] == m.loop_xy[2 * v] && m.loop_xy[2 * w + 1] == m.loop_xy[2 * v + 1]) {
+        if (x == &ulps) x->loop_xy[2 * w] = std::nextafter(std::nextafter(m.loop_xy[2 * w], 1e9), 1e9);
+        if (x == &micro) x->loop_xy[2 * w] += 1e-6;
+      }
+  flag.loop_edge_joint[v] = m.loop_edge_joint[v] + 1;
+  EXPECT_EQ(mesh_difference(ulps, m), "") << "2 ulps apart";
+  EXPECT_NE(mesh_difference(micro, m), "") << "1 µm apart";
+  EXPECT_NE(mesh_difference(flag, m), "") << "another joint on an edge";
+  Mesh blocks = m;
+  for (std::int32_t& b : blocks.element_block) b = 0;
+  ASSERT_GT(m.block_count(), 1u);
+  EXPECT_NE(mesh_difference(blocks, m), "") << "one block for all";
+}
+
 TEST(Recut, ARegionOfEveryTriangleIsTheWholeCut) {
   const SceneDef s = two_bodies();
   const Mesh whole = pre::build_mesh(s, "whole");
