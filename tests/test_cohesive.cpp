@@ -274,6 +274,69 @@ TEST(CohesiveBar, PostPeakFollowsHillerborg) {
   }
 }
 
+// Petersson's (1981) beam in three-point bending (docs/cohesive_beam.py has the same scene): span
+// 2 m, depth 0.2 m, notch 0.1 m, E 30 GPa, σt 3.33 MPa, G_f 124 N/m. The target: peak load and
+// work of fracture within 5 % across h = 0.025, 0.0167, 0.0125 m, and the work within 10 % of
+// G_f × ligament = 12.4 J/m. Not met (label open): measured 2026-11-29 the peaks are 73.0, 53.1
+// and 37.5 kN/m and every run stops near its peak (docs/fracture.md "Cohesive softening").
+TEST(CohesiveBeam, PeterssonLoadDeflectionAndWorkOfFracture) {
+  std::vector<double> peaks, works;
+  for (const double h : {0.025, 0.0167, 0.0125}) {
+    nlohmann::json d;
+    d["plane"] = "stress";
+    d["materials"]["concrete"] = {{"density", 2400}, {"young", 3e10}, {"poisson", 0.2},
+                                  {"strength", {{"tensile", 3.33e6}, {"cohesion", 10e6}, {"friction_deg", 35}, {"fracture_energy", 124}}}};
+    d["joint_sets"]["crack"] = {{"friction_deg", 30},
+                                {"normal", {{"model", "constant"}, {"kn", 1e14}}},
+                                {"shear", {{"model", "constant"}, {"ks", 4e13}}}};
+    d["bodies"] = {{{"material", "concrete"},
+                    {"outer", {{0, 0}, {1.095, 0}, {1.095, 0.1}, {1.105, 0.1}, {1.105, 0}, {2.2, 0}, {2.2, 0.2}, {0, 0.2}}}}};
+    d["fracture"] = {{"crack_set", "crack"}};
+    d["mesh"]["size"] = h;
+    d["supports"] = {{{"points", {{0.05, 0}, {0.15, 0}}}, {"fix", "y"}},
+                     {{"points", {{2.05, 0}, {2.15, 0}}}, {"fix", "y"}},
+                     {{"points", {{1.05, 0.2}, {1.15, 0.2}}}, {"fix", "y"}, {"velocity", {0, -1e-3}}}};
+    d["fixed_points"] = {{0.1, 0.01}};
+    d["solver"] = {{"time_step", 1e-3}, {"steps", 1000}, {"dynamic", false}, {"output_every", 2}};
+    SceneDef s;
+    const Mesh m = mesh_of(d, "beam", s);
+    const test::TempDir dir;
+    solve::SolveOptions o;
+    o.out_dir = dir.path("run");
+    solve::SolveRun run(m, "beam", o);
+    const nlohmann::json summary = run.run();
+    double peak = 0, work = 0, last_w = 0, last_t = 0;
+    std::ifstream csv(dir.path("run/energy.csv"));
+    std::string line, cell;
+    std::getline(csv, line);
+    std::vector<std::string> names;
+    for (std::istringstream head(line); std::getline(head, cell, ',');) names.push_back(cell);
+    while (std::getline(csv, line)) {
+      std::map<std::string, double> row;
+      std::istringstream in(line);
+      for (const std::string& n : names) {
+        std::getline(in, cell, ',');
+        row[n] = std::stod(cell);
+      }
+      const double dh = 1e-3 * (row["time"] - last_t);
+      if (dh > 0) peak = std::max(peak, (row["load_work"] - last_w) / dh);
+      last_w = work = row["load_work"];
+      last_t = row["time"];
+    }
+    std::printf("h %.4g m: %s after %lld steps; peak %.4g kN/m, work %.4g J/m (G_f × ligament 12.4)\n", h,
+                summary["stop_code"].get<std::string>().c_str(), summary["steps_completed"].get<long long>(), peak / 1e3,
+                work);
+    EXPECT_PRED1(test::ended_ok, run.outcome()) << "h " << h;
+    EXPECT_NEAR(work, 12.4, 1.24) << "h " << h;
+    peaks.push_back(peak);
+    works.push_back(work);
+  }
+  for (std::size_t i = 1; i < peaks.size(); ++i) {
+    EXPECT_NEAR(peaks[i], peaks[0], 0.05 * peaks[0]);
+    EXPECT_NEAR(works[i], works[0], 0.05 * works[0]);
+  }
+}
+
 // Snap-back (Hillerborg: a bar longer than 2·l_ch has, after its peak, more elastic energy than
 // its crack can dissipate, and under displacement control the static path turns back): the bar
 // of 3 m = 3·l_ch breaks in one step and says so (snap_back_steps, snap_back_possible), and the
