@@ -36,6 +36,16 @@
 // solved again with it broken (residual cohesion c_r, no tension), until no unbroken contact is
 // beyond its peak; a contact that was closed and ends the step open loses its cohesion too.
 //
+// Softening crack faces (cohesive_law.h; a new crack in rock with a fracture energy): the normal
+// spring in tension is the cohesive law at the damage κ = max(κ_start, λ(g, w_s)) of the iterate
+// (λ the effective opening), the secant t(κ)·g/κ — the envelope itself while loading — with the
+// elastic stiffness, the secant or nothing (softening) in the Newton matrix; an open face's shear
+// is β²·(t(κ)/κ)·w_s on the same secant, a closed one's strength tanφ·N + β·σt·(t(κ)/σt)·L. Such
+// a face is a bond while κ < w_c (it never breaks at a peak: it softens), and commit() keeps κ,
+// the plastic slip and the energy the step's softening dissipated. Π is then not convex along a
+// softening face: the exact line search finds a root of ψ all the same, and where the static
+// path snaps back the Newton iterations find none and the step is cut (contact_effect.cpp).
+//
 // The springs come from joint_law.h: a joint stress per unit closure or shear (constant kn, ks in
 // Pa/m, Bandis–Barton closure, hyperbolic shear) times the contact's tributary length L
 // (tributary_length.h), or DDA's point penalty (N/m per contact); the force is exactly on the
