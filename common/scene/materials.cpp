@@ -20,13 +20,9 @@ MaterialDef read_material(const std::string& name, const JsonReader& r) {
     s.tensile = st->number("tensile", kStrength);
     s.cohesion = st->number("cohesion", interval(0, true, kMaxStrength, true));
     s.friction_deg = st->number("friction_deg", interval(0, true, 90, false));  // tan 90° is infinite
-    // J/m²: rock's is 10–500; the bound only refuses typing accidents. Cohesive softening of new
-    // cracks is not built yet (docs/fracture.md "Not yet"): a scene asking for it is refused
-    // rather than run without it.
+    // J/m²: rock's is 10–500; the bound only refuses typing accidents. New cracks' faces soften
+    // over it (solver/contact/cohesive_law.h, docs/fracture.md "Cohesive softening").
     s.fracture_energy = st->optional_number("fracture_energy", 0, interval(0, true, 1e9, true));
-    if (s.fracture_energy > 0)
-      (*st)["fracture_energy"].fail("cohesive softening of new cracks is not built yet: a crack's faces start "
-                                    "closed without tensile strength (docs/fracture.md); leave fracture_energy out");
   }
   return m;
 }

@@ -14,7 +14,7 @@ struct StrengthDef {
   double tensile = 0;           ///< Pa, > 0: the tension cut-off, σ1 ≥ tensile (tension positive)
   double cohesion = 0;          ///< Pa, ≥ 0: Mohr–Coulomb's c
   double friction_deg = 0;      ///< degrees, in [0, 90): Mohr–Coulomb's φ
-  double fracture_energy = 0;   ///< J/m², 0: a new crack's cohesive softening (> 0 refused: not built yet)
+  double fracture_energy = 0;   ///< J/m², G_f of a new crack's cohesive softening (0: none, brittle)
 };
 
 struct MaterialDef {

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "solver/contact/cohesive_law.h"
 #include "solver/contact/contact_detection.h"
 #include "solver/contact/joint_law.h"
 
@@ -37,6 +38,9 @@ struct ContactHistory {
   /// a crack's face cut in this step (state_transfer.cpp): it starts locked, but it was never
   /// pressed in, so it licenses no depth beyond a new contact's (closed_contacts())
   bool fresh = false;
+  /// A new crack's face: its cohesive softening's damage and slip (cohesive_law.h; on only
+  /// where the crack's rock has a fracture energy)
+  CohesiveMemory cohesive;
 };
 
 /// One contact of the step being solved: rebuilt by every ContactSet::begin_step() from the
@@ -74,6 +78,12 @@ struct Contact {
   bool capped = false;       ///< closure held below Vm at the last solve
   double dilation_step = 0;  ///< m, the joint's dilation over the accepted step (end_step();
                              ///< Barton–Bandis, < 0 sliding back toward the start; energy.h)
+  /// A new crack's face with cohesive softening: the damage and slip at the start of the step
+  /// (at its end after end_step())
+  CohesiveMemory cohesive;
+  double cohesive_step = 0;  ///< J/m, what its softening dissipated in the accepted step (energy.h)
+  double cohesion_slip_work = 0;  ///< J/m, the work its cohesion did in slip in the accepted step
+                                  ///< (in the friction work too: energy.h takes it out there)
 };
 
 }  // namespace nmm::solve

@@ -70,7 +70,8 @@ void ContactEffect::add_groups(const RunState& s, std::vector<int>& offsets, std
 
 Outcome ContactEffect::begin_step(EffectStep& step) {
   RunState& s = step.s;
-  contacts_.begin_step(s.loop_xy, step.search_distance + contacts_.max_dilation(),
+  contacts_.begin_step(s.loop_xy, step.search_distance + contacts_.max_dilation() +
+                           contacts_.cohesive_reach(),
                        kContactTolerances.new_depth * model_.mesh().mesh_size, model_.w0());
   problem_.build(s.loop_xy, step.context.config, model_.w0());
   step.pattern_changed = update_pattern(s);
@@ -110,6 +111,11 @@ Outcome ContactEffect::solve(EffectStep& step, bool again, StepSolution& x) {
     ++stats_.break_resolves;
     outcome = solve(true);  // from the solution before the breaks
   }
+  // Softening crack faces (cohesive_law.h): where the static path snaps back — the crack would
+  // release more energy than it can take — the step's Newton iterations find no balance and
+  // the step is cut; with more inertia the run follows the snap dynamically. Counted
+  // (summary.json fracture.snap_back_cuts) where a face was softening at the attempt's end.
+  if (outcome.code == StopCode::contact_not_converged && problem_.softening_faces() > 0) ++stats_.cohesive_unsettled;
   if (outcome.ok()) problem_.settle_states();
   x.iterated = x.iterated || stats_.newton > before.newton;
   StepTimings& t = step.timings;
@@ -133,6 +139,9 @@ void ContactEffect::rejected(const EffectStep& step, const Eigen::VectorXd& cove
 void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& /*d*/) {
   const ContactSet::Totals totals = contacts_.totals();
   contacts_.end_step(problem_);
+  // A face that softened through a quarter of w_c in one step: the static path snapped back
+  // (summary.json fracture.snap_back_steps).
+  if (problem_.max_damage_jump() >= 0.25) ++stats_.snap_back_steps;
   step.s.max_penetration = std::max(step.s.max_penetration, totals.max_penetration);
   step.s.max_capped = std::max(step.s.max_capped, totals.capped);
 }

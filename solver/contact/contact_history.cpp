@@ -12,6 +12,10 @@
 // law that has one; otherwise layout 3, so that the checkpoints and state hashes of runs without
 // such joints are byte for byte those of before. A layout-3 history with a Barton–Bandis contact
 // (written before the position was kept) is refused: its joints would lose their way back.
+// A run whose new cracks soften (ContactSet::cohesive(): a breakable material with a fracture
+// energy) writes layout 5 or 6 (3 or 4 plus, per contact after the joint memory, its cohesive
+// memory: on (u8), largest effective opening and plastic slip (f64)); other runs' bytes are
+// unchanged.
 #include "solver/contact/contact_history.h"
 
 #include <cmath>
@@ -24,6 +28,7 @@ namespace nmm::solve {
 namespace {
 constexpr std::uint32_t kContactLayout = 3;
 constexpr std::uint32_t kContactLayoutPosition = 4;  // with the Barton–Bandis shear position
+constexpr std::uint32_t kContactLayoutCohesive = 2;  // added to either: with the cohesive memory
 bool barton_bandis(const ContactSet& contacts, int law) {
   return contacts.laws()[static_cast<std::size_t>(law)].shear == ShearModel::barton_bandis;
 }
@@ -38,7 +43,8 @@ std::string save_contact_history(const ContactSet& contacts) {
   if (cs.size() != hs.size()) throw std::logic_error("contact history and rows out of step");
   bool position = false;
   for (const Contact& c : cs) position = position || barton_bandis(contacts, c.law);
-  w.put(position ? kContactLayoutPosition : kContactLayout);
+  const bool cohesive = contacts.cohesive();
+  w.put((position ? kContactLayoutPosition : kContactLayout) + (cohesive ? kContactLayoutCohesive : 0));
   w.put<std::uint64_t>(cs.size());
   for (std::size_t i = 0; i < cs.size(); ++i) {
     const Contact& c = cs[i];
@@ -60,6 +66,11 @@ std::string save_contact_history(const ContactSet& contacts) {
     w.put(h.joint.dilation);
     w.put(h.joint.closure_max);
     if (position) w.put(h.joint.position);
+    if (cohesive) {
+      w.put<std::uint8_t>(h.cohesive.on ? 1 : 0);
+      w.put(h.cohesive.opening_max);
+      w.put(h.cohesive.slip);
+    }
     w.put(c.gap);
     w.put(c.shear);
     w.put(c.shear_force);
@@ -73,8 +84,14 @@ std::string save_contact_history(const ContactSet& contacts) {
 void load_contact_history(ContactSet& contacts, const std::string& bytes, const Mesh& mesh,
                           const std::string& name) {
   ByteReader r(bytes, name, "CONTACT");
-  const std::uint32_t layout = r.get<std::uint32_t>();
+  std::uint32_t layout = r.get<std::uint32_t>();
+  const bool cohesive = layout == kContactLayout + kContactLayoutCohesive ||
+                        layout == kContactLayoutPosition + kContactLayoutCohesive;
+  if (cohesive) layout -= kContactLayoutCohesive;
   if (layout != kContactLayout && layout != kContactLayoutPosition) r.fail("unknown contact history layout");
+  // A restart that gives the rock a fracture energy (or takes it away) reads either: faces cut
+  // before without it do not soften, and a memory the rock no longer has is dropped
+  // (ContactSet::begin_step).
   const bool position = layout == kContactLayoutPosition;
   const std::uint64_t n = r.get<std::uint64_t>();
   if (n > bytes.size() / 40) r.fail("contact count " + std::to_string(n) + " past the end");
@@ -130,6 +147,11 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     } else if (barton_bandis(contacts, c.law)) {
       r.fail("a Barton–Bandis joint without its shear position (written by an older nmm-solve)");
     }
+    if (cohesive) {
+      c.cohesive.on = flag(r.get<std::uint8_t>());
+      c.cohesive.opening_max = finite(r.get<double>());
+      c.cohesive.slip = finite(r.get<double>());
+    }
     c.gap = finite(r.get<double>());
     c.shear = finite(r.get<double>());
     c.shear_force = finite(r.get<double>());
@@ -137,7 +159,7 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     c.ks_now = finite(r.get<double>());
     c.capped = flag(r.get<std::uint8_t>());
     hs.push_back({c.at.vertex, mesh.element_block[c.at.elem_b], c.state, c.broken,
-                  static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint});
+                  static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint, 0.0, false, c.cohesive});
     cs.push_back(c);
   }
   r.expect_end();

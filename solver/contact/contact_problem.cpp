@@ -36,6 +36,16 @@
 // solved again with it broken (residual cohesion c_r, no tension), until no unbroken contact is
 // beyond its peak; a contact that was closed and ends the step open loses its cohesion too.
 //
+// Softening crack faces (cohesive_law.h; a new crack in rock with a fracture energy): the normal
+// spring in tension is the cohesive law at the damage κ = max(κ_start, λ(g, w_s)) of the iterate
+// (λ the effective opening), the secant t(κ)·g/κ — the envelope itself while loading — with the
+// elastic stiffness, the secant or nothing (softening) in the Newton matrix; an open face's shear
+// is β²·(t(κ)/κ)·w_s on the same secant, a closed one's strength tanφ·N + β·σt·(t(κ)/σt)·L. Such
+// a face is a bond while κ < w_c (it never breaks at a peak: it softens), and commit() keeps κ,
+// the plastic slip and the energy the step's softening dissipated. Π is then not convex along a
+// softening face: the exact line search finds a root of ψ all the same, and where the static
+// path snaps back the Newton iterations find none and the step is cut (contact_effect.cpp).
+//
 // The springs come from joint_law.h: a joint stress per unit closure or shear (constant kn, ks in
 // Pa/m, Bandis–Barton closure, hyperbolic shear) times the contact's tributary length L
 // (tributary_length.h), or DDA's point penalty (N/m per contact); the force is exactly on the
@@ -98,7 +108,113 @@ void ContactProblem::build(const std::vector<double>& xy, const Configuration& c
     w.gap0 = c.at.gap - c.joint.dilation;
     c.gap = w.gap0;
     w.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
+    if (set_.cohesive_holds(c) && c.length > 0) {
+      w.cohesive = &set_.cohesive_law(c);
+      w.k_len = initial_normal_stiffness(set_.laws()[c.law], c.length) / c.length;
+      w.slip = c.cohesive.slip;
+      w.kappa = c.cohesive.opening_max;
+      set_cohesion(c, w);
+    }
   }
+}
+
+namespace {
+// A spring's force and tangent at one point of the line search.
+struct Spring {
+  double force = 0;      // N (normal: compression > 0; shear: along the shear)
+  double stiffness = 0;  // N/m, tangent
+  bool capped = false;
+};
+
+// Normal force at gap g (m): the closure law in compression; in tension only a bond holds (with
+// the initial stiffness). The closure the law sees is smoothed over a skin of ±τ around touching,
+//     δ_e = 0 (δ ≤ −τ),  (δ + τ)²/(4τ) (|δ| < τ),  δ (δ ≥ τ),
+// so force and tangent are continuous: a contact that touches with no force (the sides of
+// bricks in a wall) sits inside the skin, and round-off in its gap moves its tangent a little
+// instead of switching it between 0 and kn, which would change the Newton matrix every
+// iteration. τ = 1e-12·w0 (a few pm): the force at touching is kn·τ/4, far below any load.
+Spring normal_at(const ContactLaw& law, const Contact& c, const ContactWork& w, double g, double skin) {
+  const double closure = -g;
+  if (w.cohesive) {  // a softening crack face: its cohesive law in tension, the crack set's in compression
+    if (closure < 0) {
+      const CohesiveTraction t = cohesive_traction(*w.cohesive, w.k_len, c.cohesive.opening_max, -closure, w.slip);
+      return {-t.traction * c.length, t.stiffness * c.length, false};
+    }
+    const SpringState s = normal_spring(law, closure, c.length, c.joint.closure_max);
+    return {s.force, s.stiffness, s.capped};
+  }
+  if (w.bonded && closure < skin) {
+    const double k0 = initial_normal_stiffness(law, c.length);
+    return {k0 * closure, k0, false};
+  }
+  if (closure >= skin) {
+    const SpringState s = normal_spring(law, closure, c.length, c.joint.closure_max);
+    return {s.force, s.stiffness, s.capped};
+  }
+  if (closure <= -skin) return {};
+  const double e = (closure + skin) * (closure + skin) / (4 * skin);
+  const SpringState s = normal_spring(law, e, c.length, c.joint.closure_max);
+  return {s.force, s.stiffness * (closure + skin) / (2 * skin), false};
+}
+
+// The trial shear force of the spring at elastic shear s, before the strength caps it.
+double trial_shear(const ContactLaw& law, const Contact& c, const ContactWork& w, double s) {
+  return shear_spring(law, s, w.strength, c.length).force;
+}
+
+// Shear force at elastic shear s (m): the spring, capped at the strength S (elastoplastic: the
+// energy is ½ks·s² inside the cap and S·|s| − S²/(2ks) beyond, convex and C¹).
+Spring shear_at(const ContactLaw& law, const Contact& c, const ContactWork& w, double s) {
+  if (w.cohesive && c.gap > 0) {
+    // An open softening crack face (Camacho & Ortiz 1996): the shear traction on the secant of
+    // the damage, β²·s(κ)·w_s, no stiffer than the crack set's shear spring; the traction then
+    // follows the faces' relative motion, so a pull across a crack that kinks puts no spurious
+    // shear on it. Its cap is the envelope itself (κ includes β·w_s).
+    const double k = std::min(cohesive_beta() * cohesive_beta() *
+                                  cohesive_state(*w.cohesive, w.k_len, w.kappa).secant * c.length,
+                              initial_shear_stiffness(law, c.length));
+    return {k * s, k, false};
+  }
+  if (!(w.strength > 0)) return {};
+  const SpringState sp = shear_spring(law, s, w.strength, c.length);
+  if (std::abs(sp.force) >= w.strength) return {s > 0 ? w.strength : -w.strength, 0.0, false};
+  // At the kink to round-off after sliding into the step the same way: the slip branch's tangent
+  // (the force is the spring's, exact either way; contact_tolerances.h slip_kink).
+  if (c.start_state == ContactState::sliding && sp.force * c.slip_sign > 0 &&
+      std::abs(sp.force) >= (1 - kContactTolerances.slip_kink) * w.strength)
+    return {sp.force, 0.0, false};
+  return {sp.force, sp.stiffness, false};
+}
+
+// Barton–Bandis: the strength at the end of the step, from the memory (at its start) and the
+// step's signed shear so far (travel δ + |Δu|, and the direction: forward or back toward the
+// start position). The strength follows it in the friction fixed point below, as it follows the
+// normal force of the solution (implicit in the step), so that the joint's τ and δ at the end of
+// a step lie on the mobilised curve. With the travel at the start of the step the strength
+// lagged the curve by one step: at δp/250 per step by up to 1 % on the pre-peak rise and 2 % at
+// 0.1·δp, where τ rises from zero; 4 % at the seed joint's δp/340 near the start
+// (tests/test_barton_bandis.cpp DirectShearUnderDisplacementControl, docs/joint-studies.md).
+double step_shear(const Contact& c, const ContactWork& w) { return c.shear - w.shear0; }
+
+// Sliding: the trial force reaches the strength (a hyperbola with Rf = 1 only approaches it:
+// 99.9 % counts as slip).
+bool slides(const ContactLaw& law, const Contact& c, const ContactWork& w) {
+  if (w.cohesive && c.gap > 0) return false;  // open and cohesive: the secant shear, no slip
+  const double limit =
+      linear_shear(law) ? w.strength : kContactTolerances.hyperbola_slip * w.strength;
+  return std::abs(trial_shear(law, c, w, c.shear)) >= limit;
+}
+}  // namespace
+
+void ContactProblem::set_cohesion(const Contact& c, ContactWork& w) const {
+  w.c_coh = w.cohesive->cohesion * cohesive_state(*w.cohesive, w.k_len, w.kappa).factor * c.length;
+  w.bonded = w.kappa < w.cohesive->w_c;
+}
+
+double ContactProblem::plastic_slip(const Contact& c, const ContactWork& w) const {
+  const ContactLaw& law = set_.laws()[c.law];
+  if (!(w.strength > 0) || !slides(law, c, w)) return 0;
+  return std::max(0.0, std::abs(c.shear) - shear_at_force(law, w.strength, w.strength, c.length));
 }
 
 void ContactProblem::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
@@ -124,75 +240,6 @@ ContactProblem::OutsidePattern ContactProblem::outside_pattern() const {
   return o;
 }
 
-namespace {
-// A spring's force and tangent at one point of the line search.
-struct Spring {
-  double force = 0;      // N (normal: compression > 0; shear: along the shear)
-  double stiffness = 0;  // N/m, tangent
-  bool capped = false;
-};
-
-// Normal force at gap g (m): the closure law in compression; in tension only a bond holds (with
-// the initial stiffness). The closure the law sees is smoothed over a skin of ±τ around touching,
-//     δ_e = 0 (δ ≤ −τ),  (δ + τ)²/(4τ) (|δ| < τ),  δ (δ ≥ τ),
-// so force and tangent are continuous: a contact that touches with no force (the sides of
-// bricks in a wall) sits inside the skin, and round-off in its gap moves its tangent a little
-// instead of switching it between 0 and kn, which would change the Newton matrix every
-// iteration. τ = 1e-12·w0 (a few pm): the force at touching is kn·τ/4, far below any load.
-Spring normal_at(const ContactLaw& law, const Contact& c, const ContactWork& w, double g, double skin) {
-  const double closure = -g;
-  if (w.bonded && closure < skin) {
-    const double k0 = initial_normal_stiffness(law, c.length);
-    return {k0 * closure, k0, false};
-  }
-  if (closure >= skin) {
-    const SpringState s = normal_spring(law, closure, c.length, c.joint.closure_max);
-    return {s.force, s.stiffness, s.capped};
-  }
-  if (closure <= -skin) return {};
-  const double e = (closure + skin) * (closure + skin) / (4 * skin);
-  const SpringState s = normal_spring(law, e, c.length, c.joint.closure_max);
-  return {s.force, s.stiffness * (closure + skin) / (2 * skin), false};
-}
-
-// The trial shear force of the spring at elastic shear s, before the strength caps it.
-double trial_shear(const ContactLaw& law, const Contact& c, const ContactWork& w, double s) {
-  return shear_spring(law, s, w.strength, c.length).force;
-}
-
-// Shear force at elastic shear s (m): the spring, capped at the strength S (elastoplastic: the
-// energy is ½ks·s² inside the cap and S·|s| − S²/(2ks) beyond, convex and C¹).
-Spring shear_at(const ContactLaw& law, const Contact& c, const ContactWork& w, double s) {
-  if (!(w.strength > 0)) return {};
-  const SpringState sp = shear_spring(law, s, w.strength, c.length);
-  if (std::abs(sp.force) >= w.strength) return {s > 0 ? w.strength : -w.strength, 0.0, false};
-  // At the kink to round-off after sliding into the step the same way: the slip branch's tangent
-  // (the force is the spring's, exact either way; contact_tolerances.h slip_kink).
-  if (c.start_state == ContactState::sliding && sp.force * c.slip_sign > 0 &&
-      std::abs(sp.force) >= (1 - kContactTolerances.slip_kink) * w.strength)
-    return {sp.force, 0.0, false};
-  return {sp.force, sp.stiffness, false};
-}
-
-// Barton–Bandis: the strength at the end of the step, from the memory (at its start) and the
-// step's signed shear so far (travel δ + |Δu|, and the direction: forward or back toward the
-// start position). The strength follows it in the friction fixed point below, as it follows the
-// normal force of the solution (implicit in the step), so that the joint's τ and δ at the end of
-// a step lie on the mobilised curve. With the travel at the start of the step the strength
-// lagged the curve by one step: at δp/250 per step by up to 1 % on the pre-peak rise and 2 % at
-// 0.1·δp, where τ rises from zero; 4 % at the seed joint's δp/340 near the start
-// (tests/test_barton_bandis.cpp DirectShearUnderDisplacementControl, docs/joint-studies.md).
-double step_shear(const Contact& c, const ContactWork& w) { return c.shear - w.shear0; }
-
-// Sliding: the trial force reaches the strength (a hyperbola with Rf = 1 only approaches it:
-// 99.9 % counts as slip).
-bool slides(const ContactLaw& law, const Contact& c, const ContactWork& w) {
-  const double limit =
-      linear_shear(law) ? w.strength : kContactTolerances.hyperbola_slip * w.strength;
-  return std::abs(trial_shear(law, c, w, c.shear)) >= limit;
-}
-}  // namespace
-
 void ContactProblem::start_strengths() {
   std::vector<Contact>& contacts = set_.step_contacts();
   const std::vector<ContactLaw>& laws = set_.laws();
@@ -201,9 +248,9 @@ void ContactProblem::start_strengths() {
     ContactWork& w = work_[i];
     const ContactLaw& law = laws[c.law];
     const bool closed = c.start_state != ContactState::open;
-    w.bonded = closed && !c.broken && law.tensile > 0;
+    w.bonded = w.cohesive ? w.kappa < w.cohesive->w_c : closed && !c.broken && law.tensile > 0;
     const double n = closed ? std::max(w.start_normal_force, 0.0) : 0.0;
-    w.strength = closed ? shear_strength(law, n, c.length, c.broken, c.joint) : 0.0;
+    w.strength = closed ? shear_strength(law, n, c.length, c.broken, c.joint) + (w.cohesive ? w.c_coh : 0.0) : 0.0;
     // Elastic predictor (set_elastic_predictor): a new touching contact of a joint with strength
     // sticks until the fixed point has its normal force.
     if (!closed && elastic_predictor_ && w.gap0 <= eps_ && (law.tan_phi > 0 || law.cohesion > 0))
@@ -216,7 +263,7 @@ void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   const std::vector<ContactLaw>& laws = set_.laws();
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     Contact& c = contacts[k];
-    const ContactWork& w = work_[k];
+    ContactWork& w = work_[k];
     const ContactLaw& law = laws[c.law];
     const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
     const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
@@ -227,6 +274,12 @@ void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
     }
     c.gap = w.gap0 + dg;
     c.shear = w.shear0 + ds;
+    if (w.cohesive) {  // the damage of this iterate (its cohesion follows in update_strengths)
+      // The tangential jump since the crack formed: the spring's shear and the slip.
+      w.slip = std::abs(c.shear) + c.cohesive.slip + plastic_slip(c, w);
+      w.kappa = std::max(c.cohesive.opening_max, effective_opening(*w.cohesive, c.gap, w.slip));
+      w.bonded = w.kappa < w.cohesive->w_c;
+    }
     const Spring n = normal_at(law, c, w, c.gap, skin_);
     const Spring t = shear_at(law, c, w, c.shear);
     c.normal_force = n.force;
@@ -379,6 +432,13 @@ std::array<double, ContactProblem::kLineKinds> ContactProblem::line_model_residu
   return out;
 }
 
+int ContactProblem::softening_faces() const {
+  int n = 0;
+  for (const ContactWork& w : work_)
+    if (w.cohesive && w.kappa < w.cohesive->w_c && cohesive_state(*w.cohesive, w.k_len, w.kappa).factor < 1) ++n;
+  return n;
+}
+
 double ContactProblem::force_scale() const {
   const std::vector<Contact>& contacts = set_.contacts();
   double f = 0;
@@ -402,7 +462,9 @@ int ContactProblem::update_strengths(double force_floor) {
     // sliding block then ends 0.17–0.31 % off Coulomb's answer, because its normal forces shift
     // between its corners as it slides.)
     const double n = closed ? std::max(c.normal_force, 0.0) : 0.0;
-    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint, step_shear(c, w)) : 0.0;
+    if (w.cohesive) set_cohesion(c, w);
+    double s = closed ? shear_strength(law, n, c.length, c.broken, c.joint, step_shear(c, w)) + (w.cohesive ? w.c_coh : 0.0)
+                      : 0.0;
     // Barely touching (tanφ·N + c·L below F_tol): no shear spring to switch on and off. The
     // strength falls to zero along a ramp, 2s − F_tol from F_tol down to F_tol / 2, not in one
     // jump at F_tol: a jump of F_tol is a change the fixed point counts, so contacts whose N
@@ -483,6 +545,7 @@ void ContactProblem::settle_states() {
 void ContactProblem::commit() {
   std::vector<Contact>& contacts = set_.step_contacts();
   const std::vector<ContactLaw>& laws = set_.laws();
+  max_damage_jump_ = 0;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     Contact& c = contacts[i];
     const ContactWork& w = work_[i];
@@ -493,6 +556,18 @@ void ContactProblem::commit() {
     if (c.state != ContactState::open)
       c.joint = advance_joint_memory(law, c.joint, c.normal_force, c.length, step_shear(c, w), -c.gap);
     c.dilation_step = c.joint.dilation - dilation0;
+    if (w.cohesive) {
+      // The damage of the accepted solution, and what its softening dissipated over the step
+      // (cohesive_law.h D(κ), a function of the damage alone); the cohesion's share of the
+      // slip's work, which the friction work counts too (energy.h takes it out there).
+      const double slip = c.state == ContactState::sliding ? plastic_slip(c, w) : 0.0;
+      c.cohesive_step = c.length * (cohesive_dissipation(*w.cohesive, w.k_len, w.kappa) -
+                                    cohesive_dissipation(*w.cohesive, w.k_len, c.cohesive.opening_max));
+      c.cohesion_slip_work = w.c_coh * slip;
+      max_damage_jump_ = std::max(max_damage_jump_, (w.kappa - c.cohesive.opening_max) / w.cohesive->w_c);
+      c.cohesive.opening_max = w.kappa;
+      c.cohesive.slip += slip;
+    }
     if (c.state == ContactState::open) {
       c.shear_el = 0;
     } else if (c.state == ContactState::locked) {

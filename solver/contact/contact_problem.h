@@ -34,6 +34,14 @@ struct ContactWork {
   double start_normal_force = 0;  ///< N, the normal force carried into the step (start_strengths())
   bool start_broken = false;    ///< broken at the start of the step (end_step() counts new breaks)
   double rate_gap = 0, rate_shear = 0;  ///< m per unit α, Δg and Δs of the line search direction
+  // A new crack's face that still holds a cohesive traction (cohesive_law.h): its damage follows
+  // each iterate's opening and slip, κ = max(κ at the step's start, λ), and is committed only with
+  // the accepted step (commit()).
+  const CohesiveLaw* cohesive = nullptr;  ///< its rock's law (null: not a softening face)
+  double k_len = 0;   ///< Pa/m, the crack set's normal stiffness per unit length
+  double slip = 0;    ///< m, plastic slip since the crack formed, at the last iterate
+  double kappa = 0;   ///< m, damage at the last iterate
+  double c_coh = 0;   ///< N, the softened shear cohesion c·factor(κ)·L, in the strength
 };
 
 class ContactProblem {
@@ -118,6 +126,9 @@ class ContactProblem {
   /// All kinds are also added to `total` (given: the linear model's residual r − αHδ; then the
   /// residual at the point taken, which the next iterate evaluates).
   std::array<double, kLineKinds> line_model_residual(double alpha, Eigen::VectorXd& total) const;
+  /// Cohesive faces on the softening branch at the last forces_at() (damage past the elastic
+  /// opening, below w_c).
+  int softening_faces() const;
   /// Largest |N| and |T| of the last forces_at(), N (a scale for the residual tolerance).
   double force_scale() const;
   /// After an inner solve: shear strengths follow the normal forces (the friction fixed point).
@@ -144,8 +155,11 @@ class ContactProblem {
   void settle_states();
   /// The accepted step's results written into its contacts (ContactSet::end_step() calls it):
   /// the joint law's memory, the elastic shear (a sliding contact's spring left loaded at the
-  /// friction limit: the return mapping), and the bonds broken in it counted.
+  /// friction limit: the return mapping), the cohesive faces' damage, slip and the energy their
+  /// softening dissipated, and the bonds broken in it counted.
   void commit();
+  /// –, the largest growth of a softening face's damage in the committed step, over its w_c.
+  double max_damage_jump() const { return max_damage_jump_; }
 
  private:
   ContactSet& set_;
@@ -158,6 +172,11 @@ class ContactProblem {
   bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve
   double eps_ = 0;                  // m, gap tolerance (contact_tolerances.h open_gap·w0)
   double skin_ = 0;                 // m, smoothing of the normal spring (skin·w0)
+  double max_damage_jump_ = 0;      // –, commit()'s largest Δκ/w_c
+  /// A cohesive face's softened cohesion at its damage w.kappa: w.c_coh (N).
+  void set_cohesion(const Contact& c, ContactWork& w) const;
+  /// m, the plastic slip of contact c in the step so far (0 unless it slides).
+  double plastic_slip(const Contact& c, const ContactWork& w) const;
 };
 
 }  // namespace nmm::solve

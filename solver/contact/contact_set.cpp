@@ -27,7 +27,7 @@
 namespace nmm::solve {
 
 ContactSet::ContactSet(const Model& model)
-    : mesh_(model.mesh()) {
+    : mesh_(model.mesh()), model_(model) {
   {
     // The default interface's springs: model.h PenaltyDefaults.
     const double kn = PenaltyDefaults::kInterface * model.young_max() / mesh_.mesh_size;
@@ -36,6 +36,11 @@ ContactSet::ContactSet(const Model& model)
     joint_law_ = std::move(c.joint_law);
     interface_law_ = c.interface_law;
   }
+  if (model.scene().fracture.present)
+    for (const MaterialDef& m : model.scene().materials) {
+      cohesive_laws_.push_back(solve::cohesive_law(m.strength));
+      cohesive_ = cohesive_ || cohesive_laws_.back().on();
+    }
   active_ = !model.scene().joints.empty() || mesh_.block_count() > 1;
   if (!active_) return;
   topo_ = build_contact_topology(mesh_);
@@ -48,6 +53,24 @@ ContactSet::ContactSet(const Model& model)
     if (laws_[l].normal == NormalModel::bandis_barton)
       topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
   }
+}
+
+const CohesiveLaw& ContactSet::cohesive_law(const Contact& c) const {
+  static const CohesiveLaw off;
+  if (!cohesive_) return off;
+  return cohesive_laws_[static_cast<std::size_t>(model_.material_of(static_cast<std::size_t>(c.at.elem_a)))];
+}
+
+bool ContactSet::cohesive_holds(const Contact& c) const {
+  return c.cohesive.on && c.cohesive.opening_max < cohesive_law(c).w_c;
+}
+
+double ContactSet::cohesive_reach() const {
+  double reach = 0;
+  if (!cohesive_) return reach;
+  for (const Contact& c : accepted())
+    if (cohesive_holds(c)) reach = std::max(reach, cohesive_law(c).w_c);
+  return reach;
 }
 
 std::int32_t ContactSet::joint_of(const ContactCandidate& f) const {
@@ -73,6 +96,7 @@ void ContactSet::restore(std::vector<ContactHistory> history, std::vector<Contac
       c.shear_el = h.shear_el;
       c.normal_force = h.normal_force;
       c.joint = h.joint;
+      c.cohesive = h.cohesive;
       rows.push_back(c);
     }
   }
@@ -162,6 +186,17 @@ void ContactSet::begin_step(const std::vector<double>& xy, double d0, double sha
         while (at >= 0 && history_[at].block != block_a) at = history_next_[at];
       }
     }
+    // A crack that does not split its block yet has no mirrors (they are other blocks'): where
+    // new cracks soften, the vertex of the other face at P's point — an end of the edge P faces,
+    // the faces being cut together — hands its history on the same way, so that a softening face
+    // keeps its damage and its bond when detection keeps the other face's vertex at a point.
+    if (at < 0 && cohesive_) {
+      const std::int32_t q = f.omega < 0.5 ? f.edge : topo_.next[f.edge];
+      if (length(xy[2 * q] - xy[2 * f.vertex], xy[2 * q + 1] - xy[2 * f.vertex + 1]) <= same) {
+        at = history_at_[q];
+        while (at >= 0 && history_[at].block != block_a) at = history_next_[at];
+      }
+    }
     // A joint's memory belongs to the joint surface (contact_set.h nearby_joint_memory()): a contact
     // that is new or was open takes that of the nearest closed contact of the same two blocks.
     const bool memory = laws_[c.law].shear == ShearModel::barton_bandis || laws_[c.law].hysteresis;
@@ -175,12 +210,18 @@ void ContactSet::begin_step(const std::vector<double>& xy, double d0, double sha
       c.normal_force = o.normal_force;
       c.shear_el = o.shear_el;
       if (!memory || o.state != ContactState::open) c.joint = o.joint;
+      c.cohesive = o.cohesive;
     }
+    // A new crack's face in rock with a fracture energy softens by its cohesive law
+    // (cohesive_law.h), which takes the place of the crack set's bond and peak cohesion: as far
+    // as the set's law goes, the face is broken from the start (its residual cohesion applies).
+    if (c.cohesive.on && !cohesive_law(c).on()) c.cohesive = {};
+    if (c.cohesive.on) c.broken = true;
     // A closed contact whose gap is now positive has separated (or has moved onto an edge it
     // does not touch): it starts the step open. Kept closed, its spring would pull the faces
     // together with kn·gap — glue — and, closing the gap within the solve, never show tension.
     // A bond (unbroken, with tensile strength) holds its faces in tension: it stays closed.
-    const bool bond = !c.broken && laws_[c.law].tensile > 0;
+    const bool bond = (!c.broken && laws_[c.law].tensile > 0) || cohesive_holds(c);
     // The gap is net of the joint's dilation (Barton–Bandis): sheared asperities hold the faces
     // apart by it, so the normal spring closes at gap = dilation.
     if (c.state != ContactState::open && f.gap - c.joint.dilation > eps_ && !bond) c.state = ContactState::open;
@@ -295,7 +336,8 @@ void ContactSet::end_step(ContactProblem& step) {
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
-                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint, std::max(-c.gap, 0.0), false};
+                   static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint, std::max(-c.gap, 0.0), false,
+                   c.cohesive};
   }
   rows_accepted_ = true;
 }

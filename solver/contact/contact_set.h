@@ -38,7 +38,17 @@ class ContactSet {
   /// hyperbolic or Barton–Bandis shear): there the force tolerance alone does not bound a
   /// contact's displacement error, and the contact solve checks it (contact_solve.h
   /// displacement_tolerance). A constant spring's error is at most F_tol/k (max_gap_error).
-  bool softening() const { return nonlinear_ || memory_laws_; }
+  bool softening() const { return nonlinear_ || memory_laws_ || cohesive_; }
+  /// True if a material that can break has a fracture energy: new cracks' faces soften
+  /// (cohesive_law.h), and the checkpoint's CONTACT section carries their damage.
+  bool cohesive() const { return cohesive_; }
+  /// The cohesive law of the rock a contact's vertex lies in (off where it has none).
+  const CohesiveLaw& cohesive_law(const Contact& c) const;
+  /// A contact whose faces still hold a cohesive traction (on, damage below w_c).
+  bool cohesive_holds(const Contact& c) const;
+  /// m, the largest w_c of a contact still holding: detection looks that much farther, so a
+  /// softening crack's contacts are found until their traction is gone.
+  double cohesive_reach() const;
 
   // ---- the step's contacts -----------------------------------------------------------------
   /// Detects contacts in the current configuration (loop vertices xy; search distance d0, new
@@ -127,6 +137,7 @@ class ContactSet {
   void index_closed_memory(const std::vector<double>& xy);
 
   const Mesh& mesh_;
+  const Model& model_;
   ContactTopology topo_;
   std::vector<ContactLaw> laws_;  // the scene's (joint_law.h contact_laws)
   std::vector<int> joint_law_;    // [joint] law index
@@ -134,6 +145,8 @@ class ContactSet {
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
   bool nonlinear_ = false;       // a law in use is not a constant spring
   bool memory_laws_ = false;     // a law carries a joint memory (Barton–Bandis shear, hysteresis)
+  bool cohesive_ = false;        // new cracks soften (a breakable material with a fracture energy)
+  std::vector<CohesiveLaw> cohesive_laws_;  // [material] the cohesive law of its new cracks
   // (cell x, cell y, history index) of the closed history entries, sorted: nearby_joint_memory()'s
   std::vector<std::array<std::int64_t, 3>> memory_cells_;
   bool active_ = false;

@@ -36,6 +36,12 @@ struct ContactSolveStats {
   /// Attempts solved again because contacts broke at their solution (ContactProblem::break_at_peak):
   /// steps, and the extra solves they took
   long steps_resolved_for_breaks = 0, break_resolves = 0;
+  /// Attempts cut because their Newton iterations found no balance while a crack face softened
+  /// (the static path snaps back there: ContactEffect::solve)
+  long cohesive_unsettled = 0;
+  /// Accepted steps in which a softening face's damage grew by w_c/4 or more at once: the crack
+  /// released its energy faster than the steps followed (ContactEffect::commit)
+  long snap_back_steps = 0;
   double factorisation_seconds = 0, cg_seconds = 0, line_search_seconds = 0;
 };
 

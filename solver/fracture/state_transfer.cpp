@@ -99,7 +99,7 @@ pre::RecutMap compose(const pre::RecutMap& later, const pre::RecutMap& earlier) 
 
 std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& history, const Mesh& old,
                                              const Mesh& now, const pre::RecutMap& map,
-                                             std::size_t first_new_joint) {
+                                             std::size_t first_new_joint, bool cohesive) {
   std::vector<std::int32_t> vertex_now(old.loop_vertex_count(), -1);
   for (std::size_t v = 0; v < now.loop_vertex_count(); ++v) {
     const std::int32_t was = map.vertex_parent[v];
@@ -149,15 +149,26 @@ std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& 
     if (across < 0 || now.loop_edge_joint[static_cast<std::size_t>(v)] < static_cast<std::int32_t>(first_new_joint))
       continue;
     const std::int32_t block = now.element_block[static_cast<std::size_t>(across)];
-    const bool has = std::any_of(out.begin(), out.end(), [&](const ContactHistory& h) { return h.vertex == v && h.block == block; });
-    if (has) continue;
-    ContactHistory h;
-    h.vertex = v;
-    h.block = block;
-    h.state = ContactState::locked;
-    h.fresh = true;
-    out.push_back(h);
+    // The edge's start, and — where the rock softens (cohesive_law.h) — its end too: contact
+    // detection keeps one vertex per point of a crack, either face's, and the end of a face's
+    // last edge (at a boundary or a tip) is the start of none, so without an entry of its own a
+    // contact kept there would start open, without its cohesion.
+    const auto e = static_cast<std::size_t>(now.contact_edge_element[i]);
+    const std::int32_t end = v + 1 < now.element_loop_offset[e + 1] ? v + 1 : now.element_loop_offset[e];
+    for (const std::int32_t p : {v, end}) {
+      if (p == end && !cohesive) continue;
+      const bool has = std::any_of(out.begin(), out.end(), [&](const ContactHistory& h) { return h.vertex == p && h.block == block; });
+      if (has) continue;
+      ContactHistory h;
+      h.vertex = p;
+      h.block = block;
+      h.state = ContactState::locked;
+      h.fresh = true;
+      h.cohesive.on = cohesive;
+      out.push_back(h);
+    }
   }
+
   return out;
 }
 

@@ -34,8 +34,10 @@ pre::RecutMap compose(const pre::RecutMap& later, const pre::RecutMap& earlier);
 /// gone) and the block of the element it was against; a vertex at the start of a new crack face's
 /// edge (a joint from `first_new_joint` on) starts closed and locked against the element across —
 /// a fresh crack starts closed, and opens, slides or closes again as its contacts decide.
+/// `cohesive` (a rock that can break has a fracture energy): the new faces' entries soften
+/// (cohesive_law.h), and each face edge's end vertex gets one as well as its start.
 std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& history, const Mesh& old,
                                              const Mesh& now, const pre::RecutMap& map,
-                                             std::size_t first_new_joint);
+                                             std::size_t first_new_joint, bool cohesive = false);
 
 }  // namespace nmm::solve

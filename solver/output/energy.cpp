@@ -285,6 +285,10 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     for (const Contact& c : contacts) {
       if (c.state == ContactState::sliding) friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
       friction_ -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
+      // A softening crack face: what its damage dissipated is fracture (cohesive_law.h D(κ)),
+      // including the work its cohesion did in slip, which is not friction's.
+      released_ += c.cohesive_step;
+      friction_ -= c.cohesion_slip_work;
     }
     const double supports = support_work(s);
     support_work_ += supports;
@@ -326,8 +330,8 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
   r.support_work = support_work_;
   r.friction = friction_ + (plastic - plastic0_);
   r.absorbed = s.absorbed_work - absorbed0_;
-  // Cracking: the strain energy released where cracks opened without softening (cohesive faces
-  // will add the work their softening tractions take, docs/fracture.md).
+  // Cracking: the strain energy released where cracks opened without softening, and what
+  // softening crack faces dissipated (docs/fracture.md).
   r.fracture = released_;
   r.damped = damped_;
   r.residual = r.load_work - r.friction - r.absorbed - r.damped - r.fracture - (mech - mech0_);

@@ -66,8 +66,12 @@
 //                  later shows in R as that much less. Δu is linear along the edge and σ0
 //                  constant (cover order 0: fracturing needs it): the sum is exact. Several re-cuts
 //                  in one step: r is that of every face cut since the last accepted step, d the
-//                  final solution. Cohesive softening (not built) adds the work its face
-//                  tractions take to F.
+//                  final solution. Softening crack faces (cohesive_law.h) add what their damage
+//                  dissipated, Σ_steps Σ_faces L·[D(κ_end) − D(κ_start)] (D the work of the
+//                  traction to κ on the envelope less the elastic energy the secant gives back:
+//                  that part is in S as ½N·closure), and the work their cohesion does in slip
+//                  moves from D to F; a stiff face takes the traction at the cut, so ½ r·d
+//                  is then small.
 //   damped     Q = Σ_steps [½ v1ᵀM v1 − K]                      the motion the steps throw away: v1 the
 //                  velocity a step reached (newmark.h: v1 = v0 + Δt·a1, a1 = (d − Δt v0 −
 //                  (½ − β)Δt² a0)/(βΔt²); a static step of static_mode "dda" starts from rest and

@@ -5,9 +5,37 @@
 #include <cmath>
 
 #include "nmm_version.h"
+#include "solver/contact/cohesive_law.h"
 #include "solver/discretisation/blas_info.h"
 
 namespace nmm::solve {
+
+namespace {
+// Cohesive softening (docs/fracture.md "Snap-back"): Hillerborg's length l_ch = E·G_f/σt² of the
+// rock that softens (the smallest), the longest body of it (the larger side of its outer
+// boundary's bounding box), whether that is longer than 2·l_ch — a bar that long snaps back
+// after its peak when pulled — and what the run measured: accepted steps in which a face's
+// damage grew by w_c/4 or more at once (the static path could not follow the softening), and
+// attempts cut because a softening crack found no balance.
+nlohmann::json snap_back(const RunView& st) {
+  const SceneDef& scene = st.model.scene();
+  double lch = 0, longest = 0;
+  for (const BodyDef& b : scene.bodies) {
+    const MaterialDef& m = scene.materials[static_cast<std::size_t>(b.material)];
+    const double l = characteristic_length(m.young, m.strength);
+    if (!(l > 0) || b.outer.empty()) continue;
+    if (lch == 0 || l < lch) lch = l;
+    double x0 = b.outer[0].x, x1 = x0, y0 = b.outer[0].y, y1 = y0;
+    for (const Vec2& p : b.outer) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    longest = std::max({longest, x1 - x0, y1 - y0});
+  }
+  return {{"characteristic_length_m", lch},
+          {"longest_body_m", longest},
+          {"snap_back_possible", lch > 0 && longest > 2 * lch},
+          {"snap_back_steps", st.contact_solve.snap_back_steps},
+          {"snap_back_cuts", st.contact_solve.cohesive_unsettled}};
+}
+}  // namespace
 
 nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   const SolverDef& sv = st.model.scene().solver;
@@ -135,6 +163,7 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
                            {"debris_area_m2", st.fracture.debris_area()},
                            // Steps taken again because their solution broke the rock.
                            {"steps_resolved", st.fracture.resolves()}};
+    if (st.contacts.cohesive()) summary["fracture"].update(snap_back(st));
   }
   summary["tool_version"] = NMM_VERSION;
   // What the last bits of the results depend on besides the inputs (tests/state_hashes.py), and

@@ -6,6 +6,7 @@
 #include "common/error.h"
 #include "common/mesh_file.h"
 #include "common/stopwatch.h"
+#include "solver/contact/cohesive_law.h"
 #include "solver/fracture/recut_check.h"
 #include "solver/fracture/state_transfer.h"
 
@@ -47,7 +48,10 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
       throw RunError("NMM_CHECK_RECUT: at t = " + std::to_string(start.time) + " s the re-cut of " +
                      std::to_string(segments.size()) + " crack segment(s) is not the full cut: " + diff);
   transfer_state(mesh, *out.mesh, out.map, dofs_per_cover, start);
-  out.history = transfer_history(history, mesh, *out.mesh, out.map, first);
+  // New faces soften where a rock that can break has a fracture energy (cohesive_law.h).
+  const bool cohesive = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                    [](const MaterialDef& m) { return cohesive_law(m.strength).on(); });
+  out.history = transfer_history(history, mesh, *out.mesh, out.map, first, cohesive);
   fracture_.cut(segments, *out.mesh, out.map);
   timings.fracture += watch.seconds();
   return true;

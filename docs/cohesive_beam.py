@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Petersson's notched beam with cohesive softening at three mesh sizes (docs/fracture.md
+"Cohesive softening").
+
+    python3 docs/cohesive_beam.py BIN_DIR OUT_DIR [--figure docs/figures/cohesive_beam.svg]
+
+The beam of Petersson (1981, Lund TVBM-1006; docs/physics.md §6): span 2.0 m between roller
+supports, depth 0.2 m, a notch 0.1 m deep and 10 mm wide at mid-span, E 30 GPa, nu 0.2, plane
+stress, sigma_t 3.33 MPa, G_f 124 N/m (w_c = 74.5 um); crack faces kn 1e14 Pa/m. The load
+support (0.1 m of the top at mid-span) moves down 1 um a static step (dt 1 ms), 1000 steps:
+
+        load v 1 mm/s
+         ====
+    +-----------------+---------------------------+      0.2 m
+    |                 | notch 0.1 m               |
+    +-----------------+---------------------------+
+     ^^^                                       ^^^
+     0.05-0.15 m         span 2.0 m        2.05-2.15 m
+
+Each run's load P (N per m of thickness) is the moving support's work per travel (energy.csv
+load_work: dW/dh), its deflection h the support's travel. Writes OUT_DIR/cohesive_beam.csv
+(h_mm, mesh, deflection_mm, load_kn_per_m) and the figure, and prints per mesh the peak, the
+work of fracture (load_work at the end) against G_f x ligament = 12.4 J/m, the run's status and
+wall time.
+"""
+import argparse
+import csv
+import json
+import pathlib
+import subprocess
+
+SIZES = [0.025, 0.0167, 0.0125]
+GF_LIGAMENT = 124.0 * 0.1  # J/m
+
+
+def scene(h):
+    return {
+        "plane": "stress",
+        "materials": {"concrete": {"density": 2400, "young": 3e10, "poisson": 0.2,
+                                   "strength": {"tensile": 3.33e6, "cohesion": 10e6, "friction_deg": 35,
+                                                "fracture_energy": 124}}},
+        "joint_sets": {"crack": {"friction_deg": 30, "normal": {"model": "constant", "kn": 1e14},
+                                 "shear": {"model": "constant", "ks": 4e13}}},
+        "bodies": [{"material": "concrete",
+                    "outer": [[0, 0], [1.095, 0], [1.095, 0.1], [1.105, 0.1], [1.105, 0], [2.2, 0], [2.2, 0.2],
+                              [0, 0.2]]}],
+        "fracture": {"crack_set": "crack"},
+        "mesh": {"size": h},
+        "supports": [{"points": [[0.05, 0], [0.15, 0]], "fix": "y"},
+                     {"points": [[2.05, 0], [2.15, 0]], "fix": "y"},
+                     {"points": [[1.05, 0.2], [1.15, 0.2]], "fix": "y", "velocity": [0, -1e-3]}],
+        "fixed_points": [[0.1, 0.01]],
+        "solver": {"time_step": 1e-3, "steps": 1000, "dynamic": False, "output_every": 2},
+    }
+
+
+def curve(run):
+    rows = list(csv.DictReader(open(run / "energy.csv")))
+    out = []
+    for a, b in zip(rows, rows[1:]):
+        dh = 1e-3 * (float(b["time"]) - float(a["time"]))
+        if dh > 0:
+            out.append((1e3 * 1e-3 * 0.5 * (float(a["time"]) + float(b["time"])),
+                        (float(b["load_work"]) - float(a["load_work"])) / dh / 1e3))
+    return out, float(rows[-1]["load_work"])
+
+
+def svg(curves, path):
+    w, ht, m = 640, 400, 60
+    xmax = max(max(p[0] for p in c) for c in curves.values()) * 1.05
+    ymax = max(max(p[1] for p in c) for c in curves.values()) * 1.1
+    sx = lambda x: m + (w - 2 * m) * x / xmax
+    sy = lambda y: ht - m - (ht - 2 * m) * max(y, 0) / ymax
+    colours = ["#1f77b4", "#d62728", "#2ca02c"]
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{ht}" font-family="sans-serif" font-size="12">',
+             f'<rect width="{w}" height="{ht}" fill="white"/>',
+             f'<line x1="{m}" y1="{ht - m}" x2="{w - m}" y2="{ht - m}" stroke="black"/>',
+             f'<line x1="{m}" y1="{m}" x2="{m}" y2="{ht - m}" stroke="black"/>',
+             f'<text x="{w / 2}" y="{ht - 20}" text-anchor="middle">load point deflection (mm)</text>',
+             f'<text x="18" y="{ht / 2}" transform="rotate(-90 18 {ht / 2})" text-anchor="middle">load (kN per m)</text>']
+    for k in range(6):
+        x, y = xmax * k / 5, ymax * k / 5
+        parts.append(f'<text x="{sx(x)}" y="{ht - m + 16}" text-anchor="middle">{x:.2f}</text>')
+        parts.append(f'<text x="{m - 6}" y="{sy(y) + 4}" text-anchor="end">{y:.0f}</text>')
+    for i, (h, c) in enumerate(curves.items()):
+        pts = " ".join(f"{sx(x):.1f},{sy(y):.1f}" for x, y in c)
+        parts.append(f'<polyline points="{pts}" fill="none" stroke="{colours[i]}" stroke-width="1.5"/>')
+        parts.append(f'<text x="{w - m - 150}" y="{m + 16 * (i + 1)}" fill="{colours[i]}">h = {h} m</text>')
+    parts.append("</svg>")
+    path.write_text("\n".join(parts) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("bin_dir")
+    ap.add_argument("out_dir")
+    ap.add_argument("--figure", default=None)
+    a = ap.parse_args()
+    out = pathlib.Path(a.out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    curves = {}
+    with open(out / "cohesive_beam.csv", "w") as f:
+        f.write("mesh_m,deflection_mm,load_kn_per_m\n")
+        for h in SIZES:
+            (out / f"beam_{h}.json").write_text(json.dumps(scene(h)))
+            subprocess.run([f"{a.bin_dir}/nmm-preprocess", out / f"beam_{h}.json", "-o", out / f"beam_{h}.nmm"],
+                           check=True, capture_output=True)
+            run = out / f"run_{h}"
+            subprocess.run([f"{a.bin_dir}/nmm-solve", out / f"beam_{h}.nmm", "-o", run, "-q"], capture_output=True)
+            c, work = curve(run)
+            curves[h] = c
+            for x, y in c:
+                f.write(f"{h},{x:.6g},{y:.6g}\n")
+            s = json.load(open(run / "summary.json"))
+            peak = max(c, key=lambda p: p[1])
+            print(f"h {h} m: {s['status']} after {s['steps_completed']} steps ({s['wall_seconds']:.1f} s); peak "
+                  f"{peak[1]:.4g} kN/m at {peak[0]:.3f} mm; work of fracture {work:.4g} J/m "
+                  f"({100 * (work / GF_LIGAMENT - 1):+.1f} % of G_f x ligament {GF_LIGAMENT} J/m); "
+                  f"{s['fracture']['cracks']} cracks, dissipated {s['fracture']['dissipated_j']:.4g} J/m")
+    svg(curves, pathlib.Path(a.figure) if a.figure else out / "cohesive_beam.svg")
+
+
+if __name__ == "__main__":
+    main()

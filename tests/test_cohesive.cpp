@@ -1,0 +1,372 @@
+// Cohesive softening of new cracks (solver/contact/cohesive_law.h, docs/fracture.md "Cohesive
+// softening"), checked against its closed forms:
+//   - the law: σt at the elastic opening σt/k, falling linearly to zero at w_c = 2·G_f/σt; the
+//     energy to full separation is G_f exactly (the area under the curve, integrated numerically
+//     here, and D(κ) in closed form along the way); unloading on the secant through the origin
+//     dissipates nothing more; in pure slip (mixed mode, Camacho & Ortiz 1996, β = 1) the
+//     cohesion falls to zero at w_c/β and does the work G_f;
+//   - a run restarted from a checkpoint written while a crack softens continues bit for bit (the
+//     damage travels in the CONTACT section);
+//   - snap-back: a bar three times Hillerborg's length l_ch = E·G_f/σt² pulled apart runs to its
+//     end and says it snapped back (summary.json fracture.snap_back_steps), one of l_ch does not;
+//   - a bar pulled by a moving support: its post-peak response against u = σL/E + w_c(1 − σ/σt)
+//     and the energy its crack dissipates against G_f × area, at three mesh sizes
+//     (CohesiveBar.PostPeakFollowsHillerborg; label open: docs/fracture.md "Cohesive softening").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/mesh_file.h"
+#include "common/scene.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/contact/cohesive_law.h"
+#include "solver/output/solve_run.h"
+#include "solver/stepping/restart.h"
+#include "solver/stepping/time_stepper.h"
+#include "tests/ended_ok.h"
+#include "tests/temp_dir.h"
+
+namespace nmm {
+namespace {
+
+using solve::CohesiveLaw;
+
+StrengthDef strength(double tensile, double cohesion, double gf) {
+  StrengthDef s;
+  s.present = true;
+  s.tensile = tensile;
+  s.cohesion = cohesion;
+  s.friction_deg = 30;
+  s.fracture_energy = gf;
+  return s;
+}
+
+// ∫₀^w t dw of the envelope (loading on it), by the midpoint rule in n pieces.
+double envelope_work(const CohesiveLaw& law, double k, double w, int n) {
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const double g = (i + 0.5) * w / n;
+    sum += solve::cohesive_traction(law, k, 0.0, g, 0.0).traction * w / n;
+  }
+  return sum;
+}
+
+}  // namespace
+
+// σt 2 MPa, G_f 100 J/m² (w_c = 100 µm), k = 1e13 Pa/m (w_e = 0.2 µm): the envelope's points and
+// its area. A law whose traction ended at G_f/σt (the triangle's other reading) would dissipate
+// G_f/2; one that forgot the elastic branch would start at σt with no opening.
+TEST(CohesiveLaw, EnvelopeFallsLinearlyToZeroAtWcAndEncloses_Gf) {
+  const CohesiveLaw law = solve::cohesive_law(strength(2e6, 5e6, 100));
+  const double k = 1e13, wc = 1e-4, we = 2e6 / k;
+  ASSERT_DOUBLE_EQ(law.w_c, wc);
+  EXPECT_DOUBLE_EQ(law.beta, 1.0);
+  EXPECT_DOUBLE_EQ(law.cohesion, 2e6);  // β·σt: the faces' shear strength
+  EXPECT_NEAR(solve::cohesive_traction(law, k, 0, we, 0).traction, 2e6, 1e-6);
+  EXPECT_NEAR(solve::cohesive_traction(law, k, 0, 0.5 * we, 0).traction, 1e6, 1e-6);
+  for (double w : {0.25 * wc, 0.5 * wc, 0.9 * wc})
+    EXPECT_NEAR(solve::cohesive_traction(law, k, 0, w, 0).traction, 2e6 * (wc - w) / (wc - we), 1e-6) << w;
+  EXPECT_EQ(solve::cohesive_traction(law, k, 0, wc, 0).traction, 0.0);
+  EXPECT_EQ(solve::cohesive_traction(law, k, 0, 2 * wc, 0).traction, 0.0);
+  // Softening keeps no stiffness for the Newton matrix; the rising branch keeps k.
+  EXPECT_EQ(solve::cohesive_traction(law, k, 0, 0.5 * wc, 0).stiffness, 0.0);
+  EXPECT_DOUBLE_EQ(solve::cohesive_traction(law, k, 0, 0.5 * we, 0).stiffness, k);
+  // The area to full separation is G_f, numerically and in closed form.
+  const double area = envelope_work(law, k, 1.2 * wc, 240000);
+  std::printf("area under the envelope %.6f J/m² (G_f 100)\n", area);
+  EXPECT_NEAR(area, 100.0, 1e-3);
+  EXPECT_DOUBLE_EQ(solve::cohesive_dissipation(law, k, wc), 100.0);
+  EXPECT_DOUBLE_EQ(solve::cohesive_dissipation(law, k, 5 * wc), 100.0);
+  EXPECT_EQ(solve::cohesive_dissipation(law, k, 0.5 * we), 0.0);
+  // D(κ) = ∫₀^κ t − ½ t(κ)·κ along the way (what the secant would not give back).
+  for (double kappa : {0.1 * wc, 0.4 * wc, 0.8 * wc}) {
+    const double t = solve::cohesive_traction(law, k, 0, kappa, 0).traction;
+    EXPECT_NEAR(solve::cohesive_dissipation(law, k, kappa), envelope_work(law, k, kappa, 200000) - 0.5 * t * kappa, 1e-3)
+        << kappa;
+  }
+}
+
+// Below the damage κ0 the faces unload and reload on the secant through the origin: half the
+// opening, half the traction of the envelope at κ0; no more damage, so no more dissipation. A face
+// that healed (reloading on the elastic branch) would carry σt again.
+TEST(CohesiveLaw, UnloadsOnTheSecantAndNeverHeals) {
+  const CohesiveLaw law = solve::cohesive_law(strength(2e6, 5e6, 100));
+  const double k = 1e13, kappa0 = 5e-5;
+  const double at_kappa = solve::cohesive_traction(law, k, 0, kappa0, 0).traction;
+  const solve::CohesiveTraction half = solve::cohesive_traction(law, k, kappa0, 0.5 * kappa0, 0);
+  EXPECT_NEAR(half.traction, 0.5 * at_kappa, 1e-6);
+  EXPECT_DOUBLE_EQ(half.kappa, kappa0);
+  EXPECT_NEAR(half.stiffness, at_kappa / kappa0, 1e-3);
+  EXPECT_EQ(solve::cohesive_traction(law, k, kappa0, 0.0, 0).traction, 0.0);
+  EXPECT_EQ(solve::cohesive_traction(law, k, kappa0, -1e-6, 0).traction, 0.0);  // compression: the joint's
+}
+
+// Pure slip of a closed face: λ = β·w_s with β = 1, so the shear cohesion β·σt·t_env(λ)/σt is
+// gone at w_s = w_c/β = 100 µm and does the work ½·β·σt·(w_c + w_e)/β = G_f·(1 + w_e/w_c): the
+// same energy as opening but for the elastic opening w_e = 0.2 µm, over which the cohesion holds
+// in full (the slip is plastic, the normal opening is not). (The rock's own cohesion of 5 MPa in
+// its place would do 250 J/m².)
+TEST(CohesiveLaw, PureSlipDissipatesTheSameFractureEnergy) {
+  const CohesiveLaw law = solve::cohesive_law(strength(2e6, 5e6, 100));
+  const double k = 1e13;
+  const int n = 200000;
+  const double end = 1.2 * law.w_c / law.beta;
+  double work = 0;
+  for (int i = 0; i < n; ++i) {
+    const double s = (i + 0.5) * end / n;
+    const double kappa = solve::effective_opening(law, 0, s);
+    work += law.cohesion * solve::cohesive_state(law, k, kappa).factor * end / n;
+  }
+  std::printf("work of the cohesion in pure slip %.5f J/m² (G_f 100)\n", work);
+  EXPECT_NEAR(work, 100.0 * (1 + 2e-7 / 1e-4), 1e-3);
+  EXPECT_EQ(solve::cohesive_state(law, k, solve::effective_opening(law, 0, law.w_c / law.beta)).factor, 0.0);
+}
+
+TEST(CohesiveLaw, HillerborgsLength) {
+  EXPECT_DOUBLE_EQ(solve::characteristic_length(3e10, strength(3e6, 6e6, 120)), 0.4);
+  EXPECT_EQ(solve::characteristic_length(3e10, strength(3e6, 6e6, 0)), 0.0);
+  EXPECT_FALSE(solve::cohesive_law(strength(3e6, 6e6, 0)).on());
+}
+
+namespace {
+// A bar 0.2 m wide at its ends and 0.19 m at its middle (a straight taper, so that it cracks
+// there), of length L (E 10 GPa, ν 0.2, plane stress, σt 1 MPa, G_f 100 J/m²: w_c = 200 µm,
+// l_ch = 1 m), its left end held in x, its right end pulled 1 µm a static step; crack faces:
+// kn 1e13 Pa/m (w_e = 0.1 µm).
+nlohmann::json cohesive_bar(double size, double length = 1.0) {
+  nlohmann::json d;
+  d["plane"] = "stress";
+  d["materials"]["rock"] = {{"density", 2500}, {"young", 1e10}, {"poisson", 0.2},
+                            {"strength", {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}, {"fracture_energy", 100}}}};
+  d["joint_sets"]["crack"] = {{"friction_deg", 30},
+                              {"normal", {{"model", "constant"}, {"kn", 1e13}}},
+                              {"shear", {{"model", "constant"}, {"ks", 4e12}}}};
+  d["bodies"] = {{{"material", "rock"},
+                  {"outer", {{0, 0}, {length / 2, 0.005}, {length, 0}, {length, 0.2}, {length / 2, 0.195}, {0, 0.2}}}}};
+  d["fracture"] = {{"crack_set", "crack"}};
+  d["mesh"]["size"] = size;
+  d["supports"] = {{{"points", {{0, 0}, {0, 0.2}}}, {"fix", "x"}},
+                   {{"points", {{length, 0}, {length, 0.2}}}, {"fix", "x"}, {"velocity", {1e-3, 0}}}};
+  d["fixed_points"] = {{0, 0.1}};
+  d["measure_points"] = {{length - 0.001, 0.1}, {0.001, 0.1}};
+  d["solver"] = {{"time_step", 1e-3}, {"steps", 260}, {"dynamic", false}, {"output_every", 1}};
+  return d;
+}
+
+Mesh mesh_of(const nlohmann::json& doc, const std::string& name, SceneDef& s) {
+  s = scene_from_json(doc, name);
+  Mesh m = pre::build_mesh(s, name);
+  m.scene_text = doc.dump();
+  m.scene_sha256 = sha256(m.scene_text);
+  return m;
+}
+}  // namespace
+
+// A run restarted from a checkpoint written while its crack softens (faces between w_e and w_c)
+// ends in the state of the run that went straight on, bit for bit: the damage and slip of every
+// face travel with the contact history (CONTACT section, layout with the cohesive memory).
+TEST(CohesiveBar, RestartWhileSofteningContinuesBitForBit) {
+  SceneDef s;
+  const Mesh m = mesh_of(cohesive_bar(0.1), "bar", s);
+  solve::TimeStepper straight(m, s, "bar"), first(m, s, "bar"), second(m, s, "bar");
+  ASSERT_PRED1(test::ended_ok, straight.run_until(0.14, [](std::int64_t) {}));
+  ASSERT_PRED1(test::ended_ok, first.run_until(0.12, [](std::int64_t) {}));
+  int softening = 0;
+  for (const solve::Contact& c : first.view().contacts.contacts())
+    softening += c.cohesive.on && c.cohesive.opening_max > 1e-6 && c.cohesive.opening_max < 2e-4;
+  ASSERT_GT(softening, 0) << "the checkpoint must hold softening faces";
+  const std::string path = ::testing::TempDir() + "/softening.nmmstate";
+  solve::write_checkpoint(first.view(), path);
+  second.restart_from(path);
+  EXPECT_EQ(solve::state_hash(second.view()), solve::state_hash(first.view()));
+  ASSERT_PRED1(test::ended_ok, second.run_until(0.14, [](std::int64_t) {}));
+  std::printf("restart with %d softening faces at the checkpoint\n", softening);
+  EXPECT_EQ(solve::state_hash(second.view()), solve::state_hash(straight.view()));
+}
+
+namespace {
+struct BarCurve {
+  Outcome outcome;
+  nlohmann::json summary;
+  double worst_post_peak = 0;  // %, largest |u − u_closed| / u_closed while 0.1·σt < σ < 0.95·σt after the peak
+  int points = 0;
+  double dissipated = 0;       // J/m
+};
+
+// The bar's curve: σ from the support's work per travel (P = ΔW/Δh, over the 0.2 m section), u
+// the measured end's displacement less the held end's.
+BarCurve bar_curve(double size, const test::TempDir& dir) {
+  SceneDef s;
+  const nlohmann::json doc = cohesive_bar(size);
+  const Mesh m = mesh_of(doc, "bar", s);
+  solve::SolveOptions o;
+  o.out_dir = dir.path("run");
+  solve::SolveRun run(m, "bar", o);
+  BarCurve r;
+  r.summary = run.run();
+  r.outcome = run.outcome();
+  const auto read = [&](const std::string& file) {
+    std::vector<std::map<std::string, double>> rows;
+    std::ifstream csv(dir.path("run/" + file));
+    std::string line, cell;
+    std::getline(csv, line);
+    std::vector<std::string> names;
+    for (std::istringstream head(line); std::getline(head, cell, ',');) names.push_back(cell);
+    while (std::getline(csv, line)) {
+      std::map<std::string, double> row;
+      std::istringstream in(line);
+      for (const std::string& n : names) {
+        std::getline(in, cell, ',');
+        row[n] = std::stod(cell);
+      }
+      rows.push_back(row);
+    }
+    return rows;
+  };
+  const auto energy = read("energy.csv"), history = read("history.csv");
+  std::map<double, std::map<double, double>> ux;  // step → point → ux
+  for (const auto& h : history) ux[h.at("step")][h.at("point")] = h.at("ux");
+  // The taper's compliance ∫dx/(E·b(x)) in place of L/(E·b), σ the crack's traction P/0.19 m.
+  const double E = 1e10, st = 1e6, wc = 2e-4, compliance = 2 / (E * 0.02) * std::log(0.2 / 0.19);
+  bool past_peak = false;
+  double peak = 0;
+  for (std::size_t i = 1; i < energy.size(); ++i) {
+    const double dh = 1e-3 * (energy[i].at("time") - energy[i - 1].at("time"));
+    if (!(dh > 0)) continue;
+    const double force = (energy[i].at("load_work") - energy[i - 1].at("load_work")) / dh;  // N/m
+    const double sigma = force / 0.19;
+    peak = std::max(peak, sigma);
+    if (sigma < 0.95 * peak) past_peak = true;
+    if (!past_peak || sigma < 0.1 * st) continue;
+    const auto& p = ux[energy[i].at("step")];
+    const double u = p.at(0) - p.at(1), closed = force * compliance + wc * (1 - sigma / st);
+    r.worst_post_peak = std::max(r.worst_post_peak, 100 * std::abs(u - closed) / closed);
+    ++r.points;
+  }
+  r.dissipated = r.summary["fracture"]["dissipated_j"].get<double>();
+  return r;
+}
+}  // namespace
+
+// The target of docs/fracture.md's cohesive softening: after the peak the bar follows Hillerborg's
+// u = σL/E + w_c(1 − σ/σt) (σL/E: the taper's compliance) within 3 % and its crack dissipates
+// G_f × 0.19 m = 19 J/m within 2 %, at h = 0.1, 0.05 and 0.025 m. Not met yet (label open):
+// measured 2026-11-29, the bar cracks in 8, 10 and (stopping) many places, dissipates 18.1, 17.8 J/m
+// and departs from the closed form by up to 19–20 % just after the peak (docs/fracture.md).
+TEST(CohesiveBar, PostPeakFollowsHillerborg) {
+  for (double h : {0.1, 0.05, 0.025}) {
+    const test::TempDir dir;
+    const BarCurve r = bar_curve(h, dir);
+    ASSERT_PRED1(test::ended_ok, r.outcome);
+    std::printf("h %.3g m: %d cracks, %d segments; dissipated %.4g J/m (G_f·A 19); post-peak worst %.3g %% over %d "
+                "points\n",
+                h, r.summary["fracture"]["cracks"].get<int>(), r.summary["fracture"]["segments"].get<int>(), r.dissipated,
+                r.worst_post_peak, r.points);
+    EXPECT_GT(r.points, 10);
+    EXPECT_LT(r.worst_post_peak, 3.0) << "h " << h;
+    EXPECT_NEAR(r.dissipated, 19.0, 0.38) << "h " << h;
+  }
+}
+
+// Petersson's (1981) beam in three-point bending (docs/cohesive_beam.py has the same scene): span
+// 2 m, depth 0.2 m, notch 0.1 m, E 30 GPa, σt 3.33 MPa, G_f 124 N/m. The target: peak load and
+// work of fracture within 5 % across h = 0.025, 0.0167, 0.0125 m, and the work within 10 % of
+// G_f × ligament = 12.4 J/m. Not met (label open): measured 2026-11-29 the peaks are 73.0, 53.1
+// and 37.5 kN/m and every run stops near its peak (docs/fracture.md "Cohesive softening").
+TEST(CohesiveBeam, PeterssonLoadDeflectionAndWorkOfFracture) {
+  std::vector<double> peaks, works;
+  for (const double h : {0.025, 0.0167, 0.0125}) {
+    nlohmann::json d;
+    d["plane"] = "stress";
+    d["materials"]["concrete"] = {{"density", 2400}, {"young", 3e10}, {"poisson", 0.2},
+                                  {"strength", {{"tensile", 3.33e6}, {"cohesion", 10e6}, {"friction_deg", 35}, {"fracture_energy", 124}}}};
+    d["joint_sets"]["crack"] = {{"friction_deg", 30},
+                                {"normal", {{"model", "constant"}, {"kn", 1e14}}},
+                                {"shear", {{"model", "constant"}, {"ks", 4e13}}}};
+    d["bodies"] = {{{"material", "concrete"},
+                    {"outer", {{0, 0}, {1.095, 0}, {1.095, 0.1}, {1.105, 0.1}, {1.105, 0}, {2.2, 0}, {2.2, 0.2}, {0, 0.2}}}}};
+    d["fracture"] = {{"crack_set", "crack"}};
+    d["mesh"]["size"] = h;
+    d["supports"] = {{{"points", {{0.05, 0}, {0.15, 0}}}, {"fix", "y"}},
+                     {{"points", {{2.05, 0}, {2.15, 0}}}, {"fix", "y"}},
+                     {{"points", {{1.05, 0.2}, {1.15, 0.2}}}, {"fix", "y"}, {"velocity", {0, -1e-3}}}};
+    d["fixed_points"] = {{0.1, 0.01}};
+    d["solver"] = {{"time_step", 1e-3}, {"steps", 1000}, {"dynamic", false}, {"output_every", 2}};
+    SceneDef s;
+    const Mesh m = mesh_of(d, "beam", s);
+    const test::TempDir dir;
+    solve::SolveOptions o;
+    o.out_dir = dir.path("run");
+    solve::SolveRun run(m, "beam", o);
+    const nlohmann::json summary = run.run();
+    double peak = 0, work = 0, last_w = 0, last_t = 0;
+    std::ifstream csv(dir.path("run/energy.csv"));
+    std::string line, cell;
+    std::getline(csv, line);
+    std::vector<std::string> names;
+    for (std::istringstream head(line); std::getline(head, cell, ',');) names.push_back(cell);
+    while (std::getline(csv, line)) {
+      std::map<std::string, double> row;
+      std::istringstream in(line);
+      for (const std::string& n : names) {
+        std::getline(in, cell, ',');
+        row[n] = std::stod(cell);
+      }
+      const double dh = 1e-3 * (row["time"] - last_t);
+      if (dh > 0) peak = std::max(peak, (row["load_work"] - last_w) / dh);
+      last_w = work = row["load_work"];
+      last_t = row["time"];
+    }
+    std::printf("h %.4g m: %s after %lld steps; peak %.4g kN/m, work %.4g J/m (G_f × ligament 12.4)\n", h,
+                summary["stop_code"].get<std::string>().c_str(), summary["steps_completed"].get<long long>(), peak / 1e3,
+                work);
+    EXPECT_PRED1(test::ended_ok, run.outcome()) << "h " << h;
+    EXPECT_NEAR(work, 12.4, 1.24) << "h " << h;
+    peaks.push_back(peak);
+    works.push_back(work);
+  }
+  for (std::size_t i = 1; i < peaks.size(); ++i) {
+    EXPECT_NEAR(peaks[i], peaks[0], 0.05 * peaks[0]);
+    EXPECT_NEAR(works[i], works[0], 0.05 * works[0]);
+  }
+}
+
+// Snap-back (Hillerborg: a bar longer than 2·l_ch has, after its peak, more elastic energy than
+// its crack can dissipate, and under displacement control the static path turns back): the bar
+// of 3 m = 3·l_ch breaks in one step and says so (snap_back_steps, snap_back_possible), and the
+// run goes on to its end; the bar of 1 m = l_ch softens step by step and does not.
+TEST(CohesiveBar, SnapBackIsReportedAndTheRunGoesOn) {
+  for (const double length : {3.0, 1.0}) {
+    SceneDef s;
+    nlohmann::json doc = cohesive_bar(0.1, length);
+    doc["solver"]["steps"] = length > 2 ? 500 : 260;
+    const Mesh m = mesh_of(doc, "bar", s);
+    const test::TempDir dir;
+    solve::SolveOptions o;
+    o.out_dir = dir.path("run");
+    solve::SolveRun run(m, "bar", o);
+    const nlohmann::json summary = run.run();
+    ASSERT_PRED1(test::ended_ok, run.outcome()) << "L " << length;
+    const nlohmann::json& f = summary["fracture"];
+    std::printf("L %.0f m: l_ch %.3g m, snap_back_possible %d, snap_back_steps %ld, cuts %ld, steps %ld, dissipated "
+                "%.4g J/m\n",
+                length, f["characteristic_length_m"].get<double>(), f["snap_back_possible"].get<bool>() ? 1 : 0,
+                f["snap_back_steps"].get<long>(), f["snap_back_cuts"].get<long>(), summary["steps_completed"].get<long>(),
+                f["dissipated_j"].get<double>());
+    EXPECT_DOUBLE_EQ(f["characteristic_length_m"].get<double>(), 1.0);
+    EXPECT_EQ(f["snap_back_possible"].get<bool>(), length > 2);
+    if (length > 2)
+      EXPECT_GT(f["snap_back_steps"].get<long>(), 0);
+    else
+      EXPECT_EQ(f["snap_back_steps"].get<long>(), 0);
+    EXPECT_GT(f["segments"].get<int>(), 0);
+  }
+}
+
+}  // namespace nmm
