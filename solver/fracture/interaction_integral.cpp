@@ -33,6 +33,7 @@
 #include "solver/fracture/interaction_integral.h"
 
 #include <cmath>
+#include <limits>
 
 #include "common/math_constants.h"
 
@@ -102,13 +103,17 @@ TipField williams_field(const TipElasticity& el, int mode, double r, double thet
 
 StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, const TipElasticity& el,
                                      const std::vector<double>& stress, const std::vector<double>& loop_u,
-                                     const std::vector<std::uint8_t>& skip) {
+                                     const std::vector<std::uint8_t>& skip,
+                                     const std::vector<std::int32_t>* near) {
   const double e1x = domain.direction.x, e1y = domain.direction.y;  // the tip's frame: rows e1, e2
   const double e2x = -e1y, e2y = e1x;
   const double r2 = domain.radius * domain.radius;
   double integral[2] = {0, 0};
   StressIntensity out;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+  double nearest = std::numeric_limits<double>::infinity();  // m, loop vertex to the tip
+  const std::size_t count = near ? near->size() : mesh.element_count();
+  for (std::size_t n = 0; n < count; ++n) {
+    const std::size_t e = near ? static_cast<std::size_t>((*near)[n]) : n;
     if (mesh.element_body[e] != domain.body || (!skip.empty() && skip[e])) continue;
     // q at the triangle's nodes and its (constant) gradient.
     const std::int32_t* tn = &mesh.triangle_nodes[3 * static_cast<std::size_t>(mesh.element_triangle[e])];
@@ -121,6 +126,11 @@ StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, 
       q[k] = dx * dx + dy * dy < r2 ? 1 : 0;
       inside += static_cast<int>(q[k]);
     }
+    if (inside == 3)  // the tip's own elements are here: where is the tip now?
+      for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
+        const double d = length(mesh.loop_xy[2 * v] - domain.tip.x, mesh.loop_xy[2 * v + 1] - domain.tip.y);
+        if (d < nearest) nearest = d, out.tip_u = {loop_u[2 * v], loop_u[2 * v + 1]};
+      }
     if (inside == 0 || inside == 3) continue;
     const double two_area = (nx[1] - nx[0]) * (ny[2] - ny[0]) - (nx[2] - nx[0]) * (ny[1] - ny[0]);
     double qx = 0, qy = 0;

@@ -50,15 +50,18 @@ struct TipDomain {
 /// K_I, K_II (Pa·√m; K_I > 0 opens the crack) of the field given by each element's stress
 /// `stress` ([3·me] Pa, σxx σyy τxy) and displacement since the start (`loop_u` [2·v] m per loop
 /// vertex: its gradient is fitted over the element's loop, exact at cover order 0); elements
-/// with `skip` [me] 1 (excavated, debris; may be empty) are left out.
+/// with `skip` [me] 1 (excavated, debris; may be empty) are left out. `near`: the elements that
+/// may reach within the radius of the tip (null: all of them are looked at).
 struct StressIntensity {
   double k1 = 0;  ///< Pa·√m
   double k2 = 0;  ///< Pa·√m
   int elements = 0;  ///< elements in the ring (where q varies)
+  Vec2 tip_u;        ///< m, the displacement of the loop vertex at the tip (nearest it within the radius)
 };
 StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, const TipElasticity& el,
                                      const std::vector<double>& stress, const std::vector<double>& loop_u,
-                                     const std::vector<std::uint8_t>& skip);
+                                     const std::vector<std::uint8_t>& skip,
+                                     const std::vector<std::int32_t>* near = nullptr);
 
 /// rad, the direction of maximum tangential stress (Erdogan & Sih 1963) from the crack's own
 /// direction: θ = 2·atan((K_I − √(K_I² + 8K_II²))/(4K_II)), 0 for K_II = 0.

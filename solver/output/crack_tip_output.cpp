@@ -1,12 +1,13 @@
 // crack_tips.csv and summary.json fracture.tips: see crack_tip_output.h.
 #include "solver/output/crack_tip_output.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <system_error>
+#include <utility>
 
 #include "common/atomic_file.h"
 #include "common/math_constants.h"
@@ -27,10 +28,24 @@ std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& find
   const std::vector<std::uint8_t>& debris = run.fracture.debris();
   for (std::size_t e = 0; e < debris.size() && e < skip.size(); ++e) skip[e] = skip[e] || debris[e];
   const std::vector<double> stress = mean_stress(run);  // n = 0: the element stresses themselves
+  // The elements by the x of their triangle's first node, so that each tip looks only at those
+  // within its radius and a triangle's side in x, not at every element.
+  std::vector<std::pair<double, std::int32_t>> by_x(mesh.element_count());
+  for (std::size_t e = 0; e < by_x.size(); ++e) {
+    const std::size_t n = static_cast<std::size_t>(mesh.triangle_nodes[3 * static_cast<std::size_t>(mesh.element_triangle[e])]);
+    by_x[e] = {mesh.node_xy[2 * n], static_cast<std::int32_t>(e)};
+  }
+  std::sort(by_x.begin(), by_x.end());
+  std::vector<std::int32_t> near;
   for (const CrackTip& t : tips) {
+    const double reach = t.radius + 1.01 * mesh.mesh_size;
+    near.clear();
+    for (auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(t.at.x - reach, std::int32_t{-1}));
+         it != by_x.end() && it->first <= t.at.x + reach; ++it)
+      near.push_back(it->second);
     const TipElasticity el = tip_elasticity(scene.materials[static_cast<std::size_t>(scene.bodies[t.body].material)], scene.plane);
     const StressIntensity k = interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, el, stress,
-                                                   run.state.loop_u, skip);
+                                                   run.state.loop_u, skip, &near);
     TipReading r;
     r.tip = t.id;
     r.k1 = k.k1;
@@ -39,13 +54,8 @@ std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& find
     r.angle_deg = (std::atan2(t.direction.y, t.direction.x) + mts_angle(k.k1, k.k2)) * 180 / kPi;
     if (r.angle_deg <= -180) r.angle_deg += 360;
     if (r.angle_deg > 180) r.angle_deg -= 360;
-    // Where the tip is now: the loop vertex at the tip (the end of its slit or crack).
-    r.x = t.at.x, r.y = t.at.y;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t v = 0; v < mesh.loop_vertex_count(); ++v) {
-      const double d = length(mesh.loop_xy[2 * v] - t.at.x, mesh.loop_xy[2 * v + 1] - t.at.y);
-      if (d < best) best = d, r.x = t.at.x + run.state.loop_u[2 * v], r.y = t.at.y + run.state.loop_u[2 * v + 1];
-    }
+    // Where the tip is now: moved as the loop vertex at the tip (the end of its slit or crack).
+    r.x = t.at.x + k.tip_u.x, r.y = t.at.y + k.tip_u.y;
     out.push_back(r);
   }
   return out;
