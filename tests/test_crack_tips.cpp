@@ -32,6 +32,7 @@
 #include "preprocess/cover_cutter.h"
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
+#include "solver/fracture/tip_growth.h"
 #include "solver/output/crack_tip_output.h"
 #include "solver/output/solve_run.h"
 #include "solver/stepping/time_stepper.h"
@@ -308,6 +309,99 @@ TEST(CrackTips, TheRunWritesCrackTipsCsv) {
     EXPECT_NEAR(rows[3][5], k0, 0.035 * k0);  // h = 0.1 m: −3.0 % (the test above)
     EXPECT_NEAR(std::abs(rows[2][7]), 180, 1e-4);  // K_II is round-off: 1e-7 of K_I
     EXPECT_NEAR(rows[3][7], 0, 1e-4);
+  }
+}
+
+}  // namespace nmm
+
+namespace nmm {
+namespace {
+
+// Pa, the area-weighted mean σyy of the body: the load per unit width in a plate pulled along y.
+double mean_syy(const solve::RunView& v) {
+  double sum = 0, area = 0;
+  for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
+    const double a = element_area(v.mesh, e);
+    sum += a * v.state.stress[3 * e + 1];
+    area += a;
+  }
+  return sum / area;
+}
+
+}  // namespace
+
+// Growth by toughness: the centre-cracked plate of the tests above (h = a/10), pulled by its top
+// edge (a support moving up; the bottom on rollers), K_Ic = 1.5 MPa·√m and a strength it never
+// reaches. Its tips first grow at the step whose load reaches σ_c = K_Ic/(√(πa)·F) (Tada's F),
+// within 3 % (the load grows 0.5 % a step from 90 % of σ_c), straight ahead, and run to the
+// plate's sides in the same step (load control of a centre crack is unstable); the run goes on.
+TEST(CrackTips, TipsGrowWhenKReachesTheToughness) {
+  const double W = 1, H = 2, a = 0.5, h = 0.05, k_ic = 1.5e6;
+  nlohmann::json d = plate(-W, -H, W, H, {-a, 0}, {a, 0}, h);
+  d["materials"]["rock"]["strength"] = {{"tensile", 1e9}, {"cohesion", 1e9}, {"friction_deg", 30}, {"toughness", k_ic}};
+  d["fracture"] = {{"crack_set", "crack"}};
+  d.erase("tractions");
+  const double v = 2e-6;  // m/s: Δσ ≈ E'·v·Δt/4 m ≈ 5 kPa a step
+  d["supports"] = {{{"points", {{-W, -H}, {W, -H}}}, {"fix", "y"}},
+                   {{"points", {{-W, H}, {W, H}}}, {"fix", "xy"}, {"velocity", {0, v}},
+                    {"table", {{0, 210}, {1, 210}, {1.000001, 1}}}}};
+  d["fixed_points"] = {{0, -H + 0.01 * h}};
+  const SceneDef s = scene_from_json(d, "grow");
+  const Mesh m = pre::build_mesh(s, "grow");
+  solve::TimeStepper st(m, s, "grow");
+  std::vector<double> load;  // Pa, mean σyy after each step
+  std::int64_t grew = -1;
+  const Outcome o = st.run_until(40.0, [&](std::int64_t n) {
+    if (grew < 0 && !st.view().fracture.segments().empty()) grew = n;
+    if (grew < 0) load.push_back(mean_syy(st.view()));
+  });
+  EXPECT_PRED1(test::ended_ok, o) << test::text(o);
+  ASSERT_GT(grew, 1);
+  const double sigma_c = k_ic / (std::sqrt(kPi * a) * tada_centre(a / W));
+  // The load of the step that grew: the intact steps' last plus their increment.
+  const double at = load.back() + (load.back() - load[load.size() - 2]);
+  const std::vector<solve::CrackSegment>& seg = st.view().fracture.segments();
+  double reach = 0;
+  for (const solve::CrackSegment& c : seg) reach = std::max(reach, std::abs(c.b.x));
+  std::printf("  grew at step %lld: σ %.4g Pa between %.4g and %.4g (σ_c %.4g: %+.2f %%), %zu segments to |x| %.4f m, first %g,%g → %g,%g\n",
+              static_cast<long long>(grew), at, load.back(), at, sigma_c, 100 * (at / sigma_c - 1), seg.size(), reach,
+              seg[0].a.x, seg[0].a.y, seg[0].b.x, seg[0].b.y);
+  EXPECT_NEAR(at, sigma_c, 0.03 * sigma_c);
+  EXPECT_LT(load.back(), sigma_c * 1.03);
+  // One tip_step (h) ahead, within 0.5° of straight (the top's support held in x makes K_II
+  // 0.2 % of K_I: a kink of 0.2°).
+  EXPECT_NEAR(std::hypot(seg[0].b.x - seg[0].a.x, seg[0].b.y - seg[0].a.y), h, 1e-9);
+  EXPECT_LT(std::abs(seg[0].b.y - seg[0].a.y), std::tan(0.5 * kPi / 180) * h);
+  EXPECT_GT(reach, W);  // to the sides, through them by the overshoot
+}
+
+// The kink of a mixed-mode tip: the inclined crack (β = 45°, h = a/5) solved once; the segment
+// its tips grow by, with K_Ic below their K_eq, turns from the crack by the MTS angle of the
+// closed-form K (−53.13°, so it runs at −8.13° from +x at the right tip) within 2°; with K_Ic
+// above K_eq nothing grows.
+TEST(CrackTips, AMixedModeTipKinksInTheMtsDirection) {
+  const double Wi = 2.5, a = 0.25, h = 0.05, b = kPi / 4;
+  nlohmann::json d = plate(-Wi, -Wi, Wi, Wi, {-a * std::cos(b), -a * std::sin(b)}, {a * std::cos(b), a * std::sin(b)}, h);
+  d["materials"]["rock"]["strength"] = {{"tensile", 1e9}, {"cohesion", 1e9}, {"friction_deg", 30}, {"toughness", 1e9}};
+  SceneDef s = scene_from_json(d, "kink");  // no fracture block: the run itself does not grow
+  const Mesh m = pre::build_mesh(s, "kink");
+  solve::TimeStepper st(m, s, "kink");
+  ASSERT_PRED1(test::ended_ok, st.run_until(1.0, [](std::int64_t) {}));
+  const double k0 = kSigma * std::sqrt(kPi * a), k1 = k0 * 0.5, k2 = k0 * 0.5;
+  const double theta = solve::mts_angle(k1, k2), k_eq = solve::mts_equivalent_k(k1, k2, theta);
+  EXPECT_NEAR(theta * 180 / kPi, -53.130, 1e-3);
+  EXPECT_TRUE(solve::grow_by_toughness(m, s, {}, st.view().state, {}).empty()) << "K_Ic above K_eq";
+  s.materials[0].strength.toughness = 0.9 * k_eq;
+  const std::vector<solve::CrackSegment> seg = solve::grow_by_toughness(m, s, {}, st.view().state, {});
+  ASSERT_EQ(seg.size(), 2u);
+  for (const solve::CrackSegment& c : seg) {
+    const double angle = std::atan2(c.b.y - c.a.y, c.b.x - c.a.x) * 180 / kPi;
+    double want = (c.a.x > 0 ? 45.0 : -135.0) + theta * 180 / kPi;
+    if (want <= -180) want += 360;
+    std::printf("  kink at (%.4f, %.4f): %.2f° (closed forms: %.2f°), %.4f m\n", c.a.x, c.a.y, angle, want,
+                std::hypot(c.b.x - c.a.x, c.b.y - c.a.y));
+    EXPECT_NEAR(angle, want, 2.0);
+    EXPECT_NEAR(std::hypot(c.b.x - c.a.x, c.b.y - c.a.y), h, 1e-9);
   }
 }
 

@@ -14,7 +14,7 @@ MaterialDef read_material(const std::string& name, const JsonReader& r) {
   // 0.5 is incompressible: the plane-strain elasticity matrix blows up.
   m.poisson = r.number("poisson", interval(0, true, 0.5, false));
   if (const auto st = r.optional("strength")) {
-    st->check_keys({"tensile", "cohesion", "friction_deg", "fracture_energy"});
+    st->check_keys({"tensile", "cohesion", "friction_deg", "fracture_energy", "toughness"});
     StrengthDef& s = m.strength;
     s.present = true;
     s.tensile = st->number("tensile", kStrength);
@@ -27,6 +27,8 @@ MaterialDef read_material(const std::string& name, const JsonReader& r) {
     if (s.fracture_energy > 0)
       (*st)["fracture_energy"].fail("cohesive softening of new cracks is not built yet: a crack's faces start "
                                     "closed without tensile strength (docs/fracture.md); leave fracture_energy out");
+    // Pa·√m: rock's K_Ic is 0.1–3 MPa·√m; the bound only refuses typing accidents.
+    s.toughness = st->optional_number("toughness", 0, interval(0, false, 1e10, true));
   }
   return m;
 }

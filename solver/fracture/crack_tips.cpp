@@ -67,6 +67,12 @@ std::vector<CrackTip> CrackTipFinder::find(const Mesh& mesh, const SceneDef& sce
   int lines = 0;
   for (const JointDef& j : scene.joints) {
     const std::size_t n = j.points.size();
+    // A run's scene after a re-cut holds its cracks as joints too (stepping/fracture_effect.cpp):
+    // they are taken from `cracks`, once.
+    if (n == 2 && std::any_of(cracks.begin(), cracks.end(), [&](const std::array<Vec2, 2>& c) {
+          return c[0] == j.points[0] && c[1] == j.points[1];
+        }))
+      continue;
     for (std::size_t i = 0; i + 1 < n; ++i) pieces.push_back({j.points[i], j.points[i + 1], lines});
     ends.push_back({j.points[0], j.points[1], lines});
     ends.push_back({j.points[n - 1], j.points[n - 2], lines});

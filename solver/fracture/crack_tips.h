@@ -35,8 +35,9 @@ class CrackTipFinder {
   /// errors against the radius).
   static constexpr double kDomainRadius = 3.0;
 
-  /// The tips of the scene's joints and of `cracks` (segments as cut, in the order cut), on the
-  /// mesh `mesh` of the scene's bodies; numbers kept from the last call.
+  /// The tips of the scene's joints and of `cracks` (segments as cut, in the order cut; a joint of
+  /// the scene that is one of them is taken once), on the mesh `mesh` of the scene's bodies;
+  /// numbers kept from the last call.
   std::vector<CrackTip> find(const Mesh& mesh, const SceneDef& scene,
                              const std::vector<std::array<Vec2, 2>>& cracks);
 
