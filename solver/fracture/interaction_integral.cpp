@@ -7,13 +7,17 @@
 //     I = ∫_A [ σ_ij ∂uᵃ_i/∂x1 + σᵃ_ij ∂u_i/∂x1 − σ_ik εᵃ_ik δ_1j ] ∂q/∂x_j dA
 //     K_I = E'/2 · I(mode I),   K_II = E'/2 · I(mode II)
 //
-// since I = 2(K_I·K_Iᵃ + K_II·K_IIᵃ)/E', E' = E/(1 − ν²) in plane strain and E in plane stress.
+// and, where the crack's faces carry a traction t (a closed crack's contacts), minus
+//     ∫_faces t_i ∂uᵃ_i/∂x1 q ds
+// (the auxiliary field's faces are free), since I = 2(K_I·K_Iᵃ + K_II·K_IIᵃ)/E', E' = E/(1 − ν²) in plane strain and E in plane stress.
 // q is the linear interpolation, over each element's mathematical triangle, of q = 1 at the
 // mesh nodes within the domain's radius of the tip and 0 at the others, so ∂q/∂x is constant in
 // an element and nonzero only in the ring of triangles with nodes on both sides of the radius:
 // the tip's own element, where the field is least accurate, has q = 1 and adds nothing. The
-// integral holds for crack faces free of traction, no body force and no initial stress inside
-// the ring (each would add a term; docs/fracture.md says which runs that leaves out).
+// integral holds for no body force and no initial stress inside the ring (each would add a term;
+// docs/fracture.md says which runs that leaves out). A loaded face's traction is its element's
+// σ·n: at cover order 0 the stress of the element beside a closed contact, the contact's
+// traction where the element is small against the field's variation.
 //
 // Williams' leading terms (Anderson, Fracture Mechanics, 3rd ed., table 2.2), with r, θ about
 // the tip, μ the shear modulus and κ = 3 − 4ν (plane strain) or (3 − ν)/(1 + ν) (plane stress),
@@ -104,7 +108,8 @@ TipField williams_field(const TipElasticity& el, int mode, double r, double thet
 StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, const TipElasticity& el,
                                      const std::vector<double>& stress, const std::vector<double>& loop_u,
                                      const std::vector<std::uint8_t>& skip,
-                                     const std::vector<std::int32_t>* near) {
+                                     const std::vector<std::int32_t>* near,
+                                     const std::vector<std::uint8_t>* loaded) {
   const double e1x = domain.direction.x, e1y = domain.direction.y;  // the tip's frame: rows e1, e2
   const double e2x = -e1y, e2y = e1x;
   const double r2 = domain.radius * domain.radius;
@@ -131,8 +136,45 @@ StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, 
         const double d = length(mesh.loop_xy[2 * v] - domain.tip.x, mesh.loop_xy[2 * v + 1] - domain.tip.y);
         if (d < nearest) nearest = d, out.tip_u = {loop_u[2 * v], loop_u[2 * v + 1]};
       }
-    if (inside == 0 || inside == 3) continue;
+    if (inside == 0) continue;
     const double two_area = (nx[1] - nx[0]) * (ny[2] - ny[0]) - (nx[2] - nx[0]) * (ny[1] - ny[0]);
+    if (loaded != nullptr) {
+      // The faces' traction: −∫ t_i ∂uᵃ_i/∂x1 q ds over this element's loaded joint edges, with
+      // t = σ_e·n (n the loop's outward normal), q interpolated over the triangle; each edge in
+      // four pieces of 4-point Gauss (an edge ending at the tip has an integrable r^−½).
+      static constexpr double kGx[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+      static constexpr double kGw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+      const std::int32_t f0 = mesh.element_loop_offset[e], f1 = mesh.element_loop_offset[e + 1];
+      for (std::int32_t v = f0; v < f1; ++v) {
+        if (!(*loaded)[static_cast<std::size_t>(v)] || !(mesh.loop_edge_origin[v] & kEdgeJoint)) continue;
+        const std::int32_t w = v + 1 < f1 ? v + 1 : f0;
+        const double ax = mesh.loop_xy[2 * v], ay = mesh.loop_xy[2 * v + 1];
+        const double dx = mesh.loop_xy[2 * w] - ax, dy = mesh.loop_xy[2 * w + 1] - ay, len = length(dx, dy);
+        if (len == 0) continue;
+        const double nxo = dy / len, nyo = -dx / len;  // outward: the loop runs counter-clockwise
+        const double tx = stress[3 * e] * nxo + stress[3 * e + 2] * nyo, ty = stress[3 * e + 2] * nxo + stress[3 * e + 1] * nyo;
+        const double t1 = e1x * tx + e1y * ty, t2 = e2x * tx + e2y * ty;
+        for (int piece = 0; piece < 4; ++piece)
+          for (int g = 0; g < 4; ++g) {
+            const double u = (piece + 0.5 + 0.5 * kGx[g]) / 4;
+            // A hair inside the element, so that θ is that of its own face (±π).
+            const double x = ax + u * dx - 1e-9 * len * nxo, y = ay + u * dy - 1e-9 * len * nyo;
+            double qx = 0;
+            for (int k = 0; k < 3; ++k) {
+              const int i1 = (k + 1) % 3, i2 = (k + 2) % 3;
+              qx += q[k] * (nx[i1] * ny[i2] - nx[i2] * ny[i1] + (ny[i1] - ny[i2]) * x + (nx[i2] - nx[i1]) * y) / two_area;
+            }
+            const double px = x - domain.tip.x, py = y - domain.tip.y;
+            const double x1 = e1x * px + e1y * py, x2 = e2x * px + e2y * py;
+            const double r = std::sqrt(x1 * x1 + x2 * x2), theta = std::atan2(x2, x1);
+            for (int mode = 1; mode <= 2; ++mode) {
+              const TipField a = williams_field(el, mode, r, theta);
+              integral[mode - 1] -= 0.125 * kGw[g] * len * (t1 * a.grad[0][0] + t2 * a.grad[1][0]) * qx;
+            }
+          }
+      }
+    }
+    if (inside == 3) continue;
     double qx = 0, qy = 0;
     for (int k = 0; k < 3; ++k) {
       const int a = (k + 1) % 3, b = (k + 2) % 3;

@@ -5,7 +5,8 @@
 // over the elements of a ring around the tip where the weight q falls from 1 (mesh nodes within
 // the radius) to 0 (nodes beyond it). The auxiliary fields are Williams' leading terms of a
 // straight crack in a homogeneous body; the crack's faces inside the ring are taken as free of
-// traction (a closed crack under compression is not accounted for: docs/fracture.md).
+// traction unless the caller names the faces that carry it (closed contacts: their traction,
+// that of the element beside them, adds the faces' term).
 #pragma once
 
 #include <array>
@@ -51,7 +52,9 @@ struct TipDomain {
 /// `stress` ([3·me] Pa, σxx σyy τxy) and displacement since the start (`loop_u` [2·v] m per loop
 /// vertex: its gradient is fitted over the element's loop, exact at cover order 0); elements
 /// with `skip` [me] 1 (excavated, debris; may be empty) are left out. `near`: the elements that
-/// may reach within the radius of the tip (null: all of them are looked at).
+/// may reach within the radius of the tip (null: all of them are looked at). `loaded` [v] 1: the
+/// loop edge v → next is a crack face that carries traction (a closed contact on it), t = σ·n of
+/// its element (null: every face is free).
 struct StressIntensity {
   double k1 = 0;  ///< Pa·√m
   double k2 = 0;  ///< Pa·√m
@@ -61,7 +64,8 @@ struct StressIntensity {
 StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, const TipElasticity& el,
                                      const std::vector<double>& stress, const std::vector<double>& loop_u,
                                      const std::vector<std::uint8_t>& skip,
-                                     const std::vector<std::int32_t>* near = nullptr);
+                                     const std::vector<std::int32_t>* near = nullptr,
+                                     const std::vector<std::uint8_t>* loaded = nullptr);
 
 /// rad, the direction of maximum tangential stress (Erdogan & Sih 1963) from the crack's own
 /// direction: θ = 2·atan((K_I − √(K_I² + 8K_II²))/(4K_II)), 0 for K_II = 0.

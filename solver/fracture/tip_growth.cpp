@@ -31,13 +31,16 @@ double mts_equivalent_k(double k1, double k2, double theta) {
   return c * (k1 * c * c - 1.5 * k2 * std::sin(theta));
 }
 
+bool any_toughness(const SceneDef& scene) {
+  return std::any_of(scene.materials.begin(), scene.materials.end(),
+                     [](const MaterialDef& m) { return m.strength.present && m.strength.toughness > 0; });
+}
+
 std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& scene,
                                             const std::vector<CrackSegment>& cracks, const RunState& s,
                                             const std::vector<std::uint8_t>& skip) {
   std::vector<CrackSegment> out;
-  const bool any = std::any_of(scene.materials.begin(), scene.materials.end(),
-                               [](const MaterialDef& m) { return m.strength.present && m.strength.toughness > 0; });
-  if (!any) return out;
+  if (!any_toughness(scene)) return out;
   const double h = mesh.mesh_size;
   const double step = scene.fracture.tip_step > 0 ? scene.fracture.tip_step : h;
   std::vector<std::array<Vec2, 2>> lines;

@@ -29,6 +29,9 @@ namespace nmm::solve {
 /// of mts_angle (interaction_integral.h).
 double mts_equivalent_k(double k1, double k2, double theta);
 
+/// Some material of the scene has a toughness (a fracture run without one looks at no tip here).
+bool any_toughness(const SceneDef& scene);
+
 /// The segments the tips of the solved state `s` grow by (above), on `mesh` with the run's
 /// `cracks` so far; `skip` [me] 1: excavated or debris. Empty where no material has a toughness.
 std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& scene,

@@ -36,6 +36,17 @@ std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& find
     by_x[e] = {mesh.node_xy[2 * n], static_cast<std::int32_t>(e)};
   }
   std::sort(by_x.begin(), by_x.end());
+  // The crack faces that carry traction: the edges of closed contacts, and the two edges at
+  // each closed contact's vertex.
+  std::vector<std::uint8_t> loaded(mesh.loop_vertex_count(), 0);
+  for (const Contact& c : run.contacts.contacts()) {
+    if (c.state == ContactState::open) continue;
+    loaded[static_cast<std::size_t>(c.at.edge)] = 1;
+    const std::int32_t f0 = mesh.element_loop_offset[static_cast<std::size_t>(c.at.elem_a)];
+    const std::int32_t f1 = mesh.element_loop_offset[static_cast<std::size_t>(c.at.elem_a) + 1];
+    loaded[static_cast<std::size_t>(c.at.vertex)] = 1;
+    loaded[static_cast<std::size_t>(c.at.vertex == f0 ? f1 - 1 : c.at.vertex - 1)] = 1;
+  }
   std::vector<std::int32_t> near;
   for (const CrackTip& t : tips) {
     const double reach = t.radius + 1.01 * mesh.mesh_size;
@@ -45,7 +56,7 @@ std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& find
       near.push_back(it->second);
     const TipElasticity el = tip_elasticity(scene.materials[static_cast<std::size_t>(scene.bodies[t.body].material)], scene.plane);
     const StressIntensity k = interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, el, stress,
-                                                   run.state.loop_u, skip, &near);
+                                                   run.state.loop_u, skip, &near, &loaded);
     TipReading r;
     r.tip = t.id;
     r.k1 = k.k1;

@@ -34,7 +34,7 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
                             StepTimings& timings) {
   Stopwatch watch;
   std::vector<CrackSegment> segments = fracture_.find(mesh, scene, solved, removed);
-  if (segments.empty()) {  // the strength broke nothing: tips that reach their toughness grow
+  if (segments.empty() && any_toughness(scene)) {  // the strength broke nothing: tips that reach their toughness grow
     std::vector<std::uint8_t> skip = removed;
     const std::vector<std::uint8_t>& debris = fracture_.debris();
     if (skip.size() < mesh.element_count()) skip.resize(mesh.element_count(), 0);
