@@ -1,4 +1,8 @@
-// Crack tips that grow by their toughness: see tip_growth.h.
+// Crack tips that grow by their toughness (tip_growth.h). The rule, Erdogan & Sih (1963):
+//     θ = 2·atan((K_I − √(K_I² + 8K_II²)) / (4K_II))            (interaction_integral.cpp)
+//     K_eq = cos(θ/2)·(K_I·cos²(θ/2) − 3/2·K_II·sin θ)          grows when K_eq ≥ K_Ic
+// (K_eq is the tangential stress σθθ·√(2πr) in the direction θ, where it is largest), by
+// fracture.tip_step from the tip in the direction θ from the crack's own.
 #include "solver/fracture/tip_growth.h"
 
 #include <algorithm>
