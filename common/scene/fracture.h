@@ -13,9 +13,10 @@ struct SceneDef;
 struct FractureDef {
   bool present = false;
   int crack_set = -1;  ///< joint set whose law the faces of new cracks use
+  double tip_step = 0; ///< m, how far a tip grows at once by its toughness (0: the mesh size)
 };
 
-/// fracture: {crack_set}. Reads the scene's joint sets and solver settings (read before):
+/// fracture: {crack_set, tip_step}. Reads the scene's joint sets and solver settings (read before):
 /// fracturing needs cover order 0.
 FractureDef read_fracture(const JsonReader& r, const SceneDef& scene);
 

@@ -9,6 +9,7 @@
 #include "solver/contact/cohesive_law.h"
 #include "solver/fracture/recut_check.h"
 #include "solver/fracture/state_transfer.h"
+#include "solver/fracture/tip_growth.h"
 
 namespace nmm::solve {
 
@@ -33,7 +34,14 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
                             RunState& start, const std::vector<ContactHistory>& history, NewMesh& out,
                             StepTimings& timings) {
   Stopwatch watch;
-  const std::vector<CrackSegment> segments = fracture_.find(mesh, scene, solved, removed);
+  std::vector<CrackSegment> segments = fracture_.find(mesh, scene, solved, removed);
+  if (segments.empty() && any_toughness(scene)) {  // the strength broke nothing: tips that reach their toughness grow
+    std::vector<std::uint8_t> skip = removed;
+    const std::vector<std::uint8_t>& debris = fracture_.debris();
+    if (skip.size() < mesh.element_count()) skip.resize(mesh.element_count(), 0);
+    for (std::size_t e = 0; e < debris.size() && e < skip.size(); ++e) skip[e] = skip[e] || debris[e];
+    segments = grow_by_toughness(mesh, scene, fracture_.segments(), solved, skip);
+  }
   if (segments.empty()) {
     timings.fracture += watch.seconds();
     return false;

@@ -1,0 +1,96 @@
+// Crack tips that grow by their toughness (tip_growth.h). The rule, Erdogan & Sih (1963):
+//     θ = 2·atan((K_I − √(K_I² + 8K_II²)) / (4K_II))            (interaction_integral.cpp)
+//     K_eq = cos(θ/2)·(K_I·cos²(θ/2) − 3/2·K_II·sin θ)          grows when K_eq ≥ K_Ic
+// (K_eq is the tangential stress σθθ·√(2πr) in the direction θ, where it is largest), by
+// fracture.tip_step from the tip in the direction θ from the crack's own.
+#include "solver/fracture/tip_growth.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "solver/fracture/crack_tips.h"
+#include "solver/fracture/interaction_integral.h"
+
+namespace nmm::solve {
+
+namespace {
+
+// The parameter t in (t_min, 1] along p → q where it meets the segment a–b, or +∞.
+double crossing(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, double t_min) {
+  const double rx = q.x - p.x, ry = q.y - p.y, sx = b.x - a.x, sy = b.y - a.y;
+  const double den = rx * sy - ry * sx;
+  if (den == 0) return std::numeric_limits<double>::infinity();
+  const double t = ((a.x - p.x) * sy - (a.y - p.y) * sx) / den;
+  const double u = ((a.x - p.x) * ry - (a.y - p.y) * rx) / den;
+  if (t <= t_min || t > 1 || u < 0 || u > 1) return std::numeric_limits<double>::infinity();
+  return t;
+}
+
+}  // namespace
+
+double mts_equivalent_k(double k1, double k2, double theta) {
+  const double c = std::cos(theta / 2);
+  return c * (k1 * c * c - 1.5 * k2 * std::sin(theta));
+}
+
+bool any_toughness(const SceneDef& scene) {
+  return std::any_of(scene.materials.begin(), scene.materials.end(),
+                     [](const MaterialDef& m) { return m.strength.present && m.strength.toughness > 0; });
+}
+
+std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& scene,
+                                            const std::vector<CrackSegment>& cracks, const RunState& s,
+                                            const std::vector<std::uint8_t>& skip) {
+  std::vector<CrackSegment> out;
+  if (!any_toughness(scene)) return out;
+  const double h = mesh.mesh_size;
+  const double step = scene.fracture.tip_step > 0 ? scene.fracture.tip_step : h;
+  std::vector<std::array<Vec2, 2>> lines;
+  for (const CrackSegment& c : cracks) lines.push_back({c.a, c.b});
+  CrackTipFinder finder;
+  const std::vector<CrackTip> tips = finder.find(mesh, scene, lines);
+  for (const CrackTip& t : tips) {
+    const MaterialDef& m = scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(t.body)].material)];
+    if (!m.strength.present || m.strength.toughness <= 0) continue;
+    const StressIntensity k =
+        interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, tip_elasticity(m, scene.plane), s.stress, s.loop_u, skip);
+    const double theta = mts_angle(k.k1, k.k2);
+    if (mts_equivalent_k(k.k1, k.k2, theta) < m.strength.toughness) continue;
+    const double c = std::cos(theta), sn = std::sin(theta);
+    const Vec2 d{c * t.direction.x - sn * t.direction.y, sn * t.direction.x + c * t.direction.y};
+    // Where it first meets the body's boundary, a joint or a crack within 1.5 steps (its own last
+    // segment ends at a: only crossings beyond a round-off of it count): a tip that would stop
+    // short of it by less than half a step goes on to it, leaving no sliver of a ligament (a
+    // centre crack grown to a plate's sides in steps of h stopped 7e-5 m short, and that
+    // ligament held the two halves).
+    const double probe = 1.5 * step;
+    const Vec2 a = t.at, b{a.x + probe * d.x, a.y + probe * d.y};
+    double hit = std::numeric_limits<double>::infinity();
+    const double t_min = 1e-9 * h / probe;
+    const BodyDef& body = scene.bodies[static_cast<std::size_t>(t.body)];
+    auto ring = [&](const Ring& r) {
+      for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) hit = std::min(hit, crossing(a, b, r[j], r[i], t_min));
+    };
+    ring(body.outer);
+    for (const Ring& hole : body.holes) ring(hole);
+    for (const JointDef& j : scene.joints)
+      for (std::size_t i = 0; i + 1 < j.points.size(); ++i) hit = std::min(hit, crossing(a, b, j.points[i], j.points[i + 1], t_min));
+    for (const auto& l : lines) hit = std::min(hit, crossing(a, b, l[0], l[1], t_min));
+    for (const CrackSegment& o : out) hit = std::min(hit, crossing(a, b, o.a, o.b, t_min));
+    const double reach = hit <= 1 ? hit * probe + 1e-8 * h : step;  // overshoot what it meets
+    CrackSegment seg;
+    seg.a = a;
+    seg.b = {a.x + reach * d.x, a.y + reach * d.y};
+    seg.a_now = {a.x + k.tip_u.x, a.y + k.tip_u.y};
+    seg.b_now = {seg.b.x + k.tip_u.x, seg.b.y + k.tip_u.y};
+    seg.mode = CrackMode::tensile;
+    seg.step = s.step;
+    seg.time = s.time;
+    out.push_back(seg);
+  }
+  return out;
+}
+
+}  // namespace nmm::solve
