@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <iterator>
 
+#include "solver/contact/contact_readout.h"
 #include "solver/contact/contact_tolerances.h"
 #include "solver/discretisation/static_support.h"
 
@@ -205,6 +206,33 @@ void ContactEffect::trace_rejected_step(const RunState& s, const Eigen::VectorXd
                    c.at.vertex, c.at.elem_a, mesh.element_block[c.at.elem_a], s.loop_xy[2 * c.at.vertex],
                    s.loop_xy[2 * c.at.vertex + 1], c.at.edge, c.at.elem_b, mesh.element_block[c.at.elem_b], c.at.gap,
                    c.gap, static_cast<int>(c.start_state), c.length);
+}
+
+void ContactEffect::write_outputs(OutputStep& out) const {
+  if (!contacts_.active()) return;
+  // The joint's stresses in Pa are the forces over the contact's tributary length; the springs
+  // carry the effective stress, so it repeats the normal stress by name beside the water's.
+  OutputTable& t = out.tables.table(
+      "contacts.csv",
+      "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,length,vertex,edge,"
+      "normal_stress,shear_stress,pressure,effective_normal_stress,jrc_mob,dilation");
+  const std::vector<ContactSample> rows = contact_samples(contacts_, model_, out.state);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ContactSample& c = rows[i];
+    t.row(out.step, out.time);
+    t.add_index(static_cast<std::int64_t>(i));
+    t.add(c.x);
+    t.add(c.y);
+    t.add_index(c.state);
+    t.add_index(c.law);
+    for (double v : {c.closure, c.shear, c.normal_force, c.shear_force, c.kn, c.ks, c.length}) t.add(v);
+    t.add_index(c.vertex);
+    t.add_index(c.edge);
+    for (double v : {c.normal_force / c.length, c.shear_force / c.length, c.pressure, c.normal_force / c.length,
+                     c.jrc_mob, c.dilation})
+      t.add(v);
+    t.end_row();
+  }
 }
 
 }  // namespace nmm::solve

@@ -41,6 +41,12 @@ class ContactEffect final : public Effect {
   double penetration(EffectStep& step) const override;
   void rejected(const EffectStep& step, const Eigen::VectorXd& covers_d) const override;
   void commit(EffectStep& step, const Eigen::VectorXd& d) override;
+  /// contacts.csv (or contacts.csv.gz: nmm-solve --contacts-gzip).
+  std::vector<std::string> output_files() const override { return {"contacts.csv", "contacts.csv.gz"}; }
+  /// contacts.csv at an output step of a run with contacts: one row per closed contact
+  /// (contact_readout.h), numbered from 0 in the set's order; an output step without closed
+  /// contacts has none (docs/interface.md lists the columns).
+  void write_outputs(OutputStep& out) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
   /// new mesh), the events and what the solves have cost.

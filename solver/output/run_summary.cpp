@@ -6,6 +6,7 @@
 
 #include "nmm_version.h"
 #include "solver/discretisation/blas_info.h"
+#include "solver/output/reactions.h"
 
 namespace nmm::solve {
 
@@ -40,8 +41,10 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   for (std::size_t b = 0; b < s.body_removed.size(); ++b)
     if (s.body_removed[b])
       summary["excavated_bodies"].push_back({{"body", b}, {"step", s.body_removed_at[b]}});
-  // The effects' own parts (effect.h summarise: the bolts').
+  // The effects' own parts (effect_output.h summarise: the bolts').
   for (const Effect* e : st.effects) e->summarise(s, summary);
+  for (const MeshChange* c : st.changes) c->summarise(s, summary);
+  summarise_reactions(st, summary);  // the supports' reactions at the end (reactions.h)
   summary["analysis"] = sv.dynamic                                ? "dynamic"
                         : sv.static_mode == StaticMode::dda ? "static_dda"
                                                                        : "static_equilibrium";

@@ -22,6 +22,7 @@
 #include "solver/discretisation/cover_space.h"
 #include "solver/discretisation/effect.h"
 #include "solver/stepping/equilibrium_indicator.h"
+#include "solver/stepping/mesh_change.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_timings.h"
@@ -63,6 +64,8 @@ struct RunView {
   const RunState& recut_start;
   /// The effects with state the run's steps call (effect.h; mesh_bound.h lists them).
   const std::vector<Effect*>& effects;
+  /// The effects that change the mesh (mesh_change.h; mesh_bound.h MeshChanges lists them).
+  const std::vector<MeshChange*>& changes;
 };
 
 /// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).
