@@ -1,6 +1,7 @@
 // Support reactions (docs/interface.md "Support reactions"; solver/discretisation/support_reaction.h)
-// against what a support must carry: the reactions of a body at rest balance its weight, point
-// loads and tractions (Σ R + Σ loads = 0 to 1e-6 of the loads); a support moving at a velocity
+// against what a support must carry: the reactions of a step balance the loads of its solve
+// (Σ R + Σ loads = 0 to round-off at cover orders 0, 1, 2), and those of a body at rest its
+// weight, point loads and tractions on its geometry now; a support moving at a velocity
 // pulls an elastic bar by F = E·A·Δu/L (and, with the penalty springs' give in series, by the
 // closed form of the bar and two springs); travel = |v|·∫f dt, also under a velocity history that
 // reverses; reactions.csv and summary.json "supports" carry the same numbers.
@@ -22,7 +23,6 @@
 #include "reference/scene_pieces.h"
 #include "solver/discretisation/support_reaction.h"
 #include "solver/output/output_writer.h"
-#include "solver/output/reactions.h"
 #include "solver/output/run_driver.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/temp_dir.h"
@@ -32,11 +32,10 @@ namespace {
 
 constexpr double kYoung = 1e10, kPoisson = 0.25, kDensity = 2500;
 
-// Steps a static run until it has settled: the reactions are those of the springs on the
-// accepted state, which a step's solve balances on the geometry it started from (a first step
-// from rest moves the edges by the strain, 3e-4 of the plate below) and, at cover order n ≥ 1,
-// with the springs' displacement of degree n + 1 inside an edge where the state keeps its linear
-// part (support_reaction.h): once a step no longer moves the body, both are the state's own.
+// Steps a static run until it has settled: a step's reactions balance the loads of its solve,
+// on the geometry the step started from (a first step from rest moves the edges by the strain,
+// 3e-4 of the plate below); once a step no longer moves the body, they balance the loads on the
+// state's own geometry, which the checks below integrate.
 void settle(TimeStepper& st, int steps) {
   for (int i = 0; i < steps; ++i) st.step(1.0);
 }
@@ -109,7 +108,7 @@ void check_balance(int order) {
   s.tractions = {t};
   const Mesh m = pre::build_mesh(s, "balance");
   TimeStepper st(m, s, "balance");
-  settle(st, order == 0 ? 6 : 40);
+  settle(st, 6);
   const std::vector<SupportReaction> r = support_reactions(st.view());
   ASSERT_EQ(r.size(), 1u);
   // Tractions act on the side as it is now (its length changed by the strain), gravity on the
@@ -130,17 +129,41 @@ void check_balance(int order) {
   std::printf("order %d: base reaction (%.9g, %.9g) N/m against loads (%.9g, %.9g): imbalance %.2e, %.2e of the loads\n",
               order, r[0].fx, r[0].fy, load_x, load_y, std::abs(r[0].fx + load_x) / scale,
               std::abs(r[0].fy + load_y) / scale);
-  // Order 0 to round-off; at order 1 the springs' displacement inside an edge is quadratic and
-  // the state keeps its linear part between the vertices (support_reaction.h): 1.7e-3 measured.
-  const double tol = order == 0 ? 1e-6 : 1e-2;
-  EXPECT_LT(std::abs(r[0].fx + load_x), tol * scale);
-  EXPECT_LT(std::abs(r[0].fy + load_y), tol * scale);
+  EXPECT_LT(std::abs(r[0].fx + load_x), 1e-6 * scale);
+  EXPECT_LT(std::abs(r[0].fy + load_y), 1e-6 * scale);
   EXPECT_EQ(r[0].travel, 0);
   EXPECT_EQ(r[0].load(), 0);
 }
 
 TEST(Reactions, HeldBaseBalancesWeightLoadAndTraction) { check_balance(0); }
 TEST(Reactions, HeldBaseBalancesWeightLoadAndTractionAtOrderOne) { check_balance(1); }
+
+// The first step from rest: its solve balances the loads on the mesh as cut — the weight of its
+// area, the traction over the side's length — and so do the reactions at its solution, at every
+// cover order (the springs' displacement inside an edge is of degree n + 1: support_reaction.h).
+TEST(Reactions, AStepsReactionsBalanceTheLoadsOfItsSolve) {
+  for (int order : {0, 1, 2}) {
+    SceneDef s = rock(0.23, order);
+    s.bodies = {reference::box(0, 0, 2, 1)};
+    s.has_gravity = true;
+    s.gravity = {0, -9.81};
+    s.supports = {support({{0, 0}, {2, 0}}, true, true)};
+    TractionDef t;
+    t.points = {{2, 0}, {2, 1}};
+    t.normal = -2e5;
+    t.shear = 1e5;
+    s.tractions = {t};
+    const Mesh m = pre::build_mesh(s, "step");
+    TimeStepper st(m, s, "step");
+    st.step(1.0);
+    const std::vector<SupportReaction> r = support_reactions(st.view());
+    const double load_x = -2e5, load_y = 1e5 - kDensity * 9.81 * 2.0;  // N/m
+    std::printf("order %d, one step: base reaction (%.12g, %.12g) N/m against loads (%.12g, %.12g)\n", order,
+                r[0].fx, r[0].fy, load_x, load_y);
+    EXPECT_NEAR(r[0].fx, -load_x, 1e-9 * 2.5e5);
+    EXPECT_NEAR(r[0].fy, -load_y, 1e-9 * 2.5e5);
+  }
+}
 
 TEST(Reactions, RollersCarryTheTractionsOfAPlate) {
   // A 3 m × 2 m plate on rollers (left side held in x, base in y) under −4 MPa on its top and
@@ -246,9 +269,7 @@ TEST(Reactions, TravelFollowsAVelocityHistoryThatReverses) {
   EXPECT_DOUBLE_EQ(r[1].dx, 0);
   EXPECT_DOUBLE_EQ(r[1].dy, -1);
   EXPECT_GT(r[1].load(), 0);  // pushing the block down along its velocity
-  // A moving support's run is never settled: its last step moved the edges by its strain
-  // increment (2e-6 here), which is as far as the reactions of the state balance.
-  EXPECT_NEAR(r[0].fy + r[1].fy, 0, 1e-4 * r[1].load());
+  EXPECT_NEAR(r[0].fy + r[1].fy, 0, 1e-6 * r[1].load());
 }
 
 // reactions.csv: one row per support per output step, the numbers of support_reactions; summary.json
@@ -301,7 +322,7 @@ TEST(Reactions, ReactionsCsvAndSummaryCarryTheReactions) {
   EXPECT_EQ(sup[1]["direction"][0].get<double>(), 1.0);
   EXPECT_EQ(sup[1]["load_n_per_m"].get<double>(), r[1].fx);
   EXPECT_GT(r[1].fx, 0);
-  EXPECT_NEAR(r[0].fx + r[1].fx, 0, 1e-4 * r[1].fx);  // moving: not settled (above)
+  EXPECT_NEAR(r[0].fx + r[1].fx, 0, 1e-6 * r[1].fx);
 }
 
 }  // namespace

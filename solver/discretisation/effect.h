@@ -1,5 +1,5 @@
 // An effect with state of its own in the step (docs/code-layout.md "Effects"): contacts, bolts,
-// absorbing boundaries — each behind this one interface, so the stepper
+// absorbing boundaries, the supports' reactions — each behind this one interface, so the stepper
 // (solver/stepping/time_stepper.cpp) loops over the effects a scene calls for
 // (solver/stepping/mesh_bound.h builds the list) and names none.
 //

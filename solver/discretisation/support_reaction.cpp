@@ -1,4 +1,4 @@
-// The supports' reactions on an accepted state: see support_reaction.h for the equations.
+// The supports' reactions: see support_reaction.h for the equations.
 #include "solver/discretisation/support_reaction.h"
 
 #include <cmath>
@@ -10,6 +10,21 @@
 namespace nmm::solve {
 
 namespace {
+
+/// The support's travel and direction at time t (s).
+SupportReaction travelled(const SupportDef& sd, double t, double held[2]) {
+  SupportReaction r;
+  const double speed = std::hypot(sd.velocity.x, sd.velocity.y);
+  const double f = table_integral(sd.table, t);  // s: ∫0^t f dt'
+  held[0] = sd.velocity.x * f;
+  held[1] = sd.velocity.y * f;
+  if (speed > 0) {
+    r.travel = speed * f;
+    r.dx = sd.velocity.x / speed;
+    r.dy = sd.velocity.y / speed;
+  }
+  return r;
+}
 
 /// N/m, ∫ σ_insitu·n ds on the edge a → b (loop displacements ua, ub), with the field taken at
 /// a point's position in the mesh as cut (y − u_y) and n current, as support_terms applies it.
@@ -29,42 +44,64 @@ void insitu_edge_reaction(const InsituStressDef& insitu, const double* a, const 
   }
 }
 
-}  // namespace
-
-std::vector<SupportReaction> support_reactions(const Model& model, const RunState& s,
-                                               const std::vector<std::uint8_t>& removed) {
+/// The reactions with `increment(e, x, y, out)` adding the step's displacement increment of
+/// element e at (x, y) to out[2] (nothing: a state alone).
+template <class Increment>
+std::vector<SupportReaction> reactions(const Model& model, const RunState& s, const std::vector<std::uint8_t>& removed,
+                                       double t, int points, Increment increment) {
   const SceneDef& scene = model.scene();
   const double k_s = model.support_stiffness();
-  const double* xy = s.loop_xy.data();
-  const double* u = s.loop_u.data();
-  const int points = scene.solver.cover_order + 2;  // integrators.cpp edge_frame's rule
+  const double* gp = gauss_points(points);
+  const double* gw = gauss_weights(points);
   std::vector<SupportReaction> out(model.support_edges().size());
   for (std::size_t i = 0; i < out.size(); ++i) {
     const SupportDef& sd = scene.supports[i];
-    SupportReaction& r = out[i];
-    const double speed = std::hypot(sd.velocity.x, sd.velocity.y);
-    const double travelled = table_integral(sd.table, s.time);  // s: ∫0^t f dt'
-    const double held[2] = {sd.velocity.x * travelled, sd.velocity.y * travelled};
-    if (speed > 0) {
-      r.travel = speed * travelled;
-      r.dx = sd.velocity.x / speed;
-      r.dy = sd.velocity.y / speed;
-    }
+    double held[2];
+    out[i] = travelled(sd, t, held);
     double spring[2] = {0, 0}, insitu[2] = {0, 0};
     for (const BoundaryEdge& be : model.support_edges()[i]) {
       if (!removed.empty() && removed[be.element]) continue;
-      const double* a = xy + 2 * be.vertex;
-      const double* b = xy + 2 * be.next;
+      const double* a = s.loop_xy.data() + 2 * be.vertex;
+      const double* b = s.loop_xy.data() + 2 * be.next;
+      const double* ua = s.loop_u.data() + 2 * be.vertex;
+      const double* ub = s.loop_u.data() + 2 * be.next;
       const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-      const double* ua = u + 2 * be.vertex;
-      const double* ub = u + 2 * be.next;
-      for (int d = 0; d < 2; ++d) spring[d] -= k_s * len * (0.5 * (ua[d] + ub[d]) - held[d]);
+      for (int q = 0; q < points; ++q) {
+        const double xi = gp[q];
+        double u[2] = {(1 - xi) * ua[0] + xi * ub[0], (1 - xi) * ua[1] + xi * ub[1]};
+        increment(be.element, a[0] + xi * (b[0] - a[0]), a[1] + xi * (b[1] - a[1]), u);
+        for (int d = 0; d < 2; ++d) spring[d] -= k_s * gw[q] * len * (u[d] - held[d]);
+      }
       if (scene.insitu_stress.present) insitu_edge_reaction(scene.insitu_stress, a, b, ua, ub, points, insitu);
     }
-    if (sd.fix_x) r.fx = spring[0] + insitu[0];
-    if (sd.fix_y) r.fy = spring[1] + insitu[1];
+    if (sd.fix_x) out[i].fx = spring[0] + insitu[0];
+    if (sd.fix_y) out[i].fy = spring[1] + insitu[1];
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<SupportReaction> support_reactions(const Model& model, const StepContext& step, const Eigen::VectorXd& d) {
+  const Configuration& config = step.config;
+  const CoverSpace& space = config.space();
+  const int nf = space.element_dofs() / 2;
+  std::vector<double> phi(static_cast<std::size_t>(nf));
+  return reactions(model, step.s, step.removed, step.t_end, space.order() + 2,
+                   [&](std::int32_t e, double x, double y, double u[2]) {
+                     config.basis(static_cast<std::size_t>(e)).values(x, y, phi.data());
+                     const int* g = space.element_unknowns(static_cast<std::size_t>(e));
+                     for (int k = 0; k < nf; ++k) {
+                       u[0] += phi[k] * d[g[2 * k]];
+                       u[1] += phi[k] * d[g[2 * k + 1]];
+                     }
+                   });
+}
+
+std::vector<SupportReaction> support_reactions(const Model& model, const RunState& s,
+                                               const std::vector<std::uint8_t>& removed) {
+  return reactions(model, s, removed, s.time, model.scene().solver.cover_order + 2,
+                   [](std::int32_t, double, double, double*) {});
 }
 
 }  // namespace nmm::solve

@@ -94,7 +94,7 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
       fs::remove(entry.path(), ec);
   }
   // The effects' own files go when a run starts (run_driver.cpp: Effect::output_files).
-  for (const char* name : {"frames.pvd", "history.csv", "reactions.csv", "summary.json", "result.svg", "result.png",
+  for (const char* name : {"frames.pvd", "history.csv", "summary.json", "result.svg", "result.png",
                            "history.svg", "run_history.svg", "load_travel.svg", "load_travel.png", "index.html",
                            "checkpoint.nmmstate", "energy.csv"})
     fs::remove(join_path(dir_, name), ec);

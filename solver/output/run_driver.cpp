@@ -1,7 +1,6 @@
 // A run as a pipeline of the stepping core and observers: see run_driver.h.
 #include "solver/output/run_driver.h"
 
-#include "solver/output/reactions.h"
 #include "solver/stepping/restart.h"
 #include "solver/output/run_summary.h"
 #include "common/stopwatch.h"
@@ -58,11 +57,9 @@ class RunDriver::FrameOutput : public StepObserver {
       fields.vertex_stress = &at_vertex;
     }
     out_.write_frame(step, s.time, mesh, fields, st.topology);
-    // The output step's rows of the CSV files: the supports' reactions, then every effect's
-    // (effect_output.h), none named here.
+    // The output step's rows of the CSV files: every effect's (effect_output.h), none named here.
     out_.tables().begin_output_step();
     OutputStep o{step, s.time, mesh, s, out_.tables()};
-    write_reactions(st, o);
     for (const Effect* e : st.effects) e->write_outputs(o);
     for (const MeshChange* c : st.changes) c->write_outputs(o);
   }

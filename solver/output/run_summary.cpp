@@ -6,7 +6,6 @@
 
 #include "nmm_version.h"
 #include "solver/discretisation/blas_info.h"
-#include "solver/output/reactions.h"
 
 namespace nmm::solve {
 
@@ -44,7 +43,6 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   // The effects' own parts (effect_output.h summarise: the bolts').
   for (const Effect* e : st.effects) e->summarise(s, summary);
   for (const MeshChange* c : st.changes) c->summarise(s, summary);
-  summarise_reactions(st, summary);  // the supports' reactions at the end (reactions.h)
   summary["analysis"] = sv.dynamic                                ? "dynamic"
                         : sv.static_mode == StaticMode::dda ? "static_dda"
                                                                        : "static_equilibrium";

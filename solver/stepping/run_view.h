@@ -26,6 +26,7 @@
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_timings.h"
+#include "solver/discretisation/support_reaction.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace nmm::solve {
@@ -74,6 +75,8 @@ std::vector<double> mean_stress(const RunView& v);
 std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, double y);
 /// The physical effects the run computes (run_effects.h; summary.json "effects").
 std::vector<std::string> run_effects(const RunView& v);
+/// Every support's reaction in the run's state (support_effect.h; the scene's order).
+std::vector<SupportReaction> support_reactions(const RunView& v);
 /// SHA-256 (hex) of the physical state and contact history: equal hashes, equal states.
 std::string state_hash(const RunView& v);
 

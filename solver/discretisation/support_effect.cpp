@@ -1,5 +1,5 @@
-// What a run writes of its supports' reactions: see reactions.h.
-#include "solver/output/reactions.h"
+// The supports' reactions as an effect of the step: see support_effect.h.
+#include "solver/discretisation/support_effect.h"
 
 #include <nlohmann/json.hpp>
 
@@ -7,18 +7,19 @@
 
 namespace nmm::solve {
 
-std::vector<SupportReaction> support_reactions(const RunView& v) {
-  if (v.model.support_edges().empty()) return {};
-  // The elements the step's assembly leaves out (time_stepper.cpp apply_removed): excavated
-  // bodies, and the debris the cracks cut off.
-  std::vector<std::uint8_t> removed = removed_elements(v.mesh, v.state);
-  const std::vector<std::uint8_t>& debris = v.fracture.debris();
-  for (std::size_t e = 0; e < debris.size() && e < removed.size(); ++e) removed[e] = removed[e] || debris[e];
-  return support_reactions(v.model, v.state, removed);
+void SupportEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
+  last_ = support_reactions(model_, step.context, d);
+  last_step_ = step.s.step + 1;  // the accepted state's (time_stepper.cpp: after update_state)
 }
 
-void write_reactions(const RunView& v, OutputStep& out) {
-  const std::vector<SupportReaction> r = support_reactions(v);
+std::vector<SupportReaction> SupportEffect::reactions(const RunState& s) const {
+  if (!active()) return {};
+  if (s.step == last_step_) return last_;
+  return support_reactions(model_, s, removed_elements(model_.mesh(), s));
+}
+
+void SupportEffect::write_outputs(OutputStep& out) const {
+  const std::vector<SupportReaction> r = reactions(out.state);
   if (r.empty()) return;
   OutputTable& t = out.tables.table("reactions.csv", "step,time,support,fx,fy,travel");
   for (std::size_t i = 0; i < r.size(); ++i) {
@@ -31,8 +32,8 @@ void write_reactions(const RunView& v, OutputStep& out) {
   }
 }
 
-void summarise_reactions(const RunView& v, nlohmann::json& summary) {
-  const std::vector<SupportReaction> r = support_reactions(v);
+void SupportEffect::summarise(const RunState& s, nlohmann::json& summary) const {
+  const std::vector<SupportReaction> r = reactions(s);
   if (r.empty()) return;
   nlohmann::json supports = nlohmann::json::array();
   for (std::size_t i = 0; i < r.size(); ++i)
