@@ -12,6 +12,10 @@
 //   write_files    once the run has stopped (nmm-solve: at its end; Python: at finish()), the
 //                  files it writes whole into the folder (cracks.csv)
 //   summarise      its part of summary.json
+//   effect_names   what it adds to summary.json "effects" when it takes part (docs/interface.md)
+//   checkpoint_sections  the checkpoint's sections of what it keeps beyond the run state (the
+//                  cracks' MESH and FRACTURE; docs/checkpoint-format.md); what it keeps in
+//                  RunState is written with the state (run_state.h)
 // Its carried state is RunState's, and so the checkpoint's (run_state.h).
 #pragma once
 
@@ -21,6 +25,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "common/checkpoint_file.h"
 #include "common/mesh.h"
 #include "solver/discretisation/output_tables.h"
 #include "solver/discretisation/run_state.h"
@@ -47,6 +52,10 @@ class EffectOutput {
   virtual void write_files(const OutputStep& /*out*/, const std::string& /*dir*/) const {}
   /// Its part of summary.json for the run in state s (the bolts' "bolts"), added to `summary`.
   virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
+  /// The names it adds to summary.json "effects" for the run in state s (none: it takes no part).
+  virtual void effect_names(const RunState& /*s*/, std::vector<std::string>& /*names*/) const {}
+  /// Appends the checkpoint's sections of what it keeps beyond the run state, of a run on `mesh`.
+  virtual void checkpoint_sections(const Mesh& /*mesh*/, CheckpointSections& /*sections*/) const {}
 
  protected:
   EffectOutput() = default;

@@ -91,4 +91,10 @@ void FractureEffect::write_files(const OutputStep& out, const std::string& dir) 
   }
 }
 
+void FractureEffect::checkpoint_sections(const Mesh& mesh, CheckpointSections& sections) const {
+  if (fracture_.segments().empty()) return;
+  sections.emplace_back("MESH", mesh_to_bytes(mesh));
+  sections.emplace_back("FRACTURE", fracture_.save());
+}
+
 }  // namespace nmm::solve

@@ -16,7 +16,7 @@ std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, doubl
 }
 
 std::vector<std::string> run_effects(const RunView& v) {
-  return run_effects(v.model, v.state, v.contacts, v.fracture.active());
+  return run_effects(v.model, v.state, v.effects, v.changes);
 }
 
 std::vector<SupportReaction> support_reactions(const RunView& v) {
