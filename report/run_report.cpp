@@ -234,6 +234,34 @@ ReportFiles make_run_report(const std::string& dir) {
     files.written.push_back("run_history.svg");
   }
 
+  // A rock test's curve: each moving support's load against its travel (reactions.csv; the
+  // direction of each support's velocity from summary.json "supports", solver/output/reactions.h).
+  const std::string reactions_path = (fs::path(dir) / "reactions.csv").string();
+  if (fs::exists(reactions_path) && summary.contains("supports") && summary["supports"].is_array()) {
+    const NumberTable r = read_number_csv(reactions_path);
+    const int cs = r.column("support"), cfx = r.column("fx"), cfy = r.column("fy"), ctr = r.column("travel");
+    PlotSpec spec{"moving supports: load against travel", "travel (mm)", "load (kN per m)", false, false, {}};
+    for (const nlohmann::json& sup : summary["supports"]) {
+      const nlohmann::json dir_json = sup.value("direction", nlohmann::json::array());
+      if (!sup.contains("support") || !dir_json.is_array() || dir_json.size() != 2) continue;
+      const double dx = dir_json[0].get<double>(), dy = dir_json[1].get<double>();
+      if (dx == 0 && dy == 0) continue;  // a held support has no travel
+      const int k = sup["support"].get<int>();
+      PlotSeries s{"support " + std::to_string(k), {}, {}, kColours[k % 6], true, false};
+      if (cs < 0 || cfx < 0 || cfy < 0 || ctr < 0) break;
+      for (const auto& row : r.rows)
+        if (row.size() >= r.names.size() && static_cast<int>(row[cs]) == k) {
+          s.x.push_back(1e3 * row[ctr]);
+          s.y.push_back(1e-3 * (row[cfx] * dx + row[cfy] * dy));  // the force along its velocity
+        }
+      if (!s.x.empty()) spec.series.push_back(std::move(s));
+    }
+    if (!spec.series.empty()) {
+      write_svg_plot(spec, (fs::path(dir) / "load_travel.svg").string());
+      files.written.push_back("load_travel.svg");
+    }
+  }
+
   const bool has_result = fs::exists(fs::path(dir) / "result.svg");
   if (png_converter_available()) {
     files.png = true;
@@ -299,6 +327,9 @@ ReportFiles make_run_report(const std::string& dir) {
   if (has_result) html += "<h2>Result</h2>\n<a href=\"result.svg\"><img src=\"result.svg\" alt=\"result picture\"></a>\n";
   if (fs::exists(fs::path(dir) / "history.svg"))
     html += "<h2>Measure points</h2>\n<a href=\"history.svg\"><img src=\"history.svg\" alt=\"measure point history\"></a>\n";
+  if (fs::exists(fs::path(dir) / "load_travel.svg"))
+    html += "<h2>Load against travel</h2>\n<a href=\"load_travel.svg\"><img src=\"load_travel.svg\" alt=\"moving "
+            "supports: load against travel\"></a>\n";
   if (fs::exists(fs::path(dir) / "run_history.svg"))
     html += "<h2>Solver effort and energy</h2>\n<a href=\"run_history.svg\"><img src=\"run_history.svg\" alt=\"solver effort and energy\"></a>\n";
   if (fs::exists(energy_path)) {
@@ -317,6 +348,7 @@ ReportFiles make_run_report(const std::string& dir) {
   if (fs::exists(fs::path(dir) / "contacts.csv")) html += ", contacts.csv";
   if (fs::exists(fs::path(dir) / "contacts.csv.gz")) html += ", contacts.csv.gz (gzip: zcat)";
   if (fs::exists(fs::path(dir) / "energy.csv")) html += ", energy.csv (docs/energy.md)";
+  if (fs::exists(reactions_path)) html += ", reactions.csv";
   html += ".</p>\n</body></html>\n";
   write_file_atomically((fs::path(dir) / "index.html").string(), html);
   files.written.push_back("index.html");

@@ -7,6 +7,9 @@
 //                    velocity, log scale (run_history.csv,
 //                    equilibrium_indicator.h); the energy terms against time (from energy.csv,
 //                    energy.h: kinetic, strain, gravity, springs, work of loads, friction, residual)
+//   load_travel.svg  each moving support's load (its force on the body along its velocity, kN
+//                    per m) against its travel (mm), from reactions.csv and summary.json
+//                    "supports" (solver/output/reactions.h): the curve a rock test is read from
 //   index.html       the pictures (result.svg when nmm-solve drew it) and summary.json's
 //                    status (a stopped run's reason and likely cause, failure_cause.h), times
 //                    and counts as a table in engineering notation with units, never wider

@@ -8,6 +8,9 @@
 #include <cstdlib>
 #include <iterator>
 
+#include <nlohmann/json.hpp>
+
+#include "solver/contact/contact_readout.h"
 #include "solver/contact/contact_tolerances.h"
 #include "solver/discretisation/static_support.h"
 
@@ -214,6 +217,80 @@ void ContactEffect::trace_rejected_step(const RunState& s, const Eigen::VectorXd
                    c.at.vertex, c.at.elem_a, mesh.element_block[c.at.elem_a], s.loop_xy[2 * c.at.vertex],
                    s.loop_xy[2 * c.at.vertex + 1], c.at.edge, c.at.elem_b, mesh.element_block[c.at.elem_b], c.at.gap,
                    c.gap, static_cast<int>(c.start_state), c.length);
+}
+
+void ContactEffect::write_outputs(OutputStep& out) const {
+  if (!contacts_.active()) return;
+  // The joint's stresses in Pa are the forces over the contact's tributary length; the springs
+  // carry the effective stress, so it repeats the normal stress by name beside the water's.
+  OutputTable& t = out.tables.table(
+      "contacts.csv",
+      "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,length,vertex,edge,"
+      "normal_stress,shear_stress,pressure,effective_normal_stress,jrc_mob,dilation");
+  const std::vector<ContactSample> rows = contact_samples(contacts_, model_, out.state);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ContactSample& c = rows[i];
+    t.row(out.step, out.time);
+    t.add_index(static_cast<std::int64_t>(i));
+    t.add(c.x);
+    t.add(c.y);
+    t.add_index(c.state);
+    t.add_index(c.law);
+    for (double v : {c.closure, c.shear, c.normal_force, c.shear_force, c.kn, c.ks, c.length}) t.add(v);
+    t.add_index(c.vertex);
+    t.add_index(c.edge);
+    for (double v : {c.normal_force / c.length, c.shear_force / c.length, c.pressure, c.normal_force / c.length,
+                     c.jrc_mob, c.dilation})
+      t.add(v);
+    t.end_row();
+  }
+}
+
+void ContactEffect::summarise(const RunState& s, nlohmann::json& summary) const {
+  summary["max_contacts_at_closure_cap"] = s.max_capped;
+  const ContactSet::Events& ev = contacts_.events;
+  const ContactSet::Totals joint = contacts_.totals();
+  summary["contacts"] = {{"at_end", contacts_.contacts().size()},
+                         {"closed_at_end", joint.closed},
+                         // The joint at the end: closed length (m), largest stresses (Pa).
+                         {"closed_length_at_end", joint.closed_length},
+                         {"max_normal_stress_at_end", joint.max_normal_stress},
+                         {"max_shear_stress_at_end", joint.max_shear_stress},
+                         {"pairs_tested", contacts_.detection_stats().pairs_tested},
+                         // Detection's Verlet list: built anew this many times, reused otherwise.
+                         {"candidate_list_builds", contacts_.detection_stats().list_builds},
+                         // State changes in all iterations (attempts that were cut included):
+                         // many "settled" ones mean contacts chattering at zero gap or slip.
+                         {"closings", ev.closed},
+                         {"openings", ev.opened},
+                         {"slips", ev.slid},
+                         {"sticks", ev.stuck},
+                         // Bonds and cohesions broken on accepted steps only (contact.h
+                         // break_at_peak), each where its force reached its peak.
+                         {"bonds_broken", ev.broken}};
+  summary["contact_solve"] = {{"newton_iterations", stats_.newton},
+                              {"cg_iterations", stats_.cg_iterations},
+                              {"cg_runs_over_budget", stats_.cg_aborted},
+                              {"factorisations", stats_.factorisations},
+                              {"friction_updates", stats_.strength_updates},
+                              // Attempts solved again because contacts broke at their solution,
+                              // and the extra solves (docs/contact.md "Cohesion and tensile bonds").
+                              {"steps_resolved_for_breaks", stats_.steps_resolved_for_breaks},
+                              {"break_resolves", stats_.break_resolves},
+                              // What the tolerance allows (contact_solve.cpp, docs/contact.md).
+                              {"tolerance", model_.scene().solver.contact_tolerance},
+                              {"max_force_tolerance_N", stats_.max_force_tolerance},
+                              {"max_gap_error_m", stats_.max_gap_error},
+                              {"displacement_tolerance_m",
+                               contacts_.softening() ? displacement_tolerance(model_.scene().solver.contact_tolerance, model_.w0())
+                                                       : 0.0},
+                              {"max_displacement_error_m", stats_.max_displacement_error},
+                              {"displacement_checks", stats_.displacement_checks},
+                              {"displacement_refusals", stats_.displacement_refusals}};
+}
+
+void ContactEffect::effect_names(const RunState& /*s*/, std::vector<std::string>& names) const {
+  for (std::string& n : contacts_.effects()) names.push_back(std::move(n));
 }
 
 }  // namespace nmm::solve

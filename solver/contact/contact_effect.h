@@ -41,6 +41,18 @@ class ContactEffect final : public Effect {
   double penetration(EffectStep& step) const override;
   void rejected(const EffectStep& step, const Eigen::VectorXd& covers_d) const override;
   void commit(EffectStep& step, const Eigen::VectorXd& d) override;
+  /// summary.json "contacts" (counts, the joint at the end, state changes), "contact_solve" (what
+  /// the solves cost and what the tolerance allowed: docs/interface.md) and
+  /// "max_contacts_at_closure_cap"; with or without contacts.
+  void summarise(const RunState& s, nlohmann::json& summary) const override;
+  /// summary.json "effects": contact, friction, cohesion, tension and the joint laws it uses.
+  void effect_names(const RunState& s, std::vector<std::string>& names) const override;
+  /// contacts.csv (or contacts.csv.gz: nmm-solve --contacts-gzip).
+  std::vector<std::string> output_files() const override { return {"contacts.csv", "contacts.csv.gz"}; }
+  /// contacts.csv at an output step of a run with contacts: one row per closed contact
+  /// (contact_readout.h), numbered from 0 in the set's order; an output step without closed
+  /// contacts has none (docs/interface.md lists the columns).
+  void write_outputs(OutputStep& out) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
   /// new mesh), the events and what the solves have cost.

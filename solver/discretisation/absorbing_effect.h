@@ -25,6 +25,9 @@ class AbsorbingEffect final : public Effect {
   bool install(RunState& s, const std::string& name) override;
   Outcome begin_step(EffectStep& step) override;
   void commit(EffectStep& step, const Eigen::VectorXd& d) override;
+  void effect_names(const RunState& /*s*/, std::vector<std::string>& names) const override {
+    if (active()) names.push_back("absorbing");
+  }
 
  private:
   const Model& model_;

@@ -1,5 +1,5 @@
 // An effect with state of its own in the step (docs/code-layout.md "Effects"): contacts, bolts,
-// absorbing boundaries — each behind this one interface, so the stepper
+// absorbing boundaries, the supports' reactions — each behind this one interface, so the stepper
 // (solver/stepping/time_stepper.cpp) loops over the effects a scene calls for
 // (solver/stepping/mesh_bound.h builds the list) and names none.
 //
@@ -21,7 +21,8 @@
 //   penetration   how deep the solved step penetrates: step control rejects it (cuts Δt) beyond
 //                 its limit (step_control.h)
 //   commit        the accepted step into the state (history is committed here, never on an iterate)
-//   summarise     its part of summary.json
+// and what the run writes of it (effect_output.h): its rows of the output steps' CSV files, the
+// files it writes at the end, its part of summary.json.
 #pragma once
 
 #include <cstddef>
@@ -32,6 +33,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "common/outcome.h"
+#include "solver/discretisation/effect_output.h"
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_context.h"
 #include "solver/discretisation/system_matrix.h"
@@ -71,7 +73,7 @@ struct StepSolution {
   bool iterated = false;     ///< the solve took an iterative (Newton) direction
 };
 
-class Effect {
+class Effect : public EffectOutput {
  public:
   virtual ~Effect() = default;
   Effect() = default;
@@ -124,11 +126,6 @@ class Effect {
   virtual void rejected(const EffectStep& /*step*/, const Eigen::VectorXd& /*covers_d*/) const {}
   /// The accepted step into the state step.s (before the covers move: state_update.h).
   virtual void commit(EffectStep& /*step*/, const Eigen::VectorXd& /*d*/) {}
-
-  // ---- what the run reports -----------------------------------------------------------------
-  /// Its part of summary.json for the run in state s (the bolts' "bolts"), added to `summary`.
-  /// (Its carried state is RunState's, and so the checkpoint's: run_state.h.)
-  virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
 };
 
 }  // namespace nmm::solve

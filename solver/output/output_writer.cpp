@@ -32,7 +32,6 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "common/gzip_text.h"
 #include "common/vtk_writer.h"
 #include "common/vtu_compressed.h"
 
@@ -94,10 +93,10 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
     if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".vtu")
       fs::remove(entry.path(), ec);
   }
-  for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "contacts.csv.gz", "bolts.csv", "summary.json",
-                           "result.svg", "result.png", "history.svg", "run_history.svg",
-                           "index.html", "checkpoint.nmmstate", "energy.csv", "cracks.csv",
-                           "cracked_mesh.nmm"})
+  // The effects' own files go when a run starts (run_driver.cpp: Effect::output_files).
+  for (const char* name : {"frames.pvd", "history.csv", "summary.json", "result.svg", "result.png",
+                           "history.svg", "run_history.svg", "load_travel.svg", "load_travel.png", "index.html",
+                           "checkpoint.nmmstate", "energy.csv"})
     fs::remove(join_path(dir_, name), ec);
 }
 
@@ -197,72 +196,14 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   write_file_atomically(join_path(dir_, "frames.pvd"), pvd, Durability::renamed);
 }
 
-void OutputWriter::add_contacts(std::int64_t step, double time,
-                                const std::vector<ContactSample>& contacts) {
-  // Sampling: every contacts_every_-th output step is kept; a skipped one is held back so the
-  // last state always ends the file (flush_history appends it).
-  const bool keep = contact_calls_++ % contacts_every_ == 0;
-  std::string& rows = keep ? contacts_ : pending_contacts_;
-  pending_contacts_.clear();
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const ContactSample& c = contacts[i];
-    rows += std::to_string(step);
-    for (double v : {time}) {
-      rows += ',';
-      append_double(rows, v);
-    }
-    rows += ',' + std::to_string(i);
-    for (double v : {c.x, c.y}) {
-      rows += ',';
-      append_double(rows, v);
-    }
-    rows += ',' + std::to_string(c.state) + ',' + std::to_string(c.law);
-    for (double v : {c.closure, c.shear, c.normal_force, c.shear_force, c.kn, c.ks, c.length}) {
-      rows += ',';
-      append_double(rows, v);
-    }
-    rows += ',' + std::to_string(c.vertex) + ',' + std::to_string(c.edge);
-    // The joint's stresses, Pa: the forces over the contact's tributary length.
-    // Then the water and the Barton–Bandis state: the springs carry the effective stress.
-    for (double v : {c.normal_force / c.length, c.shear_force / c.length, c.pressure,
-                     c.normal_force / c.length, c.jrc_mob, c.dilation}) {
-      rows += ',';
-      append_double(rows, v);
-    }
-    rows += '\n';
-  }
-}
-
-void OutputWriter::add_bolts(std::int64_t step, double time, const std::vector<BoltSample>& points) {
-  for (const BoltSample& b : points) {
-    bolts_ += std::to_string(step);
-    bolts_ += ',';
-    append_double(bolts_, time);
-    bolts_ += ',' + std::to_string(b.bolt);
-    for (double v : {b.s, b.axial_force, b.bond_force, b.x, b.y, b.ux, b.uy}) {
-      bolts_ += ',';
-      append_double(bolts_, v);
-    }
-    bolts_ += '\n';
-  }
+void OutputWriter::remove_files(const std::vector<std::string>& names) {
+  std::error_code ec;
+  for (const std::string& name : names) fs::remove(join_path(dir_, name), ec);
 }
 
 void OutputWriter::flush_history() {
-  contacts_ += pending_contacts_;
-  pending_contacts_.clear();
   write_file_atomically(join_path(dir_, "history.csv"), "step,time,point,x,y,ux,uy\n" + history_);
-  if (!bolts_.empty())
-    write_file_atomically(join_path(dir_, "bolts.csv"), "step,time,bolt,s,axial_force,bond_force,x,y,ux,uy\n" + bolts_);
-  if (!contacts_.empty()) {
-    const std::string csv =
-        "step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,"
-        "kn,ks,length,vertex,edge,normal_stress,shear_stress,pressure,effective_normal_stress,"
-        "jrc_mob,dilation\n" + contacts_;
-    if (contacts_gzip_)
-      write_file_atomically(join_path(dir_, "contacts.csv.gz"), gzip_compress(csv));
-    else
-      write_file_atomically(join_path(dir_, "contacts.csv"), csv);
-  }
+  tables_.write(dir_);
 }
 
 void OutputWriter::write_summary(const nlohmann::json& summary_in) {

@@ -1,6 +1,8 @@
 // Solver output in OUTDIR (docs/interface.md): history.csv, summary.json, frames.pvd with
-// frames/*.vtu. Every file appears under its final name only when complete (written to a
-// temporary name, then renamed), including when a run stops early.
+// frames/*.vtu, and the CSV files the run's parts write a block of rows to at each output step
+// (tables(): bolts.csv, contacts.csv, reactions.csv; solver/discretisation/output_tables.h).
+// Every file appears under its final name only when complete (written to a temporary name, then
+// renamed), including when a run stops early.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +13,7 @@
 
 #include "common/mesh.h"
 #include "common/vtk_writer.h"
+#include "solver/discretisation/output_tables.h"
 
 namespace nmm::solve {
 
@@ -18,35 +21,6 @@ namespace nmm::solve {
 struct MeasureSample {
   double x, y;    ///< m, current position
   double ux, uy;  ///< m, displacement since the start
-};
-
-/// One contact at one output step (contacts.csv).
-struct ContactSample {
-  double x, y;             ///< m, the contact vertex
-  int state;               ///< 0 open, 1 locked, 2 sliding
-  int law;                 ///< joint set index (or the default interface's, last)
-  double closure;          ///< m, −gap (> 0: the faces overlap by this much), the normal spring's:
-                           ///< net of a Barton–Bandis joint's dilation (faces apart by dilation − closure)
-  double shear;            ///< m, elastic shear of the shear spring
-  double normal_force;     ///< N, compression
-  double shear_force;      ///< N
-  double kn, ks;           ///< N/m, tangent stiffnesses (0 where the spring is off)
-  double length;           ///< m, tributary joint length
-  int vertex;              ///< loop vertex P of the contact (Mesh::loop_xy index)
-  int edge;                ///< first loop vertex of the edge P faces (edge → next vertex)
-  double pressure = 0;     ///< Pa, water pressure in the joint at the contact (joint_water.h)
-  double jrc_mob = 0;      ///< –, mobilised JRC (Barton–Bandis shear; 0 for the other laws)
-  double dilation = 0;     ///< m, the joint's opening from shearing (Barton–Bandis; else 0)
-};
-
-/// One point of a bolt at one output step (bolts.csv; solver/reinforcement/bolt_readout.h).
-struct BoltSample {
-  int bolt;            ///< the scene's bolt, from 0
-  double s;            ///< m, along the bolt from its first point
-  double axial_force;  ///< N per bolt, tension positive
-  double bond_force;   ///< N per m of bolt, the grout's force (0 for an anchored bolt)
-  double x, y;         ///< m, current position
-  double ux, uy;       ///< m, displacement since the mesh was cut
 };
 
 /// What a frame shows: the element loops in their current position.
@@ -92,25 +66,22 @@ class OutputWriter {
 
   /// Keep the contacts of every n-th output step only (n >= 1; the last one is always kept):
   /// contacts.csv is the largest text output of a long run (nmm-solve --contacts-every).
-  void set_contacts_every(int n) { contacts_every_ = n < 1 ? 1 : n; }
+  void set_contacts_every(int n) { tables_.set_every("contacts.csv", n); }
 
   /// Write contacts.csv.gz (the same CSV, gzip-compressed: gzip_text.h) instead of contacts.csv
   /// (nmm-solve --contacts-gzip).
-  void set_contacts_gzip(bool on) { contacts_gzip_ = on; }
+  void set_contacts_gzip(bool on) { tables_.set_gzip("contacts.csv", on); }
 
-  /// Appends one output step's contacts to contacts.csv (in memory until flush_history()).
-  void add_contacts(std::int64_t step, double time, const std::vector<ContactSample>& contacts);
+  /// The CSV files of the output steps (in memory until flush_history()): the run's parts add
+  /// their rows (solver/discretisation/output_tables.h).
+  OutputTables& tables() { return tables_; }
 
-  /// Appends one output step's bolt points to bolts.csv (in memory until flush_history()).
-  void add_bolts(std::int64_t step, double time, const std::vector<BoltSample>& points);
+  /// Removes files an earlier run wrote into the folder (names in it), so that they never mix
+  /// with this run's; a file that is not there is no error.
+  void remove_files(const std::vector<std::string>& names);
 
-  /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, bolts.csv
-  /// ("step,time,bolt,s,axial_force,bond_force,x,y,ux,uy") if any bolt rows were added, and
-  /// contacts.csv ("step,time,contact,x,y,state,set,closure,shear,normal_force,shear_force,kn,ks,
-  /// length,vertex,edge,normal_stress,shear_stress,pressure,effective_normal_stress,jrc_mob,
-  /// dilation": forces in N, stiffnesses N/m, the tributary length in m, the joint stresses N/L,
-  /// T/L in Pa — N/L being the effective normal stress, repeated by name — the water pressure in
-  /// Pa, the mobilised JRC and the dilation in m) if any contact rows were added.
+  /// Writes history.csv (header "step,time,point,x,y,ux,uy") with every row so far, and every
+  /// table that has rows (tables()).
   void flush_history();
 
   /// Writes summary.json (pretty-printed), with the run's inputs (set_run_inputs) as "inputs".
@@ -126,12 +97,7 @@ class OutputWriter {
   std::string dir_;
   FrameFormat format_;
   std::string history_;   // CSV rows so far
-  std::string contacts_;  // contacts.csv rows so far
-  std::string bolts_;     // bolts.csv rows so far
-  std::string pending_contacts_;  // the last skipped output step's rows (sampling)
-  int contacts_every_ = 1;
-  bool contacts_gzip_ = false;
-  std::int64_t contact_calls_ = 0;
+  OutputTables tables_;   // the output steps' other CSV files
   std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
   nlohmann::json inputs_;  // summary.json "inputs" (null: none)
   // The frame grid: mesh_to_grid of the mesh as cut, with the identifier cell arrays only; every

@@ -1,15 +1,10 @@
 // A run as a pipeline of the stepping core and observers: see run_driver.h.
 #include "solver/output/run_driver.h"
 
-#include "solver/reinforcement/bolt_readout.h"
 #include "solver/stepping/restart.h"
 #include "solver/output/run_summary.h"
 #include "common/stopwatch.h"
-#include "common/atomic_file.h"
 #include "common/error.h"
-#include "common/mesh_file.h"
-
-#include <cstdio>
 
 namespace nmm::solve {
 
@@ -62,12 +57,11 @@ class RunDriver::FrameOutput : public StepObserver {
       fields.vertex_stress = &at_vertex;
     }
     out_.write_frame(step, s.time, mesh, fields, st.topology);
-    std::vector<BoltSample> bolts;
-    for (std::size_t b = 0; b < s.bolts.size(); ++b)
-      for (const BoltReading& r : bolt_readout(st.model.scene().bolts[b], s.bolts[b]))
-        bolts.push_back({static_cast<int>(b), r.s, r.axial, r.bond, r.x, r.y, r.ux, r.uy});
-    if (!bolts.empty()) out_.add_bolts(step, s.time, bolts);
-    if (st.contacts.active()) out_.add_contacts(step, s.time, contact_samples(st));
+    // The output step's rows of the CSV files: every effect's (effect_output.h), none named here.
+    out_.tables().begin_output_step();
+    OutputStep o{step, s.time, mesh, s, out_.tables()};
+    for (const Effect* e : st.effects) e->write_outputs(o);
+    for (const MeshChange* c : st.changes) c->write_outputs(o);
   }
 
   OutputWriter& out_;
@@ -95,40 +89,8 @@ class RunDriver::CheckpointOutput : public StepObserver {
 };
 
 std::vector<ContactSample> contact_samples(const RunView& st, bool open_too) {
-  const RunState& s = st.state;
-  const ContactSet& contacts = st.contacts;
-  std::vector<ContactSample> rows;
-  for (const Contact& c : contacts.contacts()) {
-    if (c.state == ContactState::open && !open_too) continue;  // closed contacts carry force
-    const double x = s.loop_xy[2 * c.at.vertex], y = s.loop_xy[2 * c.at.vertex + 1];
-    const JointLawOutput j = joint_law_output(contacts.laws()[c.law], c.normal_force, c.length, c.joint);
-    rows.push_back({x, y, static_cast<int>(c.state), c.law, -c.gap, c.shear, c.normal_force,
-                    c.shear_force, c.kn_now, c.ks_now, c.length, c.at.vertex, c.at.edge,
-                    st.model.water().pressure_at(contacts.joint_of(c.at), x, y), j.jrc_mob, j.dilation});
-  }
-  return rows;
+  return contact_samples(st.contacts, st.model, st.state, open_too);
 }
-
-// cracks.csv (a row per crack segment, where its ends were when it formed: docs/interface.md)
-// and, once the rock has cracked, cracked_mesh.nmm: the mesh the run ended on, for nmm-inspect.
-namespace {
-void write_cracks(const RunView& v, const std::string& dir) {
-  std::string csv = "step,time,x0,y0,x1,y1,mode\n";
-  char row[256];
-  for (const CrackSegment& c : v.fracture.segments()) {
-    std::snprintf(row, sizeof row, "%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", static_cast<long long>(c.step), c.time,
-                  c.a_now.x, c.a_now.y, c.b_now.x, c.b_now.y, c.mode == CrackMode::tensile ? "tensile" : "shear");
-    csv += row;
-  }
-  write_file_atomically(dir + "/cracks.csv", csv);
-  if (!v.fracture.segments().empty()) {
-    Mesh cracked = v.mesh;
-    cracked.tool = "nmm-solve";  // the cracks were cut by the run, not by nmm-preprocess
-    write_mesh_file(cracked, dir + "/cracked_mesh.nmm");
-  }
-}
-
-}  // namespace
 
 RunDriver::RunDriver(TimeStepper& stepper, OutputWriter* out) : stepper_(stepper), out_(out) {}
 
@@ -142,6 +104,10 @@ void RunDriver::start() {
   if (out_) {
     frames_ = std::make_unique<FrameOutput>(*out_, record_.first_step, sv);
     checkpoint_ = std::make_unique<CheckpointOutput>(out_->dir() + "/checkpoint.nmmstate", sv.checkpoint_every);
+    // What an earlier run's effects wrote into the folder (every effect of the list names its
+    // files, whether or not this run calls for it).
+    for (const Effect* e : stepper_.view().effects) out_->remove_files(e->output_files());
+    for (const MeshChange* c : stepper_.view().changes) out_->remove_files(c->output_files());
     const Stopwatch sw;
     guarded([&] { frames_->start(stepper_.view()); }, write_failed);
     record_.output_seconds += sw.seconds();
@@ -217,9 +183,13 @@ nlohmann::json RunDriver::finish() {
     record_.output_seconds += sw.seconds();
   }
   for (StepObserver* o : observers_) guarded([&] { o->finish(stepper_.view(), record_.outcome, record_.done); }, write_failed);
-  if (out_ && stepper_.view().fracture.active()) {
+  if (out_) {
+    // The files the effects write whole once the run has stopped (cracks.csv).
     const Stopwatch sw;
-    guarded([&] { write_cracks(stepper_.view(), out_->dir()); }, write_failed);
+    const RunView v = stepper_.view();
+    OutputStep o{v.state.step, v.state.time, v.mesh, v.state, out_->tables()};
+    for (const Effect* e : v.effects) guarded([&] { e->write_files(o, out_->dir()); }, write_failed);
+    for (const MeshChange* c : v.changes) guarded([&] { c->write_files(o, out_->dir()); }, write_failed);
     record_.output_seconds += sw.seconds();
   }
   record_.wall_seconds += wall.seconds();

@@ -1,8 +1,11 @@
 // A run of nmm-solve as a pipeline: the stepping core (TimeStepper::run_until: attempts under
 // Shi's step control, step_control.h) and, after each accepted step, the observers in turn:
 //
-//   frames, histories, contacts   OutputWriter: history.csv rows every history_every steps,
-//                                 frames and contacts.csv every output_every and at the end
+//   frames, histories, tables     OutputWriter: history.csv rows every history_every steps,
+//                                 frames every output_every and at the end, and with each frame
+//                                 the rows of every effect's files (Effect::write_outputs,
+//                                 effect_output.h: reactions.csv, bolts.csv, contacts.csv); the
+//                                 effects' whole files (cracks.csv) at the end
 //   checkpoint                    checkpoint.nmmstate every checkpoint_every steps and at the end
 //   the caller's observers        energy (energy.h), progress (progress.h), run history...
 //   summary                       summary.json once the run has stopped (run_summary.h)
@@ -38,6 +41,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/outcome.h"
+#include "solver/contact/contact_readout.h"
 #include "solver/output/output_writer.h"
 #include "solver/output/run_summary.h"
 #include "solver/stepping/run_view.h"
@@ -122,7 +126,8 @@ class RunDriver {
 nlohmann::json run_to_end(TimeStepper& stepper, OutputWriter& out);
 
 /// The rows contacts.csv gets of the current state: its closed contacts (all of them with
-/// `open_too`), where they are, their state, forces, stiffnesses, lengths and joint-law state.
+/// `open_too`), where they are, their state, forces, stiffnesses, lengths and joint-law state
+/// (contact_readout.h).
 std::vector<ContactSample> contact_samples(const RunView& run, bool open_too = false);
 
 }  // namespace nmm::solve

@@ -68,8 +68,9 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   for (std::size_t b = 0; b < s.body_removed.size(); ++b)
     if (s.body_removed[b])
       summary["excavated_bodies"].push_back({{"body", b}, {"step", s.body_removed_at[b]}});
-  // The effects' own parts (effect.h summarise: the bolts').
+  // The effects' own parts (effect_output.h summarise: the bolts').
   for (const Effect* e : st.effects) e->summarise(s, summary);
+  for (const MeshChange* c : st.changes) c->summarise(s, summary);
   summary["analysis"] = sv.dynamic                                ? "dynamic"
                         : sv.static_mode == StaticMode::dda ? "static_dda"
                                                                        : "static_equilibrium";
@@ -77,46 +78,6 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   summary["time_step_cuts"] = s.cuts;
   summary["steps_with_unsettled_friction"] = s.friction_unsettled;
   summary["max_penetration"] = s.max_penetration;
-  summary["max_contacts_at_closure_cap"] = s.max_capped;
-  const ContactSet::Events& ev = st.contacts.events;
-  const ContactSet::Totals joint = st.contacts.totals();
-  summary["contacts"] = {{"at_end", st.contacts.contacts().size()},
-                         {"closed_at_end", joint.closed},
-                         // The joint at the end: closed length (m), largest stresses (Pa).
-                         {"closed_length_at_end", joint.closed_length},
-                         {"max_normal_stress_at_end", joint.max_normal_stress},
-                         {"max_shear_stress_at_end", joint.max_shear_stress},
-                         {"pairs_tested", st.contacts.detection_stats().pairs_tested},
-                         // Detection's Verlet list: built anew this many times, reused otherwise.
-                         {"candidate_list_builds", st.contacts.detection_stats().list_builds},
-                         // State changes in all iterations (attempts that were cut included):
-                         // many "settled" ones mean contacts chattering at zero gap or slip.
-                         {"closings", ev.closed},
-                         {"openings", ev.opened},
-                         {"slips", ev.slid},
-                         {"sticks", ev.stuck},
-                         // Bonds and cohesions broken on accepted steps only (contact.h
-                         // break_at_peak), each where its force reached its peak.
-                         {"bonds_broken", ev.broken}};
-  summary["contact_solve"] = {{"newton_iterations", st.contact_solve.newton},
-                              {"cg_iterations", st.contact_solve.cg_iterations},
-                              {"cg_runs_over_budget", st.contact_solve.cg_aborted},
-                              {"factorisations", st.contact_solve.factorisations},
-                              {"friction_updates", st.contact_solve.strength_updates},
-                              // Attempts solved again because contacts broke at their solution,
-                              // and the extra solves (docs/contact.md "Cohesion and tensile bonds").
-                              {"steps_resolved_for_breaks", st.contact_solve.steps_resolved_for_breaks},
-                              {"break_resolves", st.contact_solve.break_resolves},
-                              // What the tolerance allows (contact_solve.cpp, docs/contact.md).
-                              {"tolerance", sv.contact_tolerance},
-                              {"max_force_tolerance_N", st.contact_solve.max_force_tolerance},
-                              {"max_gap_error_m", st.contact_solve.max_gap_error},
-                              {"displacement_tolerance_m",
-                               st.contacts.softening() ? displacement_tolerance(sv.contact_tolerance, st.model.w0())
-                                                       : 0.0},
-                              {"max_displacement_error_m", st.contact_solve.max_displacement_error},
-                              {"displacement_checks", st.contact_solve.displacement_checks},
-                              {"displacement_refusals", st.contact_solve.displacement_refusals}};
   summary["matrix"] = {{"unknowns", st.space.unknowns()},
                        {"nonzeros_lower", st.system.nonzeros()},
                        {"factor_nonzeros", st.system.factor_nonzeros()},

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/reinforcement/bolt_layout.h"
+#include "solver/reinforcement/bolt_readout.h"
 
 namespace nmm::solve {
 
@@ -73,6 +74,19 @@ void BoltEffect::summarise(const RunState& s, nlohmann::json& summary) const {
     bolts.push_back(j);
   }
   summary["bolts"] = bolts;
+}
+
+void BoltEffect::write_outputs(OutputStep& out) const {
+  const std::vector<BoltState>& bolts = out.state.bolts;
+  if (bolts.empty()) return;
+  OutputTable& t = out.tables.table("bolts.csv", "step,time,bolt,s,axial_force,bond_force,x,y,ux,uy");
+  for (std::size_t b = 0; b < bolts.size(); ++b)
+    for (const BoltReading& r : bolt_readout(model_.scene().bolts[b], bolts[b])) {
+      t.row(out.step, out.time);
+      t.add_index(static_cast<std::int64_t>(b));
+      for (double v : {r.s, r.axial, r.bond, r.x, r.y, r.ux, r.uy}) t.add(v);
+      t.end_row();
+    }
 }
 
 }  // namespace nmm::solve

@@ -41,6 +41,14 @@ class BoltEffect final : public Effect {
   /// force so far (N per bolt), whether its steel yielded (grouted) or it broke (anchored); and
   /// beyond the contract its type, the step it was installed at and a cable's largest grout slip (m).
   void summarise(const RunState& s, nlohmann::json& summary) const override;
+  std::vector<std::string> output_files() const override { return {"bolts.csv"}; }
+  void effect_names(const RunState& s, std::vector<std::string>& names) const override {
+    if (!s.bolts.empty()) names.push_back("bolts");
+  }
+  /// bolts.csv at an output step (docs/interface.md): one row per point of each bolt
+  /// (bolt_readout.h), bolts in the scene's order; beyond the contract each point's position and
+  /// displacement (m).
+  void write_outputs(OutputStep& out) const override;
 
  private:
   const Model& model_;

@@ -2,7 +2,9 @@
 #include "solver/stepping/fracture_effect.h"
 
 #include <algorithm>
+#include <cstdio>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/mesh_file.h"
 #include "common/stopwatch.h"
@@ -82,6 +84,29 @@ bool FractureEffect::restart(const CheckpointSections& sections, const Mesh& mes
   fracture_.load(*section("FRACTURE"), *out.mesh, path);
   out.scene = cracked_scene(scene, fracture_.segments());
   return true;
+}
+
+void FractureEffect::write_files(const OutputStep& out, const std::string& dir) const {
+  if (!active()) return;
+  std::string csv = "step,time,x0,y0,x1,y1,mode\n";
+  char row[256];
+  for (const CrackSegment& c : fracture_.segments()) {
+    std::snprintf(row, sizeof row, "%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", static_cast<long long>(c.step), c.time,
+                  c.a_now.x, c.a_now.y, c.b_now.x, c.b_now.y, c.mode == CrackMode::tensile ? "tensile" : "shear");
+    csv += row;
+  }
+  write_file_atomically(dir + "/cracks.csv", csv);
+  if (!fracture_.segments().empty()) {
+    Mesh cracked = out.mesh;
+    cracked.tool = "nmm-solve";  // the cracks were cut by the run, not by nmm-preprocess
+    write_mesh_file(cracked, dir + "/cracked_mesh.nmm");
+  }
+}
+
+void FractureEffect::checkpoint_sections(const Mesh& mesh, CheckpointSections& sections) const {
+  if (fracture_.segments().empty()) return;
+  sections.emplace_back("MESH", mesh_to_bytes(mesh));
+  sections.emplace_back("FRACTURE", fracture_.save());
 }
 
 }  // namespace nmm::solve

@@ -30,6 +30,18 @@ class FractureEffect final : public MeshChange {
   bool restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene, const std::string& path,
                NewMesh& out) override;
 
+  std::vector<std::string> output_files() const override { return {"cracks.csv", "cracked_mesh.nmm"}; }
+  void effect_names(const RunState& /*s*/, std::vector<std::string>& names) const override {
+    if (active()) names.push_back("fracture");
+  }
+  /// A cracked run's mesh (MESH: no longer the file's, it travels with the state) and its cracks
+  /// (FRACTURE); nothing before the first crack.
+  void checkpoint_sections(const Mesh& mesh, CheckpointSections& sections) const override;
+  /// cracks.csv (a row per crack segment, where its ends were when it formed: docs/interface.md)
+  /// and, once the rock has cracked, cracked_mesh.nmm: the mesh the run ended on, for
+  /// nmm-inspect. Nothing without a fracture block.
+  void write_files(const OutputStep& out, const std::string& dir) const override;
+
   /// The cracks so far and their tips (RunView::fracture).
   const Fracture& fracture() const { return fracture_; }
 

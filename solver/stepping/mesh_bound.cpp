@@ -16,8 +16,8 @@ MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string&
             static_cast<std::int32_t>(scene.joints.size() - cracks)),
       config(mesh, &space),
       indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()),
-      bolts(model, space, scene_name), contact(model, space), absorbing(model, space),
-      effects{&bolts, &contact, &absorbing} {}
+      bolts(model, space, scene_name), contact(model, space), absorbing(model, space), supports(model),
+      effects{&bolts, &contact, &absorbing, &supports} {}
 
 int MeshBound::number(const RunState& s) {
   int unknowns = space.unknowns();

@@ -4,7 +4,8 @@
 // the state and the contact history of the step's start carried onto it, until the step's
 // solution changes nothing more. The stepper (time_stepper.cpp) builds again what is derived from
 // the mesh (mesh_bound.h) and keeps the map of the re-cuts for the observers (run_view.h); it
-// names no such effect.
+// names no such effect. What the run writes of it goes through the effects' one output interface
+// (solver/discretisation/effect_output.h).
 #pragma once
 
 #include <cstddef>
@@ -19,6 +20,7 @@
 #include "common/scene.h"
 #include "preprocess/recut.h"
 #include "solver/contact/contact_history.h"
+#include "solver/discretisation/effect_output.h"
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_timings.h"
 
@@ -32,7 +34,7 @@ struct NewMesh {
   std::vector<ContactHistory> history;        ///< the contact history, carried onto the new mesh
 };
 
-class MeshChange {
+class MeshChange : public EffectOutput {
  public:
   virtual ~MeshChange() = default;
   /// Takes part in the run (false: the scene does not call for it).

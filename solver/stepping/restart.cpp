@@ -35,12 +35,16 @@ RunState restarted_state(const RunState& checkpoint, const RunState& scene_start
 
 void write_checkpoint(const RunView& v, const std::string& path) {
   CheckpointSections sections = state_to_sections(v.state, save_contact_history(v.contacts), v.mesh);
-  if (v.contacts.active() && v.model.contacts_can_arise()) sections.emplace_back("FACTOR", v.system.factor_source());
-  // A cracked run's mesh is no longer the file's: it travels with the state, with the cracks.
-  if (!v.fracture.segments().empty()) {
-    sections.emplace_back("MESH", mesh_to_bytes(v.mesh));
-    sections.emplace_back("FRACTURE", v.fracture.save());
-  }
+  // The factorisation an effect that solves the steps its own way reuses from step to step (the
+  // contacts': effect.h solves()), so a restart continues with the same round-off.
+  for (const Effect* e : v.effects)
+    if (e->active() && e->solves()) {
+      sections.emplace_back("FACTOR", v.system.factor_source());
+      break;
+    }
+  // What the effects keep beyond the run state (a cracked run's mesh and cracks).
+  for (const Effect* e : v.effects) e->checkpoint_sections(v.mesh, sections);
+  for (const MeshChange* c : v.changes) c->checkpoint_sections(v.mesh, sections);
   write_checkpoint_file(sections, path);
 }
 

@@ -5,8 +5,8 @@
 
 namespace nmm::solve {
 
-std::vector<std::string> run_effects(const Model& model, const RunState& s, const ContactSet& contacts,
-                                     bool fracture) {
+std::vector<std::string> run_effects(const Model& model, const RunState& s, const std::vector<Effect*>& effects,
+                                     const std::vector<MeshChange*>& changes) {
   const SceneDef& scene = model.scene();
   std::vector<std::string> e;
   if (model.mesh().element_count() > 0) e.push_back("elasticity");
@@ -23,10 +23,8 @@ std::vector<std::string> run_effects(const Model& model, const RunState& s, cons
     e.push_back("base_acceleration");
   if (std::any_of(s.body_removed.begin(), s.body_removed.end(), [](std::uint8_t r) { return r != 0; }))
     e.push_back("excavation");
-  for (const std::string& c : contacts.effects()) e.push_back(c);
-  if (!s.bolts.empty()) e.push_back("bolts");
-  if (!scene.absorbing.empty()) e.push_back("absorbing");
-  if (fracture) e.push_back("fracture");
+  for (const Effect* x : effects) x->effect_names(s, e);
+  for (const MeshChange* x : changes) x->effect_names(s, e);
   return e;
 }
 

@@ -3,6 +3,7 @@
 
 #include "common/mesh_file.h"
 #include "solver/contact/contact_history.h"
+#include "solver/discretisation/support_effect.h"
 #include "solver/stepping/run_effects.h"
 #include "solver/discretisation/stress_field.h"
 
@@ -15,7 +16,14 @@ std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, doubl
 }
 
 std::vector<std::string> run_effects(const RunView& v) {
-  return run_effects(v.model, v.state, v.contacts, v.fracture.active());
+  return run_effects(v.model, v.state, v.effects, v.changes);
+}
+
+std::vector<SupportReaction> support_reactions(const RunView& v) {
+  // The one effect that keeps them (mesh_bound.h lists it).
+  for (const Effect* e : v.effects)
+    if (const auto* supports = dynamic_cast<const SupportEffect*>(e)) return supports->reactions(v.state);
+  return {};
 }
 
 std::string state_hash(const RunView& v) {

@@ -22,9 +22,11 @@
 #include "solver/discretisation/cover_space.h"
 #include "solver/discretisation/effect.h"
 #include "solver/stepping/equilibrium_indicator.h"
+#include "solver/stepping/mesh_change.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_timings.h"
+#include "solver/discretisation/support_reaction.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace nmm::solve {
@@ -63,6 +65,8 @@ struct RunView {
   const RunState& recut_start;
   /// The effects with state the run's steps call (effect.h; mesh_bound.h lists them).
   const std::vector<Effect*>& effects;
+  /// The effects that change the mesh (mesh_change.h; mesh_bound.h MeshChanges lists them).
+  const std::vector<MeshChange*>& changes;
 };
 
 /// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).
@@ -71,6 +75,8 @@ std::vector<double> mean_stress(const RunView& v);
 std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, double y);
 /// The physical effects the run computes (run_effects.h; summary.json "effects").
 std::vector<std::string> run_effects(const RunView& v);
+/// Every support's reaction in the run's state (support_effect.h; the scene's order).
+std::vector<SupportReaction> support_reactions(const RunView& v);
 /// SHA-256 (hex) of the physical state and contact history: equal hashes, equal states.
 std::string state_hash(const RunView& v);
 
