@@ -178,6 +178,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         return;
       }
       if (crossed_[e] || ratio_[e] < 1) return;
+      // In a material with a toughness the tip's own field decides (tip_growth.h), not the
+      // element ahead's stress: the strength rule only starts cracks there.
+      const MaterialDef& ahead = scene.materials[scene.bodies[mesh.element_body[e]].material];
+      if (ahead.strength.toughness > 0) return;
       const Vec2 d = direction(static_cast<std::size_t>(e), tip.dir);
       RayExit exit;
       if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
