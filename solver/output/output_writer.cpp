@@ -96,7 +96,7 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
   }
   for (const char* name : {"frames.pvd", "history.csv", "contacts.csv", "contacts.csv.gz", "bolts.csv", "summary.json",
                            "result.svg", "result.png", "history.svg", "run_history.svg",
-                           "index.html", "checkpoint.nmmstate", "energy.csv", "cracks.csv",
+                           "index.html", "checkpoint.nmmstate", "energy.csv", "cracks.csv", "flow.csv",
                            "cracked_mesh.nmm"})
     fs::remove(join_path(dir_, name), ec);
 }

@@ -95,6 +95,8 @@ SolveRun::SolveRun(const Mesh& mesh, const std::string& mesh_name, SolveOptions 
     energy_ = std::make_unique<EnergyOutput>(stepper_.view(), options_.out_dir, run_.scene.solver.output_every);
     driver_->add(*history_);
     driver_->add(*energy_);
+    flow_ = std::make_unique<FlowOutput>(options_.out_dir, run_.scene.solver.output_every);
+    driver_->add(*flow_);
   }
   progress_line_ = std::make_unique<StepFunction>([this](const RunView& st, std::int64_t, bool) {
     if (progress_) progress_->update(st.state.step, st.state.time);

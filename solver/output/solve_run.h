@@ -25,6 +25,7 @@
 #include "common/outcome.h"
 #include "common/run_config.h"
 #include "solver/output/energy.h"
+#include "solver/output/flow_output.h"
 #include "solver/output/output_writer.h"
 #include "solver/output/progress.h"
 #include "solver/output/run_driver.h"
@@ -104,6 +105,7 @@ class SolveRun {
   TimeStepper stepper_;
   std::unique_ptr<OutputWriter> out_;        // with an output folder
   std::unique_ptr<EnergyOutput> energy_;     // with an output folder
+  std::unique_ptr<FlowOutput> flow_;         // flow.csv, with an output folder (flow_output.h)
   std::unique_ptr<RunHistory> history_;      // with an output folder
   std::unique_ptr<ProgressLine> progress_;   // over an advance, when asked for
   std::unique_ptr<StepFunction> progress_line_;

@@ -26,6 +26,7 @@ std::vector<std::string> run_effects(const Model& model, const RunState& s, cons
   for (const std::string& c : contacts.effects()) e.push_back(c);
   if (!s.bolts.empty()) e.push_back("bolts");
   if (!scene.absorbing.empty()) e.push_back("absorbing");
+  if (scene.flow.present) e.push_back("flow");
   if (fracture) e.push_back("fracture");
   return e;
 }
