@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/number_format.h"
 #include "common/scene.h"
 #include "common/scene/json_reader.h"
 
@@ -51,8 +52,8 @@ FlowDef read_flow(const JsonReader& r, const SceneDef& scene) {
     f.max_aperture = ap->optional_number("max", std::max(f.max_aperture, f.residual),
                                          interval(0, false, kMaxClosure, true));
     if (f.max_aperture < f.residual)
-      (*ap)["max"].fail("the cap " + std::to_string(f.max_aperture) + " m is below the residual aperture " +
-                        std::to_string(f.residual) + " m");
+      (*ap)["max"].fail("the cap " + format_number(f.max_aperture) + " m is below the residual aperture " +
+                        format_number(f.residual) + " m");
     if (ap->has("coupled")) f.coupled = (*ap)["coupled"].as_bool();
   }
   f.initial_pressure = r.optional_number("initial_pressure", 0, pressure);

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "common/error.h"
+#include "common/number_format.h"
 #include "solver/discretisation/boundary_conditions.h"
 
 namespace nmm::solve {
@@ -141,7 +142,7 @@ FlowNetwork::FlowNetwork(const Mesh& mesh, const SceneDef& scene, const std::str
     }
     if (!(best <= mesh.mesh_size))
       throw InputError(scene_name, "/flow/injections/" + std::to_string(i) + "/point",
-                       "no joint within the mesh size (" + std::to_string(mesh.mesh_size) + " m) of the point");
+                       "no joint within the mesh size (" + format_number(mesh.mesh_size) + " m) of the point");
     injection_shares_.push_back({segments_[best_s].a, segments_[best_s].b, 1 - best_t, best_t});
   }
 }
