@@ -32,7 +32,7 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   root.check_keys({"name", "gravity", "plane", "materials", "joint_sets", "bodies", "joints",
                    "interface_set", "mesh", "fixed_points", "loads", "measure_points", "solver",
                    "supports", "tractions", "insitu_stress", "excavate", "base_acceleration", "water",
-                   "fracture", "bolts", "absorbing"});
+                   "fracture", "bolts", "absorbing", "flow"});
   SceneDef scene;
 
   if (root.has("name")) scene.name = root["name"].as_string();
@@ -107,6 +107,7 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   if (const auto r = root.optional("bolts")) scene.bolts = read_bolts(*r);
   if (const auto r = root.optional("absorbing")) scene.absorbing = read_absorbing(*r);
   if (const auto r = root.optional("fracture")) check_fracture_combinations(*r, scene);
+  if (const auto r = root.optional("flow")) scene.flow = read_flow(*r, scene);
   return scene;
 }
 

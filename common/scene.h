@@ -20,6 +20,7 @@
 //   fracture             fracturing of intact rock
 //   bolts                rock bolts and cables
 //   absorbing            absorbing boundaries
+//   flow                 fluid flow along the joints
 // parse_scene() reads them in a fixed order (scene.cpp) and checks structure, types and physical
 // ranges (everything that needs no geometry kernel). The geometric checks that need exact
 // predicates (self-intersecting polygons, holes outside their body, overlapping bodies) live in
@@ -32,6 +33,7 @@
 #include "common/scene/absorbing.h"
 #include "common/scene/bodies_and_joints.h"
 #include "common/scene/bolts.h"
+#include "common/scene/flow.h"
 #include "common/scene/fracture.h"
 #include "common/scene/insitu_stress.h"
 #include "common/scene/joint_laws.h"
@@ -74,6 +76,7 @@ struct SceneDef {
   FractureDef fracture;              ///< intact rock that breaks (absent: it never does)
   std::vector<BoltDef> bolts;        ///< rock bolts and cables, numbered from 0 in this order
   std::vector<AbsorbingDef> absorbing;  ///< absorbing (viscous) boundaries
+  FlowDef flow;                      ///< fluid flow along the joints (absent: none)
   SolverDef solver;
 };
 

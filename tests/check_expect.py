@@ -10,7 +10,8 @@ With --quick the "// expect-quick: ..." lines are checked instead (the scene's "
 
 The scene's header holds lines of the form (each a comment line of the scene file)
     // expect: summary.KEY == "text"            string equality of summary.json's KEY (KEY may
-                                             name a nested one: equilibrium.verdict)
+                                             name a nested one: equilibrium.verdict, or a
+                                             list's entry by its index: flow.boundaries.2.KEY)
     // expect: summary.KEY >= NUMBER            also <=, >, <, == for numbers
     // expect: history travel P at end within X +- TOL   |u| of measure point P at the last row, m
     // expect: history ux P at end within X +- TOL       (also uy) a component at the last row, m
@@ -92,7 +93,10 @@ def main():
             want = json.loads(want)
             got = summary
             for part in key.split("."):
-                got = got.get(part) if isinstance(got, dict) else None
+                if isinstance(got, list) and part.isdigit():  # a list's entry: flow.boundaries.2
+                    got = got[int(part)] if int(part) < len(got) else None
+                else:
+                    got = got.get(part) if isinstance(got, dict) else None
             ok = got is not None and ops[op](got, want)
         elif h:
             what, point, what2, point2, x, tol, op, bound = h.groups()

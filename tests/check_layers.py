@@ -8,8 +8,9 @@
   solver/contact/          -> common/, solver/discretisation/
   solver/fracture/         -> common/, preprocess/, solver/discretisation/, solver/contact/
   solver/reinforcement/    -> the same and solver/fracture/
+  solver/flow/             -> the same and solver/reinforcement/
   solver/stepping/         -> common/, preprocess/, solver/discretisation/, solver/contact/,
-                              solver/fracture/, solver/reinforcement/
+                              solver/fracture/, solver/reinforcement/, solver/flow/
   solver/output/           -> the same and solver/stepping/
   report/                  -> common/, solver/...
   studies/                 -> common/, reference/, preprocess/, solver/..., report/
@@ -30,8 +31,8 @@ import pathlib
 import re
 import sys
 
-SOLVER = ["solver/discretisation", "solver/contact", "solver/fracture", "solver/reinforcement", "solver/stepping",
-          "solver/output"]
+SOLVER = ["solver/discretisation", "solver/contact", "solver/fracture", "solver/reinforcement", "solver/flow",
+          "solver/stepping", "solver/output"]
 ALLOWED = {
     "common": set(),
     "reference": {"common"},

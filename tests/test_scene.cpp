@@ -296,7 +296,7 @@ const BadCase kBadCases[] = {
     // Unknown keys, at several levels.
     {R"({"meshh": {"size": 1}})", "/meshh",
      "unknown key \"meshh\" (allowed: absorbing, base_acceleration, bodies, bolts, excavate, fixed_points, "
-     "fracture, gravity, insitu_stress, interface_set, joint_sets, joints, loads, materials, measure_points, mesh, "
+     "flow, fracture, gravity, insitu_stress, interface_set, joint_sets, joints, loads, materials, measure_points, mesh, "
      "name, plane, solver, supports, tractions, water)"},
     {R"({"joint_sets": {"bedding": {"fricton_deg": 20}}})", "/joint_sets/bedding/fricton_deg",
      "unknown key \"fricton_deg\" (allowed: cohesion, friction_deg, generate, generated_from, "
@@ -535,6 +535,16 @@ const BadCase kBadCases[] = {
      "/absorbing/0/input_velocity/x/1/0", "times must increase strictly"},
     {R"({"absorbing": [{"points": [[0,0],[10,0]], "damping": 1}]})", "/absorbing/0/damping",
      "unknown key \"damping\" (allowed: input_velocity, points)"},
+    // Fluid flow along the joints (docs/flow.md).
+    {R"({"flow": {"fluid": {"viscosity": 0}}})", "/flow/fluid/viscosity", "must be in (0, 1e+12] (got 0)"},
+    {R"({"flow": {"aperture": {"residual": 1e-3, "max": 1e-4}}})", "/flow/aperture/max",
+     "the cap 1e-04 m is below the residual aperture 0.001 m"},
+    {R"({"flow": {"boundaries": [{"points": [[0,0],[10,0]], "pressure": [[0, 1], [0, 2]]}]}})",
+     "/flow/boundaries/0/pressure/1/0", "times must increase strictly"},
+    {R"({"flow": {"injections": [{"point": [1, 1]}]}})", "/flow/injections/0", "missing required key \"rate\""},
+    {R"({"flow": {"steady": 1}})", "/flow/steady", "expected true or false"},
+    {R"({"flow": {"pressure": 1}})", "/flow/pressure", "unknown key \"pressure\""},
+    {R"({"water": {"density": 1000}, "flow": {}})", "/flow", "\"flow\" and \"water\" both set"},
     // Keys with '/' or '~' are escaped in the path (RFC 6901).
     {R"({"joint_sets": {"a/b~c": {"friction_deg": -1, "normal": {"model": "constant", "kn": 1},
                                   "shear": {"model": "constant", "ks": 1}}}})",

@@ -12,6 +12,9 @@
 //   (CARRY, optional, after DIAG: [3·block] f64 block_force, written when not empty)
 //   (ABSORB, optional, after them: the absorbing boundaries' key, carried reaction and work)
 //   (BOLTS, optional, after them: u32 layout 1, u64 n, n bolts — see put_bolts)
+//   (FLOW, optional, after them: the flow network's pressures, apertures and boundary rates (each u64 n, n f64), then f64 injected, outflow, stored,
+//    load work, exchanged; sizes checked
+//    against the network by the flow effect: solver/flow/flow_effect.cpp)
 // Every vector carries its length, which must match the mesh; every index is range-checked.
 #include "solver/discretisation/run_state.h"
 
@@ -197,6 +200,19 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
     out.emplace_back("ABSORB", w.take());
   }
   if (!s.bolts.empty()) out.emplace_back("BOLTS", put_bolts(s.bolts));
+  // Only with fluid flow: the other runs keep their bytes.
+  if (!s.flow_pressure.empty()) {
+    ByteWriter w;
+    w.put_vector(s.flow_pressure);
+    w.put_vector(s.flow_aperture);
+    w.put_vector(s.flow_outflow_rate);
+    w.put(s.flow_injected);
+    w.put(s.flow_outflow);
+    w.put(s.flow_stored);
+    w.put(s.flow_load_work);
+    w.put(s.flow_exchanged);
+    out.emplace_back("FLOW", w.take());
+  }
   return out;
 }
 
@@ -208,7 +224,7 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
                                       "BODIES", "CONTACT", "DIAG"};
   constexpr std::size_t kCount = sizeof kTags / sizeof kTags[0];
   // Optional after them, in this order: CARRY (the blocks' handed-on forces), ABSORB (the
-  // absorbing boundaries' carried reaction), BOLTS, then FACTOR (the matrix of the solver's
+  // absorbing boundaries' carried reaction), BOLTS, FLOW, then FACTOR (the matrix of the solver's
   // factorisation, not physics).
   std::size_t next = kCount;
   const auto optional = [&](const char* tag) -> const std::string* {
@@ -218,13 +234,14 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
   const std::string* carry = optional("CARRY");
   const std::string* absorb = optional("ABSORB");
   const std::string* bolts = optional("BOLTS");
+  const std::string* flow = optional("FLOW");
   const std::string* factor = optional("FACTOR");
   // A cracked run's mesh and cracks (read by the time stepper before this: restart.h).
   if (sections.size() > next + 1 && sections[next].first == "MESH" && sections[next + 1].first == "FRACTURE")
     next += 2;
   if (sections.size() < kCount || sections.size() != next)
     throw InputError(name, "section table", "expected " + std::to_string(kCount) +
-                                                " sections (and CARRY, ABSORB, BOLTS, FACTOR, MESH with FRACTURE), found " +
+                                                " sections (and CARRY, ABSORB, BOLTS, FLOW, FACTOR, MESH with FRACTURE), found " +
                                                 std::to_string(sections.size()));
   for (std::size_t i = 0; i < kCount; ++i)
     if (sections[i].first != kTags[i])
@@ -331,6 +348,22 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
     r.expect_end();
   }
   if (bolts) s.bolts = get_bolts(*bolts, ne, s.step, name);
+  if (flow) {
+    ByteReader r(*flow, name, "FLOW");
+    s.flow_pressure = r.get_vector<double>(SIZE_MAX, "flow pressures");
+    s.flow_aperture = r.get_vector<double>(SIZE_MAX, "flow apertures");
+    s.flow_outflow_rate = r.get_vector<double>(SIZE_MAX, "flow boundary rates");
+    s.flow_injected = r.get<double>();
+    s.flow_outflow = r.get<double>();
+    s.flow_stored = r.get<double>();
+    s.flow_load_work = r.get<double>();
+    s.flow_exchanged = r.get<double>();
+    double sum = s.flow_injected + s.flow_outflow + s.flow_stored + s.flow_load_work + s.flow_exchanged;
+    for (const auto* v : {&s.flow_pressure, &s.flow_aperture, &s.flow_outflow_rate})
+      for (double x : *v) sum += x;
+    if (s.flow_pressure.empty() || !std::isfinite(sum)) r.fail("no flow pressures, or a value that is not finite");
+    r.expect_end();
+  }
   if (carry) {
     ByteReader r(*carry, name, "CARRY");
     s.block_force = r.get_vector<double>(3 * mesh.block_count(), "block forces");

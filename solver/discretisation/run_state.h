@@ -85,6 +85,16 @@ struct RunState {
   std::vector<double> absorbing_reaction;
   double absorbed_work = 0;        ///< J/m since step 0 of the first run: taken out by the dashpots
   double absorbing_load_work = 0;  ///< J/m, likewise: done by the input traction and the carried reaction
+  /// Fluid flow along the joints (solver/flow/; empty: none), on the flow network's nodes and
+  /// segments (flow_network.h), as the last accepted step left them
+  std::vector<double> flow_pressure;   ///< [node] Pa
+  std::vector<double> flow_aperture;   ///< [2·segment] m, hydraulic aperture at each segment end
+  std::vector<double> flow_outflow_rate;  ///< [boundary] m³/s per m leaving through each `boundaries` entry
+  double flow_injected = 0;   ///< m³ per m since step 0 of the first run, injected
+  double flow_outflow = 0;    ///< m³ per m likewise, left through the boundaries (net)
+  double flow_stored = 0;     ///< m³ per m likewise, the change of the volume the network holds
+  double flow_load_work = 0;  ///< J/m likewise, done by the pressure on the joint faces
+  double flow_exchanged = 0;  ///< m³ per m likewise, injected and through the boundaries in either direction
   std::vector<std::uint8_t> body_removed;      ///< [body] 1: excavated
   std::vector<std::int64_t> body_removed_at;   ///< [body] step at which it was excavated, or -1
   // Diagnostics over all runs (summary.json), not physics:

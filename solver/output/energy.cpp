@@ -324,9 +324,11 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     plastic0_ = plastic;
     absorbed0_ = s.absorbed_work;
     absorbing_load0_ = s.absorbing_load_work;
+    flow_load0_ = s.flow_load_work;
   }
   started_ = true;
-  r.load_work = load_work_ + (s.absorbing_load_work - absorbing_load0_);
+  // The flow's pressure on the joint faces likewise (solver/flow/flow_effect.h).
+  r.load_work = load_work_ + (s.absorbing_load_work - absorbing_load0_) + (s.flow_load_work - flow_load0_);
   r.support_work = support_work_;
   r.friction = friction_ + (plastic - plastic0_);
   r.absorbed = s.absorbed_work - absorbed0_;

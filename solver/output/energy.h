@@ -198,6 +198,7 @@ class EnergyMeter {
   double mech0_ = 0;                 // J/m, K + U + V + S of the first call
   double plastic0_ = 0;              // J/m, the bolts' plastic work at the first call
   double absorbed0_ = 0, absorbing_load0_ = 0;  // J/m, the absorbing boundaries' work at the first call
+  double flow_load0_ = 0;  // J/m, the flow pressure's work on the joint faces at the first call
   double load_work_ = 0, friction_ = 0, support_work_ = 0;
   double released_ = 0;              // J/m, F: the cracks' released strain energy so far
   double damped_ = 0;                // J/m, the motion the steps threw away so far

@@ -17,7 +17,8 @@ MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string&
       config(mesh, &space),
       indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()),
       bolts(model, space, scene_name), contact(model, space), absorbing(model, space), supports(model),
-      effects{&bolts, &contact, &absorbing, &supports} {}
+      flow(model, space),
+      effects{&bolts, &contact, &absorbing, &supports, &flow} {}
 
 int MeshBound::number(const RunState& s) {
   int unknowns = space.unknowns();

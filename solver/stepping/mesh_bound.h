@@ -7,7 +7,8 @@
 // order — bolts (unknowns and coupling groups right after the covers' and the elements'), contacts
 // (the pairs' groups after the bolts'; the one effect that solves the step its own way), absorbing
 // boundaries (their reaction taken from the force at rest, which needs the contacts detected),
-// supports (their reactions at each accepted step: no term, no unknown).
+// supports (their reactions at each accepted step: no term, no unknown);
+// flow along the joints (its pressures solved at the step's start, a load on the joint faces).
 // A new effect is a member here and an entry in the list. The effects that change the mesh
 // (mesh_change.h: cracks) outlive a MeshBound: MeshChanges below.
 #pragma once
@@ -26,6 +27,7 @@
 #include "solver/discretisation/form.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/support_effect.h"
+#include "solver/flow/flow_effect.h"
 #include "solver/reinforcement/bolt_effect.h"
 #include "solver/stepping/block_momentum.h"
 #include "solver/stepping/equilibrium_indicator.h"
@@ -50,6 +52,7 @@ struct MeshBound {
   ContactEffect contact;            // detection, history, the step's contact problem (contact_effect.h)
   AbsorbingEffect absorbing;        // the absorbing boundaries' carried reaction and work
   SupportEffect supports;           // the supports' reactions at each accepted step (support_effect.h)
+  FlowEffect flow;                  // fluid flow along the joints (flow_effect.h)
   std::vector<Effect*> effects;     // the above, in the order the step calls them
 
   /// Numbers every effect's unknowns (after the covers') and coupling groups (after the

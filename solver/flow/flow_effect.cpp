@@ -1,0 +1,150 @@
+// Fluid flow along the joints as an effect of the step: see flow_effect.h (the scheme there).
+//
+// The face load (boundary_conditions.h): on a face edge from vertex A to B with outward normal n
+// and the pressure linear between its nodes, t(ξ) = −((1 − ξ)·p_A + ξ·p_B)·n, ξ the position
+// along the edge; the Gauss rule of the element's edge frame integrates it exactly. The work it
+// does on the accepted step is load·d (J/m; energy.csv's load work: docs/energy.md).
+#include "solver/flow/flow_effect.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "solver/discretisation/boundary_conditions.h"
+#include "solver/discretisation/integrators.h"
+
+namespace nmm::solve {
+
+FlowEffect::FlowEffect(const Model& model, const CoverSpace& space) : model_(model), space_(space) {
+  if (!active()) return;
+  network_ = FlowNetwork(model.mesh(), model.scene(), model.scene_name());
+  balance_ = std::make_unique<FlowBalance>(network_, model.scene(), model.scene_name());
+}
+
+FlowEffect::~FlowEffect() = default;
+
+bool FlowEffect::install(RunState& s, const std::string& name) {
+  if (!active()) {
+    s.flow_pressure.clear();
+    s.flow_aperture.clear();
+    s.flow_outflow_rate.clear();
+    s.flow_injected = s.flow_outflow = s.flow_stored = s.flow_load_work = s.flow_exchanged = 0;
+    return true;
+  }
+  const FlowDef& f = model_.scene().flow;
+  if (s.flow_pressure.empty()) {  // the flow starts now
+    s.flow_pressure.assign(network_.nodes(), f.initial_pressure);
+    s.flow_aperture = network_.apertures(s.loop_u, f.residual, f.max_aperture);
+    s.flow_outflow_rate.assign(f.boundaries.size(), 0.0);
+    s.flow_injected = s.flow_outflow = s.flow_stored = s.flow_load_work = s.flow_exchanged = 0;
+    return true;
+  }
+  if (s.flow_pressure.size() != network_.nodes() || s.flow_aperture.size() != 2 * network_.segments().size())
+    throw InputError(name, "section FLOW",
+                     "the flow network has " + std::to_string(s.flow_pressure.size()) + " nodes and " +
+                         std::to_string(s.flow_aperture.size() / 2) + " segments, the run's " +
+                         std::to_string(network_.nodes()) + " and " + std::to_string(network_.segments().size()));
+  s.flow_outflow_rate.resize(f.boundaries.size(), 0.0);  // a restart may give other boundaries
+  return true;
+}
+
+Outcome FlowEffect::begin_step(EffectStep& step) {
+  const FlowDef& f = model_.scene().flow;
+  const RunState& s = step.s;
+  aperture_ = f.coupled && f.steady ? network_.apertures(s.loop_u, f.residual, f.max_aperture) : s.flow_aperture;
+  step_ = balance_->step(s.flow_pressure, network_.conductances(aperture_, f.viscosity), network_.volumes(aperture_),
+                         step.context.dt, step.context.t_end);
+  for (double p : step_.pressure)
+    if (!std::isfinite(p))
+      return Outcome::stop(StopCode::direction_not_finite, "the flow solve gave a pressure that is not finite", s.time);
+  if (f.coupled) load_ = face_forces(step.context, s, step_.pressure);
+  return {};
+}
+
+void FlowEffect::add_at_rest(EffectStep& rest) {
+  if (model_.scene().flow.coupled) rest.rhs.head(space_.unknowns()) += face_forces(rest.context, rest.s, rest.s.flow_pressure);
+}
+
+void FlowEffect::assemble(EffectStep& step) {
+  if (model_.scene().flow.coupled) step.rhs.head(space_.unknowns()) += load_;
+}
+
+void FlowEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
+  RunState& s = step.s;
+  if (model_.scene().flow.coupled) s.flow_load_work += load_.dot(d.head(space_.unknowns()));
+  s.flow_pressure = step_.pressure;
+  s.flow_aperture = aperture_;
+  s.flow_outflow_rate = step_.outflow_rate;
+  s.flow_injected += step_.injected;
+  s.flow_outflow += step_.outflow;
+  s.flow_stored += step_.stored;
+  s.flow_exchanged += step_.exchanged;
+}
+
+Eigen::VectorXd FlowEffect::face_forces(const StepContext& context, const RunState& s,
+                                        const std::vector<double>& p) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(space_.unknowns());
+  for (const FlowFace& face : network_.faces()) {
+    if (!context.removed.empty() && context.removed[static_cast<std::size_t>(face.element)]) continue;
+    const FlowSegment& sg = network_.segments()[static_cast<std::size_t>(face.segment)];
+    const double pa = p[static_cast<std::size_t>(face.reversed ? sg.b : sg.a)];
+    const double pb = p[static_cast<std::size_t>(face.reversed ? sg.a : sg.b)];
+    if (pa == 0 && pb == 0) continue;
+    const double* a = s.loop_xy.data() + 2 * face.vertex;
+    const double* b = s.loop_xy.data() + 2 * face.next;
+    const double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy;
+    if (!(l2 > 0)) continue;
+    const std::vector<double> fe =
+        edge_traction_forces(edge_frame(context.config, face.element), a, b,
+                             [&](double x, double y, double nx, double ny, double* t) {
+                               const double xi = ((x - a[0]) * dx + (y - a[1]) * dy) / l2;
+                               const double pressure = (1 - xi) * pa + xi * pb;
+                               t[0] = -pressure * nx;
+                               t[1] = -pressure * ny;
+                             });
+    add_edge_force(space_, face.element, fe, 1.0, f);
+  }
+  return f;
+}
+
+void FlowEffect::summarise(const RunState& s, nlohmann::json& summary) const {
+  if (!active()) return;
+  nlohmann::json boundaries = nlohmann::json::array();
+  for (std::size_t b = 0; b < s.flow_outflow_rate.size(); ++b)
+    boundaries.push_back({{"boundary", b}, {"outflow_m3_per_s", s.flow_outflow_rate[b]}});
+  const FlowDef& f = model_.scene().flow;
+  summary["flow"] = {{"injected_m3", s.flow_injected},
+                     {"outflow_m3", s.flow_outflow},
+                     {"stored_m3", s.flow_stored},
+                     {"boundaries", boundaries},
+                     {"nodes", network_.nodes()},
+                     {"segments", network_.segments().size()},
+                     {"balance_error", balance_error(s)},
+                     {"coupled", f.coupled},
+                     {"steady", f.steady}};
+}
+
+double FlowEffect::balance_error(const RunState& s) const {
+  // |stored − (injected − outflow)| over the volume exchanged (or stored, if larger).
+  const double st = s.flow_stored, scale = std::max(s.flow_exchanged, std::abs(st));
+  return scale > 0 ? std::abs(st - (s.flow_injected - s.flow_outflow)) / scale : 0.0;
+}
+
+
+void FlowEffect::write_outputs(OutputStep& out) const {
+  const RunState& s = out.state;
+  if (!active() || s.flow_pressure.size() != network_.nodes()) return;
+  OutputTable& t = out.tables.table("flow.csv", "step,time,node,x,y,pressure,aperture");
+  const std::vector<double> aperture = network_.node_apertures(s.flow_aperture);
+  for (std::size_t i = 0; i < network_.nodes(); ++i) {
+    t.row(out.step, out.time);
+    t.add_index(static_cast<std::int64_t>(i));
+    for (const double v : {network_.node_xy()[2 * i], network_.node_xy()[2 * i + 1], s.flow_pressure[i], aperture[i]})
+      t.add(v);
+    t.end_row();
+  }
+}
+
+}  // namespace nmm::solve
