@@ -55,6 +55,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "common/vec2.h"
@@ -376,6 +377,14 @@ ContactProblem::LineModelError ContactProblem::line_model_error() const {
         ++out.contacts[kind];
         out.error[kind] += error;
       }
+      // Which softening faces the step missed: at a peak a face's matrix stiffness jumps (the
+      // elastic one to 0, or the secant in tension to the crack set's kn·L in compression).
+      if (w.cohesive && std::abs(error) > 1e-3 * std::abs(w.rate_gap * (b.force - a.force)))
+        std::fprintf(stderr,
+                     "    cohesive face %zu: gap %.4e m, damage %.4e -> %.4e m, rate %.3e m, stiffness %.3e -> %.3e N/m, "
+                     "force %.4e -> %.4e N, error %.3e\n",
+                     k, c.gap, c.cohesive.opening_max, w.kappa, w.rate_gap, a.stiffness, b.stiffness, a.force, b.force,
+                     error);
     }
     if (w.rate_shear != 0 && w.strength > 0) {
       const Spring a = shear_at(law, c, w, c.shear), b = shear_at(law, c, w, c.shear + w.rate_shear);

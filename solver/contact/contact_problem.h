@@ -110,7 +110,10 @@ class ContactProblem {
   /// What the Newton model missed along the direction (the contact solve's trace): per kind of
   /// spring change between α = 0 and α = 1, the contacts and their part of ψ(1) − ψ_model(1),
   /// ψ_model being linear in α with the tangents at α = 0 (ψ(1) − ψ_model(1) < 0: the change
-  /// stops the step short of α = 1). Kinds: kLineKinds.
+  /// stops the step short of α = 1). Kinds: kLineKinds. A cohesive face (cohesive_law.h) whose
+  /// own error exceeds 1e-3 of its force change is also printed on stderr, one line each: its
+  /// gap, damage at the step's start and at the iterate (m), the direction's rate of its gap,
+  /// its matrix stiffness at α = 0 and 1 (N/m) and forces (N), and its error.
   static constexpr int kLineKinds = 6;
   static constexpr const char* kLineKindNames[kLineKinds] = {
       "closing", "opening", "normal other", "stick to slip", "slip reversed or stuck", "shear other"};
