@@ -1,4 +1,4 @@
-// Stress intensity factors at crack tips (docs/fracture.md "Crack tips"), against closed forms:
+// Stress intensity factors at crack tips (docs/crack-tips.md), against closed forms:
 //   - the auxiliary Williams fields are those of the handbooks (stress from D·ε equals the
 //     closed-form stresses; displacement gradient equals the difference quotient of u);
 //   - the tips of a scene: a joint that ends inside a body has a tip there, an end on the body's

@@ -15,7 +15,7 @@ struct StrengthDef {
   double cohesion = 0;          ///< Pa, ≥ 0: Mohr–Coulomb's c
   double friction_deg = 0;      ///< degrees, in [0, 90): Mohr–Coulomb's φ
   double fracture_energy = 0;   ///< J/m², G_f of a new crack's cohesive softening (0: none, brittle)
-  double toughness = 0;         ///< Pa·√m, K_Ic (0: none): crack tips grow by LEFM (docs/fracture.md "Crack tips")
+  double toughness = 0;         ///< Pa·√m, K_Ic (0: none): crack tips grow by LEFM (docs/crack-tips.md)
 };
 
 struct MaterialDef {

@@ -1,4 +1,4 @@
-// The tips of the cracks that end inside a body (docs/fracture.md "Crack tips"): the ends of the
+// The tips of the cracks that end inside a body (docs/crack-tips.md): the ends of the
 // scene's joints and of the cracks grown during the run that lie inside a body — not on its
 // boundary and not on another joint or crack — with the crack's direction there, the body, and
 // the radius of the domain its stress intensity factors are integrated over

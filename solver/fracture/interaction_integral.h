@@ -1,5 +1,5 @@
 // Stress intensity factors at a crack tip by the interaction integral in its domain form
-// (docs/fracture.md "Crack tips"; the equations are at the top of interaction_integral.cpp).
+// (docs/crack-tips.md; the equations are at the top of interaction_integral.cpp).
 //
 // The field is the run's: each manifold element's stress and displacement gradient, integrated
 // over the elements of a ring around the tip where the weight q falls from 1 (mesh nodes within

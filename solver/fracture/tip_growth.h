@@ -1,4 +1,4 @@
-// Crack tips that grow by their toughness (docs/fracture.md "Crack tips"): linear elastic
+// Crack tips that grow by their toughness (docs/crack-tips.md): linear elastic
 // fracture mechanics on the tips of crack_tips.h with the stress intensity factors of
 // interaction_integral.h.
 //

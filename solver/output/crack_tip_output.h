@@ -1,5 +1,5 @@
 // crack_tips.csv: the stress intensity factors of every crack tip inside a body at every output
-// step (docs/interface.md "Crack tips and LEFM", docs/fracture.md "Crack tips"), for every run
+// step (docs/interface.md "Crack tips and LEFM", docs/crack-tips.md), for every run
 // that has such a tip, whether or not its rock can break; summary.json fracture.tips.
 #pragma once
 
