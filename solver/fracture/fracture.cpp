@@ -22,18 +22,17 @@ double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 //   element wide (the crack turns by at most about a degree for it);
 // - the crack stops there when it reached a body boundary or a joint (a crack's own faces
 //   included): the edge it leaves through, or at a vertex either edge meeting there, is one;
-// - every crack end is cut on by kOvershoot·h past the edge it leaves through. In doubles the
-//   end is not exactly on the edge; cut exactly, it would stop a round-off short or cross a
-//   round-off beyond, and whether the element (and the star of a node on that edge) is parted
-//   would be decided by the last bit of the solution — by the BLAS kernel the CPU picks (a
-//   tension bar cracked across once on one kernel and started a second crack on another, the
-//   first one's two elements parting nothing). Overshot, the crack crosses the edge at one exact
-//   point and its hair beyond is a slit of no area. A growing tip goes on from the hair's end,
-//   so the next segment continues the cut line with no overlap.
+// - a stopping crack is cut on by kOvershoot·h past that edge. In doubles its end is not exactly
+//   on the edge; cut exactly, it would stop a round-off short — the rock would not part — or
+//   cross a round-off beyond near other cuts and leave specks. Overshot, it crosses the edge at
+//   one exact point and its hair beyond is a slit of no area. A crack end that does not stop is
+//   not overshot: whether its element's star parts is then decided by round-off (the tension bar
+//   of tests/test_fracture.cpp starts a second crack on some BLAS kernels), but overshooting
+//   every end made the compression specimens cascade (docs/fracture.md "Not yet").
 constexpr double kSnap = 1e-2, kOvershoot = 1e-8;
 struct CrackEnd {
   Vec2 at;          // m, where the crack leaves the element (as cut)
-  Vec2 cut_to;      // m, where its segment ends: kOvershoot·h past `at`
+  Vec2 cut_to;      // m, where its segment ends (past `at` when it stops)
   bool stops = false;
 };
 CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayExit& exit) {
@@ -56,8 +55,10 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
     }
   }
   c.cut_to = c.at;
-  const double dx = c.at.x - from.x, dy = c.at.y - from.y, l = std::hypot(dx, dy);
-  if (l > 0) c.cut_to = plus(c.at, kOvershoot * h / l, {dx, dy});
+  if (c.stops) {
+    const double dx = c.at.x - from.x, dy = c.at.y - from.y, l = std::hypot(dx, dy);
+    if (l > 0) c.cut_to = plus(c.at, kOvershoot * h / l, {dx, dy});
+  }
   return c;
 }
 
@@ -188,7 +189,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
       add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack);
       const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
-      tip.at = c.cut_to;
+      tip.at = c.at;
       tip.dir = l > 0 ? Vec2{dx / l, dy / l} : d;
       if (c.stops) {
         tip.active = false;
@@ -225,7 +226,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       add(e, r.cut_to, f.cut_to, crack);
       const std::size_t first = tips_.size();
       for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
-        tips_.push_back({end.cut_to, dir, crack, !end.stops});
+        tips_.push_back({end.at, dir, crack, !end.stops});
       for (std::size_t t = first; t < tips_.size(); ++t)
         if (tips_[t].active) grow(tips_[t]);
     }
