@@ -35,8 +35,6 @@ FlowDef read_flow(const JsonReader& r, const SceneDef& scene) {
   r.check_keys({"fluid", "aperture", "initial_pressure", "boundaries", "injections", "steady"});
   if (scene.water.present)
     r.fail("\"flow\" and \"water\" both set the joints' water pressure: give one (flow computes it)");
-  if (scene.fracture.present)
-    r.fail("flow with fracturing (hydraulic fracturing) is not built yet: leave out one or the other");
   FlowDef f;
   f.present = true;
   const ValueRange pressure = interval(-kMaxStrength, true, kMaxStrength, true);

@@ -39,8 +39,8 @@ struct FlowDef {
 
 /// flow: {fluid: {viscosity, bulk_modulus, density}, aperture: {residual, max, coupled},
 /// initial_pressure, boundaries: [{points, pressure}], injections: [{point, rate}], steady}.
-/// Reads the scene's water and fracture blocks (read before): flow replaces "water" and is not
-/// combined with fracturing yet.
+/// Reads the scene's water block (read before): flow replaces "water". With "fracture" the
+/// cracks grown during the run join the flow network (docs/flow.md "Hydraulic fracturing").
 FlowDef read_flow(const JsonReader& r, const SceneDef& scene);
 
 }  // namespace nmm

@@ -211,6 +211,8 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
     w.put(s.flow_stored);
     w.put(s.flow_load_work);
     w.put(s.flow_exchanged);
+    // Only once cracks took in fluid (flow_transfer.h): runs without cracks keep their bytes.
+    if (s.flow_filled != 0) w.put(s.flow_filled);
     out.emplace_back("FLOW", w.take());
   }
   return out;
@@ -358,7 +360,8 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
     s.flow_stored = r.get<double>();
     s.flow_load_work = r.get<double>();
     s.flow_exchanged = r.get<double>();
-    double sum = s.flow_injected + s.flow_outflow + s.flow_stored + s.flow_load_work + s.flow_exchanged;
+    s.flow_filled = r.at_end() ? 0.0 : r.get<double>();
+    double sum = s.flow_injected + s.flow_outflow + s.flow_stored + s.flow_load_work + s.flow_exchanged + s.flow_filled;
     for (const auto* v : {&s.flow_pressure, &s.flow_aperture, &s.flow_outflow_rate})
       for (double x : *v) sum += x;
     if (s.flow_pressure.empty() || !std::isfinite(sum)) r.fail("no flow pressures, or a value that is not finite");

@@ -95,6 +95,7 @@ struct RunState {
   double flow_stored = 0;     ///< m³ per m likewise, the change of the volume the network holds
   double flow_load_work = 0;  ///< J/m likewise, done by the pressure on the joint faces
   double flow_exchanged = 0;  ///< m³ per m likewise, injected and through the boundaries in either direction
+  double flow_filled = 0;     ///< m³ per m likewise, put into new cracks at the pressure carried to them (flow_transfer.h)
   std::vector<std::uint8_t> body_removed;      ///< [body] 1: excavated
   std::vector<std::int64_t> body_removed_at;   ///< [body] step at which it was excavated, or -1
   // Diagnostics over all runs (summary.json), not physics:

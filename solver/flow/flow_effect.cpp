@@ -14,6 +14,7 @@
 #include "common/error.h"
 #include "solver/discretisation/boundary_conditions.h"
 #include "solver/discretisation/integrators.h"
+#include "solver/flow/flow_transfer.h"
 
 namespace nmm::solve {
 
@@ -48,6 +49,11 @@ bool FlowEffect::install(RunState& s, const std::string& name) {
                          std::to_string(network_.nodes()) + " and " + std::to_string(network_.segments().size()));
   s.flow_outflow_rate.resize(f.boundaries.size(), 0.0);  // a restart may give other boundaries
   return true;
+}
+
+void FlowEffect::continue_from(const FlowEffect& before, RunState& s) const {
+  if (!active() || !before.active()) return;
+  transfer_flow(before.network_, network_, model_.scene().flow, 1e-6 * model_.mesh().mesh_size, s);
 }
 
 Outcome FlowEffect::begin_step(EffectStep& step) {
@@ -122,6 +128,7 @@ void FlowEffect::summarise(const RunState& s, nlohmann::json& summary) const {
                      {"nodes", network_.nodes()},
                      {"segments", network_.segments().size()},
                      {"balance_error", balance_error(s)},
+                     {"filled_m3", s.flow_filled},
                      {"coupled", f.coupled},
                      {"steady", f.steady}};
 }

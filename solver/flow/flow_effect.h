@@ -63,6 +63,9 @@ class FlowEffect final : public Effect {
   /// |stored − (injected − outflow)| over the volume exchanged (injected and through the
   /// boundaries either way) or stored, whichever is larger (summary.json balance_error).
   double balance_error(const RunState& s) const;
+  /// After cracks re-cut the mesh: the flow state of `before` (the effect on the mesh before)
+  /// in `s` carried onto this network (flow_transfer.h).
+  void continue_from(const FlowEffect& before, RunState& s) const;
   /// The network (flow.csv, tests); empty without a flow block.
   const FlowNetwork& network() const { return network_; }
 

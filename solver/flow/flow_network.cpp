@@ -121,7 +121,9 @@ FlowNetwork::FlowNetwork(const Mesh& mesh, const SceneDef& scene, const std::str
         reached = true;
         if (node_boundary_[static_cast<std::size_t>(n)] < 0) node_boundary_[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(i);
       }
-    if (!reached) throw InputError(scene_name, path, "no joint reaches the body boundary under the polyline");
+    // In a run that can crack, a crack may reach it later (docs/flow.md "Hydraulic fracturing").
+    if (!reached && !scene.fracture.present)
+      throw InputError(scene_name, path, "no joint reaches the body boundary under the polyline");
   }
   for (std::size_t i = 0; i < flow.injections.size(); ++i) {
     const Vec2 p = flow.injections[i].point;
@@ -187,6 +189,18 @@ std::vector<double> FlowNetwork::conductances(const std::vector<double>& ap, dou
     c[s] = a1 * a1 * a2 * a2 / (6 * viscosity * segments_[s].length * (a1 + a2));
   }
   return c;
+}
+
+std::vector<double> FlowNetwork::face_pressures(const std::vector<double>& p, std::size_t loop_vertices) const {
+  std::vector<double> out(2 * loop_vertices, 0.0);
+  if (p.size() != nodes()) return out;
+  for (const FlowFace& f : faces_) {
+    const FlowSegment& sg = segments_[static_cast<std::size_t>(f.segment)];
+    const auto v = static_cast<std::size_t>(f.vertex);
+    out[2 * v] = p[static_cast<std::size_t>(f.reversed ? sg.b : sg.a)];
+    out[2 * v + 1] = p[static_cast<std::size_t>(f.reversed ? sg.a : sg.b)];
+  }
+  return out;
 }
 
 std::vector<double> FlowNetwork::node_apertures(const std::vector<double>& ap) const {

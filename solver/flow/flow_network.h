@@ -78,6 +78,10 @@ class FlowNetwork {
   std::vector<double> volumes(const std::vector<double>& ap) const;
   /// [segment] m³/(s·Pa) per m, the conductance of each segment for end apertures `ap`.
   std::vector<double> conductances(const std::vector<double>& ap, double viscosity) const;
+  /// [2·v] Pa, for a mesh of `loop_vertices` loop vertices: the pressure `p` ([node] Pa) at the
+  /// start and at the end of every joint face edge v → next, 0 on the other edges (the crack
+  /// faces' load in the interaction integral: interaction_integral.h).
+  std::vector<double> face_pressures(const std::vector<double>& p, std::size_t loop_vertices) const;
   /// [node] m, the mean aperture of the segment ends at each node (flow.csv).
   std::vector<double> node_apertures(const std::vector<double>& ap) const;
 

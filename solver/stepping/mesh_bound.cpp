@@ -46,8 +46,9 @@ std::string MeshBound::describe_unknown(int unknown) const {
   return "unknown " + std::to_string(unknown);
 }
 
-void MeshBound::continue_from(MeshBound& before, std::vector<ContactHistory> history) {
+void MeshBound::continue_from(MeshBound& before, std::vector<ContactHistory> history, RunState& s) {
   contact.continue_from(before.contact, std::move(history));
+  flow.continue_from(before.flow, s);
 }
 
 void MeshBound::restore_contact_history(const std::string& bytes, const std::string& name) {

@@ -63,8 +63,9 @@ struct MeshBound {
   /// What describes an effect's unknown (beyond the covers') in a message: "the slip of bolt 2 at
   /// its point 5".
   std::string describe_unknown(int unknown) const;
-  /// Carries on from the contacts of `before` (the mesh before a re-cut) with `history`.
-  void continue_from(MeshBound& before, std::vector<ContactHistory> history);
+  /// Carries on from the contacts of `before` (the mesh before a re-cut) with `history`, and
+  /// carries the flow state in `s` (on `before`'s network) onto this mesh's.
+  void continue_from(MeshBound& before, std::vector<ContactHistory> history, RunState& s);
   /// The contact history: with the RunState, what a step carries to the next (run_state.h).
   const std::vector<ContactHistory>& contact_history() const { return contact.set().history(); }
   /// Restores the contact history from a checkpoint's bytes (`name` names it in errors).

@@ -285,7 +285,7 @@ void TimeStepper::change_mesh(NewMesh m) {
 void TimeStepper::replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,
                                std::vector<ContactHistory> history) {
   auto bound = std::make_unique<MeshBound>(*mesh, *scene, scene_name_, changes_.joints_added());
-  bound->continue_from(*b_, std::move(history));
+  bound->continue_from(*b_, std::move(history), s_);
   b_ = std::move(bound);  // before the mesh and scene it referred to go
   own_mesh_ = std::move(mesh);
   own_scene_ = std::move(scene);
