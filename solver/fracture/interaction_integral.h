@@ -6,7 +6,7 @@
 // the radius) to 0 (nodes beyond it). The auxiliary fields are Williams' leading terms of a
 // straight crack in a homogeneous body; the crack's faces inside the ring are taken as free of
 // traction unless the caller names the faces that carry it (closed contacts: their traction,
-// that of the element beside them, adds the faces' term).
+// that of the element beside them, adds the faces' term; a fluid's pressure in an open crack).
 #pragma once
 
 #include <array>
@@ -54,7 +54,9 @@ struct TipDomain {
 /// with `skip` [me] 1 (excavated, debris; may be empty) are left out. `near`: the elements that
 /// may reach within the radius of the tip (null: all of them are looked at). `loaded` [v] 1: the
 /// loop edge v → next is a crack face that carries traction (a closed contact on it), t = σ·n of
-/// its element (null: every face is free).
+/// its element (null: every face is free). `face_pressure` [2·v] Pa: the fluid pressure at the start
+/// and end of each open crack face edge v → next (flow_network.h face_pressures; null or 0: none),
+/// a traction −p·n on that face.
 struct StressIntensity {
   double k1 = 0;  ///< Pa·√m
   double k2 = 0;  ///< Pa·√m
@@ -65,7 +67,8 @@ StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, 
                                      const std::vector<double>& stress, const std::vector<double>& loop_u,
                                      const std::vector<std::uint8_t>& skip,
                                      const std::vector<std::int32_t>* near = nullptr,
-                                     const std::vector<std::uint8_t>* loaded = nullptr);
+                                     const std::vector<std::uint8_t>* loaded = nullptr,
+                                     const std::vector<double>* face_pressure = nullptr);
 
 /// rad, the direction of maximum tangential stress (Erdogan & Sih 1963) from the crack's own
 /// direction: θ = 2·atan((K_I − √(K_I² + 8K_II²))/(4K_II)), 0 for K_II = 0.

@@ -42,7 +42,8 @@ bool any_toughness(const SceneDef& scene) {
 
 std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& scene,
                                             const std::vector<CrackSegment>& cracks, const RunState& s,
-                                            const std::vector<std::uint8_t>& skip) {
+                                            const std::vector<std::uint8_t>& skip,
+                                            const std::vector<double>* face_pressure) {
   std::vector<CrackSegment> out;
   if (!any_toughness(scene)) return out;
   const double h = mesh.mesh_size;
@@ -55,7 +56,8 @@ std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& sc
     const MaterialDef& m = scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(t.body)].material)];
     if (!m.strength.present || m.strength.toughness <= 0) continue;
     const StressIntensity k =
-        interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, tip_elasticity(m, scene.plane), s.stress, s.loop_u, skip);
+        interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, tip_elasticity(m, scene.plane), s.stress,
+                             s.loop_u, skip, nullptr, nullptr, face_pressure);
     const double theta = mts_angle(k.k1, k.k2);
     if (mts_equivalent_k(k.k1, k.k2, theta) < m.strength.toughness) continue;
     const double c = std::cos(theta), sn = std::sin(theta);

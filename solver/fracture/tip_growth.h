@@ -33,9 +33,12 @@ double mts_equivalent_k(double k1, double k2, double theta);
 bool any_toughness(const SceneDef& scene);
 
 /// The segments the tips of the solved state `s` grow by (above), on `mesh` with the run's
-/// `cracks` so far; `skip` [me] 1: excavated or debris. Empty where no material has a toughness.
+/// `cracks` so far; `skip` [me] 1: excavated or debris; `face_pressure` [2·v] Pa: a fluid's
+/// pressure on the crack faces (interaction_integral.h; null: none). Empty where no material
+/// has a toughness.
 std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& scene,
                                             const std::vector<CrackSegment>& cracks, const RunState& s,
-                                            const std::vector<std::uint8_t>& skip);
+                                            const std::vector<std::uint8_t>& skip,
+                                            const std::vector<double>* face_pressure = nullptr);
 
 }  // namespace nmm::solve

@@ -12,6 +12,7 @@
 #include "common/atomic_file.h"
 #include "common/math_constants.h"
 #include "solver/discretisation/excavation.h"
+#include "solver/flow/flow_effect.h"
 #include "solver/fracture/interaction_integral.h"
 
 namespace nmm::solve {
@@ -47,6 +48,11 @@ std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& find
     loaded[static_cast<std::size_t>(c.at.vertex)] = 1;
     loaded[static_cast<std::size_t>(c.at.vertex == f0 ? f1 - 1 : c.at.vertex - 1)] = 1;
   }
+  // The fluid's pressure on open crack faces (docs/flow.md "Hydraulic fracturing").
+  std::vector<double> pressure;
+  for (const Effect* e : run.effects)
+    if (const auto* f = dynamic_cast<const FlowEffect*>(e); f != nullptr && f->active() && scene.flow.coupled)
+      pressure = f->network().face_pressures(run.state.flow_pressure, mesh.loop_vertex_count());
   std::vector<std::int32_t> near;
   for (const CrackTip& t : tips) {
     const double reach = t.radius + 1.01 * mesh.mesh_size;
@@ -56,7 +62,8 @@ std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& find
       near.push_back(it->second);
     const TipElasticity el = tip_elasticity(scene.materials[static_cast<std::size_t>(scene.bodies[t.body].material)], scene.plane);
     const StressIntensity k = interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, el, stress,
-                                                   run.state.loop_u, skip, &near, &loaded);
+                                                   run.state.loop_u, skip, &near, &loaded,
+                                                   pressure.empty() ? nullptr : &pressure);
     TipReading r;
     r.tip = t.id;
     r.k1 = k.k1;

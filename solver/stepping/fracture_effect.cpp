@@ -42,7 +42,8 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
     const std::vector<std::uint8_t>& debris = fracture_.debris();
     if (skip.size() < mesh.element_count()) skip.resize(mesh.element_count(), 0);
     for (std::size_t e = 0; e < debris.size() && e < skip.size(); ++e) skip[e] = skip[e] || debris[e];
-    segments = grow_by_toughness(mesh, scene, fracture_.segments(), solved, skip);
+    const std::vector<double> pressure = face_pressures(mesh, scene, scene_name, solved);
+    segments = grow_by_toughness(mesh, scene, fracture_.segments(), solved, skip, pressure.empty() ? nullptr : &pressure);
   }
   if (segments.empty()) {
     timings.fracture += watch.seconds();
@@ -65,6 +66,17 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
   fracture_.cut(segments, *out.mesh, out.map);
   timings.fracture += watch.seconds();
   return true;
+}
+
+std::vector<double> FractureEffect::face_pressures(const Mesh& mesh, const SceneDef& scene,
+                                                  const std::string& scene_name, const RunState& s) {
+  if (!scene.flow.present || !scene.flow.coupled || s.flow_pressure.empty()) return {};
+  if (flow_mesh_ != &mesh || flow_mesh_vertices_ != mesh.loop_vertex_count() || !flow_network_) {
+    flow_network_ = std::make_unique<FlowNetwork>(mesh, scene, scene_name);
+    flow_mesh_ = &mesh;
+    flow_mesh_vertices_ = mesh.loop_vertex_count();
+  }
+  return flow_network_->face_pressures(s.flow_pressure, mesh.loop_vertex_count());
 }
 
 bool FractureEffect::restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene,

@@ -6,6 +6,9 @@
 // NMM_CHECK_RECUT set every re-cut is compared with a full cut (recut_check.h).
 #pragma once
 
+#include <memory>
+
+#include "solver/flow/flow_network.h"
 #include "solver/fracture/fracture.h"
 #include "solver/stepping/mesh_change.h"
 
@@ -46,7 +49,15 @@ class FractureEffect final : public MeshChange {
   const Fracture& fracture() const { return fracture_; }
 
  private:
+  /// [2·v] Pa: the fluid's pressure on the crack faces of `mesh` in the state s (flow_network.h
+  /// face_pressures), empty without flow; the network is built once per mesh.
+  std::vector<double> face_pressures(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name,
+                                     const RunState& s);
+
   Fracture fracture_;
+  std::unique_ptr<FlowNetwork> flow_network_;  // of the mesh below (the same derivation as the flow effect's)
+  const Mesh* flow_mesh_ = nullptr;
+  std::size_t flow_mesh_vertices_ = 0;
 };
 
 }  // namespace nmm::solve
