@@ -16,7 +16,10 @@
 //   - the volume balance: stored = injected − outflow within 1e-3 of the volume exchanged, and
 //     the fluid the run put into the new cracks at the pressure carried to them (filled_m3,
 //     flow_transfer.h) is exactly the change of the network's content beyond what was stored;
-//   - a restart through a checkpoint written after the crack grew continues bit for bit.
+//   - a restart through a checkpoint written after the crack grew continues bit for bit;
+//   - the carry-over onto a re-cut network (flow_transfer.h): a crack that crosses a joint
+//     divides its segment and takes the pressure linear along it there, the crack's other nodes
+//     that pressure, its segments the residual aperture, the joint's pieces its apertures.
 // Plane strain, E 10 GPa, ν 0.25; the crack's faces a joint of stiff springs that open freely;
 // static equilibrium steps; each plate held statically determinately (a fixed point at its
 // bottom middle, a roller on a short stretch of its bottom at a corner), so the pressure and the
@@ -36,6 +39,7 @@
 #include "common/scene.h"
 #include "preprocess/cover_cutter.h"
 #include "solver/flow/flow_effect.h"
+#include "solver/flow/flow_transfer.h"
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
 #include "solver/output/crack_tip_output.h"
@@ -225,6 +229,55 @@ TEST(HydraulicFracture, BreakdownPressureMatchesTheToughnessAndTheNetworkGrows) 
   EXPECT_EQ(second.view().state.flow_pressure, state.flow_pressure);
   EXPECT_EQ(second.view().state.flow_filled, state.flow_filled);
   EXPECT_EQ(state_hash(second.view()), state_hash(st.view()));
+}
+
+// The carry-over by position: a joint along y = 1 with a pressure linear in x (1 MPa at x = 0,
+// 0 at x = 10) and apertures linear in x; then a crack x = 3.3 from y = 0.4 to 1.6 crosses it
+// (the mesh cut again with it as a joint). The crossing node takes p(3.3) = 0.67 MPa, the
+// crack's nodes the same, its segments the residual aperture, the joint's pieces the aperture
+// linear along their old segment; the fill is the crack's volume at that pressure.
+TEST(HydraulicFracture, TheNetworkCarriesPressuresOntoACrackByPosition) {
+  auto doc = [](bool crack) {
+    json d = plate(5, 2, 1, 0.5);
+    d["bodies"][0]["outer"] = {{0, 0}, {10, 0}, {10, 2}, {0, 2}};
+    d["joints"] = {{{"set", "crack"}, {"points", {{0, 1}, {10, 1}}}}};
+    if (crack) d["joints"].push_back({{"set", "crack"}, {"points", {{3.3, 0.4}, {3.3, 1.6}}}});
+    d["flow"] = {{"aperture", {{"residual", 1e-4}}}};
+    return d;
+  };
+  const SceneDef s0 = scene_from_json(doc(false), "before"), s1 = scene_from_json(doc(true), "after");
+  const Mesh m0 = pre::build_mesh(s0, "before"), m1 = pre::build_mesh(s1, "after");
+  const FlowNetwork before(m0, s0, "before"), now(m1, s1, "after");
+  RunState st;
+  for (std::size_t i = 0; i < before.nodes(); ++i) st.flow_pressure.push_back(1e6 * (1 - before.node_xy()[2 * i] / 10));
+  for (const FlowSegment& sg : before.segments())
+    for (const std::int32_t n : {sg.a, sg.b}) st.flow_aperture.push_back(1e-4 + 1e-5 * before.node_xy()[2 * static_cast<std::size_t>(n)]);
+  const double kf = 2.2e9;
+  transfer_flow(before, now, s1.flow, 1e-6 * m1.mesh_size, st);
+  ASSERT_EQ(st.flow_pressure.size(), now.nodes());
+  ASSERT_EQ(st.flow_aperture.size(), 2 * now.segments().size());
+  double crack_length = 0;
+  for (std::size_t k = 0; k < now.segments().size(); ++k) {
+    const FlowSegment& sg = now.segments()[k];
+    const double xa = now.node_xy()[2 * static_cast<std::size_t>(sg.a)], xb = now.node_xy()[2 * static_cast<std::size_t>(sg.b)];
+    if (sg.joint == 1) {
+      crack_length += sg.length;
+      EXPECT_EQ(st.flow_aperture[2 * k], 1e-4);
+      EXPECT_EQ(st.flow_aperture[2 * k + 1], 1e-4);
+    } else {
+      EXPECT_NEAR(st.flow_aperture[2 * k], 1e-4 + 1e-5 * xa, 1e-15);
+      EXPECT_NEAR(st.flow_aperture[2 * k + 1], 1e-4 + 1e-5 * xb, 1e-15);
+    }
+  }
+  for (std::size_t i = 0; i < now.nodes(); ++i) {
+    const double x = now.node_xy()[2 * i];
+    EXPECT_NEAR(st.flow_pressure[i], 1e6 * (1 - x / 10), 1e-6) << "node at " << x << ", " << now.node_xy()[2 * i + 1];
+  }
+  EXPECT_NEAR(crack_length, 1.2, 1e-9);
+  const double p = 1e6 * (1 - 0.33);
+  std::printf("  crossing at x = 3.3: p %.6g Pa; crack 1.2 m filled %.6g m³/m (residual·L·(1 + p/K_f) = %.6g)\n",
+              st.flow_pressure[node_near(now, 3.3, 1)], st.flow_filled, 1e-4 * 1.2 * (1 + p / kf));
+  EXPECT_NEAR(st.flow_filled, 1e-4 * 1.2 * (1 + p / kf), 1e-12);
 }
 
 }  // namespace nmm::solve
