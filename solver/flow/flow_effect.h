@@ -21,6 +21,8 @@
 // coupling is one-way: the pressure loads the faces, the faces do not change the flow.
 // `coupled: false`: the apertures stay those at the run's start and the pressure does not load
 // the faces (flow alone).
+// With fracture, a re-cut builds the effect again on the cut mesh, whose network holds the new
+// cracks; continue_from carries the pressures and apertures onto it (flow_transfer.h).
 #pragma once
 
 #include <memory>
