@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,12 @@ class Effect : public EffectOutput {
   virtual void rejected(const EffectStep& /*step*/, const Eigen::VectorXd& /*covers_d*/) const {}
   /// The accepted step into the state step.s (before the covers move: state_update.h).
   virtual void commit(EffectStep& /*step*/, const Eigen::VectorXd& /*d*/) {}
+
+  // ---- what others read of it ---------------------------------------------------------------
+  /// Marks (1) in `loaded` ([loop vertex]: the face from that vertex to the next) the faces its
+  /// accepted state s puts a traction on — the contacts' closed faces; a crack tip's interaction
+  /// integral counts what loads its faces (solver/fracture/crack_tip_readout.h).
+  virtual void loaded_faces(const RunState& /*s*/, std::vector<std::uint8_t>& /*loaded*/) const {}
 };
 
 }  // namespace nmm::solve

@@ -37,9 +37,10 @@ class SolveRun::EnergyOutput : public StepObserver {
     meter_.keep_last();
     meter_.write_csv(dir_);
   }
-  // summary.json fracture.dissipated_j: energy.csv's fracture column at the last step.
+  // summary.json fracture.dissipated_j: energy.csv's fracture column at the last step, in a run
+  // whose energy.csv has it (the rock can break).
   void summarise(nlohmann::json& summary) const override {
-    if (summary.contains("fracture")) summary["fracture"]["dissipated_j"] = meter_.fracture();
+    if (meter_.fracturing()) summary["fracture"]["dissipated_j"] = meter_.fracture();
   }
 
  private:
@@ -96,8 +97,6 @@ SolveRun::SolveRun(const Mesh& mesh, const std::string& mesh_name, SolveOptions 
     energy_ = std::make_unique<EnergyOutput>(stepper_.view(), options_.out_dir, run_.scene.solver.output_every);
     driver_->add(*history_);
     driver_->add(*energy_);
-    crack_tips_ = std::make_unique<CrackTipOutput>(options_.out_dir, run_.scene.solver.output_every);
-    driver_->add(*crack_tips_);
   }
   progress_line_ = std::make_unique<StepFunction>([this](const RunView& st, std::int64_t, bool) {
     if (progress_) progress_->update(st.state.step, st.state.time);

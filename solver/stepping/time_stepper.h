@@ -73,7 +73,7 @@ class TimeStepper : private StepHost {
   RunView view() const {
     return {*mesh_,  b_->model, b_->space, b_->config, s_, b_->contact.set(), system_, timings_, b_->contact.stats(),
             balance_, stopped_at_ratio_, threads_, changes_.fracture.fracture(), topology_, recut_, recut_from_, recut_start_,
-            b_->effects, changes_.list};
+            b_->effects, changes_.list, b_->checkpointed};
   }
 
  private:
