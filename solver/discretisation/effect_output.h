@@ -13,6 +13,8 @@
 //                  files it writes whole into the folder (cracks.csv)
 //   summarise      its part of summary.json
 //   effect_names   what it adds to summary.json "effects" when it takes part (docs/interface.md)
+//   warnings       what nmm-solve warns of on stderr once the run has stopped, read from the
+//                  run's summary.json (the cracks' snap-back)
 //   checkpoint_sections  the checkpoint's sections of the state it carries (docs/checkpoint-format.md:
 //                  the absorbing boundaries' ABSORB, the bolts' BOLTS, the flow's FLOW, the cracks'
 //                  MESH and FRACTURE), written after the run state's own sections and hashed with
@@ -65,6 +67,9 @@ class EffectOutput {
   virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
   /// The names it adds to summary.json "effects" for the run in state s (none: it takes no part).
   virtual void effect_names(const RunState& /*s*/, std::vector<std::string>& /*names*/) const {}
+  /// Appends what the user is warned of once the run has stopped, from its summary.json
+  /// (`summary`): a line each, without the tool's "nmm-solve: warning: ".
+  virtual void warnings(const nlohmann::json& /*summary*/, std::vector<std::string>& /*lines*/) const {}
   /// Appends the checkpoint's sections of the state it carries, of a run in state s on `mesh`
   /// (none: it carries nothing, or nothing yet — a run without it keeps its checkpoint's bytes).
   virtual void checkpoint_sections(const RunState& /*s*/, const Mesh& /*mesh*/, CheckpointSections& /*sections*/) const {}

@@ -190,6 +190,21 @@ void FractureEffect::summarise(const RunState& /*s*/, nlohmann::json& summary) c
   if (tips_.recorded && (tips_.any || active())) summary["fracture"]["tips"] = tips_.now;
 }
 
+void FractureEffect::warnings(const nlohmann::json& summary, std::vector<std::string>& lines) const {
+  if (!summary.contains("fracture") || summary["fracture"].value("snap_back_steps", 0L) <= 0) return;
+  const nlohmann::json& f = summary["fracture"];
+  char line[768];
+  std::snprintf(line, sizeof line,
+                "the cohesive cracks snapped back in %ld step(s): a face softened through a quarter of w_c in one "
+                "step (the longest body, %.4g m, is %s twice Hillerborg's length l_ch = E·G_f/σt² = %.4g m); the run "
+                "followed the snap at the step's pace, and its energy balance there is approximate "
+                "(docs/fracture.md \"Snap-back\")",
+                f["snap_back_steps"].get<long>(), f["longest_body_m"].get<double>(),
+                f["snap_back_possible"].get<bool>() ? "longer than" : "shorter than",
+                f["characteristic_length_m"].get<double>());
+  lines.emplace_back(line);
+}
+
 std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& finder) {
   const Fracture& f = run.fracture;
   return read_crack_tips(run.mesh, run.model.scene(), run.space, run.state, f.segments(), f.debris(),

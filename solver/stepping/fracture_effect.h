@@ -68,6 +68,9 @@ class FractureEffect final : public MeshChange {
   /// that long snaps back; and "tips" (the tips at the last output step) for a run that wrote
   /// output steps and has a fracture block or found a tip.
   void summarise(const RunState& s, nlohmann::json& summary) const override;
+  /// Cohesive cracks that softened faster than the steps followed (summary.json
+  /// fracture.snap_back_steps > 0), with what the rock's Hillerborg length predicts.
+  void warnings(const nlohmann::json& summary, std::vector<std::string>& lines) const override;
 
   /// The cracks so far and their tips (RunView::fracture).
   const Fracture& fracture() const { return fracture_; }

@@ -93,6 +93,8 @@ struct MeshChanges {
   /// The one that takes part in the run, or null (two that re-cut the same step would need a rule
   /// for which cuts first; there is one today).
   MeshChange* active() const;
+  /// The cracks so far (RunView::fracture: the pictures, the Python module, the tests read them).
+  const Fracture& cracks() const { return fracture.fracture(); }
   /// Joints the changes added to the scene so far (MeshBound's `cracks`).
   std::size_t joints_added() const;
 };
