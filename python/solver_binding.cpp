@@ -18,6 +18,7 @@
 #include "report/run_pictures.h"
 #include "solver/output/solve_run.h"
 #include "python/binding.h"
+#include "python/crack_arrays.h"
 
 namespace nmm::python {
 
@@ -141,6 +142,8 @@ class PySolver {
     return *run_;
   }
   py::object mesh() const { return mesh_obj_; }
+  /// Numbers the tips crack_tips() reads, over its calls (crack_arrays.h).
+  solve::CrackTipFinder& tip_finder() { return tip_finder_; }
 
   // Called on the stepping thread, between steps.
   bool stop_check() {
@@ -171,6 +174,7 @@ class PySolver {
   bool check_signals_ = false;             // stepping on the main thread: Ctrl-C is seen
   py::handle self_;                        // the Python solver, while it steps
   std::unique_ptr<py::error_already_set> pending_;  // what stops the run, raised after it
+  solve::CrackTipFinder tip_finder_;       // crack_tips(): the tips' numbers over its calls
 };
 
 void PythonProgress::after_step(const solve::RunView&, std::int64_t, bool) { solver_.call_progress(); }
@@ -350,6 +354,18 @@ nmm.InputError.)")
           "1 locked, 2 sliding), set, closure, shear (m), normal_force, shear_force (N), kn, ks (N/m), "
           "length (m), vertex, edge, normal_stress, shear_stress, pressure (Pa), jrc_mob, dilation "
           "(m). Closed contacts only, as contacts.csv, unless open=True")
+      // Cracks and crack tips (crack_arrays.h; docs/python.md "Cracks and crack tips").
+      .def(
+          "cracks", [](const PySolver& s) { return crack_segments(s.run().view()); },
+          "the crack segments of the run so far, as cracks.csv's columns (a dict of arrays, a row per "
+          "segment in the order they formed): x0, y0, x1, y1 (m, where its ends were when it formed), "
+          "mode (0 tensile, 1 shear), crack (which crack), step, time (s)")
+      .def(
+          "crack_tips", [](PySolver& s) { return crack_tips(s.run().view(), s.tip_finder()); },
+          "the crack tips inside a body now (the scene's joints' and the cracks'), as crack_tips.csv's "
+          "columns (a dict of arrays, a row per tip): tip (its number, kept as its crack grows), x, y (m), "
+          "k1, k2 (Pa·√m, K_I and K_II by the interaction integral), angle_deg (the maximum tangential "
+          "stress direction, deg from +x), direction ((n, 2) the same as a unit vector), radius (m)")
       .def("__repr__", [](const PySolver& s) {
         const solve::RunView v = s.run().view();
         return "<nmm.Solver t = " + std::to_string(v.state.time) + " s, step " + std::to_string(v.state.step) +

@@ -38,7 +38,7 @@
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
 #include "solver/fracture/tip_growth.h"
-#include "solver/output/crack_tip_output.h"
+#include "solver/stepping/fracture_effect.h"
 #include "solver/output/solve_run.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"

@@ -42,7 +42,7 @@
 #include "solver/flow/flow_transfer.h"
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
-#include "solver/output/crack_tip_output.h"
+#include "solver/stepping/fracture_effect.h"
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"

@@ -246,8 +246,28 @@ void ContactEffect::write_outputs(OutputStep& out) const {
   }
 }
 
+void ContactEffect::loaded_faces(const RunState& /*s*/, std::vector<std::uint8_t>& loaded) const {
+  const Mesh& mesh = model_.mesh();
+  for (const Contact& c : contacts_.contacts()) {
+    if (c.state == ContactState::open) continue;
+    loaded[static_cast<std::size_t>(c.at.edge)] = 1;
+    const std::int32_t f0 = mesh.element_loop_offset[static_cast<std::size_t>(c.at.elem_a)];
+    const std::int32_t f1 = mesh.element_loop_offset[static_cast<std::size_t>(c.at.elem_a) + 1];
+    loaded[static_cast<std::size_t>(c.at.vertex)] = 1;
+    loaded[static_cast<std::size_t>(c.at.vertex == f0 ? f1 - 1 : c.at.vertex - 1)] = 1;
+  }
+}
+
 void ContactEffect::summarise(const RunState& s, nlohmann::json& summary) const {
   summary["max_contacts_at_closure_cap"] = s.max_capped;
+  // Where new cracks soften (cohesive_law.h; their faces are contacts), what the contact solve
+  // measured of it goes to summary.json's fracture block (docs/fracture.md "Snap-back"): accepted
+  // steps in which a face's damage grew by w_c/4 or more at once (the static path could not
+  // follow the softening), and attempts cut because a softening crack found no balance.
+  if (contacts_.cohesive()) {
+    summary["fracture"]["snap_back_steps"] = stats_.snap_back_steps;
+    summary["fracture"]["snap_back_cuts"] = stats_.cohesive_unsettled;
+  }
   const ContactSet::Events& ev = contacts_.events;
   const ContactSet::Totals joint = contacts_.totals();
   summary["contacts"] = {{"at_end", contacts_.contacts().size()},

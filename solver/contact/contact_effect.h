@@ -53,6 +53,8 @@ class ContactEffect final : public Effect {
   /// (contact_readout.h), numbered from 0 in the set's order; an output step without closed
   /// contacts has none (docs/interface.md lists the columns).
   void write_outputs(OutputStep& out) const override;
+  /// The faces of its closed contacts: each contact's edge and the two edges at its vertex.
+  void loaded_faces(const RunState& s, std::vector<std::uint8_t>& loaded) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
   /// new mesh), the events and what the solves have cost.

@@ -1,8 +1,12 @@
 // The absorbing boundaries as an effect of the step: see absorbing_effect.h.
 #include "solver/discretisation/absorbing_effect.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "common/error.h"
 #include "solver/discretisation/absorbing_boundary.h"
+#include "solver/discretisation/state_bytes.h"
 
 namespace nmm::solve {
 
@@ -38,6 +42,35 @@ void AbsorbingEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   const AbsorbingWork w = absorbing_work(model_, step.context, d);
   step.s.absorbed_work += w.absorbed;
   step.s.absorbing_load_work += w.loads;
+}
+
+void AbsorbingEffect::checkpoint_sections(const RunState& s, const Mesh& /*mesh*/, CheckpointSections& sections) const {
+  if (s.absorbing_key.empty()) return;  // none taken: the checkpoint keeps the bytes of a run without
+  ByteWriter w;
+  w.put_vector(s.absorbing_key);
+  w.put_vector(s.absorbing_reaction);
+  w.put(s.absorbed_work);
+  w.put(s.absorbing_load_work);
+  sections.emplace_back("ABSORB", w.take());
+}
+
+void AbsorbingEffect::restore_sections(const CheckpointSections& sections, const Mesh& mesh, const std::string& name,
+                                       RunState& s) const {
+  const auto it = std::find_if(sections.begin(), sections.end(), [](const auto& x) { return x.first == "ABSORB"; });
+  if (it == sections.end()) return;
+  ByteReader r(it->second, name, "ABSORB");
+  s.absorbing_key = r.get_vector<double>(SIZE_MAX, "absorbing boundaries");
+  s.absorbing_reaction = r.get_vector<double>(SIZE_MAX, "carried reaction");
+  s.absorbed_work = r.get<double>();
+  s.absorbing_load_work = r.get<double>();
+  double sum = s.absorbed_work + s.absorbing_load_work;
+  for (double x : s.absorbing_key) sum += x;
+  for (double x : s.absorbing_reaction) sum += x;
+  const auto per_cover = static_cast<std::size_t>(space_.dofs_per_cover());
+  if (s.absorbing_key.empty() || !std::isfinite(sum) || s.absorbing_reaction.size() % per_cover != 0 ||
+      s.absorbing_reaction.size() > per_cover * mesh.cover_count())
+    r.fail("the carried reaction does not fit the mesh, or holds a value that is not finite");
+  r.expect_end();
 }
 
 }  // namespace nmm::solve

@@ -28,6 +28,11 @@ class AbsorbingEffect final : public Effect {
   void effect_names(const RunState& /*s*/, std::vector<std::string>& names) const override {
     if (active()) names.push_back("absorbing");
   }
+  /// ABSORB (docs/checkpoint-format.md), once a reaction has been taken: the polylines it was
+  /// taken for, the reaction, the dashpots' and the input's work.
+  void checkpoint_sections(const RunState& s, const Mesh& mesh, CheckpointSections& sections) const override;
+  void restore_sections(const CheckpointSections& sections, const Mesh& mesh, const std::string& name,
+                        RunState& s) const override;
 
  private:
   const Model& model_;

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,16 @@ class Effect : public EffectOutput {
   virtual void rejected(const EffectStep& /*step*/, const Eigen::VectorXd& /*covers_d*/) const {}
   /// The accepted step into the state step.s (before the covers move: state_update.h).
   virtual void commit(EffectStep& /*step*/, const Eigen::VectorXd& /*d*/) {}
+
+  // ---- what others read of it ---------------------------------------------------------------
+  /// Marks (1) in `loaded` ([loop vertex]: the face from that vertex to the next) the faces its
+  /// accepted state s puts a traction on — the contacts' closed faces; a crack tip's interaction
+  /// integral counts what loads its faces (solver/fracture/crack_tip_readout.h).
+  virtual void loaded_faces(const RunState& /*s*/, std::vector<std::uint8_t>& /*loaded*/) const {}
+  /// Adds to `pressure` ([2·v] Pa, v the mesh's loop vertices: the start and the end of the face
+  /// v → next) the fluid pressure its accepted state s puts on the crack and joint faces — the
+  /// flow network's (docs/flow.md "Hydraulic fracturing"); the tips' integral takes it as t = −p·n.
+  virtual void face_pressures(const RunState& /*s*/, std::vector<double>& /*pressure*/) const {}
 };
 
 }  // namespace nmm::solve

@@ -13,10 +13,14 @@
 //                  files it writes whole into the folder (cracks.csv)
 //   summarise      its part of summary.json
 //   effect_names   what it adds to summary.json "effects" when it takes part (docs/interface.md)
-//   checkpoint_sections  the checkpoint's sections of what it keeps beyond the run state (the
-//                  cracks' MESH and FRACTURE; docs/checkpoint-format.md); what it keeps in
-//                  RunState is written with the state (run_state.h)
-// Its carried state is RunState's, and so the checkpoint's (run_state.h).
+//   warnings       what nmm-solve warns of on stderr once the run has stopped, read from the
+//                  run's summary.json (the cracks' snap-back)
+//   checkpoint_sections  the checkpoint's sections of the state it carries (docs/checkpoint-format.md:
+//                  the absorbing boundaries' ABSORB, the bolts' BOLTS, the flow's FLOW, the cracks'
+//                  MESH and FRACTURE), written after the run state's own sections and hashed with
+//                  them (summary.json state_hash: solver/stepping/run_view.h)
+//   restore_sections  the same sections read back from a checkpoint (a restart)
+// Its carried state is RunState's (run_state.h), or its own (the cracks': mesh_change.h).
 #pragma once
 
 #include <cstdint>
@@ -27,10 +31,14 @@
 
 #include "common/checkpoint_file.h"
 #include "common/mesh.h"
+#include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/model.h"
 #include "solver/discretisation/output_tables.h"
 #include "solver/discretisation/run_state.h"
 
 namespace nmm::solve {
+
+class Effect;
 
 /// An output step of the run, as the effects write it.
 struct OutputStep {
@@ -39,6 +47,11 @@ struct OutputStep {
   const Mesh& mesh;       ///< the mesh the state is on (cracks re-cut it)
   const RunState& state;  ///< the accepted state
   OutputTables& tables;   ///< the CSV files of the output steps (output_tables.h)
+  const Model& model;     ///< the run's model on `mesh` (scene, materials: model.h)
+  const CoverSpace& space;  ///< the cover space on `mesh` (stresses: stress_field.h)
+  /// The effects of the run's steps (effect.h), for what one effect's output reads of the others
+  /// (the faces the contacts load: Effect::loaded_faces).
+  const std::vector<Effect*>& effects;
 };
 
 class EffectOutput {
@@ -54,8 +67,16 @@ class EffectOutput {
   virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
   /// The names it adds to summary.json "effects" for the run in state s (none: it takes no part).
   virtual void effect_names(const RunState& /*s*/, std::vector<std::string>& /*names*/) const {}
-  /// Appends the checkpoint's sections of what it keeps beyond the run state, of a run on `mesh`.
-  virtual void checkpoint_sections(const Mesh& /*mesh*/, CheckpointSections& /*sections*/) const {}
+  /// Appends what the user is warned of once the run has stopped, from its summary.json
+  /// (`summary`): a line each, without the tool's "nmm-solve: warning: ".
+  virtual void warnings(const nlohmann::json& /*summary*/, std::vector<std::string>& /*lines*/) const {}
+  /// Appends the checkpoint's sections of the state it carries, of a run in state s on `mesh`
+  /// (none: it carries nothing, or nothing yet — a run without it keeps its checkpoint's bytes).
+  virtual void checkpoint_sections(const RunState& /*s*/, const Mesh& /*mesh*/, CheckpointSections& /*sections*/) const {}
+  /// Reads its sections of a checkpoint (`name` names the file in an InputError) into s, the state
+  /// read from the run state's sections on `mesh`; a checkpoint without them leaves s as it is.
+  virtual void restore_sections(const CheckpointSections& /*sections*/, const Mesh& /*mesh*/,
+                                const std::string& /*name*/, RunState& /*s*/) const {}
 
  protected:
   EffectOutput() = default;

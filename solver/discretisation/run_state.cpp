@@ -10,11 +10,9 @@
 //    not part of the state hash — it only makes a restart precondition as the straight run did)
 //   DIAG    counters for summary.json (not hashed)
 //   (CARRY, optional, after DIAG: [3·block] f64 block_force, written when not empty)
-//   (ABSORB, optional, after them: the absorbing boundaries' key, carried reaction and work)
-//   (BOLTS, optional, after them: u32 layout 1, u64 n, n bolts — see put_bolts)
-//   (FLOW, optional, after them: the flow network's pressures, apertures and boundary rates (each u64 n, n f64), then f64 injected, outflow, stored,
-//    load work, exchanged; sizes checked
-//    against the network by the flow effect: solver/flow/flow_effect.cpp)
+// Then the effects' sections of the state they carry (effect_output.h checkpoint_sections:
+// ABSORB, BOLTS, FLOW), FACTOR, the cracks' MESH and FRACTURE: written and read by their owners
+// (solver/stepping/restart.cpp), each found by its tag; this file reads the state's own.
 // Every vector carries its length, which must match the mesh; every index is range-checked.
 #include "solver/discretisation/run_state.h"
 
@@ -28,6 +26,8 @@ namespace nmm::solve {
 namespace {
 
 constexpr std::uint32_t kStateLayout = 1;
+
+}  // namespace
 
 void put_points(ByteWriter& w, const std::vector<TrackedPoint>& pts) {
   w.put<std::uint64_t>(pts.size());
@@ -60,68 +60,7 @@ std::vector<TrackedPoint> get_points(ByteReader& r, std::size_t elements) {
   return pts;
 }
 
-constexpr std::uint32_t kBoltLayout = 1;
-
-// Per bolt: u8 type, f64 ax ay bx by, i64 installed step, u8 broken, u8 yielded, f64 max axial
-// force, f64 plastic work, its nodes (as POINTS), then axial [segments], slip and bond [nodes
-// or 0] as vectors.
-std::string put_bolts(const std::vector<BoltState>& bolts) {
-  ByteWriter w;
-  w.put(kBoltLayout);
-  w.put<std::uint64_t>(bolts.size());
-  for (const BoltState& b : bolts) {
-    w.put(b.type);
-    for (double v : {b.ax, b.ay, b.bx, b.by}) w.put(v);
-    w.put(b.installed_step);
-    w.put(b.broken);
-    w.put(b.yielded);
-    w.put(b.max_axial);
-    w.put(b.plastic_work);
-    put_points(w, b.nodes);
-    w.put_vector(b.axial);
-    w.put_vector(b.slip);
-    w.put_vector(b.bond);
-  }
-  return w.take();
-}
-
-std::vector<BoltState> get_bolts(const std::string& bytes, std::size_t elements, std::int64_t step,
-                                 const std::string& name) {
-  ByteReader r(bytes, name, "BOLTS");
-  if (r.get<std::uint32_t>() != kBoltLayout) r.fail("unknown bolt layout");
-  const std::uint64_t n = r.get<std::uint64_t>();
-  if (n > bytes.size()) r.fail("implausible number of bolts " + std::to_string(n));
-  std::vector<BoltState> out(static_cast<std::size_t>(n));
-  for (BoltState& b : out) {
-    b.type = r.get<std::uint8_t>();
-    b.ax = r.get<double>();
-    b.ay = r.get<double>();
-    b.bx = r.get<double>();
-    b.by = r.get<double>();
-    b.installed_step = r.get<std::int64_t>();
-    b.broken = r.get<std::uint8_t>();
-    b.yielded = r.get<std::uint8_t>();
-    b.max_axial = r.get<double>();
-    b.plastic_work = r.get<double>();
-    if (b.type > 1 || b.broken > 1 || b.yielded > 1 || b.installed_step < 0 || b.installed_step > step)
-      r.fail("bolt type, flags or installation step out of range");
-    b.nodes = get_points(r, elements);
-    b.axial = r.get_vector<double>(SIZE_MAX, "axial forces");
-    b.slip = r.get_vector<double>(SIZE_MAX, "slips");
-    b.bond = r.get_vector<double>(SIZE_MAX, "bond forces");
-    const std::size_t nodes = b.nodes.size();
-    const std::size_t per_node = b.type == 1 ? nodes : 0;
-    if (nodes < 2 || b.axial.size() != nodes - 1 || b.slip.size() != per_node || b.bond.size() != per_node ||
-        (b.type == 0 && nodes != 2))
-      r.fail("a bolt's nodes, segments and slips do not match");
-    double sum = b.ax + b.ay + b.bx + b.by + b.max_axial + b.plastic_work;
-    for (const auto* v : {&b.axial, &b.slip, &b.bond})
-      for (double x : *v) sum += x;
-    if (!std::isfinite(sum)) r.fail("a bolt holds a value that is not finite");
-  }
-  r.expect_end();
-  return out;
-}
+namespace {
 
 std::string doubles(const std::vector<double>& v) {
   ByteWriter w;
@@ -190,31 +129,6 @@ CheckpointSections state_to_sections(const RunState& s, const std::string& conta
   }
   // Only when a dynamic step left one: the states of every other run keep their bytes.
   if (!s.block_force.empty()) out.emplace_back("CARRY", doubles(s.block_force));
-  // Only with absorbing boundaries, and only with bolts: the other runs keep their bytes.
-  if (!s.absorbing_key.empty()) {
-    ByteWriter w;
-    w.put_vector(s.absorbing_key);
-    w.put_vector(s.absorbing_reaction);
-    w.put(s.absorbed_work);
-    w.put(s.absorbing_load_work);
-    out.emplace_back("ABSORB", w.take());
-  }
-  if (!s.bolts.empty()) out.emplace_back("BOLTS", put_bolts(s.bolts));
-  // Only with fluid flow: the other runs keep their bytes.
-  if (!s.flow_pressure.empty()) {
-    ByteWriter w;
-    w.put_vector(s.flow_pressure);
-    w.put_vector(s.flow_aperture);
-    w.put_vector(s.flow_outflow_rate);
-    w.put(s.flow_injected);
-    w.put(s.flow_outflow);
-    w.put(s.flow_stored);
-    w.put(s.flow_load_work);
-    w.put(s.flow_exchanged);
-    // Only once cracks took in fluid (flow_transfer.h): runs without cracks keep their bytes.
-    if (s.flow_filled != 0) w.put(s.flow_filled);
-    out.emplace_back("FLOW", w.take());
-  }
   return out;
 }
 
@@ -225,26 +139,17 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
                                       "STRESS", "LOOPXY", "LOOPU", "POINTS",  "PATTERN",
                                       "BODIES", "CONTACT", "DIAG"};
   constexpr std::size_t kCount = sizeof kTags / sizeof kTags[0];
-  // Optional after them, in this order: CARRY (the blocks' handed-on forces), ABSORB (the
-  // absorbing boundaries' carried reaction), BOLTS, FLOW, then FACTOR (the matrix of the solver's
-  // factorisation, not physics).
-  std::size_t next = kCount;
-  const auto optional = [&](const char* tag) -> const std::string* {
-    if (sections.size() <= next || sections[next].first != tag) return nullptr;
-    return &sections[next++].second;
-  };
-  const std::string* carry = optional("CARRY");
-  const std::string* absorb = optional("ABSORB");
-  const std::string* bolts = optional("BOLTS");
-  const std::string* flow = optional("FLOW");
-  const std::string* factor = optional("FACTOR");
-  // A cracked run's mesh and cracks (read by the time stepper before this: restart.h).
-  if (sections.size() > next + 1 && sections[next].first == "MESH" && sections[next + 1].first == "FRACTURE")
-    next += 2;
-  if (sections.size() < kCount || sections.size() != next)
-    throw InputError(name, "section table", "expected " + std::to_string(kCount) +
-                                                " sections (and CARRY, ABSORB, BOLTS, FLOW, FACTOR, MESH with FRACTURE), found " +
+  // Optional after them: CARRY (the blocks' handed-on forces) right after DIAG; then the effects'
+  // sections (read by the effects: effect_output.h restore_sections), FACTOR (the matrix of the
+  // solver's factorisation, not physics) and a cracked run's MESH and FRACTURE (read by the time
+  // stepper before this: restart.h), each found by its tag.
+  if (sections.size() < kCount)
+    throw InputError(name, "section table", "expected at least " + std::to_string(kCount) + " sections, found " +
                                                 std::to_string(sections.size()));
+  const std::string* carry = sections.size() > kCount && sections[kCount].first == "CARRY" ? &sections[kCount].second : nullptr;
+  const std::string* factor = nullptr;
+  for (std::size_t i = kCount; i < sections.size(); ++i)
+    if (sections[i].first == "FACTOR") factor = &sections[i].second;
   for (std::size_t i = 0; i < kCount; ++i)
     if (sections[i].first != kTags[i])
       throw InputError(name, "section table", "section " + std::to_string(i) + " is " +
@@ -334,39 +239,6 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
   }
   contact_history = sections[11].second;
   if (factor_source) *factor_source = factor ? *factor : std::string();
-  if (absorb) {
-    ByteReader r(*absorb, name, "ABSORB");
-    s.absorbing_key = r.get_vector<double>(SIZE_MAX, "absorbing boundaries");
-    s.absorbing_reaction = r.get_vector<double>(SIZE_MAX, "carried reaction");
-    s.absorbed_work = r.get<double>();
-    s.absorbing_load_work = r.get<double>();
-    double sum = s.absorbed_work + s.absorbing_load_work;
-    for (double x : s.absorbing_key) sum += x;
-    for (double x : s.absorbing_reaction) sum += x;
-    if (s.absorbing_key.empty() || !std::isfinite(sum) ||
-        s.absorbing_reaction.size() % static_cast<std::size_t>(dofs_per_cover) != 0 ||
-        s.absorbing_reaction.size() > static_cast<std::size_t>(dofs_per_cover) * nc)
-      r.fail("the carried reaction does not fit the mesh, or holds a value that is not finite");
-    r.expect_end();
-  }
-  if (bolts) s.bolts = get_bolts(*bolts, ne, s.step, name);
-  if (flow) {
-    ByteReader r(*flow, name, "FLOW");
-    s.flow_pressure = r.get_vector<double>(SIZE_MAX, "flow pressures");
-    s.flow_aperture = r.get_vector<double>(SIZE_MAX, "flow apertures");
-    s.flow_outflow_rate = r.get_vector<double>(SIZE_MAX, "flow boundary rates");
-    s.flow_injected = r.get<double>();
-    s.flow_outflow = r.get<double>();
-    s.flow_stored = r.get<double>();
-    s.flow_load_work = r.get<double>();
-    s.flow_exchanged = r.get<double>();
-    s.flow_filled = r.at_end() ? 0.0 : r.get<double>();
-    double sum = s.flow_injected + s.flow_outflow + s.flow_stored + s.flow_load_work + s.flow_exchanged + s.flow_filled;
-    for (const auto* v : {&s.flow_pressure, &s.flow_aperture, &s.flow_outflow_rate})
-      for (double x : *v) sum += x;
-    if (s.flow_pressure.empty() || !std::isfinite(sum)) r.fail("no flow pressures, or a value that is not finite");
-    r.expect_end();
-  }
   if (carry) {
     ByteReader r(*carry, name, "CARRY");
     s.block_force = r.get_vector<double>(3 * mesh.block_count(), "block forces");
@@ -388,22 +260,18 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
 }
 
 std::string state_hash(const RunState& s, const std::string& contact_history, const Mesh& mesh) {
+  return state_hash(state_to_sections(s, contact_history, mesh));
+}
+
+std::string state_hash(const CheckpointSections& sections) {
   std::string all;
-  for (const auto& [tag, data] : state_to_sections(s, contact_history, mesh)) {
-    if (tag == "DIAG") continue;
+  for (const auto& [tag, data] : sections) {
+    if (tag == "DIAG" || tag == "FACTOR") continue;
     all += tag;
     all.push_back('\0');
     all += data;
   }
   return to_hex(sha256(all));
-}
-
-void write_state_file(const std::string& path, const RunState& s,
-                      const std::string& contact_history, const Mesh& mesh,
-                      const std::string& factor_source) {
-  CheckpointSections sections = state_to_sections(s, contact_history, mesh);
-  if (!factor_source.empty()) sections.emplace_back("FACTOR", factor_source);
-  write_checkpoint_file(sections, path);
 }
 
 }  // namespace nmm::solve

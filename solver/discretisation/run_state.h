@@ -15,6 +15,7 @@
 
 #include "common/checkpoint_file.h"
 #include "common/mesh.h"
+#include "solver/discretisation/state_bytes.h"
 
 namespace nmm::solve {
 
@@ -108,12 +109,15 @@ struct RunState {
 };
 
 /// The checkpoint sections of a state, its contact history (contact_history.h) and the mesh it
-/// belongs to (identified by counts and the SHA-256 of its embedded scene).
+/// belongs to (identified by counts and the SHA-256 of its embedded scene): the run state's own,
+/// META to DIAG and CARRY. The effects write the sections of the state they carry after them
+/// (effect_output.h checkpoint_sections; the whole checkpoint: solver/stepping/restart.h).
 CheckpointSections state_to_sections(const RunState& s, const std::string& contact_history,
                                      const Mesh& mesh);
 
-/// Reads a state back, checking every size and index against `mesh`; a checkpoint of another
-/// mesh, or damaged data, is an InputError naming `name` and the section.
+/// Reads the run state's own sections back, checking every size and index against `mesh`; a
+/// checkpoint of another mesh, or damaged data, is an InputError naming `name` and the section.
+/// Sections of the effects are left to them (effect_output.h restore_sections).
 /// dofs_per_cover and stress_terms (polynomial stress coefficients per element) are the run's
 /// (cover_space.h); a checkpoint of another cover order is an InputError. `factor_source`
 /// receives the optional FACTOR section (system_matrix.h factor_source()).
@@ -122,13 +126,16 @@ RunState state_from_sections(const CheckpointSections& sections, const Mesh& mes
                              int dofs_per_cover = 2, int stress_terms = 1,
                              std::string* factor_source = nullptr);
 
-/// SHA-256 (hex) of the physical state: every section except the diagnostics. Two runs whose
-/// hashes are equal are bitwise in the same state.
+/// SHA-256 (hex) of a state's sections: every one but DIAG (diagnostics) and FACTOR (the solver's
+/// working matrix), tag and bytes in order. Two runs whose hashes are equal are bitwise in the
+/// same state.
+std::string state_hash(const CheckpointSections& sections);
+/// The same of the run state's own sections (state_to_sections).
 std::string state_hash(const RunState& s, const std::string& contact_history, const Mesh& mesh);
 
-/// Writes OUTDIR/checkpoint.nmmstate or any path, atomically (checkpoint_file.h).
-void write_state_file(const std::string& path, const RunState& s,
-                      const std::string& contact_history, const Mesh& mesh,
-                      const std::string& factor_source = {});
+/// Tracked points in a section (POINTS, a bolt's nodes): u64 n, n × (i32 element, f64 x0, y0,
+/// x, y); read back with each element checked against `elements` and each value finite.
+void put_points(ByteWriter& w, const std::vector<TrackedPoint>& pts);
+std::vector<TrackedPoint> get_points(ByteReader& r, std::size_t elements);
 
 }  // namespace nmm::solve

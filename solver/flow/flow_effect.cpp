@@ -14,6 +14,7 @@
 #include "common/error.h"
 #include "solver/discretisation/boundary_conditions.h"
 #include "solver/discretisation/integrators.h"
+#include "solver/discretisation/state_bytes.h"
 #include "solver/flow/flow_transfer.h"
 
 namespace nmm::solve {
@@ -54,6 +55,49 @@ bool FlowEffect::install(RunState& s, const std::string& name) {
 void FlowEffect::continue_from(const FlowEffect& before, RunState& s) const {
   if (!active() || !before.active()) return;
   transfer_flow(before.network_, network_, model_.scene().flow, 1e-6 * model_.mesh().mesh_size, s);
+}
+
+void FlowEffect::checkpoint_sections(const RunState& s, const Mesh& /*mesh*/, CheckpointSections& sections) const {
+  if (s.flow_pressure.empty()) return;  // without flow the checkpoint keeps the bytes of a run without
+  ByteWriter w;
+  w.put_vector(s.flow_pressure);
+  w.put_vector(s.flow_aperture);
+  w.put_vector(s.flow_outflow_rate);
+  w.put(s.flow_injected);
+  w.put(s.flow_outflow);
+  w.put(s.flow_stored);
+  w.put(s.flow_load_work);
+  w.put(s.flow_exchanged);
+  // Only once cracks took in fluid (flow_transfer.h): runs without cracks keep their bytes.
+  if (s.flow_filled != 0) w.put(s.flow_filled);
+  sections.emplace_back("FLOW", w.take());
+}
+
+void FlowEffect::restore_sections(const CheckpointSections& sections, const Mesh& /*mesh*/, const std::string& name,
+                                  RunState& s) const {
+  const auto it = std::find_if(sections.begin(), sections.end(), [](const auto& x) { return x.first == "FLOW"; });
+  if (it == sections.end()) return;
+  ByteReader r(it->second, name, "FLOW");
+  s.flow_pressure = r.get_vector<double>(SIZE_MAX, "flow pressures");
+  s.flow_aperture = r.get_vector<double>(SIZE_MAX, "flow apertures");
+  s.flow_outflow_rate = r.get_vector<double>(SIZE_MAX, "flow boundary rates");
+  s.flow_injected = r.get<double>();
+  s.flow_outflow = r.get<double>();
+  s.flow_stored = r.get<double>();
+  s.flow_load_work = r.get<double>();
+  s.flow_exchanged = r.get<double>();
+  s.flow_filled = r.at_end() ? 0.0 : r.get<double>();
+  double sum = s.flow_injected + s.flow_outflow + s.flow_stored + s.flow_load_work + s.flow_exchanged + s.flow_filled;
+  for (const auto* v : {&s.flow_pressure, &s.flow_aperture, &s.flow_outflow_rate})
+    for (double x : *v) sum += x;
+  if (s.flow_pressure.empty() || !std::isfinite(sum)) r.fail("no flow pressures, or a value that is not finite");
+  r.expect_end();
+}
+
+void FlowEffect::face_pressures(const RunState& s, std::vector<double>& pressure) const {
+  if (!active() || !model_.scene().flow.coupled || s.flow_pressure.empty()) return;
+  const std::vector<double> p = network_.face_pressures(s.flow_pressure, pressure.size() / 2);
+  for (std::size_t i = 0; i < p.size() && i < pressure.size(); ++i) pressure[i] += p[i];
 }
 
 Outcome FlowEffect::begin_step(EffectStep& step) {

@@ -61,6 +61,12 @@ class FlowEffect final : public Effect {
   void effect_names(const RunState& /*s*/, std::vector<std::string>& names) const override {
     if (active()) names.push_back("flow");
   }
+  /// FLOW (docs/checkpoint-format.md), with flow: the network's pressures, apertures and boundary
+  /// rates, then the volumes and the work since step 0 (sizes checked against the network by
+  /// install()).
+  void checkpoint_sections(const RunState& s, const Mesh& mesh, CheckpointSections& sections) const override;
+  void restore_sections(const CheckpointSections& sections, const Mesh& mesh, const std::string& name,
+                        RunState& s) const override;
 
   /// |stored − (injected − outflow)| over the volume exchanged (injected and through the
   /// boundaries either way) or stored, whichever is larger (summary.json balance_error).
@@ -70,6 +76,7 @@ class FlowEffect final : public Effect {
   void continue_from(const FlowEffect& before, RunState& s) const;
   /// The network (flow.csv, tests); empty without a flow block.
   const FlowNetwork& network() const { return network_; }
+  void face_pressures(const RunState& s, std::vector<double>& pressure) const override;
 
  private:
   /// N per unknown of the covers: the pressure `p` ([node] Pa) on every joint face of the state s.

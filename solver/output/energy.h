@@ -157,6 +157,8 @@ class EnergyMeter {
   /// J/m, the energy cracking released since the start of this run (summary.json
   /// fracture.dissipated_j).
   double fracture() const { return released_; }
+  /// The rock can break: energy.csv has the fracture column.
+  bool fracturing() const { return fracturing_; }
 
   const std::vector<EnergyRow>& rows() const { return rows_; }
 

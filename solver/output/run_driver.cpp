@@ -59,7 +59,7 @@ class RunDriver::FrameOutput : public StepObserver {
     out_.write_frame(step, s.time, mesh, fields, st.topology);
     // The output step's rows of the CSV files: every effect's (effect_output.h), none named here.
     out_.tables().begin_output_step();
-    OutputStep o{step, s.time, mesh, s, out_.tables()};
+    OutputStep o{step, s.time, mesh, s, out_.tables(), st.model, st.space, st.effects};
     for (const Effect* e : st.effects) e->write_outputs(o);
     for (const MeshChange* c : st.changes) c->write_outputs(o);
   }
@@ -184,10 +184,10 @@ nlohmann::json RunDriver::finish() {
   }
   for (StepObserver* o : observers_) guarded([&] { o->finish(stepper_.view(), record_.outcome, record_.done); }, write_failed);
   if (out_) {
-    // The files the effects write whole once the run has stopped (cracks.csv).
+    // The files the effects write whole once the run has stopped (cracks.csv, crack_tips.csv).
     const Stopwatch sw;
     const RunView v = stepper_.view();
-    OutputStep o{v.state.step, v.state.time, v.mesh, v.state, out_->tables()};
+    OutputStep o{v.state.step, v.state.time, v.mesh, v.state, out_->tables(), v.model, v.space, v.effects};
     for (const Effect* e : v.effects) guarded([&] { e->write_files(o, out_->dir()); }, write_failed);
     for (const MeshChange* c : v.changes) guarded([&] { c->write_files(o, out_->dir()); }, write_failed);
     record_.output_seconds += sw.seconds();

@@ -5,7 +5,7 @@
 //                                 frames every output_every and at the end, and with each frame
 //                                 the rows of every effect's files (Effect::write_outputs,
 //                                 effect_output.h: reactions.csv, bolts.csv, contacts.csv); the
-//                                 effects' whole files (cracks.csv) at the end
+//                                 effects' whole files (cracks.csv, crack_tips.csv) at the end
 //   checkpoint                    checkpoint.nmmstate every checkpoint_every steps and at the end
 //   the caller's observers        energy (energy.h), progress (progress.h), run history...
 //   summary                       summary.json once the run has stopped (run_summary.h)

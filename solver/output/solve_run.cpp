@@ -37,9 +37,10 @@ class SolveRun::EnergyOutput : public StepObserver {
     meter_.keep_last();
     meter_.write_csv(dir_);
   }
-  // summary.json fracture.dissipated_j: energy.csv's fracture column at the last step.
+  // summary.json fracture.dissipated_j: energy.csv's fracture column at the last step, in a run
+  // whose energy.csv has it (the rock can break).
   void summarise(nlohmann::json& summary) const override {
-    if (summary.contains("fracture")) summary["fracture"]["dissipated_j"] = meter_.fracture();
+    if (meter_.fracturing()) summary["fracture"]["dissipated_j"] = meter_.fracture();
   }
 
  private:
@@ -96,8 +97,6 @@ SolveRun::SolveRun(const Mesh& mesh, const std::string& mesh_name, SolveOptions 
     energy_ = std::make_unique<EnergyOutput>(stepper_.view(), options_.out_dir, run_.scene.solver.output_every);
     driver_->add(*history_);
     driver_->add(*energy_);
-    crack_tips_ = std::make_unique<CrackTipOutput>(options_.out_dir, run_.scene.solver.output_every);
-    driver_->add(*crack_tips_);
   }
   progress_line_ = std::make_unique<StepFunction>([this](const RunView& st, std::int64_t, bool) {
     if (progress_) progress_->update(st.state.step, st.state.time);
@@ -126,19 +125,14 @@ Outcome SolveRun::advance(double t_end, std::int64_t max_steps) {
 
 nlohmann::json SolveRun::finish() {
   const nlohmann::json summary = driver_->finish();
-  // Cohesive cracks that softened faster than the steps followed (run_summary.cpp snap_back): said
-  // once, at the end, with what the rock's Hillerborg length predicts.
-  if (options_.progress != ProgressLine::Mode::off && summary.contains("fracture") &&
-      summary["fracture"].value("snap_back_steps", 0L) > 0) {
-    const nlohmann::json& f = summary["fracture"];
-    std::fprintf(stderr,
-                 "nmm-solve: warning: the cohesive cracks snapped back in %ld step(s): a face softened through a "
-                 "quarter of w_c in one step (the longest body, %.4g m, is %s twice Hillerborg's length l_ch = "
-                 "E·G_f/σt² = %.4g m); the run followed the snap at the step's pace, and its energy "
-                 "balance there is approximate (docs/fracture.md \"Snap-back\")\n",
-                 f["snap_back_steps"].get<long>(), f["longest_body_m"].get<double>(),
-                 f["snap_back_possible"].get<bool>() ? "longer than" : "shorter than",
-                 f["characteristic_length_m"].get<double>());
+  // What the effects warn of (effect_output.h warnings: cohesive cracks that snapped back), said
+  // once, at the end.
+  if (options_.progress != ProgressLine::Mode::off) {
+    std::vector<std::string> lines;
+    const RunView v = stepper_.view();
+    for (const Effect* e : v.effects) e->warnings(summary, lines);
+    for (const MeshChange* c : v.changes) c->warnings(summary, lines);
+    for (const std::string& line : lines) std::fprintf(stderr, "nmm-solve: warning: %s\n", line.c_str());
   }
   if (progress_) {
     const Outcome& outcome = driver_->outcome();

@@ -24,7 +24,6 @@
 #include "common/mesh.h"
 #include "common/outcome.h"
 #include "common/run_config.h"
-#include "solver/output/crack_tip_output.h"
 #include "solver/output/energy.h"
 #include "solver/output/output_writer.h"
 #include "solver/output/progress.h"
@@ -105,7 +104,6 @@ class SolveRun {
   TimeStepper stepper_;
   std::unique_ptr<OutputWriter> out_;        // with an output folder
   std::unique_ptr<EnergyOutput> energy_;     // with an output folder
-  std::unique_ptr<CrackTipOutput> crack_tips_;  // with an output folder
   std::unique_ptr<RunHistory> history_;      // with an output folder
   std::unique_ptr<ProgressLine> progress_;   // over an advance, when asked for
   std::unique_ptr<StepFunction> progress_line_;

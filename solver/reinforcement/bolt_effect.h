@@ -49,6 +49,12 @@ class BoltEffect final : public Effect {
   /// (bolt_readout.h), bolts in the scene's order; beyond the contract each point's position and
   /// displacement (m).
   void write_outputs(OutputStep& out) const override;
+  /// BOLTS (docs/checkpoint-format.md), with bolts: u32 layout 1, u64 n, per bolt its type, the
+  /// scene's points it was installed for, installation step, flags, largest force, plastic work,
+  /// its nodes (as POINTS) and its axial forces, slips and grout forces.
+  void checkpoint_sections(const RunState& s, const Mesh& mesh, CheckpointSections& sections) const override;
+  void restore_sections(const CheckpointSections& sections, const Mesh& mesh, const std::string& name,
+                        RunState& s) const override;
 
  private:
   const Model& model_;

@@ -2,7 +2,10 @@
 #include "solver/stepping/fracture_effect.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+
+#include <nlohmann/json.hpp>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -12,6 +15,7 @@
 #include "solver/fracture/recut_check.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/fracture/tip_growth.h"
+#include "solver/stepping/run_view.h"
 
 namespace nmm::solve {
 
@@ -22,7 +26,40 @@ std::unique_ptr<SceneDef> cracked_scene(const SceneDef& scene, const std::vector
   for (const CrackSegment& c : segments) cracked->joints.push_back({cracked->fracture.crack_set, {c.a, c.b}});
   return cracked;
 }
+
+/// Marks the faces the effects load in the state s of a run on `mesh` (Effect::loaded_faces).
+std::vector<std::uint8_t> loaded_faces(const Mesh& mesh, const RunState& s, const std::vector<Effect*>& effects) {
+  std::vector<std::uint8_t> loaded(mesh.loop_vertex_count(), 0);
+  for (const Effect* e : effects) e->loaded_faces(s, loaded);
+  return loaded;
+}
+
+/// The fluid pressure the effects put on the faces in the state s (Effect::face_pressures); empty
+/// where none does, so that the tips' integral reads a run without fluid as before.
+std::vector<double> face_pressures_of(const Mesh& mesh, const RunState& s, const std::vector<Effect*>& effects) {
+  std::vector<double> pressure(2 * mesh.loop_vertex_count(), 0.0);
+  for (const Effect* e : effects) e->face_pressures(s, pressure);
+  if (std::all_of(pressure.begin(), pressure.end(), [](double p) { return p == 0.0; })) pressure.clear();
+  return pressure;
+}
 }  // namespace
+
+FractureEffect::FractureEffect(const Mesh& mesh, const SceneDef& scene)
+    : fracture_(scene), elements_(mesh.element_count()) {
+  // New faces soften where a rock that can break has a fracture energy (cohesive_law.h), as the
+  // contacts judge it (ContactSet::cohesive).
+  if (!scene.fracture.present) return;
+  for (const BodyDef& b : scene.bodies) {
+    const MaterialDef& m = scene.materials[static_cast<std::size_t>(b.material)];
+    const double l = characteristic_length(m.young, m.strength);
+    if (!(l > 0) || b.outer.empty()) continue;
+    if (characteristic_length_ == 0 || l < characteristic_length_) characteristic_length_ = l;
+    double x0 = b.outer[0].x, x1 = x0, y0 = b.outer[0].y, y1 = y0;
+    for (const Vec2& p : b.outer) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    longest_body_ = std::max({longest_body_, x1 - x0, y1 - y0});
+  }
+  for (const MaterialDef& m : scene.materials) cohesive_ = cohesive_ || cohesive_law(m.strength).on();
+}
 
 Outcome FractureEffect::cascade(double t) const {
   return Outcome::stop(StopCode::fracture_cascade,
@@ -64,6 +101,7 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
                                     [](const MaterialDef& m) { return cohesive_law(m.strength).on(); });
   out.history = transfer_history(history, mesh, *out.mesh, out.map, first, cohesive);
   fracture_.cut(segments, *out.mesh, out.map);
+  elements_ = out.mesh->element_count();
   timings.fracture += watch.seconds();
   return true;
 }
@@ -94,11 +132,32 @@ bool FractureEffect::restart(const CheckpointSections& sections, const Mesh& mes
   if (out.mesh->scene_sha256 != mesh.scene_sha256)
     throw InputError(path, "section MESH", "the cracked mesh of another scene");
   fracture_.load(*section("FRACTURE"), *out.mesh, path);
+  elements_ = out.mesh->element_count();
   out.scene = cracked_scene(scene, fracture_.segments());
   return true;
 }
 
+void FractureEffect::write_outputs(OutputStep& out) const {
+  if (out.step == tips_.last_step) return;
+  tips_.last_step = out.step;
+  tips_.recorded = true;
+  const std::vector<double> pressure = face_pressures_of(out.mesh, out.state, out.effects);
+  const std::vector<TipReading> tips =
+      read_crack_tips(out.mesh, out.model.scene(), out.space, out.state, fracture_.segments(), fracture_.debris(),
+                      loaded_faces(out.mesh, out.state, out.effects), tips_.finder,
+                      pressure.empty() ? nullptr : &pressure);
+  tips_.now = static_cast<int>(tips.size());
+  tips_.any = tips_.any || !tips.empty();
+  char row[320];
+  for (const TipReading& r : tips) {
+    std::snprintf(row, sizeof row, "%lld,%.9g,%d,%.9g,%.9g,%.9g,%.9g,%.6g\n", static_cast<long long>(out.step),
+                  out.time, r.tip, r.x, r.y, r.k1, r.k2, r.angle_deg);
+    tips_.rows += row;
+  }
+}
+
 void FractureEffect::write_files(const OutputStep& out, const std::string& dir) const {
+  if (tips_.any) write_file_atomically(dir + "/crack_tips.csv", "step,time,tip,x,y,k1,k2,angle_deg\n" + tips_.rows);
   if (!active()) return;
   std::string csv = "step,time,x0,y0,x1,y1,mode\n";
   char row[256];
@@ -115,10 +174,65 @@ void FractureEffect::write_files(const OutputStep& out, const std::string& dir) 
   }
 }
 
-void FractureEffect::checkpoint_sections(const Mesh& mesh, CheckpointSections& sections) const {
+void FractureEffect::checkpoint_sections(const RunState& /*s*/, const Mesh& mesh, CheckpointSections& sections) const {
   if (fracture_.segments().empty()) return;
   sections.emplace_back("MESH", mesh_to_bytes(mesh));
   sections.emplace_back("FRACTURE", fracture_.save());
+}
+
+void FractureEffect::summarise(const RunState& /*s*/, nlohmann::json& summary) const {
+  if (active()) {
+    // Intact rock that breaks (docs/fracture.md): the cracks so far.
+    const std::vector<CrackSegment>& cracks = fracture_.segments();
+    double length = 0;
+    long tensile = 0;
+    for (const CrackSegment& c : cracks) {
+      length += std::hypot(c.b.x - c.a.x, c.b.y - c.a.y);
+      tensile += c.mode == CrackMode::tensile;
+    }
+    nlohmann::json f = {{"segments", cracks.size()},
+                        {"cracks", fracture_.crack_count()},
+                        {"length_m", length},
+                        {"tensile_segments", tensile},
+                        {"shear_segments", static_cast<long>(cracks.size()) - tensile},
+                        {"first_crack_step", cracks.empty() ? nlohmann::json(nullptr) : nlohmann::json(cracks.front().step)},
+                        {"elements", elements_},
+                        // Splinters the cracks cut off, taken out of the model (fracture.h).
+                        {"debris_blocks", fracture_.debris_blocks()},
+                        {"debris_area_m2", fracture_.debris_area()},
+                        // Steps taken again because their solution broke the rock.
+                        {"steps_resolved", fracture_.resolves()}};
+    // A bar longer than 2·l_ch snaps back after its peak when pulled (docs/fracture.md).
+    if (cohesive_)
+      f.update({{"characteristic_length_m", characteristic_length_},
+                {"longest_body_m", longest_body_},
+                {"snap_back_possible", characteristic_length_ > 0 && longest_body_ > 2 * characteristic_length_}});
+    if (!summary.contains("fracture")) summary["fracture"] = nlohmann::json::object();
+    summary["fracture"].update(f);
+  }
+  if (tips_.recorded && (tips_.any || active())) summary["fracture"]["tips"] = tips_.now;
+}
+
+void FractureEffect::warnings(const nlohmann::json& summary, std::vector<std::string>& lines) const {
+  if (!summary.contains("fracture") || summary["fracture"].value("snap_back_steps", 0L) <= 0) return;
+  const nlohmann::json& f = summary["fracture"];
+  char line[768];
+  std::snprintf(line, sizeof line,
+                "the cohesive cracks snapped back in %ld step(s): a face softened through a quarter of w_c in one "
+                "step (the longest body, %.4g m, is %s twice Hillerborg's length l_ch = E·G_f/σt² = %.4g m); the run "
+                "followed the snap at the step's pace, and its energy balance there is approximate "
+                "(docs/fracture.md \"Snap-back\")",
+                f["snap_back_steps"].get<long>(), f["longest_body_m"].get<double>(),
+                f["snap_back_possible"].get<bool>() ? "longer than" : "shorter than",
+                f["characteristic_length_m"].get<double>());
+  lines.emplace_back(line);
+}
+
+std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& finder) {
+  const Fracture& f = run.fracture;
+  const std::vector<double> pressure = face_pressures_of(run.mesh, run.state, run.effects);
+  return read_crack_tips(run.mesh, run.model.scene(), run.space, run.state, f.segments(), f.debris(),
+                         loaded_faces(run.mesh, run.state, run.effects), finder, pressure.empty() ? nullptr : &pressure);
 }
 
 }  // namespace nmm::solve

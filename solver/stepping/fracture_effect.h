@@ -4,19 +4,34 @@
 // scene's crack set (preprocess/recut.h, the one cutting code), and the state and contact history
 // of the step's start are carried onto the cracked mesh (solver/fracture/state_transfer.h). With
 // NMM_CHECK_RECUT set every re-cut is compared with a full cut (recut_check.h).
+//
+// What the run writes of it (effect_output.h): cracks.csv and cracked_mesh.nmm at the end;
+// crack_tips.csv — K_I, K_II at every tip inside a body at every output step
+// (solver/fracture/crack_tip_readout.h), for every run that has such a tip, whether or not its
+// rock can break (the tips of the scene's joints); summary.json's "fracture" block (with the
+// cohesive rock's Hillerborg length; the contacts add what their solve measured of the
+// softening: contact_effect.h); the checkpoint's MESH and FRACTURE sections, and the FRACTURE
+// bytes in the state hash.
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "solver/flow/flow_network.h"
+#include "solver/fracture/crack_tip_readout.h"
 #include "solver/fracture/fracture.h"
 #include "solver/stepping/mesh_change.h"
 
 namespace nmm::solve {
 
+struct RunView;
+
 class FractureEffect final : public MeshChange {
  public:
-  explicit FractureEffect(const SceneDef& scene) : fracture_(scene) {}
+  /// The cracks of a run on `mesh` (the file's) of `scene`.
+  FractureEffect(const Mesh& mesh, const SceneDef& scene);
 
   bool active() const override { return fracture_.active(); }
   std::size_t joints_added() const override { return fracture_.segments().size(); }
@@ -30,20 +45,34 @@ class FractureEffect final : public MeshChange {
               const std::vector<ContactHistory>& history, NewMesh& out, StepTimings& timings) override;
   void book(double seconds, StepTimings& timings) const override { timings.fracture += seconds; }
   void count_resolve() override { fracture_.count_resolve(); }
+  /// The cracks and tips (the FRACTURE bytes) once the rock has cracked.
+  std::string hashed_state() const override { return fracture_.segments().empty() ? std::string() : fracture_.save(); }
   bool restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene, const std::string& path,
                NewMesh& out) override;
 
-  std::vector<std::string> output_files() const override { return {"cracks.csv", "cracked_mesh.nmm"}; }
+  std::vector<std::string> output_files() const override { return {"cracks.csv", "cracked_mesh.nmm", "crack_tips.csv"}; }
   void effect_names(const RunState& /*s*/, std::vector<std::string>& names) const override {
     if (active()) names.push_back("fracture");
   }
   /// A cracked run's mesh (MESH: no longer the file's, it travels with the state) and its cracks
   /// (FRACTURE); nothing before the first crack.
-  void checkpoint_sections(const Mesh& mesh, CheckpointSections& sections) const override;
+  void checkpoint_sections(const RunState& s, const Mesh& mesh, CheckpointSections& sections) const override;
+  /// The tips' rows of crack_tips.csv at an output step (step,time,tip,x,y,k1,k2,angle_deg).
+  void write_outputs(OutputStep& out) const override;
   /// cracks.csv (a row per crack segment, where its ends were when it formed: docs/interface.md)
   /// and, once the rock has cracked, cracked_mesh.nmm: the mesh the run ended on, for
-  /// nmm-inspect. Nothing without a fracture block.
+  /// nmm-inspect (nothing of these without a fracture block); crack_tips.csv when an output step
+  /// found a tip.
   void write_files(const OutputStep& out, const std::string& dir) const override;
+  /// summary.json "fracture" with a fracture block (docs/interface.md): segments, cracks, their
+  /// length and modes, the first crack's step, the elements, the debris, the steps taken again;
+  /// where new cracks soften, the rock's Hillerborg length, the longest body and whether a bar
+  /// that long snaps back; and "tips" (the tips at the last output step) for a run that wrote
+  /// output steps and has a fracture block or found a tip.
+  void summarise(const RunState& s, nlohmann::json& summary) const override;
+  /// Cohesive cracks that softened faster than the steps followed (summary.json
+  /// fracture.snap_back_steps > 0), with what the rock's Hillerborg length predicts.
+  void warnings(const nlohmann::json& summary, std::vector<std::string>& lines) const override;
 
   /// The cracks so far and their tips (RunView::fracture).
   const Fracture& fracture() const { return fracture_; }
@@ -58,6 +87,27 @@ class FractureEffect final : public MeshChange {
   std::unique_ptr<FlowNetwork> flow_network_;  // of the mesh below (the same derivation as the flow effect's)
   const Mesh* flow_mesh_ = nullptr;
   std::size_t flow_mesh_vertices_ = 0;
+  std::size_t elements_ = 0;  // of the mesh the run is on now (the file's, or the last re-cut's)
+  // Cohesive softening (docs/fracture.md "Snap-back"): new cracks soften; Hillerborg's length
+  // l_ch = E·G_f/σt² of the rock that softens (the smallest), m; the longest body of it (the
+  // larger side of its outer boundary's bounding box), m.
+  bool cohesive_ = false;
+  double characteristic_length_ = 0, longest_body_ = 0;
+  // crack_tips.csv as the output steps wrote it: the output's, not the run's state (a restart
+  // numbers the tips afresh), hence mutable in the const output stages.
+  struct TipRows {
+    CrackTipFinder finder;
+    std::string rows;              // the CSV's rows so far
+    std::int64_t last_step = -1;   // the output step last written (a step is written once)
+    bool recorded = false;         // an output step was written
+    bool any = false;              // a tip was found at some output step
+    int now = 0;                   // tips at the last output step
+  };
+  mutable TipRows tips_;
 };
+
+/// The tips of the run's state now and their K (crack_tip_readout.h), numbered by `finder`: the
+/// crack faces the effects load (Effect::loaded_faces) counted, debris left out.
+std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& finder);
 
 }  // namespace nmm::solve

@@ -18,7 +18,7 @@ MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string&
       indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()),
       bolts(model, space, scene_name), contact(model, space), absorbing(model, space), supports(model),
       flow(model, space),
-      effects{&bolts, &contact, &absorbing, &supports, &flow} {}
+      effects{&bolts, &contact, &absorbing, &supports, &flow}, checkpointed{&absorbing, &bolts, &flow} {}
 
 int MeshBound::number(const RunState& s) {
   int unknowns = space.unknowns();

@@ -54,6 +54,10 @@ struct MeshBound {
   SupportEffect supports;           // the supports' reactions at each accepted step (support_effect.h)
   FlowEffect flow;                  // fluid flow along the joints (flow_effect.h)
   std::vector<Effect*> effects;     // the above, in the order the step calls them
+  /// The effects that carry state of their own in the checkpoint, in the order of their sections
+  /// (docs/checkpoint-format.md: ABSORB, BOLTS, FLOW — the file's order since they were added,
+  /// so a checkpoint and a state hash keep their bytes); a new one goes at the end.
+  std::vector<Effect*> checkpointed;
 
   /// Numbers every effect's unknowns (after the covers') and coupling groups (after the
   /// elements') on state s; returns the system's unknowns.
@@ -80,7 +84,8 @@ struct MeshBound {
 /// The effects that change the mesh (mesh_change.h): they live as long as the run, across the
 /// re-cuts that rebuild a MeshBound. A new one is a member here and an entry in the list.
 struct MeshChanges {
-  explicit MeshChanges(const SceneDef& scene) : fracture(scene), list{&fracture} {}
+  /// The changes of a run on `mesh` (the file's) of `scene`.
+  MeshChanges(const Mesh& mesh, const SceneDef& scene) : fracture(mesh, scene), list{&fracture} {}
   MeshChanges(const MeshChanges&) = delete;
   MeshChanges& operator=(const MeshChanges&) = delete;
 
@@ -89,6 +94,8 @@ struct MeshChanges {
   /// The one that takes part in the run, or null (two that re-cut the same step would need a rule
   /// for which cuts first; there is one today).
   MeshChange* active() const;
+  /// The cracks so far (RunView::fracture: the pictures, the Python module, the tests read them).
+  const Fracture& cracks() const { return fracture.fracture(); }
   /// Joints the changes added to the scene so far (MeshBound's `cracks`).
   std::size_t joints_added() const;
 };

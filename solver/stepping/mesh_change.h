@@ -58,6 +58,8 @@ class MeshChange : public EffectOutput {
   virtual void book(double seconds, StepTimings& timings) const = 0;
   /// A step was taken again after a change (summary.json).
   virtual void count_resolve() = 0;
+  /// What of its own state the run's state hash covers (run_view.h state_hash), or nothing yet.
+  virtual std::string hashed_state() const { return {}; }
   /// From a checkpoint's sections (`path` names it in errors): true, `out` is the changed mesh it
   /// was written on (its history empty: the checkpoint's follows).
   virtual bool restart(const CheckpointSections& sections, const Mesh& mesh, const SceneDef& scene,

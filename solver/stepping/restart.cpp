@@ -34,7 +34,8 @@ RunState restarted_state(const RunState& checkpoint, const RunState& scene_start
 }
 
 void write_checkpoint(const RunView& v, const std::string& path) {
-  CheckpointSections sections = state_to_sections(v.state, save_contact_history(v.contacts), v.mesh);
+  // The run state's sections and the effects' (the state they carry: ABSORB, BOLTS, FLOW).
+  CheckpointSections sections = state_sections(v);
   // The factorisation an effect that solves the steps its own way reuses from step to step (the
   // contacts': effect.h solves()), so a restart continues with the same round-off.
   for (const Effect* e : v.effects)
@@ -42,9 +43,8 @@ void write_checkpoint(const RunView& v, const std::string& path) {
       sections.emplace_back("FACTOR", v.system.factor_source());
       break;
     }
-  // What the effects keep beyond the run state (a cracked run's mesh and cracks).
-  for (const Effect* e : v.effects) e->checkpoint_sections(v.mesh, sections);
-  for (const MeshChange* c : v.changes) c->checkpoint_sections(v.mesh, sections);
+  // What the mesh changes keep (a cracked run's mesh and cracks), after the factorisation.
+  for (const MeshChange* c : v.changes) c->checkpoint_sections(v.state, v.mesh, sections);
   write_checkpoint_file(sections, path);
 }
 

@@ -26,12 +26,18 @@ std::vector<SupportReaction> support_reactions(const RunView& v) {
   return {};
 }
 
+CheckpointSections state_sections(const RunView& v) {
+  CheckpointSections sections = state_to_sections(v.state, save_contact_history(v.contacts), v.mesh);
+  for (const Effect* e : v.checkpointed) e->checkpoint_sections(v.state, v.mesh, sections);
+  return sections;
+}
+
 std::string state_hash(const RunView& v) {
-  const std::string hash = state_hash(v.state, save_contact_history(v.contacts), v.mesh);
-  // A cracked run: its cracks and tips are state too (the checkpoint's FRACTURE section); a run
-  // that has not cracked hashes as it always has.
-  if (v.fracture.segments().empty()) return hash;
-  return to_hex(sha256(hash + v.fracture.save()));
+  std::string hash = state_hash(state_sections(v));
+  // A change that carries nothing yet (a run that has not cracked) leaves the hash as it was.
+  for (const MeshChange* c : v.changes)
+    if (const std::string bytes = c->hashed_state(); !bytes.empty()) hash = to_hex(sha256(hash + bytes));
+  return hash;
 }
 
 }  // namespace nmm::solve

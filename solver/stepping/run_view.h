@@ -67,6 +67,8 @@ struct RunView {
   const std::vector<Effect*>& effects;
   /// The effects that change the mesh (mesh_change.h; mesh_bound.h MeshChanges lists them).
   const std::vector<MeshChange*>& changes;
+  /// The effects whose state the checkpoint holds, in the order of their sections (mesh_bound.h).
+  const std::vector<Effect*>& checkpointed;
 };
 
 /// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).
@@ -77,7 +79,12 @@ std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, doubl
 std::vector<std::string> run_effects(const RunView& v);
 /// Every support's reaction in the run's state (support_effect.h; the scene's order).
 std::vector<SupportReaction> support_reactions(const RunView& v);
-/// SHA-256 (hex) of the physical state and contact history: equal hashes, equal states.
+/// The checkpoint's sections of the run's state: the run state's own (run_state.h) and those of
+/// the effects that carry state (effect_output.h checkpoint_sections), in the file's order.
+CheckpointSections state_sections(const RunView& v);
+/// SHA-256 (hex) of the physical state and contact history: equal hashes, equal states. The hash
+/// of state_sections (run_state.h state_hash), and for each mesh change that carries state of its
+/// own (MeshChange::hashed_state: the cracks) the SHA-256 of that hash's hex digits and its bytes.
 std::string state_hash(const RunView& v);
 
 }  // namespace nmm::solve

@@ -53,7 +53,7 @@ namespace nmm::solve {
 
 TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name)
     : mesh_(&mesh), scene_(&scene), scene_name_(scene_name),
-      b_(std::make_unique<MeshBound>(mesh, scene, scene_name)), changes_(scene),
+      b_(std::make_unique<MeshBound>(mesh, scene, scene_name)), changes_(mesh, scene),
       control_(scene.solver, b_->model.w0(), scene.solver.time_step) {
   // Higher-order coefficients may be linearly dependent (cover_space.h, system_matrix.h).
   if (b_->space.order() > 0) system_.set_regularised(b_->space.higher_order_unknowns(), kRegularisation);
@@ -349,8 +349,9 @@ void TimeStepper::restart_from(const std::string& path) {
     s_.pattern_pairs.clear();  // of the mesh before; the checkpoint's own follow in restore
     replace_mesh(std::move(m.mesh), std::move(m.scene), {});
   }
-  const RunState st = state_from_sections(sections, mesh(), path, history, b_->space.dofs_per_cover(),
-                                          b_->space.terms(), &factor);
+  RunState st = state_from_sections(sections, mesh(), path, history, b_->space.dofs_per_cover(), b_->space.terms(),
+                                    &factor);
+  for (const Effect* e : b_->effects) e->restore_sections(sections, mesh(), path, st);  // their own sections
   restore(st, history, path);
   // Unknowns an effect installed at this restart (bolts) change the system's size: its first
   // step factorises anew.

@@ -72,8 +72,8 @@ class TimeStepper : private StepHost {
   /// What the outputs read: state, model, space, contacts, system, costs (run_view.h).
   RunView view() const {
     return {*mesh_,  b_->model, b_->space, b_->config, s_, b_->contact.set(), system_, timings_, b_->contact.stats(),
-            balance_, stopped_at_ratio_, threads_, changes_.fracture.fracture(), topology_, recut_, recut_from_, recut_start_,
-            b_->effects, changes_.list};
+            balance_, stopped_at_ratio_, threads_, changes_.cracks(), topology_, recut_, recut_from_, recut_start_,
+            b_->effects, changes_.list, b_->checkpointed};
   }
 
  private:
