@@ -5,7 +5,7 @@
 // same mesh): solver.steps more steps, step numbers and times going on from the checkpoint's,
 // with the run's variants (friction, joint laws, loads, supports, time step, `excavate`); a
 // damaged checkpoint or one of another mesh is bad input (exit status 2).
-//           [--pictures [--picture-field displacement|sxx|syy|sxy] [--exaggerate F]] [--text-frames] [--contacts-every N]
+//           [--pictures [--picture-field displacement|sxx|syy|sxy|pressure] [--exaggerate F]] [--text-frames] [--contacts-every N]
 //           [--contacts-gzip]
 //
 // Loads a mesh file (every check of the reader) and runs it as solve_run.h makes a run (the
@@ -63,7 +63,8 @@ int main(int argc, char** argv) {
   app.add_flag("--contacts-gzip", contacts_gzip,
                "write contacts.csv.gz (the same CSV, gzip-compressed, about a third of the size)");
   app.add_option("--picture-field", field_name,
-                 "what colours result.svg: displacement, sxx, syy or sxy");
+                 "what colours result.svg: displacement, sxx, syy, sxy, or pressure (the flow network's "
+                 "joints by their water pressure; a scene with \"flow\")");
   app.add_option("--exaggerate", exaggerate,
                  "draw result.svg's displacements F times larger (1: true scale); default: "
                  "automatic when the largest displacement is under 1 % of the model size")
@@ -75,7 +76,7 @@ int main(int argc, char** argv) {
   nmm::report::PictureField field;
   if (!nmm::report::parse_picture_field(field_name, field)) {
     std::cerr << "nmm-solve: --picture-field: '" << field_name
-              << "' is not one of displacement, sxx, syy, sxy\n";
+              << "' is not one of displacement, sxx, syy, sxy, pressure\n";
     return nmm::kExitBadInput;
   }
   try {
@@ -94,6 +95,9 @@ int main(int argc, char** argv) {
     options.inputs = nmm::solve::run_inputs(mesh_path, options, field_name,
                                             exaggerate > 0 ? nlohmann::json(exaggerate) : nlohmann::json(nullptr));
     nmm::solve::SolveRun run(mesh, mesh_path, options);
+    if (field == nmm::report::PictureField::pressure && !run.scene().scene.flow.present)
+      throw nmm::InputError("--picture-field", "",
+                            "pressure: the scene has no \"flow\" block, so no water flows in this run");
     nmm::solve::install_interrupt_handlers();
     run.set_stop_check(nmm::solve::interrupt_requested);
     const nlohmann::json summary = run.run();

@@ -13,6 +13,8 @@
 //                  files it writes whole into the folder (cracks.csv)
 //   summarise      its part of summary.json
 //   effect_names   what it adds to summary.json "effects" when it takes part (docs/interface.md)
+//   frame_parts    at every frame, grids of its own shown beside the elements (the flow network:
+//                  frames/flow_<step>.vtu, a part of the same time step in frames.pvd)
 //   checkpoint_sections  the checkpoint's sections of what it keeps beyond the run state (the
 //                  cracks' MESH and FRACTURE; docs/checkpoint-format.md); what it keeps in
 //                  RunState is written with the state (run_state.h)
@@ -27,6 +29,7 @@
 
 #include "common/checkpoint_file.h"
 #include "common/mesh.h"
+#include "common/vtk_writer.h"
 #include "solver/discretisation/output_tables.h"
 #include "solver/discretisation/run_state.h"
 
@@ -41,6 +44,13 @@ struct OutputStep {
   OutputTables& tables;   ///< the CSV files of the output steps (output_tables.h)
 };
 
+/// A grid an effect adds to a frame: written as frames/<name>_<step>.vtu and listed in
+/// frames.pvd as a part of the frame's time step (ParaView shows the parts as blocks).
+struct FramePart {
+  std::string name;  ///< lower-case letters: the file's prefix ("flow")
+  PolygonGrid grid;
+};
+
 class EffectOutput {
  public:
   /// The files (names in the output folder) write_outputs and write_files may write.
@@ -50,6 +60,8 @@ class EffectOutput {
   /// The files it writes whole into folder `dir` once the run has stopped (WriteError when it
   /// cannot).
   virtual void write_files(const OutputStep& /*out*/, const std::string& /*dir*/) const {}
+  /// The grids it adds to the frame of an output step (none: the frame is the elements alone).
+  virtual void frame_parts(const OutputStep& /*out*/, std::vector<FramePart>& /*parts*/) const {}
   /// Its part of summary.json for the run in state s (the bolts' "bolts"), added to `summary`.
   virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
   /// The names it adds to summary.json "effects" for the run in state s (none: it takes no part).
