@@ -27,6 +27,7 @@
 #include "common/command_line.h"
 #include "common/error.h"
 #include "common/mesh_file.h"
+#include "common/run_config.h"
 #include "nmm_version.h"
 #include "report/failure_cause.h"
 #include "report/run_pictures.h"
@@ -94,10 +95,12 @@ int main(int argc, char** argv) {
     // What this run was made from, so nmm-report can redraw any frame (result_redraw.h).
     options.inputs = nmm::solve::run_inputs(mesh_path, options, field_name,
                                             exaggerate > 0 ? nlohmann::json(exaggerate) : nlohmann::json(nullptr));
-    nmm::solve::SolveRun run(mesh, mesh_path, options);
-    if (field == nmm::report::PictureField::pressure && !run.scene().scene.flow.present)
+    // Before the output folder is made: a picture of what the run cannot have is bad input.
+    if (field == nmm::report::PictureField::pressure &&
+        !nmm::solve::make_run_scene(mesh, mesh_path, config_path, sets).scene.flow.present)
       throw nmm::InputError("--picture-field", "",
                             "pressure: the scene has no \"flow\" block, so no water flows in this run");
+    nmm::solve::SolveRun run(mesh, mesh_path, options);
     nmm::solve::install_interrupt_handlers();
     run.set_stop_check(nmm::solve::interrupt_requested);
     const nlohmann::json summary = run.run();

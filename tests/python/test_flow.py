@@ -103,6 +103,7 @@ def test_pressure_picture_of_a_run_without_flow_is_bad_input(meshes, tmp_path):
              "--picture-field", "pressure", check=False)
     assert p.returncode == 2
     assert p.stderr.count("\n") == 1 and "no \"flow\" block" in p.stderr
+    assert not (tmp_path / "run").exists()  # refused before the output folder is made
     tool("nmm-solve", meshes("block_on_incline"), "-o", tmp_path / "ok", "-q", "--set", "solver.steps=2")
     p = tool("nmm-report", tmp_path / "ok", "--picture-field", "pressure", check=False)
     assert p.returncode == 2 and "flow_000002.vtu" in p.stderr
