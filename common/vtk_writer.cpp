@@ -26,8 +26,6 @@ namespace nmm {
 
 namespace {
 
-constexpr int kVtkPolygon = 7;  // VTK_POLYGON cell type
-
 // Shortest text that reads back to the same double: the files are also used to compare runs.
 void append_double(std::string& out, double v) {
   char buf[32];
@@ -164,6 +162,11 @@ void check_grid(const PolygonGrid& g) {
     if (g.offsets[c + 1] < g.offsets[c]) throw std::logic_error("PolygonGrid: offsets decrease");
   if (static_cast<std::size_t>(g.offsets.back()) != g.connectivity.size())
     throw std::logic_error("PolygonGrid: last offset != connectivity length");
+  if (g.cell_type != PolygonGrid::kPolygon && g.cell_type != PolygonGrid::kLine)
+    throw std::logic_error("PolygonGrid: cell type neither polygon nor line");
+  if (g.cell_type == PolygonGrid::kLine)
+    for (std::size_t c = 0; c + 1 < g.offsets.size(); ++c)
+      if (g.offsets[c + 1] - g.offsets[c] != 2) throw std::logic_error("PolygonGrid: a line cell without two points");
   for (std::int32_t p : g.connectivity)
     if (p < 0 || static_cast<std::size_t>(p) >= g.point_count())
       throw std::logic_error("PolygonGrid: point index out of range");
@@ -202,7 +205,7 @@ std::string vtu_text(const PolygonGrid& g) {
   conn.type = offs.type = types.type = GridArray::Type::Int32;
   conn.i32 = g.connectivity;
   offs.i32.assign(g.offsets.begin() + 1, g.offsets.end());
-  types.i32.assign(g.cell_count(), kVtkPolygon);
+  types.i32.assign(g.cell_count(), g.cell_type);
   out += "      <Cells>\n";
   out += "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
   append_values(out, conn, "          ", 12);
@@ -259,7 +262,10 @@ std::string legacy_vtk_text(const PolygonGrid& g, const std::string& title) {
   out += "CELL_TYPES ";
   append_int(out, static_cast<long long>(g.cell_count()));
   out += '\n';
-  for (std::size_t c = 0; c < g.cell_count(); ++c) out += "7\n";
+  for (std::size_t c = 0; c < g.cell_count(); ++c) {
+    append_int(out, g.cell_type);
+    out += '\n';
+  }
   if (!g.cell_data.empty()) {
     out += "CELL_DATA ";
     append_int(out, static_cast<long long>(g.cell_count()));

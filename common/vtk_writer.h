@@ -30,8 +30,12 @@ struct GridArray {
   std::size_t value_count() const { return type == Type::Float64 ? f64.size() : i32.size(); }
 };
 
-/// Polygon cells over a point set, with named point and cell data.
+/// Polygon cells over a point set, with named point and cell data. `cell_type` kLine makes every
+/// cell a line between two points instead (the flow network of a frame: flow_effect.h).
 struct PolygonGrid {
+  static constexpr std::uint8_t kPolygon = 7;  ///< VTK_POLYGON
+  static constexpr std::uint8_t kLine = 3;     ///< VTK_LINE: every cell has exactly two points
+  std::uint8_t cell_type = kPolygon;       ///< the VTK cell type of every cell
   std::vector<double> points;              ///< [3·point] x, y, z, m (z = 0 in 2D)
   std::vector<std::int32_t> offsets{0};    ///< [cell+1] CSR into connectivity, offsets[0] = 0
   std::vector<std::int32_t> connectivity;  ///< point indices of each cell's loop, CCW

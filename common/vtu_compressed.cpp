@@ -97,7 +97,7 @@ std::string vtu_compressed(const PolygonGrid& g, int level) {
   w.xml += "      </Points>\n      <Cells>\n";
   // VTK's offsets are the end of each cell (no leading 0), unlike our CSR.
   const std::vector<std::int32_t> offsets(g.offsets.begin() + 1, g.offsets.end());
-  const std::vector<std::uint8_t> types(g.cell_count(), 7);  // VTK_POLYGON
+  const std::vector<std::uint8_t> types(g.cell_count(), g.cell_type);  // VTK_POLYGON or VTK_LINE
   w.array("Int32", "connectivity", 0, g.connectivity.data(), g.connectivity.size() * 4, "        ");
   w.array("Int32", "offsets", 0, offsets.data(), offsets.size() * 4, "        ");
   w.array("UInt8", "types", 0, types.data(), types.size(), "        ");

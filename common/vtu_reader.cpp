@@ -258,8 +258,12 @@ PolygonGrid parse_vtu(const std::string& s, const std::string& name) {
     } else if (a.section == "Cells") {
       if (array_name == "types") {
         expect(ncells);
+        // Every cell a polygon (the elements), or every one a line (the flow network's part).
+        if (!i32.empty()) g.cell_type = static_cast<std::uint8_t>(i32.front() == PolygonGrid::kLine ? PolygonGrid::kLine : PolygonGrid::kPolygon);
         for (std::int32_t v : i32)
-          if (v != 7) p.fail(tag.begin, "a cell is not a polygon (type " + std::to_string(v) + ")");
+          if (v != g.cell_type)
+            p.fail(tag.begin, "a cell is not a polygon (type " + std::to_string(v) + ")" +
+                                  (g.cell_type == PolygonGrid::kLine ? " among lines" : ""));
       } else if (array_name == "connectivity" && width == 4) {
         g.connectivity = std::move(i32);
         have_conn = true;

@@ -19,9 +19,10 @@
 
 namespace nmm {
 
-/// Parses `contents` (the whole file) of an UnstructuredGrid of polygons. `name` names the file
-/// in errors. The result has offsets in our CSR form (leading 0) and point and cell arrays of
-/// type Float64 or Int32; the "types" array is checked (all VTK_POLYGON) and not kept.
+/// Parses `contents` (the whole file) of an UnstructuredGrid of polygons, or of lines (a frame's
+/// flow network). `name` names the file in errors. The result has offsets in our CSR form
+/// (leading 0) and point and cell arrays of type Float64 or Int32; the "types" array is checked
+/// (all VTK_POLYGON, or all VTK_LINE) and kept as `cell_type`.
 PolygonGrid parse_vtu(const std::string& contents, const std::string& name);
 
 /// Reads and parses the file at `path`. InputError naming `path` when it cannot.

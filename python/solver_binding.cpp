@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "report/run_pictures.h"
+#include "solver/flow/flow_effect.h"
 #include "solver/output/solve_run.h"
 #include "python/binding.h"
 #include "python/crack_arrays.h"
@@ -128,7 +129,7 @@ class PySolver {
       throw py::value_error("pictures are drawn into the output folder: make the Solver with out=DIR");
     report::PictureField field;
     if (!report::parse_picture_field(field_name, field))
-      throw py::value_error("field: '" + field_name + "' is not one of displacement, sxx, syy, sxy");
+      throw py::value_error("field: '" + field_name + "' is not one of displacement, sxx, syy, sxy, pressure");
     const double f = exaggerate.is_none() ? 0.0 : exaggerate.cast<double>();
     flush();
     py::gil_scoped_release release;
@@ -366,6 +367,43 @@ nmm.InputError.)")
           "columns (a dict of arrays, a row per tip): tip (its number, kept as its crack grows), x, y (m), "
           "k1, k2 (Pa·√m, K_I and K_II by the interaction integral), angle_deg (the maximum tangential "
           "stress direction, deg from +x), direction ((n, 2) the same as a unit vector), radius (m)")
+      .def(
+          "flow",
+          [](const PySolver& s) -> py::object {
+            const solve::RunView v = s.run().view();
+            const solve::FlowEffect* flow = nullptr;
+            for (const solve::Effect* e : v.effects)
+              if (const auto* f = dynamic_cast<const solve::FlowEffect*>(e); f != nullptr && f->active()) flow = f;
+            if (flow == nullptr) return py::none();
+            const solve::FlowNetwork& net = flow->network();
+            const solve::RunState& st = v.state;
+            const auto n = static_cast<py::ssize_t>(net.nodes());
+            const auto ns = static_cast<py::ssize_t>(net.segments().size());
+            std::vector<double> position(net.node_xy());
+            const std::vector<double> u = net.node_displacements(st.loop_u);
+            for (std::size_t i = 0; i < position.size(); ++i) position[i] += u[i];
+            std::vector<std::int32_t> ends, joint;
+            for (const solve::FlowSegment& sg : net.segments()) {
+              ends.insert(ends.end(), {sg.a, sg.b});
+              joint.push_back(sg.joint);
+            }
+            py::dict d;
+            d["xy"] = copy(net.node_xy(), {n, 2});
+            d["position"] = copy(position, {n, 2});
+            d["pressure"] = copy(st.flow_pressure, {n});
+            d["aperture"] = copy(net.node_apertures(st.flow_aperture), {n});
+            d["boundary"] = copy(net.node_boundary(), {n});
+            d["segments"] = copy(ends, {ns, 2});
+            d["segment_joint"] = copy(joint, {ns});
+            d["segment_aperture"] = copy(st.flow_aperture, {ns, 2});
+            return std::move(d);
+          },
+          "the flow network now (a scene with \"flow\"; None without), a dict of arrays (copies): "
+          "xy (n, 2) m, each node where it is in the mesh as cut (flow.csv x, y); position (n, 2) m, "
+          "where it is now; pressure (n,) Pa; aperture (n,) m, the mean hydraulic aperture of the "
+          "segment ends at the node (flow.csv); boundary (n,) the `boundaries` entry holding it, -1 "
+          "free; segments (s, 2) its segments' end nodes; segment_joint (s,) the scene's joint of "
+          "each; segment_aperture (s, 2) m, the hydraulic aperture at each segment's two ends")
       .def("__repr__", [](const PySolver& s) {
         const solve::RunView v = s.run().view();
         return "<nmm.Solver t = " + std::to_string(v.state.time) + " s, step " + std::to_string(v.state.step) +

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -59,8 +60,30 @@ bool parse_picture_field(const std::string& name, PictureField& field) {
   else if (name == "sxx") field = PictureField::stress_xx;
   else if (name == "syy") field = PictureField::stress_yy;
   else if (name == "sxy") field = PictureField::stress_xy;
+  else if (name == "pressure") field = PictureField::pressure;
   else return false;
   return true;
+}
+
+std::vector<PictureFlowSegment> flow_segments_of(const PolygonGrid& g) {
+  const GridArray *pressure = nullptr, *displacement = nullptr;
+  for (const GridArray& a : g.point_data) {
+    if (a.type != GridArray::Type::Float64) continue;
+    if (a.name == "pressure" && a.components == 1) pressure = &a;
+    if (a.name == "displacement" && a.components == 3) displacement = &a;
+  }
+  if (pressure == nullptr || displacement == nullptr || g.cell_type != PolygonGrid::kLine)
+    throw std::invalid_argument("not a flow network: line cells with point arrays pressure and displacement");
+  std::vector<PictureFlowSegment> out;
+  for (std::size_t c = 0; c < g.cell_count(); ++c) {
+    const auto i = static_cast<std::size_t>(g.connectivity[static_cast<std::size_t>(g.offsets[c])]);
+    const auto j = static_cast<std::size_t>(g.connectivity[static_cast<std::size_t>(g.offsets[c]) + 1]);
+    const Vec2 a{g.points[3 * i], g.points[3 * i + 1]}, b{g.points[3 * j], g.points[3 * j + 1]};
+    const std::vector<double>& u = displacement->f64;
+    out.push_back({a, b, {a.x - u[3 * i], a.y - u[3 * i + 1]}, {b.x - u[3 * j], b.y - u[3 * j + 1]},
+                   pressure->f64[i], pressure->f64[j]});
+  }
+  return out;
 }
 
 double weighted_quantile(const std::vector<double>& values, const std::vector<double>& weights,
@@ -130,7 +153,9 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   for (std::size_t e = 0; e < ne; ++e) {
     area[e] = gone[e] ? 0.0 : std::abs(element_area(mesh, e));
     const int b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
-    if (field == PictureField::displacement) {
+    if (field == PictureField::pressure) {
+      value[e] = 0;  // the elements are drawn grey; the network carries the colours
+    } else if (field == PictureField::displacement) {
       double s = 0;
       for (int v = b; v < end; ++v)
         s += std::hypot(xy[2 * v] - mesh.loop_xy[2 * v], xy[2 * v + 1] - mesh.loop_xy[2 * v + 1]);
@@ -142,6 +167,16 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
   }
   double lo = field == PictureField::displacement ? 0.0 : weighted_quantile(value, area, 0.01);
   double hi = weighted_quantile(value, area, 0.99);
+  if (field == PictureField::pressure) {  // kPa, the network's whole range
+    lo = std::numeric_limits<double>::infinity();
+    hi = -lo;
+    for (const PictureFlowSegment& f : state.flow)
+      for (const double p : {f.pa, f.pb}) {
+        lo = std::min(lo, 1e-3 * p);
+        hi = std::max(hi, 1e-3 * p);
+      }
+    if (state.flow.empty()) lo = hi = 0;
+  }
   if (!(hi > lo)) hi = lo + (lo == 0 ? 1e-9 : std::abs(lo) * 1e-6);
   double clamped_area = 0, total_area = 0;
   for (std::size_t e = 0; e < ne; ++e) {
@@ -181,7 +216,7 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     pts.clear();
     for (int v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
       pts.push_back(at(v));
-    const std::string c = colour_map((value[e] - lo) / (hi - lo));
+    const std::string c = field == PictureField::pressure ? "#e4e4e4" : colour_map((value[e] - lo) / (hi - lo));
     svg.polygon(pts, {c, c, 0.3 * line, 0, 1});
   }
   // Joints and boundaries where they are now, coloured by the state of their contacts; the
@@ -265,6 +300,15 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
     const Vec2 p = factor != 1 && known ? at(c.vertex) : Vec2{c.x, c.y};
     svg.circle(p, 2.5 * line, {slides ? "#ff7f0e" : "#1f77b4", "none", 0, 0, 1});
   }
+  // The flow network by pressure, over the joints (their contact states stay beside it).
+  if (field == PictureField::pressure)
+    for (const PictureFlowSegment& f : state.flow) {
+      const auto drawn_at = [&](Vec2 p, Vec2 p0) {
+        return factor == 1 ? p : Vec2{p0.x + factor * (p.x - p0.x), p0.y + factor * (p.y - p0.y)};
+      };
+      const std::string c = colour_map((0.5e-3 * (f.pa + f.pb) - lo) / (hi - lo));
+      svg.segments({{drawn_at(f.a, f.a0), drawn_at(f.b, f.b0)}}, {"none", c, 5 * line, 0, 1});
+    }
   // Bolts, over the rock and its joints.
   double bolt_max = 0;
   for (const PictureBolt& b : state.bolts)
@@ -329,12 +373,17 @@ std::string result_svg(const Mesh& mesh, const SceneDef& scene, const PictureSta
       field == PictureField::displacement ? "|u| (mm)"
       : field == PictureField::stress_xx  ? "σxx (MPa, tension +)"
       : field == PictureField::stress_yy  ? "σyy (MPa, tension +)"
+      : field == PictureField::pressure   ? "water pressure in the joints (kPa)"
                                           : "τxy (MPa)";
   svg.text({bx, by + bh + 1.0 * font}, unit_title, font, "#000000");
   char note[160];
-  std::snprintf(note, sizeof note, "bar: area-weighted %s; %.2g%% of area beyond it",
-                field == PictureField::displacement ? "0–99th pct" : "1st–99th pct",
-                total_area > 0 ? 100 * clamped_area / total_area : 0.0);
+  if (field == PictureField::pressure)
+    std::snprintf(note, sizeof note, "bar: the flow network's lowest to highest pressure, %zu segments",
+                  state.flow.size());
+  else
+    std::snprintf(note, sizeof note, "bar: area-weighted %s; %.2g%% of area beyond it",
+                  field == PictureField::displacement ? "0–99th pct" : "1st–99th pct",
+                  total_area > 0 ? 100 * clamped_area / total_area : 0.0);
   svg.text({bx, by - 1.5 * font}, note, 0.7 * font, "#444444");
   right = std::max(right, bx + SvgWriter::text_width(note, 0.7 * font));
 

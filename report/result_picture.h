@@ -34,6 +34,11 @@
 // points'), red for tension and blue for compression, from light (none) to dark (the largest
 // |force| of the picture, stated in the legend); a broken bolt grey and dashed.
 //
+// Flow (--picture-field pressure; docs/flow.md): the elements are drawn light grey and the flow
+// network's segments (frames/flow_<step>.vtu: flow_effect.h) over them, thick, each coloured by
+// the mean pressure of its two nodes on the colour bar, which spans the network's lowest to
+// highest node pressure (kPa). A scene without flow has no such picture (the caller refuses it).
+//
 // Excavated bodies (excavation.h) are gone from the model: the solver only holds their covers
 // still so that the system stays regular. They are not filled, not in the colour scale, and
 // their outline is drawn thin, grey and dashed where they were, the legend saying "excavated".
@@ -46,14 +51,26 @@
 #include "common/mesh.h"
 #include "common/outcome.h"
 #include "common/scene.h"
+#include "common/vtk_writer.h"
 
 namespace nmm::report {
 
 /// What colours the elements.
-enum class PictureField { displacement, stress_xx, stress_yy, stress_xy };
+enum class PictureField { displacement, stress_xx, stress_yy, stress_xy, pressure };
 
-/// "displacement", "sxx", "syy", "sxy" → field; false when the name is none of them.
+/// "displacement", "sxx", "syy", "sxy", "pressure" → field; false when the name is none of them.
 bool parse_picture_field(const std::string& name, PictureField& field);
+
+/// One segment of the flow network to draw by its pressure.
+struct PictureFlowSegment {
+  Vec2 a, b;        ///< m, its ends now
+  Vec2 a0, b0;      ///< m, where they were when the mesh was cut (the exaggerated drawing)
+  double pa, pb;    ///< Pa, the pressure at its ends
+};
+
+/// The segments of a frame's flow part (points where the nodes are, point arrays "pressure" and
+/// "displacement", line cells: flow_effect.h). std::invalid_argument when the arrays are missing.
+std::vector<PictureFlowSegment> flow_segments_of(const PolygonGrid& flow_part);
 
 /// One closed contact to mark.
 struct PictureContact {
@@ -82,6 +99,7 @@ struct PictureState {
   std::vector<PictureContact> contacts;
   bool contacts_known = true;           ///< false: this state's contacts were not recorded
   std::vector<PictureBolt> bolts;       ///< rock bolts and cables
+  std::vector<PictureFlowSegment> flow; ///< the flow network (PictureField::pressure draws it)
   std::vector<Vec2> measure_points;     ///< m, current positions
   std::vector<std::uint8_t> excavated_body;  ///< [body] 1: excavated by this state (empty: none)
   /// [joint of the mesh] what each joint is: 0 a scene joint, 1 a tensile crack, 2 a shear crack

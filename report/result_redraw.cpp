@@ -48,6 +48,10 @@ std::vector<std::pair<double, std::int64_t>> list_run_frames(const std::string& 
   std::vector<std::pair<double, std::int64_t>> out;
   for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos;
        at = pvd.find("<DataSet", at + 1)) {
+    // One DataSet element; the effects' parts of a frame (frames/flow_*.vtu) are not frames.
+    const std::string element = pvd.substr(at, pvd.find('>', at) - at);
+    if (element.find("file=\"frames/frame_") == std::string::npos && element.find("file=\"frames/") != std::string::npos)
+      continue;
     const std::size_t t = pvd.find("timestep=\"", at), f = pvd.find("file=\"frames/frame_", at);
     if (t == std::string::npos || f == std::string::npos)
       throw InputError(path, "byte " + std::to_string(at), "a DataSet without timestep or frame file");
@@ -139,7 +143,7 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
   if (field_name.empty()) field_name = inputs.value("picture_field", std::string("displacement"));
   PictureField field;
   if (!parse_picture_field(field_name, field))
-    throw InputError("--picture-field", "", "'" + field_name + "' is not one of displacement, sxx, syy, sxy");
+    throw InputError("--picture-field", "", "'" + field_name + "' is not one of displacement, sxx, syy, sxy, pressure");
 
   // The frame.
   const auto frames = list_run_frames(dir);
@@ -200,6 +204,17 @@ std::string redraw_result_svg(const std::string& dir, const RedrawOptions& optio
   state.loop_xy = &loop_xy;
   state.stress = &stress;
   state.joint_crack = std::move(joint_crack);
+  // The flow network of that step (frames/flow_<step>.vtu: the frame's part "flow").
+  if (field == PictureField::pressure) {
+    const fs::path flow_path = fs::path(dir) / solve::frame_part_file_name(step, "flow");
+    if (!fs::exists(flow_path))
+      throw InputError(flow_path.string(), "", "missing: --picture-field pressure needs a run with flow (a \"flow\" block in its scene)");
+    try {
+      state.flow = flow_segments_of(read_vtu(flow_path.string()));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(flow_path.string(), "", e.what());
+    }
+  }
   // Bodies excavated by this frame's step (summary.json "excavated_bodies", cumulative across
   // restarts): left out of the picture as nmm-solve --pictures leaves them out.
   if (summary.contains("excavated_bodies") && summary["excavated_bodies"].is_array())

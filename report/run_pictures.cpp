@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "solver/reinforcement/bolt_readout.h"
 
 namespace nmm::report {
@@ -39,6 +40,18 @@ ReportFiles write_run_pictures(const solve::RunView& run, const SceneDef& scene,
     state.bolts.push_back(std::move(pb));
   }
   state.excavated_body = run.state.body_removed;
+  // The flow network as the frame's part "flow" holds it (the effects' frame_parts), so that
+  // nmm-report's redraw from frames/flow_<step>.vtu is this picture byte for byte.
+  if (field == PictureField::pressure) {
+    solve::OutputTables unused;
+    const solve::OutputStep out{0, run.state.time, run.mesh, run.state, unused, run.model, run.space, run.effects};
+    std::vector<solve::FramePart> parts;
+    for (const solve::Effect* e : run.effects) e->frame_parts(out, parts);
+    for (const solve::FramePart& part : parts)
+      if (part.name == "flow") state.flow = flow_segments_of(part.grid);
+    if (parts.empty())
+      throw InputError("--picture-field", "", "pressure: the run has no flow (no \"flow\" block in its scene)");
+  }
   // A cracked run: its mesh has the cracks as joints after the scene's, and its scene with them.
   const std::vector<solve::CrackSegment>& cracks = run.fracture.segments();
   if (!cracks.empty()) {

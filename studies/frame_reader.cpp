@@ -45,6 +45,7 @@ std::vector<std::pair<double, std::string>> list_frames(const std::string& run_d
   for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos; at = pvd.find("<DataSet", at + 1)) {
     const std::size_t t = pvd.find("timestep=\"", at), f = pvd.find("file=\"", at);
     if (t == std::string::npos || f == std::string::npos) break;
+    if (pvd.compare(f + 6, 13, "frames/frame_") != 0) continue;  // an effect's part (frames/flow_*.vtu)
     const double time = std::stod(pvd.substr(t + 10));
     const std::size_t end = pvd.find('"', f + 6);
     out.emplace_back(time, (fs::path(run_dir) / pvd.substr(f + 6, end - f - 6)).string());

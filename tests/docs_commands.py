@@ -100,6 +100,12 @@ SHORTEN = [
     ("performance.md", r"(factor_update_bench) --sizes 10,20,30 --mesh 2 --steps 30 --from 10 ",
      r"\1 --sizes 10 --mesh 2 --steps 4 --from 2 ",
      "the 30 x 30 walls take minutes; the 10 x 10 wall's steps 3-4 run every method once"),
+    ("flow.md", r"(flow_bench) --csv ", r"\1 --quick --steps 2 --csv ",
+     "the 2,000-joint network takes about 20 s to cut and minutes of mechanical steps; --quick "
+     "runs every part on 80 joints"),
+    ("performance.md", r"(flow_bench) --csv ", r"\1 --quick --steps 2 --csv ",
+     "the 2,000-joint network takes about 20 s to cut and minutes of mechanical steps; --quick "
+     "runs every part on 80 joints"),
     ("python.md", r"(python_overhead\.py) --reps 7 ", r"\1 --reps 1 --steps 10 ",
      "21 runs of 500 steps take over a minute; one repetition of 10 steps runs the three ways "
      "and checks their state hashes"),

@@ -329,6 +329,60 @@ TEST(OutputWriter, CompressedFrameDecodesToTheValuesWritten) {
 
 // Reading frames back (vtu_reader.h): a frame, compressed or text, gives back exactly the
 // positions, displacements, stresses and identifiers written, and the cells of the mesh.
+// An effect's part of a frame (the flow network, effect_output.h FramePart): its own file per
+// step beside the frame, listed in frames.pvd at the frame's time as part 1; its line cells read
+// back as lines with the values written, in both formats; an earlier run's part files go.
+TEST(OutputWriter, FramePartsAreListedBesideTheirFrame) {
+  for (const FrameFormat format : {FrameFormat::text, FrameFormat::compressed}) {
+    TempDir dir;
+    const fs::path out = dir.path() / "run";
+    fs::create_directories(out / "frames");
+    std::ofstream(out / "frames" / "flow_000099.vtu") << "an earlier run's";
+    std::ofstream(out / "frames" / "notes.vtu") << "not ours";
+    const Mesh mesh = two_element_mesh();
+    OutputWriter w(out.string(), format);
+    FramePart part;
+    part.name = "flow";
+    part.grid.cell_type = PolygonGrid::kLine;
+    for (const double x : {0.0, 1.0, 2.0}) part.grid.add_point(x, 0.5);
+    part.grid.add_cell({0, 1});
+    part.grid.add_cell({1, 2});
+    part.grid.add_point_array("pressure", 1, std::vector<double>{1e6, 5e5, 0.1});
+    part.grid.add_cell_array("aperture", 1, std::vector<double>{1e-4, 2.5e-4});
+    const Fields f = fields_at(mesh, 1);
+    w.write_frame(10, 0.01, mesh, f.view(false), 0, {part});
+    w.write_frame(20, 0.02, mesh, f.view(false), 0, {part});
+    EXPECT_EQ(all_files(out), (std::vector<std::string>{"frames.pvd", "frames/flow_000010.vtu", "frames/flow_000020.vtu",
+                                                         "frames/frame_000010.vtu", "frames/frame_000020.vtu",
+                                                         "frames/notes.vtu"}));
+    EXPECT_EQ(read_file(out / "frames.pvd"),
+              "<?xml version=\"1.0\"?>\n"
+              "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+              "  <Collection>\n"
+              "    <DataSet timestep=\"0.01\" group=\"\" part=\"0\" file=\"frames/frame_000010.vtu\"/>\n"
+              "    <DataSet timestep=\"0.01\" group=\"\" part=\"1\" file=\"frames/flow_000010.vtu\"/>\n"
+              "    <DataSet timestep=\"0.02\" group=\"\" part=\"0\" file=\"frames/frame_000020.vtu\"/>\n"
+              "    <DataSet timestep=\"0.02\" group=\"\" part=\"1\" file=\"frames/flow_000020.vtu\"/>\n"
+              "  </Collection>\n"
+              "</VTKFile>\n");
+    const PolygonGrid back = read_vtu((out / "frames" / "flow_000020.vtu").string());
+    EXPECT_EQ(back.cell_type, PolygonGrid::kLine);
+    EXPECT_EQ(back.connectivity, (std::vector<std::int32_t>{0, 1, 1, 2}));
+    ASSERT_EQ(back.point_data.size(), 1u);
+    EXPECT_EQ(back.point_data[0].f64, (std::vector<double>{1e6, 5e5, 0.1}));
+    ASSERT_EQ(back.cell_data.size(), 1u);
+    EXPECT_EQ(back.cell_data[0].f64, (std::vector<double>{1e-4, 2.5e-4}));
+    // The elements' frame is still all polygons.
+    EXPECT_EQ(read_vtu((out / "frames" / "frame_000020.vtu").string()).cell_type, PolygonGrid::kPolygon);
+  }
+  // A line cell of three points is a caller's bug, never a file.
+  PolygonGrid bad;
+  bad.cell_type = PolygonGrid::kLine;
+  for (const double x : {0.0, 1.0, 2.0}) bad.add_point(x, 0);
+  bad.add_cell({0, 1, 2});
+  EXPECT_THROW(check_grid(bad), std::logic_error);
+}
+
 TEST(VtuReader, FramesReadBackToTheValuesWritten) {
   for (const FrameFormat format : {FrameFormat::compressed, FrameFormat::text}) {
     TempDir dir;

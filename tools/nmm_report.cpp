@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--mesh", redraw.mesh_path,
                  "the run's mesh file, if summary.json's inputs.mesh no longer finds it");
   app.add_option("--picture-field", redraw.field,
-                 "what colours result.svg: displacement, sxx, syy or sxy (default: the run's)");
+                 "what colours result.svg: displacement, sxx, syy, sxy or pressure (default: the run's)");
   app.add_option("--exaggerate", redraw.exaggerate,
                  "draw result.svg's displacements F times larger (1: true scale); default: the "
                  "run's --exaggerate, else automatic below 1 % of the model size")

@@ -5,7 +5,7 @@
 // same mesh): solver.steps more steps, step numbers and times going on from the checkpoint's,
 // with the run's variants (friction, joint laws, loads, supports, time step, `excavate`); a
 // damaged checkpoint or one of another mesh is bad input (exit status 2).
-//           [--pictures [--picture-field displacement|sxx|syy|sxy] [--exaggerate F]] [--text-frames] [--contacts-every N]
+//           [--pictures [--picture-field displacement|sxx|syy|sxy|pressure] [--exaggerate F]] [--text-frames] [--contacts-every N]
 //           [--contacts-gzip]
 //
 // Loads a mesh file (every check of the reader) and runs it as solve_run.h makes a run (the
@@ -27,6 +27,7 @@
 #include "common/command_line.h"
 #include "common/error.h"
 #include "common/mesh_file.h"
+#include "common/run_config.h"
 #include "nmm_version.h"
 #include "report/failure_cause.h"
 #include "report/run_pictures.h"
@@ -63,7 +64,8 @@ int main(int argc, char** argv) {
   app.add_flag("--contacts-gzip", contacts_gzip,
                "write contacts.csv.gz (the same CSV, gzip-compressed, about a third of the size)");
   app.add_option("--picture-field", field_name,
-                 "what colours result.svg: displacement, sxx, syy or sxy");
+                 "what colours result.svg: displacement, sxx, syy, sxy, or pressure (the flow network's "
+                 "joints by their water pressure; a scene with \"flow\")");
   app.add_option("--exaggerate", exaggerate,
                  "draw result.svg's displacements F times larger (1: true scale); default: "
                  "automatic when the largest displacement is under 1 % of the model size")
@@ -75,7 +77,7 @@ int main(int argc, char** argv) {
   nmm::report::PictureField field;
   if (!nmm::report::parse_picture_field(field_name, field)) {
     std::cerr << "nmm-solve: --picture-field: '" << field_name
-              << "' is not one of displacement, sxx, syy, sxy\n";
+              << "' is not one of displacement, sxx, syy, sxy, pressure\n";
     return nmm::kExitBadInput;
   }
   try {
@@ -93,6 +95,11 @@ int main(int argc, char** argv) {
     // What this run was made from, so nmm-report can redraw any frame (result_redraw.h).
     options.inputs = nmm::solve::run_inputs(mesh_path, options, field_name,
                                             exaggerate > 0 ? nlohmann::json(exaggerate) : nlohmann::json(nullptr));
+    // Before the output folder is made: a picture of what the run cannot have is bad input.
+    if (field == nmm::report::PictureField::pressure &&
+        !nmm::solve::make_run_scene(mesh, mesh_path, config_path, sets).scene.flow.present)
+      throw nmm::InputError("--picture-field", "",
+                            "pressure: the scene has no \"flow\" block, so no water flows in this run");
     nmm::solve::SolveRun run(mesh, mesh_path, options);
     nmm::solve::install_interrupt_handlers();
     run.set_stop_check(nmm::solve::interrupt_requested);

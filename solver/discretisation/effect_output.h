@@ -15,6 +15,8 @@
 //   effect_names   what it adds to summary.json "effects" when it takes part (docs/interface.md)
 //   warnings       what nmm-solve warns of on stderr once the run has stopped, read from the
 //                  run's summary.json (the cracks' snap-back)
+//   frame_parts    at every frame, grids of its own shown beside the elements (the flow network:
+//                  frames/flow_<step>.vtu, a part of the same time step in frames.pvd)
 //   checkpoint_sections  the checkpoint's sections of the state it carries (docs/checkpoint-format.md:
 //                  the absorbing boundaries' ABSORB, the bolts' BOLTS, the flow's FLOW, the cracks'
 //                  MESH and FRACTURE), written after the run state's own sections and hashed with
@@ -31,6 +33,7 @@
 
 #include "common/checkpoint_file.h"
 #include "common/mesh.h"
+#include "common/vtk_writer.h"
 #include "solver/discretisation/cover_space.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/output_tables.h"
@@ -54,6 +57,13 @@ struct OutputStep {
   const std::vector<Effect*>& effects;
 };
 
+/// A grid an effect adds to a frame: written as frames/<name>_<step>.vtu and listed in
+/// frames.pvd as a part of the frame's time step (ParaView shows the parts as blocks).
+struct FramePart {
+  std::string name;  ///< lower-case letters: the file's prefix ("flow")
+  PolygonGrid grid;
+};
+
 class EffectOutput {
  public:
   /// The files (names in the output folder) write_outputs and write_files may write.
@@ -63,6 +73,8 @@ class EffectOutput {
   /// The files it writes whole into folder `dir` once the run has stopped (WriteError when it
   /// cannot).
   virtual void write_files(const OutputStep& /*out*/, const std::string& /*dir*/) const {}
+  /// The grids it adds to the frame of an output step (none: the frame is the elements alone).
+  virtual void frame_parts(const OutputStep& /*out*/, std::vector<FramePart>& /*parts*/) const {}
   /// Its part of summary.json for the run in state s (the bolts' "bolts"), added to `summary`.
   virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
   /// The names it adds to summary.json "effects" for the run in state s (none: it takes no part).

@@ -198,4 +198,52 @@ void FlowEffect::write_outputs(OutputStep& out) const {
   }
 }
 
+void FlowEffect::frame_parts(const OutputStep& out, std::vector<FramePart>& parts) const {
+  const RunState& s = out.state;
+  if (!active() || s.flow_pressure.size() != network_.nodes()) return;
+  const FlowDef& f = model_.scene().flow;
+  const SceneDef& scene = model_.scene();
+  const double gx = scene.has_gravity ? scene.gravity.x : 0.0, gy = scene.has_gravity ? scene.gravity.y : 0.0;
+  const std::size_t n = network_.nodes();
+  const std::vector<double>& xy = network_.node_xy();
+  FramePart part;
+  part.name = "flow";
+  PolygonGrid& g = part.grid;
+  g.cell_type = PolygonGrid::kLine;
+  const std::vector<double> u = network_.node_displacements(s.loop_u);
+  std::vector<double> displacement(3 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    g.add_point(xy[2 * i] + u[2 * i], xy[2 * i + 1] + u[2 * i + 1]);
+    displacement[3 * i] = u[2 * i];
+    displacement[3 * i + 1] = u[2 * i + 1];
+  }
+  // φ = p − ρ_f·g·x, the potential the cubic law drives (flow_balance.h), at the nodes as cut.
+  std::vector<double> phi(n);
+  for (std::size_t i = 0; i < n; ++i)
+    phi[i] = s.flow_pressure[i] - f.density * (gx * xy[2 * i] + gy * xy[2 * i + 1]);
+  const std::vector<double> conductance = network_.conductances(s.flow_aperture, f.viscosity);
+  const std::vector<FlowSegment>& segments = network_.segments();
+  std::vector<std::int32_t> joint(segments.size());
+  std::vector<double> aperture(segments.size()), flux(3 * segments.size(), 0.0);
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const FlowSegment& sg = segments[k];
+    g.add_cell({sg.a, sg.b});
+    joint[k] = sg.joint;
+    aperture[k] = 0.5 * (s.flow_aperture[2 * k] + s.flow_aperture[2 * k + 1]);
+    const auto a = static_cast<std::size_t>(sg.a), b = static_cast<std::size_t>(sg.b);
+    const double q = conductance[k] * (phi[a] - phi[b]);
+    // The tangent a → b is the normal (nx, ny) turned clockwise (flow_network.cpp).
+    flux[3 * k] = q * sg.ny;
+    flux[3 * k + 1] = -q * sg.nx;
+  }
+  g.add_point_array("pressure", 1, s.flow_pressure);
+  g.add_point_array("aperture", 1, network_.node_apertures(s.flow_aperture));
+  g.add_point_array("boundary", 1, network_.node_boundary());
+  g.add_point_array("displacement", 3, std::move(displacement));
+  g.add_cell_array("joint", 1, std::move(joint));
+  g.add_cell_array("aperture", 1, std::move(aperture));
+  g.add_cell_array("flux", 3, std::move(flux));
+  parts.push_back(std::move(part));
+}
+
 }  // namespace nmm::solve

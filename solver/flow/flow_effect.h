@@ -58,6 +58,13 @@ class FlowEffect final : public Effect {
   /// hydraulic aperture of the segments that end there (m), as the accepted state holds them.
   std::vector<std::string> output_files() const override { return {"flow.csv"}; }
   void write_outputs(OutputStep& out) const override;
+  /// The frame's part "flow" (frames/flow_<step>.vtu): one line cell per segment between the
+  /// nodes where the faces are (the mesh as cut plus the nodes' displacement). Point data
+  /// "pressure" (Pa), "aperture" (m, as in flow.csv), "boundary" (the `boundaries` entry that
+  /// holds the node, −1 free), "displacement" (m); cell data "joint", "aperture" (m, the mean
+  /// of the segment's ends), "flux" (m²/s = m³/s per m of thickness, the cubic law's rate
+  /// C·(φ_a − φ_b) along the segment's direction a → b, a vector for ParaView's glyphs).
+  void frame_parts(const OutputStep& out, std::vector<FramePart>& parts) const override;
   void effect_names(const RunState& /*s*/, std::vector<std::string>& names) const override {
     if (active()) names.push_back("flow");
   }

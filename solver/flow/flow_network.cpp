@@ -216,4 +216,24 @@ std::vector<double> FlowNetwork::node_apertures(const std::vector<double>& ap) c
   return sum;
 }
 
+std::vector<double> FlowNetwork::node_displacements(const std::vector<double>& loop_u) const {
+  std::vector<double> sum(2 * nodes(), 0.0), count(nodes(), 0.0);
+  for (std::size_t s = 0; s < segments_.size(); ++s)
+    for (std::size_t end = 0; end < 2; ++end) {
+      const auto n = static_cast<std::size_t>(end == 0 ? segments_[s].a : segments_[s].b);
+      for (std::int32_t k = end_offset_[2 * s + end]; k < end_offset_[2 * s + end + 1]; ++k) {
+        const auto v = static_cast<std::size_t>(end_vertices_[static_cast<std::size_t>(k)].vertex);
+        sum[2 * n] += loop_u[2 * v];
+        sum[2 * n + 1] += loop_u[2 * v + 1];
+        count[n] += 1;
+      }
+    }
+  for (std::size_t n = 0; n < count.size(); ++n)
+    if (count[n] > 0) {
+      sum[2 * n] /= count[n];
+      sum[2 * n + 1] /= count[n];
+    }
+  return sum;
+}
+
 }  // namespace nmm::solve

@@ -84,6 +84,10 @@ class FlowNetwork {
   std::vector<double> face_pressures(const std::vector<double>& p, std::size_t loop_vertices) const;
   /// [node] m, the mean aperture of the segment ends at each node (flow.csv).
   std::vector<double> node_apertures(const std::vector<double>& ap) const;
+  /// [2·node] m, each node's displacement for loop displacements loop_u ([2·v] m): the mean of
+  /// the face vertices at the node (both faces, every joint through it), so a frame draws the
+  /// network where the faces are.
+  std::vector<double> node_displacements(const std::vector<double>& loop_u) const;
 
  private:
   std::vector<double> node_xy_;

@@ -17,7 +17,10 @@
 //   comes from the mesh as it was cut, so every frame has the same cells and ParaView can
 //   animate them.
 // - frames.pvd is a VTK Collection (the ParaView data format for time series) listing every frame
-//   written so far with its time; writing the same step again replaces its entry.
+//   written so far with its time; writing the same step again replaces its entry. An effect's
+//   grid of the frame (the flow network's lines) is a file of its own, frames/<name>_<step>.vtu,
+//   listed with the same time as part 1, 2, ...: ParaView's PVD reader makes each part a block
+//   of one multiblock data set, so both animate together and keep their own arrays.
 #include "solver/output/output_writer.h"
 
 #include <charconv>
@@ -74,11 +77,27 @@ void check_size(const std::vector<double>* v, std::size_t expected, const char* 
 
 }  // namespace
 
-std::string frame_file_name(std::int64_t step) {
+std::string frame_file_name(std::int64_t step) { return frame_part_file_name(step, "frame"); }
+
+std::string frame_part_file_name(std::int64_t step, const std::string& prefix) {
   char buf[48];
-  std::snprintf(buf, sizeof buf, "frames/frame_%06lld.vtu", static_cast<long long>(step));
-  return buf;
+  std::snprintf(buf, sizeof buf, "_%06lld.vtu", static_cast<long long>(step));
+  return "frames/" + prefix + buf;
 }
+
+namespace {
+/// frames/ holds this run's files only: "<letters>_<digits>.vtu", the names frame_file_name gives.
+bool is_frame_file_name(const std::string& name) {
+  const std::size_t u = name.find('_');
+  if (u == std::string::npos || u == 0 || name.size() < u + 6 || name.compare(name.size() - 4, 4, ".vtu") != 0)
+    return false;
+  for (std::size_t i = 0; i < u; ++i)
+    if (name[i] < 'a' || name[i] > 'z') return false;
+  for (std::size_t i = u + 1; i + 4 < name.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return false;
+  return true;
+}
+}  // namespace
 
 OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
     : dir_(out_dir), format_(format) {
@@ -90,8 +109,7 @@ OutputWriter::OutputWriter(const std::string& out_dir, FrameFormat format)
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(join_path(dir_, "frames"), ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".vtu")
-      fs::remove(entry.path(), ec);
+    if (is_frame_file_name(name)) fs::remove(entry.path(), ec);
   }
   // The effects' own files go when a run starts (run_driver.cpp: Effect::output_files).
   for (const char* name : {"frames.pvd", "history.csv", "summary.json", "result.svg", "result.png",
@@ -118,7 +136,8 @@ void OutputWriter::add_history(std::int64_t step, double time,
 }
 
 void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
-                               const FrameFields& fields, std::size_t topology) {
+                               const FrameFields& fields, std::size_t topology,
+                               const std::vector<FramePart>& parts) {
   const std::size_t nv = mesh.loop_vertex_count();
   const std::size_t ne = mesh.element_count();
   check_size(fields.loop_xy, 2 * nv, "loop_xy");
@@ -174,23 +193,33 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   else
     write_vtu_compressed(grid, join_path(dir_, file), Durability::renamed);
 
-  bool replaced = false;
-  for (auto& frame : frames_)
-    if (frame.second == file) {
-      frame.first = time;
-      replaced = true;
-    }
-  if (!replaced) frames_.emplace_back(time, file);
+  auto list = [&](const std::string& name, int part) {
+    for (ListedFrame& frame : frames_)
+      if (frame.file == name) {
+        frame.time = time;
+        return;
+      }
+    frames_.push_back({time, name, part});
+  };
+  list(file, 0);
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::string part_file = frame_part_file_name(step, parts[k].name);
+    if (format_ == FrameFormat::text)
+      write_vtu(parts[k].grid, join_path(dir_, part_file), Durability::renamed);
+    else
+      write_vtu_compressed(parts[k].grid, join_path(dir_, part_file), Durability::renamed);
+    list(part_file, static_cast<int>(k) + 1);
+  }
 
   std::string pvd =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       "  <Collection>\n";
-  for (const auto& [t, name] : frames_) {
+  for (const ListedFrame& f : frames_) {
     pvd += "    <DataSet timestep=\"";
-    append_double(pvd, t);
-    // The file names are ours (digits only), so they need no XML escaping.
-    pvd += "\" group=\"\" part=\"0\" file=\"" + name + "\"/>\n";
+    append_double(pvd, f.time);
+    // The file names are ours (letters, digits), so they need no XML escaping.
+    pvd += "\" group=\"\" part=\"" + std::to_string(f.part) + "\" file=\"" + f.file + "\"/>\n";
   }
   pvd += "  </Collection>\n</VTKFile>\n";
   write_file_atomically(join_path(dir_, "frames.pvd"), pvd, Durability::renamed);

@@ -13,6 +13,7 @@
 
 #include "common/mesh.h"
 #include "common/vtk_writer.h"
+#include "solver/discretisation/effect_output.h"
 #include "solver/discretisation/output_tables.h"
 
 namespace nmm::solve {
@@ -41,6 +42,8 @@ struct FrameFields {
 /// The frame of a step, relative to the output folder: "frames/frame_000010.vtu" (zero-padded
 /// so that a plain listing sorts the frames in order).
 std::string frame_file_name(std::int64_t step);
+/// An effect's part of that frame: "frames/<prefix>_000010.vtu".
+std::string frame_part_file_name(std::int64_t step, const std::string& prefix);
 
 /// How frames are written: binary zlib-compressed appended data (vtu_compressed.h, the default:
 /// a tenth of the size or less) or ASCII text (nmm-solve --text-frames).
@@ -60,9 +63,11 @@ class OutputWriter {
   /// cell data "stress" (σxx, σyy, σxy as 3 components), "block", "body") and rewrites
   /// frames.pvd listing every frame so far with its time.
   /// `topology`: which mesh of the run this is (RunView::topology: cracks re-cut it); the cells
-  /// are built again when it changes.
+  /// are built again when it changes. `parts`: the effects' grids of the frame (the flow
+  /// network), each written as frames/<name>_<step>.vtu and listed in frames.pvd with the frame's
+  /// time as part 1, 2, ... (the elements are part 0).
   void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields,
-                   std::size_t topology = 0);
+                   std::size_t topology = 0, const std::vector<FramePart>& parts = {});
 
   /// Keep the contacts of every n-th output step only (n >= 1; the last one is always kept):
   /// contacts.csv is the largest text output of a long run (nmm-solve --contacts-every).
@@ -98,7 +103,12 @@ class OutputWriter {
   FrameFormat format_;
   std::string history_;   // CSV rows so far
   OutputTables tables_;   // the output steps' other CSV files
-  std::vector<std::pair<double, std::string>> frames_;  // time, relative file name
+  struct ListedFrame {
+    double time;       // s
+    std::string file;  // relative file name
+    int part;          // 0: the elements, 1, 2, ...: the effects' parts
+  };
+  std::vector<ListedFrame> frames_;  // frames.pvd's entries
   nlohmann::json inputs_;  // summary.json "inputs" (null: none)
   // The frame grid: mesh_to_grid of the mesh as cut, with the identifier cell arrays only; every
   // frame overwrites its points and adds its fields (the connectivity never changes).

@@ -56,10 +56,14 @@ class RunDriver::FrameOutput : public StepObserver {
         }
       fields.vertex_stress = &at_vertex;
     }
-    out_.write_frame(step, s.time, mesh, fields, st.topology);
-    // The output step's rows of the CSV files: every effect's (effect_output.h), none named here.
-    out_.tables().begin_output_step();
+    // The effects' grids beside the elements (the flow network), then the output step's rows of
+    // the CSV files: every effect's (effect_output.h), none named here.
     OutputStep o{step, s.time, mesh, s, out_.tables(), st.model, st.space, st.effects};
+    std::vector<FramePart> parts;
+    for (const Effect* e : st.effects) e->frame_parts(o, parts);
+    for (const MeshChange* c : st.changes) c->frame_parts(o, parts);
+    out_.write_frame(step, s.time, mesh, fields, st.topology, parts);
+    out_.tables().begin_output_step();
     for (const Effect* e : st.effects) e->write_outputs(o);
     for (const MeshChange* c : st.changes) c->write_outputs(o);
   }
