@@ -31,73 +31,12 @@
 #include "bench/bench_common.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/brick_wall.h"
+#include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/solver_threads.h"
 #include "solver/stepping/time_stepper.h"
 
 namespace {
 using Sparse = nmm::solve::SystemMatrix::Sparse;
-
-// The permutation (perm[k]: the unknown eliminated k-th) of the n×n matrix whose upper triangle's
-// pattern is (outer, inner), ordered on its graph of covers: the first `blocked` unknowns (a
-// multiple of `block`) form nodes of `block` consecutive unknowns, any further ones a node each;
-// METIS_NodeND (metis) or AMD on the nodes, expanded to their unknowns. Empty if CHOLMOD's
-// ordering failed.
-std::vector<int> block_ordering(int n, const int* outer, const int* inner, int block, bool metis, int blocked = -1) {
-  if (block < 1) block = 1;
-  if (blocked < 0 || blocked > n) blocked = n;
-  blocked -= blocked % block;
-  const int nb = blocked / block;
-  const int nodes = nb + (n - blocked);
-  const auto node = [&](int i) { return i < blocked ? i / block : nb + (i - blocked); };
-  // The node graph's upper triangle: node J's column holds the nodes I ≤ J of the rows in its
-  // unknowns' columns (rows ≤ column, and node() does not decrease, so I ≤ J), each once.
-  std::vector<int> p(static_cast<std::size_t>(nodes) + 1, 0), rows;
-  rows.reserve(static_cast<std::size_t>(outer[n]) / static_cast<std::size_t>(block) + static_cast<std::size_t>(nodes));
-  std::vector<int> mark(static_cast<std::size_t>(nodes), -1);
-  for (int j = 0; j < nodes; ++j) {
-    const int first = j < nb ? j * block : blocked + (j - nb);
-    const int last = j < nb ? first + block : first + 1;
-    const std::size_t start = rows.size();
-    for (int c = first; c < last; ++c)
-      for (int k = outer[c]; k < outer[c + 1]; ++k) {
-        const int i = node(inner[k]);
-        if (mark[static_cast<std::size_t>(i)] != j) {
-          mark[static_cast<std::size_t>(i)] = j;
-          rows.push_back(i);
-        }
-      }
-    std::sort(rows.begin() + static_cast<std::ptrdiff_t>(start), rows.end());
-    p[static_cast<std::size_t>(j) + 1] = static_cast<int>(rows.size());
-  }
-  cholmod_sparse g{};
-  g.nrow = g.ncol = static_cast<std::size_t>(nodes);
-  g.nzmax = rows.size();
-  g.p = p.data();
-  g.i = rows.data();
-  g.stype = 1;
-  g.itype = CHOLMOD_INT;
-  g.xtype = CHOLMOD_PATTERN;
-  g.dtype = CHOLMOD_DOUBLE;
-  g.sorted = 1;
-  g.packed = 1;
-  cholmod_common c;
-  cholmod_start(&c);
-  c.print = 0;
-  std::vector<int> order(static_cast<std::size_t>(nodes));
-  const int ok = metis ? cholmod_metis(&g, nullptr, 0, 0, order.data(), &c)
-                                               : cholmod_amd(&g, nullptr, 0, order.data(), &c);
-  cholmod_finish(&c);
-  if (!ok) return {};
-  std::vector<int> perm;
-  perm.reserve(static_cast<std::size_t>(n));
-  for (const int j : order) {
-    const int first = j < nb ? j * block : blocked + (j - nb);
-    const int last = j < nb ? first + block : first + 1;
-    for (int i = first; i < last; ++i) perm.push_back(i);
-  }
-  return perm;
-}
-
 
 struct Result {
   double factor_nnz = 0, flops = 0, order_ms = 0, analyse_ms = 0, factor_ms = 0, solve_ms = 0;
@@ -120,7 +59,7 @@ cholmod_sparse view(const Sparse& a) {
   return m;
 }
 
-// ordering: a CHOLMOD ordering, or -1 / -2 for AMD / METIS on the cover graph (block_ordering).
+// ordering: a CHOLMOD ordering, or -1 / -2 for AMD / METIS on the cover graph (fill_ordering.h).
 Result run(const Sparse& a, int ordering, int block, int reps) {
   Result r;
   r.order_ms = r.analyse_ms = r.factor_ms = r.solve_ms = std::numeric_limits<double>::infinity();
@@ -137,7 +76,8 @@ Result run(const Sparse& a, int ordering, int block, int reps) {
     std::vector<int> perm;
     double t = nmm::bench::thread_cpu_seconds();
     if (ordering < 0) {
-      perm = block_ordering(static_cast<int>(a.rows()), a.outerIndexPtr(), a.innerIndexPtr(), block, ordering == -2);
+      perm = nmm::solve::block_ordering(static_cast<int>(a.rows()), a.outerIndexPtr(), a.innerIndexPtr(), block,
+                                        ordering == -2 ? nmm::solve::FillOrdering::metis : nmm::solve::FillOrdering::amd);
       c.method[0].ordering = CHOLMOD_GIVEN;
     } else {
       c.method[0].ordering = ordering;
