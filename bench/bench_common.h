@@ -67,4 +67,24 @@ inline double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+/// MB, this process's resident memory now (VmRSS) and at its peak so far (VmHWM), from
+/// /proc/self/status; −1 where it cannot be read.
+struct Resident {
+  double now_mb = -1, peak_mb = -1;
+};
+inline Resident resident() {
+  Resident r;
+  std::ifstream f("/proc/self/status");
+  std::string key;
+  double kb = 0;
+  while (f >> key) {
+    if (key == "VmRSS:" && f >> kb) r.now_mb = kb / 1024;
+    else if (key == "VmHWM:" && f >> kb) r.peak_mb = kb / 1024;
+  }
+  return r;
+}
+
+/// Starts the peak of resident() afresh from what is resident now (Linux: clear_refs 5).
+inline void reset_peak_resident() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
 }  // namespace nmm::bench

@@ -2,7 +2,8 @@
 // in DDA static mode and dynamic, the reference problem of reference/brick_wall.h.
 //
 //   contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE]
-//   contact_bench --trace N --sizes 10 [--dynamic] [--peer]   per-step counts of N steps
+//   contact_bench --trace N --sizes 10 [--dynamic] [--peer] [--mesh H] [--threads N]
+//       per-step counts, times and resident memory of N steps (one solver thread unless told)
 //   contact_bench --peer [--sizes 10,20,30] [--steps 100] [--csv FILE]
 //       [--mesh H] [--contact-tolerance T] [--threads N]
 //       the DDA code's walls (reference/brick_wall.h peer_wall), static and dynamic, the first
@@ -17,6 +18,8 @@
 // time-step cuts. Targets (issue 11, one core): < 1.5 factorisations per step in settling
 // systems, the 30 × 30 static wall < 40 ms per step, the 20 × 20 dynamic wall < 25 ms per step,
 // cost growing no faster than blocks^1.2. Run it with OMP_NUM_THREADS=1 for one core.
+#include <malloc.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -36,13 +39,23 @@
 namespace {
 
 // A long run of one wall, one line per step: where a settling wall's work goes as it settles.
-int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size) {
+int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int threads) {
   const nmm::SceneDef s =
       peer ? nmm::reference::peer_wall(n, n, dynamic, mesh_size) : nmm::reference::brick_wall(n, dynamic);
   const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
+  // The cut's working memory, freed but still held by malloc, goes back to the system: what is
+  // resident from here on is what nmm-solve holds, which reads the cut mesh from its file.
+  const nmm::bench::Resident cut = nmm::bench::resident();
+  malloc_trim(0);
+  nmm::bench::reset_peak_resident();  // peak_rss_mb below: the run's own peak, from here on
+  const nmm::bench::Resident meshed = nmm::bench::resident();
   nmm::solve::TimeStepper st(m, s, "bench");
+  st.set_threads(threads);
+  const nmm::bench::Resident set_up = nmm::bench::resident();
+  std::printf("# resident after the cut %.0f MB (peak %.0f MB), the mesh alone %.0f MB, with the stepper %.0f MB\n",
+              cut.now_mb, cut.peak_mb, meshed.now_mb, set_up.now_mb);
   std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
-              "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses\n");
+              "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses,rss_mb,peak_rss_mb\n");
   nmm::solve::ContactSolveStats a = st.view().contact_solve;
   nmm::solve::StepTimings ta = st.view().timings;
   std::size_t cuts = st.view().state.cuts, analyses = st.view().system.analyses();
@@ -53,12 +66,13 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size) {
     const double ms = 1e3 * w0.seconds(), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
     const nmm::solve::ContactSolveStats& b = st.view().contact_solve;
     const nmm::solve::StepTimings& tb = st.view().timings;
-    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu\n", k, b.newton - a.newton,
+    const nmm::bench::Resident mem = nmm::bench::resident();
+    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f\n", k, b.newton - a.newton,
                 b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
                 b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
                 st.view().state.cuts - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
                 1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms,
-                st.view().system.analyses() - analyses);
+                st.view().system.analyses() - analyses, mem.now_mb, mem.peak_mb);
     std::fflush(stdout);
     if (!ran.ok()) {
       std::printf("# stopped: %s\n", ran.reason.c_str());
@@ -167,7 +181,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps, peer_mesh);
+  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps, peer_mesh, peer_threads);
   if (peer) return peer_run(sizes, peer_steps, peer_mesh, peer_tau, peer_threads, csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"

@@ -2,10 +2,13 @@
 // in place, and must give bit for bit what a build from scratch gives — the same nonzeros,
 // every group's values at the same places — with no new symbolic analysis where the new groups
 // couple only unknowns already coupled.
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace {
@@ -140,4 +143,90 @@ TEST(SystemMatrixOrdering, AmdAloneWhereTheDefaultWouldTryMetis) {
   assembled(amd, g, n);
   ASSERT_TRUE(amd.factorize());
   EXPECT_EQ(amd.ordering(), "metis");
+}
+
+namespace {
+// The triangles of a k × k grid of covers with `dofs` unknowns each (a cover's unknowns
+// consecutive, as cover_space.h numbers them), one group per triangle.
+Groups plane_grid(int k, int dofs) {
+  Groups g;
+  const auto add = [&](int a, int b, int c) {
+    for (const int v : {a, b, c})
+      for (int s = 0; s < dofs; ++s) g.dofs.push_back(v * dofs + s);
+    g.offsets.push_back(static_cast<int>(g.dofs.size()));
+  };
+  for (int j = 0; j + 1 < k; ++j)
+    for (int i = 0; i + 1 < k; ++i) {
+      add(j * k + i, j * k + i + 1, (j + 1) * k + i + 1);
+      add(j * k + i, (j + 1) * k + i + 1, (j + 1) * k + i);
+    }
+  return g;
+}
+}  // namespace
+
+TEST(SystemMatrixOrdering, BlockOrderingKeepsEachCoverTogether) {
+  // 3 covers of 2 unknowns, then 2 unknowns of their own (an effect's): a permutation of all 8,
+  // each cover's unknowns consecutive and in order.
+  const Groups g = Groups{}.add({0, 1, 2, 3}).add({2, 3, 4, 5, 6}).add({0, 1, 7});
+  SystemMatrix k;
+  k.build_pattern(8, g.offsets, g.dofs);
+  const SystemMatrix::Sparse& a = k.matrix();
+  for (const auto method : {nmm::solve::FillOrdering::amd, nmm::solve::FillOrdering::metis}) {
+    const std::vector<int> perm = nmm::solve::block_ordering(8, a.outerIndexPtr(), a.innerIndexPtr(), 2, method, 6);
+    ASSERT_EQ(perm.size(), 8u);
+    std::vector<int> sorted = perm;
+    std::sort(sorted.begin(), sorted.end());
+    for (int i = 0; i < 8; ++i) EXPECT_EQ(sorted[static_cast<std::size_t>(i)], i);
+    for (std::size_t p = 0; p < perm.size(); ++p)
+      if (perm[p] < 6 && perm[p] % 2 == 0) {
+        ASSERT_LT(p + 1, perm.size());
+        EXPECT_EQ(perm[p + 1], perm[p] + 1) << "cover " << perm[p] / 2 << " split";
+      }
+  }
+}
+
+TEST(SystemMatrixOrdering, MetisOnCoversFromItsSizeSolvesAsAmdAndRestartsBitwise) {
+  // 100 × 100 covers of 2 unknowns, METIS from 20,000 unknowns on (the default,
+  // kBlockOrderingUnknowns, is larger: a test of its size would take long).
+  constexpr int kSide = 100;
+  const Groups g = plane_grid(kSide, 2);
+  const int n = 2 * kSide * kSide;
+  SystemMatrix amd, metis;
+  amd.set_amd_only(true);
+  metis.set_amd_only(true);
+  metis.set_block_ordering(2, n, n);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
+  std::vector<Eigen::VectorXd> x;
+  for (SystemMatrix* k : {&amd, &metis}) {
+    k->build_pattern(n, g.offsets, g.dofs);
+    assembled(*k, g, n);
+    ASSERT_TRUE(k->factorize());
+    x.push_back(k->solve(b));
+    // The solve answers K x = b to round-off.
+    const Eigen::VectorXd r = b - k->matrix().selfadjointView<Eigen::Upper>() * x.back();
+    EXPECT_LT(r.norm(), 1e-12 * b.norm());
+  }
+  EXPECT_EQ(amd.ordering(), "amd");
+  EXPECT_EQ(metis.ordering(), "metis_covers");
+  EXPECT_LT((x[0] - x[1]).norm(), 1e-10 * x[0].norm());
+  // A checkpoint's factorisation, restored into a matrix of the same ordering, solves bit for
+  // bit as the one it was taken from (the ordering is a function of the pattern alone).
+  SystemMatrix restored;
+  restored.set_amd_only(true);
+  restored.set_block_ordering(2, n, n);
+  restored.build_pattern(n, g.offsets, g.dofs);
+  ASSERT_TRUE(restored.factor_from_source(metis.factor_source()));
+  EXPECT_EQ(restored.ordering(), "metis_covers");
+  const Eigen::VectorXd y = restored.solve(b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(y[i], x[1][i]) << "unknown " << i;
+  // Below its size the matrix keeps AMD.
+  const Groups small = plane_grid(20, 2);
+  SystemMatrix few;
+  few.set_amd_only(true);
+  few.set_block_ordering(2, 800, 801);
+  few.build_pattern(800, small.offsets, small.dofs);
+  assembled(few, small, 800);
+  ASSERT_TRUE(few.factorize());
+  EXPECT_EQ(few.ordering(), "amd");
 }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "common/error.h"
+#include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/state_bytes.h"
 
 namespace nmm::solve {
@@ -266,21 +267,65 @@ int SystemMatrix::Llt::failed_column() const {
   return f->Perm ? static_cast<const int*>(f->Perm)[f->minor] : static_cast<int>(f->minor);
 }
 
+void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
+  cholmod_common& c = this->cholmod();
+  if (this->m_cholmodFactor) cholmod_free_factor(&this->m_cholmodFactor, &c);
+  cholmod_sparse view = Eigen::viewAsCholmod(a.selfadjointView<Eigen::Upper>());
+  const int methods = c.nmethods, ordering = c.method[0].ordering;
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  this->m_cholmodFactor = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &c);
+  c.nmethods = methods;
+  c.method[0].ordering = ordering;
+  this->m_isInitialized = true;
+  this->m_info = Eigen::Success;
+  this->m_analysisIsOk = true;
+  this->m_factorizationIsOk = false;
+}
+
+// METIS on the covers from kBlockOrderingUnknowns unknowns. Nested dissection's factor is the
+// smaller the larger the wall, while an analysis by METIS costs several AMD's and a run with
+// contact analyses again whenever its pattern grows. Measured on the DDA code's static walls
+// (contact_bench --trace, one thread, 2026-11-29; docs/notes/2026-11-scale.md):
+//   316 × 316 bricks, h = 2 m, 929,502 unknowns: factor 172 M nonzeros and 141 Gflop against
+//     AMD's 231 M and 310 Gflop; step 1 (3 factorisations) 34.1 s against 50.2 s
+//   100 × 100, h = 0.5 m, 222,516 unknowns: 0.94 × AMD's CPU over steps 1–15 (the first
+//     pattern's factor: 35 M nonzeros), 1.145 × over steps 16–61, where the pattern has shed
+//     its unused pairs and grows again every third step (METIS's ordering 709 ms against a
+//     factorisation's 650)
+//   100 × 100, h = 2 m, 93,350 unknowns: 4.4 against 6.3 Gflop, but 370 ms per analysis
+//     against 85 ms, at 0.13 analyses and 0.17 factorisations per step
+// Between 222k and 930k unknowns not measured: the threshold lies between the two.
+void SystemMatrix::analyse(const Sparse& a) {
+  ++analyses_;
+  const cholmod_common& c = llt_.cholmod();
+  if (block_ > 0 && a.rows() >= block_from_) {
+    std::vector<int> perm = block_ordering(static_cast<int>(a.rows()), a.outerIndexPtr(), a.innerIndexPtr(), block_,
+                                           FillOrdering::metis, blocked_);
+    if (!perm.empty()) {
+      llt_.analyze_given(a, perm);
+      factor_nonzeros_ = c.lnz;
+      factor_flops_ = c.fl;
+      ordering_ = "metis_covers";
+      return;
+    }
+  }
+  llt_.analyzePattern(a);
+  factor_nonzeros_ = c.lnz;
+  factor_flops_ = c.fl;
+  const int method = c.selected >= 0 && c.selected < CHOLMOD_MAXMETHODS ? c.method[c.selected].ordering : -1;
+  ordering_ = method == CHOLMOD_AMD      ? "amd"
+              : method == CHOLMOD_METIS  ? "metis"
+              : method == CHOLMOD_NESDIS ? "nesdis"
+              : method == CHOLMOD_COLAMD ? "colamd"
+              : method == CHOLMOD_NATURAL ? "natural"
+                                         : "other";
+}
+
 bool SystemMatrix::factorize() {
   if (!analysed_) {
-    llt_.analyzePattern(k_);
+    analyse(k_);
     analysed_ = true;
-    ++analyses_;
-    const cholmod_common& c = llt_.cholmod();
-    factor_nonzeros_ = c.lnz;
-    factor_flops_ = c.fl;
-    const int method = c.selected >= 0 && c.selected < CHOLMOD_MAXMETHODS ? c.method[c.selected].ordering : -1;
-    ordering_ = method == CHOLMOD_AMD      ? "amd"
-                : method == CHOLMOD_METIS  ? "metis"
-                : method == CHOLMOD_NESDIS ? "nesdis"
-                : method == CHOLMOD_COLAMD ? "colamd"
-                : method == CHOLMOD_NATURAL ? "natural"
-                                           : "other";
   }
   // The perturbation lives only in the factor: the values keep K for the refinement.
   std::vector<double> delta(regularised_.size());
@@ -359,11 +404,7 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   m = Sparse(m.transpose());  // stored as the upper triangle
   // The same analysis and numbers as the run that wrote it; the next factorize() of this run's
   // own matrix analyses its pattern again (deterministically: the same ordering).
-  llt_.analyzePattern(m);
-  ++analyses_;
-  const cholmod_common& c = llt_.cholmod();
-  factor_nonzeros_ = c.lnz;
-  factor_flops_ = c.fl;
+  analyse(m);
   llt_.factorize(m);
   analysed_ = false;
   has_factor_ = llt_.info() == Eigen::Success;

@@ -21,6 +21,9 @@
 
 namespace nmm::solve {
 
+/// Unknowns from which set_block_ordering() orders by METIS on the covers (system_matrix.cpp).
+inline constexpr int kBlockOrderingUnknowns = 500000;
+
 class SystemMatrix {
  public:
   using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
@@ -45,6 +48,15 @@ class SystemMatrix {
   /// its contacts analyses it again every few steps, and there a METIS ordering costs more to
   /// find than its factorisations save (system_matrix.cpp).
   void set_amd_only(bool on);
+  /// Orders by METIS's nested dissection on the graph of the covers (fill_ordering.h) instead,
+  /// once the system has at least `from` unknowns: the first `blocked` unknowns form covers of
+  /// `block` consecutive unknowns (cover_space.h), the others stand alone. `block` 0: off (the
+  /// default). For runs with contact (system_matrix.cpp: where it pays).
+  void set_block_ordering(int block, int blocked, int from = kBlockOrderingUnknowns) {
+    block_ = block;
+    blocked_ = blocked;
+    block_from_ = from;
+  }
   /// Iterative-refinement passes of the last solve (0 without regularisation).
   int refinements() const { return refinements_; }
 
@@ -119,7 +131,11 @@ class SystemMatrix {
   // Eigen's CHOLMOD wrapper, with the failing column exposed.
   struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Upper> {
     int failed_column() const;
+    /// analyzePattern() with the fill-reducing permutation `perm` (perm[k]: the unknown
+    /// eliminated k-th) instead of CHOLMOD's own ordering; CHOLMOD still postorders it.
+    void analyze_given(const Sparse& a, std::vector<int>& perm);
   };
+  void analyse(const Sparse& a);  // CHOLMOD's symbolic analysis of a's pattern, under the ordering set
   Sparse k_;
   std::vector<std::int32_t> slot_offset_;  // [group+1] CSR into slots_
   std::vector<std::int32_t> slots_;  // [m² per group] value index of entry (i, j), -1 above diagonal
@@ -136,6 +152,7 @@ class SystemMatrix {
   std::size_t builds_ = 0;
   double factor_nonzeros_ = 0, factor_flops_ = 0;
   std::string ordering_;
+  int block_ = 0, blocked_ = 0, block_from_ = kBlockOrderingUnknowns;  // set_block_ordering()
   int failed_unknown_ = -1;
   std::vector<int> regularised_;
   double eps_ = 0;

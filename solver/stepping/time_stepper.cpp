@@ -76,6 +76,9 @@ bool TimeStepper::place_effects(const std::string& name) {
 }
 
 void TimeStepper::number_effects() {
+  // The largest runs with contact order by METIS on the covers (system_matrix.h
+  // set_block_ordering): the covers of this mesh, the effects' own unknowns after them.
+  system_.set_block_ordering(b_->solved_by_effect() ? b_->space.dofs_per_cover() : 0, b_->space.unknowns());
   rhs_.resize(b_->number(s_));
   build_pattern();
 }
