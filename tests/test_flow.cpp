@@ -31,12 +31,15 @@
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"
+#include "tests/flow_probe.h"
 #include "tests/temp_dir.h"
 
 namespace nmm::solve {
 namespace {
 
 using nlohmann::json;
+using test::flow_of;
+using test::node_near;
 
 /// A rectangle [0, w] × [0, h] of rock (E, ν) cut by `joints`, its four sides held as `fix`
 /// ("xy", or "x" on the sides with "xy" top and bottom when `rollers`), mesh size `mesh`.
@@ -58,23 +61,6 @@ json box(double w, double h, const json& joints, double young, double poisson, b
                                  {{"points", {{w, h}, {0, h}}}, {"fix", "xy"}},
                                  {{"points", {{0, h}, {0, 0}}}, {"fix", side}}});
   return doc;
-}
-
-const FlowEffect& flow_of(const TimeStepper& st) {
-  for (const Effect* e : st.view().effects)
-    if (const auto* f = dynamic_cast<const FlowEffect*>(e)) return *f;
-  throw std::logic_error("no flow effect");
-}
-
-/// The network node nearest (x, y).
-std::size_t node_near(const FlowNetwork& net, double x, double y) {
-  std::size_t best = 0;
-  double d = 1e300;
-  for (std::size_t i = 0; i < net.nodes(); ++i) {
-    const double di = std::hypot(net.node_xy()[2 * i] - x, net.node_xy()[2 * i + 1] - y);
-    if (di < d) d = di, best = i;
-  }
-  return best;
 }
 
 /// Steps of dt up to t_end; with FLOW_TRACE set, prints the node nearest (x, y) after each.

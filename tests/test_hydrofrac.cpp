@@ -46,12 +46,15 @@
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"
+#include "tests/flow_probe.h"
 #include "tests/temp_dir.h"
 
 namespace nmm::solve {
 namespace {
 
 using nlohmann::json;
+using test::flow_of;
+using test::node_near;
 
 constexpr double kE = 1e10, kNu = 0.25;
 
@@ -75,22 +78,6 @@ json plate(double W, double H, double a, double h) {
   d["supports"] = {{{"points", {{W - 0.5 * h, -H}, {W, -H}}}, {"fix", "y"}}};
   d["solver"] = {{"time_step", 1}, {"dynamic", false}, {"static_mode", "equilibrium"}};
   return d;
-}
-
-const FlowEffect& flow_of(const TimeStepper& st) {
-  for (const Effect* e : st.view().effects)
-    if (const auto* f = dynamic_cast<const FlowEffect*>(e)) return *f;
-  throw std::logic_error("no flow effect");
-}
-
-std::size_t node_near(const FlowNetwork& net, double x, double y) {
-  std::size_t best = 0;
-  double d = 1e300;
-  for (std::size_t i = 0; i < net.nodes(); ++i) {
-    const double di = std::hypot(net.node_xy()[2 * i] - x, net.node_xy()[2 * i + 1] - y);
-    if (di < d) d = di, best = i;
-  }
-  return best;
 }
 
 // m³ per m: the fluid the network's free nodes hold, Σ V·(1 + p/K_f) (flow_transfer.h).
