@@ -59,7 +59,7 @@ struct Run {
   std::vector<double> wall, cpu;                               // s/step, per round
   // Times a batch of n steps of dt.
   void batch(int n, double dt) {
-    const double f0 = st.view().timings.fracture;
+    const double f0 = st.view().timings.effect("fracture");
     const double c0 = nmm::bench::thread_cpu_seconds();
     const nmm::Stopwatch w0;
     for (int i = 0; i < n; ++i) st.step(dt);
@@ -67,7 +67,7 @@ struct Run {
     wall.push_back(w);
     cpu.push_back(c);
     if (w < best_wall) best_wall = w;
-    if (c < best_cpu) best_cpu = c, fracture = (st.view().timings.fracture - f0) / n;
+    if (c < best_cpu) best_cpu = c, fracture = (st.view().timings.effect("fracture") - f0) / n;
   }
 };
 
@@ -89,7 +89,7 @@ int measure(double elements, bool dynamic, int rounds, int steps, std::ofstream&
   std::vector<std::unique_ptr<Run>> runs;
   runs.push_back(std::make_unique<Run>(intact_scene, "intact"));
   runs.push_back(std::make_unique<Run>(crack_scene, "can crack"));
-  if (runs[0]->st.view().fracture.active() || !runs[1]->st.view().fracture.active()) {
+  if (fracture_of(runs[0]->st.view()).active() || !fracture_of(runs[1]->st.view()).active()) {
     std::fprintf(stderr, "fracture_quiet_bench: the intact run must not crack and the other must be able to\n");
     return 1;
   }
@@ -101,7 +101,7 @@ int measure(double elements, bool dynamic, int rounds, int steps, std::ofstream&
     ratio_cpu.push_back(runs[1]->cpu.back() / runs[0]->cpu.back());
   }
   const nmm::solve::RunState& state = runs[1]->st.view().state;
-  if (!runs[1]->st.view().fracture.segments().empty()) {
+  if (!fracture_of(runs[1]->st.view()).segments().empty()) {
     std::fprintf(stderr, "fracture_quiet_bench: the bar cracked: not a quiet step\n");
     return 1;
   }
@@ -126,7 +126,7 @@ int measure(double elements, bool dynamic, int rounds, int steps, std::ofstream&
       keeps.push_back(w.seconds());
     }
     for (int i = 0; i < 5; ++i) {
-      nmm::solve::Fracture f = runs[1]->st.view().fracture;
+      nmm::solve::Fracture f = fracture_of(runs[1]->st.view());
       const nmm::Stopwatch w;
       const std::vector<nmm::solve::CrackSegment> found = f.find(runs[1]->mesh, runs[1]->scene, state, {});
       finds.push_back(w.seconds());

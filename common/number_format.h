@@ -22,9 +22,10 @@ std::string format_signed(double v, int decimals);
 std::string format_scientific(double v, int digits);
 
 /// Engineering notation for reports: `digits` significant digits, the exponent a multiple of 3
-/// carried by an SI prefix on `unit` ("5.58 s", "120 µm", "10 GN/m"); without a unit the
-/// exponent is written out ("1.23e+09") outside [0.001, 10⁶). Zero is "0 unit"; inf and NaN
-/// are written as such.
+/// carried by an SI prefix on `unit` ("5.58 s", "120 µm", "10 GN/m"), from p (10⁻¹²) to T
+/// (10¹²), the exponent written out beyond them ("4.94e-324 J/m"); without a unit the exponent
+/// is written out ("1.23e+09") outside [0.001, 10⁶). Subnormal values too. Zero is "0 unit";
+/// "inf", "-inf" and "nan" (whatever its sign bit) as such, with the unit.
 std::string format_engineering(double v, const std::string& unit, int digits = 3);
 
 }  // namespace nmm

@@ -23,7 +23,7 @@ py::array column(const std::vector<Row>& rows, Get get) {
 
 py::dict crack_segments(const solve::RunView& run) {
   using solve::CrackSegment;
-  const std::vector<CrackSegment>& s = run.fracture.segments();
+  const std::vector<CrackSegment>& s = fracture_of(run).segments();
   py::dict d;
   d["x0"] = column(s, [](const CrackSegment& c) { return c.a_now.x; });
   d["y0"] = column(s, [](const CrackSegment& c) { return c.a_now.y; });

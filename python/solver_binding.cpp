@@ -17,6 +17,7 @@
 
 #include "report/run_pictures.h"
 #include "solver/flow/flow_effect.h"
+#include "solver/stepping/fracture_effect.h"
 #include "solver/output/solve_run.h"
 #include "python/binding.h"
 #include "python/crack_arrays.h"
@@ -184,7 +185,7 @@ void PythonProgress::after_step(const solve::RunView&, std::int64_t, bool) { sol
 /// step: the view follows it), or a copy in a run that can crack — a crack re-cuts the mesh and
 /// the state's arrays are replaced by longer ones (docs/fracture.md), which a view would outlive.
 py::array state_array(py::handle self, const std::vector<double>& v, std::vector<py::ssize_t> shape) {
-  if (self.cast<PySolver&>().run().view().fracture.active()) return copy(v, std::move(shape));
+  if (fracture_of(self.cast<PySolver&>().run().view()).active()) return copy(v, std::move(shape));
   return view(v.data(), std::move(shape), self);
 }
 

@@ -6,6 +6,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "solver/reinforcement/bolt_readout.h"
+#include "solver/stepping/fracture_effect.h"
 
 namespace nmm::report {
 
@@ -53,7 +54,7 @@ ReportFiles write_run_pictures(const solve::RunView& run, const SceneDef& scene,
       throw InputError("--picture-field", "", "pressure: the run has no flow (no \"flow\" block in its scene)");
   }
   // A cracked run: its mesh has the cracks as joints after the scene's, and its scene with them.
-  const std::vector<solve::CrackSegment>& cracks = run.fracture.segments();
+  const std::vector<solve::CrackSegment>& cracks = fracture_of(run).segments();
   if (!cracks.empty()) {
     state.joint_crack.assign(scene.joints.size(), 0);
     for (const solve::CrackSegment& c : cracks) state.joint_crack.push_back(c.mode == solve::CrackMode::tensile ? 1 : 2);

@@ -51,7 +51,7 @@ constexpr double kComplianceTolerance = 0.05;  // –, beyond beam theory with t
 // Load units: |Σ A_e σ_e,k| / lever over the body's elements that are not debris.
 double load_of(const solve::RunView& v, const RockTestSpecimen& sp) {
   const std::vector<double> s = solve::mean_stress(v);
-  const std::vector<std::uint8_t>& debris = v.fracture.debris();
+  const std::vector<std::uint8_t>& debris = fracture_of(v).debris();
   double sum = 0;
   for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
     if (!debris.empty() && debris[e]) continue;
@@ -116,8 +116,8 @@ int run(const std::string& name, const std::string& csv) {
       steps = n;
       previous = load;
       load = slope ? 0 : load_of(v, sp);
-      if (!v.fracture.segments().empty() && first_step < 0) {
-        first_step = v.fracture.segments().front().step;
+      if (!fracture_of(v).segments().empty() && first_step < 0) {
+        first_step = fracture_of(v).segments().front().step;
         first_load = previous;  // the last accepted load of the intact rock
         if (beam && intact_load > 0) compliance = intact_deflection / intact_load;
       }
@@ -131,7 +131,7 @@ int run(const std::string& name, const std::string& csv) {
   if (beam && first_step < 0 && intact_load > 0) compliance = intact_deflection / intact_load;
   const solve::RunView v = st.view();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto& segs = v.fracture.segments();
+  const auto& segs = fracture_of(v).segments();
   const double end_time = v.state.time;
 
   // The checks.
@@ -185,7 +185,7 @@ int run(const std::string& name, const std::string& csv) {
     std::printf("; compliance %s m/(N/m) (beam theory %s … %s), P_net %s", num(compliance).c_str(),
                 num(sp.compliance_low).c_str(), num(sp.compliance).c_str(), num(sp.net_section_load).c_str());
   if (slope) std::printf("; wedge %.4g m, behind the crest %.3g m", travel, behind);
-  std::printf("; %zu segments, %d debris; %.1f s\n", segs.size(), v.fracture.debris_blocks(), wall);
+  std::printf("; %zu segments, %d debris; %.1f s\n", segs.size(), fracture_of(v).debris_blocks(), wall);
   if (!outcome.ok()) std::printf("  stop: %s\n", test::text(outcome).c_str());
   if (!pass) std::printf("  failed: %s\n", failed.c_str());
   std::fflush(stdout);
@@ -202,7 +202,7 @@ int run(const std::string& name, const std::string& csv) {
       << csv_quote(sp.closed_form_name) << ',' << num(error_pct) << ',' << num(peak) << ',' << peak_step << ','
       << num(peak_time) << ',' << sp.load_unit << ',' << num(compliance) << ',' << num(beam ? sp.compliance_low : NAN) << ',' << num(beam ? sp.compliance : NAN)
       << ',' << num(beam ? sp.net_section_load : NAN) << ',' << num(tip_distance) << ',' << segs.size() << ','
-      << v.fracture.debris_blocks() << ',' << v.mesh.element_count() << ',' << num(wall) << ','
+      << fracture_of(v).debris_blocks() << ',' << v.mesh.element_count() << ',' << num(wall) << ','
       << csv_quote(failed) << '\n';
   return pass ? 0 : 1;
 }

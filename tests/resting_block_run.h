@@ -39,10 +39,10 @@ inline RestingBlockRun resting_block_two_seconds(int order) {
   const Mesh m = pre::build_mesh(s, "rest");
   solve::TimeStepper st(m, s, "rest");
   solve::EnergyMeter meter(st.view().model);
-  meter.after_step(st.view().state, st.view().contacts.contacts(), true);
+  meter.after_step(st.view().state, energy_sources(st.view()), true);
   RestingBlockRun r;
   r.status = st.run_until(2.0, [&](std::int64_t) {
-    meter.after_step(st.view().state, st.view().contacts.contacts(), true);
+    meter.after_step(st.view().state, energy_sources(st.view()), true);
     r.kinetic_max = std::max(r.kinetic_max, meter.rows().back().kinetic);
     if (st.view().state.time > 1.0) r.kinetic_late = std::max(r.kinetic_late, meter.rows().back().kinetic);
   });

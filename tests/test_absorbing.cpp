@@ -71,7 +71,7 @@ Trace run_column(const json& doc, double dt, int steps, int axis, const char* na
   const Mesh m = pre::build_mesh(s, name);
   TimeStepper st(m, s, name);
   EnergyMeter energy(st.view().model);
-  energy.after_step(st.view().state, st.view().contacts.contacts(), false);
+  energy.after_step(st.view().state, energy_sources(st.view()), false);
   Trace tr;
   double before = 0;
   for (int i = 0; i < steps; ++i) {
@@ -82,7 +82,7 @@ Trace run_column(const json& doc, double dt, int steps, int axis, const char* na
     tr.t.push_back(st.view().state.time);
     tr.v.push_back((u - before) / dt);
     before = u;
-    energy.after_step(st.view().state, st.view().contacts.contacts(), false);
+    energy.after_step(st.view().state, energy_sources(st.view()), false);
   }
   energy.keep_last();
   const EnergyRow& e = energy.rows().back();

@@ -661,10 +661,10 @@ TEST(BartonBandisSolver, ShearBoxEnergyBalanceCountsTheSupportsWork) {
   const Mesh m = pre::build_mesh(s, "shear box energy");
   TimeStepper st(m, s, "shear box energy");
   EnergyMeter meter(st.view().model);
-  meter.after_step(st.view().state, st.view().contacts.contacts(), true);
+  meter.after_step(st.view().state, energy_sources(st.view()), true);
   double opening_work = 0;  // Σ N·Δv, J/m
   const Outcome status = st.run_until(t1 + dt + 3 * dp / v, [&](std::int64_t) {
-    meter.after_step(st.view().state, st.view().contacts.contacts(), true);
+    meter.after_step(st.view().state, energy_sources(st.view()), true);
     for (const Contact& c : st.view().contacts.contacts()) opening_work += c.normal_force * c.dilation_step;
   });
   ASSERT_PRED1(test::ended_ok, status);

@@ -253,10 +253,10 @@ EnergyTrace wedge_energy(double dt, double kn, double t_end) {
   const Mesh m = pre::build_mesh(s, "wedge");
   TimeStepper st(m, s, "wedge");
   EnergyMeter meter(st.view().model);
-  meter.after_step(st.view().state, st.view().contacts.contacts(), true);
+  meter.after_step(st.view().state, energy_sources(st.view()), true);
   EnergyTrace e;
   e.status = st.run_until(t_end, [&](std::int64_t) {
-    meter.after_step(st.view().state, st.view().contacts.contacts(), true);
+    meter.after_step(st.view().state, energy_sources(st.view()), true);
     const EnergyRow& r = meter.rows().back();
     e.worst_gain = std::max(e.worst_gain, -r.residual);
     e.released = std::max(e.released, std::abs(r.gravity));

@@ -357,7 +357,7 @@ TEST(CrackTips, TipsGrowWhenKReachesTheToughness) {
   std::vector<double> load;  // Pa, mean σyy after each step
   std::int64_t grew = -1;
   const Outcome o = st.run_until(40.0, [&](std::int64_t n) {
-    if (grew < 0 && !st.view().fracture.segments().empty()) grew = n;
+    if (grew < 0 && !fracture_of(st.view()).segments().empty()) grew = n;
     if (grew < 0) load.push_back(mean_syy(st.view()));
   });
   EXPECT_PRED1(test::ended_ok, o) << test::text(o);
@@ -365,7 +365,7 @@ TEST(CrackTips, TipsGrowWhenKReachesTheToughness) {
   const double sigma_c = k_ic / (std::sqrt(kPi * a) * tada_centre(a / W));
   // The load of the step that grew: the intact steps' last plus their increment.
   const double at = load.back() + (load.back() - load[load.size() - 2]);
-  const std::vector<solve::CrackSegment>& seg = st.view().fracture.segments();
+  const std::vector<solve::CrackSegment>& seg = fracture_of(st.view()).segments();
   double reach = 0;
   for (const solve::CrackSegment& c : seg) reach = std::max(reach, std::abs(c.b.x));
   std::printf("  grew at step %lld: σ %.4g Pa between %.4g and %.4g (σ_c %.4g: %+.2f %%), %zu segments to |x| %.4f m, first %g,%g → %g,%g\n",

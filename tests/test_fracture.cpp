@@ -89,7 +89,7 @@ nlohmann::json specimen(double w, double h, double size, int axis, double speed,
 double mean_stress(const TimeStepper& st, int k) {
   const auto& v = st.view();
   const std::vector<double> s = solve::mean_stress(v);
-  const std::vector<std::uint8_t>& debris = v.fracture.debris();
+  const std::vector<std::uint8_t>& debris = fracture_of(v).debris();
   double sum = 0, area = 0;
   for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
     if (!debris.empty() && debris[e]) continue;
@@ -115,7 +115,7 @@ LoadRun load(TimeStepper& st, int axis, double seconds) {
     if (s > r.peak) r.peak = s, r.peak_step = n;
     r.last = s;
   });
-  r.segments = st.view().fracture.segments();
+  r.segments = fracture_of(st.view()).segments();
   return r;
 }
 
@@ -154,7 +154,7 @@ TEST(Fracture, BarInTensionCracksAcrossAtTheTensileStrength) {
   for (const CrackSegment& c : r.segments) EXPECT_EQ(c.mode, CrackMode::tensile);
   EXPECT_LT(worst, 5.0);
   EXPECT_NEAR(length, 1.0, 0.02);  // one crack across the 1 m bar
-  EXPECT_EQ(st.view().fracture.crack_count(), 1);
+  EXPECT_EQ(fracture_of(st.view()).crack_count(), 1);
   EXPECT_GT(st.view().mesh.element_count(), m.element_count());
 }
 
@@ -175,7 +175,7 @@ TEST(Fracture, UniaxialCompressionPeaksAtTheUcsOnTheCriticalPlane) {
   std::printf("ucs: peak %.5g Pa at step %lld (UCS %.5g, %+.2f %%), end %.4g Pa; %zu segments in %d cracks, "
               "first at step %lld at %.2f° from x (60° or 120° expected)\n",
               r.peak, static_cast<long long>(r.peak_step), ucs, 100 * (r.peak / ucs - 1), r.last,
-              r.segments.size(), st.view().fracture.crack_count(), static_cast<long long>(first.step), a);
+              r.segments.size(), fracture_of(st.view()).crack_count(), static_cast<long long>(first.step), a);
   ASSERT_PRED1(test::ended_ok, r.status);
   EXPECT_NEAR(r.peak, ucs, 0.05 * ucs);
   for (const CrackSegment& k : r.segments) EXPECT_EQ(k.mode, CrackMode::shear);
@@ -205,7 +205,7 @@ TEST(Fracture, BrazilianDiscSplitsAtItsTensileStrength) {
     if (P > peak) peak = P, peak_step = n;
   });
   ASSERT_PRED1(test::ended_ok, o);
-  const std::vector<CrackSegment>& cracks = st.view().fracture.segments();
+  const std::vector<CrackSegment>& cracks = fracture_of(st.view()).segments();
   ASSERT_FALSE(cracks.empty());
   const CrackSegment& first = cracks.front();
   const Vec2 mid{0.5 * (first.a.x + first.b.x), 0.5 * (first.a.y + first.b.y)};
@@ -242,7 +242,7 @@ TEST(Fracture, RockBridgesBreakIntoAStepPathOnlyWhenWeakEnough) {
     ASSERT_PRED1(test::ended_ok, st.run_until(1.0, [](std::int64_t) {}));
     const auto u = st.view().state.measure[0].displacement();
     moved[strong] = std::hypot(u[0], u[1]);
-    segments[strong] = st.view().fracture.segments().size();
+    segments[strong] = fracture_of(st.view()).segments().size();
   }
   std::printf("step-path slope after 1 s: wedge moved %.4g m with %zu crack segments; %.4g m with %zu when the "
               "rock is ten times stronger\n", moved[0], segments[0], moved[1], segments[1]);
@@ -288,7 +288,7 @@ TEST(Fracture, NothingBreaksWithoutAFractureBlock) {
   TimeStepper st(m, s, "ucs");
   const LoadRun r = load(st, 1, 1.8);
   ASSERT_PRED1(test::ended_ok, r.status);
-  EXPECT_FALSE(st.view().fracture.active());
+  EXPECT_FALSE(fracture_of(st.view()).active());
   EXPECT_TRUE(r.segments.empty());
   EXPECT_NEAR(r.last, 1e10 * 1.8e-3 / 2, 0.01 * 9e6);
   EXPECT_EQ(st.view().mesh.element_count(), m.element_count());
@@ -308,14 +308,14 @@ TEST(Fracture, AQuietStepIsTheIntactStepBitForBit) {
     const SceneDef sc = scene_from_json(can, "bar"), si = scene_from_json(intact, "bar");
     const Mesh mc = pre::build_mesh(sc, "bar"), mi = pre::build_mesh(si, "bar");
     TimeStepper a(mc, sc, "bar"), b(mi, si, "bar");
-    ASSERT_TRUE(a.view().fracture.active());
-    ASSERT_FALSE(b.view().fracture.active());
+    ASSERT_TRUE(fracture_of(a.view()).active());
+    ASSERT_FALSE(fracture_of(b.view()).active());
     for (int k = 0; k < 80; ++k) {
       ASSERT_PRED1(test::ended_ok, a.attempt(1e-3));
       ASSERT_PRED1(test::ended_ok, b.attempt(1e-3));
       ASSERT_EQ(solve::state_hash(a.view()), solve::state_hash(b.view())) << "notch " << notch << ", step " << k + 1;
     }
-    EXPECT_TRUE(a.view().fracture.segments().empty()) << "notch " << notch << ": not a quiet run";
+    EXPECT_TRUE(fracture_of(a.view()).segments().empty()) << "notch " << notch << ": not a quiet run";
     EXPECT_NEAR(mean_stress(a, 0), 1e10 * 80e-6 / 4, 0.05 * 2e5) << "notch " << notch;
     EXPECT_EQ(b.view().contacts.active(), notch);
   }
@@ -459,7 +459,7 @@ CutBar cut_stressed_bar() {
   c.before_mesh = pre::build_mesh(c.scene, "bar");
   TimeStepper st(c.before_mesh, c.scene, "bar");
   EXPECT_PRED1(test::ended_ok, st.run_until(0.3, [](std::int64_t) {}));
-  c.cracked_in_run = !st.view().fracture.segments().empty();
+  c.cracked_in_run = !fracture_of(st.view()).segments().empty();
   c.before = st.view().state;
   c.cracked = c.scene;
   const std::size_t first = c.cracked.joints.size();
@@ -517,7 +517,7 @@ TEST(Fracture, RestartMidCrackingContinuesBitForBit) {
   TimeStepper straight(m, s, "ucs"), first(m, s, "ucs"), second(m, s, "ucs");
   ASSERT_PRED1(test::ended_ok, straight.run_until(1.5, [](std::int64_t) {}));
   ASSERT_PRED1(test::ended_ok, first.run_until(1.42, [](std::int64_t) {}));
-  const std::size_t at_checkpoint = first.view().fracture.segments().size();
+  const std::size_t at_checkpoint = fracture_of(first.view()).segments().size();
   ASSERT_GT(at_checkpoint, 0u) << "the checkpoint must hold cracks";
   const std::string path = ::testing::TempDir() + "/cracked.nmmstate";
   solve::write_checkpoint(first.view(), path);
@@ -525,9 +525,9 @@ TEST(Fracture, RestartMidCrackingContinuesBitForBit) {
   EXPECT_EQ(solve::state_hash(second.view()), solve::state_hash(first.view()));
   ASSERT_PRED1(test::ended_ok, second.run_until(1.5, [](std::int64_t) {}));
   std::printf("restart with %zu segments at the checkpoint, %zu at the end\n", at_checkpoint,
-              straight.view().fracture.segments().size());
-  EXPECT_GT(straight.view().fracture.segments().size(), at_checkpoint) << "cracks must grow after the restart";
-  EXPECT_EQ(second.view().fracture.segments().size(), straight.view().fracture.segments().size());
+              fracture_of(straight.view()).segments().size());
+  EXPECT_GT(fracture_of(straight.view()).segments().size(), at_checkpoint) << "cracks must grow after the restart";
+  EXPECT_EQ(fracture_of(second.view()).segments().size(), fracture_of(straight.view()).segments().size());
   EXPECT_EQ(second.view().mesh.element_count(), straight.view().mesh.element_count());
   EXPECT_EQ(solve::state_hash(second.view()), solve::state_hash(straight.view()));
 }

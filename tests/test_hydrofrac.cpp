@@ -163,7 +163,7 @@ TEST(HydraulicFracture, BreakdownPressureMatchesTheToughnessAndTheNetworkGrows) 
   std::int64_t grew = -1;
   const double t_end = 20;
   ASSERT_PRED1(test::ended_ok, st.run_until(t_end, [&](std::int64_t n) {
-    if (grew < 0 && !st.view().fracture.segments().empty()) grew = n;
+    if (grew < 0 && !fracture_of(st.view()).segments().empty()) grew = n;
     if (grew < 0) pressure.push_back(st.view().state.flow_pressure[node_near(flow_of(st).network(), 0, 0)]);
   }));
   ASSERT_GT(grew, 1) << "the crack held at the first steps";
@@ -171,7 +171,7 @@ TEST(HydraulicFracture, BreakdownPressureMatchesTheToughnessAndTheNetworkGrows) 
   const double at = pressure.back() + dp;
   const RunState& state = st.view().state;
   const FlowNetwork& net = flow_of(st).network();
-  const std::vector<CrackSegment>& seg = st.view().fracture.segments();
+  const std::vector<CrackSegment>& seg = fracture_of(st.view()).segments();
   double reach = 0, grown = 0;
   for (const CrackSegment& c : seg) {
     reach = std::max(reach, std::max(std::abs(c.a.x), std::abs(c.b.x)));
@@ -207,7 +207,7 @@ TEST(HydraulicFracture, BreakdownPressureMatchesTheToughnessAndTheNetworkGrows) 
   const double t_mid = static_cast<double>(grew + 2);
   TimeStepper first(m, s, "breakdown"), second(m, s, "breakdown");
   ASSERT_PRED1(test::ended_ok, first.run_until(t_mid, [](std::int64_t) {}));
-  ASSERT_FALSE(first.view().fracture.segments().empty());
+  ASSERT_FALSE(fracture_of(first.view()).segments().empty());
   const test::TempDir dir;
   write_checkpoint(first.view(), dir.path("hf.nmmstate"));
   second.restart_from(dir.path("hf.nmmstate"));

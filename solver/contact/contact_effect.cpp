@@ -4,6 +4,7 @@
 #include "solver/contact/contact_effect.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
@@ -311,6 +312,21 @@ void ContactEffect::summarise(const RunState& s, nlohmann::json& summary) const 
 
 void ContactEffect::effect_names(const RunState& /*s*/, std::vector<std::string>& names) const {
   for (std::string& n : contacts_.effects()) names.push_back(std::move(n));
+}
+
+void ContactEffect::energy_state(const EnergyState& /*e*/, EnergyTerms& t) const {
+  for (const Contact& c : contacts_.contacts())
+    if (c.state != ContactState::open)
+      t.stored += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+}
+
+void ContactEffect::energy_step(const EnergyStep& /*e*/, EnergyTerms& t) const {
+  for (const Contact& c : contacts_.contacts()) {
+    if (c.state == ContactState::sliding) t.friction += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
+    t.friction -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
+    t.fracture += c.cohesive_step;
+    t.friction -= c.cohesion_slip_work;
+  }
 }
 
 }  // namespace nmm::solve

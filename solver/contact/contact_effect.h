@@ -55,6 +55,17 @@ class ContactEffect final : public Effect {
   void write_outputs(OutputStep& out) const override;
   /// The faces of its closed contacts: each contact's edge and the two edges at its vertex.
   void loaded_faces(const RunState& s, std::vector<std::uint8_t>& loaded) const override;
+  /// Energy (effect_energy.h): the springs of the closed contacts hold ½ N·closure + ½ |T·s_el|
+  /// (N normal force, closure = −gap, T shear force, s_el elastic shear: exact for constant
+  /// springs, the secant energy for nonlinear laws).
+  void energy_state(const EnergyState& e, EnergyTerms& t) const override;
+  /// Energy of the step: the work of friction in sliding contacts, |T|·|s − s_el| (s the trial
+  /// elastic shear, s_el the shear left at the limit: the step's slip), less what the asperities
+  /// return as opening — a Barton–Bandis joint that dilates by Δv (joint_law.h) pushes its faces
+  /// apart with N over it (and takes N·|Δv| back sliding down toward its start) — into
+  /// t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
+  /// cohesion did in slip, which is not friction's, into t.fracture.
+  void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
   /// new mesh), the events and what the solves have cost.

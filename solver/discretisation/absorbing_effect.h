@@ -33,6 +33,15 @@ class AbsorbingEffect final : public Effect {
   void checkpoint_sections(const RunState& s, const Mesh& mesh, CheckpointSections& sections) const override;
   void restore_sections(const CheckpointSections& sections, const Mesh& mesh, const std::string& name,
                         RunState& s) const override;
+  /// energy.csv's absorbed column with absorbing boundaries.
+  unsigned energy_columns() const override { return active() ? kAbsorbedColumn : kNoEnergyColumn; }
+  /// Energy (effect_energy.h): what the steps counted in the state (absorbing_boundary.h
+  /// absorbing_work) — the dashpots' take Σ_steps v1ᵀC_e d into t.absorbed, the work of the input
+  /// traction and the carried reaction into t.work.
+  void energy_state(const EnergyState& e, EnergyTerms& t) const override {
+    t.absorbed += e.s.absorbed_work;
+    t.work += e.s.absorbing_load_work;
+  }
 
  private:
   const Model& model_;

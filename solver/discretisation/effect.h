@@ -22,7 +22,8 @@
 //                 its limit (step_control.h)
 //   commit        the accepted step into the state (history is committed here, never on an iterate)
 // and what the run writes of it (effect_output.h): its rows of the output steps' CSV files, the
-// files it writes at the end, its part of summary.json.
+// files it writes at the end, its part of summary.json; and its part of the energy balance
+// (effect_energy.h: what it stores, works and dissipates, summed by the energy meter).
 #pragma once
 
 #include <cstddef>
@@ -34,6 +35,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "common/outcome.h"
+#include "solver/discretisation/effect_energy.h"
 #include "solver/discretisation/effect_output.h"
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_context.h"
@@ -74,7 +76,7 @@ struct StepSolution {
   bool iterated = false;     ///< the solve took an iterative (Newton) direction
 };
 
-class Effect : public EffectOutput {
+class Effect : public EffectOutput, public EffectEnergy {
  public:
   virtual ~Effect() = default;
   Effect() = default;

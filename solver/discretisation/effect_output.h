@@ -13,6 +13,7 @@
 //                  files it writes whole into the folder (cracks.csv)
 //   summarise      its part of summary.json
 //   effect_names   what it adds to summary.json "effects" when it takes part (docs/interface.md)
+//   timing_names   the keys it adds to summary.json "timings" (what it booked in StepTimings)
 //   warnings       what nmm-solve warns of on stderr once the run has stopped, read from the
 //                  run's summary.json (the cracks' snap-back)
 //   frame_parts    at every frame, grids of its own shown beside the elements (the flow network:
@@ -77,6 +78,9 @@ class EffectOutput {
   virtual void frame_parts(const OutputStep& /*out*/, std::vector<FramePart>& /*parts*/) const {}
   /// Its part of summary.json for the run in state s (the bolts' "bolts"), added to `summary`.
   virtual void summarise(const RunState& /*s*/, nlohmann::json& /*summary*/) const {}
+  /// The keys it adds to summary.json "timings", the names it books its costs under in the run's
+  /// StepTimings (StepTimings::add): written whether or not it took part, 0 where it spent nothing.
+  virtual std::vector<std::string> timing_names() const { return {}; }
   /// The names it adds to summary.json "effects" for the run in state s (none: it takes no part).
   virtual void effect_names(const RunState& /*s*/, std::vector<std::string>& /*names*/) const {}
   /// Appends what the user is warned of once the run has stopped, from its summary.json

@@ -16,7 +16,12 @@
 // face's current position. The two faces of a closed joint get equal and opposite forces, so
 // the contact spring between them carries σn − p: the effective normal stress of the friction
 // law (Terzaghi). Water is a load: strength reduction (nmm-fos) keeps it.
+// Its work on the rock in a step (energy.csv load_work): W_water = Σ_wet faces ∫ −p·n·Δu ds, p at
+// the step's end on the face's current position, Δu the step's displacement, linear along the
+// edge; the two-point Gauss rule on each piece where p is linear is exact.
 #include "solver/discretisation/joint_water.h"
+
+#include "solver/discretisation/model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -146,6 +151,38 @@ std::vector<std::pair<double, double>> JointWater::linear_pieces(int joint, cons
     pieces.emplace_back(t0, t1);
   }
   return pieces;
+}
+
+void JointWater::energy_step(const EnergyStep& e, EnergyTerms& t) const {
+  // ∫ −p·n·Δu ds on each wet face, per piece where p is linear: the two-point Gauss rule is exact
+  // for p times the linear Δu.
+  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
+  const RunState& s = e.s;
+  const std::vector<double>& prev = e.last_loop_u;
+  if (!active() || prev.size() != s.loop_u.size()) return;
+  const Mesh& mesh = e.model.mesh();
+  double w = 0;
+  for (std::size_t i = 0; i < edges_.size(); ++i) {
+    const BoundaryEdge& be = edges_[i];
+    if (element_removed(mesh, s, be.element)) continue;
+    const int joint = edge_joint_[i];
+    const double* a = s.loop_xy.data() + 2 * be.vertex;
+    const double* b = s.loop_xy.data() + 2 * be.next;
+    const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
+    if (!(len > 0)) continue;
+    const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
+    for (const auto& [t0, t1] : linear_pieces(joint, a, b))
+      for (double xi : kGauss) {
+        const double u = t0 + xi * (t1 - t0);
+        const double p = pressure_at(joint, a[0] + u * dx, a[1] + u * dy);
+        for (int d = 0; d < 2; ++d) {
+          const double du_a = s.loop_u[2 * be.vertex + d] - prev[2 * be.vertex + d];
+          const double du_b = s.loop_u[2 * be.next + d] - prev[2 * be.next + d];
+          w += 0.5 * (t1 - t0) * len * (-p) * (d == 0 ? nx : ny) * ((1 - u) * du_a + u * du_b);
+        }
+      }
+  }
+  t.work += w;
 }
 
 }  // namespace nmm::solve

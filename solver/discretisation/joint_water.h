@@ -9,12 +9,13 @@
 #include <vector>
 
 #include "solver/discretisation/boundary_conditions.h"
+#include "solver/discretisation/effect_energy.h"
 #include "common/mesh.h"
 #include "common/scene.h"
 
 namespace nmm::solve {
 
-class JointWater {
+class JointWater : public EffectEnergy {
  public:
   JointWater(const Mesh& mesh, const SceneDef& scene);
 
@@ -32,6 +33,10 @@ class JointWater {
   /// (the phreatic surface's vertices, a table's rows and the water line split it); a Gauss
   /// rule on each integrates the face force exactly.
   std::vector<std::pair<double, double>> linear_pieces(int joint, const double a[2], const double b[2]) const;
+
+  /// Energy (effect_energy.h): the work of the pressure on the wet faces in the step, into t.work
+  /// (joint_water.cpp: W_water).
+  void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
  private:
   // Height above the origin against gravity and position across it, m.

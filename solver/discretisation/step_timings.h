@@ -2,6 +2,10 @@
 // from common/stopwatch.h, and the counts behind them.
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace nmm::solve {
 
 /// Seconds spent per part of the run.
@@ -12,9 +16,27 @@ struct StepTimings {
   double solves = 0;
   double geometry_update = 0;  ///< stresses, loop vertices, covers and points moved after a solve
   double output = 0;
-  double fracture = 0;         ///< keeping each step's start, strength checks, crack paths, re-cutting and carrying the state over
   long factorisations = 0;     ///< numeric factorisations of the system matrix
   long solves_count = 0;       ///< triangular solve pairs (direct solves and preconditioner applications)
+  /// s, what each effect that books its own part spent, by the name it books it under (its
+  /// summary.json timings key: EffectOutput::timing_names), in the order first booked.
+  std::vector<std::pair<std::string, double>> effects;
+
+  /// Books `seconds` (s) to the effect's part `name`.
+  void add(const char* name, double seconds) {
+    for (auto& [n, s] : effects)
+      if (n == name) {
+        s += seconds;
+        return;
+      }
+    effects.emplace_back(name, seconds);
+  }
+  /// s, what the effect's part `name` has cost so far (0: nothing booked).
+  double effect(const std::string& name) const {
+    for (const auto& [n, s] : effects)
+      if (n == name) return s;
+    return 0;
+  }
 };
 
 }  // namespace nmm::solve

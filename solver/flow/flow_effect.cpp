@@ -246,4 +246,6 @@ void FlowEffect::frame_parts(const OutputStep& out, std::vector<FramePart>& part
   parts.push_back(std::move(part));
 }
 
+void FlowEffect::energy_state(const EnergyState& e, EnergyTerms& t) const { t.work += e.s.flow_load_work; }
+
 }  // namespace nmm::solve

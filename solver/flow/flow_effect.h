@@ -84,6 +84,9 @@ class FlowEffect final : public Effect {
   /// The network (flow.csv, tests); empty without a flow block.
   const FlowNetwork& network() const { return network_; }
   void face_pressures(const RunState& s, std::vector<double>& pressure) const override;
+  /// Energy (effect_energy.h): the work of the fluid's pressure on the joint and crack faces the
+  /// steps counted in the state (RunState::flow_load_work) into t.work.
+  void energy_state(const EnergyState& e, EnergyTerms& t) const override;
 
  private:
   /// N per unknown of the covers: the pressure `p` ([node] Pa) on every joint face of the state s.

@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "solver/discretisation/element_integration.h"
 #include "solver/discretisation/insitu_stress.h"
 #include "common/time_table.h"
 #include "common/atomic_file.h"
-#include "solver/reinforcement/bolt_system.h"
-#include "solver/fracture/fracture.h"
 
 namespace nmm::solve {
 
@@ -22,7 +22,6 @@ EnergyMeter::EnergyMeter(const Model& model, const CoverSpace* space)
   initial_geometry();
   shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
   for (const SupportDef& sd : scene.supports) moving_supports_ |= sd.velocity.x != 0 || sd.velocity.y != 0;
-  fracturing_ = Fracture(scene).active();  // the column where the rock can break
   // Where the steps throw motion away: DDA's static steps (inertia in the matrix, each step
   // from rest) and dynamic ones that keep a share of their velocity.
   damping_ = scene.solver.dynamic ? scene.solver.dynamic_factor < 1
@@ -50,7 +49,7 @@ void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const 
   // The map leads back to the mesh of the last call (RunView::recut, composed over every re-cut
   // of the step): its indices must lie within the records of that mesh.
   const std::size_t old_vertices = prev_loop_u_.size() / 2, old_elements = prev_cx_.size();
-  // The model, mesh and scene of the last call are gone with the mesh the cracks replaced: only
+  // The model, mesh and scene of the last call are gone with the mesh the change replaced: only
   // the meter's own records of them are read.
   model_ = &model;
   mesh_ = &model.mesh();
@@ -60,7 +59,7 @@ void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const 
       start.loop_u.size() != 2 * mesh_->loop_vertex_count())
     throw std::logic_error("EnergyMeter::carry_over: the re-cut map or the step's start is not of the new mesh");
   initial_geometry();  // a piece starts as it was cut: its share of its parent's area and centroid
-  // A vertex kept its place: its last displacement is the one it had; a vertex the crack made
+  // A vertex kept its place: its last displacement is the one it had; a vertex the change made
   // starts where the step's start put it (its parent element's field there, state_transfer.h).
   if (!prev_loop_u_.empty()) {
     std::vector<double> prev = start.loop_u;
@@ -95,12 +94,9 @@ void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const 
       for (std::size_t k = 0; k < m; ++k) v[m * c + k] = prev_v1_.at(m * static_cast<std::size_t>(map.cover_parent[c]) + k);
     prev_v1_ = std::move(v);
   }
-  // What the crack-closure sum of the step needs of its start (fracture_release).
-  crack_start_.first_new_joint = joints_;
-  crack_start_.loop_xy = start.loop_xy;
-  crack_start_.loop_u = start.loop_u;
-  crack_start_.stress = start.stress;
-  crack_start_.pending = true;
+  // The step's start on the new mesh, for the effects' terms of the step (EnergyStep).
+  changed_start_ = start;
+  changed_ = true;
 }
 
 double EnergyMeter::damped_kinetic(const RunState& s, double kept) {
@@ -134,31 +130,6 @@ double EnergyMeter::damped_kinetic(const RunState& s, double kept) {
   prev_v1_ = std::move(v1);
   prev_dt_ = dt;
   return q;
-}
-
-double EnergyMeter::fracture_release(const RunState& s) const {
-  // ½ r·d = −½ Σ_faces Σ_sides ∫ (σ0 n)·Δu ds (energy.h): on each side of each new face, the
-  // traction σ0·n its element carried across it at the step's start (n outward, from the start
-  // positions: the internal force the step started from) times the side's displacement in the
-  // step, linear along the edge (cover order 0: exact).
-  const CrackStart& c = crack_start_;
-  double w = 0;
-  for (std::size_t e = 0; e < mesh_->element_count(); ++e) {
-    if (removed(s, static_cast<std::int32_t>(e))) continue;
-    const std::int32_t b = mesh_->element_loop_offset[e], end = mesh_->element_loop_offset[e + 1];
-    const double sx = c.stress[3 * e], sy = c.stress[3 * e + 1], txy = c.stress[3 * e + 2];
-    for (std::int32_t v = b; v < end; ++v) {
-      if (mesh_->loop_edge_joint[v] < static_cast<std::int32_t>(c.first_new_joint)) continue;
-      const std::int32_t n = v + 1 < end ? v + 1 : b;
-      // (dy, −dx): the outward normal times the edge's length (CCW loop: outside on the right).
-      const double lnx = c.loop_xy[2 * n + 1] - c.loop_xy[2 * v + 1], lny = -(c.loop_xy[2 * n] - c.loop_xy[2 * v]);
-      const double tx = sx * lnx + txy * lny, ty = txy * lnx + sy * lny;  // N/m · m: ∫ σ0·n ds
-      const double dux = 0.5 * (s.loop_u[2 * v] - c.loop_u[2 * v] + s.loop_u[2 * n] - c.loop_u[2 * n]);
-      const double duy = 0.5 * (s.loop_u[2 * v + 1] - c.loop_u[2 * v + 1] + s.loop_u[2 * n + 1] - c.loop_u[2 * n + 1]);
-      w -= 0.5 * (tx * dux + ty * duy);
-    }
-  }
-  return w;
 }
 
 double EnergyMeter::kinetic(const RunState& s, const std::vector<double>& velocity) const {
@@ -204,7 +175,11 @@ double EnergyMeter::kinetic(const RunState& s, const std::vector<double>& veloci
   return k;
 }
 
-EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>& contacts) const {
+EnergyRow EnergyMeter::state_terms(const RunState& s, const EnergySources& sources) const {
+  return measure(s, sources, nullptr);
+}
+
+EnergyRow EnergyMeter::measure(const RunState& s, const EnergySources& sources, std::vector<EnergyTerms>* counted) const {
   EnergyRow r;
   r.step = s.step;
   r.time = s.time;
@@ -266,15 +241,23 @@ EnergyRow EnergyMeter::state_terms(const RunState& s, const std::vector<Contact>
       }
     }
   }
-  for (const Contact& c : contacts)
-    if (c.state != ContactState::open)
-      r.springs += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
-  for (std::size_t b = 0; b < s.bolts.size(); ++b) r.springs += bolt_elastic_energy(scene_->bolts[b], s.bolts[b]);
+  // What the effects hold, added on in the sources' order; and the totals they count in the state.
+  if (counted) counted->assign(sources.size(), EnergyTerms{});
+  const EnergyState e{*model_, s};
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    EnergyTerms t;
+    t.stored = r.springs;
+    sources[i]->energy_state(e, t);
+    r.springs = t.stored;
+    if (counted) (*counted)[i] = t;
+  }
   return r;
 }
 
-void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& contacts, bool keep) {
-  EnergyRow r = state_terms(s, contacts);
+void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bool keep) {
+  std::vector<EnergyTerms> counted;
+  EnergyRow r = measure(s, sources, &counted);
+  for (const EffectEnergy* src : sources) columns_ |= src->energy_columns();
   if (started_) {
     for (std::size_t l = 0; l < s.loads.size() && l < scene_->loads.size(); ++l) {
       const double factor =
@@ -282,18 +265,21 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
       load_work_ += factor * (scene_->loads[l].force.x * (s.loads[l].x - load_x_[l]) +
                               scene_->loads[l].force.y * (s.loads[l].y - load_y_[l]));
     }
-    for (const Contact& c : contacts) {
-      if (c.state == ContactState::sliding) friction_ += std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
-      friction_ -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
-      // A softening crack face: what its damage dissipated is fracture (cohesive_law.h D(κ)),
-      // including the work its cohesion did in slip, which is not friction's.
-      released_ += c.cohesive_step;
-      friction_ -= c.cohesion_slip_work;
-    }
     const double supports = support_work(s);
     support_work_ += supports;
-    load_work_ += traction_work(s) + shaking_work(s) + water_work(s) + supports;
-    if (crack_start_.pending) released_ += fracture_release(s);
+    // The effects' terms of the step: the work into the step's sum (after the tractions' and
+    // the shaking's, before the supports'), the dissipation into the run's totals.
+    EnergyTerms step;
+    step.work = traction_work(s) + shaking_work(s);
+    step.friction = friction_;
+    step.absorbed = absorbed_;
+    step.fracture = released_;
+    const EnergyStep e{*model_, s, prev_loop_u_, changed_ ? &changed_start_ : nullptr, joints_};
+    for (const EffectEnergy* src : sources) src->energy_step(e, step);
+    load_work_ += step.work + supports;
+    friction_ = step.friction;
+    absorbed_ = step.absorbed;
+    released_ = step.fracture;
     if (damping_ && prev_cover_u_.size() == s.cover_u.size()) damped_ += damped_kinetic(s, r.kinetic);
   }
   if (damping_) {
@@ -303,9 +289,12 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     prev_accel_ = s.accel;
     prev_accel_known_ = s.accel_known;
   }
-  crack_start_ = {};
+  if (changed_) {
+    changed_ = false;
+    changed_start_ = RunState{};
+  }
   joints_ = scene_->joints.size();
-  if (!model_->traction_edges().empty() || model_->water().active() || moving_supports_) prev_loop_u_ = s.loop_u;
+  prev_loop_u_ = s.loop_u;  // the tractions', the moving supports' and the effects' work of the next step
   prev_time_ = s.time;
   if (shaking_) centroids(s, prev_cx_, prev_cy_);
   load_x_.resize(s.loads.size());
@@ -315,26 +304,26 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
     load_y_[l] = s.loads[l].y;
   }
   const double mech = r.kinetic + r.strain + r.gravity + r.springs;
-  // The bolts' plastic work and the absorbing boundaries' work, as the steps counted them in the
-  // state (bolt_system.h, absorbing_boundary.h), since this run's first call.
-  double plastic = 0;
-  for (const BoltState& b : s.bolts) plastic += b.plastic_work;
+  // The totals the effects count in the state (effect_energy.h energy_state), since this run's
+  // first call.
   if (!started_) {
     mech0_ = mech;
-    plastic0_ = plastic;
-    absorbed0_ = s.absorbed_work;
-    absorbing_load0_ = s.absorbing_load_work;
-    flow_load0_ = s.flow_load_work;
+    counted0_ = counted;
   }
+  if (counted0_.size() != counted.size())
+    throw std::logic_error("EnergyMeter::after_step: the effects are not those of the first call");
   started_ = true;
-  // The flow's pressure on the joint faces likewise (solver/flow/flow_effect.h).
-  r.load_work = load_work_ + (s.absorbing_load_work - absorbing_load0_) + (s.flow_load_work - flow_load0_);
+  r.load_work = load_work_;
   r.support_work = support_work_;
-  r.friction = friction_ + (plastic - plastic0_);
-  r.absorbed = s.absorbed_work - absorbed0_;
-  // Cracking: the strain energy released where cracks opened without softening, and what
-  // softening crack faces dissipated (docs/fracture.md).
+  r.friction = friction_;
+  r.absorbed = absorbed_;
   r.fracture = released_;
+  for (std::size_t i = 0; i < counted.size(); ++i) {
+    r.load_work += counted[i].work - counted0_[i].work;
+    r.friction += counted[i].friction - counted0_[i].friction;
+    r.absorbed += counted[i].absorbed - counted0_[i].absorbed;
+    r.fracture += counted[i].fracture - counted0_[i].fracture;
+  }
   r.damped = damped_;
   r.residual = r.load_work - r.friction - r.absorbed - r.damped - r.fracture - (mech - mech0_);
   last_ = r;
@@ -344,9 +333,20 @@ void EnergyMeter::after_step(const RunState& s, const std::vector<Contact>& cont
   }
 }
 
-bool EnergyMeter::removed(const RunState& s, std::int32_t element) const {
-  const std::int32_t body = mesh_->element_body[element];
-  return static_cast<std::size_t>(body) < s.body_removed.size() && s.body_removed[body];
+EnergyTerms EnergyMeter::totals() const {
+  EnergyTerms t;
+  t.stored = last_.springs;
+  t.work = last_.load_work;
+  t.friction = last_.friction;
+  t.absorbed = last_.absorbed;
+  t.fracture = last_.fracture;
+  return t;
+}
+
+void EnergyMeter::summarise(const EnergySources& sources, nlohmann::json& summary) const {
+  if (!started_) return;
+  const EnergyTerms t = totals();
+  for (const EffectEnergy* src : sources) src->summarise_energy(t, summary);
 }
 
 void EnergyMeter::centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const {
@@ -394,36 +394,6 @@ double EnergyMeter::traction_work(const RunState& s) const {
         }
       }
     }
-  }
-  return w;
-}
-
-double EnergyMeter::water_work(const RunState& s) const {
-  // ∫ −p·n·Δu ds on each wet face, per piece where p is linear (joint_water.h): the two-point
-  // Gauss rule is exact for p times the linear Δu.
-  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
-  const JointWater& water = model_->water();
-  if (!water.active() || prev_loop_u_.size() != s.loop_u.size()) return 0;
-  double w = 0;
-  for (std::size_t i = 0; i < water.edges().size(); ++i) {
-    const BoundaryEdge& be = water.edges()[i];
-    if (removed(s, be.element)) continue;
-    const int joint = water.edge_joint()[i];
-    const double* a = s.loop_xy.data() + 2 * be.vertex;
-    const double* b = s.loop_xy.data() + 2 * be.next;
-    const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
-    if (!(len > 0)) continue;
-    const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
-    for (const auto& [t0, t1] : water.linear_pieces(joint, a, b))
-      for (double xi : kGauss) {
-        const double t = t0 + xi * (t1 - t0);
-        const double p = water.pressure_at(joint, a[0] + t * dx, a[1] + t * dy);
-        for (int d = 0; d < 2; ++d) {
-          const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
-          const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
-          w += 0.5 * (t1 - t0) * len * (-p) * (d == 0 ? nx : ny) * ((1 - t) * du_a + t * du_b);
-        }
-      }
   }
   return w;
 }
@@ -481,13 +451,12 @@ void EnergyMeter::keep_last() {
 }
 
 void EnergyMeter::write_csv(const std::string& dir) const {
-  // The absorbed column only where absorbing boundaries take energy out, the fracture column only
-  // where the rock can break.
-  const bool absorbing = !scene_->absorbing.empty();
+  // The absorbed and fracture columns only where an effect that owns them takes part.
+  const bool absorbing = (columns_ & kAbsorbedColumn) != 0, fracturing = (columns_ & kFractureColumn) != 0;
   std::string out = "step,time,kinetic,strain,gravity,springs,load_work,friction";
   if (absorbing) out += ",absorbed";
   if (damping_) out += ",damped";
-  if (fracturing_) out += ",fracture";
+  if (fracturing) out += ",fracture";
   out += ",residual\n";
   char buf[32];
   const auto put = [&](double v) {
@@ -500,7 +469,7 @@ void EnergyMeter::write_csv(const std::string& dir) const {
     for (double v : {r.time, r.kinetic, r.strain, r.gravity, r.springs, r.load_work, r.friction}) put(v);
     if (absorbing) put(r.absorbed);
     if (damping_) put(r.damped);
-    if (fracturing_) put(r.fracture);
+    if (fracturing) put(r.fracture);
     put(r.residual);
     out += '\n';
   }

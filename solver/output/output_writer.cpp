@@ -18,7 +18,7 @@
 //   animate them.
 // - frames.pvd is a VTK Collection (the ParaView data format for time series) listing every frame
 //   written so far with its time; writing the same step again replaces its entry. An effect's
-//   grid of the frame (the flow network's lines) is a file of its own, frames/<name>_<step>.vtu,
+//   grid of the frame (EffectOutput::frame_parts) is a file of its own, frames/<name>_<step>.vtu,
 //   listed with the same time as part 1, 2, ...: ParaView's PVD reader makes each part a block
 //   of one multiblock data set, so both animate together and keep their own arrays.
 #include "solver/output/output_writer.h"
@@ -147,7 +147,7 @@ void OutputWriter::write_frame(std::int64_t step, double time, const Mesh& mesh,
   if (fields.vertex_stress != nullptr) check_size(fields.vertex_stress, 3 * nv, "vertex_stress");
 
   if (grid_mesh_ != &mesh || grid_topology_ != topology) {
-    // Once per mesh of the run: the cells change only where cracks re-cut it (near-duplicate
+    // Once per mesh of the run: the cells change only where an effect changed it (near-duplicate
     // vertices dropped by mesh_to_grid).
     grid_ = mesh_to_grid(mesh);
     grid_mesh_ = &mesh;

@@ -1,6 +1,6 @@
 // Solver output in OUTDIR (docs/interface.md): history.csv, summary.json, frames.pvd with
 // frames/*.vtu, and the CSV files the run's parts write a block of rows to at each output step
-// (tables(): bolts.csv, contacts.csv, reactions.csv; solver/discretisation/output_tables.h).
+// (tables(): the effects' CSV files; solver/discretisation/output_tables.h).
 // Every file appears under its final name only when complete (written to a temporary name, then
 // renamed), including when a run stops early.
 #pragma once
@@ -62,9 +62,9 @@ class OutputWriter {
   /// Writes frames/frame_<step>.vtu (ME polygons, point data "displacement" (3 components),
   /// cell data "stress" (σxx, σyy, σxy as 3 components), "block", "body") and rewrites
   /// frames.pvd listing every frame so far with its time.
-  /// `topology`: which mesh of the run this is (RunView::topology: cracks re-cut it); the cells
-  /// are built again when it changes. `parts`: the effects' grids of the frame (the flow
-  /// network), each written as frames/<name>_<step>.vtu and listed in frames.pvd with the frame's
+  /// `topology`: which mesh of the run this is (RunView::topology: an effect changed it); the cells
+  /// are built again when it changes. `parts`: the effects' grids of the frame (EffectOutput::frame_parts),
+  /// each written as frames/<name>_<step>.vtu and listed in frames.pvd with the frame's
   /// time as part 1, 2, ... (the elements are part 0).
   void write_frame(std::int64_t step, double time, const Mesh& mesh, const FrameFields& fields,
                    std::size_t topology = 0, const std::vector<FramePart>& parts = {});

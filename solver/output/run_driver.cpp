@@ -56,7 +56,7 @@ class RunDriver::FrameOutput : public StepObserver {
         }
       fields.vertex_stress = &at_vertex;
     }
-    // The effects' grids beside the elements (the flow network), then the output step's rows of
+    // The effects' grids beside the elements (EffectOutput::frame_parts), then the output step's rows of
     // the CSV files: every effect's (effect_output.h), none named here.
     OutputStep o{step, s.time, mesh, s, out_.tables(), st.model, st.space, st.effects};
     std::vector<FramePart> parts;
@@ -188,7 +188,7 @@ nlohmann::json RunDriver::finish() {
   }
   for (StepObserver* o : observers_) guarded([&] { o->finish(stepper_.view(), record_.outcome, record_.done); }, write_failed);
   if (out_) {
-    // The files the effects write whole once the run has stopped (cracks.csv, crack_tips.csv).
+    // The files the effects write whole once the run has stopped (EffectOutput::write_files).
     const Stopwatch sw;
     const RunView v = stepper_.view();
     OutputStep o{v.state.step, v.state.time, v.mesh, v.state, out_->tables(), v.model, v.space, v.effects};

@@ -4,8 +4,8 @@
 //   frames, histories, tables     OutputWriter: history.csv rows every history_every steps,
 //                                 frames every output_every and at the end, and with each frame
 //                                 the rows of every effect's files (Effect::write_outputs,
-//                                 effect_output.h: reactions.csv, bolts.csv, contacts.csv); the
-//                                 effects' whole files (cracks.csv, crack_tips.csv) at the end
+//                                 effect_output.h write_outputs); the
+//                                 effects' whole files (write_files) at the end
 //   checkpoint                    checkpoint.nmmstate every checkpoint_every steps and at the end
 //   the caller's observers        energy (energy.h), progress (progress.h), run history...
 //   summary                       summary.json once the run has stopped (run_summary.h)

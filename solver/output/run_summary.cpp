@@ -37,7 +37,7 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   for (std::size_t b = 0; b < s.body_removed.size(); ++b)
     if (s.body_removed[b])
       summary["excavated_bodies"].push_back({{"body", b}, {"step", s.body_removed_at[b]}});
-  // The effects' own parts (effect_output.h summarise: the bolts', the contacts', the cracks'...).
+  // The effects' own parts (effect_output.h summarise).
   for (const Effect* e : st.effects) e->summarise(s, summary);
   for (const MeshChange* c : st.changes) c->summarise(s, summary);
   summary["analysis"] = sv.dynamic                                ? "dynamic"
@@ -58,8 +58,12 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
                         {"factorisation", t.factorisation},
                         {"solves", t.solves},
                         {"geometry_update", t.geometry_update},
-                        {"output", t.output},
-                        {"fracture", t.fracture}};
+                        {"output", t.output}};
+  // The parts the effects book under names of their own (StepTimings::effects).
+  for (const Effect* e : st.effects)
+    for (const std::string& name : e->timing_names()) summary["timings"][name] = t.effect(name);
+  for (const MeshChange* c : st.changes)
+    for (const std::string& name : c->timing_names()) summary["timings"][name] = t.effect(name);
   summary["unknowns"] = st.space.unknowns();
   summary["threads"] = st.threads;
   summary["physical_covers"] = st.mesh.cover_count();

@@ -20,10 +20,11 @@ class SolveRun::EnergyOutput : public StepObserver {
  public:
   EnergyOutput(const RunView& run, std::string dir, std::int64_t output_every)
       : meter_(run.model, &run.space), dir_(std::move(dir)), output_every_(output_every), topology_(run.topology) {
-    meter_.after_step(run.state, run.contacts.contacts(), true);
+    sources_ = energy_sources(run);
+    meter_.after_step(run.state, sources_, true);
   }
   void after_step(const RunView& st, std::int64_t n, bool) override {
-    if (st.topology != topology_) {  // cracks re-cut the mesh in this step (docs/fracture.md)
+    if (st.topology != topology_) {  // an effect changed the mesh in this step (mesh_change.h)
       // The step's re-cuts, composed back to the mesh the meter last saw (run_view.h).
       if (st.recut_from != topology_)
         throw std::logic_error("energy meter: the re-cut map leads back to mesh " + std::to_string(st.recut_from) +
@@ -31,20 +32,20 @@ class SolveRun::EnergyOutput : public StepObserver {
       meter_.carry_over(st.model, &st.space, st.recut, st.recut_start);
       topology_ = st.topology;
     }
-    meter_.after_step(st.state, st.contacts.contacts(), n % output_every_ == 0);
+    sources_ = energy_sources(st);  // a change of the mesh builds the effects again
+    meter_.after_step(st.state, sources_, n % output_every_ == 0);
   }
   void finish(const RunView&, const Outcome&, std::int64_t) override {
     meter_.keep_last();
     meter_.write_csv(dir_);
   }
-  // summary.json fracture.dissipated_j: energy.csv's fracture column at the last step, in a run
-  // whose energy.csv has it (the rock can break).
-  void summarise(nlohmann::json& summary) const override {
-    if (meter_.fracturing()) summary["fracture"]["dissipated_j"] = meter_.fracture();
-  }
+  // What the effects write of the run's energy totals into summary.json (effect_energy.h
+  // summarise_energy), from energy.csv's last step.
+  void summarise(nlohmann::json& summary) const override { meter_.summarise(sources_, summary); }
 
  private:
   EnergyMeter meter_;
+  EnergySources sources_;  // the effects the meter sums, as of the last step (the stepper's)
   std::string dir_;
   std::int64_t output_every_;
   std::size_t topology_;  // the mesh the meter's records are of (RunView::topology)
@@ -125,7 +126,7 @@ Outcome SolveRun::advance(double t_end, std::int64_t max_steps) {
 
 nlohmann::json SolveRun::finish() {
   const nlohmann::json summary = driver_->finish();
-  // What the effects warn of (effect_output.h warnings: cohesive cracks that snapped back), said
+  // What the effects warn of (effect_output.h warnings), said
   // once, at the end.
   if (options_.progress != ProgressLine::Mode::off) {
     std::vector<std::string> lines;

@@ -167,4 +167,10 @@ void BoltEffect::write_outputs(OutputStep& out) const {
     }
 }
 
+void BoltEffect::energy_state(const EnergyState& e, EnergyTerms& t) const {
+  const std::vector<BoltDef>& defs = e.model.scene().bolts;
+  for (std::size_t b = 0; b < e.s.bolts.size(); ++b) t.stored += bolt_elastic_energy(defs[b], e.s.bolts[b]);
+  for (const BoltState& b : e.s.bolts) t.friction += b.plastic_work;
+}
+
 }  // namespace nmm::solve

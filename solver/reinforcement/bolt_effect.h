@@ -55,6 +55,10 @@ class BoltEffect final : public Effect {
   void checkpoint_sections(const RunState& s, const Mesh& mesh, CheckpointSections& sections) const override;
   void restore_sections(const CheckpointSections& sections, const Mesh& mesh, const std::string& name,
                         RunState& s) const override;
+  /// Energy (effect_energy.h): the springs' elastic energy into t.stored (bolt_elastic_energy:
+  /// N²/(2k) per spring over the spacing), the plastic work the steps counted in the state
+  /// (grout slip, steel yield: BoltState::plastic_work) into t.friction.
+  void energy_state(const EnergyState& e, EnergyTerms& t) const override;
 
  private:
   const Model& model_;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,8 @@
 #include "common/mesh_file.h"
 #include "common/stopwatch.h"
 #include "solver/contact/cohesive_law.h"
+#include "solver/discretisation/model.h"
+#include "solver/fracture/crack_release.h"
 #include "solver/fracture/recut_check.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/fracture/tip_growth.h"
@@ -83,7 +86,7 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
     segments = grow_by_toughness(mesh, scene, fracture_.segments(), solved, skip, pressure.empty() ? nullptr : &pressure);
   }
   if (segments.empty()) {
-    timings.fracture += watch.seconds();
+    timings.add(kTiming, watch.seconds());
     return false;
   }
   out.scene = cracked_scene(scene, segments);
@@ -102,7 +105,7 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
   out.history = transfer_history(history, mesh, *out.mesh, out.map, first, cohesive);
   fracture_.cut(segments, *out.mesh, out.map);
   elements_ = out.mesh->element_count();
-  timings.fracture += watch.seconds();
+  timings.add(kTiming, watch.seconds());
   return true;
 }
 
@@ -229,10 +232,24 @@ void FractureEffect::warnings(const nlohmann::json& summary, std::vector<std::st
 }
 
 std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& finder) {
-  const Fracture& f = run.fracture;
+  const Fracture& f = fracture_of(run);
   const std::vector<double> pressure = face_pressures_of(run.mesh, run.state, run.effects);
   return read_crack_tips(run.mesh, run.model.scene(), run.space, run.state, f.segments(), f.debris(),
                          loaded_faces(run.mesh, run.state, run.effects), finder, pressure.empty() ? nullptr : &pressure);
+}
+
+void FractureEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
+  if (e.changed_start) t.fracture += crack_release(e.model.mesh(), e.s, *e.changed_start, e.joints_before);
+}
+
+void FractureEffect::summarise_energy(const EnergyTerms& totals, nlohmann::json& summary) const {
+  if (active()) summary["fracture"]["dissipated_j"] = totals.fracture;
+}
+
+const Fracture& fracture_of(const RunView& run) {
+  for (const MeshChange* c : run.changes)
+    if (const auto* f = dynamic_cast<const FractureEffect*>(c)) return f->fracture();
+  throw std::logic_error("fracture_of: the run has no fracture effect");
 }
 
 }  // namespace nmm::solve

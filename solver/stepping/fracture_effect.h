@@ -43,7 +43,7 @@ class FractureEffect final : public MeshChange {
   bool change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, const RunState& solved,
               const std::vector<std::uint8_t>& removed, int dofs_per_cover, RunState& start,
               const std::vector<ContactHistory>& history, NewMesh& out, StepTimings& timings) override;
-  void book(double seconds, StepTimings& timings) const override { timings.fracture += seconds; }
+  void book(double seconds, StepTimings& timings) const override { timings.add(kTiming, seconds); }
   void count_resolve() override { fracture_.count_resolve(); }
   /// The cracks and tips (the FRACTURE bytes) once the rock has cracked.
   std::string hashed_state() const override { return fracture_.segments().empty() ? std::string() : fracture_.save(); }
@@ -73,9 +73,21 @@ class FractureEffect final : public MeshChange {
   /// Cohesive cracks that softened faster than the steps followed (summary.json
   /// fracture.snap_back_steps > 0), with what the rock's Hillerborg length predicts.
   void warnings(const nlohmann::json& summary, std::vector<std::string>& lines) const override;
+  /// energy.csv's fracture column where the rock can break.
+  unsigned energy_columns() const override { return active() ? kFractureColumn : kNoEnergyColumn; }
+  /// At the end of a step that cut new cracks: the strain energy they released into t.fracture
+  /// (crack_release.h; what softening faces dissipate the contacts book: contact_effect.h).
+  void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
+  /// summary.json fracture.dissipated_j: energy.csv's fracture column at the last step, where the
+  /// rock can break.
+  void summarise_energy(const EnergyTerms& totals, nlohmann::json& summary) const override;
 
-  /// The cracks so far and their tips (RunView::fracture).
+  /// The cracks so far and their tips (fracture_of).
   const Fracture& fracture() const { return fracture_; }
+  /// summary.json timings: keeping each step's start, strength checks, crack paths, re-cutting
+  /// and carrying the state over (s).
+  static constexpr const char* kTiming = "fracture";
+  std::vector<std::string> timing_names() const override { return {kTiming}; }
 
  private:
   /// [2·v] Pa: the fluid's pressure on the crack faces of `mesh` in the state s (flow_network.h
@@ -105,6 +117,10 @@ class FractureEffect final : public MeshChange {
   };
   mutable TipRows tips_;
 };
+
+/// The cracks so far and their tips of a run (its fracture effect; inactive without a fracture
+/// block): what the pictures, the Python module, the tests and the benches read of them.
+const Fracture& fracture_of(const RunView& run);
 
 /// The tips of the run's state now and their K (crack_tip_readout.h), numbered by `finder`: the
 /// crack faces the effects load (Effect::loaded_faces) counted, debris left out.

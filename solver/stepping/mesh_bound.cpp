@@ -18,7 +18,8 @@ MeshBound::MeshBound(const Mesh& mesh, const SceneDef& scene, const std::string&
       indicator(mesh, scene, space), momentum(mesh, space, indicator.group_mass()),
       bolts(model, space, scene_name), contact(model, space), absorbing(model, space), supports(model),
       flow(model, space),
-      effects{&bolts, &contact, &absorbing, &supports, &flow}, checkpointed{&absorbing, &bolts, &flow} {}
+      effects{&bolts, &contact, &absorbing, &supports, &flow}, checkpointed{&absorbing, &bolts, &flow},
+      metered{&contact, &bolts, &absorbing, &flow, &model.water()} {}
 
 int MeshBound::number(const RunState& s) {
   int unknowns = space.unknowns();

@@ -58,6 +58,11 @@ struct MeshBound {
   /// (docs/checkpoint-format.md: ABSORB, BOLTS, FLOW — the file's order since they were added,
   /// so a checkpoint and a state hash keep their bytes); a new one goes at the end.
   std::vector<Effect*> checkpointed;
+  /// What reports its part of the energy balance (effect_energy.h), in the order the meter sums
+  /// it (energy.csv's bytes since each was added: the contacts' springs before the bolts'); a new
+  /// one goes at the end. The water in the joints is an integrator of the form, not an effect, but
+  /// its work on the faces is metered the same way.
+  std::vector<const EffectEnergy*> metered;
 
   /// Numbers every effect's unknowns (after the covers') and coupling groups (after the
   /// elements') on state s; returns the system's unknowns.
@@ -94,8 +99,6 @@ struct MeshChanges {
   /// The one that takes part in the run, or null (two that re-cut the same step would need a rule
   /// for which cuts first; there is one today).
   MeshChange* active() const;
-  /// The cracks so far (RunView::fracture: the pictures, the Python module, the tests read them).
-  const Fracture& cracks() const { return fracture.fracture(); }
   /// Joints the changes added to the scene so far (MeshBound's `cracks`).
   std::size_t joints_added() const;
 };

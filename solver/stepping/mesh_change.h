@@ -1,11 +1,11 @@
 // An effect that changes the mesh a run steps on (docs/code-layout.md "Effects"): at the solution
-// of a step it may re-cut the mesh — cracks that grow through intact rock (fracture_effect.h) are
-// the first of its kind — and the step is then taken again from its start on the new mesh, with
-// the state and the contact history of the step's start carried onto it, until the step's
-// solution changes nothing more. The stepper (time_stepper.cpp) builds again what is derived from
+// of a step it may re-cut the mesh (mesh_bound.h MeshChanges lists those of the kind), and the
+// step is then taken again from its start on the new mesh, with the state and the contact
+// history of the step's start carried onto it, until the step's solution changes nothing more. The stepper (time_stepper.cpp) builds again what is derived from
 // the mesh (mesh_bound.h) and keeps the map of the re-cuts for the observers (run_view.h); it
 // names no such effect. What the run writes of it goes through the effects' one output interface
-// (solver/discretisation/effect_output.h).
+// (solver/discretisation/effect_output.h), its part of the energy balance through theirs
+// (solver/discretisation/effect_energy.h).
 #pragma once
 
 #include <cstddef>
@@ -20,6 +20,7 @@
 #include "common/scene.h"
 #include "preprocess/recut.h"
 #include "solver/contact/contact_history.h"
+#include "solver/discretisation/effect_energy.h"
 #include "solver/discretisation/effect_output.h"
 #include "solver/discretisation/run_state.h"
 #include "solver/discretisation/step_timings.h"
@@ -29,17 +30,17 @@ namespace nmm::solve {
 /// A new mesh and scene for the run, with what is carried onto it.
 struct NewMesh {
   std::unique_ptr<Mesh> mesh;
-  std::unique_ptr<SceneDef> scene;            ///< the run's scene with what made the mesh (crack joints)
+  std::unique_ptr<SceneDef> scene;            ///< the run's scene with what made the mesh (the joints it added)
   pre::RecutMap map;                          ///< from the new mesh back to the one it replaces
   std::vector<ContactHistory> history;        ///< the contact history, carried onto the new mesh
 };
 
-class MeshChange : public EffectOutput {
+class MeshChange : public EffectOutput, public EffectEnergy {
  public:
   virtual ~MeshChange() = default;
   /// Takes part in the run (false: the scene does not call for it).
   virtual bool active() const = 0;
-  /// How many of the scene's joints (its last ones) it added (MeshBound: cracks tie small covers).
+  /// How many of the scene's joints (its last ones) it added (MeshBound: its faces tie small covers).
   virtual std::size_t joints_added() const = 0;
   /// [me] 1: elements it took out of the model (debris), or empty.
   virtual const std::vector<std::uint8_t>& removed() const = 0;

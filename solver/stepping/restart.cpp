@@ -34,7 +34,7 @@ RunState restarted_state(const RunState& checkpoint, const RunState& scene_start
 }
 
 void write_checkpoint(const RunView& v, const std::string& path) {
-  // The run state's sections and the effects' (the state they carry: ABSORB, BOLTS, FLOW).
+  // The run state's sections and the effects' (the state they carry: EffectOutput::checkpoint_sections).
   CheckpointSections sections = state_sections(v);
   // The factorisation an effect that solves the steps its own way reuses from step to step (the
   // contacts': effect.h solves()), so a restart continues with the same round-off.
@@ -43,7 +43,7 @@ void write_checkpoint(const RunView& v, const std::string& path) {
       sections.emplace_back("FACTOR", v.system.factor_source());
       break;
     }
-  // What the mesh changes keep (a cracked run's mesh and cracks), after the factorisation.
+  // What the mesh changes keep (a changed mesh and what changed it), after the factorisation.
   for (const MeshChange* c : v.changes) c->checkpoint_sections(v.state, v.mesh, sections);
   write_checkpoint_file(sections, path);
 }

@@ -3,8 +3,7 @@
 //   elasticity, inertia (dynamic) or static_inertia (DDA static: the mass term with v0 = 0),
 //   gravity, point_loads, fixed_points, supports, tractions, water, insitu_stress,
 //   base_acceleration, excavation (a body removed so far) — the integrators' — then each effect's
-//   in the order of the lists (effect_output.h effect_names: bolts; the contacts' contact,
-//   friction, cohesion, tension, the joint laws...; absorbing; fracture)
+//   in the order of the lists (effect_output.h effect_names)
 #pragma once
 
 #include <string>

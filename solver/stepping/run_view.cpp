@@ -19,10 +19,15 @@ std::vector<std::string> run_effects(const RunView& v) {
   return run_effects(v.model, v.state, v.effects, v.changes);
 }
 
+std::vector<const EffectEnergy*> energy_sources(const RunView& v) {
+  std::vector<const EffectEnergy*> sources(v.metered.begin(), v.metered.end());
+  for (const MeshChange* c : v.changes) sources.push_back(c);
+  return sources;
+}
+
 std::vector<SupportReaction> support_reactions(const RunView& v) {
   // The one effect that keeps them (mesh_bound.h lists it).
-  for (const Effect* e : v.effects)
-    if (const auto* supports = dynamic_cast<const SupportEffect*>(e)) return supports->reactions(v.state);
+  if (const auto* supports = find_effect<SupportEffect>(v)) return supports->reactions(v.state);
   return {};
 }
 
@@ -34,7 +39,7 @@ CheckpointSections state_sections(const RunView& v) {
 
 std::string state_hash(const RunView& v) {
   std::string hash = state_hash(state_sections(v));
-  // A change that carries nothing yet (a run that has not cracked) leaves the hash as it was.
+  // A change that carries nothing yet (a run whose mesh has not changed) leaves the hash as it was.
   for (const MeshChange* c : v.changes)
     if (const std::string bytes = c->hashed_state(); !bytes.empty()) hash = to_hex(sha256(hash + bytes));
   return hash;

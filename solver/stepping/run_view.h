@@ -17,7 +17,6 @@
 #include "solver/discretisation/configuration.h"
 #include "solver/contact/contact_set.h"
 #include "solver/contact/contact_solve.h"
-#include "solver/fracture/fracture.h"
 #include "preprocess/recut.h"
 #include "solver/discretisation/cover_space.h"
 #include "solver/discretisation/effect.h"
@@ -49,9 +48,7 @@ struct RunView {
   const EquilibriumSample& equilibrium;
   const bool& stopped_at_ratio;        ///< the last run_until stopped at solver.stop_at_ratio
   const int& threads;                  ///< threads the factorisation uses (solver_threads.h)
-  /// Intact rock that breaks: the cracks so far (fracture.h; inactive without a fracture block).
-  const Fracture& fracture;
-  /// How many times cracks have re-cut the mesh (0: the mesh as preprocessed); an observer that
+  /// How many times an effect has changed the mesh (mesh_change.h; 0: the mesh as preprocessed); an observer that
   /// keeps arrays of the mesh carries them over with `recut` when it changes.
   const std::size_t& topology;
   /// From the mesh now back to the mesh of topology `recut_from`: that of the last accepted step
@@ -61,7 +58,7 @@ struct RunView {
   const pre::RecutMap& recut;
   const std::size_t& recut_from;
   /// The state the last step that re-cut the mesh started from, carried onto the mesh now
-  /// (fracture/state_transfer.h): its fields are those of the accepted state before that step.
+  /// (mesh_change.h): its fields are those of the accepted state before that step.
   const RunState& recut_start;
   /// The effects with state the run's steps call (effect.h; mesh_bound.h lists them).
   const std::vector<Effect*>& effects;
@@ -69,12 +66,28 @@ struct RunView {
   const std::vector<MeshChange*>& changes;
   /// The effects whose state the checkpoint holds, in the order of their sections (mesh_bound.h).
   const std::vector<Effect*>& checkpointed;
+  /// What reports its part of the energy balance, in the meter's order (mesh_bound.h).
+  const std::vector<const EffectEnergy*>& metered;
 };
+
+/// The first effect of the run (of its steps, or one that changes the mesh) of type E, or null:
+/// what an observer reads of the state one effect keeps for itself.
+template <class E>
+const E* find_effect(const RunView& v) {
+  for (const Effect* e : v.effects)
+    if (const auto* x = dynamic_cast<const E*>(e)) return x;
+  for (const MeshChange* c : v.changes)
+    if (const auto* x = dynamic_cast<const E*>(c)) return x;
+  return nullptr;
+}
 
 /// [3·me] Pa, the mean stress of each element (stress_field.h; n = 0: the stress itself).
 std::vector<double> mean_stress(const RunView& v);
 /// Pa, σxx σyy τxy of element e at the point (x, y) (m) of its current configuration.
 std::array<double, 3> stress_at(const RunView& v, std::size_t e, double x, double y);
+/// What reports its part of the run's energy balance, in the order the meter sums it: `metered`,
+/// then the changes of the mesh (effect_energy.h; solver/output/energy.h).
+std::vector<const EffectEnergy*> energy_sources(const RunView& v);
 /// The physical effects the run computes (run_effects.h; summary.json "effects").
 std::vector<std::string> run_effects(const RunView& v);
 /// Every support's reaction in the run's state (support_effect.h; the scene's order).
@@ -84,7 +97,7 @@ std::vector<SupportReaction> support_reactions(const RunView& v);
 CheckpointSections state_sections(const RunView& v);
 /// SHA-256 (hex) of the physical state and contact history: equal hashes, equal states. The hash
 /// of state_sections (run_state.h state_hash), and for each mesh change that carries state of its
-/// own (MeshChange::hashed_state: the cracks) the SHA-256 of that hash's hex digits and its bytes.
+/// own (MeshChange::hashed_state) the SHA-256 of that hash's hex digits and its bytes.
 std::string state_hash(const RunView& v);
 
 }  // namespace nmm::solve

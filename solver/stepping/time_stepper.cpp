@@ -4,20 +4,20 @@
 //   frames      the configuration placed on the covers' positions (configuration.h)
 //   begin       each effect with state the scene calls for (effect.h, listed in mesh_bound.h)
 //               begins the step: contacts detected within the search distance and the pattern
-//               grown by new element pairs, bolts linearised, absorbing reaction taken
+//               grown by new element pairs, an effect's springs linearised at the step's start
 //   assembly    K and F by the scene's form (form.h): the integrators it calls for, one per
 //               term (integrators.h: elasticity, initial stress, body force, inertia with
-//               newmark.h's coefficients, fixed points, loads, supports, tractions, water,
-//               in-situ traction); excavated covers pinned (excavation.h, K += k_pin I); then
+//               newmark.h's coefficients, fixed points, loads, supports, tractions, face
+//               pressures, in-situ traction); excavated covers pinned (excavation.h, K += k_pin I); then
 //               each effect's terms
 //   solve       one factorisation, or the effect that solves the step its own way (the
 //               contacts' problem, contact_solve.h); solved again while an effect judges the
-//               solution wrong for what it assembled (a bolt's spring that yields)
+//               solution wrong for what it assembled (a spring that yields)
 //   acceptance  Shi's step control (step_control.h) on the effects' penetration: a rejected
 //               attempt leaves the state as it was and the caller cuts Δt
 //   update      the effects commit, and the state is moved on by d (state_update.h), after the
 //               equilibrium indicators (equilibrium_indicator.h) are taken from d, v0 and a0
-//   re-cut      an effect that changes the mesh at the solution (mesh_change.h: cracks) has the
+//   re-cut      an effect that changes the mesh at the solution (mesh_change.h) has the
 //               step taken again from its start on the new mesh
 //
 // Unknowns: the cover functions' coefficients during the step (cover_space.h; a sliver cover
@@ -63,7 +63,7 @@ TimeStepper::TimeStepper(const Mesh& mesh, const SceneDef& scene, const std::str
   s_ = initial_state(b_->model, b_->space);
   excavate(scene.excavate);
   // Fixed points and loads couple only the covers of their element: the element pattern holds
-  // until an effect couples more (contacts pairs of elements, bolts their elements from the start).
+  // until an effect couples more (contacts pairs of elements, an effect its elements from the start).
   place_effects(scene_name_);
   set_threads(0);
 }
@@ -140,7 +140,7 @@ Outcome TimeStepper::attempt_once(double dt) {
     step.pattern_changed = false;
   }
 
-  // Assembly and solve; an effect that judges the solution wrong for what it assembled (a bolt's
+  // Assembly and solve; an effect that judges the solution wrong for what it assembled (a
   // spring that yields, slips or breaks) has the step solved again from there.
   StepSolution x;
   for (int round = 0;; ++round) {
@@ -225,8 +225,8 @@ Outcome TimeStepper::solve_step(EffectStep& step, Effect* solver, bool again, St
 
 const Eigen::VectorXd& TimeStepper::force_at_rest() {
   // The state's out-of-balance force with d = 0 and no inertia: the step's form at the state's
-  // own time with zero inertia coefficients (no mass term, no dashpots: absorbing_boundary.h)
-  // and every effect's terms at rest (the bolts' start forces, the contacts' forces at d = 0).
+  // own time with zero inertia coefficients (no mass term, no dashpots) and every effect's terms
+  // at rest (its springs' start forces, the contacts' forces at d = 0).
   StepContext rest = step_context(0.0);
   rest.dt = 0;
   rest.t_end = s_.time;
@@ -345,7 +345,7 @@ Outcome TimeStepper::run_until(double t_end, const std::function<void(std::int64
 void TimeStepper::restart_from(const std::string& path) {
   std::string history, factor;
   const CheckpointSections sections = read_checkpoint_file(path);
-  // A run whose mesh an effect changed (cracks): the mesh comes with the state.
+  // A run whose mesh an effect changed: the mesh comes with the state.
   for (MeshChange* change : changes_.list) {
     NewMesh m;
     if (!change->restart(sections, mesh(), scene(), path, m)) continue;
@@ -356,7 +356,7 @@ void TimeStepper::restart_from(const std::string& path) {
                                     &factor);
   for (const Effect* e : b_->effects) e->restore_sections(sections, mesh(), path, st);  // their own sections
   restore(st, history, path);
-  // Unknowns an effect installed at this restart (bolts) change the system's size: its first
+  // Unknowns an effect installed at this restart change the system's size: its first
   // step factorises anew.
   if (!factor.empty() && b_->solved_by_effect() && factor_fits_ && !system_.factor_from_source(factor))
     throw InputError(path, "section FACTOR", "not the matrix of a factorisation of this run's size");
@@ -368,7 +368,7 @@ void TimeStepper::restore(const RunState& st, const std::string& history, const 
   apply_removed();
   excavate(scene().excavate);
   // Effects: what the checkpoint carries where the scene still has it, the rest installed now
-  // (bolt_layout.h, absorbing_effect.h); then the same pattern as the run that wrote the
+  // (Effect::install); then the same pattern as the run that wrote the
   // checkpoint (its pairs, the effects' groups): the same symbolic analysis, the same round-off.
   factor_fits_ = place_effects(name);
 }
@@ -380,7 +380,7 @@ void TimeStepper::excavate(const std::vector<int>& bodies) {
 
 void TimeStepper::apply_removed() {
   removed_elem_ = removed_elements(mesh(), s_);
-  // What the mesh changes took out (debris the cracks cut off: fracture.h) leaves the model like
+  // What the mesh changes took out (debris: MeshChange::removed) leaves the model like
   // an excavated body.
   for (const MeshChange* change : changes_.list) {
     const std::vector<std::uint8_t>& out = change->removed();

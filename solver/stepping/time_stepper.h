@@ -72,8 +72,8 @@ class TimeStepper : private StepHost {
   /// What the outputs read: state, model, space, contacts, system, costs (run_view.h).
   RunView view() const {
     return {*mesh_,  b_->model, b_->space, b_->config, s_, b_->contact.set(), system_, timings_, b_->contact.stats(),
-            balance_, stopped_at_ratio_, threads_, changes_.cracks(), topology_, recut_, recut_from_, recut_start_,
-            b_->effects, changes_.list, b_->checkpointed};
+            balance_, stopped_at_ratio_, threads_, topology_, recut_, recut_from_, recut_start_,
+            b_->effects, changes_.list, b_->checkpointed, b_->metered};
   }
 
  private:
@@ -127,18 +127,18 @@ class TimeStepper : private StepHost {
   const Mesh& mesh() const { return *mesh_; }
   const SceneDef& scene() const { return *scene_; }
 
-  const Mesh* mesh_;                    // the run's mesh: the file's, or own_mesh_ once cracked
-  const SceneDef* scene_;               // the run's scene: the given one, or own_scene_ once cracked
+  const Mesh* mesh_;                    // the run's mesh: the file's, or own_mesh_ once changed
+  const SceneDef* scene_;               // the run's scene: the given one, or own_scene_ once changed
   std::string scene_name_;
-  std::unique_ptr<Mesh> own_mesh_;      // the cracked mesh (null: mesh_ is the file's)
-  std::unique_ptr<SceneDef> own_scene_; // the scene with the crack joints (null: none yet)
+  std::unique_ptr<Mesh> own_mesh_;      // the changed mesh (null: mesh_ is the file's)
+  std::unique_ptr<SceneDef> own_scene_; // the scene with the joints a change added (null: none yet)
   std::unique_ptr<MeshBound> b_;        // derived from mesh_ and scene_
-  MeshChanges changes_;                 // the effects that change the mesh: cracks (mesh_bound.h)
+  MeshChanges changes_;                 // the effects that change the mesh (mesh_bound.h)
   StepStart step_start_;                // the step's start, to take it again on a new mesh (step_start.h)
   std::size_t topology_ = 0;            // re-cuts so far (RunView::topology)
   // The re-cuts of the step being taken (RunView::recut): the map from the mesh now back to the
   // mesh at the last accepted step, composed over every re-cut since (a step may re-cut several
-  // times, and a step cut shorter keeps the cracks its longer attempt cut); recut_from_ is that
+  // times, and a step cut shorter keeps the changes its longer attempt made); recut_from_ is that
   // mesh's topology_, recut_step_ the accepted steps (s_.step) the composition started at, and
   // recut_start_ the state the step starts from, carried onto the mesh now.
   pre::RecutMap recut_;
