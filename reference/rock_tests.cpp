@@ -170,8 +170,10 @@ RockTestSpecimen disc_test(const RockTestCase& c) {
   s.load_body = 0;
   s.load_component = 1;
   s.load_lever = H;  // ∫σyy dA over the disc = P·H
-  s.closed_form = kPi * D * st / 2 * std::sin(alpha) / (std::sin(2 * alpha) - alpha);
-  s.closed_form_name = "Hondros: πDσt/2·sinα/(sin2α−α)";
+  // A rigid flat presses the flat as a flat punch (header): P = D·t·σt·E(sinα)/cos2α, 1.86 %
+  // above Hondros' uniform pressure at 2α = 20°.
+  s.closed_form = D * st * std::comp_ellint_2(std::sin(alpha)) / std::cos(2 * alpha);
+  s.closed_form_name = "rigid flat: Dσt·E(sinα)/cos2α";
   // N/m per m of travel: the disc's stiffness between the flats, 0.41·E (measured on
   // data/brazilian_disc.json: 8.57 MN/m at 2.1 mm with E = 10 GPa; in 2D it does not depend on D).
   const double k = 0.41 * E;
@@ -194,10 +196,12 @@ RockTestSpecimen disc_test(const RockTestCase& c) {
   d["mesh"]["size"] = h;
   const double yb = R - R * std::cos(alpha), yt = R + R * std::cos(alpha);  // the flats
   if (platens) {
-    // Steel platens 0.4·D wide and 0.1·D thick; smooth-ish faces (friction 10°).
+    // Steel platens 0.4·D wide and 0.1·D thick, their faces smooth (frictionless, as the closed
+    // form assumes: with 10° of friction they held the flats' ends in and the centre's tension was
+    // 1.9 % lower at every mesh size).
     const double pw = 0.2 * D, pt = 0.1 * D;
     d["materials"]["steel"] = {{"density", 7850}, {"young", 200e9}, {"poisson", 0.3}};
-    d["joint_sets"]["platen"] = springs(E, h, 10);
+    d["joint_sets"]["platen"] = springs(E, h, 0);
     d["interface_set"] = "platen";
     d["bodies"].push_back({{"material", "steel"}, {"outer", rect(R - pw, yb - pt, R + pw, yb)}});
     d["bodies"].push_back({{"material", "steel"}, {"outer", rect(R - pw, yt, R + pw, yt + pt)}});

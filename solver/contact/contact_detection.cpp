@@ -29,22 +29,25 @@
 //     come in through a contact is near that edge from the wrong side, e.g. a corner of a block
 //     near the far side of the same block), and never deeper than 0.35 of how far B and the
 //     elements of its block around it reach behind the edge (a mesh coarser than the blocks:
-//     0.3·h can exceed a block); a negative gap must also mean that P lies inside element B — or, near an end of the edge
-//     and at most 0.05·h deep, inside an element of B's block sharing a mesh node with it (a
-//     vertex sinking through an edge at a mesh node enters the triangle below the node, which
-//     does not own the edge): past a corner of the block, P can be behind the line of an edge
-//     without being inside it at all;
+//     0.3·h can exceed a block); a negative gap must also mean that P lies inside element B — or,
+//     near an end of the edge and at most 0.05·h deep, inside an element of B's block sharing a
+//     mesh node with it (a vertex sinking through an edge at a mesh node enters the triangle below
+//     the node, which does not own the edge): past a corner of the block, P can be behind the line
+//     of an edge without being inside it at all;
 //   - the edge faces P: n · n_P < −0.2, n_P the mean outward normal of P's candidate edges.
 //   - single pass along flat stretches: a vertex that is not a corner of its block's boundary
 //     (a 180° vertex: where mesh lines cut a straight boundary or joint) touches only if its
-//     outward normal points down (n_y < 0, or n_y = 0 and n_x < 0), or if it pokes into the
+//     outward normal points down (n_y < 0, or n_y = 0 and n_x < 0) — against the other face of
+//     its own joint, its normal as cut (the two faces' are exactly opposite there, whatever
+//     round-off tilts them by as they deform; a vertical joint is the case), against anything
+//     else its normal now — or if it pokes into the
 //     other side between that side's vertices deeper than max(1e-4·h, 2·Vm) (beyond what a
 //     contact spring or a joint's closure lets a face sink, so faces pressed together still
-//     carry one set of contacts, whose tributary lengths add up to the joint's length). Two faces pressed together
-//     then carry one set of contacts, not two that fight each other (with deformable blocks some
-//     of a doubled set always end up in tension and the states chatter); the faces of a joint
-//     have opposite normals, so exactly one of them is that side everywhere. Corners always
-//     touch.
+//     carry one set of contacts, whose tributary lengths add up to the joint's length). Two faces
+//     pressed together then carry one set of contacts, not two that fight each other (with
+//     deformable blocks some of a doubled set always end up in tension and the states chatter); the
+//     faces of a joint have exactly opposite normals as cut, so exactly one of them is that side
+//     everywhere. Corners always touch.
 // Each vertex keeps one edge per other block (the angle rule of DDA, here for angle–edge and
 // angle–angle alike): the smallest |g|, then the edge most opposite to P's own normal (the
 // entrance edge), then the lower index. Edge–edge contact is the two vertex–edge contacts of its
@@ -264,6 +267,40 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
   for (std::size_t v = 0; v < nv; ++v)
     if (t.edge_candidate[v] || t.edge_candidate[t.prev[v]])
       t.vertices.push_back(static_cast<std::int32_t>(v));
+
+  // The side of a joint's faces in the single pass, decided as cut: the two faces of a joint lie
+  // on the same loop edges run in opposite directions, so their normals are exactly opposite
+  // here and exactly one face is the side that does not touch. Decided from the normals as they
+  // deform, a vertical joint (n_y = 0 as cut) had both faces on that side wherever its faces
+  // tilted a round-off apart in opposite senses, and nothing held them: data/tunnel_inflow.json
+  // with J1 along x = 20, through a column of mesh nodes, passed 1.2 mm through itself.
+  t.edge_joint = mesh.loop_edge_joint;
+  if (t.edge_joint.size() != nv) t.edge_joint.assign(nv, -1);
+  t.face_joint.assign(nv, -1);
+  t.face_master.assign(nv, 0);
+  for (std::int32_t v : t.vertices) {
+    if (t.corner[v]) continue;
+    std::int32_t joint = -1;
+    bool one_joint = true;
+    double nx = 0, ny = 0;
+    for (std::int32_t s : {t.prev[v], v}) {
+      if (!t.edge_candidate[s]) continue;
+      const std::int32_t j = t.edge_joint[s];
+      if (j < 0 || (joint >= 0 && j != joint)) one_joint = false;
+      joint = j;
+      const std::int32_t f = t.next[s];
+      const double dx = mesh.loop_xy[2 * f] - mesh.loop_xy[2 * s],
+                   dy = mesh.loop_xy[2 * f + 1] - mesh.loop_xy[2 * s + 1];
+      const double l = length(dx, dy);
+      if (l > kContactTolerances.degenerate_edge * mesh.mesh_size) {
+        nx += dy / l;
+        ny -= dx / l;
+      }
+    }
+    if (!one_joint || joint < 0 || (nx == 0 && ny == 0)) continue;
+    t.face_joint[v] = joint;
+    t.face_master[v] = ny > 0 || (ny == 0 && nx > 0);
+  }
 
   // Continuity: candidate vertices at the same place (the mesh file rounds each exact point to
   // the same double) whose elements see the same covers with the same weights there.
@@ -516,7 +553,11 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const bool was_closed = was_depth >= 0;
       const double eps = tl.gap_round_off * topo.mesh_size;
       const double new_depth = std::max(shallow, eps);
-      if (master_side && g >= -topo.master_depth) continue;
+      // Against the other face of its own joint, a face's side is the one decided as cut.
+      const bool master = topo.face_joint[p] >= 0 && topo.face_joint[p] == topo.edge_joint[q2]
+                              ? topo.face_master[p] != 0
+                              : master_side;
+      if (master && g >= -topo.master_depth) continue;
       if (g > d0 || g < -(was_closed ? std::min(p_max, was_depth + new_depth) : new_depth)) continue;
       if (g < -eps && -g > tl.closed_extent * reach_behind(topo, xy, eb, eg.x, eg.y, ex, ey))
         continue;

@@ -17,6 +17,13 @@ struct ContactTopology {
   std::vector<std::int32_t> element_of;  ///< [v] element whose loop holds v
   std::vector<std::int32_t> block_of;    ///< [element] block
   std::vector<std::uint8_t> corner;      ///< [v] 1 if v is a corner of its block's boundary
+  /// [v] the joint a flat vertex's candidate edges all lie on (loop_edge_joint), or -1: a face of
+  /// that joint, whose side of the single pass is decided once, by its normal as cut
+  std::vector<std::int32_t> face_joint;
+  /// [v] 1 if the face of face_joint[v] that v lies on is the side that does not touch (its
+  /// normal as cut points up, or along +x): the two faces of a joint are opposite exactly there
+  std::vector<std::uint8_t> face_master;
+  std::vector<std::int32_t> edge_joint;  ///< [v] joint of edge v → next[v], or -1 (loop_edge_joint)
   std::vector<std::int32_t> first_vertex;  ///< [element] first loop vertex
   /// CSR: the elements of the same block sharing a mesh node with each element (itself
   /// included): where a vertex that sinks through an edge of that element can end up.
