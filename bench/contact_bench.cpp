@@ -55,10 +55,11 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
   std::printf("# resident after the cut %.0f MB (peak %.0f MB), the mesh alone %.0f MB, with the stepper %.0f MB\n",
               cut.now_mb, cut.peak_mb, meshed.now_mb, set_up.now_mb);
   std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
-              "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses,rss_mb,peak_rss_mb\n");
+              "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses,rss_mb,peak_rss_mb,orderings\n");
   nmm::solve::ContactSolveStats a = st.view().contact_solve;
   nmm::solve::StepTimings ta = st.view().timings;
-  std::size_t cuts = st.view().state.cuts, analyses = st.view().system.analyses();
+  std::size_t cuts = st.view().state.cuts, analyses = st.view().system.analyses(),
+              orderings = st.view().system.orderings();
   for (int k = 1; k <= steps; ++k) {
     const nmm::Stopwatch w0;
     const double c0 = nmm::bench::thread_cpu_seconds();
@@ -67,25 +68,31 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
     const nmm::solve::ContactSolveStats& b = st.view().contact_solve;
     const nmm::solve::StepTimings& tb = st.view().timings;
     const nmm::bench::Resident mem = nmm::bench::resident();
-    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f\n", k, b.newton - a.newton,
+    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f,%zu\n", k, b.newton - a.newton,
                 b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
                 b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
                 st.view().state.cuts - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
                 1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms,
-                st.view().system.analyses() - analyses, mem.now_mb, mem.peak_mb);
+                st.view().system.analyses() - analyses, mem.now_mb, mem.peak_mb,
+                st.view().system.orderings() - orderings);
     std::fflush(stdout);
     if (!ran.ok()) {
       std::printf("# stopped: %s\n", ran.reason.c_str());
       return 1;
     }
     if (k == 1 || k == steps)
-      std::printf("# unknowns %d, matrix nonzeros %zu, factor nonzeros %.0f, factorisation Mflop %.1f, ordering %s, analyses %zu\n",
+      std::printf("# unknowns %d, matrix nonzeros %zu, factor nonzeros %.0f, factorisation Mflop %.1f, ordering %s, analyses %zu, "
+                  "orderings %zu, scatter %.0f MB, factor %.0f MB, matrix copies %.0f MB\n",
                   st.view().space.unknowns(), st.view().system.nonzeros(), st.view().system.factor_nonzeros(), 1e-6 * st.view().system.factor_flops(),
-                  st.view().system.ordering().c_str(), st.view().system.analyses());
+                  st.view().system.ordering().c_str(), st.view().system.analyses(), st.view().system.orderings(),
+                  1e-6 * static_cast<double>(st.view().system.scatter_bytes()),
+                  1e-6 * static_cast<double>(st.view().system.factor_bytes()),
+                  1e-6 * static_cast<double>(st.view().system.matrix_bytes()));
     a = b;
     ta = tb;
     cuts = st.view().state.cuts;
     analyses = st.view().system.analyses();
+    orderings = st.view().system.orderings();
   }
   // One factorisation against one CG iteration's work (a factor solve pair and a product with
   // the matrix) on the last step's matrix, thread CPU time: what one factorisation is worth.

@@ -4,6 +4,8 @@
 // couple only unknowns already coupled.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -229,4 +231,102 @@ TEST(SystemMatrixOrdering, MetisOnCoversFromItsSizeSolvesAsAmdAndRestartsBitwise
   assembled(few, small, 800);
   ASSERT_TRUE(few.factorize());
   EXPECT_EQ(few.ordering(), "amd");
+}
+
+namespace {
+// Groups of two covers of 2 unknowns each (a contact's pair, reduced to one cover per side).
+Groups with_pairs(Groups g, const std::vector<std::pair<int, int>>& pairs) {
+  for (const auto& [a, b] : pairs) g.add({2 * a, 2 * a + 1, 2 * b, 2 * b + 1});
+  return g;
+}
+}  // namespace
+
+TEST(SystemMatrixOrdering, AKeptOrderingServesGrownPatternsAndRestartsBitwise) {
+  // 100 × 100 covers, METIS on the covers from 20,000 unknowns. The pattern grows by pairs of
+  // covers two columns apart (contacts between near elements): the ordering found at the first
+  // analysis is kept, and a factorisation under it solves as an ordering found anew.
+  constexpr int kSide = 100;
+  const int n = 2 * kSide * kSide;
+  const Groups g = plane_grid(kSide, 2);
+  std::vector<std::pair<int, int>> near;
+  for (int j = 5; j < kSide; j += 10)
+    for (int i = 3; i + 2 < kSide; i += 7) near.emplace_back(j * kSide + i, j * kSide + i + 2);
+  const Groups grown = with_pairs(g, near);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i) - 0.2;
+  const auto set_up = [&](SystemMatrix& k) {
+    k.set_amd_only(true);
+    k.set_block_ordering(2, n, n);
+  };
+  SystemMatrix k;
+  set_up(k);
+  k.build_pattern(n, g.offsets, g.dofs);
+  assembled(k, g, n);
+  ASSERT_TRUE(k.factorize());
+  EXPECT_EQ(k.orderings(), 1u);
+  const double first_fill = k.factor_nonzeros();
+  k.build_pattern(n, grown.offsets, grown.dofs);
+  assembled(k, grown, n);
+  ASSERT_TRUE(k.factorize());
+  EXPECT_EQ(k.analyses(), 2u);
+  EXPECT_EQ(k.orderings(), 1u) << "fill " << k.factor_nonzeros() << " against " << first_fill;
+  EXPECT_EQ(k.ordering(), "metis_covers");
+  EXPECT_GT(k.factor_nonzeros(), first_fill);  // the new couplings fill in
+  EXPECT_LE(k.factor_nonzeros(), nmm::solve::kOrderingRefill * first_fill);
+  const Eigen::VectorXd x = k.solve(b);
+  EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * b.norm());
+  // A matrix that orders the grown pattern anew gets the same solution to round-off.
+  SystemMatrix fresh;
+  set_up(fresh);
+  fresh.build_pattern(n, grown.offsets, grown.dofs);
+  assembled(fresh, grown, n);
+  ASSERT_TRUE(fresh.factorize());
+  EXPECT_LT((fresh.solve(b) - x).norm(), 1e-10 * x.norm());
+
+  // The checkpoint carries the kept ordering: restored into a matrix of the grown pattern, the
+  // factorisation solves bit for bit as the straight one, and so does the next factorisation
+  // of new values (which analyses the pattern again, under the restored ordering).
+  SystemMatrix restored;
+  set_up(restored);
+  restored.build_pattern(n, grown.offsets, grown.dofs);
+  ASSERT_TRUE(restored.factor_from_source(k.factor_source()));
+  EXPECT_EQ(restored.orderings(), 0u);
+  EXPECT_EQ(restored.factor_nonzeros(), k.factor_nonzeros());
+  const Eigen::VectorXd y = restored.solve(b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(y[i], x[i]) << "unknown " << i;
+  for (SystemMatrix* m : {&k, &restored}) {
+    assembled(*m, grown, n);
+    for (int i = 0; i < n; i += 3) m->add_diagonal(i, 0.5);
+    ASSERT_TRUE(m->factorize());
+  }
+  const Eigen::VectorXd x2 = k.solve(b), y2 = restored.solve(b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(y2[i], x2[i]) << "unknown " << i;
+  EXPECT_EQ(restored.orderings(), 0u);
+
+  // Couplings across the whole plane fill the kept ordering's factor beyond kOrderingRefill:
+  // a new ordering is found.
+  std::vector<std::pair<int, int>> far;
+  for (int i = 0; i < 400; ++i) far.emplace_back((i * 37) % (kSide * kSide), (i * 7919 + 5000) % (kSide * kSide));
+  const Groups wide = with_pairs(grown, far);
+  k.build_pattern(n, wide.offsets, wide.dofs);
+  assembled(k, wide, n);
+  ASSERT_TRUE(k.factorize());
+  EXPECT_EQ(k.orderings(), 2u);
+  const Eigen::VectorXd z = k.solve(b);
+  EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * z).norm(), 1e-12 * b.norm());
+
+  // A pattern that shed pairs (built anew from fewer groups) is ordered anew.
+  k.build_pattern(n, grown.offsets, grown.dofs);
+  assembled(k, grown, n);
+  ASSERT_TRUE(k.factorize());
+  EXPECT_EQ(k.orderings(), 3u);
+
+  // A FACTOR section whose ordering is not a permutation of the unknowns is refused.
+  std::string bytes = k.factor_source();
+  const std::size_t at = bytes.size() - 2 * sizeof(double) - static_cast<std::size_t>(n) * sizeof(int);
+  std::memcpy(&bytes[at], &bytes[at + sizeof(int)], sizeof(int));  // the first entry twice
+  SystemMatrix bad;
+  set_up(bad);
+  bad.build_pattern(n, grown.offsets, grown.dofs);
+  EXPECT_FALSE(bad.factor_from_source(bytes));
 }

@@ -61,6 +61,15 @@ class ByteReader {
     pos_ += sizeof(T) * v.size();
     return v;
   }
+  /// The next value without reading past it (nothing: `fallback`).
+  template <class T>
+  T peek(T fallback) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    if (sizeof(T) > b_.size() - pos_) return fallback;
+    T v;
+    std::memcpy(&v, b_.data() + pos_, sizeof(T));
+    return v;
+  }
   bool at_end() const { return pos_ == b_.size(); }
   void expect_end() const {
     if (pos_ != b_.size()) fail("unexpected bytes after the data");

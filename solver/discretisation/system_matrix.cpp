@@ -11,6 +11,10 @@
 namespace nmm::solve {
 
 namespace {
+// Marks the kept ordering in factor_source()'s bytes, after the matrix ("ORDERING" in ASCII: an
+// older checkpoint's note there starts with its length, far smaller).
+constexpr std::uint64_t kOrderingTag = 0x474E49524544524FULL;
+
 // y ← y + α·A v (α = ±1) for the symmetric A whose upper triangle is (outer, inner, values),
 // diagonal last in each column. The sums run in the order of Eigen's product with the lower
 // triangle in columns (the storage before the upper one): into y_i the terms of the columns
@@ -38,6 +42,15 @@ void add_upper_times(int n, const int* outer, const int* inner, const double* va
   for (int i = 0; i < n; ++i) yy[i] += alpha * rr[i];
 }
 }  // namespace
+
+// Entries of a group's m × m block that the upper triangle stores: (i, j) with dof i ≥ dof j
+// (the mirror of each off-diagonal pair is left out; a repeated unknown keeps both copies).
+std::int64_t SystemMatrix::stored_entries(const int* d, int m) {
+  std::int64_t count = 0;
+  for (int jj = 0; jj < m; ++jj)
+    for (int ii = 0; ii < m; ++ii) count += d[ii] >= d[jj] ? 1 : 0;
+  return count;
+}
 
 bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const std::vector<int>& dofs) {
   // The groups of the last build, in order, among the new ones (a pattern that grew by pairs of
@@ -108,11 +121,10 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     outer = k_.outerIndexPtr();
     inner = k_.innerIndexPtr();
   }
-  std::vector<std::int32_t> slot_offset(ng + 1, 0);
-  for (std::size_t g = 0; g < ng; ++g) {
-    const int m = offsets[g + 1] - offsets[g];
-    slot_offset[g + 1] = slot_offset[g] + m * m;
-  }
+  std::vector<std::int64_t> slot_offset(ng + 1, 0);
+  for (std::size_t g = 0; g < ng; ++g)
+    slot_offset[g + 1] = slot_offset[g] + (old_of[g] != kNew ? slot_offset_[old_of[g] + 1] - slot_offset_[old_of[g]]
+                                                              : stored_entries(dofs.data() + offsets[g], offsets[g + 1] - offsets[g]));
   std::vector<std::int32_t> slots(static_cast<std::size_t>(slot_offset[ng]));
   for (std::size_t g = 0; g < ng; ++g) {
     std::int32_t* out = slots.data() + slot_offset[g];
@@ -122,12 +134,13 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
       if (moved.empty())
         std::copy(first, last, out);
       else
-        for (const std::int32_t* it = first; it != last; ++it) *out++ = *it < 0 ? -1 : moved[static_cast<std::size_t>(*it)];
+        for (const std::int32_t* it = first; it != last; ++it) *out++ = moved[static_cast<std::size_t>(*it)];
     } else {
       const int m = offsets[g + 1] - offsets[g];
       const int* d = dofs.data() + offsets[g];
       for (int jj = 0; jj < m; ++jj)
-        for (int ii = 0; ii < m; ++ii) *out++ = d[ii] < d[jj] ? -1 : find(outer, inner, d[jj], d[ii]);
+        for (int ii = 0; ii < m; ++ii)
+          if (d[ii] >= d[jj]) *out++ = find(outer, inner, d[jj], d[ii]);
     }
   }
   slot_offset_ = std::move(slot_offset);
@@ -174,12 +187,16 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
   // each local entry once. (The entry below the block's diagonal, not its mirror: an element's
   // block is symmetric only to round-off, and these are the values the lower triangle held.) An
   // unknown repeated in a group maps all its copies to the same entries, which sums them.
-  slot_offset_.assign(ng + 1, 0);
+  // Built first for all m² entries of each group (`full`, -1 where the mirror stands), then
+  // kept for the stored ones only (stored_entries).
+  slots_.clear();
+  slots_.shrink_to_fit();
+  std::vector<std::int64_t> full_offset(ng + 1, 0);
   for (std::size_t g = 0; g < ng; ++g) {
     const int m = offsets[g + 1] - offsets[g];
-    slot_offset_[g + 1] = slot_offset_[g] + m * m;
+    full_offset[g + 1] = full_offset[g] + m * m;
   }
-  slots_.assign(static_cast<std::size_t>(slot_offset_[ng]), -1);
+  std::vector<std::int32_t> full(static_cast<std::size_t>(full_offset[ng]), -1);
   std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
   inner.reserve(static_cast<std::size_t>(n) * 16);
   std::vector<std::int32_t> mark(static_cast<std::size_t>(n), -1), pos(static_cast<std::size_t>(n), -1);
@@ -202,7 +219,7 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
       const std::int32_t g = groups[k];
       const int m = offsets[g + 1] - offsets[g];
       const int* d = dofs.data() + offsets[g];
-      std::int32_t* slot = slots_.data() + slot_offset_[g];
+      std::int32_t* slot = full.data() + full_offset[g];
       for (int ii = 0; ii < m; ++ii) {
         if (d[ii] != c) continue;
         for (int jj = 0; jj < m; ++jj)
@@ -210,6 +227,16 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
       }
     }
   }
+  slot_offset_.assign(ng + 1, 0);
+  for (std::size_t g = 0; g < ng; ++g)
+    slot_offset_[g + 1] = slot_offset_[g] + stored_entries(dofs.data() + offsets[g], offsets[g + 1] - offsets[g]);
+  slots_.resize(static_cast<std::size_t>(slot_offset_[ng]));
+  {
+    std::int32_t* out = slots_.data();
+    for (const std::int32_t v : full)
+      if (v >= 0) *out++ = v;
+  }
+  std::vector<std::int32_t>().swap(full);
   // New pairs of elements whose covers were already coupled (neighbours along a joint share two
   // of their three covers) leave the pattern of unknowns as it was: CHOLMOD's symbolic analysis
   // then still holds.
@@ -250,11 +277,17 @@ void SystemMatrix::set_amd_only(bool on) {
 void SystemMatrix::set_zero() { std::fill(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), 0.0); }
 
 void SystemMatrix::add_group(std::size_t g, const double* k) {
+  // The stored entries in the block's column-major order, as slots_ lists them: each lands once
+  // per group on its global entry, in the same order as when every m² entry had a slot.
   const std::int32_t* s = slots_.data() + slot_offset_[g];
-  const int count = slot_offset_[g + 1] - slot_offset_[g];
+  const int* d = group_dofs_.data() + group_offsets_[g];
+  const int m = group_offsets_[g + 1] - group_offsets_[g];
   double* v = k_.valuePtr();
-  for (int e = 0; e < count; ++e)
-    if (s[e] >= 0) v[s[e]] += k[e];
+  for (int jj = 0; jj < m; ++jj, k += m) {
+    const int dj = d[jj];
+    for (int ii = 0; ii < m; ++ii)
+      if (d[ii] >= dj) v[*s++] += k[ii];
+  }
 }
 
 void SystemMatrix::add_diagonal(int i, double value) { k_.valuePtr()[diagonal(i)] += value; }
@@ -265,6 +298,13 @@ int SystemMatrix::Llt::failed_column() const {
   const cholmod_factor* f = this->m_cholmodFactor;
   if (!f || f->minor >= f->n) return -1;
   return f->Perm ? static_cast<const int*>(f->Perm)[f->minor] : static_cast<int>(f->minor);
+}
+
+std::size_t SystemMatrix::Llt::bytes() const {
+  const cholmod_factor* f = this->m_cholmodFactor;
+  if (!f) return 0;
+  // Supernodal: xsize values, ssize row indices, and per column or supernode a few integers.
+  return f->xsize * sizeof(double) + f->ssize * sizeof(int) + (4 * f->n + 4 * f->nsuper) * sizeof(int);
 }
 
 void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
@@ -284,9 +324,10 @@ void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
 }
 
 // METIS on the covers from kBlockOrderingUnknowns unknowns. Nested dissection's factor is the
-// smaller the larger the wall, while an analysis by METIS costs several AMD's and a run with
-// contact analyses again whenever its pattern grows. Measured on the DDA code's static walls
-// (contact_bench --trace, one thread, 2026-11-29; docs/notes/2026-11-scale.md):
+// smaller the larger the wall, while finding a METIS ordering costs several AMD analyses and a
+// run with contact analyses again whenever its pattern grows. Measured on the DDA code's static
+// walls (contact_bench --trace, one thread, 2026-11-29; docs/notes/2026-11-scale.md), with a
+// new ordering at every analysis:
 //   316 × 316 bricks, h = 2 m, 929,502 unknowns: factor 172 M nonzeros and 141 Gflop against
 //     AMD's 231 M and 310 Gflop; step 1 (3 factorisations) 34.1 s against 50.2 s
 //   100 × 100, h = 0.5 m, 222,516 unknowns: 0.94 × AMD's CPU over steps 1–15 (the first
@@ -295,21 +336,51 @@ void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
 //     factorisation's 650)
 //   100 × 100, h = 2 m, 93,350 unknowns: 4.4 against 6.3 Gflop, but 370 ms per analysis
 //     against 85 ms, at 0.13 analyses and 0.17 factorisations per step
-// Between 222k and 930k unknowns not measured: the threshold lies between the two.
+//
+// So an ordering, once found, is kept for the patterns that follow. A grown pattern adds the
+// element pairs of new contacts: entries between covers a few elements apart, which a nested
+// dissection's separators rarely had to keep apart, so its fill grows little; a pattern that
+// shed pairs has less. An analysis under the kept ordering (cholmod_analyze_p, with CHOLMOD's
+// postordering) costs less than AMD's; when its factor has more than kOrderingRefill times the
+// nonzeros the ordering had when it was found, or the pattern has shed pairs since, a new one
+// is found. Which ordering an analysis
+// uses depends on the patterns of the run so far, not on this one's alone: a checkpoint keeps
+// the ordering and its fill with the factorisation (factor_source), so that a restarted run
+// analyses as the straight one did.
+bool SystemMatrix::analyse_kept(const Sparse& a) {
+  if (kept_perm_.size() != static_cast<std::size_t>(a.rows())) return false;
+  // A pattern with fewer nonzeros than the one the ordering was found on has shed pairs (it
+  // only grows otherwise): a new ordering of the smaller pattern has less fill than the kept one.
+  if (static_cast<double>(a.nonZeros()) < kept_nonzeros_) return false;
+  llt_.analyze_given(a, kept_perm_);
+  return llt_.cholmod().lnz <= kOrderingRefill * kept_fill_;
+}
+
 void SystemMatrix::analyse(const Sparse& a) {
   ++analyses_;
   const cholmod_common& c = llt_.cholmod();
   if (block_ > 0 && a.rows() >= block_from_) {
-    std::vector<int> perm = block_ordering(static_cast<int>(a.rows()), a.outerIndexPtr(), a.innerIndexPtr(), block_,
-                                           FillOrdering::metis, blocked_);
-    if (!perm.empty()) {
-      llt_.analyze_given(a, perm);
+    bool ok = analyse_kept(a);
+    if (!ok) {
+      std::vector<int> perm = block_ordering(static_cast<int>(a.rows()), a.outerIndexPtr(), a.innerIndexPtr(), block_,
+                                             FillOrdering::metis, blocked_);
+      if (!perm.empty()) {
+        llt_.analyze_given(a, perm);
+        kept_perm_ = std::move(perm);
+        kept_fill_ = c.lnz;
+        kept_nonzeros_ = static_cast<double>(a.nonZeros());
+        ++orderings_;
+        ok = true;
+      }
+    }
+    if (ok) {
       factor_nonzeros_ = c.lnz;
       factor_flops_ = c.fl;
       ordering_ = "metis_covers";
       return;
     }
   }
+  kept_perm_.clear();
   llt_.analyzePattern(a);
   factor_nonzeros_ = c.lnz;
   factor_flops_ = c.fl;
@@ -364,6 +435,13 @@ std::string SystemMatrix::factor_source() const {
   w.put_vector(std::vector<int>(lower.outerIndexPtr(), lower.outerIndexPtr() + n + 1));
   w.put_vector(std::vector<int>(lower.innerIndexPtr(), lower.innerIndexPtr() + nnz));
   w.put_vector(std::vector<double>(lower.valuePtr(), lower.valuePtr() + nnz));
+  // The kept ordering it was analysed under, and that ordering's fill when found (analyse()).
+  if (!kept_perm_.empty()) {
+    w.put<std::uint64_t>(kOrderingTag);
+    w.put_vector(kept_perm_);
+    w.put<double>(kept_fill_);
+    w.put<double>(kept_nonzeros_);
+  }
   return w.take();
 }
 
@@ -371,6 +449,8 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   const auto n = static_cast<std::int64_t>(k_.rows());
   std::vector<int> outer, inner;
   std::vector<double> values, note;
+  std::vector<int> perm;
+  double fill = 0, nonzeros = 0;
   try {
     ByteReader r(bytes, "", "FACTOR");
     outer = r.get_vector<int>(static_cast<std::size_t>(n + 1), "column starts");
@@ -378,6 +458,12 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
     if (nnz < n || nnz > n * n) return false;
     inner = r.get_vector<int>(static_cast<std::size_t>(nnz), "rows");
     values = r.get_vector<double>(static_cast<std::size_t>(nnz), "values");
+    if (r.peek<std::uint64_t>(0) == kOrderingTag) {
+      r.get<std::uint64_t>();
+      perm = r.get_vector<int>(static_cast<std::size_t>(n), "ordering");
+      fill = r.get<double>();
+      nonzeros = r.get<double>();
+    }
     // Older checkpoints end with a note on the springs factorised (no longer used): skipped.
     if (!r.at_end()) note = r.get_vector<double>(SIZE_MAX, "note");
     r.expect_end();
@@ -401,9 +487,19 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   }
   for (std::int64_t k = 0; k < nnz; ++k)
     if (!std::isfinite(m.valuePtr()[k])) return false;
+  if (!perm.empty()) {  // a permutation of the unknowns, and a fill a factor can have
+    std::vector<char> seen(static_cast<std::size_t>(n), 0);
+    for (const int i : perm)
+      if (i < 0 || i >= n || seen[static_cast<std::size_t>(i)]++) return false;
+    if (!(fill > 0) || !std::isfinite(fill) || !(nonzeros > 0) || !std::isfinite(nonzeros)) return false;
+  }
   m = Sparse(m.transpose());  // stored as the upper triangle
-  // The same analysis and numbers as the run that wrote it; the next factorize() of this run's
-  // own matrix analyses its pattern again (deterministically: the same ordering).
+  // The same analysis and numbers as the run that wrote it (under its kept ordering, if it had
+  // one); the next factorize() of this run's own matrix analyses its pattern again
+  // (deterministically: the same ordering).
+  kept_perm_ = std::move(perm);
+  kept_fill_ = fill;
+  kept_nonzeros_ = nonzeros;
   analyse(m);
   llt_.factorize(m);
   analysed_ = false;

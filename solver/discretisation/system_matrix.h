@@ -22,7 +22,10 @@
 namespace nmm::solve {
 
 /// Unknowns from which set_block_ordering() orders by METIS on the covers (system_matrix.cpp).
-inline constexpr int kBlockOrderingUnknowns = 500000;
+inline constexpr int kBlockOrderingUnknowns = 150000;
+/// A kept ordering serves a grown pattern while its factor has at most this many times the
+/// nonzeros it had when the ordering was found (system_matrix.cpp).
+inline constexpr double kOrderingRefill = 1.10;
 
 class SystemMatrix {
  public:
@@ -51,7 +54,9 @@ class SystemMatrix {
   /// Orders by METIS's nested dissection on the graph of the covers (fill_ordering.h) instead,
   /// once the system has at least `from` unknowns: the first `blocked` unknowns form covers of
   /// `block` consecutive unknowns (cover_space.h), the others stand alone. `block` 0: off (the
-  /// default). For runs with contact (system_matrix.cpp: where it pays).
+  /// default). For runs with contact (system_matrix.cpp: where it pays). The ordering found is
+  /// kept for the patterns grown from that one while their factor stays within kOrderingRefill
+  /// of the fill it had when found (system_matrix.cpp); a checkpoint carries it (factor_source()).
   void set_block_ordering(int block, int blocked, int from = kBlockOrderingUnknowns) {
     block_ = block;
     blocked_ = blocked;
@@ -119,26 +124,48 @@ class SystemMatrix {
   std::size_t nonzeros() const { return static_cast<std::size_t>(k_.nonZeros()); }
   /// CHOLMOD's fill-reducing ordering of the last analysis ("amd", "metis", "nesdis", ...).
   std::string ordering() const { return ordering_; }
+  /// METIS orderings on the covers found so far (the analyses that reused one are not counted).
+  std::size_t orderings() const { return orderings_; }
 
   int failed_unknown() const { return failed_unknown_; }
   int size() const { return static_cast<int>(k_.rows()); }
   const Sparse& matrix() const { return k_; }
   std::size_t analyses() const { return analyses_; }  ///< symbolic analyses done so far
   std::size_t builds() const { return builds_; }  ///< patterns built from scratch so far (not grown in place)
+  /// Bytes of CHOLMOD's factor (values, supernodes' row indices, permutation), 0 without one.
+  std::size_t factor_bytes() const { return llt_.bytes(); }
+  /// Bytes of the matrix's copies: the pattern and values, the saved values, the factorised one.
+  std::size_t matrix_bytes() const {
+    const auto bytes = [](const Sparse& a) {
+      return static_cast<std::size_t>(a.nonZeros()) * (sizeof(double) + sizeof(int)) +
+             static_cast<std::size_t>(a.outerSize() + 1) * sizeof(int);
+    };
+    return bytes(k_) + saved_.capacity() * sizeof(double) + bytes(factored_);
+  }
+  /// Bytes held for the pattern's scatter (the groups' slots and unknowns): a bench reads it.
+  std::size_t scatter_bytes() const {
+    return slots_.capacity() * sizeof(std::int32_t) + slot_offset_.capacity() * sizeof(std::int64_t) +
+           (group_offsets_.capacity() + group_dofs_.capacity()) * sizeof(int);
+  }
 
  private:
   void set_perturbation();  // perturbation_ of factored_
   // Eigen's CHOLMOD wrapper, with the failing column exposed.
   struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Upper> {
     int failed_column() const;
+    std::size_t bytes() const;
     /// analyzePattern() with the fill-reducing permutation `perm` (perm[k]: the unknown
     /// eliminated k-th) instead of CHOLMOD's own ordering; CHOLMOD still postorders it.
     void analyze_given(const Sparse& a, std::vector<int>& perm);
   };
   void analyse(const Sparse& a);  // CHOLMOD's symbolic analysis of a's pattern, under the ordering set
   Sparse k_;
-  std::vector<std::int32_t> slot_offset_;  // [group+1] CSR into slots_
-  std::vector<std::int32_t> slots_;  // [m² per group] value index of entry (i, j), -1 above diagonal
+  // Where each group's block lands: for the entries (i, j) of its m × m block, column-major,
+  // that the upper triangle stores (dof i ≥ dof j; about half: 78 of 144 for a pair of 6-unknown
+  // elements), the index into the values. The other entries are the mirrors of stored ones.
+  std::vector<std::int64_t> slot_offset_;  // [group+1] CSR into slots_
+  std::vector<std::int32_t> slots_;
+  static std::int64_t stored_entries(const int* d, int m);
   std::vector<int> group_offsets_, group_dofs_;  // the groups of the last build (build_pattern's)
   bool grow_in_place(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
   std::vector<double> saved_;
@@ -152,6 +179,11 @@ class SystemMatrix {
   std::size_t builds_ = 0;
   double factor_nonzeros_ = 0, factor_flops_ = 0;
   std::string ordering_;
+  std::vector<int> kept_perm_;   // the METIS ordering on the covers kept for later analyses (empty: none)
+  double kept_fill_ = 0;         // factor nonzeros of the analysis that found kept_perm_
+  double kept_nonzeros_ = 0;     // the matrix's nonzeros (upper triangle) at that analysis
+  std::size_t orderings_ = 0;    // kept_perm_ found anew so far
+  bool analyse_kept(const Sparse& a);  // analyse a under kept_perm_; false if its fill has grown too far
   int block_ = 0, blocked_ = 0, block_from_ = kBlockOrderingUnknowns;  // set_block_ordering()
   int failed_unknown_ = -1;
   std::vector<int> regularised_;
