@@ -25,6 +25,14 @@ FlowEffect::FlowEffect(const Model& model, const CoverSpace& space) : model_(mod
   if (!active()) return;
   network_ = FlowNetwork(model.mesh(), model.scene(), model.scene_name());
   balance_ = std::make_unique<FlowBalance>(network_, model.scene(), model.scene_name());
+  for (const FlowSegment& sg : network_.segments()) {
+    if (joint_length_.size() <= static_cast<std::size_t>(sg.joint)) joint_length_.resize(static_cast<std::size_t>(sg.joint) + 1, 0.0);
+    joint_length_[static_cast<std::size_t>(sg.joint)] += sg.length;
+  }
+  segment_modulus_.assign(network_.segments().size(), 0.0);
+  for (const FlowFace& face : network_.faces())
+    segment_modulus_[static_cast<std::size_t>(face.segment)] =
+        std::max(segment_modulus_[static_cast<std::size_t>(face.segment)], model.elasticity(static_cast<std::size_t>(face.element))(0, 0));
   const std::vector<std::int32_t>& offset = model.mesh().element_loop_offset;
   for (const FlowFaceVertex& fv : network_.end_vertices())
     vertex_element_.push_back(
@@ -115,18 +123,27 @@ Outcome FlowEffect::begin_step(EffectStep& step) {
   for (double p : step_.pressure)
     if (!std::isfinite(p))
       return Outcome::stop(StopCode::direction_not_finite, "the flow solve gave a pressure that is not finite", s.time);
-  if (f.coupled) load_ = face_forces(step.context, s, step_.pressure);
   if (two_way()) {
+    // The first solve round loads the faces with the pressures of the step's start (the
+    // boundaries' at its end): the balance at the start's apertures, with no opening to store
+    // into, would put all of an injection into the fluid's compressibility — gigapascals in a
+    // crack, far from the solution, whose overshoot the cap on the apertures then locks in.
+    iterate_ = s.flow_pressure;
+    for (std::size_t i = 0; i < iterate_.size(); ++i)
+      if (network_.node_boundary()[i] >= 0) iterate_[i] = step_.pressure[i];
+    load_ = face_forces(step.context, s, iterate_);
     attempt_ = &step;
     volume0_ = network_.volumes(aperture_);
     compliance_.clear();
     solves_ = 1;
     split_error_ = 0;
     diverged_ = false;
-    iterate_ = step_.pressure;
+    last_carried_ = 0;
     history_f_.clear();
     history_g_.clear();
     have_last_ = false;
+  } else if (f.coupled) {
+    load_ = face_forces(step.context, s, step_.pressure);
   }
   return {};
 }
@@ -164,6 +181,28 @@ std::vector<double> FlowEffect::compliance(EffectStep& step) const {
   const std::vector<double> zero(step.s.loop_u.size(), 0.0);
   c = network_.volumes(network_.separations(moved_loop_u(step.context, step.s.loop_xy, zero, x)));
   for (double& ci : c) ci = std::isfinite(ci) ? std::max(0.0, ci) : 0.0;
+  // Where the faces touch (the start's aperture the residual at every segment end of a node),
+  // the factorisation holds their contact springs and the response above misses the opening
+  // a pressure beyond the normal stress gives. There c is at least a Griffith crack's: a joint
+  // of length L_J opens at its middle by 2·L_J/E′ per Pa of uniform pressure (the row sums'
+  // largest), over the node's half segments; E′ ≈ D₁₁ of the element on the face.
+  const FlowDef& f = model_.scene().flow;
+  std::vector<char> open(network_.nodes(), 0);
+  const std::vector<FlowSegment>& segments = network_.segments();
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    if (aperture_[2 * k] > f.residual) open[static_cast<std::size_t>(segments[k].a)] = 1;
+    if (aperture_[2 * k + 1] > f.residual) open[static_cast<std::size_t>(segments[k].b)] = 1;
+  }
+  std::vector<double> griffith(network_.nodes(), 0.0);
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const double per_pa = segment_modulus_[k] > 0
+                              ? 2 * joint_length_[static_cast<std::size_t>(segments[k].joint)] / segment_modulus_[k]
+                              : 0.0;
+    griffith[static_cast<std::size_t>(segments[k].a)] += 0.5 * segments[k].length * per_pa;
+    griffith[static_cast<std::size_t>(segments[k].b)] += 0.5 * segments[k].length * per_pa;
+  }
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (!open[i]) c[i] = std::max(c[i], griffith[i]);
   return c;
 }
 
@@ -188,8 +227,10 @@ bool FlowEffect::judge(const Eigen::VectorXd& d) {
   split_error_ = carried;
   static const bool trace = std::getenv("NMM_TRACE_FLOW") != nullptr;
   if (trace)
-    std::fprintf(stderr, "flow t %.6g solve %d: carried %.3e of %.3e\n", step.context.t_end, solves_, carried,
-                 std::max(next.exchanged, std::abs(next.stored)));
+    std::fprintf(stderr, "flow t %.6g solve %d: carried %.3e of %.3e; x %.6g G %.6g c %.3e\n", step.context.t_end,
+                 solves_, carried, std::max(next.exchanged, std::abs(next.stored)), *std::max_element(iterate_.begin(), iterate_.end()),
+                 *std::max_element(next.pressure.begin(), next.pressure.end()),
+                 *std::max_element(compliance_.begin(), compliance_.end()));
   if (!std::isfinite(carried)) {
     diverged_ = true;  // the step is cut (max_solves)
     return true;
@@ -198,6 +239,14 @@ bool FlowEffect::judge(const Eigen::VectorXd& d) {
   step_ = std::move(next);
   aperture_ = std::move(ap);
   if (carried <= kTolerance * scale) return false;
+  // Anderson's extrapolation is kept while it reduces the error; where it grew (contacts that
+  // opened or closed, an aperture at its cap: the map is not smooth there) it starts afresh.
+  if (last_carried_ > 0 && carried > last_carried_) {
+    history_f_.clear();
+    history_g_.clear();
+    have_last_ = false;
+  }
+  last_carried_ = carried;
   iterate_ = accelerate(iterate_, step_.pressure);
   load_ = face_forces(step.context, s, iterate_);
   return true;

@@ -147,8 +147,11 @@ class FlowEffect final : public Effect {
   static constexpr int kDepth = 8;
   std::vector<Eigen::VectorXd> history_f_, history_g_;
   Eigen::VectorXd last_f_, last_g_;
-  bool have_last_ = false;  // the split gave a pressure that is not finite: cut the step
+  bool have_last_ = false;
+  double last_carried_ = 0;  // m³ per m, the split's error at the last iterate  // the split gave a pressure that is not finite: cut the step
   Iterations iterations_;
+  std::vector<double> joint_length_;     // [joint] m, its segments' lengths summed
+  std::vector<double> segment_modulus_;  // [segment] Pa, D₁₁ of the stiffer element on its faces
   std::vector<std::int32_t> vertex_element_;  // [end vertex] its element (moved_loop_u)
 };
 
