@@ -124,13 +124,16 @@ Outcome FlowEffect::begin_step(EffectStep& step) {
     if (!std::isfinite(p))
       return Outcome::stop(StopCode::direction_not_finite, "the flow solve gave a pressure that is not finite", s.time);
   if (two_way()) {
-    // The first solve round loads the faces with the pressures of the step's start (the
-    // boundaries' at its end): the balance at the start's apertures, with no opening to store
-    // into, would put all of an injection into the fluid's compressibility — gigapascals in a
-    // crack, far from the solution, whose overshoot the cap on the apertures then locks in.
+    // The first solve round loads the faces with the lower of the step's start pressure and the
+    // balance's at the start's apertures at each node (the boundaries' at the step's end): the
+    // balance, with no opening to store into, puts an injection into the fluid's
+    // compressibility alone — gigapascals in a crack, far from the solution, whose overshoot the
+    // cap on the apertures then locks in; where the fluid drains (a fracture that reached a
+    // boundary at 0) its lower pressures keep the first solve from pushing apart what the
+    // drained fluid no longer does.
     iterate_ = s.flow_pressure;
     for (std::size_t i = 0; i < iterate_.size(); ++i)
-      if (network_.node_boundary()[i] >= 0) iterate_[i] = step_.pressure[i];
+      if (network_.node_boundary()[i] >= 0 || step_.pressure[i] < iterate_[i]) iterate_[i] = step_.pressure[i];
     load_ = face_forces(step.context, s, iterate_);
     attempt_ = &step;
     volume0_ = network_.volumes(aperture_);

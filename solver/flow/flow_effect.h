@@ -14,7 +14,8 @@
 // step behind the mechanics; the steady pressures lie between the boundaries' (and grow with
 // the injections), whatever the apertures, so the lag settles as the faces do.
 // Transient and coupled: two-way, iterated within the step (fixed-stress split). The first
-// solve round takes the pressures of the balance at the start's apertures; at each solution d
+// solve round loads the faces with the lower, per node, of the start's pressure and the
+// balance's at the start's apertures (begin_step says why); at each solution d
 // (judge) the apertures a^k of the faces moved by d give the step's end volumes V^k and
 // conductances, and the balance is solved again with the storage term of flow_balance.h,
 //   [V^k(1 + p/K_f) − V⁰(1 + p⁰/K_f) + c·(p − p^k)] / Δt,
@@ -23,11 +24,14 @@
 // row sums of the faces' compliance matrix, which bound it where its entries are positive — a
 // crack or a joint between layers — so the split converges: error factor (D − A)(S + T + D)⁻¹,
 // |·| < 1 for D ≥ A/2; the plain fixed point, c = 0, grows by c·K_f/V per iteration, thousands
-// for an open joint). Converged when the volume the split still carries, Σ c_i·|p_i^{k+1} −
+// for an open joint). Where the faces touch at the step's start the factorisation holds their
+// contact springs, and c is at least a Griffith crack's (compliance()). The pressures x that
+// load the faces next are G(x), the balance's, mixed by Anderson (accelerate()). Converged when the volume the split still carries, Σ c_i·|p_i^{k+1} −
 // p_i^k|, is at most kTolerance of the step's exchanged (and stored) volume; the mechanics is
 // solved again with the new pressures until then, up to kMaxIterations solves, past which the
 // step is cut (StopCode::flow_not_converged). The committed step has the last balance's
 // pressures on the faces of the last solution: stored = injected − outflow to the tolerance.
+// NMM_TRACE_FLOW=1 prints each iteration's error (stderr).
 // `coupled: false`: the apertures stay those at the run's start and the pressure does not load
 // the faces (flow alone).
 // With fracture, a re-cut builds the effect again on the cut mesh, whose network holds the new
