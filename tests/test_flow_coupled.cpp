@@ -8,7 +8,7 @@
 //       L·(a0 + p/kn)·(1 + p/K_f) − L·a0 = Q·t,
 //     a quadratic in the mean p — within 2 % (p, and the opening p/kn); the one-way scheme
 //     (apertures fixed at the start) stores it by the water's compressibility alone,
-//     p = K_f·Q·t/(a0·L), five orders of magnitude too high here;
+//     p = K_f·Q·t/(a0·L), 2,200 times too high here;
 //   - a step p0 at the joint's left end, its right end closed: the joint fills and opens until
 //     it holds p0 everywhere, a = a0 + p0/kn — within 2 %, the volume that came in equal to
 //     L·(a0 + p0/kn)·(1 + p0/K_f) − L·a0 within 1 %;
