@@ -19,6 +19,7 @@ constexpr Named kNames[] = {
     {StopCode::direction_not_finite, "direction_not_finite"},
     {StopCode::bolts_not_settled, "bolts_not_settled"},
     {StopCode::fracture_cascade, "fracture_cascade"},
+    {StopCode::flow_not_converged, "flow_not_converged"},
     {StopCode::unconstrained, "unconstrained"},
     {StopCode::element_folded, "element_folded"},
     {StopCode::displacement_not_finite, "displacement_not_finite"},
@@ -49,7 +50,8 @@ bool cured_by_shorter_step(StopCode code) {
     case StopCode::contact_not_converged:
     case StopCode::direction_not_finite:
     case StopCode::bolts_not_settled:
-    case StopCode::fracture_cascade: return true;
+    case StopCode::fracture_cascade:
+    case StopCode::flow_not_converged: return true;
     default: return false;
   }
 }

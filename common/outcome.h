@@ -25,6 +25,7 @@ enum class StopCode : std::uint8_t {
   direction_not_finite,     ///< the contact solve's direction was not finite
   bolts_not_settled,        ///< the bolts' springs kept switching between elastic and yielding (or slipping)
   fracture_cascade,         ///< cracks kept growing through more re-cuts than one step may take
+  flow_not_converged,       ///< the coupled flow's iterations of a step did not converge (flow_effect.h)
   // What no shorter step cures (the run stops at once):
   unconstrained,            ///< the system is singular: a cover or block held by nothing
   element_folded,           ///< an element's triangle folded over

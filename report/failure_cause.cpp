@@ -56,6 +56,10 @@ std::string likely_failure_cause(const Mesh& mesh, const SceneDef& scene, StopCo
   if (code == StopCode::fracture_cascade)
     return "cracks kept growing through the rock within one step even at the shortest step: the "
            "load rate may be too high for a quasi-static run (a slower support velocity, or run dynamic).";
+  if (code == StopCode::flow_not_converged)
+    return "the pressures of the fluid and the openings of the joints it fills did not agree within "
+           "a step even at the shortest step: try a smaller solver.time_step or a stiffer fluid "
+           "(flow.fluid.bulk_modulus).";
   if (code == StopCode::unconstrained)
     return "a block is held by nothing: give it fixed points or supports, or run dynamic.";
   return "";

@@ -209,7 +209,7 @@ TEST(Pictures, RunOutcomeFromSummary) {
   // Every code's name reads back as the code.
   for (StopCode c : {StopCode::ok, StopCode::interrupted, StopCode::step_displacement, StopCode::penetration,
                      StopCode::contact_not_converged, StopCode::direction_not_finite, StopCode::bolts_not_settled,
-                     StopCode::fracture_cascade, StopCode::unconstrained,
+                     StopCode::fracture_cascade, StopCode::flow_not_converged, StopCode::unconstrained,
                      StopCode::element_folded, StopCode::displacement_not_finite, StopCode::failed}) {
     StopCode back = StopCode::ok;
     EXPECT_TRUE(stop_code_from_name(stop_code_name(c), back)) << stop_code_name(c);

@@ -60,7 +60,8 @@ FlowBalance::FlowBalance(const FlowNetwork& network, const SceneDef& scene, cons
 FlowBalance::~FlowBalance() = default;
 
 FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vector<double>& conductance,
-                                 const std::vector<double>& volume, double dt, double t_end) {
+                                 const std::vector<double>& volume, double dt, double t_end,
+                                 const FlowStorage* moving) {
   const std::size_t n = network_.nodes();
   const std::vector<std::int32_t>& fixed = network_.node_boundary();
   const std::vector<double>& xy = network_.node_xy();
@@ -90,7 +91,13 @@ FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vecto
       const int k = unknown_[i];
       if (k < 0) continue;
       b[k] += q[i];
-      if (storage) {
+      if (storage && moving) {
+        const double c = moving->compliance[i];
+        t.emplace_back(k, k, (volume[i] / kf + c) / dt);
+        b[k] += ((volume[i] / kf + c) * p0[i] - (volume[i] - moving->volume0[i]) * (1 + p0[i] / kf) +
+                 c * (moving->iterate[i] - p0[i])) /
+                dt;
+      } else if (storage) {
         const double s = volume[i] / kf / dt;
         t.emplace_back(k, k, s);
         b[k] += s * p0[i];
@@ -144,9 +151,14 @@ FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vecto
   }
   r.injected = injected_rate * dt;
   r.exchanged += std::abs(injected_rate) * dt;
-  if (storage)
+  if (storage && moving) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (unknown_[i] >= 0)
+        r.stored += (volume[i] - moving->volume0[i]) * (1 + p0[i] / kf) + volume[i] / kf * (r.pressure[i] - p0[i]);
+  } else if (storage) {
     for (std::size_t i = 0; i < n; ++i)
       if (unknown_[i] >= 0) r.stored += volume[i] / kf * (r.pressure[i] - p0[i]);
+  }
   return r;
 }
 

@@ -13,6 +13,18 @@
 // injection into one has no steady state: bad input). The matrix is symmetric positive definite
 // (storage > 0, or a fixed node in every piece); Eigen's sparse LDLᵀ factorises it, its
 // ordering analysed once per network.
+//
+// Two-way transient coupling (flow_effect.h): the apertures move within the step, so the fluid
+// a free node holds changes with its volume too. Given the volumes V⁰ at the step's start, the
+// volumes V at the step's end (the faces of the mechanical iterate) and a compliance c_i (m³/Pa
+// per m: the volume the node's faces give per Pa, fixed-stress) with the last iterate's pressures
+// p^k, the storage term becomes
+//   [V_i·(1 + p_i/K_f) − V⁰_i·(1 + p_i⁰/K_f) + c_i·(p_i − p_i^k)] / Δt
+//     = [(V_i/K_f + c_i)·(p_i − p_i⁰) + (V_i − V⁰_i)·(1 + p_i⁰/K_f) − c_i·(p_i^k − p_i⁰)] / Δt,
+// the change of the fluid volume V·(1 + p/K_f) plus the opening the faces will add when the
+// pressure moves from p^k (c·(p − p^k)), which vanishes as the iterates converge. `stored` is the
+// change of V·(1 + p/K_f) alone, so stored = injected − outflow − Σ c_i·(p_i − p_i^k): the
+// coupling's convergence error.
 #pragma once
 
 #include <memory>
@@ -34,6 +46,13 @@ struct FlowStepResult {
   double exchanged = 0;               ///< m³ per m, |injected| and |through each boundary| over the step
 };
 
+/// The storage of a step whose apertures move (the header's two-way term); all [node].
+struct FlowStorage {
+  const std::vector<double>& volume0;     ///< m³ per m at the step's start
+  const std::vector<double>& compliance;  ///< m³/Pa per m, c_i
+  const std::vector<double>& iterate;     ///< Pa, p^k
+};
+
 class FlowBalance {
  public:
   /// The balance of `network` with the scene's fluid, boundaries and gravity (all outlive it);
@@ -44,9 +63,11 @@ class FlowBalance {
   FlowBalance& operator=(const FlowBalance&) = delete;
 
   /// One step of dt (s) ending at t_end (s) from pressures p0 ([node] Pa), with the step's
-  /// conductances ([segment] m³/(s·Pa) per m) and volumes ([node] m³ per m).
+  /// conductances ([segment] m³/(s·Pa) per m) and volumes ([node] m³ per m) at its end; with
+  /// `moving`, the volumes at the start differ (the two-way storage term above).
   FlowStepResult step(const std::vector<double>& p0, const std::vector<double>& conductance,
-                      const std::vector<double>& volume, double dt, double t_end);
+                      const std::vector<double>& volume, double dt, double t_end,
+                      const FlowStorage* moving = nullptr);
 
  private:
   struct Solver;

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include <nlohmann/json.hpp>
 
@@ -23,6 +25,18 @@ FlowEffect::FlowEffect(const Model& model, const CoverSpace& space) : model_(mod
   if (!active()) return;
   network_ = FlowNetwork(model.mesh(), model.scene(), model.scene_name());
   balance_ = std::make_unique<FlowBalance>(network_, model.scene(), model.scene_name());
+  for (const FlowSegment& sg : network_.segments()) {
+    if (joint_length_.size() <= static_cast<std::size_t>(sg.joint)) joint_length_.resize(static_cast<std::size_t>(sg.joint) + 1, 0.0);
+    joint_length_[static_cast<std::size_t>(sg.joint)] += sg.length;
+  }
+  segment_modulus_.assign(network_.segments().size(), 0.0);
+  for (const FlowFace& face : network_.faces())
+    segment_modulus_[static_cast<std::size_t>(face.segment)] =
+        std::max(segment_modulus_[static_cast<std::size_t>(face.segment)], model.elasticity(static_cast<std::size_t>(face.element))(0, 0));
+  const std::vector<std::int32_t>& offset = model.mesh().element_loop_offset;
+  for (const FlowFaceVertex& fv : network_.end_vertices())
+    vertex_element_.push_back(
+        static_cast<std::int32_t>(std::upper_bound(offset.begin(), offset.end(), fv.vertex) - offset.begin() - 1));
 }
 
 FlowEffect::~FlowEffect() = default;
@@ -109,8 +123,183 @@ Outcome FlowEffect::begin_step(EffectStep& step) {
   for (double p : step_.pressure)
     if (!std::isfinite(p))
       return Outcome::stop(StopCode::direction_not_finite, "the flow solve gave a pressure that is not finite", s.time);
-  if (f.coupled) load_ = face_forces(step.context, s, step_.pressure);
+  if (two_way()) {
+    // The first solve round loads the faces with the lower of the step's start pressure and the
+    // balance's at the start's apertures at each node (the boundaries' at the step's end): the
+    // balance, with no opening to store into, puts an injection into the fluid's
+    // compressibility alone — gigapascals in a crack, far from the solution, whose overshoot the
+    // cap on the apertures then locks in; where the fluid drains (a fracture that reached a
+    // boundary at 0) its lower pressures keep the first solve from pushing apart what the
+    // drained fluid no longer does.
+    iterate_ = s.flow_pressure;
+    for (std::size_t i = 0; i < iterate_.size(); ++i)
+      if (network_.node_boundary()[i] >= 0 || step_.pressure[i] < iterate_[i]) iterate_[i] = step_.pressure[i];
+    load_ = face_forces(step.context, s, iterate_);
+    attempt_ = &step;
+    volume0_ = network_.volumes(aperture_);
+    compliance_.clear();
+    solves_ = 1;
+    split_error_ = 0;
+    diverged_ = false;
+    last_carried_ = 0;
+    history_f_.clear();
+    history_g_.clear();
+    have_last_ = false;
+  } else if (f.coupled) {
+    load_ = face_forces(step.context, s, step_.pressure);
+  }
   return {};
+}
+
+std::vector<double> FlowEffect::moved_loop_u(const StepContext& context, const std::vector<double>& loop_xy,
+                                             const std::vector<double>& base, const Eigen::VectorXd& d) const {
+  std::vector<double> u = base;
+  const CoverSpace& space = context.config.space();
+  std::vector<double> phi(static_cast<std::size_t>(space.element_dofs() / 2));
+  const std::vector<FlowFaceVertex>& ends = network_.end_vertices();
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    const auto v = static_cast<std::size_t>(ends[k].vertex), e = static_cast<std::size_t>(vertex_element_[k]);
+    context.config.shape_values(e, loop_xy[2 * v], loop_xy[2 * v + 1], phi.data());
+    const int* g = space.element_unknowns(e);
+    double ux = 0, uy = 0;
+    for (std::size_t a = 0; a < phi.size(); ++a) {
+      ux += phi[a] * d[g[2 * a]];
+      uy += phi[a] * d[g[2 * a + 1]];
+    }
+    u[2 * v] = base[2 * v] + ux;
+    u[2 * v + 1] = base[2 * v + 1] + uy;
+  }
+  return u;
+}
+
+std::vector<double> FlowEffect::compliance(EffectStep& step) const {
+  // The faces' response to 1 Pa on every joint face, by the step's factorisation: Δw at the
+  // segment ends, and the volume it gives each node (the volumes' rule is linear in the ends).
+  std::vector<double> c(network_.nodes(), 0.0);
+  if (!step.system.has_factor()) return c;
+  const Eigen::VectorXd unit = face_forces(step.context, step.s, std::vector<double>(network_.nodes(), 1.0));
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(step.system.size());
+  b.head(unit.size()) = unit;
+  const Eigen::VectorXd x = step.system.solve_unrefined(b);
+  const std::vector<double> zero(step.s.loop_u.size(), 0.0);
+  c = network_.volumes(network_.separations(moved_loop_u(step.context, step.s.loop_xy, zero, x)));
+  for (double& ci : c) ci = std::isfinite(ci) ? std::max(0.0, ci) : 0.0;
+  // Where the faces touch (the start's aperture the residual at every segment end of a node),
+  // the factorisation holds their contact springs and the response above misses the opening
+  // a pressure beyond the normal stress gives. There c is at least a Griffith crack's: a joint
+  // of length L_J opens at its middle by 2·L_J/E′ per Pa of uniform pressure (the row sums'
+  // largest), over the node's half segments; E′ ≈ D₁₁ of the element on the face.
+  const FlowDef& f = model_.scene().flow;
+  std::vector<char> open(network_.nodes(), 0);
+  const std::vector<FlowSegment>& segments = network_.segments();
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    if (aperture_[2 * k] > f.residual) open[static_cast<std::size_t>(segments[k].a)] = 1;
+    if (aperture_[2 * k + 1] > f.residual) open[static_cast<std::size_t>(segments[k].b)] = 1;
+  }
+  std::vector<double> griffith(network_.nodes(), 0.0);
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const double per_pa = segment_modulus_[k] > 0
+                              ? 2 * joint_length_[static_cast<std::size_t>(segments[k].joint)] / segment_modulus_[k]
+                              : 0.0;
+    griffith[static_cast<std::size_t>(segments[k].a)] += 0.5 * segments[k].length * per_pa;
+    griffith[static_cast<std::size_t>(segments[k].b)] += 0.5 * segments[k].length * per_pa;
+  }
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (!open[i]) c[i] = std::max(c[i], griffith[i]);
+  return c;
+}
+
+bool FlowEffect::judge(const Eigen::VectorXd& d) {
+  if (!two_way() || !attempt_) return false;
+  EffectStep& step = *attempt_;
+  const FlowDef& f = model_.scene().flow;
+  const RunState& s = step.s;
+  if (compliance_.empty()) compliance_ = compliance(step);
+  // The apertures of the faces the solution d moves, and the balance at them (flow_balance.h).
+  std::vector<double> ap = network_.apertures(moved_loop_u(step.context, s.loop_xy, s.loop_u, d), f.residual,
+                                              f.max_aperture);
+  const FlowStorage moving{volume0_, compliance_, iterate_};
+  FlowStepResult next = balance_->step(s.flow_pressure, network_.conductances(ap, f.viscosity), network_.volumes(ap),
+                                       step.context.dt, step.context.t_end, &moving);
+  ++solves_;
+  // The fixed point x → G(x): the pressures x that loaded the faces, the balance's G(x) at the
+  // openings they gave. What the split still carries is Σ c·|G(x) − x|.
+  const std::size_t n = next.pressure.size();
+  double carried = 0;
+  for (std::size_t i = 0; i < n; ++i) carried += compliance_[i] * std::abs(next.pressure[i] - iterate_[i]);
+  split_error_ = carried;
+  static const bool trace = std::getenv("NMM_TRACE_FLOW") != nullptr;
+  if (trace)
+    std::fprintf(stderr, "flow t %.6g solve %d: carried %.3e of %.3e; x %.6g G %.6g c %.3e\n", step.context.t_end,
+                 solves_, carried, std::max(next.exchanged, std::abs(next.stored)), *std::max_element(iterate_.begin(), iterate_.end()),
+                 *std::max_element(next.pressure.begin(), next.pressure.end()),
+                 *std::max_element(compliance_.begin(), compliance_.end()));
+  if (!std::isfinite(carried)) {
+    diverged_ = true;  // the step is cut (max_solves)
+    return true;
+  }
+  const double scale = std::max(next.exchanged, std::abs(next.stored));
+  step_ = std::move(next);
+  aperture_ = std::move(ap);
+  if (carried <= kTolerance * scale) return false;
+  // Anderson's extrapolation is kept while it reduces the error; where it grew (contacts that
+  // opened or closed, an aperture at its cap: the map is not smooth there) it starts afresh.
+  if (last_carried_ > 0 && carried > last_carried_) {
+    history_f_.clear();
+    history_g_.clear();
+    have_last_ = false;
+  }
+  last_carried_ = carried;
+  iterate_ = accelerate(iterate_, step_.pressure);
+  load_ = face_forces(step.context, s, iterate_);
+  return true;
+}
+
+std::vector<double> FlowEffect::accelerate(const std::vector<double>& x, const std::vector<double>& g) {
+  // Anderson (1965) mixing of depth kDepth, as Walker & Ni (2011) write it: with the residuals
+  // f_k = G(x_k) − x_k and the differences ΔF, ΔG of the last iterates,
+  //   γ = argmin ‖f_k − ΔF·γ‖,   x_{k+1} = G(x_k) − ΔG·γ.
+  // The map is nearly affine (linear elasticity, fixed contacts), where this is GMRES on it:
+  // the slow modes of the split (a pressure localised to a few nodes, whose opening the
+  // compliance's row sums overstate) converge in a few iterations instead of hundreds.
+  const auto n = static_cast<Eigen::Index>(x.size());
+  Eigen::VectorXd f(n), gk(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    gk[i] = g[static_cast<std::size_t>(i)];
+    f[i] = gk[i] - x[static_cast<std::size_t>(i)];
+  }
+  std::vector<double> out(g);
+  if (have_last_) {
+    history_f_.push_back(f - last_f_);
+    history_g_.push_back(gk - last_g_);
+    if (history_f_.size() > static_cast<std::size_t>(kDepth)) {
+      history_f_.erase(history_f_.begin());
+      history_g_.erase(history_g_.begin());
+    }
+    const auto m = static_cast<Eigen::Index>(history_f_.size());
+    Eigen::MatrixXd df(n, m), dg(n, m);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      df.col(j) = history_f_[static_cast<std::size_t>(j)];
+      dg.col(j) = history_g_[static_cast<std::size_t>(j)];
+    }
+    const Eigen::VectorXd gamma = df.colPivHouseholderQr().solve(f);
+    if (gamma.allFinite()) {
+      const Eigen::VectorXd next = gk - dg * gamma;
+      for (Eigen::Index i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = next[i];
+    }
+  }
+  last_f_ = f;
+  last_g_ = gk;
+  have_last_ = true;
+  return out;
+}
+
+Outcome FlowEffect::not_settled(double t) const {
+  return Outcome::stop(StopCode::flow_not_converged,
+                       "the coupled flow's pressures and openings did not agree after " + std::to_string(solves_) +
+                           " solves of the step (the split still carries " + std::to_string(split_error_) +
+                           " m3 per m)",
+                       t);
 }
 
 void FlowEffect::add_at_rest(EffectStep& rest) {
@@ -131,6 +320,12 @@ void FlowEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   s.flow_outflow += step_.outflow;
   s.flow_stored += step_.stored;
   s.flow_exchanged += step_.exchanged;
+  if (two_way()) {
+    ++iterations_.steps;
+    iterations_.solves += solves_;
+    iterations_.worst = std::max<long>(iterations_.worst, solves_);
+    attempt_ = nullptr;
+  }
 }
 
 Eigen::VectorXd FlowEffect::face_forces(const StepContext& context, const RunState& s,

@@ -12,13 +12,26 @@
 // network's nodes) is factorised on its own, once per attempt.
 // Apertures: in a steady run (`steady`) they are those of the faces at the step's start, one
 // step behind the mechanics; the steady pressures lie between the boundaries' (and grow with
-// the injections), whatever the apertures, so the lag settles as the faces do. In a transient
-// run they stay at the run's start: a staggered split that lets them follow the faces is
-// unstable wherever an open joint is more compliant than its fluid is compressible (one node:
-// pressure changes grow by the factor c·K_f/V per step, c the joint's opening per pressure, V its
-// fluid volume — thousands for an opened joint), and the fixed-stress prediction that cures it
-// needs a compliance we could not yet estimate well enough (docs/flow.md "Not yet"). So transient
-// coupling is one-way: the pressure loads the faces, the faces do not change the flow.
+// the injections), whatever the apertures, so the lag settles as the faces do.
+// Transient and coupled: two-way, iterated within the step (fixed-stress split). The first
+// solve round loads the faces with the lower, per node, of the start's pressure and the
+// balance's at the start's apertures (begin_step says why); at each solution d
+// (judge) the apertures a^k of the faces moved by d give the step's end volumes V^k and
+// conductances, and the balance is solved again with the storage term of flow_balance.h,
+//   [V^k(1 + p/K_f) − V⁰(1 + p⁰/K_f) + c·(p − p^k)] / Δt,
+// c_i the node's compliance (m³/Pa per m): the volume its faces give when the pressure on every
+// face rises by 1 Pa, Δw from one solve of the step's factorised system with that load (the
+// row sums of the faces' compliance matrix, which bound it where its entries are positive — a
+// crack or a joint between layers — so the split converges: error factor (D − A)(S + T + D)⁻¹,
+// |·| < 1 for D ≥ A/2; the plain fixed point, c = 0, grows by c·K_f/V per iteration, thousands
+// for an open joint). Where the faces touch at the step's start the factorisation holds their
+// contact springs, and c is at least a Griffith crack's (compliance()). The pressures x that
+// load the faces next are G(x), the balance's, mixed by Anderson (accelerate()). Converged when the volume the split still carries, Σ c_i·|p_i^{k+1} −
+// p_i^k|, is at most kTolerance of the step's exchanged (and stored) volume; the mechanics is
+// solved again with the new pressures until then, up to kMaxIterations solves, past which the
+// step is cut (StopCode::flow_not_converged). The committed step has the last balance's
+// pressures on the faces of the last solution: stored = injected − outflow to the tolerance.
+// NMM_TRACE_FLOW=1 prints each iteration's error (stderr).
 // `coupled: false`: the apertures stay those at the run's start and the pressure does not load
 // the faces (flow alone).
 // With fracture, a re-cut builds the effect again on the cut mesh, whose network holds the new
@@ -50,6 +63,11 @@ class FlowEffect final : public Effect {
   Outcome begin_step(EffectStep& step) override;
   void add_at_rest(EffectStep& rest) override;
   void assemble(EffectStep& step) override;
+  /// Two-way transient coupling: the balance again at the apertures of the solution d; true
+  /// while the pressures still move (header comment).
+  bool judge(const Eigen::VectorXd& d) override;
+  int max_solves() const override { return two_way() && !diverged_ ? kMaxIterations : 1; }
+  Outcome not_settled(double t) const override;
   void commit(EffectStep& step, const Eigen::VectorXd& d) override;
   /// summary.json "flow" (docs/interface.md "Fluid flow in joints and cracks").
   void summarise(const RunState& s, nlohmann::json& summary) const override;
@@ -88,7 +106,31 @@ class FlowEffect final : public Effect {
   /// steps counted in the state (RunState::flow_load_work) into t.work.
   void energy_state(const EnergyState& e, EnergyTerms& t) const override;
 
+  /// The two-way coupling's cost: accepted steps, and the balance solves (one per solve round
+  /// of the mechanics) they took, since this effect was built (a re-cut builds it again).
+  struct Iterations {
+    long steps = 0, solves = 0, worst = 0;
+  };
+  const Iterations& iterations() const { return iterations_; }
+
+  /// Relative volume tolerance of a step's coupling iterations (header comment).
+  static constexpr double kTolerance = 1e-6;
+  /// Balance solves of one step attempt before it is cut.
+  static constexpr int kMaxIterations = 60;
+
  private:
+  bool two_way() const {
+    const FlowDef& f = model_.scene().flow;
+    return active() && f.coupled && !f.steady;
+  }
+  /// [2·v] m: `base` with the network's face vertices (at loop_xy, [2·v] m) moved by what the
+  /// covers' increment d gives them.
+  std::vector<double> moved_loop_u(const StepContext& context, const std::vector<double>& loop_xy,
+                                   const std::vector<double>& base, const Eigen::VectorXd& d) const;
+  /// The pressures to load the faces with next, from the last x and G(x) (Anderson mixing).
+  std::vector<double> accelerate(const std::vector<double>& x, const std::vector<double>& g);
+  /// [node] m³/Pa per m, the compliance c_i of the header comment, from the step's system.
+  std::vector<double> compliance(EffectStep& step) const;
   /// N per unknown of the covers: the pressure `p` ([node] Pa) on every joint face of the state s.
   Eigen::VectorXd face_forces(const StepContext& context, const RunState& s, const std::vector<double>& p) const;
 
@@ -100,6 +142,24 @@ class FlowEffect final : public Effect {
   FlowStepResult step_;
   std::vector<double> aperture_;
   Eigen::VectorXd load_;  // N per cover unknown, the step's face forces
+  // Two-way: the attempt's step (begin_step to commit), the volumes at its start, the compliance,
+  // the solves so far and the split's last volume error (m³ per m).
+  EffectStep* attempt_ = nullptr;
+  std::vector<double> volume0_, compliance_;
+  int solves_ = 0;
+  double split_error_ = 0;
+  bool diverged_ = false;
+  std::vector<double> iterate_;  // Pa, the pressures on the faces of the solve round (x)
+  // Anderson mixing's differences of the residuals and of G over the last kDepth iterates.
+  static constexpr int kDepth = 8;
+  std::vector<Eigen::VectorXd> history_f_, history_g_;
+  Eigen::VectorXd last_f_, last_g_;
+  bool have_last_ = false;
+  double last_carried_ = 0;  // m³ per m, the split's error at the last iterate  // the split gave a pressure that is not finite: cut the step
+  Iterations iterations_;
+  std::vector<double> joint_length_;     // [joint] m, its segments' lengths summed
+  std::vector<double> segment_modulus_;  // [segment] Pa, D₁₁ of the stiffer element on its faces
+  std::vector<std::int32_t> vertex_element_;  // [end vertex] its element (moved_loop_u)
 };
 
 }  // namespace nmm::solve

@@ -149,8 +149,8 @@ FlowNetwork::FlowNetwork(const Mesh& mesh, const SceneDef& scene, const std::str
   }
 }
 
-std::vector<double> FlowNetwork::apertures(const std::vector<double>& loop_u, double residual, double max) const {
-  std::vector<double> ap(2 * segments_.size(), residual);
+std::vector<double> FlowNetwork::separations(const std::vector<double>& loop_u) const {
+  std::vector<double> w(2 * segments_.size(), 0.0);
   for (std::size_t s = 0; s < segments_.size(); ++s) {
     const FlowSegment& sg = segments_[s];
     for (std::size_t end = 0; end < 2; ++end) {
@@ -164,10 +164,15 @@ std::vector<double> FlowNetwork::apertures(const std::vector<double>& loop_u, do
         ++(fv.side > 0 ? np : nm);
       }
       if (np == 0 || nm == 0) continue;  // one face only: no separation to measure
-      const double w = (up[0] / np - um[0] / nm) * sg.nx + (up[1] / np - um[1] / nm) * sg.ny;
-      ap[2 * s + end] = std::min(max, residual + std::max(0.0, w));
+      w[2 * s + end] = (up[0] / np - um[0] / nm) * sg.nx + (up[1] / np - um[1] / nm) * sg.ny;
     }
   }
+  return w;
+}
+
+std::vector<double> FlowNetwork::apertures(const std::vector<double>& loop_u, double residual, double max) const {
+  std::vector<double> ap = separations(loop_u);
+  for (double& a : ap) a = std::min(max, residual + std::max(0.0, a));
   return ap;
 }
 

@@ -74,6 +74,12 @@ class FlowNetwork {
   /// [2·segment] m, the hydraulic aperture at each segment's a and b end for loop displacements
   /// loop_u ([2·v] m; run_state.h).
   std::vector<double> apertures(const std::vector<double>& loop_u, double residual, double max) const;
+  /// [2·segment] m, the faces' normal separation w at each segment end for loop displacements
+  /// loop_u ([2·v] m), neither capped nor cut at 0 (0 where only one face reaches the end): the
+  /// opening a pressure gives, for the coupling's compliance (flow_effect.h).
+  std::vector<double> separations(const std::vector<double>& loop_u) const;
+  /// Every loop vertex whose displacement the apertures read (with repeats).
+  const std::vector<FlowFaceVertex>& end_vertices() const { return end_vertices_; }
   /// [node] m³ per m, the fluid volume each node holds for end apertures `ap` (header comment).
   std::vector<double> volumes(const std::vector<double>& ap) const;
   /// [segment] m³/(s·Pa) per m, the conductance of each segment for end apertures `ap`.
