@@ -103,6 +103,14 @@ bool ClosedContacts::with(std::int32_t v, std::int32_t block) const {
   return false;
 }
 
+bool ClosedContacts::holds_with(std::int32_t v, std::int32_t block) const {
+  if (holds.empty()) return false;
+  const auto [lo, hi] = range(v);
+  for (std::size_t i = lo; i < hi; ++i)
+    if (pairs[i].second == block) return holds[i] != 0;
+  return false;
+}
+
 double ClosedContacts::depth_with(std::int32_t v, std::int32_t block, double unknown) const {
   const auto [lo, hi] = range(v);
   for (std::size_t i = lo; i < hi; ++i)
@@ -516,7 +524,12 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const bool was_closed = was_depth >= 0;
       const double eps = tl.gap_round_off * topo.mesh_size;
       const double new_depth = std::max(shallow, eps);
-      if (master_side && g >= -topo.master_depth) continue;
+      // A face of a cohesive crack that holds tension is found from either side: whether a
+      // vertex of a near-vertical face is on the master side is decided by |ny| ~ 1e-5, which the
+      // faces' own deformation flips, and with both faces' vertices on the master side the
+      // contact was lost — and with it the crack's cohesion (a bar's crack of 0.19 m kept
+      // 0.05 m of its faces two steps after its peak). The mirror rule below keeps one of the two.
+      if (master_side && g >= -topo.master_depth && !closed.holds_with(p, block_b)) continue;
       if (g > d0 || g < -(was_closed ? std::min(p_max, was_depth + new_depth) : new_depth)) continue;
       if (g < -eps && -g > tl.closed_extent * reach_behind(topo, xy, eb, eg.x, eg.y, ex, ey))
         continue;
