@@ -14,6 +14,7 @@
 //     (CohesiveBar.PostPeakFollowsHillerborg; label open: docs/fracture.md "Cohesive softening").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -26,6 +27,7 @@
 #include "common/scene.h"
 #include "preprocess/cover_cutter.h"
 #include "solver/contact/cohesive_law.h"
+#include "solver/contact/contact_detection.h"
 #include "solver/output/solve_run.h"
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
@@ -335,6 +337,74 @@ TEST(CohesiveBeam, PeterssonLoadDeflectionAndWorkOfFracture) {
     EXPECT_NEAR(peaks[i], peaks[0], 0.05 * peaks[0]);
     EXPECT_NEAR(works[i], works[0], 0.05 * works[0]);
   }
+}
+
+// A face of a cohesive crack that still holds tension is found from either side
+// (contact_detection.cpp). Detection's single pass finds no contact from a vertex whose outward
+// normal points up (the master side) unless it pokes in; on a vertical crack that normal's n_y is
+// a round-off, and the faces' own deformation can turn both faces' normals up. Here a bar of
+// two blocks split by a vertical joint, opened 10 µm and each block turned 1e-5 rad (the left
+// one anticlockwise, the right one clockwise) so that both faces are master: without the
+// faces' hold no contact is found between the faces' inner vertices; with it, one at each point.
+TEST(CohesiveFaces, AnOpenFaceThatHoldsIsFoundOnTheMasterSideToo) {
+  nlohmann::json d = cohesive_bar(0.1);
+  d["bodies"][0]["outer"] = {{0, 0}, {1, 0}, {1, 0.2}, {0, 0.2}};
+  d["joints"] = {{{"set", "crack"}, {"points", {{0.5, 0}, {0.5, 0.2}}}}};
+  SceneDef s;
+  const Mesh m = mesh_of(d, "split", s);
+  ASSERT_EQ(m.block_count(), 2u);
+  const solve::ContactTopology topo = solve::build_contact_topology(m);
+  const double theta = 1e-5, open = 1e-5;  // rad, m
+  std::vector<double> xy = m.loop_xy;
+  std::vector<std::int32_t> face;  // loop vertices on the joint, inside the bar's height
+  std::vector<double> cx(m.block_count(), 0.0), n(m.block_count(), 0.0);
+  for (std::size_t v = 0; v < topo.element_of.size(); ++v) {
+    const auto b = static_cast<std::size_t>(topo.block_of[static_cast<std::size_t>(topo.element_of[v])]);
+    cx[b] += xy[2 * v];
+    n[b] += 1;
+  }
+  for (std::size_t v = 0; v < topo.element_of.size(); ++v) {
+    const auto b = static_cast<std::size_t>(topo.block_of[static_cast<std::size_t>(topo.element_of[v])]);
+    const bool right = cx[b] / n[b] > 0.5;
+    const double x = m.loop_xy[2 * v] - 0.5, y = m.loop_xy[2 * v + 1] - 0.1, a = right ? -theta : theta;
+    xy[2 * v] = 0.5 + x * std::cos(a) - y * std::sin(a) + (right ? open : 0.0);
+    xy[2 * v + 1] = 0.1 + x * std::sin(a) + y * std::cos(a);
+    if (std::abs(x) < 1e-12 && std::abs(y) < 0.1 - 1e-9) face.push_back(static_cast<std::int32_t>(v));
+  }
+  ASSERT_GE(face.size(), 2u);
+  solve::ClosedContacts closed;
+  for (const std::int32_t v : face) {
+    const std::int32_t own = topo.block_of[static_cast<std::size_t>(topo.element_of[static_cast<std::size_t>(v)])];
+    closed.pairs.emplace_back(v, 1 - own);
+    closed.depth.push_back(0.0);
+  }
+  std::sort(closed.pairs.begin(), closed.pairs.end());
+  closed.index(topo.next.size());
+  const auto across = [&](const std::vector<solve::ContactCandidate>& found) {
+    std::vector<double> points;  // y of each inner point of the face with a contact across
+    for (const solve::ContactCandidate& c : found) {
+      const std::size_t v = static_cast<std::size_t>(c.vertex);
+      if (topo.block_of[static_cast<std::size_t>(c.elem_a)] == topo.block_of[static_cast<std::size_t>(c.elem_b)]) continue;
+      if (std::find(face.begin(), face.end(), c.vertex) == face.end()) continue;
+      points.push_back(std::round(m.loop_xy[2 * v + 1] * 1e6) / 1e6);
+    }
+    std::sort(points.begin(), points.end());
+    return points;
+  };
+  const double d0 = 3e-4, shallow = 1e-3 * m.mesh_size;
+  const std::vector<double> without = across(solve::detect_contacts(topo, xy, d0, shallow, closed));
+  closed.holds.assign(closed.pairs.size(), 1);
+  const std::vector<double> with = across(solve::detect_contacts(topo, xy, d0, shallow, closed));
+  std::vector<double> points;
+  for (const std::int32_t v : face) points.push_back(std::round(m.loop_xy[2 * static_cast<std::size_t>(v) + 1] * 1e6) / 1e6);
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::printf("face points inside the bar %zu: contacts across without the hold %zu, with it %zu\n", points.size(),
+              without.size(), with.size());
+  EXPECT_TRUE(without.empty()) << "both faces master: the set-up must lose the contacts";
+  std::vector<double> found = with;
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  EXPECT_EQ(found, points) << "every inner point of the face has a contact across";
 }
 
 // Snap-back (Hillerborg: a bar longer than 2·l_ch has, after its peak, more elastic energy than

@@ -106,6 +106,14 @@ bool ClosedContacts::with(std::int32_t v, std::int32_t block) const {
   return false;
 }
 
+bool ClosedContacts::holds_with(std::int32_t v, std::int32_t block) const {
+  if (holds.empty()) return false;
+  const auto [lo, hi] = range(v);
+  for (std::size_t i = lo; i < hi; ++i)
+    if (pairs[i].second == block) return holds[i] != 0;
+  return false;
+}
+
 double ClosedContacts::depth_with(std::int32_t v, std::int32_t block, double unknown) const {
   const auto [lo, hi] = range(v);
   for (std::size_t i = lo; i < hi; ++i)
@@ -553,11 +561,16 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const bool was_closed = was_depth >= 0;
       const double eps = tl.gap_round_off * topo.mesh_size;
       const double new_depth = std::max(shallow, eps);
-      // Against the other face of its own joint, a face's side is the one decided as cut.
+      // Against the other face of its own joint, a face's side is the one decided as cut. A
+      // face of a cohesive crack that holds tension is found from either side as well: its
+      // contact carries the crack's cohesion and damage, and where the side rule drops both faces'
+      // vertices (where a vertex joins two segments of a crack, so its side is decided by its normal
+      // now, |ny| ~ 1e-5 flipped by the faces' own deformation) the cohesion was lost (a bar's crack of 0.19 m kept 0.05 m of
+      // its faces two steps after its peak). The mirror rule below keeps one of the two.
       const bool master = topo.face_joint[p] >= 0 && topo.face_joint[p] == topo.edge_joint[q2]
                               ? topo.face_master[p] != 0
                               : master_side;
-      if (master && g >= -topo.master_depth) continue;
+      if (master && g >= -topo.master_depth && !closed.holds_with(p, block_b)) continue;
       if (g > d0 || g < -(was_closed ? std::min(p_max, was_depth + new_depth) : new_depth)) continue;
       if (g < -eps && -g > tl.closed_extent * reach_behind(topo, xy, eb, eg.x, eg.y, ex, ey))
         continue;

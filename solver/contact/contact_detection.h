@@ -71,6 +71,9 @@ struct ClosedContacts {
   /// m, [pairs]: how deep each pair's vertex was against that block at the end of the last step
   /// (empty: as deep as closed_depth allows)
   std::vector<double> depth;
+  /// [pairs] 1: the pair is a face of a cohesive crack that still carries tension (cohesive_law.h,
+  /// κ < w_c); empty: none is. Such a vertex is looked for on the master side too (below).
+  std::vector<char> holds;
   /// [vertices + 1] where each vertex's pairs start (index()); empty: range() and with() search
   /// `pairs` instead. Detection looks up every vertex and its coincident ones: with a binary
   /// search each it took 70 ms per step of the 10,000-block wall (85,000 pairs), 45 ms indexed.
@@ -80,6 +83,8 @@ struct ClosedContacts {
   /// [first, last) of vertex v's pairs.
   std::pair<std::size_t, std::size_t> range(std::int32_t v) const;
   bool with(std::int32_t v, std::int32_t block) const;
+  /// v's pair with `block` is a cohesive face that holds (`holds`).
+  bool holds_with(std::int32_t v, std::int32_t block) const;
   /// m, how deep v was against `block` (`unknown` where `depth` is empty); −1: not closed.
   double depth_with(std::int32_t v, std::int32_t block, double unknown) const;
 };

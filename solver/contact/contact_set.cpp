@@ -61,6 +61,13 @@ const CohesiveLaw& ContactSet::cohesive_law(const Contact& c) const {
   return cohesive_laws_[static_cast<std::size_t>(model_.material_of(static_cast<std::size_t>(c.at.elem_a)))];
 }
 
+const CohesiveLaw& ContactSet::cohesive_law_of_vertex(std::int32_t v) const {
+  static const CohesiveLaw off;
+  if (!cohesive_) return off;
+  const std::size_t element = static_cast<std::size_t>(topo_.element_of[v]);
+  return cohesive_laws_[static_cast<std::size_t>(model_.material_of(element))];
+}
+
 bool ContactSet::cohesive_holds(const Contact& c) const {
   return c.cohesive.on && c.cohesive.opening_max < cohesive_law(c).w_c;
 }
@@ -116,17 +123,24 @@ ClosedContacts ContactSet::closed_contacts() const {
   // its own block up to 0.3·h deep — a crack's corner 2 mm behind another face of the same
   // uncracked block, locked, threw a cover 3–7 mm at every Δt: uniaxial h 0.0625 m dynamic.)
   // Each pair with the deepest its vertex was against that block at the end of the last step.
-  std::vector<std::tuple<std::int32_t, std::int32_t, double>> entries;
-  for (const ContactHistory& h : history_)
-    if (h.state != ContactState::open && !h.fresh) entries.emplace_back(h.vertex, h.block, h.depth);
+  // Where new cracks soften, which pairs are faces that still hold tension (κ < w_c).
+  std::vector<std::tuple<std::int32_t, std::int32_t, double, bool>> entries;
+  for (const ContactHistory& h : history_) {
+    if (h.state == ContactState::open || h.fresh) continue;
+    const bool holds =
+        cohesive_ && h.cohesive.on && h.cohesive.opening_max < cohesive_law_of_vertex(h.vertex).w_c;
+    entries.emplace_back(h.vertex, h.block, h.depth, holds);
+  }
   std::sort(entries.begin(), entries.end());
-  for (const auto& [v, block, depth] : entries) {
+  for (const auto& [v, block, depth, holds] : entries) {
     if (!closed.pairs.empty() && closed.pairs.back() == std::make_pair(v, block)) {
       closed.depth.back() = std::max(closed.depth.back(), depth);
+      if (cohesive_) closed.holds.back() = static_cast<char>(closed.holds.back() || holds);
       continue;
     }
     closed.pairs.emplace_back(v, block);
     closed.depth.push_back(depth);
+    if (cohesive_) closed.holds.push_back(holds);
   }
   closed.index(topo_.next.size());
   return closed;

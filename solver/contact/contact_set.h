@@ -44,6 +44,8 @@ class ContactSet {
   bool cohesive() const { return cohesive_; }
   /// The cohesive law of the rock a contact's vertex lies in (off where it has none).
   const CohesiveLaw& cohesive_law(const Contact& c) const;
+  /// The cohesive law of the material of loop vertex v's element.
+  const CohesiveLaw& cohesive_law_of_vertex(std::int32_t v) const;
   /// A contact whose faces still hold a cohesive traction (on, damage below w_c).
   bool cohesive_holds(const Contact& c) const;
   /// m, the largest w_c of a contact still holding: detection looks that much farther, so a
