@@ -561,12 +561,13 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       const bool was_closed = was_depth >= 0;
       const double eps = tl.gap_round_off * topo.mesh_size;
       const double new_depth = std::max(shallow, eps);
-      // Against the other face of its own joint, a face's side is the one decided as cut. A
-      // face of a cohesive crack that holds tension is found from either side as well: its
-      // contact carries the crack's cohesion and damage, and where the side rule drops both faces'
-      // vertices (where a vertex joins two segments of a crack, so its side is decided by its normal
-      // now, |ny| ~ 1e-5 flipped by the faces' own deformation) the cohesion was lost (a bar's crack of 0.19 m kept 0.05 m of
-      // its faces two steps after its peak). The mirror rule below keeps one of the two.
+      // Against the other face of its own joint, a face's side is the one decided as cut. A face
+      // of a cohesive crack that holds tension is found from either side as well: its contact
+      // carries the crack's cohesion and damage, and where the side rule dropped both faces'
+      // vertices (a vertex joining two segments of a crack is sided by its normal now, |ny| ~
+      // 1e-5, which the faces' own deformation flips) the cohesion was lost (a bar's crack of
+      // 0.19 m kept 0.05 m of its faces two steps after its peak). The mirror rule below keeps one
+      // of the two.
       const bool master = topo.face_joint[p] >= 0 && topo.face_joint[p] == topo.edge_joint[q2]
                               ? topo.face_master[p] != 0
                               : master_side;
