@@ -76,7 +76,7 @@ TEST(Kgd, ToughnessDominatedLengthAndPressure) {
   TimeStepper st(m, s, "kgd");
   auto half_length = [&]() {
     double reach = l0;
-    for (const CrackSegment& c : st.view().fracture.segments())
+    for (const CrackSegment& c : fracture_of(st.view()).segments())
       reach = std::max({reach, std::abs(c.a.x), std::abs(c.b.x)});
     return reach;
   };
