@@ -47,8 +47,11 @@ double crack_release_fluid(const Mesh& mesh, const RunState& s, const RunState& 
       const std::int32_t n = v + 1 < end ? v + 1 : b;
       const double lnx = start.loop_xy[2 * n + 1] - start.loop_xy[2 * v + 1];
       const double lny = -(start.loop_xy[2 * n] - start.loop_xy[2 * v]);
-      const double una = (s.loop_u[2 * v] - start.loop_u[2 * v]) * lnx + (s.loop_u[2 * v + 1] - start.loop_u[2 * v + 1]) * lny;
-      const double unb = (s.loop_u[2 * n] - start.loop_u[2 * n]) * lnx + (s.loop_u[2 * n + 1] - start.loop_u[2 * n + 1]) * lny;
+      // m²: Δu·n·L at the edge's two ends
+      const double una =
+          (s.loop_u[2 * v] - start.loop_u[2 * v]) * lnx + (s.loop_u[2 * v + 1] - start.loop_u[2 * v + 1]) * lny;
+      const double unb =
+          (s.loop_u[2 * n] - start.loop_u[2 * n]) * lnx + (s.loop_u[2 * n + 1] - start.loop_u[2 * n + 1]) * lny;
       w -= 0.5 * ((2 * pa + pb) * una + (pa + 2 * pb) * unb) / 6;  // J/m: −½ ∫ p n·Δu ds
     }
   }
