@@ -18,6 +18,7 @@
 #include "solver/discretisation/integrators.h"
 #include "solver/discretisation/state_bytes.h"
 #include "solver/flow/flow_transfer.h"
+#include "solver/fracture/crack_release.h"
 
 namespace nmm::solve {
 
@@ -442,5 +443,13 @@ void FlowEffect::frame_parts(const OutputStep& out, std::vector<FramePart>& part
 }
 
 void FlowEffect::energy_state(const EnergyState& e, EnergyTerms& t) const { t.work += e.s.flow_load_work; }
+
+void FlowEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
+  if (!e.changed_start || !active() || !model_.scene().flow.coupled || e.s.flow_pressure.size() != network_.nodes())
+    return;
+  const Mesh& mesh = e.model.mesh();
+  t.fracture += crack_release_fluid(mesh, e.s, *e.changed_start, e.joints_before,
+                                    network_.face_pressures(e.s.flow_pressure, mesh.loop_vertex_count()));
+}
 
 }  // namespace nmm::solve

@@ -105,6 +105,9 @@ class FlowEffect final : public Effect {
   /// Energy (effect_energy.h): the work of the fluid's pressure on the joint and crack faces the
   /// steps counted in the state (RunState::flow_load_work) into t.work.
   void energy_state(const EnergyState& e, EnergyTerms& t) const override;
+  /// In a step that cut cracks, the fluid's part of what they released into t.fracture
+  /// (crack_release.h: ½ P·d, half the fluid's work on the new faces).
+  void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// The two-way coupling's cost: accepted steps, and the balance solves (one per solve round
   /// of the mechanics) they took, since this effect was built (a re-cut builds it again).

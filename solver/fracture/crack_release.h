@@ -33,9 +33,24 @@
 //                  that part is in S as ½N·closure), and the work their cohesion does in slip
 //                  moves from D to F; a stiff face takes the traction at the cut, so ½ r·d
 //                  is then small.
+//   fluid on the new faces (hydraulic fracture, flow.md): the step's solve also carries the
+//                  fluid's force on the new faces, P = −Σ_faces ∫ w_k p n ds with p the flow
+//                  network's pressure at the step's end (it fills them in the step), which was not
+//                  in the start's balance: A d = b + r + P. load_work counts P·d in full (the
+//                  fluid's pressure at the step's end on every face, flow_effect.cpp), so a static
+//                  step's W − ΔU is ½ b·d + ½ (r + P)·d: the face traction goes from σ0·n to −p·n
+//                  within the step, and the crack-closure integral of that change,
+//                    ½ (r + P)·d = −½ Σ_new faces Σ_sides ∫ (σ0 n + p n)·Δu ds,
+//                  is what the crack released. The part −½ ∫ p n·Δu ds is half the fluid's work
+//                  p·ΔV on the new faces, the half the opening does not store (a dynamic step would
+//                  show it as motion, then damped): F books it (crack_release_fluid, which the
+//                  flow effect adds, as only it knows p), R keeps only ½ b·d. With p linear along
+//                  the edge (p_A at its start, p_B at its end) and Δu linear too,
+//                    ∫ p Δu ds = L/6 · [(2 p_A + p_B) Δu_A + (p_A + 2 p_B) Δu_B]   (exact).
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "common/mesh.h"
 #include "solver/discretisation/run_state.h"
@@ -47,5 +62,12 @@ namespace nmm::solve {
 /// are read); the faces on the scene's joints from `first_new_joint` on are the step's new ones.
 /// Elements of excavated bodies are left out.
 double crack_release(const Mesh& mesh, const RunState& s, const RunState& start, std::size_t first_new_joint);
+
+/// J/m, ½ P·d = −½ Σ_new faces ∫ p n·Δu ds: the fluid's part of the release on the faces the step
+/// cut (same arguments as crack_release), `pressure` ([2·v] Pa, the step's end) the fluid's
+/// pressure at the start and the end of each face edge v → next (FlowNetwork::face_pressures),
+/// 0 on dry edges.
+double crack_release_fluid(const Mesh& mesh, const RunState& s, const RunState& start, std::size_t first_new_joint,
+                           const std::vector<double>& pressure);
 
 }  // namespace nmm::solve
