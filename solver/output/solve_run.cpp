@@ -35,7 +35,10 @@ class SolveRun::EnergyOutput : public StepObserver {
     sources_ = energy_sources(st);  // a change of the mesh builds the effects again
     meter_.after_step(st.state, sources_, n % output_every_ == 0);
   }
-  void finish(const RunView&, const Outcome&, std::int64_t) override {
+  void finish(const RunView& run, const Outcome&, std::int64_t) override {
+    // A run that stops in a step that re-cut the mesh has built its effects again since the last
+    // accepted step: the sources kept then are gone (summarise reads them after this).
+    sources_ = energy_sources(run);
     meter_.keep_last();
     meter_.write_csv(dir_);
   }
