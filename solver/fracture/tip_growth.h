@@ -6,6 +6,10 @@
 // tangential stress criterion (Erdogan & Sih 1963) reaches K_Ic:
 //     θ = 2·atan((K_I − √(K_I² + 8K_II²)) / (4K_II))            (0 for K_II = 0)
 //     K_eq = cos(θ/2)·(K_I·cos²(θ/2) − 3/2·K_II·sin θ)  ≥  K_Ic
+// with K_I taken as max(K_I, 0) (faces pressed together do not open) and K from the interaction
+// integral with the faces' traction where their contacts close them (a flaw under compression:
+// K_II is the shear its friction does not hold, and a pure mode II tip grows at ∓70.53°,
+// K_eq = (2/√3)·|K_II|)
 // by one segment of fracture.tip_step (the mesh size if not given) from the tip in the direction
 // θ from the crack's own: the segment may end inside an element (its covers cut partially, as a
 // joint that ends inside a body), and stops where it meets the body's boundary or another joint
@@ -34,11 +38,13 @@ bool any_toughness(const SceneDef& scene);
 
 /// The segments the tips of the solved state `s` grow by (above), on `mesh` with the run's
 /// `cracks` so far; `skip` [me] 1: excavated or debris; `face_pressure` [2·v] Pa: a fluid's
-/// pressure on the crack faces (interaction_integral.h; null: none). Empty where no material
-/// has a toughness.
+/// pressure on the crack faces (interaction_integral.h; null: none); `loaded` [v] 1: the face
+/// v → next carries its closed contact's traction (Effect::loaded_faces; null: every face is
+/// free). Empty where no material has a toughness.
 std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& scene,
                                             const std::vector<CrackSegment>& cracks, const RunState& s,
                                             const std::vector<std::uint8_t>& skip,
-                                            const std::vector<double>* face_pressure = nullptr);
+                                            const std::vector<double>* face_pressure = nullptr,
+                                            const std::vector<std::uint8_t>* loaded = nullptr);
 
 }  // namespace nmm::solve

@@ -73,8 +73,8 @@ Outcome FractureEffect::cascade(double t) const {
 
 bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name,
                             const RunState& solved, const std::vector<std::uint8_t>& removed, int dofs_per_cover,
-                            RunState& start, const std::vector<ContactHistory>& history, NewMesh& out,
-                            StepTimings& timings) {
+                            RunState& start, const std::vector<ContactHistory>& history,
+                            const std::vector<Effect*>& effects, NewMesh& out, StepTimings& timings) {
   Stopwatch watch;
   std::vector<CrackSegment> segments = fracture_.find(mesh, scene, solved, removed);
   if (segments.empty() && any_toughness(scene)) {  // the strength broke nothing: tips that reach their toughness grow
@@ -83,7 +83,11 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
     if (skip.size() < mesh.element_count()) skip.resize(mesh.element_count(), 0);
     for (std::size_t e = 0; e < debris.size() && e < skip.size(); ++e) skip[e] = skip[e] || debris[e];
     const std::vector<double> pressure = face_pressures(mesh, scene, scene_name, solved);
-    segments = grow_by_toughness(mesh, scene, fracture_.segments(), solved, skip, pressure.empty() ? nullptr : &pressure);
+    // A closed crack's faces carry their contacts' traction (friction on a flaw under compression
+    // leaves it the shear its friction does not hold): the same faces as crack_tips.csv counts.
+    const std::vector<std::uint8_t> loaded = loaded_faces(mesh, solved, effects);
+    segments = grow_by_toughness(mesh, scene, fracture_.segments(), solved, skip, pressure.empty() ? nullptr : &pressure,
+                                 &loaded);
   }
   if (segments.empty()) {
     timings.add(kTiming, watch.seconds());

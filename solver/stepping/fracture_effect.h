@@ -42,7 +42,8 @@ class FractureEffect final : public MeshChange {
   Outcome cascade(double t) const override;
   bool change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, const RunState& solved,
               const std::vector<std::uint8_t>& removed, int dofs_per_cover, RunState& start,
-              const std::vector<ContactHistory>& history, NewMesh& out, StepTimings& timings) override;
+              const std::vector<ContactHistory>& history, const std::vector<Effect*>& effects, NewMesh& out,
+              StepTimings& timings) override;
   void book(double seconds, StepTimings& timings) const override { timings.add(kTiming, seconds); }
   void count_resolve() override { fracture_.count_resolve(); }
   /// The cracks and tips (the FRACTURE bytes) once the rock has cracked.

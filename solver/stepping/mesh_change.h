@@ -20,6 +20,7 @@
 #include "common/scene.h"
 #include "preprocess/recut.h"
 #include "solver/contact/contact_history.h"
+#include "solver/discretisation/effect.h"
 #include "solver/discretisation/effect_energy.h"
 #include "solver/discretisation/effect_output.h"
 #include "solver/discretisation/run_state.h"
@@ -51,9 +52,11 @@ class MeshChange : public EffectOutput, public EffectEnergy {
   /// At the solution `solved` of a step on mesh and scene (removed: [me] 1 out of the model):
   /// false, nothing changes; true, `out` is the new mesh and `start` (the state the step started
   /// from) and `out.history` (its contact history, given in `history`) are carried onto it.
+  /// `effects`: the step's effects at that solution (what loads a crack's faces: Effect::loaded_faces).
   virtual bool change(const Mesh& mesh, const SceneDef& scene, const std::string& scene_name, const RunState& solved,
                       const std::vector<std::uint8_t>& removed, int dofs_per_cover, RunState& start,
-                      const std::vector<ContactHistory>& history, NewMesh& out, StepTimings& timings) = 0;
+                      const std::vector<ContactHistory>& history, const std::vector<Effect*>& effects,
+                      NewMesh& out, StepTimings& timings) = 0;
   /// What the stepper spent for it (keeping each step's start, taking the new mesh), booked in
   /// its timing.
   virtual void book(double seconds, StepTimings& timings) const = 0;

@@ -259,7 +259,7 @@ Outcome TimeStepper::attempt(double dt) {
     if (!o.ok()) return o;
     NewMesh m;
     if (!change->change(mesh(), scene(), scene_name_, s_, removed_elem_, b_->space.dofs_per_cover(),
-                        step_start_.state(), step_start_.history(), m, timings_))
+                        step_start_.state(), step_start_.history(), b_->effects, m, timings_))
       return o;
     step_start_.restore(s_);  // the start, carried onto the new mesh, with this solve's diagnostics
     watch.restart();
