@@ -90,6 +90,8 @@ SKIP = [
 
 # (page, regex, replacement, reason): applied to the logical command before it runs.
 SHORTEN = [
+    ("crack-tips.md", r"(crack_paths\.py build/bin OUT) --figure docs/figures/crack_paths\.svg", r"\1 --quick",
+     "the three meshes and the wings take about 3 min; --quick runs the R/25 specimen and draws it"),
     ("accuracy.md", r"^(build/bin/nmm-study out --only kirsch)", r"\1 --quick",
      "the Kirsch case over every mesh size and order takes 1-2 min; --quick runs two of its "
      "settings"),

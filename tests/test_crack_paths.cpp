@@ -5,11 +5,11 @@
 //     417, 348–356): PMMA, radius R = 50 mm, an edge crack a = 0.3R from the middle of the flat
 //     side at β = 30° to the load line, supports at ±0.43R, pushed down at the top. The crack
 //     kinks away from the load line and curves back to the loading point; the path, x at heights
-//     y from 15 to 45 mm, lies within 1.5 mm of their maximum-tangential-stress computation
-//     (GMTS, their fig. 8) and within 3 mm of the tested specimen's path at R/25 and R/50 (a
-//     path straight on from the notch is 10 mm off at y = 30 mm, one straight along the first
+//     y from 15 to 45 mm, lies within 1.5 mm of their generalised maximum-tangential-stress
+//     computation (GMTS) and within 3 mm of the tested specimen's path at R/25 and R/50 (a path
+//     straight on from the crack is 15 mm off GMTS at y = 30 mm, one straight along the first
 //     kink 6 mm off at y = 45 mm, one kinked by the 30° the tied faces by the tip used to give
-//     4 mm off at y = 30 mm).
+//     5.5 mm off at y = 30 mm).
 //   - wing cracks from a closed flaw 2a at β = 45° to a uniaxial compression σ, its faces
 //     a joint of friction φ (Horii & Nemat-Nasser 1986; Bobet & Einstein 1998): the flaw slides
 //     and its tips see K_I = 0 and K_II = σ√(πa)·(sinβcosβ − tanφ·cos²β), the shear its
