@@ -15,7 +15,7 @@
 // 2026-11-29 at h = 0.05 m, W = 2 m, ℓ0 = 0.2 m, Δt = 0.25 s, Q0 = 1e-5 m²/s, E = 10 GPa,
 // ν = 0.25: length +3.37, +3.70, +3.86 % at 8, 9, 10 elements (test: 5 %), pressure −3.65,
 // −6.44, −8.82 % (test: 10 %). 41 s: CTest label slow.
-// Viscosity-dominated (M-vertex): see ViscosityDominated below.
+// Viscosity-dominated (M-vertex): see the test below.
 // KGD_W, KGD_H, KGD_L0, KGD_Q, KGD_DT, KGD_T, KGD_MU, KGD_KIC, KGD_RES, KGD_KF set the scene for a study (the test
 // of the regime that is run; the asserts then judge that scene); KGD_TRACE prints each step.
 #include <gtest/gtest.h>
@@ -76,6 +76,7 @@ struct KgdRun {
   double balance_error = 0, injected = 0, end_time = 0;     // –, m³/m, s
   long steps = 0, solves = 0, worst = 0, cuts = 0;
   double min_pressure = 0;  // Pa, the lowest node pressure of the network over the run
+  double min_at = 0;        // –, where: |x| over the crack's half-length then
   std::vector<double> end_x, end_p;  // m, Pa: the network's nodes on the crack (y = 0, x ≥ 0) at the end
 };
 
@@ -105,7 +106,11 @@ KgdRun run_kgd(const KgdSetup& k, double t_end, const char* name, F closed) {
     r.lengths.push_back(half_length());
     r.pressures.push_back(state.flow_pressure[well]);
     r.openings.push_back(net.node_apertures(state.flow_aperture)[well] - k.residual);
-    for (double p : state.flow_pressure) r.min_pressure = std::min(r.min_pressure, p);
+    for (std::size_t i = 0; i < state.flow_pressure.size(); ++i)
+      if (state.flow_pressure[i] < r.min_pressure) {
+        r.min_pressure = state.flow_pressure[i];
+        r.min_at = std::abs(net.node_xy()[2 * i]) / r.lengths.back();
+      }
     if (std::getenv("KGD_TRACE")) {
       const Closed c = closed(state.time);
       std::printf("  t %7.3f s: half-length %.4f m (closed form %.4f), wellbore p %.5g Pa (%.5g), opening %.4g m "
@@ -127,7 +132,7 @@ KgdRun run_kgd(const KgdSetup& k, double t_end, const char* name, F closed) {
   const RunState& state = st.view().state;
   const FlowNetwork& net = flow_of(st).network();
   for (std::size_t i = 0; i < net.nodes(); ++i)
-    if (std::abs(net.node_xy()[2 * i + 1]) < 1e-9 && net.node_xy()[2 * i] > -1e-9) {
+    if (std::abs(net.node_xy()[2 * i + 1]) < 1e-4 && net.node_xy()[2 * i] > -1e-9) {
       r.end_x.push_back(net.node_xy()[2 * i]);
       r.end_p.push_back(state.flow_pressure[i]);
     }
@@ -167,10 +172,10 @@ Worst judge(const KgdRun& r, double h, F closed) {
 
 void print_run(const char* what, const KgdSetup& k, const KgdRun& r, const Worst& w) {
   std::printf("%s at h %.3f m, W %.2f m, dt %.3g s, K_m %.3g: %d events counted, length within %.2f %%, pressure "
-              "within %.2f %%, opening within %.2f %%; lowest pressure %.4g Pa; balance_error %.2e; last effect: %ld "
+              "within %.2f %%, opening within %.2f %%; lowest pressure %.4g Pa (at |x|/l %.2f); balance_error %.2e; last effect: %ld "
               "steps, %ld balance solves (at most %ld); %ld cuts\n",
               what, k.h, k.half_width, k.dt, KgdScales(k).toughness_number(), w.events, 100 * w.l, 100 * w.p, 100 * w.w,
-              r.min_pressure, r.balance_error, r.steps, r.solves, r.worst, r.cuts);
+              r.min_pressure, r.min_at, r.balance_error, r.steps, r.solves, r.worst, r.cuts);
 }
 
 // The closed forms of reference/kgd.h against what they must satisfy: the K-vertex's Griffith
@@ -275,12 +280,22 @@ TEST(Kgd, FinitePlateFactorAtTenElements) {
   EXPECT_NEAR(f[1], 1.0, 0.03);
 }
 
+// Viscosity-dominated (M-vertex): μ = 1 Pa·s, K_Ic = 0.05 MPa·√m (K_m = 0.046), ℓ0 = 0.1 m,
+// Δt = 0.5 s to 26 s, the tips growing against the fluid's apparent toughness
+// (fracture.viscous_tip, tip_growth.h), residual aperture 20 µm (the smallest whose first step
+// converges: at 15 and 10 µm the coupling stops at t = 0 with flow_not_converged, at every cut).
+// Measured 2026-11-29 at h = 0.05 m, W = 2 m: at 8, 9, 10, 11 elements length +4.42, +4.76,
+// +3.99, +3.88 %, wellbore opening −4.49, −4.76, −4.33, −4.15 %, wellbore pressure −13.45,
+// −14.66, −15.14, −15.85 % (the target: 10 %; CTest label open until it is met; docs/flow.md
+// says where the pressure goes). Without the viscous tip (KGD_VTIP=0) the crack runs ahead
+// (+25 % at 7 elements) and the coupling stops at t = 11.5 s. 82 s wall, 19 s CPU.
 TEST(Kgd, ViscosityDominatedLengthOpeningAndPressure) {
   KgdSetup base;
   base.viscosity = 1;    // Pa·s
   base.k_ic = 0.05e6;    // Pa·√m: K_m = 0.046
   base.l0 = 0.1;
   base.dt = 0.5;
+  base.residual = 2e-5;  // m
   base.viscous_tip = env("KGD_VTIP", 1) != 0;
   const KgdSetup k = setup_from_env(base);
   const KgdScales s(k);
@@ -292,14 +307,16 @@ TEST(Kgd, ViscosityDominatedLengthOpeningAndPressure) {
   print_run("kgd, viscosity-dominated", k, r, w);
   // The pressure along the crack at the end against the zero-lag solution's p(ξ, t), with ξ = x/ℓ
   // of the crack's length (the closed form's suction, Π < 0, lies beyond ξ = 0.95).
-  const double l_end = r.lengths.empty() ? k.l0 : r.lengths.back();
-  std::vector<std::size_t> order(r.end_x.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.end_x[a] < r.end_x[b]; });
-  for (std::size_t i : order) {
-    const double xi = r.end_x[i] / l_end;
-    std::printf("  end, x %.3f m (xi %.2f): p %.5g Pa, closed form at that xi %.5g Pa\n", r.end_x[i], xi, r.end_p[i],
-                xi < 1 ? reference::kgd_m_pressure(s, xi, r.end_time) : 0.0);
+  if (!r.lengths.empty()) {
+    const double l_end = r.lengths.back();
+    std::vector<std::size_t> order(r.end_x.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.end_x[a] < r.end_x[b]; });
+    for (std::size_t i : order) {
+      const double xi = r.end_x[i] / l_end;
+      std::printf("  end, x %.3f m (xi %.2f): p %.5g Pa, closed form at that xi %.5g Pa\n", r.end_x[i], xi, r.end_p[i],
+                  xi < 1 ? reference::kgd_m_pressure(s, xi, r.end_time) : 0.0);
+    }
   }
   EXPECT_GE(w.events, 3);
   EXPECT_LT(w.l, 0.10);
