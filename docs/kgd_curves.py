@@ -19,7 +19,7 @@ import pathlib
 import re
 import subprocess
 
-TESTS = [("toughness", "Kgd.ToughnessDominatedLengthAndPressure", "K-vertex (K_m = 137)"),
+TESTS = [("toughness", "Kgd.ToughnessDominatedLengthAndPressure", "K-vertex (K_m = 29)"),
          ("viscosity", "Kgd.ViscosityDominatedLengthOpeningAndPressure", "M-vertex (K_m = 0.046)")]
 STEP = re.compile(r"t +([\d.]+) s: half-length ([\d.e+-]+) m \(closed form ([\d.e+-]+)\), wellbore p ([\d.e+-]+) Pa "
                   r"\(([\d.e+-]+)\), opening ([\d.e+-]+) m \(([\d.e+-]+)\)")
