@@ -52,7 +52,7 @@ struct KgdSetup {
   double poisson = 0.25;      ///< –
   double k_ic = 1e6;          ///< Pa·√m, toughness
   double viscosity = 1e-6;    ///< Pa·s, μ
-  double bulk_modulus = 2.2e9;///< Pa, the fluid's K_f
+  double bulk_modulus = 2.2e9; ///< Pa, the fluid's K_f
   double residual = 1e-6;     ///< m, hydraulic aperture of closed faces
   bool viscous_tip = false;   ///< fracture.viscous_tip: tips grow against the fluid's apparent toughness
 };
