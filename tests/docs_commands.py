@@ -84,6 +84,9 @@ SKIP = [
      "benchmark of minutes (30 x 30 wall and 50 x 50 monolith, three kernel sets)"),
     ("python.md", r"^ctest --test-dir build -L python",
      "the module's tests: CTest entries of the suite this test is part of"),
+    ("flow.md", r"^python3 docs/kgd_curves\.py ",
+     "the two KGD runs take about 3 min on the loaded machine; CTest Kgd.ToughnessDominated* and "
+     "Kgd.ViscosityDominated* (label open) run the same scenes"),
     ("performance.md", r"^NTDDA_RUN=/path/to/ntdda_run ",
      "needs a DDA runner built by hand outside the repository (its header says how it is called)"),
 ]

@@ -14,9 +14,12 @@ struct FractureDef {
   bool present = false;
   int crack_set = -1;  ///< joint set whose law the faces of new cracks use
   double tip_step = 0; ///< m, how far a tip grows at once by its toughness (0: the mesh size)
+  /// A tip of a crack that carries fluid grows against the viscous fluid's apparent toughness
+  /// where it exceeds K_Ic (solver/fracture/tip_growth.h; docs/flow.md "Hydraulic fracturing").
+  bool viscous_tip = false;
 };
 
-/// fracture: {crack_set, tip_step}. Reads the scene's joint sets and solver settings (read before):
+/// fracture: {crack_set, tip_step, viscous_tip}. Reads the scene's joint sets and solver settings (read before):
 /// fracturing needs cover order 0.
 FractureDef read_fracture(const JsonReader& r, const SceneDef& scene);
 

@@ -4,6 +4,21 @@
 // with K_I ← max(K_I, 0) (K_eq is the tangential stress σθθ·√(2πr) in the direction θ, where
 // it is largest; pure mode II: θ = ∓70.53°, K_eq = (2/√3)·|K_II|), by
 // fracture.tip_step from the tip in the direction θ from the crack's own.
+//
+// A fluid-driven tip (fracture.viscous_tip, a scene with flow): near a tip moving at V through
+// rock of negligible toughness, the viscous fluid's pressure drop gives the opening the
+// M-asymptote (Desroches et al. 1994, Proc. R. Soc. A 447, 39–48; Garagash & Detournay 2000,
+// J. Appl. Mech. 67, 183–192)
+//     w(s) = β_m·(μ′V/E′)^(1/3)·s^(2/3),   β_m = 2^(1/3)·3^(5/6),   μ′ = 12μ,
+// s the distance behind the tip, where LEFM gives w(s) = (K′/E′)·s^(1/2), K′ = √(32/π)·K_I. An
+// element of one tip step cannot resolve the 2/3 power (the viscous suction sits within it), so
+// the K the interaction integral reads there is the K that opens the crack by w at s = tip_step:
+//     K_app = √(π/32)·β_m·E′^(2/3)·(μ′V)^(1/3)·s^(1/6),
+// the apparent toughness of the moving tip. The tip grows when K_eq ≥ max(K_Ic, K_app), with
+// V = tip_step/(t − t_last) the speed one more step at t would give (t_last when the tip last
+// grew, the run's start for the end of a scene joint): a tip that just grew waits until the
+// speed the fluid can sustain lets it go on. β_m is the M-vertex's own (reference/kgd.h: its
+// tip coefficient Σ A_j·C_{2j−2}(1)·2^(2/3)·(3/2)^(1/3) = 3.10, within 1.4 % of β_m).
 #include "solver/fracture/tip_growth.h"
 
 #include <algorithm>
@@ -11,6 +26,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/math_constants.h"
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
 
@@ -31,6 +47,12 @@ double crossing(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, doub
 
 }  // namespace
 
+double apparent_toughness(double e_prime, double viscosity, double speed, double distance) {
+  const double beta_m = std::cbrt(2.0) * std::pow(3.0, 5.0 / 6.0);
+  return std::sqrt(kPi / 32) * beta_m * std::pow(e_prime, 2.0 / 3.0) * std::cbrt(12 * viscosity * speed) *
+         std::pow(distance, 1.0 / 6.0);
+}
+
 double mts_equivalent_k(double k1, double k2, double theta) {
   const double c = std::cos(theta / 2);
   return c * (k1 * c * c - 1.5 * k2 * std::sin(theta));
@@ -50,6 +72,7 @@ std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& sc
   if (!any_toughness(scene)) return out;
   const double h = mesh.mesh_size;
   const double step = scene.fracture.tip_step > 0 ? scene.fracture.tip_step : h;
+  const bool viscous = scene.fracture.viscous_tip && scene.flow.present && face_pressure != nullptr;
   std::vector<std::array<Vec2, 2>> lines;
   for (const CrackSegment& c : cracks) lines.push_back({c.a, c.b});
   CrackTipFinder finder;
@@ -66,7 +89,17 @@ std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& sc
     // pure mode II 70.5° (to 79° at −0.08·σ√(πa) against K_II −0.19·σ√(πa)).
     const double k1 = std::max(k.k1, 0.0);
     const double theta = mts_angle(k1, k.k2);
-    if (mts_equivalent_k(k1, k.k2, theta) < m.strength.toughness) continue;
+    double toughness = m.strength.toughness;
+    if (viscous) {
+      double t_last = 0;  // s, when the tip last grew (the run's start for a scene joint's end)
+      for (const CrackSegment& c : cracks)
+        if (std::hypot(c.b.x - t.at.x, c.b.y - t.at.y) < 1e-6 * h || std::hypot(c.a.x - t.at.x, c.a.y - t.at.y) < 1e-6 * h)
+          t_last = std::max(t_last, c.time);
+      if (!(s.time > t_last)) continue;  // grew in this step: one tip step a step
+      toughness = std::max(toughness, apparent_toughness(tip_elasticity(m, scene.plane).e_prime, scene.flow.viscosity,
+                                                         step / (s.time - t_last), step));
+    }
+    if (mts_equivalent_k(k1, k.k2, theta) < toughness) continue;
     const double c = std::cos(theta), sn = std::sin(theta);
     const Vec2 d{c * t.direction.x - sn * t.direction.y, sn * t.direction.x + c * t.direction.y};
     // Where it first meets the body's boundary, a joint or a crack within 1.5 steps (its own last

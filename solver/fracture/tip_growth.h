@@ -16,7 +16,9 @@
 // or crack, overshooting it by 1e-8·h as the strength rule's segments do (fracture.h); one that
 // would stop within half a step of such a line runs on to it. The step
 // is then solved again on the cut mesh (stepping/fracture_effect.h), so a tip grows as far as
-// the load of the step drives it.
+// the load of the step drives it. With fracture.viscous_tip a tip of a crack that carries fluid
+// grows against max(K_Ic, the viscous fluid's apparent toughness at its speed), one tip step a
+// step (tip_growth.cpp).
 #pragma once
 
 #include <cstdint>
@@ -32,6 +34,11 @@ namespace nmm::solve {
 /// Pa·√m, the equivalent K of the maximum tangential stress criterion at the direction θ (rad)
 /// of mts_angle (interaction_integral.h).
 double mts_equivalent_k(double k1, double k2, double theta);
+
+/// Pa·√m, the apparent toughness of a tip moving at `speed` (m/s) driven by a fluid of
+/// `viscosity` (Pa·s) in rock of plane modulus `e_prime` (Pa), read at `distance` (m) behind the
+/// tip: √(π/32)·β_m·E′^(2/3)·(12μ·V)^(1/3)·s^(1/6) (tip_growth.cpp).
+double apparent_toughness(double e_prime, double viscosity, double speed, double distance);
 
 /// Some material of the scene has a toughness (a fracture run without one looks at no tip here).
 bool any_toughness(const SceneDef& scene);
