@@ -44,6 +44,7 @@
 #include "solver/discretisation/newmark.h"
 #include "solver/discretisation/solver_threads.h"
 #include "solver/discretisation/static_support.h"
+#include "solver/fracture/crack_release.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/stepping/initial_state.h"
 #include "solver/stepping/restart.h"
@@ -139,6 +140,12 @@ Outcome TimeStepper::attempt_once(double dt) {
     if (step.pattern_changed) build_pattern();
     step.pattern_changed = false;
   }
+  // On a mesh re-cut within this step, what the cut opened of the force its start is out of
+  // balance by (crack_release.h), for the energy meter; the assembly below starts afresh.
+  const bool recut_in_step = recut_step_ == s_.step;
+  if (recut_in_step)
+    start_force_ = cut_release_force(b_->model, b_->config, s_, removed_elem_, recut_.cover_parent,
+                                     force_at_rest().head(b_->space.unknowns()));
 
   // Assembly and solve; an effect that judges the solution wrong for what it assembled (a
   // spring that yields, slips or breaks) has the step solved again from there.
@@ -168,6 +175,7 @@ Outcome TimeStepper::attempt_once(double dt) {
                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
   // The covers' motion: an effect's own unknowns (a cable's slip) are no block moving.
   const Eigen::VectorXd covers_d = d.head(b_->space.unknowns());
+  if (recut_in_step) recut_start_work_ = start_force_.dot(covers_d);
   // Shi's step control judges a step whose effects judge its penetration (the contacts').
   double penetration = -1;
   for (const Effect* e : active) penetration = std::max(penetration, e->penetration(step));
