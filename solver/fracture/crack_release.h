@@ -9,7 +9,9 @@
 //                  (state_transfer.h: K, U, V, S unchanged — no energy moves between columns at
 //                  the cut). On the cut mesh that start is out of balance by B (N/m per unknown):
 //                  the form and every effect at rest, without inertia (StepHost::force_at_rest,
-//                  measured by the stepper on the start of the step's last attempt:
+//                  but for the contacts: their start forces are not evaluated, which would move
+//                  their solve's starting point; a new face's contact has none. Measured by the
+//                  stepper on the start of the step's last attempt:
 //                  RunView::recut_start_work = r·d, EnergyStep::cut_work). B = r + h: r what
 //                  the cut opened, h what the start was out of balance by before it — the
 //                  inertia of DDA's static steps (M·v1_prev/Δt_prev, which the damped column

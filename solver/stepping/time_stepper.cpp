@@ -145,7 +145,7 @@ Outcome TimeStepper::attempt_once(double dt) {
   const bool recut_in_step = recut_step_ == s_.step;
   if (recut_in_step)
     start_force_ = cut_release_force(b_->model, b_->config, s_, removed_elem_, recut_.cover_parent,
-                                     force_at_rest().head(b_->space.unknowns()));
+                                     force_at_rest_of_loads());
 
   // Assembly and solve; an effect that judges the solution wrong for what it assembled (a
   // spring that yields, slips or breaks) has the step solved again from there.
@@ -245,6 +245,22 @@ const Eigen::VectorXd& TimeStepper::force_at_rest() {
   for (Effect* e : b_->effects)
     if (e->active()) e->add_at_rest(step);
   return rhs_;
+}
+
+Eigen::VectorXd TimeStepper::force_at_rest_of_loads() {
+  // force_at_rest without the effect that solves the step: the contacts' start forces are left
+  // out (evaluating them moves their solve's starting point, and with it the step's round-off);
+  // a new face's contact starts with none (state_transfer.h).
+  StepContext rest = step_context(0.0);
+  rest.dt = 0;
+  rest.t_end = s_.time;
+  rest.body_force = body_force_per_mass(scene(), s_.time);
+  rest.inertia = InertiaCoefficients{};
+  b_->form.assemble(rest, system_, rhs_);
+  EffectStep step = effect_step(rest);
+  for (Effect* e : b_->effects)
+    if (e->active() && !e->solves()) e->add_at_rest(step);
+  return rhs_.head(b_->space.unknowns());
 }
 
 Outcome TimeStepper::attempt(double dt) {

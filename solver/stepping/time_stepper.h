@@ -92,6 +92,9 @@ class TimeStepper : private StepHost {
   Outcome solve_step(EffectStep& step, Effect* solver, bool again, StepSolution& x);
   /// StepHost: the force at rest of s_ (effect.h).
   const Eigen::VectorXd& force_at_rest() override;
+  /// N/m per cover unknown: force_at_rest of the state, but for the effect that solves the step
+  /// (the contacts), whose state it leaves as it is (recut_start_work_).
+  Eigen::VectorXd force_at_rest_of_loads();
   /// The effects installed or carried on from s_ (a start, a restart), numbered, and the pattern
   /// built with their groups (`name`: the scene's or checkpoint's, for errors); false: an effect's
   /// unknowns no longer fit a checkpoint's factorisation.
