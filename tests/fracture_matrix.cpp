@@ -15,7 +15,13 @@
 //     in dynamic runs), the first crack within 2h of the notch tip (the peak against the
 //     net-section load of a notch a − 2h is reported);
 //   - the step-path slope: the first crack at a joint tip within the first 5 steps, and the wedge
-//     moves (more than 1 mm, ten times the rock behind the crest).
+//     moves (more than 1 mm, ten times the rock behind the crest);
+// and reports the energy balance (docs/energy.md): energy.csv's residual, metered after every
+// step as nmm-solve meters it (solver/output/energy.h, carried over every re-cut), at worst in %
+// of the largest work done so far (work = load_work − gravity, as tests/check_expect.py reads
+// it), from the step after the first (the slope's first step puts gravity on the stress-free
+// rock at once: a static step keeps half of a load applied suddenly), and the fracture column
+// (what the cracks released); `fracture_matrix.py energy` checks it within 1 % per cell.
 // The load is the moving support's reaction per metre, read as the mean stress of the loaded
 // body: P = |Σ_e A_e σ_e,kk| / lever over its elements that are not debris (rock_tests.h).
 // NMM_CHECK_RECUT=1 in the environment is passed on to the stepper (the re-cut checked against
@@ -35,6 +41,7 @@
 #include "common/scene.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/rock_tests.h"
+#include "solver/output/energy.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"
 
@@ -110,9 +117,25 @@ int run(const std::string& name, const std::string& csv) {
   const bool beam = c.test == RockTest::notched_beam, slope = c.test == RockTest::step_path_slope;
   Outcome outcome;
   std::string error;
+  // The energy balance, metered as nmm-solve meters it (solve_run.cpp EnergyOutput).
+  solve::EnergyMeter meter(st.view().model, &st.view().space);
+  std::size_t topology = st.view().topology;
+  meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
+  double work = 0, residual0 = 0, worst_residual = 0;  // J/m; – of the work
+  std::int64_t worst_residual_step = -1;
   try {
     outcome = st.run_until(sp.end_time * (1 - 1e-9), [&](std::int64_t n) {
       const solve::RunView v = st.view();
+      if (v.topology != topology) {  // re-cut in this step: composed back to the meter's mesh
+        meter.carry_over(v.model, &v.space, v.recut, v.recut_start, v.recut_start_work);
+        topology = v.topology;
+      }
+      meter.after_step(v.state, solve::energy_sources(v), true);
+      const solve::EnergyRow& row = meter.rows().back();
+      work = std::max(work, std::abs(row.load_work - row.gravity));
+      if (n == 1) residual0 = row.residual;
+      if (n > 1 && work > 0 && std::abs(row.residual - residual0) / work > worst_residual)
+        worst_residual = std::abs(row.residual - residual0) / work, worst_residual_step = v.state.step;
       steps = n;
       previous = load;
       load = slope ? 0 : load_of(v, sp);
@@ -171,6 +194,8 @@ int run(const std::string& name, const std::string& csv) {
     check(first_step >= 0 && first_step <= 5, "first crack after step 5");
     check(travel > 1e-3 && travel > 10 * behind, "the wedge did not slide");
   }
+  const double fracture_energy = meter.rows().empty() ? NAN : meter.rows().back().fracture;
+  const double residual = meter.rows().empty() ? NAN : meter.rows().back().residual - residual0;
   const bool pass = failed.empty();
   const std::string status = outcome.ok() ? "ok" : stop_code_name(outcome.code);
   const std::string reason = outcome.ok() ? "" : outcome.reason;
@@ -185,6 +210,9 @@ int run(const std::string& name, const std::string& csv) {
     std::printf("; compliance %s m/(N/m) (beam theory %s … %s), P_net %s", num(compliance).c_str(),
                 num(sp.compliance_low).c_str(), num(sp.compliance).c_str(), num(sp.net_section_load).c_str());
   if (slope) std::printf("; wedge %.4g m, behind the crest %.3g m", travel, behind);
+  std::printf("; energy: work %s J/m, fracture %s J/m, residual %s J/m, %s %% of the work at worst (step %lld)",
+              num(work).c_str(), num(fracture_energy).c_str(), num(residual).c_str(), num(100 * worst_residual).c_str(),
+              static_cast<long long>(worst_residual_step));
   std::printf("; %zu segments, %d debris; %.1f s\n", segs.size(), fracture_of(v).debris_blocks(), wall);
   if (!outcome.ok()) std::printf("  stop: %s\n", test::text(outcome).c_str());
   if (!pass) std::printf("  failed: %s\n", failed.c_str());
@@ -194,7 +222,7 @@ int run(const std::string& name, const std::string& csv) {
   out << "case,test,h_m,mode,rate,kernel,pass,status,reason,steps,end_time_s,planned_end_s,first_crack_step,"
          "first_crack_load,closed_form,closed_form_name,first_crack_error_pct,peak_load,peak_step,peak_time_s,"
          "load_unit,compliance,compliance_theory_low,compliance_theory,net_section_load,first_crack_tip_distance_m,segments,debris_blocks,"
-         "elements,wall_s,failed_checks\n";
+         "elements,wall_s,work_j,fracture_j,residual_j,residual_worst_pct,residual_worst_step,failed_checks\n";
   out << name << ',' << reference::rock_test_name(c.test) << ',' << num(sp.mesh_size) << ','
       << (c.dynamic ? "dynamic" : "static") << ',' << (c.rate ? "fast" : "slow") << ',' << kernel << ','
       << (pass ? 1 : 0) << ',' << status << ',' << csv_quote(reason) << ',' << steps << ',' << num(end_time) << ','
@@ -203,7 +231,8 @@ int run(const std::string& name, const std::string& csv) {
       << num(peak_time) << ',' << sp.load_unit << ',' << num(compliance) << ',' << num(beam ? sp.compliance_low : NAN) << ',' << num(beam ? sp.compliance : NAN)
       << ',' << num(beam ? sp.net_section_load : NAN) << ',' << num(tip_distance) << ',' << segs.size() << ','
       << fracture_of(v).debris_blocks() << ',' << v.mesh.element_count() << ',' << num(wall) << ','
-      << csv_quote(failed) << '\n';
+      << num(work) << ',' << num(fracture_energy) << ',' << num(residual) << ',' << num(100 * worst_residual) << ','
+      << worst_residual_step << ',' << csv_quote(failed) << '\n';
   return pass ? 0 : 1;
 }
 

@@ -3,12 +3,16 @@
 
   fracture_matrix.py compare A.csv B.csv   one cell under two OpenBLAS kernel families: the peak
                                            loads (the slope: the wedge's travel) within 1 %
+  fracture_matrix.py energy A.csv B.csv    one cell under both families: energy.csv's residual at
+                                           worst within 1 % of the work done (docs/energy.md)
   fracture_matrix.py table DIR OUT.csv     every run's row (DIR/*.csv, written by
                                            tests/fracture_matrix.cpp) into OUT.csv, one line per
                                            run, and the totals: how many of how many reached
                                            their end, passed, and agree across the families
+                                           (R %: energy.csv's residual at worst, in % of the work)
 
-compare exits 1 when the peaks differ by more than 1 % (or a row is missing); table exits 1
+compare exits 1 when the peaks differ by more than 1 % (or a row is missing); energy when a
+row's residual is over 1 % of the work (or a row is missing); table exits 1
 unless every run of the matrix is there and passed (so a stop anywhere fails the label).
 """
 import csv
@@ -18,6 +22,7 @@ import sys
 from collections import Counter, defaultdict
 
 PEAK_TOLERANCE = 0.01  # –, of the larger peak
+ENERGY_TOLERANCE = 1.0  # %, energy.csv's residual at worst, of the largest work done so far
 
 
 def read_row(path):
@@ -46,6 +51,21 @@ def compare(paths):
     return 0 if d <= PEAK_TOLERANCE else 1
 
 
+def energy(paths):
+    ok = True
+    for p in paths:
+        row = read_row(p) if os.path.exists(p) else None
+        if not row or not row.get("residual_worst_pct"):
+            print(f"{p}: no energy figures (the run did not write them)")
+            return 1
+        worst = float(row["residual_worst_pct"])
+        print(f"{row['case']} ({row['kernel']}): residual {row['residual_j']} J/m, {worst:.3g} % of the work at worst "
+              f"(step {row['residual_worst_step']}; work {row['work_j']} J/m, fracture {row['fracture_j']} J/m; "
+              f"tolerance {ENERGY_TOLERANCE:g} %)")
+        ok = ok and worst <= ENERGY_TOLERANCE
+    return 0 if ok else 1
+
+
 def table(folder, out):
     paths = sorted(glob.glob(os.path.join(folder, "*.csv")))
     rows = [r for r in (read_row(p) for p in paths) if r]
@@ -67,11 +87,11 @@ def table(folder, out):
         w.writerows(rows)
 
     print(f"{'case':34} {'h':>7} {'kernel':8} {'status':13} {'steps':>5} {'1st crack':>10} {'closed':>10} "
-          f"{'err %':>7} {'peak':>10} {'Δkern %':>7}")
+          f"{'err %':>7} {'peak':>10} {'Δkern %':>7} {'R %':>6}")
     for r in rows:
         print(f"{r['case']:34} {r['h_m']:>7} {r['kernel']:8} {r['status']:13} {r['steps']:>5} "
               f"{r['first_crack_load']:>10} {r['closed_form'] or '-':>10} {r['first_crack_error_pct'] or '-':>7} "
-              f"{r['peak_load']:>10} {r['kernel_peak_difference_pct'] or '-':>7}")
+              f"{r['peak_load']:>10} {r['kernel_peak_difference_pct'] or '-':>7} {r.get('residual_worst_pct') or '-':>6}")
     n = len(rows)
     ran = sum(r["status"] == "ok" for r in rows)
     passed = sum(r["pass"] == "1" for r in rows)
@@ -102,6 +122,8 @@ def sub_rows(kernels):
 def main(argv):
     if len(argv) == 4 and argv[1] == "compare":
         return compare(argv[2:])
+    if len(argv) == 4 and argv[1] == "energy":
+        return energy(argv[2:])
     if len(argv) == 4 and argv[1] == "table":
         return table(argv[2], argv[3])
     print(__doc__, file=sys.stderr)

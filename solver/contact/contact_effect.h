@@ -64,7 +64,9 @@ class ContactEffect final : public Effect {
   /// return as opening — a Barton–Bandis joint that dilates by Δv (joint_law.h) pushes its faces
   /// apart with N over it (and takes N·|Δv| back sliding down toward its start) — into
   /// t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
-  /// cohesion did in slip, which is not friction's, into t.fracture.
+  /// cohesion did in slip, which is not friction's, into t.fracture. In a step that cut new cracks,
+  /// a new face's contact that slides from its zero start force books ½|T|·slip less in
+  /// t.fracture (the static step's friction force went from 0 to T: crack_release.h).
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the

@@ -65,6 +65,10 @@ struct EnergyStep {
   const RunState* changed_start;
   /// The scene's joints at the meter's last call (those after them the step's change added).
   std::size_t joints_before;
+  /// J/m, on a step that changed the mesh: r·d, the work over the step of the force r its start,
+  /// carried onto the new mesh, is out of balance by because of the change (the faces it opened:
+  /// solver/fracture/crack_release.h), d the step's motion; 0 otherwise.
+  double cut_work = 0;
 };
 
 class EffectEnergy {

@@ -448,8 +448,13 @@ void FlowEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
   if (!e.changed_start || !active() || !model_.scene().flow.coupled || e.s.flow_pressure.size() != network_.nodes())
     return;
   const Mesh& mesh = e.model.mesh();
+  // The start's pressures, carried onto the cut network (flow_transfer.h), loaded the new faces
+  // in B already (crack_release.h): the change from them to the end's.
+  const std::vector<double>& p0 = e.changed_start->flow_pressure;
+  if (p0.size() != network_.nodes()) return;
   t.fracture += crack_release_fluid(mesh, e.s, *e.changed_start, e.joints_before,
-                                    network_.face_pressures(e.s.flow_pressure, mesh.loop_vertex_count()));
+                                    network_.face_pressures(e.s.flow_pressure, mesh.loop_vertex_count()),
+                                    network_.face_pressures(p0, mesh.loop_vertex_count()));
 }
 
 }  // namespace nmm::solve

@@ -106,7 +106,7 @@ class FlowEffect final : public Effect {
   /// steps counted in the state (RunState::flow_load_work) into t.work.
   void energy_state(const EnergyState& e, EnergyTerms& t) const override;
   /// In a step that cut cracks, the fluid's part of what they released into t.fracture
-  /// (crack_release.h: ½ P·d, half the fluid's work on the new faces).
+  /// (crack_release.h: ½ ΔP·d, the change from the start's pressure on the new faces to the end's).
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// The two-way coupling's cost: accepted steps, and the balance solves (one per solve round

@@ -45,7 +45,7 @@ void EnergyMeter::initial_geometry() {
 }
 
 void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const pre::RecutMap& map,
-                             const RunState& start) {
+                             const RunState& start, double start_work) {
   // The map leads back to the mesh of the last call (RunView::recut, composed over every re-cut
   // of the step): its indices must lie within the records of that mesh.
   const std::size_t old_vertices = prev_loop_u_.size() / 2, old_elements = prev_cx_.size();
@@ -96,6 +96,7 @@ void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const 
   }
   // The step's start on the new mesh, for the effects' terms of the step (EnergyStep).
   changed_start_ = start;
+  changed_work_ = start_work;
   changed_ = true;
 }
 
@@ -274,7 +275,8 @@ void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bo
     step.friction = friction_;
     step.absorbed = absorbed_;
     step.fracture = released_;
-    const EnergyStep e{*model_, s, prev_loop_u_, changed_ ? &changed_start_ : nullptr, joints_};
+    const EnergyStep e{*model_, s, prev_loop_u_, changed_ ? &changed_start_ : nullptr, joints_,
+                       changed_ ? changed_work_ : 0.0};
     for (const EffectEnergy* src : sources) src->energy_step(e, step);
     load_work_ += step.work + supports;
     friction_ = step.friction;
@@ -292,6 +294,7 @@ void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bo
   if (changed_) {
     changed_ = false;
     changed_start_ = RunState{};
+    changed_work_ = 0;
   }
   joints_ = scene_->joints.size();
   prev_loop_u_ = s.loop_u;  // the tractions', the moving supports' and the effects' work of the next step

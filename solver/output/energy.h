@@ -122,7 +122,11 @@ class EnergyMeter {
   /// between columns, and the next after_step hands `start` to the effects (EnergyStep). Call
   /// it before that after_step. Throws std::logic_error if the map or the start is not of
   /// `model`'s mesh.
-  void carry_over(const Model& model, const CoverSpace* space, const pre::RecutMap& map, const RunState& start);
+  /// `start_work` (J/m): r·d of the step on the new mesh, r what the change opened of the force
+  /// `start` is out of balance by there (RunView::recut_start_work), handed to the effects at the
+  /// next after_step (EnergyStep::cut_work).
+  void carry_over(const Model& model, const CoverSpace* space, const pre::RecutMap& map, const RunState& start,
+                  double start_work);
 
   /// The run's totals at the last call (J/m): the dissipation columns and W, S (summary.json,
   /// EffectEnergy::summarise_energy).
@@ -186,6 +190,7 @@ class EnergyMeter {
   // the effects at the step's end (EnergyStep::changed_start).
   bool changed_ = false;
   RunState changed_start_;
+  double changed_work_ = 0;  // J/m, r·d of that step (carry_over's start_work)
   EnergyRow last_;
   std::int64_t last_kept_step_ = -1;
   std::vector<EnergyRow> rows_;

@@ -29,7 +29,7 @@ class SolveRun::EnergyOutput : public StepObserver {
       if (st.recut_from != topology_)
         throw std::logic_error("energy meter: the re-cut map leads back to mesh " + std::to_string(st.recut_from) +
                                ", the meter's is " + std::to_string(topology_));
-      meter_.carry_over(st.model, &st.space, st.recut, st.recut_start);
+      meter_.carry_over(st.model, &st.space, st.recut, st.recut_start, st.recut_start_work);
       topology_ = st.topology;
     }
     sources_ = energy_sources(st);  // a change of the mesh builds the effects again

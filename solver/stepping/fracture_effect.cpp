@@ -243,7 +243,7 @@ std::vector<TipReading> read_crack_tips(const RunView& run, CrackTipFinder& find
 }
 
 void FractureEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
-  if (e.changed_start) t.fracture += crack_release(e.model.mesh(), e.s, *e.changed_start, e.joints_before);
+  t.fracture += crack_release(e);
 }
 
 void FractureEffect::summarise_energy(const EnergyTerms& totals, nlohmann::json& summary) const {

@@ -60,6 +60,10 @@ struct RunView {
   /// The state the last step that re-cut the mesh started from, carried onto the mesh now
   /// (mesh_change.h): its fields are those of the accepted state before that step.
   const RunState& recut_start;
+  /// J/m, r·d over that step: r what the cut opened of the force its start on the mesh now is out
+  /// of balance by (the form and every effect at rest, no inertia: StepHost::force_at_rest), d
+  /// the step's solution on that mesh (solver/fracture/crack_release.h cut_release_force).
+  const double& recut_start_work;
   /// The effects with state the run's steps call (effect.h; mesh_bound.h lists them).
   const std::vector<Effect*>& effects;
   /// The effects that change the mesh (mesh_change.h; mesh_bound.h MeshChanges lists them).

@@ -44,6 +44,7 @@
 #include "solver/discretisation/newmark.h"
 #include "solver/discretisation/solver_threads.h"
 #include "solver/discretisation/static_support.h"
+#include "solver/fracture/crack_release.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/stepping/initial_state.h"
 #include "solver/stepping/restart.h"
@@ -139,6 +140,12 @@ Outcome TimeStepper::attempt_once(double dt) {
     if (step.pattern_changed) build_pattern();
     step.pattern_changed = false;
   }
+  // On a mesh re-cut within this step, what the cut opened of the force its start is out of
+  // balance by (crack_release.h), for the energy meter; the assembly below starts afresh.
+  const bool recut_in_step = recut_step_ == s_.step;
+  if (recut_in_step)
+    start_force_ = cut_release_force(b_->model, b_->config, s_, removed_elem_, recut_.cover_parent,
+                                     force_at_rest_of_loads());
 
   // Assembly and solve; an effect that judges the solution wrong for what it assembled (a
   // spring that yields, slips or breaks) has the step solved again from there.
@@ -168,6 +175,7 @@ Outcome TimeStepper::attempt_once(double dt) {
                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
   // The covers' motion: an effect's own unknowns (a cable's slip) are no block moving.
   const Eigen::VectorXd covers_d = d.head(b_->space.unknowns());
+  if (recut_in_step) recut_start_work_ = start_force_.dot(covers_d);
   // Shi's step control judges a step whose effects judge its penetration (the contacts').
   double penetration = -1;
   for (const Effect* e : active) penetration = std::max(penetration, e->penetration(step));
@@ -237,6 +245,22 @@ const Eigen::VectorXd& TimeStepper::force_at_rest() {
   for (Effect* e : b_->effects)
     if (e->active()) e->add_at_rest(step);
   return rhs_;
+}
+
+Eigen::VectorXd TimeStepper::force_at_rest_of_loads() {
+  // force_at_rest without the effect that solves the step: the contacts' start forces are left
+  // out (evaluating them moves their solve's starting point, and with it the step's round-off);
+  // a new face's contact starts with none (state_transfer.h).
+  StepContext rest = step_context(0.0);
+  rest.dt = 0;
+  rest.t_end = s_.time;
+  rest.body_force = body_force_per_mass(scene(), s_.time);
+  rest.inertia = InertiaCoefficients{};
+  b_->form.assemble(rest, system_, rhs_);
+  EffectStep step = effect_step(rest);
+  for (Effect* e : b_->effects)
+    if (e->active() && !e->solves()) e->add_at_rest(step);
+  return rhs_.head(b_->space.unknowns());
 }
 
 Outcome TimeStepper::attempt(double dt) {

@@ -72,7 +72,7 @@ class TimeStepper : private StepHost {
   /// What the outputs read: state, model, space, contacts, system, costs (run_view.h).
   RunView view() const {
     return {*mesh_,  b_->model, b_->space, b_->config, s_, b_->contact.set(), system_, timings_, b_->contact.stats(),
-            balance_, stopped_at_ratio_, threads_, topology_, recut_, recut_from_, recut_start_,
+            balance_, stopped_at_ratio_, threads_, topology_, recut_, recut_from_, recut_start_, recut_start_work_,
             b_->effects, changes_.list, b_->checkpointed, b_->metered};
   }
 
@@ -92,6 +92,9 @@ class TimeStepper : private StepHost {
   Outcome solve_step(EffectStep& step, Effect* solver, bool again, StepSolution& x);
   /// StepHost: the force at rest of s_ (effect.h).
   const Eigen::VectorXd& force_at_rest() override;
+  /// N/m per cover unknown: force_at_rest of the state, but for the effect that solves the step
+  /// (the contacts), whose state it leaves as it is (recut_start_work_).
+  Eigen::VectorXd force_at_rest_of_loads();
   /// The effects installed or carried on from s_ (a start, a restart), numbered, and the pattern
   /// built with their groups (`name`: the scene's or checkpoint's, for errors); false: an effect's
   /// unknowns no longer fit a checkpoint's factorisation.
@@ -145,12 +148,17 @@ class TimeStepper : private StepHost {
   std::size_t recut_from_ = 0;
   std::int64_t recut_step_ = -1;
   RunState recut_start_;
+  // J/m, r·d of the last attempt on a mesh re-cut within its step (RunView::recut_start_work):
+  // r what the cut opened of the force its start, carried onto the cut mesh, is out of balance
+  // by (crack_release.h cut_release_force), d the attempt's solution; 0 before any re-cut.
+  double recut_start_work_ = 0;
   StepControl control_;                 // Shi's step control (step_control.h)
   RunState s_;                          // everything a step carries to the next
   bool factor_fits_ = true;             // false: a restart installed effects' unknowns, its FACTOR is of another size
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   Eigen::VectorXd rhs_;
+  Eigen::VectorXd start_force_;  // N/m, r of the attempt on a re-cut mesh (recut_start_work_)
   SystemMatrix system_;
   StepTimings timings_;
   std::function<bool()> stop_check_;                     // interrupt.h
