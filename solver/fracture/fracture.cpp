@@ -25,31 +25,16 @@ double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 // - a stopping crack is cut on by kOvershoot·h past that edge. In doubles its end is not exactly
 //   on the edge; cut exactly, it would stop a round-off short — the rock would not part — or
 //   cross a round-off beyond near other cuts and leave specks. Overshot, it crosses the edge at
-//   one exact point and its hair beyond is a slit of no area. A crack end that goes on (a tip)
-//   is cut past its edge too, and its next segment starts there (tip_cut).
+//   one exact point and its hair beyond is a slit of no area. A crack end that does not stop is
+//   not overshot: whether its element's star parts is then decided by round-off (the tension bar
+//   of tests/test_fracture.cpp starts a second crack on some BLAS kernels), but overshooting
+//   every end made the compression specimens cascade (docs/fracture.md "Not yet").
 constexpr double kSnap = 1e-2, kOvershoot = 1e-8;
 struct CrackEnd {
   Vec2 at;          // m, where the crack leaves the element (as cut)
   Vec2 cut_to;      // m, where its segment ends (past `at` when it stops)
   bool stops = false;
-  bool on_edge = false;  // `at` lies inside an edge (not snapped onto a vertex): tip_cut
 };
-// Where a crack's cut ends at a tip that goes on (an end inside an element edge, not stopping):
-// kOvershoot·h past the edge, along the tip's direction, and the tip's next segment starts from
-// that same point (the same expression of the tip's `at` and `dir`, so the two meet bit for bit).
-// The end is computed in doubles from the stress's direction: on the edge to within round-off,
-// either side. Cut exactly, an end a round-off short leaves the crack a slit inside its element
-// and the star of the node across that edge whole (its faces tied, the crack open only up to the
-// star behind); a round-off past, it parts that star. Which one happened was the BLAS kernel's
-// last bit: test_fracture's tension bar cracked once on SkylakeX and twice on Haswell, Zen and
-// Prescott, and notched beams' peaks differed by up to 16 % across kernel families
-// (docs/fracture.md "Robustness matrix"). Past the edge, the crack always reaches the edge it
-// was grown to — what the rule grew — and crosses it at one exact point; the crossing of the
-// tip's next segment is exact too, so the polyline has no hair and no gap. An end on a vertex
-// (snapped) is exact already and is cut there.
-Vec2 tip_cut(const Vec2& at, const Vec2& dir, bool on_edge, double h) {
-  return on_edge ? plus(at, kOvershoot * h, dir) : at;
-}
 CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayExit& exit) {
   const std::int32_t b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
   const std::int32_t v = exit.edge, w = v + 1 < end ? v + 1 : b, u = v > b ? v - 1 : end - 1;
@@ -59,7 +44,6 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
   CrackEnd c;
   c.at = exit.at;
   c.stops = stop_edge(v);
-  c.on_edge = true;
   const Vec2 pv = vertex(v), pw = vertex(w);
   const double dv = std::hypot(exit.at.x - pv.x, exit.at.y - pv.y), dw = std::hypot(exit.at.x - pw.x, exit.at.y - pw.y);
   if (std::min(dv, dw) < kSnap * h) {
@@ -67,7 +51,6 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
     const Vec2 snapped = at_v ? pv : pw;
     if (std::hypot(snapped.x - from.x, snapped.y - from.y) > kSnap * h) {  // not back onto its start
       c.at = snapped;
-      c.on_edge = false;
       c.stops = c.stops || stop_edge(at_v ? u : w);
     }
   }
@@ -204,14 +187,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       RayExit exit;
       if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
       const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
+      add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack);
       const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
-      const Vec2 dir = l > 0 ? Vec2{dx / l, dy / l} : d;
-      const bool on_edge = !c.stops && c.on_edge;
-      add(static_cast<std::size_t>(e), tip_cut(tip.at, tip.dir, tip.on_edge, h),
-          c.stops ? c.cut_to : tip_cut(c.at, dir, on_edge, h), tip.crack);
       tip.at = c.at;
-      tip.dir = dir;
-      tip.on_edge = on_edge;
+      tip.dir = l > 0 ? Vec2{dx / l, dy / l} : d;
       if (c.stops) {
         tip.active = false;
         return;
@@ -244,11 +223,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       const std::int32_t crack = cracks_++;
       // Each end as a crack leaving the element from the other end.
       const CrackEnd f = crack_end(mesh, e, back.at, fwd), r = crack_end(mesh, e, f.at, back);
-      const Vec2 md{-d.x, -d.y};
-      add(e, r.stops ? r.cut_to : tip_cut(r.at, md, r.on_edge, h), f.stops ? f.cut_to : tip_cut(f.at, d, f.on_edge, h), crack);
+      add(e, r.cut_to, f.cut_to, crack);
       const std::size_t first = tips_.size();
-      for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, md)})
-        tips_.push_back({end.at, dir, crack, !end.stops, !end.stops && end.on_edge});
+      for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
+        tips_.push_back({end.at, dir, crack, !end.stops});
       for (std::size_t t = first; t < tips_.size(); ++t)
         if (tips_[t].active) grow(tips_[t]);
     }
@@ -322,7 +300,7 @@ std::string Fracture::save() const {
   for (const Tip& t : tips_) {
     w.put(t.at.x), w.put(t.at.y), w.put(t.dir.x), w.put(t.dir.y);
     w.put<std::int32_t>(t.crack);
-    w.put<std::uint8_t>(static_cast<std::uint8_t>((t.active ? 1 : 0) | (t.on_edge ? 2 : 0)));
+    w.put<std::uint8_t>(t.active ? 1 : 0);
   }
   w.put_vector(armed_);
   w.put_vector(debris_);
@@ -350,10 +328,7 @@ void Fracture::load(const std::string& bytes, const Mesh& mesh, const std::strin
     Tip t;
     t.at.x = r.get<double>(), t.at.y = r.get<double>(), t.dir.x = r.get<double>(), t.dir.y = r.get<double>();
     t.crack = r.get<std::int32_t>();
-    const std::uint8_t flags = r.get<std::uint8_t>();
-    if (flags > 3) r.fail("a tip's flags are " + std::to_string(flags) + ", not 0 to 3");
-    t.active = (flags & 1) != 0;
-    t.on_edge = (flags & 2) != 0;
+    t.active = r.get<std::uint8_t>() != 0;
     tips_.push_back(t);
   }
   armed_ = r.get_vector<std::uint8_t>(mesh.element_count(), "armed elements");

@@ -6,8 +6,7 @@
 //   1. every crack tip grows: the element ahead of it, if its stress breaks it (rock_strength.h),
 //      is crossed from the tip along its crack direction (turned to continue the crack) to where
 //      the line leaves it, and so on through the next element, until an element holds or the
-//      crack reaches a body boundary or a joint; tips lie on element edges, and a tip's crack is
-//      cut 1e-8·h past its edge so that it parts what it reaches on every BLAS kernel (tip_cut);
+//      crack reaches a body boundary or a joint; tips lie on element edges;
 //   2. if no tip grew, at most one new crack starts: in the element most beyond its strength
 //      (largest ratio, then lowest index) that is armed, a segment through the element (its
 //      centroid) along its crack direction, both of whose ends then grow as in 1;
@@ -102,7 +101,6 @@ class Fracture {
     Vec2 dir;           // unit, the direction it grows in (as cut)
     std::int32_t crack = -1;
     bool active = true;
-    bool on_edge = false;  // `at` lies inside an element edge: its crack's cut ends off it (tip_cut)
   };
   void start_tips(const Mesh& mesh, const SceneDef& scene);
 
