@@ -28,7 +28,12 @@
 #include "common/mesh_file.h"
 #include "common/scene.h"
 #include "preprocess/cover_cutter.h"
+#include "preprocess/recut.h"
+#include "solver/discretisation/absorbing_boundary.h"
+#include "solver/discretisation/point_location.h"
+#include "solver/reinforcement/bolt_layout.h"
 #include "solver/stepping/fracture_effect.h"
+#include "solver/stepping/mesh_bound.h"
 #include "solver/stepping/run_view.h"
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
@@ -137,6 +142,52 @@ TEST(FractureWithBolts, ABoltHoldsTheTwoPiecesOfACrackedBar) {
   EXPECT_NEAR(before, closed_before, 2e-3 * closed_before);
   EXPECT_GT(rock_before, 0.9e6);
   EXPECT_LT(std::abs(rock), 0.02e6);  // cracked through: it carries nothing
+}
+
+// A crack cut exactly through a bolt's point: the point is tied to the piece the bolt runs into
+// from it, whichever side of the crack rounding puts it (within 1e-9·h), and a point clearly on
+// one side to the piece on that side.
+TEST(FractureWithBolts, APointOnACrackIsTiedToTheRockTheBoltRunsInto) {
+  json doc = bolted_bar(false);
+  doc.erase("bolts");
+  const SceneDef before = scene_from_json(doc, "bar");
+  const Mesh old = pre::build_mesh(before, "bar");
+  SceneDef cracked = before;
+  cracked.joints.push_back({cracked.fracture.crack_set, {{2, 0}, {2, kBarH}}});
+  pre::RecutMap map;
+  const Mesh now = pre::recut(old, cracked, before.joints.size(), "bar", map);
+  // x of the middle of the piece a point was tied to (its loop's mean vertex, as cut).
+  const auto side = [&](std::int32_t e) {
+    double x = 0;
+    const auto b = now.element_loop_offset[static_cast<std::size_t>(e)], end = now.element_loop_offset[static_cast<std::size_t>(e) + 1];
+    for (auto v = b; v < end; ++v) x += now.loop_xy[2 * static_cast<std::size_t>(v)];
+    return x / (end - b) < 2 ? -1 : 1;
+  };
+  const auto point = [&](double x, double y) {
+    const solve::PointLocation at = solve::locate_point(old, old.loop_xy, {x, y});
+    return solve::TrackedPoint{at.element, x, y, x, y};
+  };
+  int checked = 0;
+  for (const double y : {0.5, 0.3})
+    for (const double off : {0.0, 1e-12, -1e-12, 0.01, -0.01})
+      for (const int towards : {-1, 1}) {  // the bolt runs from the point to x = 2 + 0.5·towards
+        solve::BoltState b;
+        b.type = 0;
+        b.nodes = {point(2 + off, y), point(2 + 0.5 * towards, y)};
+        std::vector<solve::BoltState> bolts{b};
+        solve::retie_bolts(old, now, map.element_parent, map.vertex_parent, bolts);
+        const int expected = std::abs(off) > 1e-6 ? (off < 0 ? -1 : 1) : towards;
+        EXPECT_EQ(side(bolts[0].nodes[0].element), expected) << "point x = 2 + " << off << ", y " << y;
+        EXPECT_EQ(side(bolts[0].nodes[1].element), towards);
+        // The same point as a bolt's last point: towards the one before.
+        b.nodes = {point(2 + 0.5 * towards, y), point(2 + off, y)};
+        bolts = {b};
+        solve::retie_bolts(old, now, map.element_parent, map.vertex_parent, bolts);
+        EXPECT_EQ(side(bolts[0].nodes[1].element), expected) << "last point x = 2 + " << off << ", y " << y;
+        ++checked;
+      }
+  std::printf("%d bolt points on, next to and off a crack tied to the rock their bolts run into (%zu → %zu "
+              "elements)\n", checked, old.element_count(), now.element_count());
 }
 
 /// Runs `doc` straight to t_end, and again through a checkpoint written at each of `t_stops`
@@ -301,6 +352,84 @@ TEST(FractureWithAbsorbing, AColumnThatCracksReflectsAsLittleAsOneThatDoesNot) {
   EXPECT_NEAR(cracked.reflected_at, alone.reflected_at, 1e-3);
   EXPECT_NEAR(cracked.absorbed.back(), intact.absorbed.back(), 0.01 * intact.absorbed.back());
   EXPECT_LT(worst_recut, 0.05 * largest);  // no jump in the absorbed column at a re-cut
+}
+
+// The carried reaction over a re-cut whose crack reaches the absorbing base and parts covers
+// there: the reaction of a uniform traction on the base (its nodal forces ∫φ_c·t ds) comes out
+// as the same traction's nodal forces on the new mesh, and a cover not parted keeps its part
+// bit for bit.
+TEST(FractureWithAbsorbing, TheCarriedReactionFollowsItsCoversOntoTheReCutMesh) {
+  const json doc = json::parse(R"({
+    "materials": {"rock": {"density": 2500, "young": 1e10, "poisson": 0.25,
+                           "strength": {"tensile": 1e6, "cohesion": 4e6, "friction_deg": 35}}},
+    "joint_sets": {"crack": {"friction_deg": 30, "normal": {"model": "constant", "kn": 1e11},
+                             "shear": {"model": "constant", "ks": 4e10}}},
+    "bodies": [{"material": "rock", "outer": [[0,0],[4,0],[4,4],[0,4]]}], "mesh": {"size": 0.5},
+    "fracture": {"crack_set": "crack"},
+    "absorbing": [{"points": [[0,0],[4,0]]}] })");
+  const SceneDef before = scene_from_json(doc, "box");
+  const Mesh old = pre::build_mesh(before, "box");
+  SceneDef cracked = before;
+  cracked.joints.push_back({cracked.fracture.crack_set, {{2.1, 0}, {2.1, 1.3}}});
+  pre::RecutMap map;
+  const Mesh now = pre::recut(old, cracked, before.joints.size(), "box", map);
+  const solve::MeshBound was(old, before, "box"), is(now, cracked, "box", 1);
+  // N/m per unknown: the nodal forces of a uniform traction t = (0.3, −1) MPa on the base.
+  const auto nodal = [](const solve::MeshBound& b) {
+    const Mesh& mesh = b.model.mesh();
+    std::vector<double> r(static_cast<std::size_t>(b.space.unknowns()), 0.0);
+    for (const auto& be : b.model.absorbing_edges()[0]) {
+      const auto e = static_cast<std::size_t>(be.element);
+      const double* p = &mesh.loop_xy[2 * static_cast<std::size_t>(be.vertex)];
+      const double* q = &mesh.loop_xy[2 * static_cast<std::size_t>(be.next)];
+      const double len = std::hypot(q[0] - p[0], q[1] - p[1]), mx = 0.5 * (p[0] + q[0]), my = 0.5 * (p[1] + q[1]);
+      double nx[3], ny[3];
+      for (int i = 0; i < 3; ++i) {
+        const auto node = static_cast<std::size_t>(mesh.cover_node[static_cast<std::size_t>(mesh.element_covers[3 * e + i])]);
+        nx[i] = mesh.node_xy[2 * node];
+        ny[i] = mesh.node_xy[2 * node + 1];
+      }
+      const double twice = (nx[1] - nx[0]) * (ny[2] - ny[0]) - (nx[2] - nx[0]) * (ny[1] - ny[0]);
+      for (int k = 0; k < 3; ++k) {
+        const int i = (k + 1) % 3, j = (k + 2) % 3;
+        const double phi = ((nx[i] - mx) * (ny[j] - my) - (nx[j] - mx) * (ny[i] - my)) / twice;
+        const auto u = static_cast<std::size_t>(b.space.first_unknown(static_cast<std::size_t>(mesh.element_covers[3 * e + k])));
+        r[u] += 0.3e6 * len * phi;
+        r[u + 1] -= 1e6 * len * phi;
+      }
+    }
+    return r;
+  };
+  const std::vector<double> r_old = nodal(was), r_new = nodal(is);
+  const std::vector<double> carried =
+      solve::absorbing_reaction_onto(r_old, was.space, map.cover_parent, is.model, is.space);
+  ASSERT_EQ(carried.size(), r_new.size());
+  double worst = 0, sum_old[2] = {0, 0}, sum_new[2] = {0, 0};
+  std::size_t parted = 0, kept = 0, bitwise = 0;
+  std::vector<int> pieces(old.cover_count(), 0);
+  for (const std::int32_t p : map.cover_parent) ++pieces[static_cast<std::size_t>(p)];
+  for (std::size_t c = 0; c < now.cover_count(); ++c) {
+    const auto u = static_cast<std::size_t>(is.space.first_unknown(c));
+    const auto U = static_cast<std::size_t>(was.space.first_unknown(static_cast<std::size_t>(map.cover_parent[c])));
+    if (r_old[U] == 0 && r_old[U + 1] == 0) continue;
+    if (pieces[static_cast<std::size_t>(map.cover_parent[c])] > 1) {
+      ++parted;
+    } else {
+      ++kept;
+      bitwise += carried[u] == r_old[U] && carried[u + 1] == r_old[U + 1];
+    }
+  }
+  for (std::size_t i = 0; i < carried.size(); ++i) worst = std::max(worst, std::abs(carried[i] - r_new[i]));
+  for (std::size_t i = 0; i + 1 < r_old.size(); i += 2) sum_old[0] += r_old[i], sum_old[1] += r_old[i + 1];
+  for (std::size_t i = 0; i + 1 < carried.size(); i += 2) sum_new[0] += carried[i], sum_new[1] += carried[i + 1];
+  std::printf("reaction over a re-cut: %zu base covers parted, %zu kept (%zu bit for bit); largest difference from "
+              "the new mesh's nodal forces %.3g N/m (of 4 MN/m); resultant (%.9g, %.9g) → (%.9g, %.9g) N/m\n",
+              parted, kept, bitwise, worst, sum_old[0], sum_old[1], sum_new[0], sum_new[1]);
+  EXPECT_GT(parted, 0u);
+  EXPECT_EQ(bitwise, kept);
+  EXPECT_LT(worst, 1e-9 * 4e6);
+  EXPECT_NEAR(sum_new[1], -4e6, 1e-9 * 4e6);
+  EXPECT_NEAR(sum_new[0], 1.2e6, 1e-9 * 4e6);
 }
 
 TEST(FractureWithAbsorbing, RestartsBeforeAndAfterTheReCutContinueBitForBit) {

@@ -78,6 +78,8 @@ struct MeshPieces {
   const CoverSpace& old_space;                      ///< its cover space (unknowns, ties)
   const std::vector<std::int32_t>& element_parent;  ///< [new me] the old element it is (a piece of)
   const std::vector<std::int32_t>& cover_parent;    ///< [new pc] the old cover it is (a piece of)
+  /// [new loop vertex] the old loop vertex at the same point, or -1 (a vertex the cut made)
+  const std::vector<std::int32_t>& vertex_parent;
 };
 
 /// What a solve of the step gives back (Effect::solve).

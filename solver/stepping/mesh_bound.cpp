@@ -52,7 +52,8 @@ void MeshBound::continue_from(MeshBound& before, std::vector<ContactHistory> his
   contact.continue_from(before.contact, std::move(history));
   flow.continue_from(before.flow, s);
   if (!map) return;
-  const MeshPieces from{before.model.mesh(), before.space, map->element_parent, map->cover_parent};
+  const MeshPieces from{before.model.mesh(), before.space, map->element_parent, map->cover_parent,
+                        map->vertex_parent};
   for (const Effect* e : effects) e->carry_over(from, s);
 }
 
