@@ -106,7 +106,6 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
   if (const auto r = root.optional("fracture")) scene.fracture = read_fracture(*r, scene);
   if (const auto r = root.optional("bolts")) scene.bolts = read_bolts(*r);
   if (const auto r = root.optional("absorbing")) scene.absorbing = read_absorbing(*r);
-  if (const auto r = root.optional("fracture")) check_fracture_combinations(*r, scene);
   if (const auto r = root.optional("flow")) scene.flow = read_flow(*r, scene);
   return scene;
 }

@@ -23,12 +23,4 @@ FractureDef read_fracture(const JsonReader& r, const SceneDef& scene) {
   return f;
 }
 
-void check_fracture_combinations(const JsonReader& r, const SceneDef& scene) {
-  // A crack re-cuts the elements a bolt is tied to and the boundary edges a dashpot acts on; the
-  // solver carries neither over yet (docs/fracture.md "Not yet").
-  if (scene.fracture.present && (!scene.bolts.empty() || !scene.absorbing.empty()))
-    r.fail(std::string("fracturing with ") + (!scene.bolts.empty() ? "bolts" : "absorbing boundaries") +
-           " is not built yet: leave out one or the other");
-}
-
 }  // namespace nmm

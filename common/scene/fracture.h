@@ -20,11 +20,9 @@ struct FractureDef {
 };
 
 /// fracture: {crack_set, tip_step, viscous_tip}. Reads the scene's joint sets and solver settings (read before):
-/// fracturing needs cover order 0.
+/// fracturing needs cover order 0 (what it cannot be combined with yet, exit status 2). Bolts
+/// and absorbing boundaries go with it: a re-cut ties the bolts again to the pieces of rock and
+/// lays the dashpots on the re-cut edges (docs/fracture.md "Bolts and absorbing boundaries").
 FractureDef read_fracture(const JsonReader& r, const SceneDef& scene);
-
-/// Refuses, at `r` (the fracture block), what fracturing cannot be combined with yet: bolts
-/// and absorbing boundaries (read after the block).
-void check_fracture_combinations(const JsonReader& r, const SceneDef& scene);
 
 }  // namespace nmm

@@ -144,6 +144,97 @@ std::vector<double> absorbing_reaction_of(const Model& model, const Configuratio
   return r;
 }
 
+namespace {
+
+/// –, the linear weight λ_k of element e's k-th cover at (x, y) as cut: the barycentric
+/// coordinate in the triangle of its three covers' nodes (the cover function's weight at order 0).
+double cover_weight(const Mesh& mesh, std::size_t e, int k, double x, double y) {
+  double nx[3], ny[3];
+  for (int i = 0; i < 3; ++i) {
+    const auto c = static_cast<std::size_t>(mesh.element_covers[3 * e + static_cast<std::size_t>(i)]);
+    const auto node = static_cast<std::size_t>(mesh.cover_node[c]);
+    nx[i] = mesh.node_xy[2 * node];
+    ny[i] = mesh.node_xy[2 * node + 1];
+  }
+  const double twice = (nx[1] - nx[0]) * (ny[2] - ny[0]) - (nx[2] - nx[0]) * (ny[1] - ny[0]);
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  return ((nx[i] - x) * (ny[j] - y) - (nx[j] - x) * (ny[i] - y)) / twice;
+}
+
+}  // namespace
+
+std::vector<double> absorbing_reaction_onto(const std::vector<double>& r, const CoverSpace& old_space,
+                                            const std::vector<std::int32_t>& cover_parent, const Model& model,
+                                            const CoverSpace& space) {
+  if (r.empty()) return {};
+  const Mesh& mesh = model.mesh();
+  const std::size_t nc = mesh.cover_count(), dpc = static_cast<std::size_t>(space.dofs_per_cover());
+  // Each new cover's weight on the absorbing edges (w) and over its elements (a), as cut.
+  std::vector<double> w(nc, 0.0), a(nc, 0.0);
+  for (const auto& edges : model.absorbing_edges())
+    for (const BoundaryEdge& be : edges) {
+      const auto e = static_cast<std::size_t>(be.element);
+      const double* p = &mesh.loop_xy[2 * static_cast<std::size_t>(be.vertex)];
+      const double* q = &mesh.loop_xy[2 * static_cast<std::size_t>(be.next)];
+      const double len = std::hypot(q[0] - p[0], q[1] - p[1]), mx = 0.5 * (p[0] + q[0]), my = 0.5 * (p[1] + q[1]);
+      for (int k = 0; k < 3; ++k)
+        w[static_cast<std::size_t>(mesh.element_covers[3 * e + static_cast<std::size_t>(k)])] +=
+            len * cover_weight(mesh, e, k, mx, my);
+    }
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    // The loop's area and centroid (shoelace).
+    const auto b = static_cast<std::size_t>(mesh.element_loop_offset[e]), end = static_cast<std::size_t>(mesh.element_loop_offset[e + 1]);
+    double area2 = 0, cx = 0, cy = 0;
+    for (std::size_t v = b; v < end; ++v) {
+      const std::size_t u = v + 1 < end ? v + 1 : b;
+      const double x0 = mesh.loop_xy[2 * v], y0 = mesh.loop_xy[2 * v + 1], x1 = mesh.loop_xy[2 * u], y1 = mesh.loop_xy[2 * u + 1];
+      const double c = x0 * y1 - x1 * y0;
+      area2 += c;
+      cx += (x0 + x1) * c;
+      cy += (y0 + y1) * c;
+    }
+    if (!(std::abs(area2) > 0)) continue;
+    cx /= 3 * area2;
+    cy /= 3 * area2;
+    for (int k = 0; k < 3; ++k)
+      a[static_cast<std::size_t>(mesh.element_covers[3 * e + static_cast<std::size_t>(k)])] +=
+          0.5 * std::abs(area2) * cover_weight(mesh, e, k, cx, cy);
+  }
+  // Per old block of unknowns (a cover's, shared by the covers tied to it): the new covers it
+  // goes to, and their weights' sums.
+  const std::size_t old_blocks = r.size() / dpc;
+  std::vector<double> w_sum(old_blocks, 0.0), a_sum(old_blocks, 0.0);
+  std::vector<int> first_new(old_blocks, -1), pieces(old_blocks, 0);
+  std::vector<std::uint8_t> one_block(old_blocks, 1);  // all its covers go to one new block
+  const auto old_block = [&](std::size_t c) {
+    return static_cast<std::size_t>(old_space.first_unknown(static_cast<std::size_t>(cover_parent[c]))) / dpc;
+  };
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::size_t U = old_block(c);
+    const int u = space.first_unknown(c);
+    w_sum[U] += w[c];
+    a_sum[U] += a[c];
+    ++pieces[U];
+    if (first_new[U] < 0) first_new[U] = u;
+    else if (first_new[U] != u) one_block[U] = 0;
+  }
+  std::vector<double> out(static_cast<std::size_t>(space.unknowns()), 0.0);
+  std::vector<std::uint8_t> copied(old_blocks, 0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::size_t U = old_block(c);
+    const auto u = static_cast<std::size_t>(space.first_unknown(c));
+    if (one_block[U]) {  // not parted: the same force on the same covers, bit for bit
+      if (copied[U]) continue;
+      copied[U] = 1;
+      for (std::size_t j = 0; j < dpc; ++j) out[u + j] = r[dpc * U + j];
+      continue;
+    }
+    const double share = w_sum[U] > 0 ? w[c] / w_sum[U] : a_sum[U] > 0 ? a[c] / a_sum[U] : 1.0 / pieces[U];
+    for (std::size_t j = 0; j < dpc; ++j) out[u + j] += share * r[dpc * U + j];
+  }
+  return out;
+}
+
 AbsorbingWork absorbing_work(const Model& model, const StepContext& step, const Eigen::VectorXd& d) {
   AbsorbingWork w;
   if (dashpots_act(model, step)) {

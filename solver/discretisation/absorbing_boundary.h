@@ -35,15 +35,28 @@
 // absorbed. The reaction is taken again only when a restart's scene changes the absorbing
 // polylines.
 //
+// Cracks that re-cut the mesh (docs/fracture.md) leave the dashpots as they were per length: the
+// model built on the new mesh lays them on its boundary edges under the polylines, an edge a crack
+// reaches split in two, each with C of its own length. The carried reaction is a force on the
+// unknowns of the mesh before; each cover's part follows it onto the pieces of the cover
+// (absorbing_reaction_onto): a cover not cut keeps it bit for bit, a cover a crack parts shares it
+// out by the pieces' weight on the absorbing edges, w_c = ∫ φ_c ds over them (the boundary
+// carries the reaction), or where none of its pieces has such an edge by their weight over their
+// elements, ∫ φ_c dA (at cover order 0 φ_c is the triangle's linear weight, so both are exact as
+// length × φ_c at the edge's middle and area × φ_c at the element's centroid). The parts sum to
+// the cover's, so the reaction's resultant is unchanged.
+//
 // Energy (energy.csv, docs/energy.md): each accepted step adds the dashpots' work
 // v1_eᵀ·C_e·d_e (≥ 0: the energy they take out) to RunState::absorbed_work, and the work of the
 // input traction and of the carried reaction, (f_in + r)ᵀ·d, to RunState::absorbing_load_work.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "solver/discretisation/cover_space.h"
 #include "solver/discretisation/model.h"
 #include "solver/discretisation/step_context.h"
 #include "solver/discretisation/system_matrix.h"
@@ -68,6 +81,13 @@ bool absorbing_reaction_due(const SceneDef& scene, const RunState& s);
 /// beyond them carry none).
 std::vector<double> absorbing_reaction_of(const Model& model, const Configuration& config,
                                           const Eigen::VectorXd& residual, int cover_unknowns);
+
+/// The carried reaction r (on the unknowns of `old_space`, the cover space of the mesh before a
+/// re-cut) carried onto `model`'s mesh, re-cut from it (cover_parent: [new cover] the old cover
+/// it is a piece of), whose cover space is `space`; see "Cracks that re-cut the mesh" above.
+std::vector<double> absorbing_reaction_onto(const std::vector<double>& r, const CoverSpace& old_space,
+                                            const std::vector<std::int32_t>& cover_parent, const Model& model,
+                                            const CoverSpace& space);
 
 /// The work of an accepted step of increment d (J/m): the dashpots' v1ᵀC_e d (≥ 0) and the
 /// input traction's and the carried reaction's (f_in + r)ᵀd, as absorbing_terms() applied them.

@@ -25,6 +25,11 @@ bool AbsorbingEffect::install(RunState& s, const std::string& name) {
   return true;  // the reaction is on the covers' unknowns: a factorisation still fits
 }
 
+void AbsorbingEffect::carry_over(const MeshPieces& from, RunState& s) const {
+  s.absorbing_reaction =
+      absorbing_reaction_onto(s.absorbing_reaction, from.old_space, from.cover_parent, model_, space_);
+}
+
 Outcome AbsorbingEffect::begin_step(EffectStep& step) {
   if (!absorbing_reaction_due(model_.scene(), step.s)) return {};
   // Cleared first: the force at rest is the state's without a carried reaction (the form's

@@ -23,6 +23,10 @@ class AbsorbingEffect final : public Effect {
   /// A checkpoint's carried reaction where its scene had the same polylines (else it is taken
   /// again at the first step); none kept, and no work, when the scene has no absorbing boundary.
   bool install(RunState& s, const std::string& name) override;
+  /// After cracks re-cut the mesh: the carried reaction onto the new covers (absorbing_boundary.h
+  /// absorbing_reaction_onto; the dashpots are laid by the new model on the re-cut edges); the
+  /// work so far is the state's and carries on unchanged.
+  void carry_over(const MeshPieces& from, RunState& s) const override;
   Outcome begin_step(EffectStep& step) override;
   void commit(EffectStep& step, const Eigen::VectorXd& d) override;
   void effect_names(const RunState& /*s*/, std::vector<std::string>& names) const override {

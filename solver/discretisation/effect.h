@@ -34,7 +34,9 @@
 #include <Eigen/Dense>
 #include <nlohmann/json_fwd.hpp>
 
+#include "common/mesh.h"
 #include "common/outcome.h"
+#include "solver/discretisation/cover_space.h"
 #include "solver/discretisation/effect_energy.h"
 #include "solver/discretisation/effect_output.h"
 #include "solver/discretisation/run_state.h"
@@ -69,6 +71,17 @@ struct EffectStep {
   bool pattern_changed = false;  ///< set by begin_step: the coupling groups changed, the stepper builds the pattern again
 };
 
+/// Where the pieces of a mesh that cracks re-cut came from (preprocess/recut.h RecutMap: the
+/// solver's discretisation does not see the preprocessor), for Effect::carry_over.
+struct MeshPieces {
+  const Mesh& old;                                  ///< the mesh before the re-cut
+  const CoverSpace& old_space;                      ///< its cover space (unknowns, ties)
+  const std::vector<std::int32_t>& element_parent;  ///< [new me] the old element it is (a piece of)
+  const std::vector<std::int32_t>& cover_parent;    ///< [new pc] the old cover it is (a piece of)
+  /// [new loop vertex] the old loop vertex at the same point, or -1 (a vertex the cut made)
+  const std::vector<std::int32_t>& vertex_parent;
+};
+
 /// What a solve of the step gives back (Effect::solve).
 struct StepSolution {
   Eigen::VectorXd d;         ///< the increment of every unknown
@@ -98,6 +111,13 @@ class Effect : public EffectOutput, public EffectEnergy {
   virtual std::size_t groups(const RunState& /*s*/) const { return 0; }
   /// Appends its coupling groups' unknowns to a pattern's offsets and dofs (system_matrix.h).
   virtual void add_groups(const RunState& /*s*/, std::vector<int>& /*offsets*/, std::vector<int>& /*dofs*/) const {}
+  /// After cracks re-cut the mesh (solver/stepping/mesh_change.h), on this effect's new mesh:
+  /// carries what it keeps in s, given on `from.old`, onto this mesh (the step's start is taken
+  /// again on it). The cover fields, the stress and the tracked points of RunState are carried
+  /// by the re-cut itself (solver/fracture/state_transfer.h); what an effect keeps of its own
+  /// that names elements, covers or unknowns of the mesh (a bolt's ties, the absorbing
+  /// boundaries' carried reaction) is the effect's to carry.
+  virtual void carry_over(const MeshPieces& /*from*/, RunState& /*s*/) const {}
   /// "the slip of bolt 2 at its point 5" for an unknown of its own, "" for another.
   virtual std::string describe_unknown(int /*unknown*/) const { return {}; }
 

@@ -102,6 +102,10 @@ bool BoltEffect::install(RunState& s, const std::string& /*name*/) {
          });
 }
 
+void BoltEffect::carry_over(const MeshPieces& from, RunState& s) const {
+  retie_bolts(from.old, model_.mesh(), from.element_parent, from.vertex_parent, s.bolts);
+}
+
 void BoltEffect::number(const RunState& s, int first_unknown, std::size_t first_group) {
   bolts_.number(s.bolts, first_unknown);
   first_group_ = first_group;

@@ -3,7 +3,8 @@
 // their slips as unknowns of their own after the covers', their coupling groups after the
 // elements', each step's springs linearised at its start, judged at its solution (solve again
 // while a spring switches, up to BoltSystem::kMaxRounds solves) and committed on the accepted
-// step into RunState::bolts.
+// step into RunState::bolts. When cracks re-cut the mesh, the bolts are tied again to the pieces
+// of rock their points lie in (carry_over), so a bolt holds the pieces a crack parts.
 #pragma once
 
 #include <cstddef>
@@ -30,6 +31,9 @@ class BoltEffect final : public Effect {
   std::size_t groups(const RunState& /*s*/) const override { return bolts_.groups(); }
   void add_groups(const RunState& s, std::vector<int>& offsets, std::vector<int>& dofs) const override;
   std::string describe_unknown(int unknown) const override { return bolts_.describe_unknown(unknown); }
+  /// After cracks re-cut the mesh: each bolt's points tied again to the pieces of rock that hold
+  /// them (bolt_layout.h retie_bolts); its forces, slips and history carried unchanged.
+  void carry_over(const MeshPieces& from, RunState& s) const override;
   Outcome begin_step(EffectStep& step) override;
   void add_at_rest(EffectStep& rest) override;
   void assemble(EffectStep& step) override;

@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "common/error.h"
+#include "common/ring_geometry.h"
 #include "solver/discretisation/excavation.h"
 #include "solver/discretisation/point_location.h"
 
@@ -82,7 +84,87 @@ BoltState install(const SceneDef& scene, std::size_t i, const Mesh& mesh, const 
   return b;
 }
 
+/// m, how deep p lies in element e's loop as cut: its distance to the loop, negative outside.
+double depth_in(const Mesh& mesh, std::int32_t e, const Vec2& p) {
+  const std::size_t b = static_cast<std::size_t>(mesh.element_loop_offset[static_cast<std::size_t>(e)]);
+  const std::size_t n = static_cast<std::size_t>(mesh.element_loop_offset[static_cast<std::size_t>(e) + 1]) - b;
+  const double* xy = mesh.loop_xy.data() + 2 * b;
+  const double d = distance_to_loop(xy, n, p.x, p.y);
+  return point_in_loop(xy, n, p.x, p.y) ? d : -d;
+}
+
+/// A face of element e of `now` that the re-cut made a joint face (a crack's: not one of `old`,
+/// whose vertex it came from is vertex_parent's) passes within tol of p (as cut).
+bool crack_face_near(const Mesh& old, const Mesh& mesh, const std::vector<std::int32_t>& vertex_parent, std::int32_t e,
+                     const Vec2& p, double tol) {
+  const auto b = static_cast<std::size_t>(mesh.element_loop_offset[static_cast<std::size_t>(e)]);
+  const auto end = static_cast<std::size_t>(mesh.element_loop_offset[static_cast<std::size_t>(e) + 1]);
+  for (std::size_t v = b; v < end; ++v) {
+    const std::int32_t was = vertex_parent[v];
+    if (mesh.loop_edge_joint[v] < 0 || (was >= 0 && old.loop_edge_joint[static_cast<std::size_t>(was)] >= 0)) continue;
+    const std::size_t u = v + 1 < end ? v + 1 : b;
+    const double edge[4] = {mesh.loop_xy[2 * v], mesh.loop_xy[2 * v + 1], mesh.loop_xy[2 * u], mesh.loop_xy[2 * u + 1]};
+    if (distance_to_loop(edge, 2, p.x, p.y) <= tol) return true;
+  }
+  return false;
+}
+
+/// The element of `now` a bolt point p as cut is tied to: p was in element `was` of `old`, whose
+/// pieces are `pieces`; `toward`: as cut, the point the bolt runs to from it (retie_bolts).
+std::int32_t piece_for(const Mesh& old, std::int32_t was, const Mesh& now, const std::vector<std::int32_t>& vertex_parent,
+                       const std::vector<std::int32_t>& pieces, const Vec2& p, const Vec2& toward) {
+  const double tol = 1e-9 * now.mesh_size;
+  std::vector<std::int32_t> near = pieces;
+  // A point on its element's edge may lie on a crack cut along that edge: the elements across it
+  // are candidates too (found by a scan: only for such points).
+  if (depth_in(old, was, p) <= tol)
+    for (std::size_t e = 0; e < now.element_count(); ++e) {
+      const auto ei = static_cast<std::int32_t>(e);
+      if (std::find(near.begin(), near.end(), ei) == near.end() && depth_in(now, ei, p) >= -tol) near.push_back(ei);
+    }
+  std::int32_t best = -1;
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const std::int32_t e : pieces)
+    if (const double d = depth_in(now, e, p); d > deepest) deepest = d, best = e;
+  // A crack through p: a face the re-cut made a joint face, of an element within tol of p, passes
+  // within tol of it. The rock the bolt runs into decides; elsewhere (p on a mesh edge or an
+  // earlier joint) the piece of its own element that holds it, as before the re-cut.
+  if (deepest > tol) return best;
+  near.erase(std::remove_if(near.begin(), near.end(), [&](std::int32_t e) { return depth_in(now, e, p) < -tol; }),
+             near.end());
+  if (near.size() < 2 ||
+      std::none_of(near.begin(), near.end(), [&](std::int32_t e) { return crack_face_near(old, now, vertex_parent, e, p, tol); }))
+    return best;
+  const double dx = toward.x - p.x, dy = toward.y - p.y, l = std::hypot(dx, dy);
+  if (!(l > 0)) return best;
+  const double step = 1e-6 * now.mesh_size;
+  const Vec2 probe{p.x + step * dx / l, p.y + step * dy / l};
+  deepest = -std::numeric_limits<double>::infinity();
+  for (const std::int32_t e : near)
+    if (const double d = depth_in(now, e, probe); d > deepest) deepest = d, best = e;
+  return best;
+}
+
 }  // namespace
+
+void retie_bolts(const Mesh& old, const Mesh& now, const std::vector<std::int32_t>& element_parent,
+                 const std::vector<std::int32_t>& vertex_parent, std::vector<BoltState>& bolts) {
+  std::vector<std::vector<std::int32_t>> pieces(old.element_count());
+  for (std::size_t e = 0; e < element_parent.size(); ++e)
+    pieces[static_cast<std::size_t>(element_parent[e])].push_back(static_cast<std::int32_t>(e));
+  for (BoltState& b : bolts) {
+    // Decided on the points as they were before any is moved to its piece.
+    std::vector<std::int32_t> tied(b.nodes.size());
+    for (std::size_t k = 0; k < b.nodes.size(); ++k) {
+      const TrackedPoint& p = b.nodes[k];
+      const TrackedPoint& q = b.nodes[k + 1 < b.nodes.size() ? k + 1 : k - 1];
+      const std::vector<std::int32_t>& of = pieces[static_cast<std::size_t>(p.element)];
+      tied[k] = of.empty() ? locate_point(now, now.loop_xy, {p.x0, p.y0}).element
+                           : piece_for(old, p.element, now, vertex_parent, of, {p.x0, p.y0}, {q.x0, q.y0});
+    }
+    for (std::size_t k = 0; k < b.nodes.size(); ++k) b.nodes[k].element = tied[k];
+  }
+}
 
 double installed_length(const TrackedPoint& a, const TrackedPoint& b) { return std::hypot(b.x0 - a.x0, b.y0 - a.y0); }
 

@@ -41,6 +41,22 @@ double tributary_length(const std::vector<TrackedPoint>& points, std::size_t i);
 /// bolt, whose spring is one segment between its ends.
 int bolt_segments(const BoltDef& bolt, double mesh_size);
 
+/// A run's bolts after cracks re-cut its mesh from `old` to `now` (element_parent: [now's
+/// element] the old element it is a piece of; vertex_parent: [now's loop vertex] the old one at
+/// its point or -1; preprocess/recut.h): each point is tied again to the piece of its element
+/// that holds it as cut (x0, y0). A crack through the point itself (a face the re-cut made a
+/// joint face within 1e-9·h of it, of a piece of its element or, for a point on its element's
+/// edge, of an element across: a crack cut along that edge) is decided by the rock the bolt runs
+/// into from it: the element holding the point moved 1e-6·h along the bolt towards its next
+/// point (the last point: towards the one before), as cut — so the decision does not hang on the
+/// rounding of a point on a crack face, and an anchor on a crack stays with the rock its bolt
+/// runs through.
+/// Nothing else of a bolt changes: its current points, forces, slips, yield and plastic work are
+/// those of the same rock, carried unchanged (the pieces' cover functions are their parent's:
+/// solver/fracture/state_transfer.h).
+void retie_bolts(const Mesh& old, const Mesh& now, const std::vector<std::int32_t>& element_parent,
+                 const std::vector<std::int32_t>& vertex_parent, std::vector<BoltState>& bolts);
+
 /// The bolts of a run at state s (its step s.step, excavated bodies s.body_removed): `previous`'s
 /// where they are the scene's, the others installed now. InputError
 /// naming `scene_name` and /bolts/i/points for a bolt point outside the rock.

@@ -47,9 +47,14 @@ std::string MeshBound::describe_unknown(int unknown) const {
   return "unknown " + std::to_string(unknown);
 }
 
-void MeshBound::continue_from(MeshBound& before, std::vector<ContactHistory> history, RunState& s) {
+void MeshBound::continue_from(MeshBound& before, std::vector<ContactHistory> history, const pre::RecutMap* map,
+                              RunState& s) {
   contact.continue_from(before.contact, std::move(history));
   flow.continue_from(before.flow, s);
+  if (!map) return;
+  const MeshPieces from{before.model.mesh(), before.space, map->element_parent, map->cover_parent,
+                        map->vertex_parent};
+  for (const Effect* e : effects) e->carry_over(from, s);
 }
 
 void MeshBound::restore_contact_history(const std::string& bytes, const std::string& name) {

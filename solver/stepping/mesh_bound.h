@@ -19,6 +19,7 @@
 
 #include "common/mesh.h"
 #include "common/scene.h"
+#include "preprocess/recut.h"
 #include "solver/contact/contact_effect.h"
 #include "solver/discretisation/absorbing_effect.h"
 #include "solver/discretisation/configuration.h"
@@ -73,8 +74,11 @@ struct MeshBound {
   /// its point 5".
   std::string describe_unknown(int unknown) const;
   /// Carries on from the contacts of `before` (the mesh before a re-cut) with `history`, and
-  /// carries the flow state in `s` (on `before`'s network) onto this mesh's.
-  void continue_from(MeshBound& before, std::vector<ContactHistory> history, RunState& s);
+  /// carries the flow state in `s` (on `before`'s network) onto this mesh's; with `map` (the
+  /// re-cut from `before`'s mesh: null at a restart, whose state is read afterwards) every
+  /// effect carries its own part of s over (Effect::carry_over).
+  void continue_from(MeshBound& before, std::vector<ContactHistory> history, const pre::RecutMap* map,
+                     RunState& s);
   /// The contact history: with the RunState, what a step carries to the next (run_state.h).
   const std::vector<ContactHistory>& contact_history() const { return contact.set().history(); }
   /// Restores the contact history from a checkpoint's bytes (`name` names it in errors).

@@ -296,7 +296,9 @@ Outcome TimeStepper::attempt(double dt) {
 void TimeStepper::change_mesh(NewMesh m) {
   // Composed with the step's earlier re-cuts: the observers last saw the mesh of the last
   // accepted step, not the one this cut started from.
-  if (recut_step_ == s_.step && recut_.element_parent.size() == mesh().element_count()) {
+  const bool again = recut_step_ == s_.step && recut_.element_parent.size() == mesh().element_count();
+  replace_mesh(std::move(m.mesh), std::move(m.scene), std::move(m.history), &m.map);
+  if (again) {
     recut_ = compose(m.map, recut_);
   } else {
     recut_ = std::move(m.map);
@@ -304,15 +306,14 @@ void TimeStepper::change_mesh(NewMesh m) {
     recut_step_ = s_.step;
   }
   ++topology_;
-  replace_mesh(std::move(m.mesh), std::move(m.scene), std::move(m.history));
   apply_removed();
   recut_start_ = s_;
 }
 
 void TimeStepper::replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,
-                               std::vector<ContactHistory> history) {
+                               std::vector<ContactHistory> history, const pre::RecutMap* map) {
   auto bound = std::make_unique<MeshBound>(*mesh, *scene, scene_name_, changes_.joints_added());
-  bound->continue_from(*b_, std::move(history), s_);
+  bound->continue_from(*b_, std::move(history), map, s_);
   b_ = std::move(bound);  // before the mesh and scene it referred to go
   own_mesh_ = std::move(mesh);
   own_scene_ = std::move(scene);

@@ -122,10 +122,12 @@ class TimeStepper : private StepHost {
   /// the observers' map of the step's re-cuts composed.
   void change_mesh(NewMesh m);
   /// mesh_ and scene_ become `mesh` and `scene` (owned), and what is derived from them is built
-  /// again, with the contact history `history`. The state s_ is not touched: the caller carries
-  /// it onto the new mesh (or restores it) and then applies the removed elements.
+  /// again, with the contact history `history`. The caller carries the state s_ onto the new
+  /// mesh (or restores it) and then applies the removed elements; with `map` (a re-cut: s_ is
+  /// the step's start already carried by it) the effects carry their own parts of s_ over
+  /// (Effect::carry_over: a bolt's ties, the absorbing boundaries' reaction).
   void replace_mesh(std::unique_ptr<Mesh> mesh, std::unique_ptr<SceneDef> scene,
-                    std::vector<ContactHistory> history);
+                    std::vector<ContactHistory> history, const pre::RecutMap* map = nullptr);
 
   const Mesh& mesh() const { return *mesh_; }
   const SceneDef& scene() const { return *scene_; }
