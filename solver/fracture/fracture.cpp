@@ -153,7 +153,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       }
     return best;
   };
-  auto add = [&](std::size_t e, const Vec2& a, const Vec2& b, std::int32_t crack) {
+  auto add = [&](std::size_t e, const Vec2& a, const Vec2& b, std::int32_t crack, CrackMode mode) {
     if (a == b) {  // a tip that grew by nothing: no segment (the cutter takes none)
       crossed_[e] = 1;
       return;
@@ -163,7 +163,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     seg.b = b;
     seg.a_now = current_point(mesh, s.cover_xy, e, a);
     seg.b_now = current_point(mesh, s.cover_xy, e, b);
-    seg.mode = failure_[e].mode;
+    seg.mode = mode;
     seg.crack = crack;
     seg.step = s.step;
     seg.time = s.time;
@@ -174,8 +174,9 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // or leaves the bodies, stops growing for good.
   // `forced`: how many elements that hold it crosses all the same, straight on (rules 4 and 5
   // of fracture.h: a crack that has not parted its element, a tip reaching for the element
-  // ahead that breaks).
-  auto grow = [&](Tip& tip, int forced) {
+  // ahead that breaks), in the mode of the element beyond its strength that drives it (`drive`:
+  // one that holds has no mode of its own).
+  auto grow = [&](Tip& tip, int forced, CrackMode drive) {
     for (std::size_t guard = 0; guard < n; ++guard) {
       const std::int32_t e = grid().at(plus(tip.at, 1e-6 * h, tip.dir));
       if (e < 0) {
@@ -194,7 +195,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       RayExit exit;
       if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
       const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
-      add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack);
+      add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack, holds ? drive : failure_[e].mode);
       const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
       tip.at = c.at;
       tip.dir = l > 0 ? Vec2{dx / l, dy / l} : d;
@@ -205,7 +206,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     }
   };
   for (std::size_t t = 0; t < tips_.size(); ++t)
-    if (tips_[t].active) grow(tips_[t], 0);
+    if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
   // At most one new crack, and only where no crack grew: the step is solved again with what grew
   // (time_stepper.cpp attempt), and the stress a grown crack relieves must not start another.
   if (!out.empty()) return out;
@@ -281,7 +282,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         }
       }
       if (tip < tips_.size()) {
-        grow(tips_[tip], between);
+        grow(tips_[tip], between, failure_[static_cast<std::size_t>(best)].mode);
         if (!out.empty()) return out;
       }
     }
@@ -289,7 +290,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     // Its crack grows on from its tips, through one element each even where it holds, then on
     // through those that break: the step is solved again on it.
     const std::size_t i = static_cast<std::size_t>(std::find(over_.begin(), over_.end(), best) - over_.begin());
-    for (const std::size_t t : regrow[i]) grow(tips_[t], 1);
+    for (const std::size_t t : regrow[i]) grow(tips_[t], 1, failure_[static_cast<std::size_t>(best)].mode);
     if (!out.empty()) return out;
     candidates.erase(std::find(candidates.begin(), candidates.end(), best));
   }
@@ -302,12 +303,12 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       const std::int32_t crack = cracks_++;
       // Each end as a crack leaving the element from the other end.
       const CrackEnd f = crack_end(mesh, e, back.at, fwd), r = crack_end(mesh, e, f.at, back);
-      add(e, r.cut_to, f.cut_to, crack);
+      add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);
       const std::size_t first = tips_.size();
       for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
         tips_.push_back({end.at, dir, crack, !end.stops});
       for (std::size_t t = first; t < tips_.size(); ++t)
-        if (tips_[t].active) grow(tips_[t], 0);
+        if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
     }
   }
   return out;
