@@ -9,6 +9,7 @@
 #include "solver/discretisation/state_bytes.h"
 #include "solver/fracture/crack_parting.h"
 #include "solver/fracture/element_geometry.h"
+#include "solver/fracture/tip_drive.h"
 
 namespace nmm::solve {
 
@@ -172,11 +173,33 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   };
   // On from a tip while the element ahead breaks; a tip that reaches a body boundary or a joint,
   // or leaves the bodies, stops growing for good.
-  // `forced`: how many elements that hold it crosses all the same, straight on (rules 4 and 5
-  // of fracture.h: a crack that has not parted its element, a tip reaching for the element
-  // ahead that breaks), in the mode of the element beyond its strength that drives it (`drive`:
-  // one that holds has no mode of its own).
+  // `forced` > 0: the tip may cross elements that hold (rules 6 and 7 of fracture.h: a crack that
+  // has not parted its element, a tip reaching for the element ahead that breaks), straight on and
+  // only as a rock bridge (tip_drive.h), in the mode of the element beyond its strength that
+  // drives it (`drive`: one that holds has no mode of its own).
+  // The holding elements straight ahead of `tip` that its crack crosses as a rock bridge
+  // (tip_drive.h): how many there are before the line reaches a stop or an element beyond its
+  // strength, at most kBridgeElements, each driven on along the line in `drive`'s mode; −1 where
+  // the line does not link so.
+  auto bridge = [&](const Tip& tip, CrackMode drive) {
+    Vec2 p = tip.at;
+    for (int k = 0; k < kBridgeElements; ++k) {
+      const std::int32_t el = grid().at(plus(p, 1e-6 * h, tip.dir));
+      if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity())) return -1;
+      if (ratio_[el] >= 1) return k;
+      const std::size_t u = static_cast<std::size_t>(el);
+      const StrengthDef& st = scene.materials[scene.bodies[mesh.element_body[u]].material].strength;
+      if (!drives_line_ahead(st, s.stress[3 * u], s.stress[3 * u + 1], s.stress[3 * u + 2], tip.dir, drive)) return -1;
+      RayExit exit;
+      if (!ray_exit(mesh, u, p, tip.dir, tol, exit)) return -1;
+      const CrackEnd c = crack_end(mesh, u, p, exit);
+      if (c.stops) return k + 1;
+      p = c.at;
+    }
+    return -1;
+  };
   auto grow = [&](Tip& tip, int forced, CrackMode drive) {
+    bool bridged = false;  // the holding elements ahead were weighed (bridge) once this growth
     for (std::size_t guard = 0; guard < n; ++guard) {
       const std::int32_t e = grid().at(plus(tip.at, 1e-6 * h, tip.dir));
       if (e < 0) {
@@ -186,6 +209,12 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       if (crossed_[e] || !(ratio_[e] > -std::numeric_limits<double>::infinity())) return;
       const bool holds = ratio_[e] < 1;
       if (holds && forced <= 0) return;
+      if (holds && !bridged) {  // only as a rock bridge to a stop (tip_drive.h)
+        const int span = bridge(tip, drive);
+        if (span < 0) return;
+        forced = span;
+        bridged = true;
+      }
       if (holds) --forced;
       // In a material with a toughness the tip's own field decides (tip_growth.h), not the
       // element ahead's stress: the strength rule only starts cracks there.

@@ -19,11 +19,14 @@
 // a body, so a crack grows on from a joint as from a crack.
 //   4. a disarmed element still beyond its strength whose crack has not parted it (a piece
 //      across its crack shares one of its covers, crack_parting.h) is re-armed: it competes with
-//      the new cracks of 2 by its ratio, and where it wins, its own crack's active tips grow on,
-//      through one element each even where it holds, instead of a new crack starting in it;
+//      the new cracks of 2 by its ratio, and where it wins, its own crack's active tips grow on
+//      instead of a new crack starting in it;
 //   5. a new crack of 2 whose element lies straight ahead of an active tip, within three
-//      elements, is that tip's: the tip grows to it through the elements between (even where
-//      they hold) instead of a second crack starting in line with the first.
+//      elements, is that tip's: the tip grows to it instead of a second crack starting in line
+//      with the first;
+//   in 4 and 5 a tip crosses elements that hold only as a rock bridge (tip_drive.h): straight on
+//   through at most three of them, each pulled open (tensile) or sliding (shear) along the line
+//   by its own stress, to a body boundary, a joint, a crack face or an element that breaks.
 // Cracks are cut in the mesh as cut (the reference configuration); their directions come from
 // the current stress, turned into that configuration by each element's own affine map
 // (element_geometry.h).
