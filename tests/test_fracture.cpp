@@ -726,11 +726,10 @@ TEST(Fracture, NotchedBeamBalancesItsEnergyThroughCracking) {
   EXPECT_NEAR(end.at("load_work"), r.trapezoid_work, 0.005 * r.trapezoid_work);
   // Not yet within 1 %: the steps where the crack runs up into the compressed top (its faces'
   // contacts closing and opening within the step: ½ r·d is exact for a linear step only) leave
-  // 0.4 J/m of the 2.9 J/m the load does (measured 2026-11-29: 13.8 % at worst). Since re-armed
-  // elements grow their cracks on (docs/fracture.md "The rule", 6) the crack runs up the
-  // ligament at 9.6 kN/m and the end's residual is 0.366 of 1.79 J/m (20.4 %), 0.26 J/m of it
-  // in one step (247). Bounded here so that a jump like the 180 J/m of the uncomposed maps fails.
-  EXPECT_LT(std::abs(end.at("residual")), 0.25 * end.at("load_work"));
+  // 0.4 J/m of the 2.9 J/m the load does (measured 2026-11-29: 13.8 % at worst; with the re-armed
+  // elements' rock bridges 9.75, 7.81, 7.81 and 14.1 % on SkylakeX, Haswell, Zen and Prescott).
+  // Bounded here so that a jump like the 180 J/m of the uncomposed maps fails.
+  EXPECT_LT(std::abs(end.at("residual")), 0.2 * end.at("load_work"));
 }
 
 // A re-cut moves no energy between columns: the bar loaded to 75 % of its strength, and the same
