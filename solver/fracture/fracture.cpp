@@ -179,17 +179,17 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // drives it (`drive`: one that holds has no mode of its own).
   // The holding elements straight ahead of `tip` that its crack crosses as a rock bridge
   // (tip_drive.h): how many there are before the line reaches a stop or an element beyond its
-  // strength, at most kBridgeElements, each driven on along the line in `drive`'s mode; −1 where
-  // the line does not link so.
+  // strength, at most kBridgeElements, each pulled open across the line; −1 where the line does
+  // not link so, or where the crack that drives it is a shear one.
   auto bridge = [&](const Tip& tip, CrackMode drive) {
+    if (drive != CrackMode::tensile) return -1;  // shear cracks cross no holding rock (tip_drive.h)
     Vec2 p = tip.at;
     for (int k = 0; k < kBridgeElements; ++k) {
       const std::int32_t el = grid().at(plus(p, 1e-6 * h, tip.dir));
       if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity())) return -1;
       if (ratio_[el] >= 1) return k;
       const std::size_t u = static_cast<std::size_t>(el);
-      const StrengthDef& st = scene.materials[scene.bodies[mesh.element_body[u]].material].strength;
-      if (!drives_line_ahead(st, s.stress[3 * u], s.stress[3 * u + 1], s.stress[3 * u + 2], tip.dir, drive)) return -1;
+      if (!pulls_line_open(s.stress[3 * u], s.stress[3 * u + 1], s.stress[3 * u + 2], tip.dir)) return -1;
       RayExit exit;
       if (!ray_exit(mesh, u, p, tip.dir, tol, exit)) return -1;
       const CrackEnd c = crack_end(mesh, u, p, exit);

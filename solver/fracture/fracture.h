@@ -24,9 +24,10 @@
 //   5. a new crack of 2 whose element lies straight ahead of an active tip, within three
 //      elements, is that tip's: the tip grows to it instead of a second crack starting in line
 //      with the first;
-//   in 4 and 5 a tip crosses elements that hold only as a rock bridge (tip_drive.h): straight on
-//   through at most three of them, each pulled open (tensile) or sliding (shear) along the line
-//   by its own stress, to a body boundary, a joint, a crack face or an element that breaks.
+//   in 4 and 5 a tensile crack's tip crosses elements that hold only as a rock bridge
+//   (tip_drive.h): straight on through at most three of them, each pulled open across the line
+//   by its own stress, to a body boundary, a joint, a crack face or an element that breaks; a
+//   shear crack crosses none.
 // Cracks are cut in the mesh as cut (the reference configuration); their directions come from
 // the current stress, turned into that configuration by each element's own affine map
 // (element_geometry.h).
