@@ -42,7 +42,6 @@
 #include "common/whole_file.h"
 #include "preprocess/cover_cutter.h"
 #include "preprocess/recut.h"
-#include "solver/fracture/crack_parting.h"
 #include "solver/fracture/rock_strength.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/fracture/step_start.h"
@@ -159,37 +158,6 @@ TEST(Fracture, BarInTensionCracksAcrossAtTheTensileStrength) {
   EXPECT_NEAR(length, 1.0, 0.02);  // one crack across the 1 m bar
   EXPECT_EQ(fracture_of(st.view()).crack_count(), 1);
   EXPECT_GT(st.view().mesh.element_count(), m.element_count());
-}
-
-// Rule 4 of fracture.h tells a crack that has not parted its element (crack_parting.h) by the
-// covers of the pieces across it: at cover order 0 the jump across a crack is Σ_k λ_k·(u_k⁺ − u_k⁻),
-// with no term for a node whose star the crack did not run right across. A crack 0.1 m long in
-// the 4 m bar (h 0.25 m: a star reaches h from its node) crosses no star: the pieces either side
-// keep all three covers. A crack right across the bar, from boundary to boundary, crosses every
-// star it enters: no piece shares a cover with the piece across.
-TEST(Fracture, ACrackShorterThanAStarHasNotPartedItsElements) {
-  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
-  for (const bool across : {false, true}) {
-    nlohmann::json doc = specimen(4, 1, 0.25, 0, 1e-3, strength);
-    const nlohmann::json points = across ? nlohmann::json{{2.01, -0.1}, {2.01, 1.1}} : nlohmann::json{{2.01, 0.45}, {2.01, 0.55}};
-    doc["joints"] = {{{"set", "crack"}, {"points", points}}};
-    const SceneDef s = scene_from_json(doc, "bar");
-    const Mesh m = pre::build_mesh(s, "bar");
-    const solve::TriangleElements pieces(m);
-    int cracked = 0, sharing = 0;
-    for (std::size_t e = 0; e < m.element_count(); ++e) {
-      bool on_crack = false;
-      for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v)
-        on_crack = on_crack || m.loop_edge_joint[static_cast<std::size_t>(v)] == 0;
-      if (!on_crack) continue;
-      ++cracked;
-      sharing += pieces.shares_a_cover(m, e, 0) ? 1 : 0;
-    }
-    std::printf("%s crack: %d elements on it, %d share a cover with the piece across\n", across ? "across" : "short",
-                cracked, sharing);
-    EXPECT_GE(cracked, across ? 8 : 2);
-    EXPECT_EQ(sharing, across ? 0 : cracked);
-  }
 }
 
 // c 2 MPa, φ 30°: UCS = 2c·cosφ/(1 − sinφ) = 6.93 MPa, reached at step 1386 (1 mm/s over 2 m).
@@ -796,45 +764,6 @@ TEST(Fracture, TheCutItselfMovesNoEnergy) {
   EXPECT_NEAR(b.springs, a.springs, 1e-12 * a.springs);
   EXPECT_EQ(b.kinetic, 0.0);
   EXPECT_EQ(b.gravity, 0.0);
-}
-
-// A piece is a block that contacts, supports or inertia hold, or debris (issue 48; docs/fracture.md
-// "Free pieces in static equilibrium"). In static_mode "equilibrium" (K d = F, no inertia) a block
-// a crack cuts off a held body has no support and its faces may open: K is singular on its
-// covers and the run stopped "unconstrained". Such a piece takes DDA's static inertia 2M/Δt²
-// from rest, so under a resultant F it moves d = F·Δt²/(2m) a step (m its mass per metre).
-// Here the piece is cut off by a scene joint right across a bar whose left end is on rollers and
-// a fixed point; the right block (2 m × 1 m, ρ 2500: m = 5000 kg/m) is pulled by a traction of
-// 1e5 Pa on its end (F = 1e5 N/m) away from the joint, which holds no tension: d = 1e-5 m a step
-// of 1 ms. The rock is strong (nothing cracks), so only the rule is tested.
-TEST(Fracture, AFreePieceInStaticEquilibriumTakesInertiaAndMovesByFDt2Over2m) {
-  const nlohmann::json strength = {{"tensile", 1e9}, {"cohesion", 4e9}, {"friction_deg", 35}};
-  nlohmann::json doc = specimen(4, 1, 0.25, 0, 0, strength);
-  doc["supports"] = {{{"points", {{0, 0}, {0, 1}}}, {"fix", "x"}}};
-  doc["joint_sets"]["bedding"] = doc["joint_sets"]["crack"];
-  doc["joints"] = {{{"set", "bedding"}, {"points", {{2.01, -0.1}, {2.01, 1.1}}}}};
-  doc["tractions"] = {{{"points", {{4, 0}, {4, 1}}}, {"normal", 1e5}, {"shear", 0}}};
-  doc["measure_points"] = {{3.0, 0.5}, {1.0, 0.5}};
-  doc["solver"] = {{"time_step", 1e-3}, {"steps", 6}, {"dynamic", false}, {"static_mode", "equilibrium"}};
-  const SceneDef s = scene_from_json(doc, "piece");
-  const Mesh m = pre::build_mesh(s, "piece");
-  ASSERT_EQ(m.block_count(), 2u);
-  TimeStepper st(m, s, "piece");
-  std::vector<double> ux_piece, ux_held;
-  const Outcome o = st.run_until(6e-3, [&](std::int64_t) {
-    ux_piece.push_back(st.view().state.measure[0].displacement()[0]);
-    ux_held.push_back(st.view().state.measure[1].displacement()[0]);
-  });
-  ASSERT_PRED1(test::ended_ok, o);
-  ASSERT_EQ(ux_piece.size(), 6u);
-  const double mass = 2500 * (4 - 2.01) * 1, expected = 1e5 * 1e-3 * 1e-3 / (2 * mass);  // m a step
-  for (std::size_t k = 1; k < ux_piece.size(); ++k) {
-    const double step = ux_piece[k] - ux_piece[k - 1];
-    std::printf("step %zu: piece moved %.6g m (F·Δt²/(2m) = %.6g m), held block at %.3g m\n", k + 1, step, expected,
-                ux_held[k]);
-    EXPECT_NEAR(step, expected, 0.01 * expected);
-    EXPECT_LT(std::abs(ux_held[k]), 1e-9);  // the held block carries nothing
-  }
 }
 
 }  // namespace nmm
