@@ -766,4 +766,43 @@ TEST(Fracture, TheCutItselfMovesNoEnergy) {
   EXPECT_EQ(b.gravity, 0.0);
 }
 
+// A piece is a block that contacts, supports or inertia hold, or debris (issue 48; docs/fracture.md
+// "Free pieces in static equilibrium"). In static_mode "equilibrium" (K d = F, no inertia) a block
+// a crack cuts off a held body has no support and its faces may open: K is singular on its
+// covers and the run stopped "unconstrained". Such a piece takes DDA's static inertia 2M/Δt²
+// from rest, so under a resultant F it moves d = F·Δt²/(2m) a step (m its mass per metre).
+// Here the piece is cut off by a scene joint right across a bar whose left end is on rollers and
+// a fixed point; the right block (2 m × 1 m, ρ 2500: m = 5000 kg/m) is pulled by a traction of
+// 1e5 Pa on its end (F = 1e5 N/m) away from the joint, which holds no tension: d = 1e-5 m a step
+// of 1 ms. The rock is strong (nothing cracks), so only the rule is tested.
+TEST(Fracture, AFreePieceInStaticEquilibriumTakesInertiaAndMovesByFDt2Over2m) {
+  const nlohmann::json strength = {{"tensile", 1e9}, {"cohesion", 4e9}, {"friction_deg", 35}};
+  nlohmann::json doc = specimen(4, 1, 0.25, 0, 0, strength);
+  doc["supports"] = {{{"points", {{0, 0}, {0, 1}}}, {"fix", "x"}}};
+  doc["joint_sets"]["bedding"] = doc["joint_sets"]["crack"];
+  doc["joints"] = {{{"set", "bedding"}, {"points", {{2.01, -0.1}, {2.01, 1.1}}}}};
+  doc["tractions"] = {{{"points", {{4, 0}, {4, 1}}}, {"normal", 1e5}, {"shear", 0}}};
+  doc["measure_points"] = {{3.0, 0.5}, {1.0, 0.5}};
+  doc["solver"] = {{"time_step", 1e-3}, {"steps", 6}, {"dynamic", false}, {"static_mode", "equilibrium"}};
+  const SceneDef s = scene_from_json(doc, "piece");
+  const Mesh m = pre::build_mesh(s, "piece");
+  ASSERT_EQ(m.block_count(), 2u);
+  TimeStepper st(m, s, "piece");
+  std::vector<double> ux_piece, ux_held;
+  const Outcome o = st.run_until(6e-3, [&](std::int64_t) {
+    ux_piece.push_back(st.view().state.measure[0].displacement()[0]);
+    ux_held.push_back(st.view().state.measure[1].displacement()[0]);
+  });
+  ASSERT_PRED1(test::ended_ok, o);
+  ASSERT_EQ(ux_piece.size(), 6u);
+  const double mass = 2500 * (4 - 2.01) * 1, expected = 1e5 * 1e-3 * 1e-3 / (2 * mass);  // m a step
+  for (std::size_t k = 1; k < ux_piece.size(); ++k) {
+    const double step = ux_piece[k] - ux_piece[k - 1];
+    std::printf("step %zu: piece moved %.6g m (F·Δt²/(2m) = %.6g m), held block at %.3g m\n", k + 1, step, expected,
+                ux_held[k]);
+    EXPECT_NEAR(step, expected, 0.01 * expected);
+    EXPECT_LT(std::abs(ux_held[k]), 1e-9);  // the held block carries nothing
+  }
+}
+
 }  // namespace nmm

@@ -4,6 +4,7 @@
 
 #include "solver/discretisation/absorbing_boundary.h"
 #include "solver/discretisation/newmark.h"
+#include "solver/discretisation/static_support.h"
 
 namespace nmm::solve {
 
@@ -106,6 +107,35 @@ class BoundaryTerm final : public BoundaryIntegrator {
   Term term_;
 };
 
+/// DDA's static inertia 2M/Δt² on the elements of free pieces only, in steps without inertia
+/// (static_support.h free_pieces): from rest, so only the matrix term (v0 = a0 = 0).
+class PieceInertia final : public ElementIntegrator {
+ public:
+  explicit PieceInertia(const Model& model) : model_(model) {}
+  const char* name() const override { return "piece_inertia"; }
+  bool begin(const StepContext& step) override {
+    piece_ = free_pieces(model_, step.s);
+    c_ = {step.inertia.on_d, 0, 0};
+    s_ = &step.s;
+    terms_ = step.config.space().terms();
+    return !piece_.empty();
+  }
+  void add(const ElementGeometry& g, std::size_t e, Mat6& k, Vec6& f) override {
+    if (piece_[e]) integrators::inertia(g, model_.density(e), c_, covers(e), *s_, k, f);
+  }
+  void add(const ElementGeometry& g, std::size_t e, Eigen::MatrixXd& k, Eigen::VectorXd& f) override {
+    if (piece_[e]) integrators::inertia(g, model_.density(e), c_, covers(e), *s_, terms_, k, f);
+  }
+
+ private:
+  const std::int32_t* covers(std::size_t e) const { return &model_.mesh().element_covers[3 * e]; }
+  const Model& model_;
+  std::vector<std::uint8_t> piece_;  // [me]
+  InertiaCoefficients c_;
+  const RunState* s_ = nullptr;
+  int terms_ = 1;
+};
+
 }  // namespace
 
 Form::Form(const Model& model) : model_(model) {
@@ -115,6 +145,7 @@ Form::Form(const Model& model) : model_(model) {
   if (scene.has_gravity || !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty())
     element_.push_back(std::make_unique<BodyForce>(model));
   if (model.step_inertia()) element_.push_back(std::make_unique<Inertia>(model));
+  else if (scene.fracture.present) element_.push_back(std::make_unique<PieceInertia>(model));
   using S = const StepContext&;
   if (!model.fixed_points().empty())
     boundary_.push_back(std::make_unique<BoundaryTerm>(

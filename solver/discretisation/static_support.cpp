@@ -21,14 +21,47 @@ std::string cover_node_text(const Mesh& mesh, std::int32_t c) {
 
 }  // namespace
 
-std::string unheld_block(const Model& model, const RunState& s) {
+std::vector<int> block_holds(const Model& model, const RunState& s) {
   const Mesh& mesh = model.mesh();
   std::vector<int> held(mesh.block_count(), 0);
   for (const TrackedPoint& p : s.fixed) ++held[mesh.element_block[p.element]];
   for (const auto& edges : model.support_edges())
     for (const BoundaryEdge& be : edges) held[mesh.element_block[be.element]] += 2;
+  return held;
+}
+
+std::vector<std::uint8_t> free_pieces(const Model& model, const RunState& s) {
+  const SceneDef& scene = model.scene();
+  if (model.step_inertia() || !scene.fracture.present) return {};
+  bool can_crack = false;
+  for (const MaterialDef& m : scene.materials) can_crack = can_crack || m.strength.present;
+  if (!can_crack) return {};
+  const Mesh& mesh = model.mesh();
+  const std::vector<int> held = block_holds(model, s);
+  std::vector<std::uint8_t> body_held(scene.bodies.size(), 0);
+  for (std::size_t b = 0; b < held.size(); ++b)
+    if (held[b] >= 2) body_held[static_cast<std::size_t>(mesh.block_body[b])] = 1;
+  std::vector<std::uint8_t> piece(mesh.element_count(), 0);
+  bool any = false;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const std::size_t b = static_cast<std::size_t>(mesh.element_block[e]);
+    piece[e] = held[b] < 2 && body_held[static_cast<std::size_t>(mesh.block_body[b])] ? 1 : 0;
+    any = any || piece[e];
+  }
+  if (!any) piece.clear();
+  return piece;
+}
+
+std::string unheld_block(const Model& model, const RunState& s) {
+  const Mesh& mesh = model.mesh();
+  const std::vector<int> held = block_holds(model, s);
+  const std::vector<std::uint8_t> pieces = free_pieces(model, s);
   for (std::size_t b = 0; b < held.size(); ++b) {
     if (held[b] >= 2 || s.body_removed[mesh.block_body[b]]) continue;
+    bool piece = false;  // a free piece takes inertia (free_pieces)
+    for (std::size_t e = 0; e < pieces.size() && !piece; ++e)
+      piece = pieces[e] && mesh.element_block[e] == static_cast<std::int32_t>(b);
+    if (piece) continue;
     std::size_t e = 0;
     while (mesh.element_block[e] != static_cast<std::int32_t>(b)) ++e;
     const std::int32_t c = mesh.element_covers[3 * e];
