@@ -231,10 +231,10 @@ Outcome TimeStepper::solve_step(EffectStep& step, Effect* solver, bool again, St
   return {};
 }
 
-const Eigen::VectorXd& TimeStepper::force_at_rest() {
+const Eigen::VectorXd& TimeStepper::assemble_at_rest(bool with_solver) {
   // The state's out-of-balance force with d = 0 and no inertia: the step's form at the state's
-  // own time with zero inertia coefficients (no mass term, no dashpots) and every effect's terms
-  // at rest (its springs' start forces, the contacts' forces at d = 0).
+  // own time with zero inertia coefficients (no mass term, no dashpots) and the effects' terms
+  // at rest (their springs' start forces, the contacts' forces at d = 0).
   StepContext rest = step_context(0.0);
   rest.dt = 0;
   rest.t_end = s_.time;
@@ -243,24 +243,17 @@ const Eigen::VectorXd& TimeStepper::force_at_rest() {
   b_->form.assemble(rest, system_, rhs_);
   EffectStep step = effect_step(rest);
   for (Effect* e : b_->effects)
-    if (e->active()) e->add_at_rest(step);
+    if (e->active() && (with_solver || !e->solves())) e->add_at_rest(step);
   return rhs_;
 }
 
+const Eigen::VectorXd& TimeStepper::force_at_rest() { return assemble_at_rest(true); }
+
 Eigen::VectorXd TimeStepper::force_at_rest_of_loads() {
-  // force_at_rest without the effect that solves the step: the contacts' start forces are left
-  // out (evaluating them moves their solve's starting point, and with it the step's round-off);
+  // Without the effect that solves the step: the contacts' start forces are left out
+  // (evaluating them moves their solve's starting point, and with it the step's round-off);
   // a new face's contact starts with none (state_transfer.h).
-  StepContext rest = step_context(0.0);
-  rest.dt = 0;
-  rest.t_end = s_.time;
-  rest.body_force = body_force_per_mass(scene(), s_.time);
-  rest.inertia = InertiaCoefficients{};
-  b_->form.assemble(rest, system_, rhs_);
-  EffectStep step = effect_step(rest);
-  for (Effect* e : b_->effects)
-    if (e->active() && !e->solves()) e->add_at_rest(step);
-  return rhs_.head(b_->space.unknowns());
+  return assemble_at_rest(false).head(b_->space.unknowns());
 }
 
 Outcome TimeStepper::attempt(double dt) {

@@ -95,6 +95,8 @@ class TimeStepper : private StepHost {
   /// N/m per cover unknown: force_at_rest of the state, but for the effect that solves the step
   /// (the contacts), whose state it leaves as it is (recut_start_work_).
   Eigen::VectorXd force_at_rest_of_loads();
+  /// force_at_rest (with_solver) or force_at_rest_of_loads (without the solving effect), in rhs_.
+  const Eigen::VectorXd& assemble_at_rest(bool with_solver);
   /// The effects installed or carried on from s_ (a start, a restart), numbered, and the pattern
   /// built with their groups (`name`: the scene's or checkpoint's, for errors); false: an effect's
   /// unknowns no longer fit a checkpoint's factorisation.
