@@ -460,8 +460,6 @@ const BadCase kBadCases[] = {
      "must be in (0, 1e+06] (got -0.1)"},
     {R"({"fracture": {"crack_set": "fresh"}})", "/fracture/crack_set",
      "unknown joint set \"fresh\" (known: bedding, fault)"},
-    {R"({"fracture": {"crack_set": "bedding"}, "solver": {"cover_order": 1}})", "/fracture",
-     "fracturing needs cover order 0 (solver.cover_order is 1)"},
     {R"({"joint_sets": {"bedding": {"cohesion": 1e4, "residual_cohesion": 2e4}}})",
      "/joint_sets/bedding/residual_cohesion", "must be in [0, 10000] (got 20000)"},
     {R"({"joint_sets": {"bedding": {"normal": {"kn": 0}}}})", "/joint_sets/bedding/normal/kn",
@@ -624,9 +622,8 @@ TEST(Scene, BoltsAndAbsorbingBoundariesParse) {
   EXPECT_TRUE(s.absorbing[1].input_x.empty());
 }
 
-// Fracturing goes with bolts and absorbing boundaries (a re-cut ties the bolts again and lays
-// the dashpots on the re-cut edges: docs/fracture.md); cover order ≥ 1 is still refused (the
-// bad-scene table).
+// Fracturing goes with bolts, absorbing boundaries (a re-cut ties the bolts again and lays
+// the dashpots on the re-cut edges: docs/fracture.md) and cover order ≥ 1.
 TEST(Scene, FractureWithBoltsAndAbsorbingBoundariesParses) {
   const SceneDef s = parse_scene(R"({
     "materials": {"rock": {"density": 2650, "young": 1e10, "poisson": 0.25,

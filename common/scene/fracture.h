@@ -19,9 +19,9 @@ struct FractureDef {
   bool viscous_tip = false;
 };
 
-/// fracture: {crack_set, tip_step, viscous_tip}. Reads the scene's joint sets and solver settings (read before):
-/// fracturing needs cover order 0 (what it cannot be combined with yet, exit status 2). Bolts
-/// and absorbing boundaries go with it: a re-cut ties the bolts again to the pieces of rock and
+/// fracture: {crack_set, tip_step, viscous_tip}. Reads the scene's joint sets (read before).
+/// Fracturing goes with every cover order (docs/fracture.md "Cover order 1 and 2"), bolts and
+/// absorbing boundaries: a re-cut ties the bolts again to the pieces of rock and
 /// lays the dashpots on the re-cut edges (docs/fracture.md "Bolts and absorbing boundaries").
 FractureDef read_fracture(const JsonReader& r, const SceneDef& scene);
 

@@ -22,7 +22,7 @@ CoverSpace::CoverSpace(const Mesh& mesh, int order, double min_weight, double mi
     : order_(order) {
   if (order < 0 || order > 2)
     throw std::invalid_argument("cover order " + std::to_string(order) + " (0, 1 or 2)");
-  h_ = mesh.mesh_size > 0 ? mesh.mesh_size : 1.0;
+  h_ = basis_scale(mesh);
   ties_ = assign_cover_unknowns(mesh, min_weight, dofs_per_cover(), min_support, first_crack_joint);
   unknowns_ = ties_.unknowns();
   const std::size_t ne = mesh.element_count();

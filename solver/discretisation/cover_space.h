@@ -44,6 +44,10 @@ struct ElementBasis {
   void values(double x, double y, double* out) const;
 };
 
+/// m, the scale h of the scaled bases of a space on `mesh`: its mesh size (1 m for a mesh
+/// without one).
+inline double basis_scale(const Mesh& mesh) { return mesh.mesh_size > 0 ? mesh.mesh_size : 1.0; }
+
 class CoverSpace {
  public:
   CoverSpace() = default;

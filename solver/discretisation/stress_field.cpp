@@ -6,7 +6,12 @@
 namespace nmm::solve {
 
 std::vector<double> mean_stress(const Mesh& mesh, const CoverSpace& space, const RunState& s) {
-  const std::size_t T = static_cast<std::size_t>(space.terms()), ne = mesh.element_count();
+  return mean_stress(mesh, space.order(), s);
+}
+
+std::vector<double> mean_stress(const Mesh& mesh, int order, const RunState& s) {
+  const double h = basis_scale(mesh);
+  const std::size_t T = static_cast<std::size_t>(monomial_count(order)), ne = mesh.element_count();
   if (T == 1) return s.stress;
   std::vector<double> out(3 * ne, 0.0);
   for (std::size_t e = 0; e < ne; ++e) {
@@ -15,7 +20,7 @@ std::vector<double> mean_stress(const Mesh& mesh, const CoverSpace& space, const
     const double ox = s.cover_xy[2 * c0], oy = s.cover_xy[2 * c0 + 1];
     const std::size_t b = mesh.element_loop_offset[e], n = mesh.element_loop_offset[e + 1] - b;
     const MonomialMoments m = monomial_moments(s.loop_xy.data() + 2 * b, n, ox, oy,
-                                               space.scale(), space.order());
+                                               h, order);
     if (!(m.m[0] > 0)) continue;
     for (std::size_t t = 0; t < T; ++t)
       for (int r = 0; r < 3; ++r) out[3 * e + r] += s.stress[3 * (T * e + t) + r] * m.m[t] / m.m[0];

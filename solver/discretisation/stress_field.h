@@ -17,6 +17,9 @@ namespace nmm::solve {
 
 /// [3·me] Pa, the mean stress of each element.
 std::vector<double> mean_stress(const Mesh& mesh, const CoverSpace& space, const RunState& s);
+/// The same for a run of cover order `order` (its bases scaled by basis_scale(mesh)): for code
+/// that holds the mesh and the state but not the space (fracturing).
+std::vector<double> mean_stress(const Mesh& mesh, int order, const RunState& s);
 
 /// Pa, σxx σyy τxy of element e at the point (x, y) (m) of the state's configuration.
 std::array<double, 3> stress_at(const Mesh& mesh, const CoverSpace& space, const RunState& s,

@@ -9,6 +9,17 @@
 // λ the barycentric coordinates of X in the element's mathematical triangle (as cut) and c_k the
 // current nodes of the element's three covers (RunState::cover_xy). A direction D as cut maps to
 // d = A·D, A = [c1 − c0, c2 − c0]·[N1 − N0, N2 − N0]⁻¹ (N: the triangle's nodes as cut).
+//
+// At cover order n ≥ 1 the displacement in an element is a polynomial of degree n + 1 and its
+// covers' nodes no longer fix it; what the run tracks exactly is where the element's loop
+// vertices are (state_update.cpp moves each by the element's shape functions). A point on an
+// edge of the loop as cut then goes to the same fraction of that edge where it is now, so the
+// elements either side of an edge put a crack's vertex at one place; any other point, and a
+// direction, go by the affine map that fits the loop as cut to the loop now (least squares over
+// its vertices X_i → x_i, exact for a triangle):
+//     A = [Σ (x_i − x̄)(X_i − X̄)ᵀ]·[Σ (X_i − X̄)(X_i − X̄)ᵀ]⁻¹,   x(X) = x̄ + A·(X − X̄),
+// which differs from the element's own map by O(h²·|∇²u|), a strain gradient's share of the
+// displacement across the element.
 #pragma once
 
 #include <cstdint>
@@ -16,14 +27,16 @@
 
 #include "common/mesh.h"
 #include "common/vec2.h"
+#include "solver/discretisation/run_state.h"
 
 namespace nmm::solve {
 
-/// x(X): where the point X of element e as cut is now (cover_xy: [2·pc] m, current).
-Vec2 current_point(const Mesh& mesh, const std::vector<double>& cover_xy, std::size_t e, const Vec2& X);
+/// x(X): where the point X of element e as cut is now, in the run state s of cover order
+/// `order` (order 0: by its covers' current nodes s.cover_xy; n ≥ 1: by its loop, s.loop_xy).
+Vec2 current_point(const Mesh& mesh, const RunState& s, int order, std::size_t e, const Vec2& X);
 
 /// The unit direction as cut of the current direction d in element e (A⁻¹·d, normalised).
-Vec2 direction_as_cut(const Mesh& mesh, const std::vector<double>& cover_xy, std::size_t e, const Vec2& d);
+Vec2 direction_as_cut(const Mesh& mesh, const RunState& s, int order, std::size_t e, const Vec2& d);
 
 /// Where the ray from p along d (unit) first leaves element e's loop as cut, beyond t_min (m):
 /// the point, its distance t, and the loop vertex starting the edge it leaves through. False when

@@ -7,6 +7,7 @@
 
 #include "common/ring_geometry.h"
 #include "solver/discretisation/state_bytes.h"
+#include "solver/discretisation/stress_field.h"
 #include "solver/fracture/element_geometry.h"
 
 namespace nmm::solve {
@@ -112,6 +113,11 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     const StrengthDef& st = scene.materials[scene.bodies[b].material].strength;
     if (st.present) screen[b] = StrengthScreen(st);
   }
+  // The element's stress: at cover order n ≥ 1 its mean ∫σ dA / A (stress_field.h), the value the
+  // outputs show: the strength check stays one decision per element, as at n = 0.
+  const int order = scene.solver.cover_order;
+  const std::vector<double> mean = order == 0 ? std::vector<double>{} : mean_stress(mesh, order, s);
+  const std::vector<double>& stress = order == 0 ? s.stress : mean;
   ratio_.resize(n);
   failure_.resize(n);
   over_.clear();
@@ -122,7 +128,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       ratio_[e] = -std::numeric_limits<double>::infinity();  // cannot break
       continue;
     }
-    const double sxx = s.stress[3 * e], syy = s.stress[3 * e + 1], sxy = s.stress[3 * e + 2];
+    const double sxx = stress[3 * e], syy = stress[3 * e + 1], sxy = stress[3 * e + 2];
     if (screen[static_cast<std::size_t>(body)].surely_holds(sxx, syy, sxy)) {
       ratio_[e] = 0;  // below 1: all the rule asks of an element inside its strength
       armed_[e] = 1;
@@ -147,7 +153,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     double best_dot = -2;
     for (const Vec2& d : {f.direction, f.conjugate})
       for (const double sign : {1.0, -1.0}) {
-        Vec2 r = direction_as_cut(mesh, s.cover_xy, e, {sign * d.x, sign * d.y});
+        Vec2 r = direction_as_cut(mesh, s, order, e, {sign * d.x, sign * d.y});
         if (dot(r, along) > best_dot) best_dot = dot(r, along), best = r;
       }
     return best;
@@ -160,8 +166,8 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     CrackSegment seg;
     seg.a = a;
     seg.b = b;
-    seg.a_now = current_point(mesh, s.cover_xy, e, a);
-    seg.b_now = current_point(mesh, s.cover_xy, e, b);
+    seg.a_now = current_point(mesh, s, order, e, a);
+    seg.b_now = current_point(mesh, s, order, e, b);
     seg.mode = failure_[e].mode;
     seg.crack = crack;
     seg.step = s.step;
@@ -217,7 +223,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   if (best >= 0) {
     const std::size_t e = static_cast<std::size_t>(best);
     const Vec2 p = inside_point(mesh, e);
-    const Vec2 d = direction_as_cut(mesh, s.cover_xy, e, failure_[e].direction);
+    const Vec2 d = direction_as_cut(mesh, s, order, e, failure_[e].direction);
     RayExit fwd, back;
     if (ray_exit(mesh, e, p, d, 0, fwd) && ray_exit(mesh, e, p, {-d.x, -d.y}, 0, back)) {
       const std::int32_t crack = cracks_++;

@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "common/ring_geometry.h"
+#include "solver/discretisation/cover_space.h"
+#include "solver/discretisation/polynomial.h"
 #include "solver/fracture/element_geometry.h"
 
 namespace nmm::solve {
@@ -26,6 +28,8 @@ std::int32_t piece_holding(const Mesh& now, const std::vector<std::vector<std::i
 void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, int dofs_per_cover, RunState& s) {
   const std::size_t nc = now.cover_count(), ne = now.element_count(), nv = now.loop_vertex_count();
   const std::size_t m = static_cast<std::size_t>(dofs_per_cover);
+  int order = 0;  // the cover order of dofs_per_cover = 2·(n + 1)(n + 2)/2
+  while (2 * monomial_count(order) < dofs_per_cover) ++order;
   RunState t = s;  // scalars and per-body data unchanged
   t.cover_xy.resize(2 * nc);
   for (auto* v : {&t.cover_u, &t.velocity, &t.accel}) v->resize(m * nc);
@@ -38,12 +42,31 @@ void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, 
       t.accel[m * c + k] = s.accel[m * p + k];
     }
   }
-  t.stress.resize(3 * ne);
+  // Each piece's stress polynomial (T terms of σxx σyy τxy about its first cover's node): its
+  // parent's, re-expanded about the piece's origin where that is another node (stress_field.h).
+  const std::size_t T = static_cast<std::size_t>(monomial_count(order));
+  const double h = basis_scale(old);
+  t.stress.assign(3 * T * ne, 0.0);
   std::vector<std::vector<std::int32_t>> pieces(old.element_count());
   for (std::size_t e = 0; e < ne; ++e) {
     const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
-    for (int k = 0; k < 3; ++k) t.stress[3 * e + k] = s.stress[3 * p + k];
     pieces[p].push_back(static_cast<std::int32_t>(e));
+    const double* from = s.stress.data() + 3 * T * p;
+    double* to = t.stress.data() + 3 * T * e;
+    const std::size_t o_old = static_cast<std::size_t>(old.element_covers[3 * p]);
+    const std::size_t o_now = static_cast<std::size_t>(now.element_covers[3 * e]);
+    const double sx = (s.cover_xy[2 * o_old] - t.cover_xy[2 * o_now]) / h;
+    const double sy = (s.cover_xy[2 * o_old + 1] - t.cover_xy[2 * o_now + 1]) / h;
+    if (T == 1 || (sx == 0 && sy == 0)) {
+      std::copy(from, from + 3 * T, to);
+      continue;
+    }
+    // ξ_old = ξ_now − (o_old − o_now)/h: each monomial of the old variables expanded in the new.
+    for (std::size_t k = 0; k < T; ++k) {
+      const Poly shifted = shifted_monomial(kMonomials.p[k], kMonomials.q[k], sx, sy);
+      for (std::size_t j = 0; j < T; ++j)
+        for (int r = 0; r < 3; ++r) to[3 * j + r] += from[3 * k + r] * shifted.c[j];
+    }
   }
   t.loop_xy.resize(2 * nv);
   t.loop_u.resize(2 * nv);
@@ -60,7 +83,7 @@ void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, 
         continue;
       }
       const Vec2 X{now.loop_xy[2 * i], now.loop_xy[2 * i + 1]};
-      const Vec2 x = current_point(old, s.cover_xy, p, X);
+      const Vec2 x = current_point(old, s, order, p, X);
       t.loop_xy[2 * i] = x.x;
       t.loop_xy[2 * i + 1] = x.y;
       t.loop_u[2 * i] = x.x - X.x;

@@ -1,10 +1,13 @@
 // What a run carries over when cracks re-cut its mesh (docs/fracture.md "What a new crack
 // inherits"): every new physical cover takes the cover function of the cover it is a piece of
-// (cover order 0: its displacement, velocity, acceleration and node), every new element the
-// stress of the element it is a piece of, so the displacement, velocity and stress fields are the
-// same functions before and after the cut and no energy appears or vanishes with it. A vertex the
-// crack made is placed where its element's affine map puts it (element_geometry.h); the others
-// keep their place.
+// (its coefficients — displacement, velocity, acceleration, at cover order n the 2·(n+1)(n+2)/2
+// of cover_space.h about the same node — and its node), every new element the stress of the
+// element it is a piece of (at n ≥ 1 the parent's stress polynomial, re-expanded about the
+// piece's own origin where that is another node: σ(ξ) = Σ_t s_t ξ^p η^q with ξ_old = ξ_now −
+// (o_old − o_now)/h), so the displacement, velocity and stress fields are the same functions
+// before and after the cut and no energy appears or vanishes with it. A vertex the crack made is
+// placed where its element's map puts it (element_geometry.h: affine at n = 0; at n ≥ 1 on the
+// element's loop as it is now); the others keep their place.
 #pragma once
 
 #include <cstdint>
@@ -18,7 +21,7 @@
 namespace nmm::solve {
 
 /// s, a state on `old`, carried onto `now` (map: preprocess/recut.h); dofs_per_cover: the run's
-/// (2 at cover order 0). The sparse pattern's element pairs and the blocks' handed-on forces are
+/// (2, 6, 12 at cover order 0, 1, 2). The sparse pattern's element pairs and the blocks' handed-on forces are
 /// dropped: the next step grows the pattern again, and a step's hand-on is no state of the rock.
 void transfer_state(const Mesh& old, const Mesh& now, const pre::RecutMap& map, int dofs_per_cover, RunState& s);
 

@@ -27,6 +27,7 @@
 #include <limits>
 
 #include "common/math_constants.h"
+#include "solver/discretisation/stress_field.h"
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
 
@@ -77,11 +78,16 @@ std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& sc
   for (const CrackSegment& c : cracks) lines.push_back({c.a, c.b});
   CrackTipFinder finder;
   const std::vector<CrackTip> tips = finder.find(mesh, scene, lines);
+  // The elements' stresses the integral reads: at cover order n ≥ 1 their means (stress_field.h),
+  // as crack_tips.csv reads them (crack_tip_readout.cpp).
+  const std::vector<double> stress =
+      scene.solver.cover_order == 0 ? std::vector<double>{} : mean_stress(mesh, scene.solver.cover_order, s);
   for (const CrackTip& t : tips) {
     const MaterialDef& m = scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(t.body)].material)];
     if (!m.strength.present || m.strength.toughness <= 0) continue;
     const StressIntensity k =
-        interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, tip_elasticity(m, scene.plane), s.stress,
+        interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, tip_elasticity(m, scene.plane),
+                             scene.solver.cover_order == 0 ? s.stress : stress,
                              s.loop_u, skip, nullptr, loaded, face_pressure);
     // Faces pressed together do not open: K_I < 0 is what is left of the closing field where
     // the contacts' traction stands in for it (docs/crack-tips.md "Closed faces": −0.07·σ√(πa)
