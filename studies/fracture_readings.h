@@ -5,12 +5,12 @@
 // grows by the rock's toughness.
 //
 // A specimen's load is its moving support's reaction along its travel (N/m: reactions.csv's, what
-// a testing machine's load cell reads). Not the mean stress of the body, tests/fracture_matrix.cpp's
-// read-off: ∫_body σ dA = ∮ t ⊗ x ds holds in equilibrium, and a static step that follows a crack
-// is not in it (DDA's static step keeps the inertia 2M/Δt² of its motion: the brittle bar's mean
-// stress read 1.34·σt in the step it sprang back). The cracked plate's load, quasi-static
+// a testing machine's load cell reads), not the mean stress of the body that
+// tests/fracture_matrix.cpp reads: ∫_body σ dA = ∮ t ⊗ x ds holds in equilibrium, which a static
+// step that moves a support or follows a crack is not quite in (DDA's static step keeps the
+// inertia 2M/Δt² of its motion). The two read-offs differ by 0.1 % at the cohesive bar's peak and
+// by 1.6–2.5 % at the disc's (docs/accuracy.md "Fracture"). The cracked plate's load, in
 // equilibrium steps without inertia, is its mean σyy (the load per unit width).
-//
 // Energies are metered after every accepted step as nmm-solve meters them (solver/output/energy.h,
 // carried over every re-cut): `fracture` the energy.csv column (what cohesive faces dissipate, and
 // the strain energy a crack releases in the step it opens), `damped` the motion DDA's static steps
