@@ -56,7 +56,7 @@ FractureRun run_fracture(solve::TimeStepper& st, double t_end, std::size_t suppo
       r.first_crack_step = segments.front().step;
       r.first_crack_load = previous;
     }
-    r.peak = std::max(r.peak, load);
+    if (load > r.peak) r.peak = load, r.peak_step = n;
     r.steps = n;
     on_step(n);
   });

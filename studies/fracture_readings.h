@@ -9,7 +9,7 @@
 // tests/fracture_matrix.cpp reads: ∫_body σ dA = ∮ t ⊗ x ds holds in equilibrium, which a static
 // step that moves a support or follows a crack is not quite in (DDA's static step keeps the
 // inertia 2M/Δt² of its motion). The two read-offs differ by 0.1 % at the cohesive bar's peak and
-// by 1.6–2.5 % at the disc's (docs/accuracy.md "Fracture"). The cracked plate's load, in
+// by 1.6–2.5 % at the disc's load at its run's end (docs/accuracy.md "Fracture"). The cracked plate's load, in
 // equilibrium steps without inertia, is its mean σyy (the load per unit width).
 // Energies are metered after every accepted step as nmm-solve meters them (solver/output/energy.h,
 // carried over every re-cut): `fracture` the energy.csv column (what cohesive faces dissipate, and
@@ -36,6 +36,7 @@ struct FractureRun {
   Outcome outcome;
   std::int64_t steps = 0;        ///< accepted steps
   double peak = 0;               ///< N/m, the largest load of an accepted state
+  std::int64_t peak_step = 0;    ///< the accepted step of that state
   double first_crack_load = 0;   ///< N/m, the load of the last accepted intact state (0: none cracked)
   std::int64_t first_crack_step = -1;  ///< the accepted step whose state broke the rock (-1: none)
   double fracture = 0;           ///< J/m, energy.csv's fracture column at the end
