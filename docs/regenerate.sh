@@ -2,7 +2,8 @@
 # Regenerates every committed figure and table under docs/figures (docs/guide.md): the seed
 # paper's validation rerun (docs/joint-studies.md) and accuracy against run time
 # (docs/accuracy.md). 10 s + 171 s wall (5 + 87 s CPU) on the 2-core machine at load average
-# 5.3-6.2 (2026-11-25); run from the repository root after building.
+# 5.3-6.2 (2026-11-25); nmm-study with its fracture cases 392 s wall (89 s CPU) at load average
+# about 20 (2026-11-30). Run from the repository root after building.
 set -e
 cd "$(dirname "$0")/.."
 build/bin/nmm-joint-study docs/figures --data data

@@ -26,6 +26,7 @@
 #include "common/mesh_file.h"
 #include "common/scene.h"
 #include "preprocess/cover_cutter.h"
+#include "reference/cohesive_bar.h"
 #include "solver/contact/cohesive_law.h"
 #include "solver/contact/contact_detection.h"
 #include "solver/output/solve_run.h"
@@ -137,29 +138,9 @@ TEST(CohesiveLaw, HillerborgsLength) {
 }
 
 namespace {
-// A bar 0.2 m wide at its ends and 0.19 m at its middle (a straight taper, so that it cracks
-// there), of length L (E 10 GPa, ν 0.2, plane stress, σt 1 MPa, G_f 100 J/m²: w_c = 200 µm,
-// l_ch = 1 m), its left end held in x, its right end pulled 1 µm a static step; crack faces:
-// kn 1e13 Pa/m (w_e = 0.1 µm).
-nlohmann::json cohesive_bar(double size, double length = 1.0) {
-  nlohmann::json d;
-  d["plane"] = "stress";
-  d["materials"]["rock"] = {{"density", 2500}, {"young", 1e10}, {"poisson", 0.2},
-                            {"strength", {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}, {"fracture_energy", 100}}}};
-  d["joint_sets"]["crack"] = {{"friction_deg", 30},
-                              {"normal", {{"model", "constant"}, {"kn", 1e13}}},
-                              {"shear", {{"model", "constant"}, {"ks", 4e12}}}};
-  d["bodies"] = {{{"material", "rock"},
-                  {"outer", {{0, 0}, {length / 2, 0.005}, {length, 0}, {length, 0.2}, {length / 2, 0.195}, {0, 0.2}}}}};
-  d["fracture"] = {{"crack_set", "crack"}};
-  d["mesh"]["size"] = size;
-  d["supports"] = {{{"points", {{0, 0}, {0, 0.2}}}, {"fix", "x"}},
-                   {{"points", {{length, 0}, {length, 0.2}}}, {"fix", "x"}, {"velocity", {1e-3, 0}}}};
-  d["fixed_points"] = {{0, 0.1}};
-  d["measure_points"] = {{length - 0.001, 0.1}, {0.001, 0.1}};
-  d["solver"] = {{"time_step", 1e-3}, {"steps", 260}, {"dynamic", false}, {"output_every", 1}};
-  return d;
-}
+// The bar of reference/cohesive_bar.h: L = 1 m (l_ch), σt 1 MPa, G_f 100 J/m², pulled 1 µm a
+// static step.
+using reference::cohesive_bar;
 
 Mesh mesh_of(const nlohmann::json& doc, const std::string& name, SceneDef& s) {
   s = scene_from_json(doc, name);

@@ -35,6 +35,7 @@
 #include "common/scene.h"
 #include "common/whole_file.h"
 #include "preprocess/cover_cutter.h"
+#include "reference/crack_plate.h"
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
 #include "solver/fracture/tip_growth.h"
@@ -52,27 +53,11 @@ using solve::CrackTipFinder;
 using solve::TipElasticity;
 using solve::TipReading;
 
-constexpr double kE = 1e10, kNu = 0.25, kSigma = 1e6;
-
-// A plate [x0, x1] × [y0, y1] with a straight crack p–q, pulled by σ on its top and bottom.
-nlohmann::json plate(double x0, double y0, double x1, double y1, Vec2 p, Vec2 q, double h) {
-  nlohmann::json d;
-  d["plane"] = "strain";
-  d["materials"]["rock"] = {{"density", 2500}, {"young", kE}, {"poisson", kNu}};
-  d["joint_sets"]["crack"] = {{"friction_deg", 30},
-                              {"normal", {{"model", "constant"}, {"kn", 1e12}}},
-                              {"shear", {{"model", "constant"}, {"ks", 4e11}}}};
-  d["bodies"] = {{{"material", "rock"}, {"outer", {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}}};
-  d["joints"] = {{{"set", "crack"}, {"points", {{p.x, p.y}, {q.x, q.y}}}}};
-  d["mesh"]["size"] = h;
-  d["tractions"] = {{{"points", {{x0, y1}, {x1, y1}}}, {"normal", kSigma}, {"shear", 0}},
-                    {{"points", {{x0, y0}, {x1, y0}}}, {"normal", kSigma}, {"shear", 0}}};
-  const double xm = 0.5 * (x0 + x1);
-  d["fixed_points"] = {{xm, y0 + 0.01 * h}};
-  d["supports"] = {{{"points", {{x1 - 0.5 * h, y0}, {x1, y0}}}, {"fix", "y"}}};
-  d["solver"] = {{"time_step", 1}, {"steps", 1}, {"dynamic", false}, {"static_mode", "equilibrium"}};
-  return d;
-}
+constexpr double kE = reference::kCrackPlateYoung, kNu = reference::kCrackPlatePoisson,
+                 kSigma = reference::kCrackPlateStress;
+using reference::crack_plate;
+using reference::tada_centre;
+using reference::tada_edge;
 
 // The tips' K after the plate's one static step.
 std::vector<TipReading> solve_tips(const nlohmann::json& doc, const std::string& name) {
@@ -87,16 +72,6 @@ std::vector<TipReading> solve_tips(const nlohmann::json& doc, const std::string&
   return tips;
 }
 
-// Tada (The Stress Analysis of Cracks Handbook, 3rd ed., 2.1): centre crack, α = a/W, W the
-// half-width; 0.1 % for any α.
-double tada_centre(double alpha) {
-  return (1 - 0.025 * alpha * alpha + 0.06 * std::pow(alpha, 4)) / std::sqrt(std::cos(kPi * alpha / 2));
-}
-// Tada (2.10): single edge crack in a strip of width b, α = a/b; 0.5 % for any α.
-double tada_edge(double alpha) {
-  const double t = kPi * alpha / 2;
-  return std::sqrt(std::tan(t) / t) * (0.752 + 2.02 * alpha + 0.37 * std::pow(1 - std::sin(t), 3)) / std::cos(t);
-}
 // Gross & Brown (1964) as fitted by Brown & Srawley: 0.5 % for α ≤ 0.6.
 double gross_brown_edge(double a) {
   return 1.12 - 0.231 * a + 10.55 * a * a - 21.72 * a * a * a + 30.39 * a * a * a * a;
@@ -145,7 +120,7 @@ TEST(CrackTips, WilliamsFieldsAreTheHandbookFields) {
 // Which ends are tips: inside a body, not on its boundary, not on another joint; numbers kept as
 // a crack grows on from a tip.
 TEST(CrackTips, TipsAreJointEndsInsideABody) {
-  nlohmann::json d = plate(0, 0, 4, 2, {1, 1}, {3, 1}, 0.25);
+  nlohmann::json d = crack_plate(0, 0, 4, 2, {1, 1}, {3, 1}, 0.25);
   d["joints"].push_back({{"set", "crack"}, {"points", {{2, 1}, {2, 2}}}});        // from the crack to the top
   d["joints"].push_back({{"set", "crack"}, {"points", {{0, 0.5}, {0.5, 0.5}}}});  // from the left side
   const SceneDef s = scene_from_json(d, "tips");
@@ -193,7 +168,7 @@ TEST(CrackTips, CentreCrackInAFinitePlateMatchesTada) {
   for (const double dy : {0.0, 0.013}) {
     Series s;
     for (const double h : {0.1, 0.05, 0.025}) {
-      const std::vector<TipReading> t = solve_tips(plate(-W, -H, W, H, {-a, dy}, {a, dy}, h), "centre");
+      const std::vector<TipReading> t = solve_tips(crack_plate(-W, -H, W, H, {-a, dy}, {a, dy}, h), "centre");
       ASSERT_EQ(t.size(), 2u);
       for (const TipReading& r : t) {
         std::printf("  centre crack, y %.3f m, h %.4f m (a/h %.0f), tip %d: K_I %.4g Pa·√m (%+.2f %% of %.4g), K_II/K_I %+.5f\n",
@@ -227,7 +202,7 @@ TEST(CrackTips, EdgeCrackMatchesTadaAndGrossBrown) {
   const double k0 = kSigma * std::sqrt(kPi * a) * tada_edge(a / b);
   std::vector<double> err;
   for (const double h : {0.05, 0.025, 0.0125}) {
-    const std::vector<TipReading> t = solve_tips(plate(0, -H, b, H, {b, 0}, {b - a, 0}, h), "edge");
+    const std::vector<TipReading> t = solve_tips(crack_plate(0, -H, b, H, {b, 0}, {b - a, 0}, h), "edge");
     ASSERT_EQ(t.size(), 1u);
     std::printf("  edge crack, h %.4f m (a/h %.0f): K_I %.4g Pa·√m (%+.2f %% of %.4g), K_II/K_I %+.5f, angle %.2f°\n",
                 h, a / h, t[0].k1, 100 * (t[0].k1 / k0 - 1), k0, t[0].k2 / t[0].k1, t[0].angle_deg);
@@ -250,7 +225,7 @@ TEST(CrackTips, InclinedCrackMatchesTheClosedFormsInModesIAndII) {
     for (const double h : {0.05, 0.025}) {
       if (beta_deg == 45 && h == 0.05) continue;  // the coarse mesh once
       const double b = beta_deg * kPi / 180, c = std::cos(b), sn = std::sin(b);
-      const std::vector<TipReading> t = solve_tips(plate(-Wi, -Wi, Wi, Wi, {-a * c, -a * sn}, {a * c, a * sn}, h), "inclined");
+      const std::vector<TipReading> t = solve_tips(crack_plate(-Wi, -Wi, Wi, Wi, {-a * c, -a * sn}, {a * c, a * sn}, h), "inclined");
       ASSERT_EQ(t.size(), 2u);
       const double k1 = k0 * c * c, k2 = k0 * sn * c;
       for (const TipReading& r : t) {
@@ -273,7 +248,7 @@ TEST(CrackTips, InclinedCrackMatchesTheClosedFormsInModesIAndII) {
 TEST(CrackTips, TheRunWritesCrackTipsCsv) {
   test::TempDir dir;
   for (const bool with_tip : {true, false}) {
-    nlohmann::json doc = plate(-1, -2, 1, 2, {-0.5, 0}, {0.5, 0}, 0.1);
+    nlohmann::json doc = crack_plate(-1, -2, 1, 2, {-0.5, 0}, {0.5, 0}, 0.1);
     if (!with_tip) doc["joints"] = {{{"set", "crack"}, {"points", {{-1, 0.5}, {1, 0.5}}}}};
     const SceneDef s = scene_from_json(doc, "plate");
     Mesh m = pre::build_mesh(s, "plate");
@@ -341,17 +316,9 @@ double mean_syy(const solve::RunView& v) {
 // within 3 % (the load grows 0.5 % a step from 90 % of σ_c), straight ahead, and run to the
 // plate's sides in the same step (load control of a centre crack is unstable); the run goes on.
 TEST(CrackTips, TipsGrowWhenKReachesTheToughness) {
-  const double W = 1, H = 2, a = 0.5, h = 0.05, k_ic = 1.5e6;
-  nlohmann::json d = plate(-W, -H, W, H, {-a, 0}, {a, 0}, h);
-  d["materials"]["rock"]["strength"] = {{"tensile", 1e9}, {"cohesion", 1e9}, {"friction_deg", 30}, {"toughness", k_ic}};
-  d["fracture"] = {{"crack_set", "crack"}};
-  d.erase("tractions");
-  const double v = 2e-6;  // m/s: Δσ ≈ E'·v·Δt/4 m ≈ 5 kPa a step
-  d["supports"] = {{{"points", {{-W, -H}, {W, -H}}}, {"fix", "y"}},
-                   {{"points", {{-W, H}, {W, H}}}, {"fix", "xy"}, {"velocity", {0, v}},
-                    {"table", {{0, 210}, {1, 210}, {1.000001, 1}}}}};
-  d["fixed_points"] = {{0, -H + 0.01 * h}};
-  const SceneDef s = scene_from_json(d, "grow");
+  const double W = 1, a = 0.5, h = 0.05, k_ic = 1.5e6;
+  // The support at 2 µm/s: Δσ ≈ E'·v·Δt/4 m ≈ 5 kPa a step (reference/crack_plate.h).
+  const SceneDef s = scene_from_json(reference::pulled_crack_plate(h, k_ic), "grow");
   const Mesh m = pre::build_mesh(s, "grow");
   solve::TimeStepper st(m, s, "grow");
   std::vector<double> load;  // Pa, mean σyy after each step
@@ -386,7 +353,7 @@ TEST(CrackTips, TipsGrowWhenKReachesTheToughness) {
 // above K_eq nothing grows.
 TEST(CrackTips, AMixedModeTipKinksInTheMtsDirection) {
   const double Wi = 2.5, a = 0.25, h = 0.05, b = kPi / 4;
-  nlohmann::json d = plate(-Wi, -Wi, Wi, Wi, {-a * std::cos(b), -a * std::sin(b)}, {a * std::cos(b), a * std::sin(b)}, h);
+  nlohmann::json d = crack_plate(-Wi, -Wi, Wi, Wi, {-a * std::cos(b), -a * std::sin(b)}, {a * std::cos(b), a * std::sin(b)}, h);
   d["materials"]["rock"]["strength"] = {{"tensile", 1e9}, {"cohesion", 1e9}, {"friction_deg", 30}, {"toughness", 1e9}};
   SceneDef s = scene_from_json(d, "kink");  // no fracture block: the run itself does not grow
   const Mesh m = pre::build_mesh(s, "kink");
@@ -427,7 +394,7 @@ TEST(CrackTips, AClosedCrackUnderCompressionCountsItsFriction) {
   double worst_k1[2] = {0, 0}, worst_k2[2] = {0, 0};
   int i = 0;
   for (const double h : {0.05, 0.025}) {
-    nlohmann::json d = plate(-Wi, -Wi, Wi, Wi, {-a * std::cos(b), -a * std::sin(b)}, {a * std::cos(b), a * std::sin(b)}, h);
+    nlohmann::json d = crack_plate(-Wi, -Wi, Wi, Wi, {-a * std::cos(b), -a * std::sin(b)}, {a * std::cos(b), a * std::sin(b)}, h);
     for (auto& t : d["tractions"]) t["normal"] = -kSigma;
     const SceneDef s = scene_from_json(d, "closed");
     const Mesh m = pre::build_mesh(s, "closed");
