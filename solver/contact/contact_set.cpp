@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "common/vec2.h"
+#include "solver/contact/cohesive_tributary.h"
 #include "solver/contact/contact_problem.h"
 #include "solver/contact/contact_tolerances.h"
 #include "solver/contact/tributary_length.h"
@@ -250,6 +251,14 @@ void ContactSet::begin_step(const std::vector<double>& xy, double d0, double sha
   const std::vector<double> lengths =
       tributary_lengths(topo_, xy, kept, kContactTolerances.corner_length * topo_.mesh_size);
   for (std::size_t i = 0; i < contacts_.size(); ++i) contacts_[i].length = lengths[i];
+  // Softening crack faces: the partition of each face (cohesive_tributary.h), so that what they
+  // dissipate adds up to G_f × the crack's area. Only their lengths change: a run without them
+  // computes what it did.
+  if (std::none_of(contacts_.begin(), contacts_.end(), [](const Contact& c) { return c.cohesive.on; })) return;
+  const std::vector<double> faces =
+      partitioned_tributary_lengths(topo_, xy, kept, kContactTolerances.corner_length * topo_.mesh_size);
+  for (std::size_t i = 0; i < contacts_.size(); ++i)
+    if (contacts_[i].cohesive.on) contacts_[i].length = faces[i];
 }
 
 JointMemory ContactSet::nearby_joint_memory(const std::vector<double>& xy, std::int32_t vertex,
