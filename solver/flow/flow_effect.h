@@ -28,7 +28,8 @@
 // contact springs, and c is at least a Griffith crack's (compliance()). The pressures x that
 // load the faces next are G(x), the balance's, mixed by Anderson (accelerate()). Converged when the volume the split still carries, Σ c_i·|p_i^{k+1} −
 // p_i^k|, is at most kTolerance of the step's exchanged (and stored) volume; the mechanics is
-// solved again with the new pressures until then, up to kMaxIterations solves, past which the
+// solved again with the new pressures until then, or until the error stalls at the mechanical
+// solve's round-off within kStallTolerance (judge()), up to kMaxIterations solves, past which the
 // step is cut (StopCode::flow_not_converged). The committed step has the last balance's
 // pressures on the faces of the last solution: stored = injected − outflow to the tolerance.
 // NMM_TRACE_FLOW=1 prints each iteration's error (stderr).
@@ -118,6 +119,11 @@ class FlowEffect final : public Effect {
 
   /// Relative volume tolerance of a step's coupling iterations (header comment).
   static constexpr double kTolerance = 1e-6;
+  /// The round-off floor (judge()): a step whose split brought its smallest error down by no
+  /// half over kStall solves is settled once that error is within kStallTolerance of the step's
+  /// volume.
+  static constexpr int kStall = 6;
+  static constexpr double kStallTolerance = 1e-4;
   /// Balance solves of one step attempt before it is cut.
   static constexpr int kMaxIterations = 60;
 
@@ -151,14 +157,16 @@ class FlowEffect final : public Effect {
   std::vector<double> volume0_, compliance_;
   int solves_ = 0;
   double split_error_ = 0;
-  bool diverged_ = false;
+  bool diverged_ = false;  // the split gave a pressure that is not finite: cut the step
   std::vector<double> iterate_;  // Pa, the pressures on the faces of the solve round (x)
   // Anderson mixing's differences of the residuals and of G over the last kDepth iterates.
   static constexpr int kDepth = 8;
   std::vector<Eigen::VectorXd> history_f_, history_g_;
   Eigen::VectorXd last_f_, last_g_;
   bool have_last_ = false;
-  double last_carried_ = 0;  // m³ per m, the split's error at the last iterate  // the split gave a pressure that is not finite: cut the step
+  double last_carried_ = 0;  // m³ per m, the split's error at the last iterate
+  double best_carried_ = 0;  // m³ per m, the smallest error of the attempt (halvings only)
+  int best_at_ = 0;          // the solve that brought it
   Iterations iterations_;
   std::vector<double> joint_length_;     // [joint] m, its segments' lengths summed
   std::vector<double> segment_modulus_;  // [segment] Pa, D₁₁ of the stiffer element on its faces
