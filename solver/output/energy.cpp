@@ -24,12 +24,16 @@
 // (1 − k²) K(v1), too: ΔK is the kinetic energy of what the next step keeps.
 // Loads on a time table act in the step at its end, f1·d, as W counts them (energy.h), while
 // the trapezoid of (1) takes ½ (f0 + f1)·d: Q_step adds ½ (W_f(t1) − W_f(t0)), W_f the step's
-// work of the point loads, tractions and base shaking with their tables at t1 and t0.
-// A run's first step from rest (its acceleration not known, v0 = a0 = 0, β = ½): its start is
-// out of balance by what its loads and gravity put on at once, g0 = f(t1) + M g (a body at
-// rest and unstretched), whose work in the step the meter has, ½ dᵀg0 = ½ (W_f(t1) − ΔV);
-// a start out of balance otherwise (an in-situ stress released, a pretensioned bolt) shows ½ of
-// its work in R. What is not linear over a step — a contact that closes or opens, slip, a
+// work of the point loads, tractions, base shaking and the absorbing boundaries' input traction
+// 2C·v_in(t) with their tables at t1 and t0. (The dashpots' force −C v1 at the step's end, which
+// `absorbed` counts, differs from the trapezoid by ½ (v1 − v1,prev)ᵀC d, which with d ≈ Δt·v̄
+// sums to −¼Δt [vᵀC v] over the run: 0 from rest to rest.)
+// A run's first step from rest at step 0, free of stress (v0 = a0 = 0, β = ½): its start is out
+// of balance by what its loads and gravity put on at once, g0 = f(t1) + M g (springs
+// unstretched), whose work in the step the meter has, ½ dᵀg0 = ½ (W_f(t1) − ΔV). Any other
+// start without a known acceleration (a restart of a static run) is taken to be in balance
+// (a1,prev = 0); a start out of balance otherwise (an in-situ stress not in balance with its
+// tractions, a pretensioned bolt) shows ½ of its first step's work in R. What is not linear over a step — a contact that closes or opens, slip, a
 // re-cut (crack_release.h books its release in F) — and the effects' own loads (a face's water,
 // the absorbing boundaries' input) stay in R.
 #include "solver/output/energy.h"
@@ -328,10 +332,11 @@ void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bo
     step.work = surface_end;
     double load_change = 0;  // J/m, W_f(t1) − W_f(t0); in a dynamic run's first step from rest, W_f(t1) − ΔV
     if (dynamic && damping_) {
-      if (prev_a1_.empty() && !prev_accel_known_)
+      if (prev_a1_.empty() && unloaded_start_)
         load_change = loads_end + surface_end - (r.gravity - last_.gravity);
       else
         load_change = loads_end + surface_end - loads_start - traction_work(s, prev_time_) - shaking_work(s, prev_time_);
+      load_change += absorbing_input_change(s);
     }
     step.friction = friction_;
     step.absorbed = absorbed_;
@@ -352,6 +357,14 @@ void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bo
     if (!started_ && scene_->solver.dynamic && s.accel_known && k > 0) {
       prev_a1_ = s.accel;
       for (double& a : prev_a1_) a /= k;
+    }
+    // A run's start at step 0, at rest and free of stress: out of balance by its loads and
+    // gravity alone (damped_step). Any other start without a known acceleration (a restart of a
+    // static run's checkpoint) is taken to be in balance.
+    if (!started_) {
+      unloaded_start_ = s.step == 0 && !s.accel_known;
+      for (double x : s.stress) unloaded_start_ = unloaded_start_ && x == 0;
+      for (double x : s.velocity) unloaded_start_ = unloaded_start_ && x == 0;
     }
     prev_cover_count_ = mesh_->cover_count();
     prev_cover_u_ = s.cover_u;
@@ -463,6 +476,44 @@ double EnergyMeter::traction_work(const RunState& s, double t_table) const {
           const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
           w += 0.5 * len * factor * t[d] * ((1 - xi) * du_a + xi * du_b);
         }
+      }
+    }
+  }
+  return w;
+}
+
+double EnergyMeter::absorbing_input_change(const RunState& s) const {
+  // The absorbing boundaries' input traction t_in = 2·C·v_in(t) (absorbing_boundary.h: C = ρcp
+  // n nᵀ + ρcs t tᵀ, uniform along an edge) works on the edge's motion, linear between its ends:
+  // (t_in(t1) − t_in(t0))·L·(Δu_a + Δu_b)/2, the edge where the step started (its end less Δu).
+  if (prev_loop_u_.size() != s.loop_u.size()) return 0;
+  double w = 0;
+  for (std::size_t i = 0; i < model_->absorbing_edges().size() && i < scene_->absorbing.size(); ++i) {
+    const AbsorbingDef& ad = scene_->absorbing[i];
+    if (ad.input_x.time.empty() && ad.input_y.time.empty()) continue;
+    const double dv[2] = {table_value(ad.input_x, s.time, 0.0) - table_value(ad.input_x, prev_time_, 0.0),
+                          table_value(ad.input_y, s.time, 0.0) - table_value(ad.input_y, prev_time_, 0.0)};
+    if (dv[0] == 0 && dv[1] == 0) continue;
+    for (const BoundaryEdge& be : model_->absorbing_edges()[i]) {
+      if (removed(s, be.element)) continue;
+      const std::int32_t a = be.vertex, b = be.next;
+      double du[2][2], xy[2][2];  // [end a, b][x, y]
+      for (int k = 0; k < 2; ++k) {
+        const std::int32_t v = k == 0 ? a : b;
+        for (int d = 0; d < 2; ++d) {
+          du[k][d] = s.loop_u[2 * v + d] - prev_loop_u_[2 * v + d];
+          xy[k][d] = s.loop_xy[2 * v + d] - du[k][d];
+        }
+      }
+      const double dx = xy[1][0] - xy[0][0], dy = xy[1][1] - xy[0][1], len = std::hypot(dx, dy);
+      if (!(len > 0)) continue;
+      const double n[2] = {dy / len, -dx / len}, t[2] = {dx / len, dy / len};  // CCW: outside on the right
+      const std::size_t e = static_cast<std::size_t>(be.element);
+      const Mat3& D = model_->elasticity(e);
+      const double rho = model_->density(e), zp = std::sqrt(rho * D(0, 0)), zs = std::sqrt(rho * D(2, 2));
+      for (int r = 0; r < 2; ++r) {
+        const double tr = 2 * ((zp * n[r] * n[0] + zs * t[r] * t[0]) * dv[0] + (zp * n[r] * n[1] + zs * t[r] * t[1]) * dv[1]);
+        w += tr * len * 0.5 * (du[0][r] + du[1][r]);
       }
     }
   }

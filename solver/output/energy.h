@@ -48,10 +48,13 @@
 //                  angular frequency ω), a1,prev the acceleration the previous step ended in
 //                  balance with (before dynamic_factor: the velocity and acceleration a step with
 //                  dynamic_factor < 1 throws away are in it); W_f the step's work of the point
-//                  loads, tractions and base shaking with their time tables at the step's end
+//                  loads, tractions, base shaking and the absorbing boundaries' input traction
+//                  with their time tables at the step's end
 //                  (as W and the step take them) and at its start. A run's first step from rest
-//                  starts out of balance by its loads and gravity: ½ dᵀM a1,prev is then ½ of
-//                  their work in the step. A column of its own in static "dda" and dynamic runs.
+//                  at step 0, free of stress, starts out of balance by its loads and gravity:
+//                  ½ dᵀM a1,prev is then ½ of their work in the step; any other start without
+//                  an acceleration is taken in balance. A column of its own in static "dda" and
+//                  dynamic runs.
 //   residual   R = W − D − A − Q − F − [(K + U + V + S) − (K + U + V + S)_first row]
 //                  energy lost elsewhere: the in-situ traction on faces between bodies (not
 //                  metered), contact springs unloading, the contact solve's tolerance; in a
@@ -156,6 +159,9 @@ class EnergyMeter {
   // J/m, since the previous call, with the time tables at time t (the step's end: what W counts)
   double traction_work(const RunState& s, double t) const;
   double shaking_work(const RunState& s, double t) const;
+  // J/m, the absorbing boundaries' input traction's work over the step at its end time less at
+  // its start time (damped_step's load_change)
+  double absorbing_input_change(const RunState& s) const;
   double support_work(const RunState& s) const;   // J/m, since the previous call
   // J/m, Q's step: `kinetic` K at the step's end; `load_change` W_f(t1) − W_f(t0), or in a
   // dynamic run's first step from rest, its work of the loads and gravity (energy.cpp)
@@ -197,6 +203,7 @@ class EnergyMeter {
   // m/s², the acceleration the last step reached, a1 before dynamic_factor (dynamic runs): what
   // its end, the next step's start, is out of balance by, over M; empty: not known
   std::vector<double> prev_a1_;
+  bool unloaded_start_ = false;  // the run starts at step 0 at rest and free of stress (damped_step)
   double prev_dt_ = 0;                // s, that step's length
   std::size_t prev_cover_count_ = 0;  // covers of the mesh prev_v1_ is on
   std::size_t joints_ = 0;           // the scene's joints at the last call (a change's come after)
