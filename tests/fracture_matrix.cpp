@@ -21,7 +21,10 @@
 // of the largest work done so far (work = load_work − gravity, as tests/check_expect.py reads
 // it), from the step after the first (the slope's first step puts gravity on the stress-free
 // rock at once: a static step keeps half of a load applied suddenly), and the fracture column
-// (what the cracks released); `fracture_matrix.py energy` checks it within 1 % per cell.
+// (what the cracks released); `fracture_matrix.py energy` checks it within 1 % per cell. The row
+// also has `damped` (what DDA's static steps threw away, or the dynamic scheme damped: energy.h)
+// and the residual at worst the meter had without that column (R + Q, for the docs' before and
+// after: the mechanics are the same).
 // The load is the moving support's reaction per metre, read as the mean stress of the loaded
 // body: P = |Σ_e A_e σ_e,kk| / lever over its elements that are not debris (rock_tests.h).
 // NMM_CHECK_RECUT=1 in the environment is passed on to the stepper (the re-cut checked against
@@ -122,6 +125,7 @@ int run(const std::string& name, const std::string& csv) {
   std::size_t topology = st.view().topology;
   meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
   double work = 0, residual0 = 0, worst_residual = 0;  // J/m; – of the work
+  double undamped0 = 0, worst_undamped = 0, damped0 = 0;  // J/m, R + Q after step 1; –; J/m, Q after step 1
   std::int64_t worst_residual_step = -1;
   try {
     outcome = st.run_until(sp.end_time * (1 - 1e-9), [&](std::int64_t n) {
@@ -133,9 +137,11 @@ int run(const std::string& name, const std::string& csv) {
       meter.after_step(v.state, solve::energy_sources(v), true);
       const solve::EnergyRow& row = meter.rows().back();
       work = std::max(work, std::abs(row.load_work - row.gravity));
-      if (n == 1) residual0 = row.residual;
+      if (n == 1) residual0 = row.residual, undamped0 = row.residual + row.damped, damped0 = row.damped;
       if (n > 1 && work > 0 && std::abs(row.residual - residual0) / work > worst_residual)
         worst_residual = std::abs(row.residual - residual0) / work, worst_residual_step = v.state.step;
+      if (n > 1 && work > 0)
+        worst_undamped = std::max(worst_undamped, std::abs(row.residual + row.damped - undamped0) / work);
       steps = n;
       previous = load;
       load = slope ? 0 : load_of(v, sp);
@@ -196,6 +202,7 @@ int run(const std::string& name, const std::string& csv) {
   }
   const double fracture_energy = meter.rows().empty() ? NAN : meter.rows().back().fracture;
   const double residual = meter.rows().empty() ? NAN : meter.rows().back().residual - residual0;
+  const double damped = meter.rows().empty() ? NAN : meter.rows().back().damped - damped0;
   const bool pass = failed.empty();
   const std::string status = outcome.ok() ? "ok" : stop_code_name(outcome.code);
   const std::string reason = outcome.ok() ? "" : outcome.reason;
@@ -210,9 +217,11 @@ int run(const std::string& name, const std::string& csv) {
     std::printf("; compliance %s m/(N/m) (beam theory %s … %s), P_net %s", num(compliance).c_str(),
                 num(sp.compliance_low).c_str(), num(sp.compliance).c_str(), num(sp.net_section_load).c_str());
   if (slope) std::printf("; wedge %.4g m, behind the crest %.3g m", travel, behind);
-  std::printf("; energy: work %s J/m, fracture %s J/m, residual %s J/m, %s %% of the work at worst (step %lld)",
-              num(work).c_str(), num(fracture_energy).c_str(), num(residual).c_str(), num(100 * worst_residual).c_str(),
-              static_cast<long long>(worst_residual_step));
+  std::printf("; energy: work %s J/m, fracture %s J/m, damped %s J/m, residual %s J/m, %s %% of the work at worst "
+              "(step %lld; without damped %s %%)",
+              num(work).c_str(), num(fracture_energy).c_str(), num(damped).c_str(), num(residual).c_str(),
+              num(100 * worst_residual).c_str(), static_cast<long long>(worst_residual_step),
+              num(100 * worst_undamped).c_str());
   std::printf("; %zu segments, %d debris; %.1f s\n", segs.size(), fracture_of(v).debris_blocks(), wall);
   if (!outcome.ok()) std::printf("  stop: %s\n", test::text(outcome).c_str());
   if (!pass) std::printf("  failed: %s\n", failed.c_str());
@@ -222,7 +231,8 @@ int run(const std::string& name, const std::string& csv) {
   out << "case,test,h_m,mode,rate,kernel,pass,status,reason,steps,end_time_s,planned_end_s,first_crack_step,"
          "first_crack_load,closed_form,closed_form_name,first_crack_error_pct,peak_load,peak_step,peak_time_s,"
          "load_unit,compliance,compliance_theory_low,compliance_theory,net_section_load,first_crack_tip_distance_m,segments,debris_blocks,"
-         "elements,wall_s,work_j,fracture_j,residual_j,residual_worst_pct,residual_worst_step,failed_checks\n";
+         "elements,wall_s,work_j,fracture_j,residual_j,residual_worst_pct,residual_worst_step,damped_j,"
+         "residual_without_damped_worst_pct,failed_checks\n";
   out << name << ',' << reference::rock_test_name(c.test) << ',' << num(sp.mesh_size) << ','
       << (c.dynamic ? "dynamic" : "static") << ',' << (c.rate ? "fast" : "slow") << ',' << kernel << ','
       << (pass ? 1 : 0) << ',' << status << ',' << csv_quote(reason) << ',' << steps << ',' << num(end_time) << ','
@@ -232,7 +242,8 @@ int run(const std::string& name, const std::string& csv) {
       << ',' << num(beam ? sp.net_section_load : NAN) << ',' << num(tip_distance) << ',' << segs.size() << ','
       << fracture_of(v).debris_blocks() << ',' << v.mesh.element_count() << ',' << num(wall) << ','
       << num(work) << ',' << num(fracture_energy) << ',' << num(residual) << ',' << num(100 * worst_residual) << ','
-      << worst_residual_step << ',' << csv_quote(failed) << '\n';
+      << worst_residual_step << ',' << num(damped) << ',' << num(100 * worst_undamped) << ',' << csv_quote(failed)
+      << '\n';
   return pass ? 0 : 1;
 }
 

@@ -59,9 +59,10 @@ def energy(paths):
             print(f"{p}: no energy figures (the run did not write them)")
             return 1
         worst = float(row["residual_worst_pct"])
+        before = row.get("residual_without_damped_worst_pct") or "-"
         print(f"{row['case']} ({row['kernel']}): residual {row['residual_j']} J/m, {worst:.3g} % of the work at worst "
-              f"(step {row['residual_worst_step']}; work {row['work_j']} J/m, fracture {row['fracture_j']} J/m; "
-              f"tolerance {ENERGY_TOLERANCE:g} %)")
+              f"(step {row['residual_worst_step']}; work {row['work_j']} J/m, fracture {row['fracture_j']} J/m, "
+              f"damped {row.get('damped_j') or '-'} J/m; without damped {before} %; tolerance {ENERGY_TOLERANCE:g} %)")
         ok = ok and worst <= ENERGY_TOLERANCE
     return 0 if ok else 1
 

@@ -62,6 +62,7 @@ json column(double width, double height, const char* held, double y_point) {
 struct Trace {
   std::vector<double> t, v;  ///< s, and the measure point's velocity (m/s) in the wave's direction
   double absorbed = 0, load_work = 0, kinetic_strain = 0;  ///< J/m, energy.csv's at the end
+  double damped = 0, residual = 0;                          ///< J/m, energy.csv's at the end
 };
 
 /// Runs `doc` for `steps` steps of dt; the measure point's velocity along `axis` (0 x, 1 y),
@@ -89,6 +90,8 @@ Trace run_column(const json& doc, double dt, int steps, int axis, const char* na
   tr.absorbed = e.absorbed;
   tr.load_work = e.load_work;
   tr.kinetic_strain = e.kinetic + e.strain;
+  tr.damped = e.damped;
+  tr.residual = e.residual;
   return tr;
 }
 
@@ -104,7 +107,7 @@ double peak(const Trace& tr, double t0, double t1) {
 // and then what the base sends back, after the wave has gone down to the base and up again.
 struct Reflection {
   double incident = 0, reflected = 0;  ///< m/s
-  double absorbed = 0, input = 0, left = 0;  ///< J/m
+  double absorbed = 0, input = 0, left = 0, damped = 0, residual = 0;  ///< J/m
 };
 Reflection reflection(bool p_wave, bool absorbing) {
   const double c = p_wave ? kCp : kCs, t_pulse = 0.04, height = 60, depth = 20;  // point 20 m below the top
@@ -124,6 +127,8 @@ Reflection reflection(bool p_wave, bool absorbing) {
   r.absorbed = tr.absorbed;
   r.input = tr.load_work;
   r.left = tr.kinetic_strain;
+  r.damped = tr.damped;
+  r.residual = tr.residual;
   return r;
 }
 
@@ -132,8 +137,8 @@ TEST(Absorbing, APPulseLeavesThroughAnAbsorbingBase) {
   std::printf("P pulse: incident %.4f m/s (σ/ρcp = %.4f); reflected by the absorbing base %.5f m/s (%.2f %%), "
               "by a roller base %.4f m/s (%.1f %%)\n", a.incident, 1e5 / (kRho * kCp), a.reflected,
               100 * a.reflected / a.incident, fixed.reflected, 100 * fixed.reflected / fixed.incident);
-  std::printf("  energy: the traction's work %.3f J/m, absorbed %.3f J/m, left in the column %.4f J/m\n", a.input,
-              a.absorbed, a.left);
+  std::printf("  energy: the traction's work %.3f J/m, absorbed %.3f J/m, left in the column %.4f J/m, damped by "
+              "the scheme %.3f J/m, residual %.3f J/m\n", a.input, a.absorbed, a.left, a.damped, a.residual);
   EXPECT_NEAR(a.incident, 1e5 / (kRho * kCp), 0.03 * 1e5 / (kRho * kCp));
   EXPECT_LT(a.reflected, 0.03 * a.incident);
   EXPECT_GT(fixed.reflected, 0.9 * fixed.incident);

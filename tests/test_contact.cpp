@@ -280,7 +280,7 @@ TEST(Contact, WedgeOnADaylightingJointNeverGainsEnergy) {
                   "friction %.1f J/m (rigid wedge %.1f), largest energy gain %.3e J/m\n",
                   dt, kn, stop_code_name(e.status.code), e.slide, want, e.released, e.friction, dissipated, e.worst_gain);
       // Measured: 88.7 % of it (the friction meter counts the slip of contacts sliding at the
-      // end of a step; the rest of the difference is the scheme's damping, in the residual).
+      // end of a step; the rest of the difference is the scheme's damping, energy.csv's damped).
       EXPECT_GT(e.friction, 0.8 * dissipated) << "dt " << dt << ", kn " << kn;
       EXPECT_LT(e.friction, 1.02 * dissipated) << "dt " << dt << ", kn " << kn;
       EXPECT_PRED1(test::ended_ok, e.status);

@@ -1,4 +1,41 @@
 // Energy terms of a run: see energy.h for the formulas, docs/energy.md for their derivation.
+//
+// The time scheme's damping (Q, the `damped` column of a dynamic run; damped_step). A dynamic
+// step (newmark.h: γ = 1, β = solver.newmark_beta, ½ until the acceleration is known) solves for
+// the covers' increment d = u1 − u0 and sets
+//     a1 = (d − Δt v0 − (½ − β)Δt² a0)/(βΔt²),   v1 = v0 + Δt a1   (so a1 = Δv/Δt),
+// and its solution balances the covers at its end: M a1 = g1, g the net force on them (loads,
+// gravity, −F_int, springs, contacts). The step before ended so too: M a1,prev = g0, a1,prev its
+// acceleration before dynamic_factor k (this step carries v0 = k v1,prev, a0 = k a1,prev).
+// Where the forces are linear in u over the step (elasticity, springs) and the loads constant,
+// the net force's work over the step is exactly its trapezoid ½ dᵀ(g0 + g1), which is
+// W − Δ(U + S + V): ΔU = dᵀF_int,0 + ½ dᵀK d = ½ dᵀ(F_int,0 + F_int,1), and likewise for the
+// springs; gravity's −ΔV and a moving support's work are exact. The kinetic energy the meter
+// reports changes by ΔK = K(v0,next) − K(v0), K(v) = ½ vᵀM v. So the step's energy identity is
+//     W − Δ(U + S + V + K) = ½ dᵀ(g0 + g1) − ΔK = ½ dᵀM (a1,prev + a1) − ΔK =: Q_step     (1)
+// in the step's d, Δv (a1), a1,prev and M alone, for every β: what the step takes out of the
+// motion. With β = ½ (Shi's scheme) d = Δt (v0 + ½Δv), so dᵀM a1 = (v0 + ½Δv)ᵀM Δv = K(v1) −
+// K(v0), and with k = 1 Q_step = −½ dᵀM (a1 − a1,prev); in free vibration M (a1 − a1,prev) =
+// −K d, so Q_step = ½ dᵀK d ≥ 0: each step damps the strain energy of its own increment. A mode
+// of angular frequency ω (|d| ≈ |v|Δt) loses Σ ½ ω² m |v|² Δt² over the 2π/(ωΔt) steps of a
+// cycle, π ωΔt·E of its energy E: a damping ratio ωΔt/4 = (γ − ½)ωΔt/2 of critical (docs/
+// energy.md). β > ½ adds (β − ½)Δt² (a1 − a1,prev)ᵀM a1 to (1) (from d's a0 term), which damps
+// the stiff modes (ωΔt ≫ 1). With k < 1, (1) holds the motion the step throws away,
+// (1 − k²) K(v1), too: ΔK is the kinetic energy of what the next step keeps.
+// Loads on a time table act in the step at its end, f1·d, as W counts them (energy.h), while
+// the trapezoid of (1) takes ½ (f0 + f1)·d: Q_step adds ½ (W_f(t1) − W_f(t0)), W_f the step's
+// work of the point loads, tractions, base shaking and the absorbing boundaries' input traction
+// 2C·v_in(t) with their tables at t1 and t0. (The dashpots' force −C v1 at the step's end, which
+// `absorbed` counts, differs from the trapezoid by ½ (v1 − v1,prev)ᵀC d, which with d ≈ Δt·v̄
+// sums to −¼Δt [vᵀC v] over the run: 0 from rest to rest.)
+// A run's first step from rest at step 0, free of stress (v0 = a0 = 0, β = ½): its start is out
+// of balance by what its loads and gravity put on at once, g0 = f(t1) + M g (springs
+// unstretched), whose work in the step the meter has, ½ dᵀg0 = ½ (W_f(t1) − ΔV). Any other
+// start without a known acceleration (a restart of a static run) is taken to be in balance
+// (a1,prev = 0); a start out of balance otherwise (an in-situ stress not in balance with its
+// tractions, a pretensioned bolt) shows ½ of its first step's work in R. What is not linear over a step — a contact that closes or opens, slip, a
+// re-cut (crack_release.h books its release in F) — and the effects' own loads (a face's water,
+// the absorbing boundaries' input) stay in R.
 #include "solver/output/energy.h"
 
 #include <charconv>
@@ -22,10 +59,9 @@ EnergyMeter::EnergyMeter(const Model& model, const CoverSpace* space)
   initial_geometry();
   shaking_ = !scene.base_acceleration_x.empty() || !scene.base_acceleration_y.empty();
   for (const SupportDef& sd : scene.supports) moving_supports_ |= sd.velocity.x != 0 || sd.velocity.y != 0;
-  // Where the steps throw motion away: DDA's static steps (inertia in the matrix, each step
-  // from rest) and dynamic ones that keep a share of their velocity.
-  damping_ = scene.solver.dynamic ? scene.solver.dynamic_factor < 1
-                                  : scene.solver.static_mode == StaticMode::dda;
+  // Where the steps throw motion away or damp it: DDA's static steps (inertia in the matrix,
+  // each step from rest) and dynamic ones (Newmark γ = 1 damps; dynamic_factor < 1 throws away).
+  damping_ = scene.solver.dynamic || scene.solver.static_mode == StaticMode::dda;
   joints_ = scene.joints.size();
 }
 
@@ -79,63 +115,75 @@ void EnergyMeter::carry_over(const Model& model, const CoverSpace* space, const 
         throw std::logic_error("EnergyMeter::carry_over: an element's parent lies beyond the mesh it was cut from");
     centroids(start, prev_cx_, prev_cy_);
   }
-  // The step's start as the step saw it (damped_kinetic).
+  // The step's start as the step saw it (damped_step).
   if (!prev_cover_u_.empty()) {
     prev_cover_u_ = start.cover_u;
     prev_velocity_ = start.velocity;
     prev_accel_ = start.accel;
   }
-  // The velocity the last step threw away, on its pieces (a new cover takes its parent's, as the
-  // step's start takes its parent's cover function: state_transfer.h).
-  if (!prev_v1_.empty()) {
-    const std::size_t m = prev_v1_.size() / std::max<std::size_t>(1, map.cover_parent.empty() ? 1 : prev_cover_count_);
+  // The velocity the last step threw away and the acceleration it reached, on its pieces (a new
+  // cover takes its parent's, as the step's start takes its parent's cover function:
+  // state_transfer.h).
+  const auto on_pieces = [&](std::vector<double>& x) {
+    if (x.empty()) return;
+    const std::size_t m = x.size() / std::max<std::size_t>(1, map.cover_parent.empty() ? 1 : prev_cover_count_);
     std::vector<double> v(m * map.cover_parent.size());
     for (std::size_t c = 0; c < map.cover_parent.size(); ++c)
-      for (std::size_t k = 0; k < m; ++k) v[m * c + k] = prev_v1_.at(m * static_cast<std::size_t>(map.cover_parent[c]) + k);
-    prev_v1_ = std::move(v);
-  }
+      for (std::size_t k = 0; k < m; ++k) v[m * c + k] = x.at(m * static_cast<std::size_t>(map.cover_parent[c]) + k);
+    x = std::move(v);
+  };
+  on_pieces(prev_v1_);
+  on_pieces(prev_a1_);
   // The step's start on the new mesh, for the effects' terms of the step (EnergyStep).
   changed_start_ = start;
   changed_work_ = start_work;
   changed_ = true;
 }
 
-double EnergyMeter::damped_kinetic(const RunState& s, double kept) {
+double EnergyMeter::damped_step(const RunState& s, double kinetic_end, double load_change) {
   // The velocity v1 = v0 + Δt·a1 the step reached (newmark.h: a1 = (d − Δt·v0 − (½ − β)Δt²·a0)
   // / (βΔt²)), before a static run's next step starts from rest (v0 = a0 = 0, β = ½: v1 = 2d/Δt)
-  // or a dynamic one's from dynamic_factor·v1 (`kept`: the kinetic energy of what it keeps).
-  // Static: ½ K(v1) + ¼ (Δt/Δt_prev) v1_prevᵀM v1 (energy.h); dynamic: K(v1) − kept.
+  // or a dynamic one's from dynamic_factor·v1.
+  // Static: ½ K(v1) + ¼ (Δt/Δt_prev) v1_prevᵀM v1 (energy.h); dynamic: (1) at the top of this
+  // file, ½ dᵀM (a1,prev + a1) − ΔK + ½ load_change.
   const SolverDef& sv = scene_->solver;
   const double dt = s.time - prev_time_;
   if (!(dt > 0)) return 0;
   const bool from_rest = !sv.dynamic || prev_velocity_.size() != s.cover_u.size();
   const double beta = sv.dynamic && prev_accel_known_ ? sv.newmark_beta : 0.5;  // step_beta (newmark.h)
-  std::vector<double> v1(s.cover_u.size());
-  for (std::size_t i = 0; i < v1.size(); ++i) {
-    const double v0 = from_rest ? 0 : prev_velocity_[i], a0 = from_rest || prev_accel_.size() != v1.size() ? 0 : prev_accel_[i];
-    const double d = s.cover_u[i] - prev_cover_u_[i];
-    const double a1 = (d - dt * v0 - (0.5 - beta) * dt * dt * a0) / (beta * dt * dt);
-    v1[i] = v0 + dt * a1;
+  const std::size_t n = s.cover_u.size();
+  std::vector<double> v1(n), a1(n), d(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v0 = from_rest ? 0 : prev_velocity_[i], a0 = from_rest || prev_accel_.size() != n ? 0 : prev_accel_[i];
+    d[i] = s.cover_u[i] - prev_cover_u_[i];
+    a1[i] = (d[i] - dt * v0 - (0.5 - beta) * dt * dt * a0) / (beta * dt * dt);
+    v1[i] = v0 + dt * a1[i];
+  }
+  if (sv.dynamic) {
+    // a1,prev: what the step's start is out of balance by, over M (0 where not known: a run's
+    // first step from rest, whose load_change then carries its start's loads and gravity).
+    std::vector<double> a_sum = a1;
+    if (prev_a1_.size() == n)
+      for (std::size_t i = 0; i < n; ++i) a_sum[i] += prev_a1_[i];
+    prev_a1_ = std::move(a1);
+    return 0.5 * mass_dot(s, d, a_sum) - (kinetic_end - last_.kinetic) + 0.5 * load_change;
   }
   const double k1 = kinetic(s, v1);
-  double q = k1 - kept;
-  if (!sv.dynamic) {
-    q = 0.5 * k1;
-    if (prev_v1_.size() == v1.size() && prev_dt_ > 0) {
-      // ¼ uᵀM w = ¼ [K(u + w) − K(u) − K(w)], K(x) = ½ xᵀM x
-      std::vector<double> sum(v1.size());
-      for (std::size_t i = 0; i < v1.size(); ++i) sum[i] = v1[i] + prev_v1_[i];
-      q += 0.25 * (dt / prev_dt_) * (kinetic(s, sum) - k1 - kinetic(s, prev_v1_));
-    }
+  double q = 0.5 * k1;
+  if (prev_v1_.size() == v1.size() && prev_dt_ > 0) {
+    // ¼ uᵀM w = ¼ [K(u + w) − K(u) − K(w)], K(x) = ½ xᵀM x
+    std::vector<double> sum(v1.size());
+    for (std::size_t i = 0; i < v1.size(); ++i) sum[i] = v1[i] + prev_v1_[i];
+    q += 0.25 * (dt / prev_dt_) * (kinetic(s, sum) - k1 - kinetic(s, prev_v1_));
   }
   prev_v1_ = std::move(v1);
   prev_dt_ = dt;
   return q;
 }
 
-double EnergyMeter::kinetic(const RunState& s, const std::vector<double>& velocity) const {
+double EnergyMeter::mass_dot(const RunState& s, const std::vector<double>& x, const std::vector<double>& y) const {
   double k = 0;
-  if (velocity.empty()) return k;
+  if (x.empty() || y.empty()) return k;
   Configuration config(*mesh_, space_);
   config.place(s.cover_xy);
   for (std::size_t e = 0; e < mesh_->element_count(); ++e) {
@@ -146,30 +194,32 @@ double EnergyMeter::kinetic(const RunState& s, const std::vector<double>& veloci
     const std::size_t b = mesh_->element_loop_offset[e], n = mesh_->element_loop_offset[e + 1] - b;
     const TriangleWeights& w = config.frame(e).w;
     if (space_ && w.twice_area > 0) {
-      // Cover order n ≥ 1: the velocity field, integrated exactly.
+      // Cover order n ≥ 1: the two fields, integrated exactly.
       const int P = space_->terms(), nf = 3 * P, order = space_->order();
       const std::size_t dpc = static_cast<std::size_t>(space_->dofs_per_cover());
       const ElementBasis& basis = config.basis(e);
       const MonomialMoments mm = monomial_moments(s.loop_xy.data() + 2 * b, n, ox, oy,
                                                   space_->scale(), 2 * order + 2);
-      Poly vx, vy;
-      vx.degree = vy.degree = order + 1;
+      Poly xx, xy, yx, yy;
+      xx.degree = xy.degree = yx.degree = yy.degree = order + 1;
       for (int a = 0; a < nf; ++a) {
-        // v of term j of the element's cover k (its own copy, equal to its master's)
+        // the fields of term j of the element's cover k (its own copy, equal to its master's)
         const std::size_t va = dpc * static_cast<std::size_t>(ec[a / P]) + 2 * static_cast<std::size_t>(a % P);
         for (int i = 0; i < basis.phi[a].size(); ++i) {
-          vx.c[i] += basis.phi[a].c[i] * velocity[va];
-          vy.c[i] += basis.phi[a].c[i] * velocity[va + 1];
+          xx.c[i] += basis.phi[a].c[i] * x[va];
+          xy.c[i] += basis.phi[a].c[i] * x[va + 1];
+          yx.c[i] += basis.phi[a].c[i] * y[va];
+          yy.c[i] += basis.phi[a].c[i] * y[va + 1];
         }
       }
-      k += 0.5 * density * (integral(vx, vx, mm) + integral(vy, vy, mm));
+      k += density * (integral(xx, yx, mm) + integral(xy, yy, mm));
     } else if (!space_ && w.twice_area > 0) {
       // The consistent mass, as the step assembles it.
       const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, ox, oy);
       for (int i = 0; i < 3; ++i)
         for (int l = 0; l < 3; ++l) {
-          const double vv = velocity[2 * ec[i]] * velocity[2 * ec[l]] + velocity[2 * ec[i] + 1] * velocity[2 * ec[l] + 1];
-          k += 0.5 * density * integral_ww(w, m, i, l) * vv;
+          const double xy_ = x[2 * ec[i]] * y[2 * ec[l]] + x[2 * ec[i] + 1] * y[2 * ec[l] + 1];
+          k += density * integral_ww(w, m, i, l) * xy_;
         }
     }
   }
@@ -260,18 +310,34 @@ void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bo
   EnergyRow r = measure(s, sources, &counted);
   for (const EffectEnergy* src : sources) columns_ |= src->energy_columns();
   if (started_) {
+    // W_f: the step's work of the point loads, tractions and base shaking, with their time
+    // tables at the step's end (what W counts) and at its start (damped_step's load_change).
+    const bool dynamic = scene_->solver.dynamic;
+    double loads_end = 0, loads_start = 0;
     for (std::size_t l = 0; l < s.loads.size() && l < scene_->loads.size(); ++l) {
-      const double factor =
-          l < scene_->load_tables.size() ? table_value(scene_->load_tables[l], s.time) : 1.0;
-      load_work_ += factor * (scene_->loads[l].force.x * (s.loads[l].x - load_x_[l]) +
-                              scene_->loads[l].force.y * (s.loads[l].y - load_y_[l]));
+      const bool table = l < scene_->load_tables.size();
+      const double factor = table ? table_value(scene_->load_tables[l], s.time) : 1.0;
+      const double fd = scene_->loads[l].force.x * (s.loads[l].x - load_x_[l]) +
+                        scene_->loads[l].force.y * (s.loads[l].y - load_y_[l]);
+      load_work_ += factor * fd;
+      loads_end += factor * fd;
+      loads_start += (table ? table_value(scene_->load_tables[l], prev_time_) : 1.0) * fd;
     }
     const double supports = support_work(s);
     support_work_ += supports;
     // The effects' terms of the step: the work into the step's sum (after the tractions' and
     // the shaking's, before the supports'), the dissipation into the run's totals.
     EnergyTerms step;
-    step.work = traction_work(s) + shaking_work(s);
+    const double surface_end = traction_work(s, s.time) + shaking_work(s, s.time);
+    step.work = surface_end;
+    double load_change = 0;  // J/m, W_f(t1) − W_f(t0); in a dynamic run's first step from rest, W_f(t1) − ΔV
+    if (dynamic && damping_) {
+      if (prev_a1_.empty() && unloaded_start_)
+        load_change = loads_end + surface_end - (r.gravity - last_.gravity);
+      else
+        load_change = loads_end + surface_end - loads_start - traction_work(s, prev_time_) - shaking_work(s, prev_time_);
+      load_change += absorbing_input_change(s);
+    }
     step.friction = friction_;
     step.absorbed = absorbed_;
     step.fracture = released_;
@@ -282,9 +348,24 @@ void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bo
     friction_ = step.friction;
     absorbed_ = step.absorbed;
     released_ = step.fracture;
-    if (damping_ && prev_cover_u_.size() == s.cover_u.size()) damped_ += damped_kinetic(s, r.kinetic);
+    if (damping_ && prev_cover_u_.size() == s.cover_u.size()) damped_ += damped_step(s, r.kinetic, load_change);
   }
   if (damping_) {
+    // A run that starts where a dynamic step ended (a restart): that step's a1 is the state's
+    // acceleration over dynamic_factor.
+    const double k = scene_->solver.dynamic_factor;
+    if (!started_ && scene_->solver.dynamic && s.accel_known && k > 0) {
+      prev_a1_ = s.accel;
+      for (double& a : prev_a1_) a /= k;
+    }
+    // A run's start at step 0, at rest and free of stress: out of balance by its loads and
+    // gravity alone (damped_step). Any other start without a known acceleration (a restart of a
+    // static run's checkpoint) is taken to be in balance.
+    if (!started_) {
+      unloaded_start_ = s.step == 0 && !s.accel_known;
+      for (double x : s.stress) unloaded_start_ = unloaded_start_ && x == 0;
+      for (double x : s.velocity) unloaded_start_ = unloaded_start_ && x == 0;
+    }
     prev_cover_count_ = mesh_->cover_count();
     prev_cover_u_ = s.cover_u;
     prev_velocity_ = s.velocity;
@@ -363,7 +444,7 @@ void EnergyMeter::centroids(const RunState& s, std::vector<double>& cx, std::vec
   }
 }
 
-double EnergyMeter::traction_work(const RunState& s) const {
+double EnergyMeter::traction_work(const RunState& s, double t_table) const {
   // ∫ t·Δu ds on each edge, Δu linear between its ends, by the two-point Gauss rule (exact for
   // a constant t; for σ_insitu·n, linear along the edge, too).
   static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
@@ -371,7 +452,7 @@ double EnergyMeter::traction_work(const RunState& s) const {
   if (prev_loop_u_.size() != s.loop_u.size()) return 0;
   for (std::size_t i = 0; i < model_->traction_edges().size(); ++i) {
     const TractionDef& td = scene_->tractions[i];
-    const double factor = table_value(td.table, s.time);
+    const double factor = table_value(td.table, t_table);
     for (const BoundaryEdge& be : model_->traction_edges()[i]) {
       if (removed(s, be.element)) continue;
       const double* a = s.loop_xy.data() + 2 * be.vertex;
@@ -395,6 +476,44 @@ double EnergyMeter::traction_work(const RunState& s) const {
           const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
           w += 0.5 * len * factor * t[d] * ((1 - xi) * du_a + xi * du_b);
         }
+      }
+    }
+  }
+  return w;
+}
+
+double EnergyMeter::absorbing_input_change(const RunState& s) const {
+  // The absorbing boundaries' input traction t_in = 2·C·v_in(t) (absorbing_boundary.h: C = ρcp
+  // n nᵀ + ρcs t tᵀ, uniform along an edge) works on the edge's motion, linear between its ends:
+  // (t_in(t1) − t_in(t0))·L·(Δu_a + Δu_b)/2, the edge where the step started (its end less Δu).
+  if (prev_loop_u_.size() != s.loop_u.size()) return 0;
+  double w = 0;
+  for (std::size_t i = 0; i < model_->absorbing_edges().size() && i < scene_->absorbing.size(); ++i) {
+    const AbsorbingDef& ad = scene_->absorbing[i];
+    if (ad.input_x.time.empty() && ad.input_y.time.empty()) continue;
+    const double dv[2] = {table_value(ad.input_x, s.time, 0.0) - table_value(ad.input_x, prev_time_, 0.0),
+                          table_value(ad.input_y, s.time, 0.0) - table_value(ad.input_y, prev_time_, 0.0)};
+    if (dv[0] == 0 && dv[1] == 0) continue;
+    for (const BoundaryEdge& be : model_->absorbing_edges()[i]) {
+      if (removed(s, be.element)) continue;
+      const std::int32_t a = be.vertex, b = be.next;
+      double du[2][2], xy[2][2];  // [end a, b][x, y]
+      for (int k = 0; k < 2; ++k) {
+        const std::int32_t v = k == 0 ? a : b;
+        for (int d = 0; d < 2; ++d) {
+          du[k][d] = s.loop_u[2 * v + d] - prev_loop_u_[2 * v + d];
+          xy[k][d] = s.loop_xy[2 * v + d] - du[k][d];
+        }
+      }
+      const double dx = xy[1][0] - xy[0][0], dy = xy[1][1] - xy[0][1], len = std::hypot(dx, dy);
+      if (!(len > 0)) continue;
+      const double n[2] = {dy / len, -dx / len}, t[2] = {dx / len, dy / len};  // CCW: outside on the right
+      const std::size_t e = static_cast<std::size_t>(be.element);
+      const Mat3& D = model_->elasticity(e);
+      const double rho = model_->density(e), zp = std::sqrt(rho * D(0, 0)), zs = std::sqrt(rho * D(2, 2));
+      for (int r = 0; r < 2; ++r) {
+        const double tr = 2 * ((zp * n[r] * n[0] + zs * t[r] * t[0]) * dv[0] + (zp * n[r] * n[1] + zs * t[r] * t[1]) * dv[1]);
+        w += tr * len * 0.5 * (du[0][r] + du[1][r]);
       }
     }
   }
@@ -432,10 +551,10 @@ double EnergyMeter::support_work(const RunState& s) const {
   return w;
 }
 
-double EnergyMeter::shaking_work(const RunState& s) const {
+double EnergyMeter::shaking_work(const RunState& s, double t_table) const {
   if (!shaking_ || prev_cx_.size() != mesh_->element_count()) return 0;
-  const double bx = -table_value(scene_->base_acceleration_x, s.time, 0.0);
-  const double by = -table_value(scene_->base_acceleration_y, s.time, 0.0);
+  const double bx = -table_value(scene_->base_acceleration_x, t_table, 0.0);
+  const double by = -table_value(scene_->base_acceleration_y, t_table, 0.0);
   std::vector<double> cx, cy;
   centroids(s, cx, cy);
   double w = 0;

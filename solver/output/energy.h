@@ -36,21 +36,30 @@
 //                  and, after a step that changed the mesh (mesh_change.h), that step's start
 //                  carried onto the new mesh (EnergyStep: the change itself moves no energy
 //                  between columns).
-//   damped     Q = Σ_steps [½ v1ᵀM v1 − K]                      the motion the steps throw away: v1 the
-//                  velocity a step reached (newmark.h: v1 = v0 + Δt·a1, a1 = (d − Δt v0 −
-//                  (½ − β)Δt² a0)/(βΔt²); a static step of static_mode "dda" starts from rest and
-//                  has β = ½, so v1 = 2d/Δt), K what the next step keeps of it (0 in a static
-//                  run, dynamic_factor²·½ v1ᵀM v1 in a dynamic one). A column of its own only where
-//                  the steps throw motion away (static "dda" runs, dynamic_factor < 1). Why it is
-//                  what R would otherwise hold: a static step solves (K + a0 M) d = b, a0 = 2/Δt²,
-//                  and its W − Δ(U + S) = b·d − ½ dᵀK d = ½ dᵀK d + a0 dᵀM d, of which a0 dᵀM d
-//                  = ½ v1ᵀM v1 is the kinetic energy its inertia term gave the covers: a block that
-//                  slides under gravity in static steps (0.18 mm a step on the step-path slope)
-//                  loses all its motion at every step. (The mass is taken at the step's end
-//                  position: O(d) from the step's.)
+//   damped     Q = the motion the steps throw away and what the time scheme damps, since this
+//                  run's start (energy.cpp has the derivation). v1, a1 the velocity and
+//                  acceleration a step reached (newmark.h: a1 = (d − Δt v0 − (½ − β)Δt² a0)/(βΔt²),
+//                  v1 = v0 + Δt·a1; a static step of static_mode "dda" starts from rest with β = ½,
+//                  so v1 = 2d/Δt), M the consistent mass:
+//                  static "dda":  Σ_steps [½ v1ᵀM v1 + ¼ (Δt/Δt_prev) v1,prevᵀM v1]
+//                  dynamic:       Σ_steps [½ dᵀM (a1,prev + a1) − ΔK + ½ (W_f(t1) − W_f(t0))]
+//                  the dynamic step's discrete energy identity: Newmark with γ = 1 takes out
+//                  ½ dᵀM (a1,prev + a1) − ΔK (≈ (γ − ½)·ωΔt/2 of critical damping for a mode of
+//                  angular frequency ω), a1,prev the acceleration the previous step ended in
+//                  balance with (before dynamic_factor: the velocity and acceleration a step with
+//                  dynamic_factor < 1 throws away are in it); W_f the step's work of the point
+//                  loads, tractions, base shaking and the absorbing boundaries' input traction
+//                  with their time tables at the step's end
+//                  (as W and the step take them) and at its start. A run's first step from rest
+//                  at step 0, free of stress, starts out of balance by its loads and gravity:
+//                  ½ dᵀM a1,prev is then ½ of their work in the step; any other start without
+//                  an acceleration is taken in balance. A column of its own in static "dda" and
+//                  dynamic runs.
 //   residual   R = W − D − A − Q − F − [(K + U + V + S) − (K + U + V + S)_first row]
-//                  energy lost elsewhere: the time scheme's numerical damping (Newmark γ = 1), the
-//                  in-situ traction on faces between bodies (not metered), springs unloading.
+//                  energy lost elsewhere: the in-situ traction on faces between bodies (not
+//                  metered), contact springs unloading, the contact solve's tolerance; in a
+//                  dynamic run, the work of loads not at rest when it starts (what its first
+//                  step's balance does not know) and the effects' time-varying loads.
 // At cover order n ≥ 1 the traction work and the support springs still take the displacement
 // linear between an edge's ends (the field there has degree n + 1): an O(h²) approximation that
 // shows in the residual; K and U are exact.
@@ -87,7 +96,7 @@ struct EnergyRow {
   double support_work = 0;  ///< J/m, the moving supports' part of load_work (not in energy.csv)
   double friction = 0;    ///< J/m, dissipated by friction and plastic slip since the start of this run
   double absorbed = 0;    ///< J/m, taken out through the model's boundary since the start of this run
-  double damped = 0;      ///< J/m, motion the steps threw away (each static step from rest) since this run's start
+  double damped = 0;      ///< J/m, motion the steps threw away and the time scheme damped since this run's start
   double fracture = 0;    ///< J/m, dissipated by new faces in the rock since the start of this run
   double residual = 0;    ///< J/m, W − D − A − Q − F − Δ(K + U + V + S)
 };
@@ -138,8 +147,8 @@ class EnergyMeter {
 
   /// Writes DIR/energy.csv: "step,time,kinetic,strain,gravity,springs,load_work,friction", then
   /// "absorbed" and "fracture" where an effect that owns them took part (EnergyColumns), "damped"
-  /// (between them) where the steps throw motion away (static runs of static_mode "dda", dynamic
-  /// ones with dynamic_factor < 1), and "residual".
+  /// (between them) where the steps throw motion away or the scheme damps it (static runs of
+  /// static_mode "dda", dynamic ones), and "residual".
   void write_csv(const std::string& dir) const;
 
  private:
@@ -147,12 +156,20 @@ class EnergyMeter {
   // The state terms; `counted` (if given): each source's terms of the state (energy_state).
   EnergyRow measure(const RunState& s, const EnergySources& sources, std::vector<EnergyTerms>* counted) const;
   void centroids(const RunState& s, std::vector<double>& cx, std::vector<double>& cy) const;
-  double traction_work(const RunState& s) const;  // J/m, since the previous call
-  double shaking_work(const RunState& s) const;   // J/m, since the previous call
+  // J/m, since the previous call, with the time tables at time t (the step's end: what W counts)
+  double traction_work(const RunState& s, double t) const;
+  double shaking_work(const RunState& s, double t) const;
+  // J/m, the absorbing boundaries' input traction's work over the step at its end time less at
+  // its start time (damped_step's load_change)
+  double absorbing_input_change(const RunState& s) const;
   double support_work(const RunState& s) const;   // J/m, since the previous call
-  double damped_kinetic(const RunState& s, double kept);  // J/m, what the step threw away (Q's step)
+  // J/m, Q's step: `kinetic` K at the step's end; `load_change` W_f(t1) − W_f(t0), or in a
+  // dynamic run's first step from rest, its work of the loads and gravity (energy.cpp)
+  double damped_step(const RunState& s, double kinetic, double load_change);
   // J/m, ½ vᵀM v of the cover velocities `velocity` (laid out as RunState::velocity) on s's covers
-  double kinetic(const RunState& s, const std::vector<double>& velocity) const;
+  double kinetic(const RunState& s, const std::vector<double>& velocity) const { return 0.5 * mass_dot(s, velocity, velocity); }
+  // J/m per (m/s)², xᵀM y of two cover vectors (laid out as RunState::velocity) on s's covers
+  double mass_dot(const RunState& s, const std::vector<double>& x, const std::vector<double>& y) const;
   // m, where support i holds its edges at time t (velocity·∫f dt; 0 for a fixed support)
   std::array<double, 2> held(std::size_t support, double t) const;
 
@@ -178,11 +195,15 @@ class EnergyMeter {
   double load_work_ = 0, friction_ = 0, support_work_ = 0;
   double absorbed_ = 0;              // J/m, what the effects' steps took out through the boundary so far
   double released_ = 0;              // J/m, F: what the effects' steps dissipated in new faces so far
-  double damped_ = 0;                // J/m, the motion the steps threw away so far
-  bool damping_ = false;             // the steps throw motion away: energy.csv has the damped column
+  double damped_ = 0;                // J/m, the motion the steps threw away and the scheme damped so far
+  bool damping_ = false;             // static "dda" or dynamic steps: energy.csv has the damped column
   std::vector<double> prev_cover_u_, prev_velocity_, prev_accel_;  // at the previous call (damping_)
   bool prev_accel_known_ = false;
   std::vector<double> prev_v1_;       // m/s, the velocity the last step threw away (static runs)
+  // m/s², the acceleration the last step reached, a1 before dynamic_factor (dynamic runs): what
+  // its end, the next step's start, is out of balance by, over M; empty: not known
+  std::vector<double> prev_a1_;
+  bool unloaded_start_ = false;  // the run starts at step 0 at rest and free of stress (damped_step)
   double prev_dt_ = 0;                // s, that step's length
   std::size_t prev_cover_count_ = 0;  // covers of the mesh prev_v1_ is on
   std::size_t joints_ = 0;           // the scene's joints at the last call (a change's come after)
