@@ -118,6 +118,11 @@ bool SingleFactor::take(cholmod_factor* l) {
   const auto begin = reinterpret_cast<std::uintptr_t>(to + size), end = reinterpret_cast<std::uintptr_t>(from + size);
   const std::uintptr_t first = (begin + page - 1) / page * page, last = end / page * page;
   if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+  // CHOLMOD's next factorisation touches them again: in 2 MB pages, 512 times fewer faults.
+  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+  const auto start = reinterpret_cast<std::uintptr_t>(bytes);
+  const std::uintptr_t huge_first = (start + kHuge - 1) / kHuge * kHuge, huge_last = end / kHuge * kHuge;
+  if (huge_last > huge_first) madvise(reinterpret_cast<void*>(huge_first), huge_last - huge_first, MADV_HUGEPAGE);
 #endif
   const int* pi = static_cast<const int*>(l->pi);
   max_rows_ = 0;

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include "common/error.h"
 #include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/state_bytes.h"
@@ -396,6 +400,17 @@ void SystemMatrix::analyse(const Sparse& a) {
 
 bool SystemMatrix::factorize() {
   if (!analysed_) {
+    // A new pattern's factor is allocated anew: the run's peak of memory. With a single-precision
+    // factor (the largest runs) the last factorised matrix is let go first (it is copied again
+    // below, once this factorisation has succeeded) and the heap's free pages are returned, so
+    // that the new factor's double values take their place.
+    if (single_from_ > 0 && size() >= single_from_) {
+      Sparse().swap(factored_);
+      has_factor_ = false;
+#if defined(__GLIBC__)
+      malloc_trim(0);
+#endif
+    }
     analyse(k_);
     analysed_ = true;
   }
