@@ -82,12 +82,13 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
     }
     if (k == 1 || k == steps)
       std::printf("# unknowns %d, matrix nonzeros %zu, factor nonzeros %.0f, factorisation Mflop %.1f, ordering %s, analyses %zu, "
-                  "orderings %zu, scatter %.0f MB, factor %.0f MB, matrix copies %.0f MB\n",
+                  "orderings %zu, scatter %.0f MB, factor %.0f MB%s, matrix copies %.0f MB, single-precision refinements %zu\n",
                   st.view().space.unknowns(), st.view().system.nonzeros(), st.view().system.factor_nonzeros(), 1e-6 * st.view().system.factor_flops(),
                   st.view().system.ordering().c_str(), st.view().system.analyses(), st.view().system.orderings(),
                   1e-6 * static_cast<double>(st.view().system.scatter_bytes()),
                   1e-6 * static_cast<double>(st.view().system.factor_bytes()),
-                  1e-6 * static_cast<double>(st.view().system.matrix_bytes()));
+                  st.view().system.single_precision() ? " (single precision)" : "",
+                  1e-6 * static_cast<double>(st.view().system.matrix_bytes()), st.view().system.single_refinements());
     a = b;
     ta = tb;
     cuts = st.view().state.cuts;

@@ -330,3 +330,58 @@ TEST(SystemMatrixOrdering, AKeptOrderingServesGrownPatternsAndRestartsBitwise) {
   bad.build_pattern(n, grown.offsets, grown.dofs);
   EXPECT_FALSE(bad.factor_from_source(bytes));
 }
+
+TEST(SystemMatrixSingle, ASinglePrecisionFactorHalvesItsBytesSolvesRefinedAndRestartsBitwise) {
+  // 100 × 100 covers of 2 unknowns, METIS on the covers (as the large runs with contact), the
+  // factor kept in single precision from 20,000 unknowns (the default, kSingleFactorUnknowns,
+  // is larger: a test of its size would take long), against the same matrix in double.
+  constexpr int kSide = 100;
+  const Groups g = plane_grid(kSide, 2);
+  const int n = 2 * kSide * kSide;
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
+  const auto set_up = [&](SystemMatrix& k, bool single) {
+    k.set_amd_only(true);
+    k.set_block_ordering(2, n, n);
+    if (single) k.set_single_precision(n);
+    k.build_pattern(n, g.offsets, g.dofs);
+  };
+  SystemMatrix dbl, sgl;
+  set_up(dbl, false);
+  set_up(sgl, true);
+  for (SystemMatrix* k : {&dbl, &sgl}) {
+    assembled(*k, g, n);
+    ASSERT_TRUE(k->factorize());
+  }
+  EXPECT_FALSE(dbl.single_precision());
+  ASSERT_TRUE(sgl.single_precision());
+  // The values take 4 bytes instead of 8; the row indices and per-column integers stay.
+  EXPECT_LT(static_cast<double>(sgl.factor_bytes()), 0.6 * static_cast<double>(dbl.factor_bytes()));
+  EXPECT_GT(static_cast<double>(sgl.factor_bytes()), 0.5 * static_cast<double>(dbl.factor_bytes()));
+  const Eigen::VectorXd x = dbl.solve(b);
+  // The preconditioner's solve is the rounded factor's: off the exact one by about u·κ (u = 6e-8),
+  // not by double round-off, nor by a wrong factor's O(1).
+  const Eigen::VectorXd z = sgl.solve_unrefined(b);
+  const double off = (z - x).norm() / x.norm();
+  EXPECT_GT(off, 1e-10);
+  EXPECT_LT(off, 1e-5);
+  // solve() refines against the factorised matrix in double: K x = b to round-off.
+  const Eigen::VectorXd y = sgl.solve(b);
+  EXPECT_LT((b - sgl.matrix().selfadjointView<Eigen::Upper>() * y).norm(), 1e-12 * b.norm());
+  EXPECT_LT((y - x).norm(), 1e-11 * x.norm());
+  EXPECT_GE(sgl.single_refinements(), 1u);
+  // A checkpoint's factorisation restored: the same rounded factor, the same bits.
+  SystemMatrix restored;
+  set_up(restored, true);
+  ASSERT_TRUE(restored.factor_from_source(sgl.factor_source()));
+  ASSERT_TRUE(restored.single_precision());
+  const Eigen::VectorXd zr = restored.solve_unrefined(b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(zr[i], z[i]) << "unknown " << i;
+  // A refactorisation after new values rounds the new factor (its structure reused).
+  assembled(sgl, g, n);
+  for (int i = 0; i < n; ++i) sgl.add_diagonal(i, 5.0);
+  ASSERT_TRUE(sgl.factorize());
+  ASSERT_TRUE(sgl.single_precision());
+  const Eigen::VectorXd w = sgl.solve(b);
+  EXPECT_LT((b - sgl.matrix().selfadjointView<Eigen::Upper>() * w).norm(), 1e-12 * b.norm());
+}

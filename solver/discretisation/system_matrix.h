@@ -19,6 +19,8 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 
+#include "solver/discretisation/single_factor.h"
+
 namespace nmm::solve {
 
 /// Unknowns from which set_block_ordering() orders by METIS on the covers (system_matrix.cpp).
@@ -26,6 +28,8 @@ inline constexpr int kBlockOrderingUnknowns = 150000;
 /// A kept ordering serves a grown pattern while its factor has at most this many times the
 /// nonzeros it had when the ordering was found (system_matrix.cpp).
 inline constexpr double kOrderingRefill = 1.10;
+/// Unknowns from which set_single_precision() keeps the factor in single precision (system_matrix.cpp).
+inline constexpr int kSingleFactorUnknowns = 150000;
 
 class SystemMatrix {
  public:
@@ -62,6 +66,14 @@ class SystemMatrix {
     blocked_ = blocked;
     block_from_ = from;
   }
+  /// Keeps the factor in single precision once the system has at least `from` unknowns (0: never,
+  /// the default): its solves read half the bytes; solve() refines against the factorised matrix
+  /// in double (single_factor.h, system_matrix.cpp: where it pays).
+  void set_single_precision(int from = kSingleFactorUnknowns) { single_from_ = from; }
+  /// The factor is held in single precision.
+  bool single_precision() const { return single_.ready(); }
+  /// Refinement passes of solves with a single-precision factor so far.
+  std::size_t single_refinements() const { return single_refinements_; }
   /// Iterative-refinement passes of the last solve (0 without regularisation).
   int refinements() const { return refinements_; }
 
@@ -94,7 +106,7 @@ class SystemMatrix {
   /// regularised, cover_space.h). A preconditioner uses solve_unrefined() instead.
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
   /// Solves with the last factorisation only, no iterative refinement: a preconditioner's solve.
-  Eigen::VectorXd solve_unrefined(const Eigen::VectorXd& b) const { return llt_.solve(b); }
+  Eigen::VectorXd solve_unrefined(const Eigen::VectorXd& b) const;
   /// Removes from x its component in the null space of the factorised matrix P (the
   /// zero-field combinations of the cover coefficients, docs/higher-order-covers.md "Keeping
   /// the null space out"): x ← x − (P + E)⁻¹ E x with E the diagonal perturbation of the factor.
@@ -133,7 +145,7 @@ class SystemMatrix {
   std::size_t analyses() const { return analyses_; }  ///< symbolic analyses done so far
   std::size_t builds() const { return builds_; }  ///< patterns built from scratch so far (not grown in place)
   /// Bytes of CHOLMOD's factor (values, supernodes' row indices, permutation), 0 without one.
-  std::size_t factor_bytes() const { return llt_.bytes(); }
+  std::size_t factor_bytes() const { return single_.ready() ? single_.bytes() : llt_.bytes(); }
   /// Bytes of the matrix's copies: the pattern and values, the saved values, the factorised one.
   std::size_t matrix_bytes() const {
     const auto bytes = [](const Sparse& a) {
@@ -157,7 +169,12 @@ class SystemMatrix {
     /// analyzePattern() with the fill-reducing permutation `perm` (perm[k]: the unknown
     /// eliminated k-th) instead of CHOLMOD's own ordering; CHOLMOD still postorders it.
     void analyze_given(const Sparse& a, std::vector<int>& perm);
+    cholmod_factor* factor() { return this->m_cholmodFactor; }
   };
+  /// (P + E)⁻¹ b with the factorisation, in double: CHOLMOD's solve, or the single-precision
+  /// factor's refined against factored_.
+  Eigen::VectorXd solve_factored(const Eigen::VectorXd& b) const;
+  void keep_single();  // the factor just made goes to single precision, if set so
   void analyse(const Sparse& a);  // CHOLMOD's symbolic analysis of a's pattern, under the ordering set
   Sparse k_;
   // Where each group's block lands: for the entries (i, j) of its m × m block, column-major,
@@ -190,6 +207,9 @@ class SystemMatrix {
   double eps_ = 0;
   Eigen::VectorXd perturbation_;  // [n] E: the factor's diagonal perturbation (0 off regularised_)
   int refinements_ = 0;
+  SingleFactor single_;  // the factor in single precision (set_single_precision), else not ready
+  int single_from_ = 0;
+  mutable std::size_t single_refinements_ = 0;
 };
 
 }  // namespace nmm::solve

@@ -80,6 +80,9 @@ void TimeStepper::number_effects() {
   // The largest runs with contact order by METIS on the covers (system_matrix.h
   // set_block_ordering): the covers of this mesh, the effects' own unknowns after them.
   system_.set_block_ordering(b_->solved_by_effect() ? b_->space.dofs_per_cover() : 0, b_->space.unknowns());
+  // And keep their factor in single precision (system_matrix.h set_single_precision): its solves
+  // are most of a CG iteration, and read it at the memory's speed.
+  system_.set_single_precision(b_->solved_by_effect() ? kSingleFactorUnknowns : 0);
   rhs_.resize(b_->number(s_));
   build_pattern();
 }

@@ -1,0 +1,50 @@
+// CHOLMOD's supernodal factor held in single precision, and its triangular solves.
+//
+// A conjugate-gradient iteration of the contact solve (contact_solve.cpp) is a solve pair with
+// the kept factor, L Lᵀ z = r: a pass forward and a pass back through every value of L. On the
+// largest walls that pair reads 22–172 M factor values per iteration and runs at the memory's
+// speed (docs/performance.md (h)); stored as float, L takes half the bytes to read and to hold.
+//
+// What it changes. With L̃ = fl32(L), L̃ L̃ᵀ = P + F with |F| ≲ 2u·|L||L|ᵀ (u = 2⁻²⁴ ≈ 6e-8),
+// so as a preconditioner L̃ L̃ᵀ differs from P by a relative O(u·κ(P)) in the P-norm: CG on it
+// converges as on P once u·κ ≪ 1, with a few more iterations where the springs did not switch.
+// A solve that must be exact (after a factorisation) is refined against the factorised matrix
+// in double (system_matrix.cpp): x ← x + (L̃ L̃ᵀ)⁻¹ (b − P x), each pass gaining −log10(u·κ)
+// digits. The vectors and the sums stay in double; only L's values are rounded.
+//
+// In place: the float values take the first half of CHOLMOD's own value array (value k, 8 bytes
+// at 8k, is read before float k, 4 bytes at 4k, is written), and the pages of the second half
+// go back to the system (madvise). CHOLMOD's next numeric factorisation writes every value of
+// that array again, so the factor's structure (supernodes, rows, permutation) is shared and
+// the double values no longer exist: every solve of a SystemMatrix in this mode comes here.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+#include <cholmod.h>
+
+namespace nmm::solve {
+
+class SingleFactor {
+ public:
+  /// Rounds the numeric supernodal LLᵀ factor `l` (int indices, real) to float in place; `l`
+  /// must then not be solved by CHOLMOD until it is factorised again. False (and nothing done)
+  /// for a factor of another kind.
+  bool take(cholmod_factor* l);
+  /// Forgets the factor (before CHOLMOD refactorises or frees it).
+  void clear() { l_ = nullptr; }
+  bool ready() const { return l_ != nullptr; }
+  /// x = (L̃ L̃ᵀ)⁻¹ b in the unknowns' order (the permutation undone), in double.
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// Bytes the factor holds: float values, supernodes' row indices, per-column integers.
+  std::size_t bytes() const;
+
+ private:
+  const cholmod_factor* l_ = nullptr;
+  const float* x_ = nullptr;  // [xsize] the values, supernode by supernode, column-major
+  int max_rows_ = 0;          // the tallest supernode's rows (work vector size)
+};
+
+}  // namespace nmm::solve
