@@ -341,21 +341,21 @@ void ContactEffect::energy_state(const EnergyState& /*e*/, EnergyTerms& t) const
       t.stored += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
 }
 
-void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
-  const std::vector<std::int32_t>& joint = e.model.mesh().loop_edge_joint;
+void ContactEffect::energy_step(const EnergyStep& /*e*/, EnergyTerms& t) const {
   for (const Contact& c : contacts_.contacts()) {
     if (c.state == ContactState::sliding) {
-      const double slip_work = std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
-      t.friction += slip_work;
-      // A face the step's change cut (a new crack's: it starts closed at gap 0 with no force,
-      // state_transfer.h) that slides within that step: the static step took its shear force from
-      // 0 to T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is what
-      // the crack's release gave its faces' contacts beyond their springs (crack_release.h), so
-      // the fracture column gives it back. Cohesive faces book their own (cohesive_law.h).
-      const auto edge = static_cast<std::size_t>(c.at.edge);
-      if (e.changed_start && !c.cohesive.on && edge < joint.size() &&
-          joint[edge] >= static_cast<std::int32_t>(e.joints_before))
-        t.fracture -= 0.5 * slip_work;
+      // The step's slip (trial elastic shear less what the spring keeps) under the shear force,
+      // which went linearly from the step's start to its end as every other force of the balance
+      // (the supports' ē, the strain energy's ½(σ0 + σ1)): ½(T_start + T)·slip. A face sliding
+      // while its normal force falls (a crack's faces after the peak) books less than the end
+      // force times the slip would; a new contact (a new crack's face, at gap 0 with no force:
+      // state_transfer.h) books ½T·slip. Cohesive faces book the end force, as their cohesion's
+      // share of it is taken out (cohesion_slip_work, cohesive_law.h).
+      const double slip = std::abs(c.shear - c.shear_el);
+      const double force = c.cohesive.on ? std::abs(c.shear_force)
+                                         : 0.5 * (std::abs(c.shear_force) +
+                                                  std::copysign(c.start_shear_force, c.start_shear_force * c.shear_force));
+      t.friction += force * slip;
     }
     t.friction -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
     t.fracture += c.cohesive_step;
