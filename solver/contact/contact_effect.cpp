@@ -341,21 +341,37 @@ void ContactEffect::energy_state(const EnergyState& /*e*/, EnergyTerms& t) const
       t.stored += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
 }
 
-void ContactEffect::energy_step(const EnergyStep& /*e*/, EnergyTerms& t) const {
+void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
+  const std::vector<std::int32_t>& joint = e.model.mesh().loop_edge_joint;
   for (const Contact& c : contacts_.contacts()) {
     if (c.state == ContactState::sliding) {
       // The step's slip (trial elastic shear less what the spring keeps) under the shear force,
       // which went linearly from the step's start to its end as every other force of the balance
       // (the supports' ē, the strain energy's ½(σ0 + σ1)): ½(T_start + T)·slip. A face sliding
-      // while its normal force falls (a crack's faces after the peak) books less than the end
-      // force times the slip would; a new contact (a new crack's face, at gap 0 with no force:
-      // state_transfer.h) books ½T·slip. Cohesive faces book the end force, as their cohesion's
-      // share of it is taken out (cohesion_slip_work, cohesive_law.h).
+      // while its normal force falls books ∫N·tanφ ds where the end force would book less.
+      // Cohesive faces book the end force, as their cohesion's share of it is taken out
+      // (cohesion_slip_work, cohesive_law.h).
       const double slip = std::abs(c.shear - c.shear_el);
-      const double force = c.cohesive.on ? std::abs(c.shear_force)
-                                         : 0.5 * (std::abs(c.shear_force) +
-                                                  std::copysign(c.start_shear_force, c.start_shear_force * c.shear_force));
-      t.friction += force * slip;
+      const double end_work = std::abs(c.shear_force) * slip;
+      if (c.cohesive.on) {
+        t.friction += end_work;
+      } else if (!e.changed_start) {
+        t.friction += 0.5 * (std::abs(c.shear_force) +
+                             std::copysign(c.start_shear_force, c.start_shear_force * c.shear_force)) * slip;
+      } else {
+        // A step that cut the mesh: the start forces of the contacts on the covers the cut split
+        // are in the force r the fracture column books ½ r·d of (the start, carried onto the cut
+        // mesh, is out of balance by them there: crack_release.h), so the slip is booked at its
+        // end force. A new crack's face (it starts closed at gap 0 with no force,
+        // state_transfer.h) that slides within that step: the static step took its shear force
+        // from 0 to T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is
+        // what the crack's release gave its faces' contacts beyond their springs
+        // (crack_release.h), so the fracture column gives it back.
+        t.friction += end_work;
+        const auto edge = static_cast<std::size_t>(c.at.edge);
+        if (edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before))
+          t.fracture -= 0.5 * end_work;
+      }
     }
     t.friction -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
     t.fracture += c.cohesive_step;

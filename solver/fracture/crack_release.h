@@ -41,9 +41,10 @@
 //                  last mesh (every face cut since the last accepted step), d the final solution.
 //                  A new face's contact that slides within the step starts at zero force (gap 0,
 //                  no shear: state_transfer.h), so the step took its shear force from 0 to T
-//                  along the slip: the friction column books ½(0 + T)·slip, the trapezoid every
-//                  contact's slip is booked with (contact_effect.cpp energy_step), and ½ r·d
-//                  stays whole in F. (A face that opens or stays closed is linear.)
+//                  along the slip: the friction column books |T|·slip, the step spent ½|T|·slip
+//                  of the release on it, and the contact effect gives ½|T|·slip back from F
+//                  (contact_effect.cpp energy_step): what the crack's faces took beyond their
+//                  springs. (A face that opens or stays closed is linear: nothing to give back.)
 //                  Softening crack faces (cohesive_law.h) add what their damage dissipated,
 //                  Σ_steps Σ_faces L·[D(κ_end) − D(κ_start)] (D the work of the traction to κ on
 //                  the envelope less the elastic energy the secant gives back: that part is in S

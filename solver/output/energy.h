@@ -31,7 +31,8 @@
 //                  locked in from the start (integrators.cpp support_terms), which works on the
 //                  held line's motion Δu_d as an in-situ traction does (d the held directions).
 //   friction   D = what the effects dissipate by friction and plastic slip (below; a sliding
-//                  contact: ½(T_start + T)·slip, contact_effect.cpp)
+//                  contact: ½(T_start + T)·slip, at its end force T in a step that cut the mesh:
+//                  contact_effect.cpp)
 //   effects    each effect with state adds its own terms (effect_energy.h; its equations at
 //                  the top of its file): S_e into S, W_e into W, D_e into D, A or F — what the
 //                  springs between faces hold, the work of a pressure on the faces, what slip,
