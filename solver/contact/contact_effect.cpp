@@ -345,19 +345,22 @@ void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
   const std::vector<std::int32_t>& joint = e.model.mesh().loop_edge_joint;
   for (const Contact& c : contacts_.contacts()) {
     if (c.state == ContactState::sliding) {
-      // The step's slip (trial elastic shear less what the spring keeps) under the shear force,
-      // which went linearly from the step's start to its end as every other force of the balance
-      // (the supports' ē, the strain energy's ½(σ0 + σ1)): ½(T_start + T)·slip. A face sliding
-      // while its normal force falls books ∫N·tanφ ds where the end force would book less.
-      // Cohesive faces book the end force, as their cohesion's share of it is taken out
-      // (cohesion_slip_work, cohesive_law.h).
+      // The step's slip (trial elastic shear less what the spring keeps) under the shear force.
+      // A contact that slid at the step's start and slides on the same way: the force went
+      // linearly from its start to its end as every other force of the balance (the supports'
+      // ē, the strain energy's ½(σ0 + σ1)), ½(T_start + T)·slip, so a face sliding while its
+      // normal force falls books ∫N·tanφ ds where the end force would book less. Any other
+      // (it starts to slide, turns, or is a joint point's contact found anew on another vertex
+      // with no start force: a shear box's joint re-pairs its points as it slides, and half its
+      // friction went missing with ½(0 + T)) and cohesive faces (their cohesion's share of the
+      // end force is taken out: cohesion_slip_work, cohesive_law.h) book the end force.
       const double slip = std::abs(c.shear - c.shear_el);
       const double end_work = std::abs(c.shear_force) * slip;
+      const bool slid_on = c.start_state == ContactState::sliding && c.start_shear_force * c.shear_force > 0;
       if (c.cohesive.on) {
         t.friction += end_work;
       } else if (!e.changed_start) {
-        t.friction += 0.5 * (std::abs(c.shear_force) +
-                             std::copysign(c.start_shear_force, c.start_shear_force * c.shear_force)) * slip;
+        t.friction += slid_on ? 0.5 * (std::abs(c.shear_force) + std::abs(c.start_shear_force)) * slip : end_work;
       } else {
         // A step that cut the mesh: the start forces of the contacts on the covers the cut split
         // are in the force r the fracture column books ½ r·d of (the start, carried onto the cut
