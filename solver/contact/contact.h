@@ -41,6 +41,10 @@ struct ContactHistory {
   /// A new crack's face: its cohesive softening's damage and slip (cohesive_law.h; on only
   /// where the crack's rock has a fracture energy)
   CohesiveMemory cohesive;
+  /// N, the shear force at the end of the last accepted step: the next step's start force, the
+  /// friction work's trapezoid (contact_effect.cpp energy_step). Not saved: a checkpoint's rows
+  /// hold it (contact_history.cpp).
+  double shear_force = 0;
 };
 
 /// One contact of the step being solved: rebuilt by every ContactSet::begin_step() from the
@@ -73,6 +77,9 @@ struct Contact {
                              ///< joint's dilation (the faces stand apart by it at gap 0)
   double shear = 0;          ///< m, trial elastic shear after the last solve (shear_el + slip)
   double shear_force = 0;    ///< N
+  /// N, the shear force at the start of the step (the last accepted step's end, 0 where the
+  /// contact starts it open): friction's work over the step is ½(T_start + T)·slip (energy.h)
+  double start_shear_force = 0;
   double kn_now = 0;         ///< N/m, tangent normal stiffness at the last solve
   double ks_now = 0;         ///< N/m, tangent shear stiffness at the last solve (0 sliding)
   bool capped = false;       ///< closure held below Vm at the last solve

@@ -345,17 +345,36 @@ void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
   const std::vector<std::int32_t>& joint = e.model.mesh().loop_edge_joint;
   for (const Contact& c : contacts_.contacts()) {
     if (c.state == ContactState::sliding) {
-      const double slip_work = std::abs(c.shear_force) * std::abs(c.shear - c.shear_el);
-      t.friction += slip_work;
-      // A face the step's change cut (a new crack's: it starts closed at gap 0 with no force,
-      // state_transfer.h) that slides within that step: the static step took its shear force from
-      // 0 to T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is what
-      // the crack's release gave its faces' contacts beyond their springs (crack_release.h), so
-      // the fracture column gives it back. Cohesive faces book their own (cohesive_law.h).
-      const auto edge = static_cast<std::size_t>(c.at.edge);
-      if (e.changed_start && !c.cohesive.on && edge < joint.size() &&
-          joint[edge] >= static_cast<std::int32_t>(e.joints_before))
-        t.fracture -= 0.5 * slip_work;
+      // The step's slip (trial elastic shear less what the spring keeps) under the shear force.
+      // A contact that slid at the step's start and slides on the same way: the force went
+      // linearly from its start to its end as every other force of the balance (the supports'
+      // ē, the strain energy's ½(σ0 + σ1)), ½(T_start + T)·slip, so a face sliding while its
+      // normal force falls books ∫N·tanφ ds where the end force would book less. Any other
+      // (it starts to slide, turns, or is a joint point's contact found anew on another vertex
+      // with no start force: a shear box's joint re-pairs its points as it slides, and half its
+      // friction went missing with ½(0 + T)) and cohesive faces (their cohesion's share of the
+      // end force is taken out: cohesion_slip_work, cohesive_law.h) book the end force.
+      const double slip = std::abs(c.shear - c.shear_el);
+      const double end_work = std::abs(c.shear_force) * slip;
+      const bool slid_on = c.start_state == ContactState::sliding && c.start_shear_force * c.shear_force > 0;
+      if (c.cohesive.on) {
+        t.friction += end_work;
+      } else if (!e.changed_start) {
+        t.friction += slid_on ? 0.5 * (std::abs(c.shear_force) + std::abs(c.start_shear_force)) * slip : end_work;
+      } else {
+        // A step that cut the mesh: the start forces of the contacts on the covers the cut split
+        // are in the force r the fracture column books ½ r·d of (the start, carried onto the cut
+        // mesh, is out of balance by them there: crack_release.h), so the slip is booked at its
+        // end force. A new crack's face (it starts closed at gap 0 with no force,
+        // state_transfer.h) that slides within that step: the static step took its shear force
+        // from 0 to T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is
+        // what the crack's release gave its faces' contacts beyond their springs
+        // (crack_release.h), so the fracture column gives it back.
+        t.friction += end_work;
+        const auto edge = static_cast<std::size_t>(c.at.edge);
+        if (edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before))
+          t.fracture -= 0.5 * end_work;
+      }
     }
     t.friction -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
     t.fracture += c.cohesive_step;

@@ -159,7 +159,8 @@ void load_contact_history(ContactSet& contacts, const std::string& bytes, const 
     c.ks_now = finite(r.get<double>());
     c.capped = flag(r.get<std::uint8_t>());
     hs.push_back({c.at.vertex, mesh.element_block[c.at.elem_b], c.state, c.broken,
-                  static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint, 0.0, false, c.cohesive});
+                  static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint, 0.0, false, c.cohesive,
+                  c.shear_force});
     cs.push_back(c);
   }
   r.expect_end();

@@ -241,6 +241,7 @@ void ContactSet::begin_step(const std::vector<double>& xy, double d0, double sha
     // apart by it, so the normal spring closes at gap = dilation.
     if (c.state != ContactState::open && f.gap - c.joint.dilation > eps_ && !bond) c.state = ContactState::open;
     c.start_state = c.state;
+    c.start_shear_force = at >= 0 && c.state != ContactState::open ? history_[at].shear_force : 0.0;
     now.push_back(c);
   }
   for (const ContactHistory& h : history_) history_at_[h.vertex] = -1;
@@ -360,7 +361,7 @@ void ContactSet::end_step(ContactProblem& step) {
     const Contact& c = contacts_[i];
     history_[i] = {c.at.vertex, topo_.block_of[c.at.elem_b], c.state, c.broken,
                    static_cast<std::int8_t>(c.slip_sign), c.shear_el, c.normal_force, c.joint, std::max(-c.gap, 0.0), false,
-                   c.cohesive};
+                   c.cohesive, c.shear_force};
   }
   rows_accepted_ = true;
 }

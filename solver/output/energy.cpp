@@ -527,10 +527,40 @@ std::array<double, 2> EnergyMeter::held(std::size_t support, double t) const {
 }
 
 double EnergyMeter::support_work(const RunState& s) const {
+  if (prev_loop_u_.size() != s.loop_u.size()) return 0;
+  double w = 0;
+  // The in-situ stress's reaction the supports carry locked in (integrators.cpp support_terms):
+  // a force σ_insitu·n on the held line in each held direction, which works on its motion,
+  // ∫ (σ_insitu·n)_d Δu_d ds, as the in-situ tractions do (traction_work: two-point Gauss, the
+  // field at a point's position in the mesh as cut, n at the step's end).
+  if (scene_->insitu_stress.present) {
+    static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
+    for (std::size_t i = 0; i < model_->support_edges().size(); ++i) {
+      const SupportDef& sd = scene_->supports[i];
+      for (const BoundaryEdge& be : model_->support_edges()[i]) {
+        if (removed(s, be.element)) continue;
+        const double* a = s.loop_xy.data() + 2 * be.vertex;
+        const double* b = s.loop_xy.data() + 2 * be.next;
+        const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
+        if (!(len > 0)) continue;
+        const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
+        for (double xi : kGauss) {
+          const double uy = (1 - xi) * s.loop_u[2 * be.vertex + 1] + xi * s.loop_u[2 * be.next + 1];
+          const auto sg = insitu_stress_at(scene_->insitu_stress, a[0] + xi * dx, a[1] + xi * dy - uy);
+          const double t[2] = {sg[0] * nx + sg[2] * ny, sg[2] * nx + sg[1] * ny};
+          for (int d = 0; d < 2; ++d) {
+            if (!(d == 0 ? sd.fix_x : sd.fix_y)) continue;
+            const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
+            const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
+            w += 0.5 * len * t[d] * ((1 - xi) * du_a + xi * du_b);
+          }
+        }
+      }
+    }
+  }
   // −k_s ∫ ē·Δh ds on each held component, ē = ½(e_prev + e_now), e = u − h linear along the
   // edge and Δh uniform: L·Δh·(ē_a + ē_b)/2.
-  if (!moving_supports_ || prev_loop_u_.size() != s.loop_u.size()) return 0;
-  double w = 0;
+  if (!moving_supports_) return w;
   for (std::size_t i = 0; i < model_->support_edges().size(); ++i) {
     const SupportDef& sd = scene_->supports[i];
     if (sd.velocity.x == 0 && sd.velocity.y == 0) continue;

@@ -19,14 +19,20 @@
 //   load_work  W = Σ_steps [Σ_loads f(t_n+1)·(p_n+1 − p_n)       work of the external loads since
 //                  + Σ_traction edges ∫ t(t_n+1)·Δu ds           the start of this run: point loads,
 //                  + Σ_e ρ_e A0_e b(t_n+1)·Δc_e                  tractions (t = normal·n + shear·s,
-//                  − Σ_moving supports k_s ∫ ē_d·Δh_d ds]
+//                  − Σ_moving supports k_s ∫ ē_d·Δh_d ds
+//                  + Σ_supports ∫ (σ_insitu·n)_d·Δu_d ds]
 //                  or σ_insitu·n; two-point Gauss, exact for the linear Δu) and the body force of
 //                  base shaking b = −a_base; each at the step's end time, as the implicit step
 //                  applies it. (Gravity's work is −ΔV, not counted here.) A moving support's
 //                  work: its springs pull on the held line with k_s·(u − h), which the motion
 //                  Δh works against; ē = u − h averaged over the step (trapezoid: exact for the
-//                  linear spring), linear along the edge.
-//   friction   D = what the effects dissipate by friction and plastic slip (below)
+//                  linear spring), linear along the edge. With an in-situ stress every support
+//                  also pushes with the field's reaction σ_insitu·n in its held directions,
+//                  locked in from the start (integrators.cpp support_terms), which works on the
+//                  held line's motion Δu_d as an in-situ traction does (d the held directions).
+//   friction   D = what the effects dissipate by friction and plastic slip (below; a sliding
+//                  contact: ½(T_start + T)·slip, at its end force T in a step that cut the mesh:
+//                  contact_effect.cpp)
 //   effects    each effect with state adds its own terms (effect_energy.h; its equations at
 //                  the top of its file): S_e into S, W_e into W, D_e into D, A or F — what the
 //                  springs between faces hold, the work of a pressure on the faces, what slip,

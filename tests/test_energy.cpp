@@ -1,0 +1,157 @@
+// The energy meter's path terms against closed forms (solver/output/energy.h, docs/energy.md):
+//
+// 1. Friction under a falling normal force. A stiff block on a held base (φ = 30°, a frictional
+//    interface), pressed by a traction on its top and pushed sideways by a support moving at a
+//    constant speed, slides at that speed. Over the last steps the traction falls linearly to
+//    half. Friction's work over that part is ∫ N·tanφ ds, N the traction's resultant (the
+//    contacts' normal forces sum to it), s the block's travel: with N linear in time and s
+//    uniform, the trapezoid Σ ½(N_k + N_k+1)·tanφ·Δs_k is exact. Booking each step's slip at its
+//    end force (the meter's old rule) misses ½ ΔN·tanφ·Δs a step: 6.7 % over five steps.
+//
+//        traction p(t) ↓↓↓↓↓
+//          ┌──────────┐
+//    v →  ▐│  block   │          1 m × 0.5 m, E 500 GPa
+//          └──────────┘ φ 30°
+//          ┌──────────┐
+//          │   base   │ held
+//          └──────────┘
+//
+// 2. A moving support pushing a pre-stressed body. A column under the in-situ stress σyy = −p
+//    (σxx = 0: its free sides carry nothing) stands on a roller and is shortened by a roller
+//    moving down on its top. Both rollers carry the in-situ reaction p·w locked in (integrators.cpp
+//    support_terms) besides their springs, so the top pushes with F = w·(p + E'·δ/H) and does
+//    W = ∫ F dδ = w·(p·δ + E'δ²/(2H)) on the column, which its strain energy takes
+//    (U − U0 = the same, from σ = −p to −p − E'δ/H). Counting the springs alone leaves w·p·δ out:
+//    here 4/5 of the work.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "common/math_constants.h"
+#include "common/scene.h"
+#include "preprocess/cover_cutter.h"
+#include "solver/output/energy.h"
+#include "solver/stepping/time_stepper.h"
+#include "tests/ended_ok.h"
+
+namespace nmm {
+namespace {
+
+// The meter as nmm-solve runs it (solve_run.cpp EnergyOutput), after every step.
+struct MeteredRun {
+  explicit MeteredRun(const nlohmann::json& doc, const std::string& name)
+      : scene(scene_from_json(doc, name)), mesh(pre::build_mesh(scene, name)), st(mesh, scene, name),
+        meter(st.view().model, &st.view().space) {
+    meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
+  }
+  SceneDef scene;
+  Mesh mesh;
+  solve::TimeStepper st;
+  solve::EnergyMeter meter;
+};
+
+// m, the mean displacement component d of the loop vertices within 1e-9 m of the line
+// coordinate[axis] = at in the mesh as cut.
+double mean_displacement(const solve::RunState& s, int axis, double at, int d) {
+  double sum = 0;
+  int n = 0;
+  for (std::size_t v = 0; 2 * v < s.loop_u.size(); ++v)
+    if (std::abs(s.loop_xy[2 * v + axis] - s.loop_u[2 * v + axis] - at) < 1e-9) sum += s.loop_u[2 * v + d], ++n;
+  return n ? sum / n : NAN;
+}
+
+TEST(EnergyPaths, FrictionUnderAFallingNormalForceIsItsIntegral) {
+  const double p = 1e6, w = 1, tan_phi = std::tan(30 * kPi / 180);
+  const double dt = 1e-3, v = 0.2;  // s; m/s: 0.2 mm a step, 400× what the block's own shear strain gives back
+  const int steady = 10, falling = 5;  // steps at p, then steps while p falls to p/2
+  const double t_fall = steady * dt, t_end = (steady + falling) * dt;
+  const nlohmann::json doc = {
+      {"name", "falling-normal-force"},
+      {"plane", "strain"},
+      {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
+      {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", 1e13}}},
+                                 {"shear", {{"model", "constant"}, {"ks", 1e13}}}}}}},
+      {"interface_set", "joint"},
+      {"mesh", {{"size", 0.25}}},
+      {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}}},
+                  {{"material", "stiff"}, {"outer", {{0, 0.5}, {1, 0.5}, {1, 1}, {0, 1}}}}}},
+      {"supports", {{{"points", {{0, 0}, {1, 0}}}, {"fix", "xy"}},
+                    {{"points", {{0, 0.5}, {0, 1}}}, {"fix", "x"}, {"velocity", {v, 0}}}}},
+      {"tractions", {{{"points", {{1, 1}, {0, 1}}}, {"normal", -p}, {"shear", 0},
+                      {"table", {{0, 1}, {t_fall, 1}, {t_end, 0.5}}}}}},
+      {"solver", {{"time_step", dt}, {"steps", steady + falling}, {"support_stiffness", 1e15}}}};
+  MeteredRun r(doc, "falling");
+  double friction_fall = 0, closed = 0, end_force_rule = 0, x_prev = 0, n_prev = p * w;
+  const Outcome o = r.st.run_until(t_end * (1 - 1e-9), [&](std::int64_t n) {
+    const solve::RunView view = r.st.view();
+    r.meter.after_step(view.state, solve::energy_sources(view), true);
+    const double x = mean_displacement(view.state, 1, 1.0, 0);  // the block's travel (its top)
+    const double t = view.state.time;
+    const double normal = p * w * (t <= t_fall ? 1.0 : 1 - 0.5 * (t - t_fall) / (t_end - t_fall));
+    if (n > steady) {
+      closed += 0.5 * (n_prev + normal) * tan_phi * (x - x_prev);
+      end_force_rule += normal * tan_phi * (x - x_prev);  // each step's slip at its end force (the old rule)
+      const auto& rows = r.meter.rows();
+      friction_fall += rows[rows.size() - 1].friction - rows[rows.size() - 2].friction;
+    }
+    x_prev = x, n_prev = normal;
+  });
+  ASSERT_PRED1(test::ended_ok, o);
+  // The balance over the fall (the first steps' residual is the static steps' sudden start).
+  const solve::EnergyRow& end = r.meter.rows().back();
+  const solve::EnergyRow& before = r.meter.rows()[steady];
+  const double work = end.load_work - before.load_work, residual = end.residual - before.residual;
+  std::printf("falling normal force: travel %.6g m; friction while p falls %.6g J/m, ∫N·tanφ ds %.6g J/m "
+              "(end-force rule %.6g); over the fall: work %.6g, residual %.4g J/m\n",
+              x_prev, friction_fall, closed, end_force_rule, work, residual);
+  EXPECT_NEAR(x_prev, v * t_end, 0.02 * v * t_end);  // the block slid with the support
+  EXPECT_NEAR(friction_fall, closed, 0.003 * closed);
+  EXPECT_GT(std::abs(end_force_rule - closed), 0.05 * closed);  // the old rule fails this check
+  EXPECT_LT(std::abs(residual), 0.01 * work);
+}
+
+TEST(EnergyPaths, AMovingSupportWorksWithItsLockedInReaction) {
+  const double p = 10e6, E = 2e10, nu = 0.2, w = 1, H = 2;
+  const double Ep = E / (1 - nu * nu);  // Pa, plane strain, free sides
+  const double dt = 1e-3, steps = 20;
+  const double shortening = 0.5 * p / Ep * H;  // m: the column's stress goes from −p to −1.5 p
+  const double v = shortening / (steps * dt);
+  const nlohmann::json doc = {
+      {"name", "prestressed-column"},
+      {"plane", "strain"},
+      {"materials", {{"rock", {{"density", 2650}, {"young", E}, {"poisson", nu}}}}},
+      {"mesh", {{"size", 0.25}}},
+      {"bodies", {{{"material", "rock"}, {"outer", {{0, 0}, {w, 0}, {w, H}, {0, H}}}}}},
+      {"supports", {{{"points", {{0, 0}, {w, 0}}}, {"fix", "y"}},
+                    {{"points", {{0, H}, {w, H}}}, {"fix", "y"}, {"velocity", {0, -v}}}}},
+      {"fixed_points", {{w / 2, 0}}},
+      {"insitu_stress", {{"sxx", 0}, {"syy", -p}, {"sxy", 0}, {"y_ref", 0}, {"gradient", {0, 0, 0}}}},
+      {"solver", {{"time_step", dt}, {"steps", steps}, {"static_mode", "equilibrium"}}}};
+  MeteredRun r(doc, "column");
+  const Outcome o = r.st.run_until(steps * dt * (1 - 1e-9), [&](std::int64_t) {
+    const solve::RunView view = r.st.view();
+    r.meter.after_step(view.state, solve::energy_sources(view), true);
+  });
+  ASSERT_PRED1(test::ended_ok, o);
+  const solve::RunState& s = r.st.view().state;
+  const double delta = mean_displacement(s, 1, 0.0, 1) - mean_displacement(s, 1, H, 1);  // m, shortening
+  const double closed = w * (p * delta + Ep * delta * delta / (2 * H));  // ∫ F dδ
+  const solve::EnergyRow& first = r.meter.rows().front();
+  const solve::EnergyRow& end = r.meter.rows().back();
+  std::printf("pre-stressed column: shortening %.6g m (support %.6g); load_work %.6g J/m, "
+              "∫F dδ %.6g J/m (springs alone %.6g); ΔU %.6g, ΔS %.6g, residual %.4g J/m\n",
+              delta, shortening, end.load_work, closed, w * Ep * delta * delta / (2 * H),
+              end.strain - first.strain, end.springs - first.springs, end.residual);
+  EXPECT_NEAR(delta, shortening, 0.02 * shortening);
+  EXPECT_NEAR(end.strain - first.strain, closed, 0.005 * closed);  // the column took ∫F dδ
+  // The support's springs hold what it pushed beyond the column: W = ∫F dδ + ΔS.
+  EXPECT_NEAR(end.load_work, closed + (end.springs - first.springs), 0.005 * closed);
+  EXPECT_LT(std::abs(end.residual), 0.005 * closed);
+}
+
+}  // namespace
+}  // namespace nmm
