@@ -14,7 +14,8 @@
 //     rock_tests.h: at order 0 the faces are tied within a star of the tip; at the slow rate and
 //     in dynamic runs), the first crack within 2h of the notch tip (the peak against the
 //     net-section load of a notch a − 2h is reported);
-//   - the step-path slope: the first crack at a joint tip within the first 5 steps, and the wedge
+//   - the step-path slope: the first crack within 2h of a joint tip within the first 5
+//     steps, and the wedge
 //     moves (more than 1 mm, ten times the rock behind the crest);
 // and reports the energy balance (docs/energy.md): energy.csv's residual, metered after every
 // step as nmm-solve meters it (solver/output/energy.h, carried over every re-cut), at worst in %
@@ -190,7 +191,10 @@ int run(const std::string& name, const std::string& csv) {
     travel = std::hypot(u0[0], u0[1]);
     behind = std::hypot(u1[0], u1[1]);
     peak = travel;  // compared across kernels
-    check(std::isfinite(tip_distance) && tip_distance <= sp.mesh_size, "first crack not at a joint tip");
+    // Within 2h, as the notched beam's: at cover order 0 a joint's faces are tied within a star
+    // of its end, so the concentration — and the first crack — sits up to 2h back along the
+    // joint (h 0.45 m: the first crack starts on the lowest joint's line 0.55 m behind its end).
+    check(std::isfinite(tip_distance) && tip_distance <= 2 * sp.mesh_size, "first crack not at a joint tip");
     check(first_step >= 0 && first_step <= 5, "first crack after step 5");
     check(travel > 1e-3 && travel > 10 * behind, "the wedge did not slide");
   }

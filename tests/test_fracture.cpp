@@ -42,6 +42,7 @@
 #include "common/whole_file.h"
 #include "preprocess/cover_cutter.h"
 #include "preprocess/recut.h"
+#include "solver/fracture/crack_parting.h"
 #include "solver/fracture/rock_strength.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/fracture/step_start.h"
@@ -158,6 +159,37 @@ TEST(Fracture, BarInTensionCracksAcrossAtTheTensileStrength) {
   EXPECT_NEAR(length, 1.0, 0.02);  // one crack across the 1 m bar
   EXPECT_EQ(fracture_of(st.view()).crack_count(), 1);
   EXPECT_GT(st.view().mesh.element_count(), m.element_count());
+}
+
+// Rule 4 of fracture.h tells a crack that has not parted its element (crack_parting.h) by the
+// covers of the pieces across it: at cover order 0 the jump across a crack is Σ_k λ_k·(u_k⁺ − u_k⁻),
+// with no term for a node whose star the crack did not run right across. A crack 0.1 m long in
+// the 4 m bar (h 0.25 m: a star reaches h from its node) crosses no star: the pieces either side
+// keep all three covers. A crack right across the bar, from boundary to boundary, crosses every
+// star it enters: no piece shares a cover with the piece across.
+TEST(Fracture, ACrackShorterThanAStarHasNotPartedItsElements) {
+  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  for (const bool across : {false, true}) {
+    nlohmann::json doc = specimen(4, 1, 0.25, 0, 1e-3, strength);
+    const nlohmann::json points = across ? nlohmann::json{{2.01, -0.1}, {2.01, 1.1}} : nlohmann::json{{2.01, 0.45}, {2.01, 0.55}};
+    doc["joints"] = {{{"set", "crack"}, {"points", points}}};
+    const SceneDef s = scene_from_json(doc, "bar");
+    const Mesh m = pre::build_mesh(s, "bar");
+    const solve::TriangleElements pieces(m);
+    int cracked = 0, sharing = 0;
+    for (std::size_t e = 0; e < m.element_count(); ++e) {
+      bool on_crack = false;
+      for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v)
+        on_crack = on_crack || m.loop_edge_joint[static_cast<std::size_t>(v)] == 0;
+      if (!on_crack) continue;
+      ++cracked;
+      sharing += pieces.shares_a_cover(m, e, 0) ? 1 : 0;
+    }
+    std::printf("%s crack: %d elements on it, %d share a cover with the piece across\n", across ? "across" : "short",
+                cracked, sharing);
+    EXPECT_GE(cracked, across ? 8 : 2);
+    EXPECT_EQ(sharing, across ? 0 : cracked);
+  }
 }
 
 // c 2 MPa, φ 30°: UCS = 2c·cosφ/(1 − sinφ) = 6.93 MPa, reached at step 1386 (1 mm/s over 2 m).
