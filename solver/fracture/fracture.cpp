@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "common/ring_geometry.h"
@@ -14,6 +16,12 @@
 namespace nmm::solve {
 
 namespace {
+
+// NMM_TRACE_CRACK_RULES=1: each bridge weighed and each re-armed or in-line crack grown, to stderr.
+bool trace_rules() {
+  static const bool on = std::getenv("NMM_TRACE_CRACK_RULES") != nullptr;
+  return on;
+}
 
 Vec2 plus(const Vec2& a, double t, const Vec2& d) { return {a.x + t * d.x, a.y + t * d.y}; }
 double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
@@ -36,6 +44,7 @@ struct CrackEnd {
   Vec2 at;          // m, where the crack leaves the element (as cut)
   Vec2 cut_to;      // m, where its segment ends (past `at` when it stops)
   bool stops = false;
+  std::int32_t stop_edge = -1;  // the loop edge (its first vertex) it stops on, where it stops
 };
 CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayExit& exit) {
   const std::int32_t b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
@@ -46,6 +55,7 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
   CrackEnd c;
   c.at = exit.at;
   c.stops = stop_edge(v);
+  if (c.stops) c.stop_edge = v;
   const Vec2 pv = vertex(v), pw = vertex(w);
   const double dv = std::hypot(exit.at.x - pv.x, exit.at.y - pv.y), dw = std::hypot(exit.at.x - pw.x, exit.at.y - pw.y);
   if (std::min(dv, dw) < kSnap * h) {
@@ -53,7 +63,7 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
     const Vec2 snapped = at_v ? pv : pw;
     if (std::hypot(snapped.x - from.x, snapped.y - from.y) > kSnap * h) {  // not back onto its start
       c.at = snapped;
-      c.stops = c.stops || stop_edge(at_v ? u : w);
+      if (!c.stops && stop_edge(at_v ? u : w)) c.stops = true, c.stop_edge = at_v ? u : w;
     }
   }
   c.cut_to = c.at;
@@ -171,33 +181,79 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     out.push_back(seg);
     crossed_[e] = 1;
   };
+  // The scene's joints, then one per crack segment cut so far (fracture_effect.cpp).
+  const std::int32_t first_crack = static_cast<std::int32_t>(scene.joints.size() - segments_.size());
+  // Which cracks are tied to a scene joint (tip_drive.h), worked out when a bridge is first weighed.
+  std::vector<std::uint8_t> jointed;
+  bool jointed_known = false;
+  auto tied = [&](std::int32_t crack) {
+    if (crack < 0) return true;  // grown from a joint's own end
+    if (!jointed_known) {
+      std::vector<Vec2> a, b;
+      std::vector<std::int32_t> id;
+      for (const CrackSegment& c : segments_) a.push_back(c.a), b.push_back(c.b), id.push_back(c.crack);
+      jointed = jointed_cracks(scene.joints, static_cast<std::size_t>(first_crack), a, b, id, cracks_, 1e-6 * h);
+      jointed_known = true;
+    }
+    return static_cast<std::size_t>(crack) < jointed.size() && jointed[static_cast<std::size_t>(crack)] != 0;
+  };
+  // The holding elements straight ahead of `tip` that its crack crosses as a rock bridge
+  // (tip_drive.h): how many there are before the line reaches a joint or a crack face (a joint on
+  // one side of the bridge at least), or, from a crack tied to a joint, an element beyond its
+  // strength; at most kBridgeElements, each pulled open across the line. −1 where the line does
+  // not link so, or where the crack that drives it is a shear one.
+  auto bridge = [&](const Tip& tip, CrackMode drive) {
+    if (drive != CrackMode::tensile) return -1;  // shear cracks cross no holding rock (tip_drive.h)
+    const bool from_joint = tied(tip.crack);
+    auto fail = [&](const char* why, double s_nn) {
+      if (trace_rules())
+        std::fprintf(stderr, "TRACE no bridge step %lld tip (%.4f,%.4f) dir (%.3f,%.3f) crack %d jointed %d: %s %.4g\n",
+                     static_cast<long long>(s.step), tip.at.x, tip.at.y, tip.dir.x, tip.dir.y, tip.crack,
+                     from_joint ? 1 : 0, why, s_nn);
+      return -1;
+    };
+    Vec2 p = tip.at;
+    for (int k = 0; k < kBridgeElements; ++k) {
+      const std::int32_t el = grid().at(plus(p, 1e-6 * h, tip.dir));
+      if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity()))
+        return fail("no rock ahead", 0);
+      if (ratio_[el] >= 1) {
+        if (!from_joint) return fail("breaking rock ahead of a crack not tied to a joint", 0);
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE bridge step %lld tip (%.4f,%.4f) crack %d: %d holding to element %d at %.4f\n",
+                       static_cast<long long>(s.step), tip.at.x, tip.at.y, tip.crack, k, el, ratio_[el]);
+        return k;
+      }
+      const std::size_t u = static_cast<std::size_t>(el);
+      if (!pulls_line_open(s.stress[3 * u], s.stress[3 * u + 1], s.stress[3 * u + 2], tip.dir)) {
+        const double nx = -tip.dir.y, ny = tip.dir.x;
+        return fail("shut across the line, s_nn (Pa)",
+                    s.stress[3 * u] * nx * nx + s.stress[3 * u + 1] * ny * ny + 2 * s.stress[3 * u + 2] * nx * ny);
+      }
+      RayExit exit;
+      if (!ray_exit(mesh, u, p, tip.dir, tol, exit)) return fail("no exit", 0);
+      const CrackEnd c = crack_end(mesh, u, p, exit);
+      if (c.stops) {
+        const std::size_t v = static_cast<std::size_t>(c.stop_edge);
+        const std::int32_t j = mesh.loop_edge_joint[v];
+        if ((mesh.loop_edge_origin[v] & kEdgeJoint) == 0 || j < 0) return fail("a body boundary", 0);
+        const bool to_joint = j < first_crack || tied(segments_[static_cast<std::size_t>(j - first_crack)].crack);
+        if (!from_joint && !to_joint) return fail("no joint on either side", 0);
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE bridge step %lld tip (%.4f,%.4f) crack %d: %d holding to joint %d\n",
+                       static_cast<long long>(s.step), tip.at.x, tip.at.y, tip.crack, k + 1, j);
+        return k + 1;
+      }
+      p = c.at;
+    }
+    return fail("more than kBridgeElements", 0);
+  };
   // On from a tip while the element ahead breaks; a tip that reaches a body boundary or a joint,
   // or leaves the bodies, stops growing for good.
   // `forced` > 0: the tip may cross elements that hold (rules 6 and 7 of fracture.h: a crack that
   // has not parted its element, a tip reaching for the element ahead that breaks), straight on and
-  // only as a rock bridge (tip_drive.h), in the mode of the element beyond its strength that
+  // only as a rock bridge (bridge above), in the mode of the element beyond its strength that
   // drives it (`drive`: one that holds has no mode of its own).
-  // The holding elements straight ahead of `tip` that its crack crosses as a rock bridge
-  // (tip_drive.h): how many there are before the line reaches a stop or an element beyond its
-  // strength, at most kBridgeElements, each pulled open across the line; −1 where the line does
-  // not link so, or where the crack that drives it is a shear one.
-  auto bridge = [&](const Tip& tip, CrackMode drive) {
-    if (drive != CrackMode::tensile) return -1;  // shear cracks cross no holding rock (tip_drive.h)
-    Vec2 p = tip.at;
-    for (int k = 0; k < kBridgeElements; ++k) {
-      const std::int32_t el = grid().at(plus(p, 1e-6 * h, tip.dir));
-      if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity())) return -1;
-      if (ratio_[el] >= 1) return k;
-      const std::size_t u = static_cast<std::size_t>(el);
-      if (!pulls_line_open(s.stress[3 * u], s.stress[3 * u + 1], s.stress[3 * u + 2], tip.dir)) return -1;
-      RayExit exit;
-      if (!ray_exit(mesh, u, p, tip.dir, tol, exit)) return -1;
-      const CrackEnd c = crack_end(mesh, u, p, exit);
-      if (c.stops) return k + 1;
-      p = c.at;
-    }
-    return -1;
-  };
   auto grow = [&](Tip& tip, int forced, CrackMode drive) {
     bool bridged = false;  // the holding elements ahead were weighed (bridge) once this growth
     for (std::size_t guard = 0; guard < n; ++guard) {
@@ -244,8 +300,6 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // the active tips at the ends of the crack cut through its triangle.
   std::vector<std::int32_t> candidates;
   std::vector<std::vector<std::size_t>> regrow(over_.size());
-  // The scene's joints, then one per crack segment cut so far (fracture_effect.cpp).
-  const std::int32_t first_crack = static_cast<std::int32_t>(scene.joints.size() - segments_.size());
   {
     std::vector<Vec2> ends_a, ends_b;
     for (std::size_t i = 0; i < over_.size(); ++i) {
@@ -312,6 +366,9 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       }
       if (tip < tips_.size()) {
         grow(tips_[tip], between, failure_[static_cast<std::size_t>(best)].mode);
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE in line step %lld element %d tip %zu crack %d between %d: %zu segments\n",
+                       static_cast<long long>(s.step), best, tip, tips_[tip].crack, between, out.size());
         if (!out.empty()) return out;
       }
     }
@@ -320,6 +377,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     // through those that break: the step is solved again on it.
     const std::size_t i = static_cast<std::size_t>(std::find(over_.begin(), over_.end(), best) - over_.begin());
     for (const std::size_t t : regrow[i]) grow(tips_[t], 1, failure_[static_cast<std::size_t>(best)].mode);
+    if (trace_rules())
+      std::fprintf(stderr, "TRACE re-armed step %lld element %d ratio %.4f tips %zu: %zu segments\n",
+                   static_cast<long long>(s.step), best, ratio_[static_cast<std::size_t>(best)], regrow[i].size(),
+                   out.size());
     if (!out.empty()) return out;
     candidates.erase(std::find(candidates.begin(), candidates.end(), best));
   }

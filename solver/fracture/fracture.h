@@ -24,10 +24,11 @@
 //   5. a new crack of 2 whose element lies straight ahead of an active tip, within three
 //      elements, is that tip's: the tip grows to it instead of a second crack starting in line
 //      with the first;
-//   in 4 and 5 a tensile crack's tip crosses elements that hold only as a rock bridge
-//   (tip_drive.h): straight on through at most three of them, each pulled open across the line
-//   by its own stress, to a body boundary, a joint, a crack face or an element that breaks; a
-//   shear crack crosses none.
+//   in 4 and 5 a tensile crack's tip crosses elements that hold only as a rock bridge between
+//   joints (tip_drive.h): straight on through at most three of them, each pulled open across the
+//   line by its own stress, to a joint or a crack face — the tip's crack or what it reaches tied
+//   to a scene joint — or, from a crack tied to a joint, to an element that breaks; never to a
+//   body boundary. A shear crack crosses none, and a scene without joints none at all.
 // Cracks are cut in the mesh as cut (the reference configuration); their directions come from
 // the current stress, turned into that configuration by each element's own affine map
 // (element_geometry.h).
