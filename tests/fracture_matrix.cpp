@@ -14,7 +14,8 @@
 //     rock_tests.h: at order 0 the faces are tied within a star of the tip; at the slow rate and
 //     in dynamic runs), the first crack within 2h of the notch tip (the peak against the
 //     net-section load of a notch a − 2h is reported);
-//   - the step-path slope: the first crack at a joint tip within the first 5 steps, and the wedge
+//   - the step-path slope: the first crack within 2h of a joint tip within the first 5
+//     steps, and the wedge
 //     moves (more than 1 mm, ten times the rock behind the crest);
 // and reports the energy balance (docs/energy.md): energy.csv's residual, metered after every
 // step as nmm-solve meters it (solver/output/energy.h, carried over every re-cut), at worst in %
@@ -196,7 +197,10 @@ int run(const std::string& name, const std::string& csv) {
     travel = std::hypot(u0[0], u0[1]);
     behind = std::hypot(u1[0], u1[1]);
     peak = travel;  // compared across kernels
-    check(std::isfinite(tip_distance) && tip_distance <= sp.mesh_size, "first crack not at a joint tip");
+    // Within 2h, as the notched beam's: at cover order 0 a joint's faces are tied within a star
+    // of its end, so the concentration — and the first crack — sits up to 2h back along the
+    // joint (h 0.45 m: the first crack starts on the lowest joint's line 0.55 m behind its end).
+    check(std::isfinite(tip_distance) && tip_distance <= 2 * sp.mesh_size, "first crack not at a joint tip");
     check(first_step >= 0 && first_step <= 5, "first crack after step 5");
     check(travel > 1e-3 && travel > 10 * behind, "the wedge did not slide");
   }
@@ -223,6 +227,13 @@ int run(const std::string& name, const std::string& csv) {
               num(100 * worst_residual).c_str(), static_cast<long long>(worst_residual_step),
               num(100 * worst_undamped).c_str());
   std::printf("; %zu segments, %d debris; %.1f s\n", segs.size(), fracture_of(v).debris_blocks(), wall);
+  // Where the run's time went (wall seconds, StepTimings): a cracking step is solved again after
+  // each re-cut, and a step cut for a shorter one is solved again too.
+  const solve::StepTimings& tm = v.timings;
+  std::printf("  cost: %ld steps solved again after a re-cut, %lld attempts cut; %ld factorisations, %ld solves; "
+              "contact detection %.1f s, assembly %.1f s, factorisation %.1f s, solves %.1f s, fracture %.1f s\n",
+              fracture_of(v).resolves(), static_cast<long long>(v.state.cuts), tm.factorisations, tm.solves_count,
+              tm.contact_detection, tm.assembly, tm.factorisation, tm.solves, tm.effect("fracture"));
   if (!outcome.ok()) std::printf("  stop: %s\n", test::text(outcome).c_str());
   if (!pass) std::printf("  failed: %s\n", failed.c_str());
   std::fflush(stdout);

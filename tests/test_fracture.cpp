@@ -42,9 +42,11 @@
 #include "common/whole_file.h"
 #include "preprocess/cover_cutter.h"
 #include "preprocess/recut.h"
+#include "solver/fracture/crack_parting.h"
 #include "solver/fracture/rock_strength.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/fracture/step_start.h"
+#include "solver/fracture/tip_drive.h"
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
 #include "solver/output/solve_run.h"
@@ -158,6 +160,64 @@ TEST(Fracture, BarInTensionCracksAcrossAtTheTensileStrength) {
   EXPECT_NEAR(length, 1.0, 0.02);  // one crack across the 1 m bar
   EXPECT_EQ(fracture_of(st.view()).crack_count(), 1);
   EXPECT_GT(st.view().mesh.element_count(), m.element_count());
+}
+
+// The rock-bridge rule (docs/fracture.md rule 8, tip_drive.h) crosses holding rock only between
+// joints: a crack is tied to a scene joint when one of its ends lies on the joint, or on a crack
+// so tied, however long the chain; a crack whose ends lie in the rock is not. Here joint 0
+// runs along y = 0 from x 0 to 4; crack 0 ends on it (within 1e-8 m: a stopping end is cut
+// 1e-8·h past its edge), crack 1 ends on crack 0's far end, crack 2 on crack 1's middle, crack 3
+// starts 0.3 m beyond crack 2's end, and crack 4 runs from 1 m beyond the joint's end, (5, 0), to
+// joint 1, which stands for a crack segment's joint (only the first `scene_joints` are the scene's).
+TEST(Fracture, ACrackIsTiedToAJointThroughItsEndsAndTheCracksItEndsOn) {
+  std::vector<JointDef> joints(2);
+  joints[0].points = {{0, 0}, {4, 0}};
+  joints[1].points = {{0, 10}, {1, 10}};  // a crack segment's own joint: not a scene joint
+  const std::vector<Vec2> a = {{1, 1e-8}, {1, 0.5}, {0.5, 0.75}, {0.5, 2.3}, {5, 0}};
+  const std::vector<Vec2> b = {{1, 0.5}, {0, 1}, {0.5, 2}, {0.5, 2.6}, {0.5, 10}};
+  const std::vector<std::int32_t> crack = {0, 1, 2, 3, 4};
+  const std::vector<std::uint8_t> tied = solve::jointed_cracks(joints, 1, a, b, crack, 5, 1e-6);
+  ASSERT_EQ(tied.size(), 5u);
+  EXPECT_EQ(tied[0], 1);  // on the joint
+  EXPECT_EQ(tied[1], 1);  // on crack 0's end
+  EXPECT_EQ(tied[2], 1);  // on crack 1's face, at its middle (0.5, 0.75)
+  EXPECT_EQ(tied[3], 0);  // 0.3 m off
+  EXPECT_EQ(tied[4], 0);  // 1 m past the joint's end, and on a crack's joint only
+  // A segment grown from a joint's own end (id −1) ties what ends on it.
+  const std::vector<std::uint8_t> via =
+      solve::jointed_cracks(joints, 1, {{7, 7}, {7, 8}}, {{7, 8}, {8, 8}}, {-1, 0}, 1, 1e-6);
+  EXPECT_EQ(via[0], 1);
+}
+
+// Rule 4 of fracture.h tells a crack that has not parted its element (crack_parting.h) by the
+// covers of the pieces across it: at cover order 0 the jump across a crack is Σ_k λ_k·(u_k⁺ − u_k⁻),
+// with no term for a node whose star the crack did not run right across. A crack 0.1 m long in
+// the 4 m bar (h 0.25 m: a star reaches h from its node) crosses no star: the pieces either side
+// keep all three covers. A crack right across the bar, from boundary to boundary, crosses every
+// star it enters: no piece shares a cover with the piece across.
+TEST(Fracture, ACrackShorterThanAStarHasNotPartedItsElements) {
+  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  for (const bool across : {false, true}) {
+    nlohmann::json doc = specimen(4, 1, 0.25, 0, 1e-3, strength);
+    const nlohmann::json points = across ? nlohmann::json{{2.01, -0.1}, {2.01, 1.1}} : nlohmann::json{{2.01, 0.45}, {2.01, 0.55}};
+    doc["joints"] = {{{"set", "crack"}, {"points", points}}};
+    const SceneDef s = scene_from_json(doc, "bar");
+    const Mesh m = pre::build_mesh(s, "bar");
+    const solve::TriangleElements pieces(m);
+    int cracked = 0, sharing = 0;
+    for (std::size_t e = 0; e < m.element_count(); ++e) {
+      bool on_crack = false;
+      for (std::int32_t v = m.element_loop_offset[e]; v < m.element_loop_offset[e + 1]; ++v)
+        on_crack = on_crack || m.loop_edge_joint[static_cast<std::size_t>(v)] == 0;
+      if (!on_crack) continue;
+      ++cracked;
+      sharing += pieces.shares_a_cover(m, e, 0) ? 1 : 0;
+    }
+    std::printf("%s crack: %d elements on it, %d share a cover with the piece across\n", across ? "across" : "short",
+                cracked, sharing);
+    EXPECT_GE(cracked, across ? 8 : 2);
+    EXPECT_EQ(sharing, across ? 0 : cracked);
+  }
 }
 
 // c 2 MPa, φ 30°: UCS = 2c·cosφ/(1 − sinφ) = 6.93 MPa, reached at step 1386 (1 mm/s over 2 m).

@@ -1,4 +1,4 @@
-// Fracturing at cover order n ≥ 1 (docs/fracture.md "Cover order 1 and 2"), checked against what
+// Fracturing at cover order n ≥ 1 (docs/higher-order-covers.md "Fracturing"), checked against what
 // the order-0 rule guarantees and against closed forms:
 //   - a crack cut into a cantilever bent at cover order 1 and 2 carries its fields over: each
 //     piece's stress polynomial gives at every point of the piece what its parent's gave (to

@@ -20,7 +20,7 @@ struct FractureDef {
 };
 
 /// fracture: {crack_set, tip_step, viscous_tip}. Reads the scene's joint sets (read before).
-/// Fracturing goes with every cover order (docs/fracture.md "Cover order 1 and 2"), bolts and
+/// Fracturing goes with every cover order (docs/higher-order-covers.md "Fracturing"), bolts and
 /// absorbing boundaries: a re-cut ties the bolts again to the pieces of rock and
 /// lays the dashpots on the re-cut edges (docs/fracture.md "Bolts and absorbing boundaries").
 FractureDef read_fracture(const JsonReader& r, const SceneDef& scene);

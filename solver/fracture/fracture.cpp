@@ -3,16 +3,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "common/ring_geometry.h"
 #include "solver/discretisation/state_bytes.h"
 #include "solver/discretisation/stress_field.h"
+#include "solver/fracture/crack_parting.h"
 #include "solver/fracture/element_geometry.h"
+#include "solver/fracture/tip_drive.h"
 
 namespace nmm::solve {
 
 namespace {
+
+// NMM_TRACE_CRACK_RULES=1: each bridge weighed and each re-armed or in-line crack grown, to stderr.
+bool trace_rules() {
+  static const bool on = std::getenv("NMM_TRACE_CRACK_RULES") != nullptr;
+  return on;
+}
 
 Vec2 plus(const Vec2& a, double t, const Vec2& d) { return {a.x + t * d.x, a.y + t * d.y}; }
 double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
@@ -35,6 +45,7 @@ struct CrackEnd {
   Vec2 at;          // m, where the crack leaves the element (as cut)
   Vec2 cut_to;      // m, where its segment ends (past `at` when it stops)
   bool stops = false;
+  std::int32_t stop_edge = -1;  // the loop edge (its first vertex) it stops on, where it stops
 };
 CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayExit& exit) {
   const std::int32_t b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
@@ -45,6 +56,7 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
   CrackEnd c;
   c.at = exit.at;
   c.stops = stop_edge(v);
+  if (c.stops) c.stop_edge = v;
   const Vec2 pv = vertex(v), pw = vertex(w);
   const double dv = std::hypot(exit.at.x - pv.x, exit.at.y - pv.y), dw = std::hypot(exit.at.x - pw.x, exit.at.y - pw.y);
   if (std::min(dv, dw) < kSnap * h) {
@@ -52,7 +64,7 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
     const Vec2 snapped = at_v ? pv : pw;
     if (std::hypot(snapped.x - from.x, snapped.y - from.y) > kSnap * h) {  // not back onto its start
       c.at = snapped;
-      c.stops = c.stops || stop_edge(at_v ? u : w);
+      if (!c.stops && stop_edge(at_v ? u : w)) c.stops = true, c.stop_edge = at_v ? u : w;
     }
   }
   c.cut_to = c.at;
@@ -158,7 +170,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       }
     return best;
   };
-  auto add = [&](std::size_t e, const Vec2& a, const Vec2& b, std::int32_t crack) {
+  auto add = [&](std::size_t e, const Vec2& a, const Vec2& b, std::int32_t crack, CrackMode mode) {
     if (a == b) {  // a tip that grew by nothing: no segment (the cutter takes none)
       crossed_[e] = 1;
       return;
@@ -168,32 +180,113 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     seg.b = b;
     seg.a_now = current_point(mesh, s, order, e, a);
     seg.b_now = current_point(mesh, s, order, e, b);
-    seg.mode = failure_[e].mode;
+    seg.mode = mode;
     seg.crack = crack;
     seg.step = s.step;
     seg.time = s.time;
     out.push_back(seg);
     crossed_[e] = 1;
   };
+  // The scene's joints, then one per crack segment cut so far (fracture_effect.cpp).
+  const std::int32_t first_crack = static_cast<std::int32_t>(scene.joints.size() - segments_.size());
+  // Which cracks are tied to a scene joint (tip_drive.h), worked out when a bridge is first weighed.
+  std::vector<std::uint8_t> jointed;
+  bool jointed_known = false;
+  auto tied = [&](std::int32_t crack) {
+    if (crack < 0) return true;  // grown from a joint's own end
+    if (!jointed_known) {
+      std::vector<Vec2> a, b;
+      std::vector<std::int32_t> id;
+      for (const CrackSegment& c : segments_) a.push_back(c.a), b.push_back(c.b), id.push_back(c.crack);
+      jointed = jointed_cracks(scene.joints, static_cast<std::size_t>(first_crack), a, b, id, cracks_, 1e-6 * h);
+      jointed_known = true;
+    }
+    return static_cast<std::size_t>(crack) < jointed.size() && jointed[static_cast<std::size_t>(crack)] != 0;
+  };
+  // The holding elements straight ahead of `tip` that its crack crosses as a rock bridge
+  // (tip_drive.h): how many there are before the line reaches a joint or a crack face (a joint on
+  // one side of the bridge at least), or, from a crack tied to a joint, an element beyond its
+  // strength; at most kBridgeElements, each pulled open across the line. −1 where the line does
+  // not link so, or where the crack that drives it is a shear one.
+  auto bridge = [&](const Tip& tip, CrackMode drive) {
+    if (drive != CrackMode::tensile) return -1;  // shear cracks cross no holding rock (tip_drive.h)
+    const bool from_joint = tied(tip.crack);
+    auto fail = [&](const char* why, double s_nn) {
+      if (trace_rules())
+        std::fprintf(stderr, "TRACE no bridge step %lld tip (%.4f,%.4f) dir (%.3f,%.3f) crack %d jointed %d: %s %.4g\n",
+                     static_cast<long long>(s.step), tip.at.x, tip.at.y, tip.dir.x, tip.dir.y, tip.crack,
+                     from_joint ? 1 : 0, why, s_nn);
+      return -1;
+    };
+    Vec2 p = tip.at;
+    for (int k = 0; k < kBridgeElements; ++k) {
+      const std::int32_t el = grid().at(plus(p, 1e-6 * h, tip.dir));
+      if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity()))
+        return fail("no rock ahead", 0);
+      if (ratio_[el] >= 1) {
+        if (!from_joint) return fail("breaking rock ahead of a crack not tied to a joint", 0);
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE bridge step %lld tip (%.4f,%.4f) crack %d: %d holding to element %d at %.4f\n",
+                       static_cast<long long>(s.step), tip.at.x, tip.at.y, tip.crack, k, el, ratio_[el]);
+        return k;
+      }
+      const std::size_t u = static_cast<std::size_t>(el);
+      if (!pulls_line_open(stress[3 * u], stress[3 * u + 1], stress[3 * u + 2], tip.dir)) {
+        const double nx = -tip.dir.y, ny = tip.dir.x;
+        return fail("shut across the line, s_nn (Pa)",
+                    stress[3 * u] * nx * nx + stress[3 * u + 1] * ny * ny + 2 * stress[3 * u + 2] * nx * ny);
+      }
+      RayExit exit;
+      if (!ray_exit(mesh, u, p, tip.dir, tol, exit)) return fail("no exit", 0);
+      const CrackEnd c = crack_end(mesh, u, p, exit);
+      if (c.stops) {
+        const std::size_t v = static_cast<std::size_t>(c.stop_edge);
+        const std::int32_t j = mesh.loop_edge_joint[v];
+        if ((mesh.loop_edge_origin[v] & kEdgeJoint) == 0 || j < 0) return fail("a body boundary", 0);
+        const bool to_joint = j < first_crack || tied(segments_[static_cast<std::size_t>(j - first_crack)].crack);
+        if (!from_joint && !to_joint) return fail("no joint on either side", 0);
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE bridge step %lld tip (%.4f,%.4f) crack %d: %d holding to joint %d\n",
+                       static_cast<long long>(s.step), tip.at.x, tip.at.y, tip.crack, k + 1, j);
+        return k + 1;
+      }
+      p = c.at;
+    }
+    return fail("more than kBridgeElements", 0);
+  };
   // On from a tip while the element ahead breaks; a tip that reaches a body boundary or a joint,
   // or leaves the bodies, stops growing for good.
-  auto grow = [&](Tip& tip) {
+  // `forced` > 0: the tip may cross elements that hold (rules 6 and 7 of fracture.h: a crack that
+  // has not parted its element, a tip reaching for the element ahead that breaks), straight on and
+  // only as a rock bridge (bridge above), in the mode of the element beyond its strength that
+  // drives it (`drive`: one that holds has no mode of its own).
+  auto grow = [&](Tip& tip, int forced, CrackMode drive) {
+    bool bridged = false;  // the holding elements ahead were weighed (bridge) once this growth
     for (std::size_t guard = 0; guard < n; ++guard) {
       const std::int32_t e = grid().at(plus(tip.at, 1e-6 * h, tip.dir));
       if (e < 0) {
         tip.active = false;
         return;
       }
-      if (crossed_[e] || ratio_[e] < 1) return;
+      if (crossed_[e] || !(ratio_[e] > -std::numeric_limits<double>::infinity())) return;
+      const bool holds = ratio_[e] < 1;
+      if (holds && forced <= 0) return;
+      if (holds && !bridged) {  // only as a rock bridge to a stop (tip_drive.h)
+        const int span = bridge(tip, drive);
+        if (span < 0) return;
+        forced = span;
+        bridged = true;
+      }
+      if (holds) --forced;
       // In a material with a toughness the tip's own field decides (tip_growth.h), not the
       // element ahead's stress: the strength rule only starts cracks there.
       const MaterialDef& ahead = scene.materials[scene.bodies[mesh.element_body[e]].material];
       if (ahead.strength.toughness > 0) return;
-      const Vec2 d = direction(static_cast<std::size_t>(e), tip.dir);
+      const Vec2 d = holds ? tip.dir : direction(static_cast<std::size_t>(e), tip.dir);
       RayExit exit;
       if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
       const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
-      add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack);
+      add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack, holds ? drive : failure_[e].mode);
       const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
       tip.at = c.at;
       tip.dir = l > 0 ? Vec2{dx / l, dy / l} : d;
@@ -204,22 +297,99 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     }
   };
   for (std::size_t t = 0; t < tips_.size(); ++t)
-    if (tips_[t].active) grow(tips_[t]);
+    if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
   // At most one new crack, and only where no crack grew: the step is solved again with what grew
   // (time_stepper.cpp attempt), and the stress a grown crack relieves must not start another.
   if (!out.empty()) return out;
-  std::int32_t best = -1;
-  // The highest ratio, and of the ratios within kTie of it the lowest index: in a uniform field
-  // the ratios differ in their last bits, which the BLAS kernel decides.
-  constexpr double kTie = 1e-9;
-  double highest = 0;
-  for (const std::int32_t e : over_)
-    if (armed_[e] && !crossed_[e]) highest = std::max(highest, ratio_[static_cast<std::size_t>(e)]);
-  for (const std::int32_t e : over_)  // ascending
-    if (armed_[e] && !crossed_[e] && ratio_[static_cast<std::size_t>(e)] >= highest / (1 + kTie)) {
-      best = e;
-      break;
+  // The candidates: armed elements beyond their strength (a new crack through the element), and
+  // disarmed ones whose crack has not parted them (rule 4: its tips grow on instead), each with
+  // the active tips at the ends of the crack cut through its triangle.
+  std::vector<std::int32_t> candidates;
+  std::vector<std::vector<std::size_t>> regrow(over_.size());
+  {
+    std::vector<Vec2> ends_a, ends_b;
+    for (std::size_t i = 0; i < over_.size(); ++i) {
+      const std::size_t e = static_cast<std::size_t>(over_[i]);
+      if (crossed_[e]) continue;
+      if (armed_[e]) {
+        candidates.push_back(over_[i]);
+        continue;
+      }
+      if (!parted_ || !parted_->of(mesh)) parted_ = std::make_shared<const TriangleElements>(mesh);
+      if (!parted_->shares_a_cover(mesh, e, first_crack)) continue;
+      if (ends_a.empty())
+        for (const CrackSegment& c : segments_) ends_a.push_back(c.a), ends_b.push_back(c.b);
+      const std::vector<std::size_t> chain =
+          cracks_through_triangle(mesh, static_cast<std::size_t>(mesh.element_triangle[e]), ends_a, ends_b);
+      for (std::size_t t = 0; t < tips_.size(); ++t) {
+        if (!tips_[t].active) continue;
+        for (const std::size_t k : chain)
+          if (tips_[t].at == ends_a[k] || tips_[t].at == ends_b[k]) {
+            regrow[i].push_back(t);
+            break;
+          }
+      }
+      if (!regrow[i].empty()) candidates.push_back(over_[i]);
     }
+  }
+  // The highest ratio, and of the ratios within kTie of it the lowest index: in a uniform field
+  // the ratios differ in their last bits, which the BLAS kernel decides. A re-armed element whose
+  // crack's tips cannot grow (the element ahead cannot break, or is crossed) yields to the next.
+  constexpr double kTie = 1e-9;
+  constexpr int kReach = 3;
+  std::int32_t best = -1;
+  for (;;) {
+    best = -1;
+    double highest = 0;
+    for (const std::int32_t e : candidates) highest = std::max(highest, ratio_[static_cast<std::size_t>(e)]);
+    for (const std::int32_t e : candidates)  // ascending
+      if (ratio_[static_cast<std::size_t>(e)] >= highest / (1 + kTie)) {
+        best = e;
+        break;
+      }
+    if (best >= 0 && armed_[static_cast<std::size_t>(best)]) {
+      // An element straight ahead of an active tip, within kReach elements of it, is that
+      // crack's to break: the tip grows on to it through the elements between, even where they
+      // hold (their stress averages the tip's concentration away), instead of a second crack
+      // starting in line with the first (rule 5; the 4 m bar of tests/test_fracture.cpp on the
+      // Prescott kernels started one two elements ahead of its first crack's tip).
+      std::size_t tip = tips_.size();
+      int between = kReach;
+      for (std::size_t t = 0; t < tips_.size(); ++t) {
+        if (!tips_[t].active) continue;
+        Vec2 p = tips_[t].at;
+        for (int k = 0; k < between; ++k) {
+          const std::int32_t el = grid().at(plus(p, 1e-6 * h, tips_[t].dir));
+          if (el < 0 || crossed_[el]) break;
+          if (el == best) {
+            tip = t, between = k;
+            break;
+          }
+          RayExit exit;
+          if (!ray_exit(mesh, static_cast<std::size_t>(el), p, tips_[t].dir, tol, exit)) break;
+          p = exit.at;
+        }
+      }
+      if (tip < tips_.size()) {
+        grow(tips_[tip], between, failure_[static_cast<std::size_t>(best)].mode);
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE in line step %lld element %d tip %zu crack %d between %d: %zu segments\n",
+                       static_cast<long long>(s.step), best, tip, tips_[tip].crack, between, out.size());
+        if (!out.empty()) return out;
+      }
+    }
+    if (best < 0 || armed_[static_cast<std::size_t>(best)]) break;
+    // Its crack grows on from its tips, through one element each even where it holds, then on
+    // through those that break: the step is solved again on it.
+    const std::size_t i = static_cast<std::size_t>(std::find(over_.begin(), over_.end(), best) - over_.begin());
+    for (const std::size_t t : regrow[i]) grow(tips_[t], 1, failure_[static_cast<std::size_t>(best)].mode);
+    if (trace_rules())
+      std::fprintf(stderr, "TRACE re-armed step %lld element %d ratio %.4f tips %zu: %zu segments\n",
+                   static_cast<long long>(s.step), best, ratio_[static_cast<std::size_t>(best)], regrow[i].size(),
+                   out.size());
+    if (!out.empty()) return out;
+    candidates.erase(std::find(candidates.begin(), candidates.end(), best));
+  }
   if (best >= 0) {
     const std::size_t e = static_cast<std::size_t>(best);
     const Vec2 p = inside_point(mesh, e);
@@ -229,12 +399,12 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       const std::int32_t crack = cracks_++;
       // Each end as a crack leaving the element from the other end.
       const CrackEnd f = crack_end(mesh, e, back.at, fwd), r = crack_end(mesh, e, f.at, back);
-      add(e, r.cut_to, f.cut_to, crack);
+      add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);
       const std::size_t first = tips_.size();
       for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
         tips_.push_back({end.at, dir, crack, !end.stops});
       for (std::size_t t = first; t < tips_.size(); ++t)
-        if (tips_[t].active) grow(tips_[t]);
+        if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
     }
   }
   return out;
@@ -296,6 +466,7 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
   debris_ = std::move(debris);
   crossed_.clear();
   grid_.reset();  // of the mesh before the cut
+  parted_.reset();
 }
 
 std::string Fracture::save() const {
@@ -360,6 +531,7 @@ void Fracture::load(const std::string& bytes, const Mesh& mesh, const std::strin
   r.expect_end();
   active_ = true;
   grid_.reset();
+  parted_.reset();
 }
 
 }  // namespace nmm::solve

@@ -17,6 +17,18 @@
 // the next steps relax — until its stress falls back inside the strength; a disarmed element may
 // still be crossed by a growing tip. Tips start at the ends of the scene's joints that lie inside
 // a body, so a crack grows on from a joint as from a crack.
+//   4. a disarmed element still beyond its strength whose crack has not parted it (a piece
+//      across its crack shares one of its covers, crack_parting.h) is re-armed: it competes with
+//      the new cracks of 2 by its ratio, and where it wins, its own crack's active tips grow on
+//      instead of a new crack starting in it;
+//   5. a new crack of 2 whose element lies straight ahead of an active tip, within three
+//      elements, is that tip's: the tip grows to it instead of a second crack starting in line
+//      with the first;
+//   in 4 and 5 a tensile crack's tip crosses elements that hold only as a rock bridge between
+//   joints (tip_drive.h): straight on through at most three of them, each pulled open across the
+//   line by its own stress, to a joint or a crack face — the tip's crack or what it reaches tied
+//   to a scene joint — or, from a crack tied to a joint, to an element that breaks; never to a
+//   body boundary. A shear crack crosses none, and a scene without joints none at all.
 // Cracks are cut in the mesh as cut (the reference configuration); their directions come from
 // the current stress, turned into that configuration by each element's own affine map
 // (element_geometry.h).
@@ -32,6 +44,7 @@
 #include "common/vec2.h"
 #include "preprocess/recut.h"
 #include "solver/discretisation/run_state.h"
+#include "solver/fracture/crack_parting.h"
 #include "solver/fracture/element_grid.h"
 #include "solver/fracture/rock_strength.h"
 
@@ -115,6 +128,7 @@ class Fracture {
   // element's strength ratio from the last find (−∞: cannot break; below 1 where the screen
   // says it holds) with rock_failure's full check for those the screen passed on.
   std::shared_ptr<const ElementGrid> grid_;
+  std::shared_ptr<const TriangleElements> parted_;  // of the mesh find() saw, built when a disarmed element is beyond its strength
   std::vector<double> ratio_;              // [me] –
   std::vector<RockFailure> failure_;       // [me] valid where the last find's ratio_ came from rock_failure
   std::vector<std::int32_t> over_;         // elements of the last find at or beyond their strength, ascending
