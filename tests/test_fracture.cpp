@@ -53,6 +53,7 @@
 #include "solver/output/energy.h"
 #include "solver/discretisation/model.h"
 #include "tests/ended_ok.h"
+#include "tests/rock_stress.h"
 #include "tests/temp_dir.h"
 
 namespace nmm {
@@ -91,17 +92,7 @@ nlohmann::json specimen(double w, double h, double size, int axis, double speed,
 // Pa, the area-weighted mean of stress component k (0 σxx, 1 σyy) over the elements left in the
 // model. In equilibrium without body force it is the end reaction per unit width: ∫σ dA = ∮ t⊗x ds.
 double mean_stress(const TimeStepper& st, int k) {
-  const auto& v = st.view();
-  const std::vector<double> s = solve::mean_stress(v);
-  const std::vector<std::uint8_t>& debris = fracture_of(v).debris();
-  double sum = 0, area = 0;
-  for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
-    if (!debris.empty() && debris[e]) continue;
-    const double a = element_area(v.mesh, e);
-    sum += a * s[3 * e + static_cast<std::size_t>(k)];
-    area += a;
-  }
-  return sum / area;
+  return test::rock_mean_stress(st.view(), k, &fracture_of(st.view()).debris());
 }
 
 struct LoadRun {
@@ -669,14 +660,7 @@ TEST(Fracture, TensionBarReleasesItsStrainEnergyIntoTheFractureColumn) {
   doc["solver"]["output_every"] = 1;
   const test::TempDir dir;
   const EnergyRun r = energy_run(doc, "bar", dir, 1e-6, [](const solve::RunView& v) {
-    const std::vector<double> s = solve::mean_stress(v);
-    double sum = 0, area = 0;
-    for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
-      const double a = element_area(v.mesh, e);
-      sum += a * s[3 * e];
-      area += a;
-    }
-    return sum / area * 1.0;  // N/m: mean σxx times the 1 m width
+    return test::rock_mean_stress(v, 0) * 1.0;  // N/m: mean σxx times the 1 m width
   });
   ASSERT_PRED1(test::ended_ok, r.outcome);
   ASSERT_GT(r.summary["fracture"]["segments"].get<int>(), 0);

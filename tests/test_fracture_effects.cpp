@@ -38,6 +38,7 @@
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"
+#include "tests/rock_stress.h"
 
 namespace nmm {
 namespace {
@@ -90,16 +91,7 @@ json bolted_bar(bool grouted) {
 
 // Mean σxx of the rock (Pa): in equilibrium without body force, the force the rock carries
 // across a section per m of height (∫σ dA = ∮ t⊗x ds over the bar, /A).
-double rock_pull(const solve::RunView& v) {
-  const std::vector<double> s = solve::mean_stress(v);
-  double sum = 0, area = 0;
-  for (std::size_t e = 0; e < v.mesh.element_count(); ++e) {
-    const double a = element_area(v.mesh, e);
-    sum += a * s[3 * e];
-    area += a;
-  }
-  return sum / area;
-}
+double rock_pull(const solve::RunView& v) { return test::rock_mean_stress(v, 0); }
 
 // The bar cracks across, and the bolt, whose ends are tied to the two pieces, holds them: its
 // force is its stiffness times the pieces' parting, the pulled end's travel δ,

@@ -56,6 +56,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "solver/contact/contact_neighbours.h"
 #include "solver/contact/contact_tolerances.h"
 #include "common/vec2.h"
 
@@ -179,54 +180,26 @@ std::vector<double> partitioned_tributary_lengths(const ContactTopology& topo, c
     fr.b1 = std::max(ba, bb);
   }
 
-  // Contacts with a length of their own, by pair of blocks and grid cell of size h (a neighbour
-  // within reach is at most twice a half-edge, one element edge, away): sorted by (blocks, cell
-  // column, cell row), the neighbours of P's cell in one cell column are one run of the list.
-  // (A hash map of cells held every pair of blocks in a cell; this is a tenth of its time.)
-  struct Key {
-    std::int32_t b0, b1;
-    std::int64_t cx, cy;
-    std::uint32_t i;
-    bool operator<(const Key& o) const {
-      if (b0 != o.b0) return b0 < o.b0;
-      if (b1 != o.b1) return b1 < o.b1;
-      if (cx != o.cx) return cx < o.cx;
-      if (cy != o.cy) return cy < o.cy;
-      return i < o.i;
-    }
-  };
-  const auto cell = [h](double x) { return static_cast<std::int64_t>(std::floor(x / h)); };
-  std::vector<Key> keys;
-  keys.reserve(n);
+  // Contacts with a length of their own, listed by pair of blocks and grid cell
+  // (contact_neighbours.h).
+  std::vector<ContactNeighbours::Entry> entries;
+  entries.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
-    if (f[i].sides > 0)
-      keys.push_back({f[i].b0, f[i].b1, cell(f[i].px), cell(f[i].py), static_cast<std::uint32_t>(i)});
-  std::sort(keys.begin(), keys.end());
+    if (f[i].sides > 0) entries.push_back({f[i].b0, f[i].b1, f[i].px, f[i].py, static_cast<std::uint32_t>(i)});
+  const ContactNeighbours near(entries, h);
 
   std::vector<double> out(n, corner_length);
   const double tie = kContactTolerances.gap_round_off * h;
-  // The run of P's pair of blocks in the list, [first, end): P's neighbours are searched in it.
-  const auto same_pair = [&](std::size_t k, std::size_t q) { return keys[k].b0 == keys[q].b0 && keys[k].b1 == keys[q].b1; };
-  std::vector<std::size_t> run_first(keys.size()), run_end(keys.size());
-  for (std::size_t k = 0; k < keys.size(); ++k) run_first[k] = k > 0 && same_pair(k - 1, k) ? run_first[k - 1] : k;
-  for (std::size_t k = keys.size(); k-- > 0;) run_end[k] = k + 1 < keys.size() && same_pair(k, k + 1) ? run_end[k + 1] : k + 1;
   // Two passes over the same neighbours: first each side's reach, cut at the midpoints to the
   // contacts ahead (or stretched over a gap to them); then each side's share of it with the
   // contacts at P's point, from their reaches, so that what the contacts at one point cover
   // adds up once whoever computes it.
   const auto neighbours = [&](std::size_t k, const auto& visit) {
-    const auto run = keys.begin() + static_cast<std::ptrdiff_t>(run_first[k]);
-    const auto end = keys.begin() + static_cast<std::ptrdiff_t>(run_end[k]);
-    const Frame& a = f[keys[k].i];
-    const std::int64_t ci = cell(a.px), cj = cell(a.py);
-    for (std::int64_t di = -1; di <= 1; ++di) {
-      const Key last{a.b0, a.b1, ci + di, cj + 1, std::numeric_limits<std::uint32_t>::max()};
-      for (auto it = std::lower_bound(run, end, Key{a.b0, a.b1, ci + di, cj - 1, 0}); it != end && !(last < *it); ++it)
-        if (it->i != keys[k].i) visit(f[it->i]);
-    }
+    const Frame& a = f[near.index(k)];
+    near.for_each_near(k, a.px, a.py, [&](std::uint32_t j) { visit(f[j]); });
   };
-  for (std::size_t k = 0; k < keys.size(); ++k) {
-    Frame& a = f[keys[k].i];
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    Frame& a = f[near.index(k)];
     for (int s = 0; s < a.sides; ++s) {
       Side& sd = a.side[s];
       bool cut = false;
@@ -252,8 +225,8 @@ std::vector<double> partitioned_tributary_lengths(const ContactTopology& topo, c
   }
   std::vector<std::pair<double, double>> cover;  // m, along P's side: what the contacts at P's point cover
   std::vector<double> cuts;
-  for (std::size_t k = 0; k < keys.size(); ++k) {
-    const std::size_t i = keys[k].i;
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    const std::size_t i = near.index(k);
     const Frame& a = f[i];
     double total = 0;
     for (int s = 0; s < a.sides; ++s) {

@@ -37,6 +37,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "solver/contact/contact_neighbours.h"
 #include "solver/contact/contact_tolerances.h"
 #include "common/vec2.h"
 
@@ -96,41 +97,19 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
     fr.b1 = std::max(ba, bb);
   }
 
-  // Contacts with a length of their own, by pair of blocks and grid cell of size h (a neighbour
-  // within reach is at most twice a half-edge, one element edge, away): sorted by (blocks, cell
-  // column, cell row), the neighbours of P's cell in one cell column are one run of the list.
-  // (A hash map of cells held every pair of blocks in a cell; this is a tenth of its time.)
+  // Contacts with a length of their own, listed by pair of blocks and grid cell
+  // (contact_neighbours.h).
   const double h = topo.mesh_size;
-  struct Key {
-    std::int32_t b0, b1;
-    std::int64_t cx, cy;
-    std::uint32_t i;
-    bool operator<(const Key& o) const {
-      if (b0 != o.b0) return b0 < o.b0;
-      if (b1 != o.b1) return b1 < o.b1;
-      if (cx != o.cx) return cx < o.cx;
-      if (cy != o.cy) return cy < o.cy;
-      return i < o.i;
-    }
-  };
-  const auto cell = [h](double x) { return static_cast<std::int64_t>(std::floor(x / h)); };
-  std::vector<Key> keys;
-  keys.reserve(n);
+  std::vector<ContactNeighbours::Entry> entries;
+  entries.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
-    if (f[i].hi > f[i].lo) keys.push_back({f[i].b0, f[i].b1, cell(f[i].px), cell(f[i].py), static_cast<std::uint32_t>(i)});
-  std::sort(keys.begin(), keys.end());
+    if (f[i].hi > f[i].lo) entries.push_back({f[i].b0, f[i].b1, f[i].px, f[i].py, static_cast<std::uint32_t>(i)});
+  const ContactNeighbours near(entries, h);
 
   std::vector<double> length(n, corner_length);
   const double tie = kContactTolerances.gap_round_off * h;
-  // The run of P's pair of blocks in the list, [first, end): P's neighbours are searched in it.
-  const auto same_pair = [&](std::size_t k, std::size_t q) { return keys[k].b0 == keys[q].b0 && keys[k].b1 == keys[q].b1; };
-  std::vector<std::size_t> run_first(keys.size()), run_end(keys.size());
-  for (std::size_t k = 0; k < keys.size(); ++k) run_first[k] = k > 0 && same_pair(k - 1, k) ? run_first[k - 1] : k;
-  for (std::size_t k = keys.size(); k-- > 0;) run_end[k] = k + 1 < keys.size() && same_pair(k, k + 1) ? run_end[k + 1] : k + 1;
-  for (std::size_t k = 0; k < keys.size(); ++k) {
-    const auto run = keys.begin() + static_cast<std::ptrdiff_t>(run_first[k]);
-    const auto end = keys.begin() + static_cast<std::ptrdiff_t>(run_end[k]);
-    const std::size_t i = keys[k].i;
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    const std::size_t i = near.index(k);
     const Frame& a = f[i];
     double lo = a.lo, hi = a.hi;
     // Nearest own-half boundaries of the neighbours beyond P's halves (no overlap), each side.
@@ -139,49 +118,42 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
     // index's half below P, a higher index's above): P keeps what lies past them.
     double lo_v = a.lo, hi_v = a.hi;
     double beyond_lo = std::numeric_limits<double>::infinity(), beyond_hi = -beyond_lo;
-    const std::int64_t ci = cell(a.px), cj = cell(a.py);
-    for (std::int64_t di = -1; di <= 1; ++di) {
-      const Key last{a.b0, a.b1, ci + di, cj + 1, std::numeric_limits<std::uint32_t>::max()};
-      for (auto it = std::lower_bound(run, end, Key{a.b0, a.b1, ci + di, cj - 1, 0}); it != end && !(last < *it);
-           ++it) {
-        const std::uint32_t j = it->i;
-        if (j == i) continue;
-        const Frame& b = f[j];
-        if (std::abs(a.tx * b.tx + a.ty * b.ty) < kParallelCos) continue;
-        const double rx = b.px - a.px, ry = b.py - a.py;
-        if (std::abs(rx * a.ty - ry * a.tx) > kSameLine * h) continue;
-        const double u = rx * a.tx + ry * a.ty;
-        // Only a contact whose own half-edges overlap P's shares P's stretch of joint (two
-        // vertices of one face at one point, in two elements, stand for its two sides).
-        const bool along = a.tx * b.tx + a.ty * b.ty > 0;
-        const double b_lo = u + (along ? b.lo : -b.hi), b_hi = u + (along ? b.hi : -b.lo);
-        if (std::min(a.hi, b_hi) - std::max(a.lo, b_lo) <= tie) {
-          if (b_lo >= a.hi - tie) next_hi = std::min(next_hi, b_lo);
-          if (b_hi <= a.lo + tie) next_lo = std::max(next_lo, b_hi);
-          continue;
-        }
-        // Two contacts at one point split it by index: the higher takes the side beyond, the
-        // lower the side before; what either half reaches past the other's stays its own.
-        const bool same_point = std::abs(u) <= tie;
-        if (same_point) {
-          if (j > i) {
-            hi = std::min(hi, 0.0);
-            beyond_hi = std::max(beyond_hi, b_hi);
-          } else {
-            lo = std::max(lo, 0.0);
-            beyond_lo = std::min(beyond_lo, b_lo);
-          }
-          continue;
-        }
-        if (u > 0) {
-          hi = std::min(hi, 0.5 * u);
-          hi_v = std::min(hi_v, 0.5 * u);
-        } else {
-          lo = std::max(lo, 0.5 * u);
-          lo_v = std::max(lo_v, 0.5 * u);
-        }
+    near.for_each_near(k, a.px, a.py, [&](std::uint32_t j) {
+      const Frame& b = f[j];
+      if (std::abs(a.tx * b.tx + a.ty * b.ty) < kParallelCos) return;
+      const double rx = b.px - a.px, ry = b.py - a.py;
+      if (std::abs(rx * a.ty - ry * a.tx) > kSameLine * h) return;
+      const double u = rx * a.tx + ry * a.ty;
+      // Only a contact whose own half-edges overlap P's shares P's stretch of joint (two
+      // vertices of one face at one point, in two elements, stand for its two sides).
+      const bool along = a.tx * b.tx + a.ty * b.ty > 0;
+      const double b_lo = u + (along ? b.lo : -b.hi), b_hi = u + (along ? b.hi : -b.lo);
+      if (std::min(a.hi, b_hi) - std::max(a.lo, b_lo) <= tie) {
+        if (b_lo >= a.hi - tie) next_hi = std::min(next_hi, b_lo);
+        if (b_hi <= a.lo + tie) next_lo = std::max(next_lo, b_hi);
+        return;
       }
-    }
+      // Two contacts at one point split it by index: the higher takes the side beyond, the
+      // lower the side before; what either half reaches past the other's stays its own.
+      const bool same_point = std::abs(u) <= tie;
+      if (same_point) {
+        if (j > i) {
+          hi = std::min(hi, 0.0);
+          beyond_hi = std::max(beyond_hi, b_hi);
+        } else {
+          lo = std::max(lo, 0.0);
+          beyond_lo = std::min(beyond_lo, b_lo);
+        }
+        return;
+      }
+      if (u > 0) {
+        hi = std::min(hi, 0.5 * u);
+        hi_v = std::min(hi_v, 0.5 * u);
+      } else {
+        lo = std::max(lo, 0.5 * u);
+        lo_v = std::max(lo_v, 0.5 * u);
+      }
+    });
     // A gap of at most h between P's halves and the next contact's on the same joint (the faces
     // have slid: a corner of one face and the first contact point of the other no longer stand
     // half an edge apart each) is shared at its middle.

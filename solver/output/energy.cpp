@@ -444,40 +444,52 @@ void EnergyMeter::centroids(const RunState& s, std::vector<double>& cx, std::vec
   }
 }
 
+template <class Traction>
+double EnergyMeter::edge_work(const RunState& s, const std::vector<BoundaryEdge>& edges, const bool held[2],
+                              double factor, const Traction& traction) const {
+  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
+  double w = 0;
+  for (const BoundaryEdge& be : edges) {
+    if (removed(s, be.element)) continue;
+    const double* a = s.loop_xy.data() + 2 * be.vertex;
+    const double* b = s.loop_xy.data() + 2 * be.next;
+    const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
+    if (!(len > 0)) continue;
+    const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
+    for (double xi : kGauss) {
+      const double uy = (1 - xi) * s.loop_u[2 * be.vertex + 1] + xi * s.loop_u[2 * be.next + 1];
+      double t[2];
+      traction(be, a[0] + xi * dx, a[1] + xi * dy - uy, nx, ny, t);
+      for (int d = 0; d < 2; ++d) {
+        if (!held[d]) continue;
+        const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
+        const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
+        w += 0.5 * len * factor * t[d] * ((1 - xi) * du_a + xi * du_b);
+      }
+    }
+  }
+  return w;
+}
+
 double EnergyMeter::traction_work(const RunState& s, double t_table) const {
   // ∫ t·Δu ds on each edge, Δu linear between its ends, by the two-point Gauss rule (exact for
   // a constant t; for σ_insitu·n, linear along the edge, too).
-  static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
   double w = 0;
   if (prev_loop_u_.size() != s.loop_u.size()) return 0;
+  static constexpr bool kBoth[2] = {true, true};
   for (std::size_t i = 0; i < model_->traction_edges().size(); ++i) {
     const TractionDef& td = scene_->tractions[i];
-    const double factor = table_value(td.table, t_table);
-    for (const BoundaryEdge& be : model_->traction_edges()[i]) {
-      if (removed(s, be.element)) continue;
-      const double* a = s.loop_xy.data() + 2 * be.vertex;
-      const double* b = s.loop_xy.data() + 2 * be.next;
-      const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
-      if (!(len > 0)) continue;
-      const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
-      for (double xi : kGauss) {
-        double t[2];
-        if (td.from_insitu) {
-          const double uy = (1 - xi) * s.loop_u[2 * be.vertex + 1] + xi * s.loop_u[2 * be.next + 1];
-          const auto sg = insitu_stress_at(scene_->insitu_stress, a[0] + xi * dx, a[1] + xi * dy - uy);
-          t[0] = sg[0] * nx + sg[2] * ny;
-          t[1] = sg[2] * nx + sg[1] * ny;
-        } else {
-          t[0] = td.normal * nx + td.shear * be.sx;
-          t[1] = td.normal * ny + td.shear * be.sy;
-        }
-        for (int d = 0; d < 2; ++d) {
-          const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
-          const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
-          w += 0.5 * len * factor * t[d] * ((1 - xi) * du_a + xi * du_b);
-        }
-      }
-    }
+    w += edge_work(s, model_->traction_edges()[i], kBoth, table_value(td.table, t_table),
+                   [&](const BoundaryEdge& be, double x, double y0, double nx, double ny, double t[2]) {
+                     if (td.from_insitu) {
+                       const auto sg = insitu_stress_at(scene_->insitu_stress, x, y0);
+                       t[0] = sg[0] * nx + sg[2] * ny;
+                       t[1] = sg[2] * nx + sg[1] * ny;
+                     } else {
+                       t[0] = td.normal * nx + td.shear * be.sx;
+                       t[1] = td.normal * ny + td.shear * be.sy;
+                     }
+                   });
   }
   return w;
 }
@@ -533,31 +545,17 @@ double EnergyMeter::support_work(const RunState& s) const {
   // a force σ_insitu·n on the held line in each held direction, which works on its motion,
   // ∫ (σ_insitu·n)_d Δu_d ds, as the in-situ tractions do (traction_work: two-point Gauss, the
   // field at a point's position in the mesh as cut, n at the step's end).
-  if (scene_->insitu_stress.present) {
-    static constexpr double kGauss[2] = {0.21132486540518711775, 0.78867513459481288225};
+  if (scene_->insitu_stress.present)
     for (std::size_t i = 0; i < model_->support_edges().size(); ++i) {
       const SupportDef& sd = scene_->supports[i];
-      for (const BoundaryEdge& be : model_->support_edges()[i]) {
-        if (removed(s, be.element)) continue;
-        const double* a = s.loop_xy.data() + 2 * be.vertex;
-        const double* b = s.loop_xy.data() + 2 * be.next;
-        const double dx = b[0] - a[0], dy = b[1] - a[1], len = std::hypot(dx, dy);
-        if (!(len > 0)) continue;
-        const double nx = dy / len, ny = -dx / len;  // CCW loop: outside on the right
-        for (double xi : kGauss) {
-          const double uy = (1 - xi) * s.loop_u[2 * be.vertex + 1] + xi * s.loop_u[2 * be.next + 1];
-          const auto sg = insitu_stress_at(scene_->insitu_stress, a[0] + xi * dx, a[1] + xi * dy - uy);
-          const double t[2] = {sg[0] * nx + sg[2] * ny, sg[2] * nx + sg[1] * ny};
-          for (int d = 0; d < 2; ++d) {
-            if (!(d == 0 ? sd.fix_x : sd.fix_y)) continue;
-            const double du_a = s.loop_u[2 * be.vertex + d] - prev_loop_u_[2 * be.vertex + d];
-            const double du_b = s.loop_u[2 * be.next + d] - prev_loop_u_[2 * be.next + d];
-            w += 0.5 * len * t[d] * ((1 - xi) * du_a + xi * du_b);
-          }
-        }
-      }
+      const bool held[2] = {sd.fix_x, sd.fix_y};
+      w += edge_work(s, model_->support_edges()[i], held, 1.0,
+                     [&](const BoundaryEdge&, double x, double y0, double nx, double ny, double t[2]) {
+                       const auto sg = insitu_stress_at(scene_->insitu_stress, x, y0);
+                       t[0] = sg[0] * nx + sg[2] * ny;
+                       t[1] = sg[2] * nx + sg[1] * ny;
+                     });
     }
-  }
   // −k_s ∫ ē·Δh ds on each held component, ē = ½(e_prev + e_now), e = u − h linear along the
   // edge and Δh uniform: L·Δh·(ē_a + ē_b)/2.
   if (!moving_supports_) return w;

@@ -169,6 +169,13 @@ class EnergyMeter {
   // its start time (damped_step's load_change)
   double absorbing_input_change(const RunState& s) const;
   double support_work(const RunState& s) const;   // J/m, since the previous call
+  // J/m, factor·∫ t·Δu ds over `edges` in the held directions (`held`: x, y), Δu linear between
+  // an edge's ends (Δu since the previous call), by the two-point Gauss rule; t =
+  // traction(edge, x, y0, nx, ny, t) at each Gauss point: its place (x, y), y0 = y less its
+  // vertical displacement (where an in-situ field is read, as cut), n the edge's outward normal.
+  template <class Traction>
+  double edge_work(const RunState& s, const std::vector<BoundaryEdge>& edges, const bool held[2], double factor,
+                   const Traction& traction) const;
   // J/m, Q's step: `kinetic` K at the step's end; `load_change` W_f(t1) − W_f(t0), or in a
   // dynamic run's first step from rest, its work of the loads and gravity (energy.cpp)
   double damped_step(const RunState& s, double kinetic, double load_change);
