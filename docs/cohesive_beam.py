@@ -23,11 +23,11 @@ load_work: dW/dh), its deflection h the support's travel. Writes OUT_DIR/cohesiv
 work of fracture (load_work at the end) against G_f x ligament = 12.4 J/m, the run's status and
 wall time.
 """
-import argparse
 import csv
 import json
-import pathlib
 import subprocess
+
+from figure_page import arguments, figure_path, page, write
 
 SIZES = [0.025, 0.0167, 0.0125]
 GF_LIGAMENT = 124.0 * 0.1  # J/m
@@ -72,8 +72,7 @@ def svg(curves, path):
     sx = lambda x: m + (w - 2 * m) * x / xmax
     sy = lambda y: ht - m - (ht - 2 * m) * max(y, 0) / ymax
     colours = ["#1f77b4", "#d62728", "#2ca02c"]
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{ht}" font-family="sans-serif" font-size="12">',
-             f'<rect width="{w}" height="{ht}" fill="white"/>',
+    parts = page(w, ht, 12) + [
              f'<line x1="{m}" y1="{ht - m}" x2="{w - m}" y2="{ht - m}" stroke="black"/>',
              f'<line x1="{m}" y1="{m}" x2="{m}" y2="{ht - m}" stroke="black"/>',
              f'<text x="{w / 2}" y="{ht - 20}" text-anchor="middle">load point deflection (mm)</text>',
@@ -86,18 +85,11 @@ def svg(curves, path):
         pts = " ".join(f"{sx(x):.1f},{sy(y):.1f}" for x, y in c)
         parts.append(f'<polyline points="{pts}" fill="none" stroke="{colours[i]}" stroke-width="1.5"/>')
         parts.append(f'<text x="{w - m - 150}" y="{m + 16 * (i + 1)}" fill="{colours[i]}">h = {h} m</text>')
-    parts.append("</svg>")
-    path.write_text("\n".join(parts) + "\n")
+    write(parts, path)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("bin_dir")
-    ap.add_argument("out_dir")
-    ap.add_argument("--figure", default=None)
-    a = ap.parse_args()
-    out = pathlib.Path(a.out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    a, out = arguments()
     curves = {}
     with open(out / "cohesive_beam.csv", "w") as f:
         f.write("mesh_m,deflection_mm,load_kn_per_m\n")
@@ -117,7 +109,7 @@ def main():
                   f"{peak[1]:.4g} kN/m at {peak[0]:.3f} mm; work of fracture {work:.4g} J/m "
                   f"({100 * (work / GF_LIGAMENT - 1):+.1f} % of G_f x ligament {GF_LIGAMENT} J/m); "
                   f"{s['fracture']['cracks']} cracks, dissipated {s['fracture']['dissipated_j']:.4g} J/m")
-    svg(curves, pathlib.Path(a.figure) if a.figure else out / "cohesive_beam.svg")
+    svg(curves, figure_path(a, out, "cohesive_beam.svg"))
 
 
 if __name__ == "__main__":

@@ -34,12 +34,13 @@ cut, read from the run's checkpoint) and the figure, and prints per run its stat
 heights of the published points and its largest distance from them, and the wings' first growth
 (step, load, angle from the flaw).
 """
-import argparse
 import json
 import math
 import pathlib
 import struct
 import subprocess
+
+from figure_page import arguments, figure_path, page, write
 
 R = 0.05
 SCB_SIZES = [R / 25, R / 50, R / 100]
@@ -150,8 +151,7 @@ def x_at(segs, y):
 def svg(scb_paths, wing_paths, path):
     width, height = 840 if wing_paths else 420, 440
     colours = ["#1f77b4", "#d62728", "#2ca02c"]
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" '
-             'font-size="12">', f'<rect width="{width}" height="{height}" fill="white"/>']
+    parts = page(width, height, 12)
     # Left: the SCB specimen about the crack, 1 mm = 7 px (x -20..32 mm, y 0..53 mm).
     ox, oy, k = 160, 410, 7.0
     px = lambda x: ox + k * 1e3 * x
@@ -189,20 +189,11 @@ def svg(scb_paths, wing_paths, path):
         for y in (0.58, -0.6):
             parts.append(f'<text x="{cx}" y="{qy(y) + 4:.0f}" text-anchor="middle">compression (along y)</text>')
         parts.append(f'<text x="{cx}" y="18" text-anchor="middle">wings from a closed flaw (2a 0.5 m, 45 deg, friction 30 deg)</text>')
-    parts.append("</svg>")
-    path.write_text("\n".join(parts) + "\n")
+    write(parts, path)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("bin_dir")
-    ap.add_argument("out_dir")
-    ap.add_argument("--figure", default=None)
-    ap.add_argument("--no-wings", action="store_true")
-    ap.add_argument("--quick", action="store_true")
-    a = ap.parse_args()
-    out = pathlib.Path(a.out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    a, out = arguments([("--no-wings", {"action": "store_true"}), ("--quick", {"action": "store_true"})])
     scb_paths, wing_paths = {}, []
     with open(out / "crack_paths.csv", "w") as f:
         f.write("case,mesh_m,step,x0_m,y0_m,x1_m,y1_m\n")
@@ -231,7 +222,7 @@ def main():
                 print(f"wings h {h} m: {s['status']} ({s['wall_seconds']:.1f} s), {len(segs)} segments; first growth at "
                       f"step {step}, sigma {sigma:.3f} MPa ({100 * (sigma / 2.3125 - 1):+.1f} % of sigma_c 2.31 MPa), "
                       f"first segment at {first:.1f} deg from +x")
-    svg(scb_paths, wing_paths, pathlib.Path(a.figure) if a.figure else out / "crack_paths.svg")
+    svg(scb_paths, wing_paths, figure_path(a, out, "crack_paths.svg"))
 
 
 if __name__ == "__main__":

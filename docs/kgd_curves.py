@@ -13,11 +13,11 @@ pressure_pa, closed_pressure_pa, opening_m, closed_opening_m) and the figure: on
 columns half-length, wellbore pressure and wellbore opening against time, the run's steps as
 dots, the closed form as a line. Prints each test's summary line (its errors at the growths).
 """
-import argparse
 import os
-import pathlib
 import re
 import subprocess
+
+from figure_page import arguments, figure_path, page, write
 
 TESTS = [("toughness", "Kgd.ToughnessDominatedLengthAndPressure", "K-vertex (K_m = 29)"),
          ("viscosity", "Kgd.ViscosityDominatedLengthOpeningAndPressure", "M-vertex (K_m = 0.046)")]
@@ -59,8 +59,7 @@ def panel(parts, x0, y0, w, h, rows, col, scale, label, title):
 def svg(results, path):
     pw, ph, mx, my = 230, 170, 70, 60
     w, h = 3 * (pw + mx) + 20, len(results) * (ph + my + 30) + 50
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" font-size="11">',
-             f'<rect width="{w}" height="{h}" fill="white"/>',
+    parts = page(w, h, 11) + [
              f'<circle cx="{mx}" cy="16" r="3" fill="#1f77b4"/><text x="{mx + 8}" y="20">nmm (each accepted step)</text>',
              f'<line x1="{mx + 200}" y1="16" x2="{mx + 230}" y2="16" stroke="#d62728" stroke-width="1.5"/>'
              f'<text x="{mx + 236}" y="20">closed form</text>']
@@ -69,18 +68,11 @@ def svg(results, path):
         panel(parts, mx, y0, pw, ph, rows, 1, 1.0, "half-length (m)", f"{title}: half-length")
         panel(parts, mx + pw + mx, y0, pw, ph, rows, 3, 1e-6, "wellbore pressure (MPa)", f"{title}: pressure")
         panel(parts, mx + 2 * (pw + mx), y0, pw, ph, rows, 5, 1e3, "wellbore opening (mm)", f"{title}: opening")
-    parts.append("</svg>")
-    path.write_text("\n".join(parts) + "\n")
+    write(parts, path)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("bin_dir")
-    ap.add_argument("out_dir")
-    ap.add_argument("--figure", default=None)
-    a = ap.parse_args()
-    out = pathlib.Path(a.out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    a, out = arguments()
     results = []
     with open(out / "kgd_curves.csv", "w") as f:
         f.write("regime,time_s,half_length_m,closed_half_length_m,pressure_pa,closed_pressure_pa,opening_m,"
@@ -91,7 +83,7 @@ def main():
                 f.write(regime + "," + ",".join(f"{v:.6g}" for v in r) + "\n")
             print("\n".join(summary) if summary else f"{name}: no summary line")
             results.append((title, rows))
-    svg(results, pathlib.Path(a.figure) if a.figure else out / "kgd_curves.svg")
+    svg(results, figure_path(a, out, "kgd_curves.svg"))
 
 
 if __name__ == "__main__":
