@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/mesh.h"
-#include "solver/output/energy.h"
+#include "solver/output/run_energy.h"
 #include "solver/stepping/fracture_effect.h"
 #include "solver/stepping/run_view.h"
 #include "solver/stepping/time_stepper.h"
@@ -32,20 +32,14 @@ double load_of(const solve::RunView& v, int body, int component, double lever) {
 FractureRun run_fracture(solve::TimeStepper& st, double t_end, std::size_t support,
                          const std::function<void(std::int64_t)>& on_step) {
   FractureRun r;
-  // The energy balance, metered as nmm-solve meters it (solve_run.cpp EnergyOutput); only the
+  // The energy balance, metered as nmm-solve meters it (run_energy.h); only the
   // last row is read, so no row is kept.
-  solve::EnergyMeter meter(st.view().model, &st.view().space);
-  std::size_t topology = st.view().topology;
-  meter.after_step(st.view().state, solve::energy_sources(st.view()), false);
-  solve::EnergyRow intact = meter.state_terms(st.view().state, solve::energy_sources(st.view()));
+  solve::RunEnergy meter(st.view(), false);
+  solve::EnergyRow intact = meter.meter().state_terms(st.view().state, meter.sources());
   double load = 0;
   r.outcome = st.run_until(t_end * (1 - 1e-9), [&](std::int64_t n) {
     const solve::RunView v = st.view();
-    if (v.topology != topology) {  // re-cut in this step: composed back to the meter's mesh
-      meter.carry_over(v.model, &v.space, v.recut, v.recut_start, v.recut_start_work);
-      topology = v.topology;
-    }
-    meter.after_step(v.state, solve::energy_sources(v), true);
+    meter.after_step(v, true);
     const solve::EnergyRow& row = meter.rows().back();
     const double previous = load;
     load = solve::support_reactions(v).at(support).load();

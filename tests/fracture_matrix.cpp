@@ -45,7 +45,7 @@
 #include "common/scene.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/rock_tests.h"
-#include "solver/output/energy.h"
+#include "solver/output/run_energy.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"
 
@@ -121,21 +121,15 @@ int run(const std::string& name, const std::string& csv) {
   const bool beam = c.test == RockTest::notched_beam, slope = c.test == RockTest::step_path_slope;
   Outcome outcome;
   std::string error;
-  // The energy balance, metered as nmm-solve meters it (solve_run.cpp EnergyOutput).
-  solve::EnergyMeter meter(st.view().model, &st.view().space);
-  std::size_t topology = st.view().topology;
-  meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
+  // The energy balance, metered as nmm-solve meters it (run_energy.h).
+  solve::RunEnergy meter(st.view(), true);
   double work = 0, residual0 = 0, worst_residual = 0;  // J/m; – of the work
   double undamped0 = 0, worst_undamped = 0, damped0 = 0;  // J/m, R + Q after step 1; –; J/m, Q after step 1
   std::int64_t worst_residual_step = -1;
   try {
     outcome = st.run_until(sp.end_time * (1 - 1e-9), [&](std::int64_t n) {
       const solve::RunView v = st.view();
-      if (v.topology != topology) {  // re-cut in this step: composed back to the meter's mesh
-        meter.carry_over(v.model, &v.space, v.recut, v.recut_start, v.recut_start_work);
-        topology = v.topology;
-      }
-      meter.after_step(v.state, solve::energy_sources(v), true);
+      meter.after_step(v, true);
       const solve::EnergyRow& row = meter.rows().back();
       work = std::max(work, std::abs(row.load_work - row.gravity));
       if (n == 1) residual0 = row.residual, undamped0 = row.residual + row.damped, damped0 = row.damped;

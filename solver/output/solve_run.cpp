@@ -10,6 +10,7 @@
 
 #include "common/scene.h"
 #include "solver/discretisation/blas_info.h"
+#include "solver/output/run_energy.h"
 #include "solver/stepping/equilibrium_indicator.h"
 
 namespace nmm::solve {
@@ -19,39 +20,22 @@ namespace nmm::solve {
 class SolveRun::EnergyOutput : public StepObserver {
  public:
   EnergyOutput(const RunView& run, std::string dir, std::int64_t output_every)
-      : meter_(run.model, &run.space), dir_(std::move(dir)), output_every_(output_every), topology_(run.topology) {
-    sources_ = energy_sources(run);
-    meter_.after_step(run.state, sources_, true);
-  }
+      : energy_(run, true), dir_(std::move(dir)), output_every_(output_every) {}
   void after_step(const RunView& st, std::int64_t n, bool) override {
-    if (st.topology != topology_) {  // an effect changed the mesh in this step (mesh_change.h)
-      // The step's re-cuts, composed back to the mesh the meter last saw (run_view.h).
-      if (st.recut_from != topology_)
-        throw std::logic_error("energy meter: the re-cut map leads back to mesh " + std::to_string(st.recut_from) +
-                               ", the meter's is " + std::to_string(topology_));
-      meter_.carry_over(st.model, &st.space, st.recut, st.recut_start, st.recut_start_work);
-      topology_ = st.topology;
-    }
-    sources_ = energy_sources(st);  // a change of the mesh builds the effects again
-    meter_.after_step(st.state, sources_, n % output_every_ == 0);
+    energy_.after_step(st, n % output_every_ == 0);
   }
   void finish(const RunView& run, const Outcome&, std::int64_t) override {
-    // A run that stops in a step that re-cut the mesh has built its effects again since the last
-    // accepted step: the sources kept then are gone (summarise reads them after this).
-    sources_ = energy_sources(run);
-    meter_.keep_last();
-    meter_.write_csv(dir_);
+    energy_.finish(run);
+    energy_.meter().write_csv(dir_);
   }
   // What the effects write of the run's energy totals into summary.json (effect_energy.h
   // summarise_energy), from energy.csv's last step.
-  void summarise(nlohmann::json& summary) const override { meter_.summarise(sources_, summary); }
+  void summarise(nlohmann::json& summary) const override { energy_.meter().summarise(energy_.sources(), summary); }
 
  private:
-  EnergyMeter meter_;
-  EnergySources sources_;  // the effects the meter sums, as of the last step (the stepper's)
+  RunEnergy energy_;
   std::string dir_;
   std::int64_t output_every_;
-  std::size_t topology_;  // the mesh the meter's records are of (RunView::topology)
 };
 
 namespace {
