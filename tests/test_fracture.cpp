@@ -52,6 +52,7 @@
 #include "solver/output/solve_run.h"
 #include "solver/output/energy.h"
 #include "solver/discretisation/model.h"
+#include "tests/cut_crack.h"
 #include "tests/ended_ok.h"
 #include "tests/rock_stress.h"
 #include "tests/temp_dir.h"
@@ -498,28 +499,12 @@ double strain_energy(const Mesh& m, const std::vector<double>& stress, double E,
 }
 // The bar of BarInTensionCracksAcross… loaded to 75 % of its strength (0.3 s), and the same state
 // carried onto the mesh with a crack cut across it, through elements and nodes' stars.
-struct CutBar {
-  SceneDef scene, cracked;
-  Mesh before_mesh, now;
-  pre::RecutMap map;
-  RunState before, after;
-  bool cracked_in_run = false;  // the run itself cracked (it must not, at 75 %)
-};
-CutBar cut_stressed_bar() {
-  CutBar c;
+// The bar at 75 % of its strength, cut across through elements and nodes' stars.
+test::CutCrack cut_stressed_bar() {
   const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
-  c.scene = scene_from_json(specimen(4, 1, 0.25, 0, 1e-3, strength), "bar");
-  c.before_mesh = pre::build_mesh(c.scene, "bar");
-  TimeStepper st(c.before_mesh, c.scene, "bar");
-  EXPECT_PRED1(test::ended_ok, st.run_until(0.3, [](std::int64_t) {}));
-  c.cracked_in_run = !fracture_of(st.view()).segments().empty();
-  c.before = st.view().state;
-  c.cracked = c.scene;
-  const std::size_t first = c.cracked.joints.size();
-  c.cracked.joints.push_back({c.cracked.fracture.crack_set, {{2.03, -0.01}, {2.11, 1.01}}});
-  c.now = pre::recut(c.before_mesh, c.cracked, first, "bar", c.map);
-  c.after = c.before;
-  solve::transfer_state(c.before_mesh, c.now, c.map, 2, c.after);
+  test::CutCrack c = test::cut_crack(scene_from_json(specimen(4, 1, 0.25, 0, 1e-3, strength), "bar"), "bar", 0.3,
+                                     {Vec2{2.03, -0.01}, Vec2{2.11, 1.01}}, 2);
+  EXPECT_PRED1(test::ended_ok, c.outcome);
   return c;
 }
 }  // namespace
@@ -528,7 +513,7 @@ CutBar cut_stressed_bar() {
 // loop vertex of the new mesh moves as the field of the element it came from moved it (the crack's
 // own vertices included), and the strain energy is the same to round-off.
 TEST(Fracture, CuttingACrackCarriesTheStateOver) {
-  const CutBar c = cut_stressed_bar();
+  const test::CutCrack c = cut_stressed_bar();
   ASSERT_FALSE(c.cracked_in_run);
   const Mesh &m = c.before_mesh, &now = c.now;
   const pre::RecutMap& map = c.map;
@@ -797,7 +782,7 @@ TEST(Fracture, ACrackReleasesWhatTheBeamsStiffnessLost) {
 // state carried onto the mesh with a crack cut across it, have the same strain and spring
 // energies (energy.h's state terms: what the meter reads on either side of a re-cut).
 TEST(Fracture, TheCutItselfMovesNoEnergy) {
-  const CutBar c = cut_stressed_bar();
+  const test::CutCrack c = cut_stressed_bar();
   const solve::Model before_model(c.before_mesh, c.scene, "bar"), after_model(c.now, c.cracked, "bar");
   const solve::EnergyRow a = solve::EnergyMeter(before_model).state_terms(c.before, {});
   const solve::EnergyRow b = solve::EnergyMeter(after_model).state_terms(c.after, {});

@@ -36,6 +36,7 @@
 #include "solver/stepping/fracture_effect.h"
 #include "solver/stepping/restart.h"
 #include "solver/stepping/time_stepper.h"
+#include "tests/cut_crack.h"
 #include "tests/ended_ok.h"
 #include "tests/rock_stress.h"
 #include "tests/temp_dir.h"
@@ -133,29 +134,9 @@ std::array<double, 2> cover_function(const solve::CoverSpace& space, const RunSt
 
 // The cantilever at `order`, and the same state carried onto its mesh with a crack cut across it
 // at mid-span (through elements and nodes' stars).
-struct CutCantilever {
-  SceneDef scene, cracked;
-  Mesh before_mesh, now;
-  pre::RecutMap map;
-  RunState before, after;
-  Outcome outcome;
-};
-
-CutCantilever cut_cantilever(int order) {
-  CutCantilever c;
-  c.scene = scene_from_json(cantilever(order), "cantilever");
-  c.before_mesh = pre::build_mesh(c.scene, "cantilever");
-  TimeStepper st(c.before_mesh, c.scene, "cantilever");
-  c.outcome = st.run_until(1e-3, [](std::int64_t) {});
-  c.before = st.view().state;
-  c.cracked = c.scene;
-  const std::size_t first = c.cracked.joints.size();
-  c.cracked.joints.push_back({c.cracked.fracture.crack_set, {{2.03, -0.01}, {2.11, 1.01}}});
-  c.now = pre::recut(c.before_mesh, c.cracked, first, "cantilever", c.map);
-  c.after = c.before;
-  const int dofs = 2 * solve::monomial_count(order);
-  solve::transfer_state(c.before_mesh, c.now, c.map, dofs, c.after);
-  return c;
+test::CutCrack cut_cantilever(int order) {
+  return test::cut_crack(scene_from_json(cantilever(order), "cantilever"), "cantilever", 1e-3,
+                         {Vec2{2.03, -0.01}, Vec2{2.11, 1.01}}, 2 * solve::monomial_count(order));
 }
 
 }  // namespace
@@ -166,7 +147,7 @@ class FractureAtHigherOrder : public ::testing::TestWithParam<int> {};
 // cover functions; the crack's vertices where the loop is now.
 TEST_P(FractureAtHigherOrder, CuttingACrackCarriesTheFieldsOver) {
   const int order = GetParam();
-  const CutCantilever c = cut_cantilever(order);
+  const test::CutCrack c = cut_cantilever(order);
   ASSERT_PRED1(test::ended_ok, c.outcome);
   ASSERT_GT(c.now.element_count(), c.before_mesh.element_count());
   const solve::CoverSpace old_space(c.before_mesh, order, c.scene.solver.sliver_cover_weight);
