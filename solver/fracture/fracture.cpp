@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "common/ring_geometry.h"
+#include "preprocess/exact_side.h"
 #include "solver/discretisation/state_bytes.h"
 #include "solver/discretisation/stress_field.h"
 #include "solver/fracture/crack_parting.h"
@@ -41,12 +42,16 @@ double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 //   (the tension bar of tests/test_fracture.cpp starts a second crack on some BLAS kernels), but
 //   overshooting every end made the compression specimens cascade (docs/fracture.md "Not yet").
 // - at cover order n ≥ 1 (`past`) a crack end that does not stop and was not snapped onto a
-//   vertex is cut kOvershoot·h past its edge too, and its tip grows on from there (`tip`), so the
-//   crack's segments stay one chain: an end a round-off short of its edge leaves the element
-//   whole (it neither parts it nor any star across it) and the crack opens nothing — the 4 m bar
-//   at n = 1 then started new cracks beside it within the step, 22 segments in all, where it
-//   cracks once across with the ends past (docs/higher-order-covers.md "Fracturing"). Order 0
-//   keeps its ends on the edge, its results bit for bit.
+//   vertex is moved, where it lies a round-off short of its edge, onto or just past it: by
+//   steps from an ulp of its coordinates, doubled until the cutter's own exact arithmetic puts
+//   it on the edge or beyond (pre::exact_side) — at most kOvershoot·h — and its tip grows on from
+//   there (`tip`), so the crack's segments stay one chain. An end a round-off short leaves its
+//   element whole (the crack neither parts it nor any star across it) and the crack opens
+//   nothing: the 4 m bar at n = 1 then started new cracks beside it within the step, 22 segments
+//   in all (docs/higher-order-covers.md "Fracturing"). Every such end cut kOvershoot·h past
+//   instead put its kink 1e-8·h inside the next element, and the contact solve on the 2.5e-9 m
+//   edges that made failed to converge (the bar at n = 2, a time step cut). Order 0 keeps its
+//   ends where the doubles put them, its results bit for bit.
 constexpr double kSnap = 1e-2, kOvershoot = 1e-8;
 struct CrackEnd {
   Vec2 at;          // m, where the crack leaves the element (as cut)
@@ -76,10 +81,17 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
     }
   }
   c.cut_to = c.at;
-  const bool on_vertex = c.at == pv || c.at == pw;  // exactly on the loop: nothing to overshoot
-  if (c.stops || (past && !on_vertex)) {
-    const double dx = c.at.x - from.x, dy = c.at.y - from.y, l = std::hypot(dx, dy);
+  const double dx = c.at.x - from.x, dy = c.at.y - from.y, l = std::hypot(dx, dy);
+  if (c.stops) {
     if (l > 0) c.cut_to = plus(c.at, kOvershoot * h / l, {dx, dy});
+  } else if (past && l > 0 && !(c.at == pv || c.at == pw)) {
+    const int inside = pre::exact_side(pv, pw, from);  // the side of the edge the crack comes from
+    double t = std::numeric_limits<double>::epsilon() * std::max({std::abs(c.at.x), std::abs(c.at.y), h});
+    while (inside != 0 && pre::exact_side(pv, pw, c.cut_to) == inside && t < kOvershoot * h) {
+      c.cut_to = plus(c.at, t / l, {dx, dy});
+      t *= 2;
+    }
+    if (inside != 0 && pre::exact_side(pv, pw, c.cut_to) == inside) c.cut_to = plus(c.at, kOvershoot * h / l, {dx, dy});
   }
   c.tip = c.stops ? c.at : c.cut_to;
   return c;
@@ -138,7 +150,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // The element's stress: at cover order n ≥ 1 its mean ∫σ dA / A (stress_field.h), the value the
   // outputs show: the strength check stays one decision per element, as at n = 0.
   const int order = scene.solver.cover_order;
-  const bool past = order >= 1;  // free crack ends cut past their edge (crack_end)
+  const bool past = order >= 1;  // free crack ends on or past their edge, exactly (crack_end)
   const std::vector<double> mean = order == 0 ? std::vector<double>{} : mean_stress(mesh, order, s);
   const std::vector<double>& stress = order == 0 ? s.stress : mean;
   ratio_.resize(n);
