@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "solver/discretisation/element_integration.h"
+#include "solver/discretisation/polynomial.h"
 
 namespace nmm::solve {
 
@@ -13,48 +14,83 @@ Eigen::VectorXd cut_release_force(const Model& model, const Configuration& confi
   const Mesh& mesh = model.mesh();
   const CoverSpace& space = config.space();
   const std::size_t covers = mesh.cover_count();
-  // kg/m, each cover's mass: Σ_e ρ_e ∫_e w_k dA (the consistent mass's row sum).
-  std::vector<double> mass(covers, 0.0);
+  const int P = space.terms(), dpc = space.dofs_per_cover();
+  // kg/m, each cover's mass moments M_k[j][l] = Σ_e ρ_e ∫_e w_k p_j p_l dA (the header's
+  // equation; p_j about the cover's basis node, scaled by h, as its cover function). Order 0:
+  // its mass Σ_e ρ_e ∫_e w_k dA, the consistent mass's row sum, by the linear weights' moments.
+  std::vector<Eigen::MatrixXd> moments(covers, Eigen::MatrixXd::Zero(P, P));
+  const double h = space.scale();
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     if (e < removed.size() && removed[e]) continue;
     const ElementFrame& f = config.frame(e);
     if (!(f.w.twice_area > 0)) continue;
     const std::size_t b = static_cast<std::size_t>(mesh.element_loop_offset[e]);
     const std::size_t n = static_cast<std::size_t>(mesh.element_loop_offset[e + 1]) - b;
-    const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, f.ox, f.oy);
-    for (int k = 0; k < 3; ++k)
-      mass[static_cast<std::size_t>(mesh.element_covers[3 * e + static_cast<std::size_t>(k)])] +=
-          model.density(e) * integral_w(f.w, m, k);
+    const double rho = model.density(e);
+    if (P == 1) {
+      const PolygonMoments m = polygon_moments(s.loop_xy.data() + 2 * b, n, f.ox, f.oy);
+      for (int k = 0; k < 3; ++k)
+        moments[static_cast<std::size_t>(mesh.element_covers[3 * e + static_cast<std::size_t>(k)])](0, 0) +=
+            rho * integral_w(f.w, m, k);
+      continue;
+    }
+    // ∫ φ_kj · p_l dA with φ_kj = w_k p_j the element's shape functions (degree n + 1) and p_l
+    // about the same node, in the element's scaled frame: degree 2n + 1, integrated exactly.
+    const ElementBasis& basis = config.basis(e);
+    const MonomialMoments m = monomial_moments(s.loop_xy.data() + 2 * b, n, f.ox, f.oy, h, 2 * space.order() + 1);
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t c = static_cast<std::size_t>(mesh.element_covers[3 * e + static_cast<std::size_t>(k)]);
+      const std::size_t node = static_cast<std::size_t>(space.basis_cover(c));
+      const double sx = (s.cover_xy[2 * node] - f.ox) / h, sy = (s.cover_xy[2 * node + 1] - f.oy) / h;
+      for (int l = 0; l < P; ++l) {
+        const Poly pl = shifted_monomial(kMonomials.p[static_cast<std::size_t>(l)],
+                                         kMonomials.q[static_cast<std::size_t>(l)], sx, sy);
+        for (int j = 0; j < P; ++j) moments[c](j, l) += rho * integral(basis.phi[static_cast<std::size_t>(k * P + j)], pl, m);
+      }
+    }
   }
-  // Per unknown pair (a cover and those tied to it): its parent cover, mass, and B summed per
+  // Per unknown pair (a cover and those tied to it): its parent cover, moments, and B summed per
   // parent.
-  const int dpc = space.dofs_per_cover();
   const std::size_t pairs = static_cast<std::size_t>(space.unknowns() / dpc);
   std::vector<std::int32_t> parent(pairs, -1);
-  std::vector<double> pair_mass(pairs, 0.0);
+  std::vector<Eigen::MatrixXd> pair_moments(pairs, Eigen::MatrixXd::Zero(P, P));
   for (std::size_t c = 0; c < covers && c < cover_parent.size(); ++c) {
     const auto u = static_cast<std::size_t>(space.first_unknown(c) / dpc);
     if (static_cast<std::size_t>(space.cover_of_unknown(static_cast<int>(u) * dpc)) == c) parent[u] = cover_parent[c];
-    pair_mass[u] += mass[c];
+    pair_moments[u] += moments[c];
   }
-  std::vector<double> parent_mass(static_cast<std::size_t>(*std::max_element(parent.begin(), parent.end()) + 1), 0.0);
-  std::vector<int> parent_pieces(parent_mass.size(), 0);
-  Eigen::MatrixXd parent_force = Eigen::MatrixXd::Zero(dpc, static_cast<Eigen::Index>(parent_mass.size()));
+  const std::size_t parents = static_cast<std::size_t>(*std::max_element(parent.begin(), parent.end()) + 1);
+  std::vector<Eigen::MatrixXd> parent_moments(parents, Eigen::MatrixXd::Zero(P, P));
+  std::vector<int> parent_pieces(parents, 0);
+  // N/m, B of the parent's unknowns as P × 2 (term j, direction s: unknown 2j + s).
+  using Terms = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
+  std::vector<Terms> parent_force(parents, Terms::Zero(P, 2));
+  const auto terms = [&](const Eigen::VectorXd& v, std::size_t u) {
+    return Eigen::Map<const Terms>(v.data() + static_cast<Eigen::Index>(u) * dpc, P, 2);
+  };
   for (std::size_t u = 0; u < pairs; ++u) {
     if (parent[u] < 0) continue;
     const auto p = static_cast<std::size_t>(parent[u]);
-    parent_mass[p] += pair_mass[u];
+    parent_moments[p] += pair_moments[u];
     ++parent_pieces[p];
-    parent_force.col(static_cast<Eigen::Index>(p)) += B.segment(static_cast<Eigen::Index>(u) * dpc, dpc);
+    parent_force[p] += terms(B, u);
   }
+  // The parent's body force per unit mass, g = M_P⁻¹ B_P (P × 2: its coefficients on p_l); n = 0:
+  // the piece's share m_i / m_P of B_P, as the earlier rule computed it (bit for bit).
+  std::vector<Terms> g(parents);
+  for (std::size_t p = 0; p < parents; ++p)
+    if (parent_pieces[p] >= 2 && parent_moments[p](0, 0) > 0 && P > 1)
+      g[p] = parent_moments[p].ldlt().solve(parent_force[p]);
   Eigen::VectorXd r = Eigen::VectorXd::Zero(B.size());
   for (std::size_t u = 0; u < pairs; ++u) {
     if (parent[u] < 0) continue;
     const auto p = static_cast<std::size_t>(parent[u]);
-    if (parent_pieces[p] < 2 || !(parent_mass[p] > 0)) continue;  // not split: nothing opened
-    r.segment(static_cast<Eigen::Index>(u) * dpc, dpc) =
-        B.segment(static_cast<Eigen::Index>(u) * dpc, dpc) -
-        (pair_mass[u] / parent_mass[p]) * parent_force.col(static_cast<Eigen::Index>(p));
+    if (parent_pieces[p] < 2 || !(parent_moments[p](0, 0) > 0)) continue;  // not split: nothing opened
+    Eigen::Map<Terms> ru(r.data() + static_cast<Eigen::Index>(u) * dpc, P, 2);
+    if (P == 1)
+      ru = terms(B, u) - (pair_moments[u](0, 0) / parent_moments[p](0, 0)) * parent_force[p];
+    else
+      ru = terms(B, u) - pair_moments[u] * g[p];
   }
   return r;
 }

@@ -17,8 +17,7 @@
 //                  inertia of DDA's static steps (M·v1_prev/Δt_prev, which the damped column
 //                  books), a dynamic step's M·a0, the contact solve's tolerance, the loads of a
 //                  run's first step (gravity put on a stress-free slope) — shared among the
-//                  pieces of a cover the cut split by their mass (cut_release_force: exact for
-//                  gravity and for inertia where the cover's velocity is uniform). The step
+//                  pieces of a cover the cut split by their mass moments (below). The step
 //                  solves A d = b + B (b what it would solve uncut: the loads' increments; A =
 //                  K + a0 M, a0 = 2/Δt² with inertia in the matrix, 0 in static_mode
 //                  "equilibrium"). With U(d) = U0 + f_int0·d + ½ dᵀK d a linear step's W − ΔU is
@@ -49,6 +48,22 @@
 //                  Σ_steps Σ_faces L·[D(κ_end) − D(κ_start)] (D the work of the traction to κ on
 //                  the envelope less the elastic energy the secant gives back: that part is in S
 //                  as ½N·closure), and the work their cohesion does in slip moves from D to F.
+//   h's share    h is a body force per unit mass f(x) (N/kg: gravity, −acceleration, ...) on
+//                  the parent cover P: h_P,js = ∫_P ρ w p_j f_s dA, p_j its cover function's terms
+//                  (cover_space.h: p_j((x − c)/h) about its node c). Where f is a polynomial of
+//                  degree ≤ n over P, f_s = Σ_l p_l g_ls, so each piece i of P gets
+//                    h_i = M_i g,   g = M_P⁻¹ h_P,   M_i,jl = ∫_i ρ w p_j p_l dA   (M_P = Σ_i M_i),
+//                  the integral over the piece itself: its mass moments M_i (zeroth, first and
+//                  second about c) turn the parent's force into the body force g that gives it,
+//                  and g into the piece's. As h_P = Σ_i B_i (the faces' forces cancel in the sum),
+//                  r_i = B_i − M_i M_P⁻¹ Σ_i' B_i'. Exact for gravity and for the inertia of an
+//                  acceleration (or velocity) field of degree ≤ n over the cover: at n = 0 a
+//                  uniform one (M_i = m_i, the mass share), at n = 1 a linear one — a bar's
+//                  uniform stretching, a block's rotation. Sharing the linear terms by mass
+//                  instead (the earlier rule at n ≥ 1) leaves the pieces' first moments out:
+//                  under uniform gravity a piece's ξ-term gets m_i/m_P of the parent's ∫ ρ w ξ g,
+//                  which may be of either sign, for its own ∫_i ρ w ξ g
+//                  (Orders/FractureAtHigherOrder.ReleaseOfABodyForceIsNothing).
 //   fluid on the new faces (hydraulic fracture, flow.md): B holds the fluid's force on the new
 //                  faces at the start's pressure p0 (the pressures carried onto the cut network:
 //                  flow_transfer.h); the step's solve carries it at p, the flow network's pressure
@@ -76,11 +91,12 @@
 namespace nmm::solve {
 
 /// N/m per unknown, r: what the cuts opened of B, the force the start s of a step is out of
-/// balance by on a mesh re-cut within the step (in the unknowns of config's space, cover order
-/// 0: StepHost::force_at_rest). The pieces of a cover the cuts split were one cover at the
-/// start, out of balance by the sum of their B (the faces' forces cancel in it): each piece
-/// keeps r = B − (its mass's share of the cover's) · that sum (crack_release.h says why); the
-/// others r = 0. `cover_parent` ([cover] the cover of the step's start mesh it is a piece of:
+/// balance by on a mesh re-cut within the step (in the unknowns of config's space:
+/// StepHost::force_at_rest). The pieces of a cover the cuts split were one cover at the start,
+/// out of balance by the sum of their B (the faces' forces cancel in it): each piece keeps
+/// r = B − M_i M_P⁻¹ · that sum, M the mass moments (above; at cover order 0 the mass share
+/// m_i/m_P); the others r = 0. `s` is the state config was placed on (its cover nodes centre the
+/// cover functions). `cover_parent` ([cover] the cover of the step's start mesh it is a piece of:
 /// RecutMap::cover_parent composed over the step's re-cuts); `removed` ([me] 1: excavated or
 /// debris) elements carry no mass. Tied covers (cover_unknowns.h) count with their master.
 Eigen::VectorXd cut_release_force(const Model& model, const Configuration& config, const RunState& s,
