@@ -155,21 +155,26 @@ bool on_loop(const ContactTopology& t, const std::vector<double>& xy, std::int32
   return false;
 }
 
-// How far the elements of element e's block around it (those sharing a mesh node with it: a
-// sliver's full neighbours too) reach behind the line through (qx, qy) with outward normal
-// (ex, ey): the largest depth of their loop vertices below that line.
-double reach_behind(const ContactTopology& t, const std::vector<double>& xy, std::int32_t e,
-                    double qx, double qy, double ex, double ey) {
+// Whether a vertex `depth` (m) below the line through (qx, qy) with outward normal (ex, ey) lies
+// deeper than `extent` times how far the elements of element e's block around it (those sharing
+// a mesh node with it: a sliver's full neighbours too) reach behind that line — the largest depth
+// of their loop vertices below it. The reach only grows vertex by vertex, and extent·r with it,
+// so the answer is known (no) at the first vertex deep enough: element e's own far vertex, for
+// nearly every contact, instead of every vertex of the 3–12 elements around it (the same answer
+// as the full maximum, bit for bit: a product by a positive constant is monotone).
+bool deeper_than_reach(const ContactTopology& t, const std::vector<double>& xy, std::int32_t e,
+                       double qx, double qy, double ex, double ey, double depth, double extent) {
   double r = 0;
   for (std::int32_t k = t.near_offset[e]; k < t.near_offset[e + 1]; ++k) {
     const std::int32_t first = t.first_vertex[t.near_elements[k]];
     std::int32_t i = first;
     do {
       r = std::max(r, -((xy[2 * i] - qx) * ex + (xy[2 * i + 1] - qy) * ey));
+      if (!(depth > extent * r)) return false;
       i = t.next[i];
     } while (i != first);
   }
-  return r;
+  return true;
 }
 
 // P inside element e or an element of its block sharing a mesh node with it.
@@ -573,7 +578,12 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                               : master_side;
       if (master && g >= -topo.master_depth && !closed.holds_with(p, block_b)) continue;
       if (g > d0 || g < -(was_closed ? std::min(p_max, was_depth + new_depth) : new_depth)) continue;
-      if (g < -eps && -g > tl.closed_extent * reach_behind(topo, xy, eb, eg.x, eg.y, ex, ey))
+      // The edge must face P (checked before the tests inside B below, which cost loops over
+      // elements: every test here only drops a candidate, so their order does not change what
+      // is kept).
+      const double face = nx * ex + ny * ey;  // −1: exactly opposite
+      if (face > tl.facing_cos) continue;
+      if (g < -eps && deeper_than_reach(topo, xy, eb, eg.x, eg.y, ex, ey, -g, tl.closed_extent))
         continue;
       // Inside B: tested at P moved onto the edge's span (ω within [β, 1 − β], β = beside_edge),
       // so a vertex a round-off past the end of the edge — the corner of one block over the
@@ -590,8 +600,6 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
         const bool near_end = omega < tl.node_sink_omega || omega > 1 - tl.node_sink_omega;
         if (!near_end || g < -tl.node_sink_depth * topo.mesh_size || !inside_near(topo, xy, eb, ix, iy)) continue;
       }
-      const double face = nx * ex + ny * ey;  // −1: exactly opposite
-      if (face > tl.facing_cos) continue;
       const double ag = std::abs(g);
       const double tol = tl.gap_round_off * topo.mesh_size;
       Best* b = nullptr;
@@ -617,15 +625,18 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   auto near = [&](std::int32_t u, std::int32_t v) {
     return length(xy[2 * u] - xy[2 * v], xy[2 * u + 1] - xy[2 * v + 1]) <= tol;
   };
-  // `out` ascends by (vertex, block of the edge): the vertices in order, each one's by block.
+  // `out` ascends by (vertex, block of the edge), one contact per pair: the vertices in order,
+  // each one's by block. first_out[v]: v's first contact in `out`, or −1 (with a binary search
+  // over `out` per contact this part took 102 of detection's 324 µs a step on the 10 × 10 brick
+  // wall at h = 2 m, 420 of 1,120 on the 20 × 20; about 35 and 110 µs now).
+  std::vector<std::int32_t> first_out(topo.next.size(), -1);
+  for (std::size_t c = out.size(); c-- > 0;) first_out[static_cast<std::size_t>(out[c].vertex)] = static_cast<std::int32_t>(c);
   auto contact_of = [&](std::int32_t v, std::int32_t block) -> std::size_t {
-    const auto it = std::lower_bound(out.begin(), out.end(), std::make_pair(v, block),
-                                     [&](const ContactCandidate& c, const std::pair<std::int32_t, std::int32_t>& k) {
-                                       return std::make_pair(c.vertex, topo.block_of[c.elem_b]) < k;
-                                     });
-    return it != out.end() && it->vertex == v && topo.block_of[it->elem_b] == block
-               ? static_cast<std::size_t>(it - out.begin())
-               : out.size();
+    const std::int32_t f = first_out[static_cast<std::size_t>(v)];
+    if (f < 0) return out.size();
+    for (std::size_t k = static_cast<std::size_t>(f); k < out.size() && out[k].vertex == v; ++k)
+      if (topo.block_of[out[k].elem_b] == block) return k;
+    return out.size();
   };
   for (std::size_t c = 0; c < out.size(); ++c) {
     const ContactCandidate& a = out[c];
@@ -647,6 +658,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     near_pairs->erase(std::unique(near_pairs->begin(), near_pairs->end()), near_pairs->end());
   }
   std::vector<ContactCandidate> kept;
+  kept.reserve(out.size());
   for (std::size_t c = 0; c < out.size(); ++c)
     if (!drop[c]) kept.push_back(out[c]);
   if (stats) {

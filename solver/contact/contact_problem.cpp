@@ -218,16 +218,34 @@ double ContactProblem::plastic_slip(const Contact& c, const ContactWork& w) cons
   return std::max(0.0, std::abs(c.shear) - shear_at_force(law, w.strength, w.strength, c.length));
 }
 
-void ContactProblem::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
-                               int first_group) {
+std::size_t ContactProblem::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+                                          int first_group) {
   std::vector<Contact>& contacts = set_.step_contacts();
   work_.resize(contacts.size());
+  // The run of each first element's pairs in `pairs` (sorted, unique): a contact's pair is looked
+  // for among its element's few partners, not by a binary search over the whole pattern (a
+  // search per contact: with it the pattern's check cost 391 µs of a 20 × 20 wall's step at
+  // h = 2 m, 199 µs without).
+  std::int32_t top = -1;
+  if (!pairs.empty()) top = pairs.back().first;
+  group_run_.assign(static_cast<std::size_t>(top + 2), 0);
+  for (const auto& pr : pairs) ++group_run_[static_cast<std::size_t>(pr.first) + 1];
+  for (std::size_t a = 0; a + 1 < group_run_.size(); ++a) group_run_[a + 1] += group_run_[a];
+  std::size_t outside = 0;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    const auto key = std::make_pair(c.at.elem_a, c.at.elem_b);
-    const auto it = std::lower_bound(pairs.begin(), pairs.end(), key);
-    work_[i].group = it != pairs.end() && *it == key ? first_group + static_cast<int>(it - pairs.begin()) : -1;
+    int group = -1;
+    if (c.at.elem_a <= top)
+      for (std::int32_t k = group_run_[static_cast<std::size_t>(c.at.elem_a)];
+           k < group_run_[static_cast<std::size_t>(c.at.elem_a) + 1]; ++k)
+        if (pairs[static_cast<std::size_t>(k)].second == c.at.elem_b) {
+          group = first_group + k;
+          break;
+        }
+    work_[i].group = group;
+    outside += group < 0;
   }
+  return outside;
 }
 
 ContactProblem::OutsidePattern ContactProblem::outside_pattern() const {

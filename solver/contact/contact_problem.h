@@ -81,8 +81,9 @@ class ContactProblem {
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
   /// or -1 when its pair is not there (the pattern's growth waits for a few such contacts,
   /// contact_effect.cpp update_pattern): add_tangents() leaves such a contact out of the matrix,
-  /// and the contact solve takes its springs by CG (tangent_times() has all contacts).
-  void assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
+  /// and the contact solve takes its springs by CG (tangent_times() has all contacts). Returns
+  /// how many contacts it left outside (0: the pattern holds every pair of the step).
+  std::size_t assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs, int first_group);
   /// Of the contacts touching at the step's start, those assign_groups() left outside the
   /// pattern (group -1); and the spring terms (kn, ks) of the last forces_at() that add_tangents()
   /// leaves out for it.
@@ -172,6 +173,7 @@ class ContactProblem {
   std::vector<double> cn_, cs_;  // [contact · row_] –, gap and slip per unit unknown
   mutable Eigen::MatrixXd block_;  // add_tangents()' scratch
   std::vector<ContactWork> work_;  // [contact] the step's contacts' inner-solve working values
+  std::vector<std::int32_t> group_run_;  // [element + 1] assign_groups()' scratch: CSR into its pairs
   bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve
   double eps_ = 0;                  // m, gap tolerance (contact_tolerances.h open_gap·w0)
   double skin_ = 0;                 // m, smoothing of the normal spring (skin·w0)

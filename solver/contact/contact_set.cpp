@@ -133,13 +133,16 @@ ClosedContacts ContactSet::closed_contacts() const {
   // Each pair with the deepest its vertex was against that block at the end of the last step.
   // Where new cracks soften, which pairs are faces that still hold tension (κ < w_c).
   std::vector<std::tuple<std::int32_t, std::int32_t, double, bool>> entries;
+  entries.reserve(history_.size());
   for (const ContactHistory& h : history_) {
     if (h.state == ContactState::open || h.fresh) continue;
     const bool holds =
         cohesive_ && h.cohesive.on && h.cohesive.opening_max < cohesive_law_of_vertex(h.vertex).w_c;
     entries.emplace_back(h.vertex, h.block, h.depth, holds);
   }
-  std::sort(entries.begin(), entries.end());
+  // The history is the last step's contacts, which detection gave in (vertex, block) order: most
+  // steps have nothing to sort (a restart's or a re-cut's history may not be in order).
+  if (!std::is_sorted(entries.begin(), entries.end())) std::sort(entries.begin(), entries.end());
   for (const auto& [v, block, depth, holds] : entries) {
     if (!closed.pairs.empty() && closed.pairs.back() == std::make_pair(v, block)) {
       closed.depth.back() = std::max(closed.depth.back(), depth);
