@@ -273,13 +273,16 @@ TEST(CohesiveBeam, PeterssonLoadDeflectionAndWorkOfFracture) {
     d["joint_sets"]["crack"] = {{"friction_deg", 30},
                                 {"normal", {{"model", "constant"}, {"kn", 1e14}}},
                                 {"shear", {{"model", "constant"}, {"ks", 4e13}}}};
+    const double half = 0.01;  // m, half the length of each support strip and of the load strip
     d["bodies"] = {{{"material", "concrete"},
-                    {"outer", {{0, 0}, {1.095, 0}, {1.095, 0.1}, {1.105, 0.1}, {1.105, 0}, {2.2, 0}, {2.2, 0.2}, {0, 0.2}}}}};
+                    {"outer", {{0, 0}, {0.1 - half, 0}, {0.1 + half, 0}, {1.095, 0}, {1.095, 0.1},
+                               {1.105, 0.1}, {1.105, 0}, {2.1 - half, 0}, {2.1 + half, 0}, {2.2, 0},
+                               {2.2, 0.2}, {1.1 + half, 0.2}, {1.1 - half, 0.2}, {0, 0.2}}}}};
     d["fracture"] = {{"crack_set", "crack"}};
     d["mesh"]["size"] = h;
-    d["supports"] = {{{"points", {{0.05, 0}, {0.15, 0}}}, {"fix", "y"}},
-                     {{"points", {{2.05, 0}, {2.15, 0}}}, {"fix", "y"}},
-                     {{"points", {{1.05, 0.2}, {1.15, 0.2}}}, {"fix", "y"}, {"velocity", {0, -1e-3}}}};
+    d["supports"] = {{{"points", {{0.1 - half, 0}, {0.1 + half, 0}}}, {"fix", "y"}},
+                     {{"points", {{2.1 - half, 0}, {2.1 + half, 0}}}, {"fix", "y"}},
+                     {{"points", {{1.1 - half, 0.2}, {1.1 + half, 0.2}}}, {"fix", "y"}, {"velocity", {0, -1e-3}}}};
     d["fixed_points"] = {{0.1, 0.01}};
     d["solver"] = {{"time_step", 1e-3}, {"steps", 1000}, {"dynamic", false}, {"output_every", 2}};
     SceneDef s;
