@@ -6,16 +6,19 @@
 
 The beam of Petersson (1981, Lund TVBM-1006; docs/physics.md §6): span 2.0 m between roller
 supports, depth 0.2 m, a notch 0.1 m deep and 10 mm wide at mid-span, E 30 GPa, nu 0.2, plane
-stress, sigma_t 3.33 MPa, G_f 124 N/m (w_c = 74.5 um); crack faces kn 1e14 Pa/m. The load
-support (0.1 m of the top at mid-span) moves down 1 um a static step (dt 1 ms), 1000 steps:
+stress, sigma_t 3.33 MPa, G_f 124 N/m (w_c = 74.5 um); crack faces kn 1e14 Pa/m. The test rested
+on rollers and was loaded through one, so each support and the load hold only a strip 2 cm long
+(SUPPORT), the outline having vertices at the strips' ends: strips 0.1 m long (this scene until
+2026-11-30) take end moments and made the beam 1.6-1.9x stiffer than a simply supported one. The
+load strip (top, mid-span) moves down 1 um a static step (dt 1 ms), 1000 steps:
 
         load v 1 mm/s
-         ====
+          ==
     +-----------------+---------------------------+      0.2 m
     |                 | notch 0.1 m               |
     +-----------------+---------------------------+
-     ^^^                                       ^^^
-     0.05-0.15 m         span 2.0 m        2.05-2.15 m
+      ==                                        ==
+     0.09-0.11 m         span 2.0 m        2.09-2.11 m
 
 Each run's load P (N per m of thickness) is the moving support's work per travel (energy.csv
 load_work: dW/dh), its deflection h the support's travel. Writes OUT_DIR/cohesive_beam.csv
@@ -31,6 +34,10 @@ from figure_page import arguments, figure_path, page, write
 
 SIZES = [0.025, 0.0167, 0.0125]
 GF_LIGAMENT = 124.0 * 0.1  # J/m
+SUPPORT = 0.02  # m, the length of each support strip and of the load strip
+_s = SUPPORT / 2
+OUTLINE = [[0, 0], [0.1 - _s, 0], [0.1 + _s, 0], [1.095, 0], [1.095, 0.1], [1.105, 0.1], [1.105, 0],
+           [2.1 - _s, 0], [2.1 + _s, 0], [2.2, 0], [2.2, 0.2], [1.1 + _s, 0.2], [1.1 - _s, 0.2], [0, 0.2]]
 
 
 def scene(h):
@@ -41,14 +48,13 @@ def scene(h):
                                                 "fracture_energy": 124}}},
         "joint_sets": {"crack": {"friction_deg": 30, "normal": {"model": "constant", "kn": 1e14},
                                  "shear": {"model": "constant", "ks": 4e13}}},
-        "bodies": [{"material": "concrete",
-                    "outer": [[0, 0], [1.095, 0], [1.095, 0.1], [1.105, 0.1], [1.105, 0], [2.2, 0], [2.2, 0.2],
-                              [0, 0.2]]}],
+        "bodies": [{"material": "concrete", "outer": OUTLINE}],
         "fracture": {"crack_set": "crack"},
         "mesh": {"size": h},
-        "supports": [{"points": [[0.05, 0], [0.15, 0]], "fix": "y"},
-                     {"points": [[2.05, 0], [2.15, 0]], "fix": "y"},
-                     {"points": [[1.05, 0.2], [1.15, 0.2]], "fix": "y", "velocity": [0, -1e-3]}],
+        "supports": [{"points": [[0.1 - SUPPORT / 2, 0], [0.1 + SUPPORT / 2, 0]], "fix": "y"},
+                     {"points": [[2.1 - SUPPORT / 2, 0], [2.1 + SUPPORT / 2, 0]], "fix": "y"},
+                     {"points": [[1.1 - SUPPORT / 2, 0.2], [1.1 + SUPPORT / 2, 0.2]], "fix": "y",
+                      "velocity": [0, -1e-3]}],
         "fixed_points": [[0.1, 0.01]],
         "solver": {"time_step": 1e-3, "steps": 1000, "dynamic": False, "output_every": 2},
     }
