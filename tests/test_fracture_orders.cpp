@@ -253,7 +253,7 @@ TEST_P(FractureAtHigherOrder, CuttingACrackCarriesTheFieldsOver) {
 // pieces' first moments.
 TEST_P(FractureAtHigherOrder, ReleaseOfABodyForceIsNothing) {
   const int order = GetParam();
-  const CutCantilever c = cut_cantilever(order);
+  const test::CutCrack c = cut_cantilever(order);
   ASSERT_PRED1(test::ended_ok, c.outcome);
   const solve::Model model(c.now, c.cracked, "cantilever");
   const solve::CoverSpace space(c.now, order, c.scene.solver.sliver_cover_weight);
