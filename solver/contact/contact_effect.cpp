@@ -140,7 +140,50 @@ void ContactEffect::rejected(const EffectStep& step, const Eigen::VectorXd& cove
   trace_rejected_step(step.s, covers_d);
 }
 
-void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& /*d*/) {
+void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
+  // The contacts the last accepted step ended closed with and this one started without (its
+  // vertex found open, or not at all, and no mirror of it closed): their end forces were gone
+  // at its start, and the step released ½ (0 − c_end)·d of them (contact_effect.h).
+  released_work_ = 0;
+  released_.clear();
+  if (end_unknowns_ == d.size() && !ended_.empty()) {
+    std::vector<std::int32_t> closed;
+    std::vector<std::pair<std::int32_t, std::int32_t>> found;  // (vertex, edge) of this step's contacts
+    for (const Contact& c : contacts_.contacts()) {
+      found.emplace_back(c.at.vertex, c.at.edge);
+      if (c.start_state != ContactState::open) {
+        closed.push_back(c.at.vertex);
+        if (c.mirror >= 0) closed.push_back(c.mirror);
+      }
+    }
+    std::sort(closed.begin(), closed.end());
+    std::sort(found.begin(), found.end());
+    const auto has = [&](std::int32_t v) { return v >= 0 && std::binary_search(closed.begin(), closed.end(), v); };
+    for (const EndedContact& e : ended_) {
+      // Still closed, or found open on the same edge (a joint that dilated apart: its law's own,
+      // which the step solves on from the dilation it carries), is not released.
+      if (has(e.vertex) || has(e.mirror) || std::binary_search(found.begin(), found.end(), std::make_pair(e.vertex, e.edge)))
+        continue;
+      double w = 0;
+      for (const auto& [u, f] : e.force) w += f * d[u];
+      released_work_ -= 0.5 * w;
+      released_.push_back(e.vertex);
+    }
+    std::sort(released_.begin(), released_.end());
+  }
+  // This step's closed contacts' end forces, Σ N·cn − T·cs on its rows, for the next step.
+  ended_.clear();
+  end_unknowns_ = d.size();
+  for (std::size_t k = 0; k < problem_.contacts().size(); ++k) {
+    const Contact& c = problem_.contacts()[k];
+    if (c.state == ContactState::open || (c.normal_force == 0 && c.shear_force == 0)) continue;
+    const ContactProblem::Row r = problem_.row(k);
+    EndedContact e{c.at.vertex, c.mirror, c.at.edge, {}};
+    for (int i = 0; i < r.size; ++i)
+      if (r.dofs[i] >= 0 && r.dofs[i] < d.size())
+        e.force.emplace_back(r.dofs[i], c.normal_force * r.cn[i] - c.shear_force * r.cs[i]);
+    ended_.push_back(std::move(e));
+  }
   const ContactSet::Totals totals = contacts_.totals();
   contacts_.end_step(problem_);
   // A face that softened through a quarter of w_c in one step: the static path snapped back
@@ -360,6 +403,12 @@ void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
         t.friction += end_work;
       } else if (!e.changed_start) {
         t.friction += slid_on ? 0.5 * (std::abs(c.shear_force) + std::abs(c.start_shear_force)) * slip : end_work;
+        // A released contact (commit) that closes again within the step and slides: it started
+        // at no force, the step took its shear force from 0 to T along the slip, and of the
+        // release ½ (0 − c_end)·d it spent ½|T|·slip on that beyond the linear path, which
+        // friction books at its end force: the motion took the rest.
+        if (c.start_state == ContactState::open && std::binary_search(released_.begin(), released_.end(), c.at.vertex))
+          t.damped -= 0.5 * end_work;
       } else {
         // A step that cut the mesh: the start forces of the contacts on the covers the cut split
         // are in the force r the fracture column books ½ r·d of (the start, carried onto the cut
@@ -379,6 +428,7 @@ void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
     t.fracture += c.cohesive_step;
     t.friction -= c.cohesion_slip_work;
   }
+  t.damped += released_work_;
 }
 
 }  // namespace nmm::solve

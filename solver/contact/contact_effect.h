@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -66,7 +67,9 @@ class ContactEffect final : public Effect {
   /// t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
   /// cohesion did in slip, which is not friction's, into t.fracture. In a step that cut new cracks,
   /// a new face's contact that slides from its zero start force books ½|T|·slip less in
-  /// t.fracture (the static step's friction force went from 0 to T: crack_release.h).
+  /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). The work
+  /// of its forces' jump between the last accepted step's end and this step's start,
+  /// ½ (c_start − c_end,prev)·d, into t.damped (below).
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
@@ -92,6 +95,26 @@ class ContactEffect final : public Effect {
   ContactSolveStats stats_;     // what the contact solves of the run have cost
   Eigen::VectorXd rhs_base_;    // N/m, the right-hand side without contacts
   int first_group_ = 0;         // the first contact-pair group: after the elements' and the bolts'
+  // Contacts released between steps (energy_step, `damped`). An accepted step ends in balance
+  // with its closed contacts' end forces c_end = N·cn − T·cs on its rows. The next step detects
+  // them again in the moved geometry; a vertex that slid past its edge's end onto the next face
+  // of a kinked crack finds that face open (the step's linearised edge ran on straight: uniaxial
+  // compression h 0.125 m, static, the step after the first crack), so its contact starts the
+  // step with no force, and the step starts out of balance by −c_end there besides what the
+  // last step's inertia left (which `damped` books from the velocities). The step releases
+  // ½ (0 − c_end)·d of it, d its motion: a static step throws that motion away, a dynamic one
+  // damps it as any other (energy.cpp (1) with g0 = M a1,prev − c_end). Where such a contact
+  // closes again in the step and slides, friction books its slip at the end force, |T|·slip,
+  // of which the linear path from 0 took ½: `damped` gives that half back. Not across a mesh
+  // change (the cut's release is `fracture`'s: crack_release.h, a new effect) nor a restart.
+  struct EndedContact {
+    std::int32_t vertex, mirror, edge;
+    std::vector<std::pair<int, double>> force;  // (unknown, N/m) of c_end
+  };
+  std::vector<EndedContact> ended_;   // the last accepted step's closed contacts
+  Eigen::Index end_unknowns_ = -1;    // the unknowns of that step
+  std::vector<std::int32_t> released_;  // sorted vertices of the contacts released at this step's start
+  double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
 };
 
 }  // namespace nmm::solve

@@ -38,6 +38,10 @@ struct EnergyTerms {
   double friction = 0;  ///< J/m, D_e: dissipated by friction and plastic slip (friction)
   double absorbed = 0;  ///< J/m, D_e: taken out through the model's boundary (absorbed)
   double fracture = 0;  ///< J/m, D_e: dissipated by cracking (fracture)
+  /// J/m, Q_e: what the step released of a start out of balance by the effect's forces' jump
+  /// between steps, which the step's motion takes (`damped`: a static step throws it away, a
+  /// dynamic one damps it); the step's own, not a total
+  double damped = 0;
 };
 
 /// energy.csv's optional columns an effect owns: they appear where it takes part.

@@ -349,6 +349,10 @@ void EnergyMeter::after_step(const RunState& s, const EnergySources& sources, bo
     absorbed_ = step.absorbed;
     released_ = step.fracture;
     if (damping_ && prev_cover_u_.size() == s.cover_u.size()) damped_ += damped_step(s, r.kinetic, load_change);
+    // What the step released of its start's jump in the effects' forces (the contacts': a vertex
+    // that slid off its edge, contact_effect.h), which its motion took; where the steps keep no
+    // motion to throw away (static_mode "equilibrium") it stays in R.
+    if (damping_) damped_ += step.damped;
   }
   if (damping_) {
     // A run that starts where a dynamic step ended (a restart): that step's a1 is the state's

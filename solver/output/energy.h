@@ -59,8 +59,11 @@
 //                  (as W and the step take them) and at its start. A run's first step from rest
 //                  at step 0, free of stress, starts out of balance by its loads and gravity:
 //                  ½ dᵀM a1,prev is then ½ of their work in the step; any other start without
-//                  an acceleration is taken in balance. A column of its own in static "dda" and
-//                  dynamic runs.
+//                  an acceleration is taken in balance. Both add what the effects report of a
+//                  start out of balance by their own forces' jump between steps
+//                  (EnergyTerms::damped): contacts released at the start, ½ (0 − c_end)·d, less
+//                  ½|T|·slip where one closes again and slides (contact_effect.h). A column of
+//                  its own in static "dda" and dynamic runs.
 //   residual   R = W − D − A − Q − F − [(K + U + V + S) − (K + U + V + S)_first row]
 //                  energy lost elsewhere: the in-situ traction on faces between bodies (not
 //                  metered), contact springs unloading, the contact solve's tolerance; in a
