@@ -235,9 +235,13 @@ std::vector<double> partitioned_tributary_lengths(const ContactTopology& topo, c
       cover.clear();
       neighbours(k, [&](const Frame& b) {
         const double rx = b.px - a.px, ry = b.py - a.py;
-        if (length(rx, ry) > eps) return;
-        // At P's point: j shares what its halves cover the same way, [u, u + reach·cos].
+        // At P's point along the joint: within ε of it along the side, and within the line's
+        // width across it — the other face's vertex at the same point of an opening crack stands
+        // the opening w away (Euclidean ε = 1e-3·h would part the two at w = 0.1 mm, h = 0.1 m:
+        // each then took both its halves, a bar's crack of 0.19 m counted 0.286 m for a step).
         const double u = rx * sd.dx + ry * sd.dy;
+        if (std::abs(u) > eps || std::abs(rx * sd.dy - ry * sd.dx) > kSameLine * h) return;
+        // j shares what its halves cover the same way, [u, u + reach·cos].
         for (int q = 0; q < b.sides; ++q) {
           const Side& o = b.side[q];
           const double c = o.dx * sd.dx + o.dy * sd.dy;

@@ -19,7 +19,8 @@ namespace nmm::solve {
 
 namespace {
 
-// NMM_TRACE_CRACK_RULES=1: each bridge weighed and each re-armed or in-line crack grown, to stderr.
+// NMM_TRACE_CRACK_RULES=1: each bridge weighed, each re-armed or in-line crack grown and each new
+// crack started, to stderr.
 bool trace_rules() {
   static const bool on = std::getenv("NMM_TRACE_CRACK_RULES") != nullptr;
   return on;
@@ -133,7 +134,8 @@ void Fracture::start_tips(const Mesh& mesh, const SceneDef& scene) {
 }
 
 std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene, const RunState& s,
-                                         const std::vector<std::uint8_t>& removed) {
+                                         const std::vector<std::uint8_t>& removed,
+                                         const std::vector<std::uint8_t>& may_start) {
   std::vector<CrackSegment> out;
   if (!active_) return out;
   if (!tips_started_) start_tips(mesh, scene);
@@ -401,6 +403,12 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         if (!out.empty()) return out;
       }
     }
+    // An armed element no tip took that may not start a crack (may_start) yields to the next.
+    if (best >= 0 && armed_[static_cast<std::size_t>(best)] && !may_start.empty() &&
+        !may_start[static_cast<std::size_t>(best)]) {
+      candidates.erase(std::find(candidates.begin(), candidates.end(), best));
+      continue;
+    }
     if (best < 0 || armed_[static_cast<std::size_t>(best)]) break;
     // Its crack grows on from its tips, through one element each even where it holds, then on
     // through those that break: the step is solved again on it.
@@ -420,6 +428,9 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     RayExit fwd, back;
     if (ray_exit(mesh, e, p, d, 0, fwd) && ray_exit(mesh, e, p, {-d.x, -d.y}, 0, back)) {
       const std::int32_t crack = cracks_++;
+      if (trace_rules())
+        std::fprintf(stderr, "TRACE start step %lld crack %d in element %zu ratio %.5f\n", static_cast<long long>(s.step),
+                     crack, e, ratio_[e]);
       // Each end as a crack leaving the element from the other end.
       const CrackEnd f = crack_end(mesh, e, back.at, fwd, past), r = crack_end(mesh, e, f.at, back, past);
       add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);

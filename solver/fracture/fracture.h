@@ -71,8 +71,11 @@ class Fracture {
   /// state's stresses and cover nodes; `removed` [me] 1: excavated (never breaks). A quiet step
   /// costs one screen per element (StrengthScreen: a square root, no trigonometry) and, where
   /// tips are active, a lookup ahead of each in the mesh's element grid (built once per mesh).
+  /// `may_start` [me] (empty: every element): where a new crack may start (rule 2; the rules
+  /// of rock that softens, cohesive_starts.h); growth by rules 1, 4, 5 is not narrowed by it.
   std::vector<CrackSegment> find(const Mesh& mesh, const SceneDef& scene, const RunState& s,
-                                 const std::vector<std::uint8_t>& removed);
+                                 const std::vector<std::uint8_t>& removed,
+                                 const std::vector<std::uint8_t>& may_start = {});
   /// The segments `find` returned were cut into `mesh` (`map`: from it to the mesh they were
   /// found on): they join the record, the elements they crossed are disarmed, and the blocks
   /// they cut off that are smaller than kDebrisArea·h² become debris.

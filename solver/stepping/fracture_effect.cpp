@@ -14,6 +14,7 @@
 #include "common/stopwatch.h"
 #include "solver/contact/cohesive_law.h"
 #include "solver/discretisation/model.h"
+#include "solver/fracture/cohesive_starts.h"
 #include "solver/fracture/crack_release.h"
 #include "solver/fracture/recut_check.h"
 #include "solver/fracture/state_transfer.h"
@@ -76,7 +77,14 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
                             RunState& start, const std::vector<ContactHistory>& history,
                             const std::vector<Effect*>& effects, NewMesh& out, StepTimings& timings) {
   Stopwatch watch;
-  std::vector<CrackSegment> segments = fracture_.find(mesh, scene, solved, removed);
+  // In rock that softens a new crack starts only where cohesive_starts.h allows it.
+  const int cracks_before = fracture_.crack_count();
+  std::vector<CrackSegment> segments =
+      fracture_.find(mesh, scene, solved, removed,
+                     cohesive_ ? cohesive_starts(mesh, scene, start, solved, started_in_step_ == start.step,
+                                                 scene.joints.size() - fracture_.segments().size())
+                               : std::vector<std::uint8_t>{});
+  if (fracture_.crack_count() > cracks_before) started_in_step_ = start.step;
   if (segments.empty() && any_toughness(scene)) {  // the strength broke nothing: tips that reach their toughness grow
     std::vector<std::uint8_t> skip = removed;
     const std::vector<std::uint8_t>& debris = fracture_.debris();

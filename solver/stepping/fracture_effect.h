@@ -106,6 +106,9 @@ class FractureEffect final : public MeshChange {
   // larger side of its outer boundary's bounding box), m.
   bool cohesive_ = false;
   double characteristic_length_ = 0, longest_body_ = 0;
+  // The step (its start's step number) in which a new crack last started: in rock that softens
+  // one new crack a step (cohesive_starts.h rule 1). Between steps only, so a restart needs none.
+  std::int64_t started_in_step_ = -1;
   // crack_tips.csv as the output steps wrote it: the output's, not the run's state (a restart
   // numbers the tips afresh), hence mutable in the const output stages.
   struct TipRows {
