@@ -60,6 +60,8 @@ KgdSetup setup_from_env(KgdSetup k) {
   k.k_ic = env("KGD_KIC", k.k_ic);
   k.residual = env("KGD_RES", k.residual);
   k.bulk_modulus = env("KGD_KF", k.bulk_modulus);
+  if (std::getenv("KGD_PC")) k.lag = true, k.cavitation_pressure = env("KGD_PC", 0);
+  if (std::getenv("KGD_NOLAG")) k.lag = false;
   return k;
 }
 

@@ -35,6 +35,10 @@
 // NMM_TRACE_FLOW=1 prints each iteration's error (stderr).
 // `coupled: false`: the apertures stay those at the run's start and the pressure does not load
 // the faces (flow alone).
+// Fluid lag (`cavitation_pressure`): each balance solve is flow_balance.h's with the vapour
+// RunState::flow_void of the step's start, its pressures never below p_c, and the iterate that
+// loads the faces is held at p_c or above (Anderson's extrapolation could reach below); commit
+// keeps the step's vapour with its pressures.
 // With fracture, a re-cut builds the effect again on the cut mesh, whose network holds the new
 // cracks; continue_from carries the pressures and apertures onto it (flow_transfer.h).
 #pragma once
@@ -131,6 +135,10 @@ class FlowEffect final : public Effect {
   bool two_way() const {
     const FlowDef& f = model_.scene().flow;
     return active() && f.coupled && !f.steady;
+  }
+  /// The vapour at the step's start with a fluid lag (flow_balance.h), else null.
+  const std::vector<double>* lag_start(const RunState& s) const {
+    return model_.scene().flow.cavitation && s.flow_void.size() == network_.nodes() ? &s.flow_void : nullptr;
   }
   /// [2·v] m: `base` with the network's face vertices (at loop_xy, [2·v] m) moved by what the
   /// covers' increment d gives them.
