@@ -166,6 +166,7 @@ Outcome FlowEffect::begin_step(EffectStep& step) {
     history_f_.clear();
     history_g_.clear();
     have_last_ = false;
+    lagging_.clear();
   } else if (f.coupled) {
     load_ = face_forces(step.context, s, step_.pressure);
   }
@@ -235,7 +236,14 @@ bool FlowEffect::judge(const Eigen::VectorXd& d) {
   EffectStep& step = *attempt_;
   const FlowDef& f = model_.scene().flow;
   const RunState& s = step.s;
-  if (compliance_.empty()) compliance_ = compliance(step);
+  if (compliance_.empty()) {
+    compliance_ = compliance(step);
+    // With a lag, twice the row sums: the split's stability wants c ≥ A/2 of the faces' true
+    // compliance A (header), and where a dry new crack's faces touch the row sums fell short of
+    // it (the KGD plate's pressures swung 0 ↔ 13 MPa from solve to solve, growing).
+    if (f.cavitation)
+      for (double& c : compliance_) c *= kLagCompliance;
+  }
   // The apertures of the faces the solution d moves, and the balance at them (flow_balance.h).
   std::vector<double> ap = network_.apertures(moved_loop_u(step.context, s.loop_xy, s.loop_u, d), f.residual,
                                               f.max_aperture);
@@ -284,6 +292,19 @@ bool FlowEffect::judge(const Eigen::VectorXd& d) {
     have_last_ = false;
   }
   last_carried_ = carried;
+  // With a lag, G(x) is not smooth where a node enters or leaves the lag: Anderson's secants
+  // across that change extrapolate into the oscillation a filled and an empty crack make
+  // (13 MPa and 0 in turn in the KGD plate); it starts afresh from the plain step G(x) there.
+  if (f.cavitation) {
+    std::vector<char> lagging(step_.pressure.size(), 0);
+    for (std::size_t i = 0; i < lagging.size(); ++i) lagging[i] = step_.pressure[i] <= f.cavitation_pressure;
+    if (lagging != lagging_) {
+      history_f_.clear();
+      history_g_.clear();
+      have_last_ = false;
+      lagging_ = std::move(lagging);
+    }
+  }
   iterate_ = accelerate(iterate_, step_.pressure);
   // With a lag, the extrapolation may not pull a face below the floor the fluid holds.
   if (f.cavitation)

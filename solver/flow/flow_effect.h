@@ -128,6 +128,8 @@ class FlowEffect final : public Effect {
   /// volume.
   static constexpr int kStall = 6;
   static constexpr double kStallTolerance = 1e-4;
+  /// With a fluid lag, the factor on the compliance c of the split (judge()).
+  static constexpr double kLagCompliance = 2;
   /// Balance solves of one step attempt before it is cut.
   static constexpr int kMaxIterations = 60;
 
@@ -172,6 +174,7 @@ class FlowEffect final : public Effect {
   std::vector<Eigen::VectorXd> history_f_, history_g_;
   Eigen::VectorXd last_f_, last_g_;
   bool have_last_ = false;
+  std::vector<char> lagging_;  // [node] 1: at the cavitation pressure in the last G(x) (lag only)
   double last_carried_ = 0;  // m³ per m, the split's error at the last iterate
   double best_carried_ = 0;  // m³ per m, the smallest error of the attempt (halvings only)
   int best_at_ = 0;          // the solve that brought it
