@@ -69,6 +69,7 @@ SceneDef kgd_scene(const KgdSetup& k) {
   d["flow"] = {{"fluid", {{"viscosity", k.viscosity}, {"bulk_modulus", k.bulk_modulus}}},
                {"aperture", {{"residual", k.residual}, {"max", 0.1}}},
                {"injections", {{{"point", {0, 0}}, {"rate", k.q0}}}}};
+  if (k.lag) d["flow"]["fluid"]["cavitation_pressure"] = k.cavitation_pressure;
   return scene_from_json(d, "kgd");
 }
 

@@ -55,6 +55,8 @@ struct KgdSetup {
   double bulk_modulus = 2.2e9; ///< Pa, the fluid's K_f
   double residual = 1e-6;     ///< m, hydraulic aperture of closed faces
   bool viscous_tip = false;   ///< fracture.viscous_tip: tips grow against the fluid's apparent toughness
+  bool lag = false;           ///< a fluid lag: flow.fluid.cavitation_pressure given
+  double cavitation_pressure = 0;  ///< Pa, its floor (net of the confining stress: none here)
 };
 
 /// The scene of `k` (plane strain; the plate held at one point and one roller on its base).

@@ -32,17 +32,23 @@ TimeTable number_or_table(const JsonReader& r, const ValueRange& range) {
 }  // namespace
 
 FlowDef read_flow(const JsonReader& r, const SceneDef& scene) {
-  r.check_keys({"fluid", "aperture", "initial_pressure", "boundaries", "injections", "steady"});
+  r.check_keys({"fluid", "aperture", "initial_pressure", "initially_dry", "boundaries", "injections", "steady"});
   if (scene.water.present)
     r.fail("\"flow\" and \"water\" both set the joints' water pressure: give one (flow computes it)");
   FlowDef f;
   f.present = true;
   const ValueRange pressure = interval(-kMaxStrength, true, kMaxStrength, true);
   if (const auto fl = r.optional("fluid")) {
-    fl->check_keys({"viscosity", "bulk_modulus", "density"});
+    fl->check_keys({"viscosity", "bulk_modulus", "density", "cavitation_pressure"});
     f.viscosity = fl->optional_number("viscosity", f.viscosity, interval(0, false, 1e12, true));
     f.bulk_modulus = fl->optional_number("bulk_modulus", f.bulk_modulus, interval(0, false, kMaxModulus, true));
     f.density = fl->optional_number("density", f.density, interval(0, true, kMaxDensity, true));
+    if (fl->has("cavitation_pressure")) {
+      f.cavitation = true;
+      // Above −K_f, so that the fluid's volume V·(1 + p/K_f) stays positive at the floor.
+      f.cavitation_pressure =
+          fl->optional_number("cavitation_pressure", 0, interval(-std::min(kMaxStrength, 0.5 * f.bulk_modulus), true, kMaxStrength, true));
+    }
   }
   if (const auto ap = r.optional("aperture")) {
     ap->check_keys({"residual", "max", "coupled"});
@@ -55,7 +61,19 @@ FlowDef read_flow(const JsonReader& r, const SceneDef& scene) {
     if (ap->has("coupled")) f.coupled = (*ap)["coupled"].as_bool();
   }
   f.initial_pressure = r.optional_number("initial_pressure", 0, pressure);
+  if (f.cavitation && !(r.has("initially_dry") && r["initially_dry"].as_bool()) &&
+      f.initial_pressure < f.cavitation_pressure)
+    r["fluid"]["cavitation_pressure"].fail("the cavitation pressure " + format_number(f.cavitation_pressure) +
+                                           " Pa is above the initial pressure " + format_number(f.initial_pressure) + " Pa");
   if (r.has("steady")) f.steady = r["steady"].as_bool();
+  if (r.has("initially_dry")) f.initially_dry = r["initially_dry"].as_bool();
+  if (f.initially_dry && !f.cavitation)
+    r["initially_dry"].fail("a dry joint holds vapour at the fluid's cavitation pressure: give /flow/fluid/cavitation_pressure");
+  if (f.initially_dry && r.has("initial_pressure"))
+    r["initial_pressure"].fail("a dry joint starts at the fluid's cavitation pressure: leave initial_pressure out");
+  if (f.initially_dry) f.initial_pressure = f.cavitation_pressure;
+  if (f.cavitation && f.steady)
+    r["fluid"]["cavitation_pressure"].fail("a fluid lag needs storage: give it in a transient run (\"steady\": false)");
   if (const auto bs = r.optional("boundaries")) {
     bs->expect_array();
     for (std::size_t i = 0; i < bs->size(); ++i) {

@@ -28,17 +28,20 @@ struct FlowDef {
   double viscosity = 1e-3;      ///< Pa·s, μ
   double bulk_modulus = 2.2e9;  ///< Pa, K_f: storage a/K_f per m of joint and per Pa
   double density = 1000;        ///< kg/m³, ρ_f (hydrostatic heads with the scene's gravity)
+  bool cavitation = false;      ///< "cavitation_pressure" given: the fluid lag (flow_balance.h)
+  double cavitation_pressure = 0;  ///< Pa, the floor p_c: below it the fluid gives way to vapour
   double residual = 2e-5;       ///< m, the hydraulic aperture of a closed joint (> 0)
   double max_aperture = 1e-3;   ///< m, the cap on the hydraulic aperture (≥ residual)
   bool coupled = true;          ///< the pressure loads the faces and the apertures follow them
   double initial_pressure = 0;  ///< Pa, everywhere at the start
+  bool initially_dry = false;   ///< the joints hold vapour at the cavitation pressure at the start
   std::vector<FlowBoundaryDef> boundaries;
   std::vector<FlowInjectionDef> injections;
   bool steady = false;          ///< the steady state at every step (no storage)
 };
 
-/// flow: {fluid: {viscosity, bulk_modulus, density}, aperture: {residual, max, coupled},
-/// initial_pressure, boundaries: [{points, pressure}], injections: [{point, rate}], steady}.
+/// flow: {fluid: {viscosity, bulk_modulus, density, cavitation_pressure}, aperture: {residual, max, coupled},
+/// initial_pressure, initially_dry, boundaries: [{points, pressure}], injections: [{point, rate}], steady}.
 /// Reads the scene's water block (read before): flow replaces "water". With "fracture" the
 /// cracks grown during the run join the flow network (docs/flow.md "Hydraulic fracturing").
 FlowDef read_flow(const JsonReader& r, const SceneDef& scene);

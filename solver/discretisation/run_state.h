@@ -90,6 +90,9 @@ struct RunState {
   /// segments (flow_network.h), as the last accepted step left them
   std::vector<double> flow_pressure;   ///< [node] Pa
   std::vector<double> flow_aperture;   ///< [2·segment] m, hydraulic aperture at each segment end
+  /// [node] m³ per m, the vapour each node holds: its volume less its fluid's (the fluid lag,
+  /// flow_balance.h); empty without `cavitation_pressure`
+  std::vector<double> flow_void;
   std::vector<double> flow_outflow_rate;  ///< [boundary] m³/s per m leaving through each `boundaries` entry
   double flow_injected = 0;   ///< m³ per m since step 0 of the first run, injected
   double flow_outflow = 0;    ///< m³ per m likewise, left through the boundaries (net)

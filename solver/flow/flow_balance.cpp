@@ -1,6 +1,7 @@
 // The volume balance of the flow network over one step: see flow_balance.h (equations there).
 #include "solver/flow/flow_balance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -61,12 +62,14 @@ FlowBalance::~FlowBalance() = default;
 
 FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vector<double>& conductance,
                                  const std::vector<double>& volume, double dt, double t_end,
-                                 const FlowStorage* moving) {
+                                 const FlowStorage* moving, const std::vector<double>* void0) {
   const std::size_t n = network_.nodes();
   const std::vector<std::int32_t>& fixed = network_.node_boundary();
   const std::vector<double>& xy = network_.node_xy();
   const double rho = flow_.density, kf = flow_.bulk_modulus;
   const bool storage = !flow_.steady;
+  const bool lag = storage && flow_.cavitation && void0 && void0->size() == n;
+  const double pc = flow_.cavitation_pressure;
   FlowStepResult r;
   r.pressure = p0;
   for (std::size_t i = 0; i < n; ++i)
@@ -84,12 +87,31 @@ FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vecto
     q[static_cast<std::size_t>(sh.b)] += sh.wb * rate;
     injected_rate += rate;
   }
-  if (unknowns_ > 0) {
+  // The lag's active set (header): a node that holds vapour at the start starts in it.
+  std::vector<char> in_lag(n, 0);
+  if (lag) {
+    r.void_volume.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (unknown_[i] >= 0 && (*void0)[i] > 0) in_lag[i] = 1;
+  }
+  // The fluid M_i(p) − M⁰_i + c_i·(p − p^k) the node's storage takes at pressure p, before the vapour.
+  auto taken = [&](std::size_t i, double p) {
+    if (moving)
+      return (volume[i] - moving->volume0[i]) * (1 + p0[i] / kf) + (volume[i] / kf + moving->compliance[i]) * (p - p0[i]) -
+             moving->compliance[i] * (moving->iterate[i] - p0[i]);
+    return volume[i] / kf * (p - p0[i]);
+  };
+  for (int round = 0; unknowns_ > 0; ++round) {
     std::vector<Eigen::Triplet<double>> t;
     Eigen::VectorXd b = Eigen::VectorXd::Zero(unknowns_);
     for (std::size_t i = 0; i < n; ++i) {
       const int k = unknown_[i];
       if (k < 0) continue;
+      if (in_lag[i]) {  // held at p_c: the identity row
+        t.emplace_back(k, k, 1.0);
+        b[k] = pc;
+        continue;
+      }
       b[k] += q[i];
       if (storage && moving) {
         const double c = moving->compliance[i];
@@ -102,6 +124,7 @@ FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vecto
         t.emplace_back(k, k, s);
         b[k] += s * p0[i];
       }
+      if (lag) b[k] -= (*void0)[i] / dt;  // the vapour the start held fills first
     }
     for (std::size_t s = 0; s < network_.segments().size(); ++s) {
       const FlowSegment& sg = network_.segments()[s];
@@ -109,17 +132,36 @@ FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vecto
       const auto i = static_cast<std::size_t>(sg.a), j = static_cast<std::size_t>(sg.b);
       const int ki = unknown_[i], kj = unknown_[j];
       const double w = weight(i, j);  // flow i → j: c·(p_i − p_j − w)
+      // Rows of lag nodes keep their entries' places with zeros (the analysed pattern).
       if (ki >= 0) {
-        t.emplace_back(ki, ki, c);
-        b[ki] += c * w;
-        if (kj >= 0) t.emplace_back(ki, kj, -c);
-        else b[ki] += c * r.pressure[j];
+        if (in_lag[i]) {
+          t.emplace_back(ki, ki, 0.0);
+          if (kj >= 0) t.emplace_back(ki, kj, 0.0);
+        } else {
+          t.emplace_back(ki, ki, c);
+          b[ki] += c * w;
+          if (kj >= 0) {
+            if (in_lag[j]) t.emplace_back(ki, kj, 0.0), b[ki] += c * pc;
+            else t.emplace_back(ki, kj, -c);
+          } else {
+            b[ki] += c * r.pressure[j];
+          }
+        }
       }
       if (kj >= 0) {
-        t.emplace_back(kj, kj, c);
-        b[kj] -= c * w;
-        if (ki >= 0) t.emplace_back(kj, ki, -c);
-        else b[kj] += c * r.pressure[i];
+        if (in_lag[j]) {
+          t.emplace_back(kj, kj, 0.0);
+          if (ki >= 0) t.emplace_back(kj, ki, 0.0);
+        } else {
+          t.emplace_back(kj, kj, c);
+          b[kj] -= c * w;
+          if (ki >= 0) {
+            if (in_lag[i]) t.emplace_back(kj, ki, 0.0), b[kj] += c * pc;
+            else t.emplace_back(kj, ki, -c);
+          } else {
+            b[kj] += c * r.pressure[i];
+          }
+        }
       }
     }
     Eigen::SparseMatrix<double> a(unknowns_, unknowns_);
@@ -132,6 +174,34 @@ FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vecto
     const Eigen::VectorXd p = solver_->ldlt.solve(b);
     for (std::size_t i = 0; i < n; ++i)
       if (unknown_[i] >= 0) r.pressure[i] = p[unknown_[i]];
+    if (!lag) break;
+    ++r.lag_solves;
+    // The vapour each lag node is left with: s_i = M_i(p_c) − M⁰_i + s⁰_i + c_i·(p_c − p^k) − Δt·(Q_i − Σ flows out).
+    std::vector<double> out(n, 0.0);  // m³/s per m leaving each node along its segments
+    for (std::size_t s = 0; s < network_.segments().size(); ++s) {
+      const FlowSegment& sg = network_.segments()[s];
+      const auto i = static_cast<std::size_t>(sg.a), j = static_cast<std::size_t>(sg.b);
+      const double flow = conductance[s] * (r.pressure[i] - r.pressure[j] - weight(i, j));
+      out[i] += flow;
+      out[j] -= flow;
+    }
+    bool moved = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (unknown_[i] < 0) continue;
+      if (in_lag[i]) {
+        r.void_volume[i] = taken(i, pc) + (*void0)[i] - dt * (q[i] - out[i]);
+        if (r.void_volume[i] < 0) in_lag[i] = 0, moved = true;
+      } else {
+        r.void_volume[i] = 0;
+        if (r.pressure[i] < pc) in_lag[i] = 1, moved = true;
+      }
+    }
+    // An M-matrix settles in at most a few passes per node; past that, round-off flips a node
+    // whose vapour is within it of zero: keep the last set (its vapour ≥ 0 is clamped by ≤ that).
+    if (!moved || round > static_cast<int>(n) + 8) {
+      for (double& v : r.void_volume) v = std::max(v, 0.0);
+      break;
+    }
   }
   // What flows into the boundaries' nodes, and what the free nodes came to hold.
   r.outflow_rate.assign(flow_.boundaries.size(), 0.0);
@@ -159,6 +229,9 @@ FlowStepResult FlowBalance::step(const std::vector<double>& p0, const std::vecto
     for (std::size_t i = 0; i < n; ++i)
       if (unknown_[i] >= 0) r.stored += volume[i] / kf * (r.pressure[i] - p0[i]);
   }
+  if (lag)  // the fluid: less the vapour's change
+    for (std::size_t i = 0; i < n; ++i)
+      if (unknown_[i] >= 0) r.stored -= r.void_volume[i] - (*void0)[i];
   return r;
 }
 

@@ -25,6 +25,27 @@
 // pressure moves from p^k (c·(p − p^k)), which vanishes as the iterates converge. `stored` is the
 // change of V·(1 + p/K_f) alone, so stored = injected − outflow − Σ c_i·(p_i − p_i^k): the
 // coupling's convergence error.
+//
+// The fluid lag (`fluid.cavitation_pressure` p_c; Garagash & Detournay 2000, J. Appl. Mech. 67,
+// 183–192, for the tip of a fluid-driven crack; Lecampion & Detournay 2007, Comput. Methods
+// Appl. Mech. Engrg. 196, 4863–4880, for a fixed mesh): the fluid cannot be pulled below p_c;
+// an opening the fluid does not reach in time fills with vapour at p_c instead. Each free node
+// holds a vapour volume s_i ≥ 0 (m³ per m, RunState::flow_void), so its fluid is
+// V_i·(1 + p_i/K_f) − s_i, and the balance above becomes, with M_i(p) = V_i·(1 + p/K_f) and
+// M⁰_i = V⁰_i·(1 + p⁰_i/K_f),
+//   [M_i(p_i) − s_i − M⁰_i + s⁰_i + c_i·(p_i − p_i^k)]/Δt + Σ_j C_ij·(φ_i − φ_j) = Q_i,
+//   p_i ≥ p_c,   s_i ≥ 0,   (p_i − p_c)·s_i = 0:
+// a node is filled (s_i = 0, p_i free) or in the lag (p_i = p_c, s_i what the balance leaves).
+// Solved by a primal–dual active set (Hintermüller, Ito & Kunisch 2002, SIAM J. Optim. 13,
+// 865–888): lag nodes held at p_c, the rest solved; a filled node below p_c joins the lag, a lag
+// node whose s_i came out negative (more fluid than room) is filled; again until no node moves.
+// The matrix is an M-matrix (storage on the diagonal, the conductances' Laplacian), for which the
+// set settles in finitely many solves with p and s ≥ 0 exact. Its pattern stays the one analysed
+// (a lag row is the identity with its off-diagonal entries held as zeros). Without gravity a
+// lag node's neighbours sit at p_c or above, so its fluid only grows: a dry node (s = V) fills
+// from the filled nodes next to it and the front between them is where the fluid ends.
+// `stored` counts the fluid, M − s; a step in which no node reaches p_c is the balance without
+// the lag, bit for bit.
 #pragma once
 
 #include <memory>
@@ -44,6 +65,8 @@ struct FlowStepResult {
   double outflow = 0;                 ///< m³ per m leaving through the boundaries over the step
   double stored = 0;                  ///< m³ per m, the change of the volume the network holds
   double exchanged = 0;               ///< m³ per m, |injected| and |through each boundary| over the step
+  std::vector<double> void_volume;    ///< [node] m³ per m, the vapour s_i at the step's end (lag only)
+  int lag_solves = 0;                 ///< active-set solves of the step (lag only)
 };
 
 /// The storage of a step whose apertures move (the header's two-way term); all [node].
@@ -64,10 +87,11 @@ class FlowBalance {
 
   /// One step of dt (s) ending at t_end (s) from pressures p0 ([node] Pa), with the step's
   /// conductances ([segment] m³/(s·Pa) per m) and volumes ([node] m³ per m) at its end; with
-  /// `moving`, the volumes at the start differ (the two-way storage term above).
+  /// `moving`, the volumes at the start differ (the two-way storage term above); with
+  /// `void0` ([node] m³ per m, the vapour at the start) and a cavitation pressure, the fluid lag.
   FlowStepResult step(const std::vector<double>& p0, const std::vector<double>& conductance,
                       const std::vector<double>& volume, double dt, double t_end,
-                      const FlowStorage* moving = nullptr);
+                      const FlowStorage* moving = nullptr, const std::vector<double>* void0 = nullptr);
 
  private:
   struct Solver;

@@ -46,6 +46,7 @@ bool FlowEffect::install(RunState& s, const std::string& name) {
   if (!active()) {
     s.flow_pressure.clear();
     s.flow_aperture.clear();
+    s.flow_void.clear();
     s.flow_outflow_rate.clear();
     s.flow_injected = s.flow_outflow = s.flow_stored = s.flow_load_work = s.flow_exchanged = 0;
     return true;
@@ -54,6 +55,15 @@ bool FlowEffect::install(RunState& s, const std::string& name) {
   if (s.flow_pressure.empty()) {  // the flow starts now
     s.flow_pressure.assign(network_.nodes(), f.initial_pressure);
     s.flow_aperture = network_.apertures(s.loop_u, f.residual, f.max_aperture);
+    s.flow_void.clear();
+    if (f.cavitation) {  // filled at the start, or all vapour (initially_dry: p = p_c)
+      s.flow_void.assign(network_.nodes(), 0.0);
+      if (f.initially_dry) {
+        const std::vector<double> v = network_.volumes(s.flow_aperture);
+        for (std::size_t i = 0; i < v.size(); ++i)
+          if (network_.node_boundary()[i] < 0) s.flow_void[i] = v[i] * (1 + f.cavitation_pressure / f.bulk_modulus);
+      }
+    }
     s.flow_outflow_rate.assign(f.boundaries.size(), 0.0);
     s.flow_injected = s.flow_outflow = s.flow_stored = s.flow_load_work = s.flow_exchanged = 0;
     return true;
@@ -64,6 +74,10 @@ bool FlowEffect::install(RunState& s, const std::string& name) {
                          std::to_string(s.flow_aperture.size() / 2) + " segments, the run's " +
                          std::to_string(network_.nodes()) + " and " + std::to_string(network_.segments().size()));
   s.flow_outflow_rate.resize(f.boundaries.size(), 0.0);  // a restart may give other boundaries
+  // A restart that gives the fluid a cavitation pressure starts its lag filled; one that drops it
+  // keeps the fluid as it is and forgets the vapour.
+  if (f.cavitation) s.flow_void.resize(network_.nodes(), 0.0);
+  else s.flow_void.clear();
   return true;
 }
 
@@ -84,7 +98,9 @@ void FlowEffect::checkpoint_sections(const RunState& s, const Mesh& /*mesh*/, Ch
   w.put(s.flow_load_work);
   w.put(s.flow_exchanged);
   // Only once cracks took in fluid (flow_transfer.h): runs without cracks keep their bytes.
-  if (s.flow_filled != 0) w.put(s.flow_filled);
+  if (s.flow_filled != 0 || !s.flow_void.empty()) w.put(s.flow_filled);
+  // Only with a fluid lag (cavitation_pressure): the vapour per node.
+  if (!s.flow_void.empty()) w.put_vector(s.flow_void);
   sections.emplace_back("FLOW", w.take());
 }
 
@@ -102,7 +118,9 @@ void FlowEffect::restore_sections(const CheckpointSections& sections, const Mesh
   s.flow_load_work = r.get<double>();
   s.flow_exchanged = r.get<double>();
   s.flow_filled = r.at_end() ? 0.0 : r.get<double>();
+  s.flow_void = r.at_end() ? std::vector<double>{} : r.get_vector<double>(SIZE_MAX, "flow vapour volumes");
   double sum = s.flow_injected + s.flow_outflow + s.flow_stored + s.flow_load_work + s.flow_exchanged + s.flow_filled;
+  for (double v : s.flow_void) sum += v;
   for (const auto* v : {&s.flow_pressure, &s.flow_aperture, &s.flow_outflow_rate})
     for (double x : *v) sum += x;
   if (s.flow_pressure.empty() || !std::isfinite(sum)) r.fail("no flow pressures, or a value that is not finite");
@@ -120,7 +138,7 @@ Outcome FlowEffect::begin_step(EffectStep& step) {
   const RunState& s = step.s;
   aperture_ = f.coupled && f.steady ? network_.apertures(s.loop_u, f.residual, f.max_aperture) : s.flow_aperture;
   step_ = balance_->step(s.flow_pressure, network_.conductances(aperture_, f.viscosity), network_.volumes(aperture_),
-                         step.context.dt, step.context.t_end);
+                         step.context.dt, step.context.t_end, nullptr, lag_start(s));
   for (double p : step_.pressure)
     if (!std::isfinite(p))
       return Outcome::stop(StopCode::direction_not_finite, "the flow solve gave a pressure that is not finite", s.time);
@@ -148,6 +166,7 @@ Outcome FlowEffect::begin_step(EffectStep& step) {
     history_f_.clear();
     history_g_.clear();
     have_last_ = false;
+    lagging_.clear();
   } else if (f.coupled) {
     load_ = face_forces(step.context, s, step_.pressure);
   }
@@ -217,13 +236,20 @@ bool FlowEffect::judge(const Eigen::VectorXd& d) {
   EffectStep& step = *attempt_;
   const FlowDef& f = model_.scene().flow;
   const RunState& s = step.s;
-  if (compliance_.empty()) compliance_ = compliance(step);
+  if (compliance_.empty()) {
+    compliance_ = compliance(step);
+    // With a lag, twice the row sums: the split's stability wants c ≥ A/2 of the faces' true
+    // compliance A (header), and where a dry new crack's faces touch the row sums fell short of
+    // it (the KGD plate's pressures swung 0 ↔ 13 MPa from solve to solve, growing).
+    if (f.cavitation)
+      for (double& c : compliance_) c *= kLagCompliance;
+  }
   // The apertures of the faces the solution d moves, and the balance at them (flow_balance.h).
   std::vector<double> ap = network_.apertures(moved_loop_u(step.context, s.loop_xy, s.loop_u, d), f.residual,
                                               f.max_aperture);
   const FlowStorage moving{volume0_, compliance_, iterate_};
   FlowStepResult next = balance_->step(s.flow_pressure, network_.conductances(ap, f.viscosity), network_.volumes(ap),
-                                       step.context.dt, step.context.t_end, &moving);
+                                       step.context.dt, step.context.t_end, &moving, lag_start(s));
   ++solves_;
   // The fixed point x → G(x): the pressures x that loaded the faces, the balance's G(x) at the
   // openings they gave. What the split still carries is Σ c·|G(x) − x|.
@@ -266,7 +292,23 @@ bool FlowEffect::judge(const Eigen::VectorXd& d) {
     have_last_ = false;
   }
   last_carried_ = carried;
+  // With a lag, G(x) is not smooth where a node enters or leaves the lag: Anderson's secants
+  // across that change extrapolate into the oscillation a filled and an empty crack make
+  // (13 MPa and 0 in turn in the KGD plate); it starts afresh from the plain step G(x) there.
+  if (f.cavitation) {
+    std::vector<char> lagging(step_.pressure.size(), 0);
+    for (std::size_t i = 0; i < lagging.size(); ++i) lagging[i] = step_.pressure[i] <= f.cavitation_pressure;
+    if (lagging != lagging_) {
+      history_f_.clear();
+      history_g_.clear();
+      have_last_ = false;
+      lagging_ = std::move(lagging);
+    }
+  }
   iterate_ = accelerate(iterate_, step_.pressure);
+  // With a lag, the extrapolation may not pull a face below the floor the fluid holds.
+  if (f.cavitation)
+    for (double& p : iterate_) p = std::max(p, f.cavitation_pressure);
   load_ = face_forces(step.context, s, iterate_);
   return true;
 }
@@ -331,6 +373,7 @@ void FlowEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   if (model_.scene().flow.coupled) s.flow_load_work += load_.dot(d.head(space_.unknowns()));
   s.flow_pressure = step_.pressure;
   s.flow_aperture = aperture_;
+  if (!step_.void_volume.empty()) s.flow_void = step_.void_volume;
   s.flow_outflow_rate = step_.outflow_rate;
   s.flow_injected += step_.injected;
   s.flow_outflow += step_.outflow;

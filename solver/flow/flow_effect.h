@@ -35,6 +35,10 @@
 // NMM_TRACE_FLOW=1 prints each iteration's error (stderr).
 // `coupled: false`: the apertures stay those at the run's start and the pressure does not load
 // the faces (flow alone).
+// Fluid lag (`cavitation_pressure`): each balance solve is flow_balance.h's with the vapour
+// RunState::flow_void of the step's start, its pressures never below p_c, and the iterate that
+// loads the faces is held at p_c or above (Anderson's extrapolation could reach below); commit
+// keeps the step's vapour with its pressures.
 // With fracture, a re-cut builds the effect again on the cut mesh, whose network holds the new
 // cracks; continue_from carries the pressures and apertures onto it (flow_transfer.h).
 #pragma once
@@ -124,6 +128,8 @@ class FlowEffect final : public Effect {
   /// volume.
   static constexpr int kStall = 6;
   static constexpr double kStallTolerance = 1e-4;
+  /// With a fluid lag, the factor on the compliance c of the split (judge()).
+  static constexpr double kLagCompliance = 2;
   /// Balance solves of one step attempt before it is cut.
   static constexpr int kMaxIterations = 60;
 
@@ -131,6 +137,10 @@ class FlowEffect final : public Effect {
   bool two_way() const {
     const FlowDef& f = model_.scene().flow;
     return active() && f.coupled && !f.steady;
+  }
+  /// The vapour at the step's start with a fluid lag (flow_balance.h), else null.
+  const std::vector<double>* lag_start(const RunState& s) const {
+    return model_.scene().flow.cavitation && s.flow_void.size() == network_.nodes() ? &s.flow_void : nullptr;
   }
   /// [2·v] m: `base` with the network's face vertices (at loop_xy, [2·v] m) moved by what the
   /// covers' increment d gives them.
@@ -164,6 +174,7 @@ class FlowEffect final : public Effect {
   std::vector<Eigen::VectorXd> history_f_, history_g_;
   Eigen::VectorXd last_f_, last_g_;
   bool have_last_ = false;
+  std::vector<char> lagging_;  // [node] 1: at the cavitation pressure in the last G(x) (lag only)
   double last_carried_ = 0;  // m³ per m, the split's error at the last iterate
   double best_carried_ = 0;  // m³ per m, the smallest error of the attempt (halvings only)
   int best_at_ = 0;          // the solve that brought it

@@ -33,12 +33,13 @@ std::int32_t segment_through(const FlowNetwork& net, double x, double y, double 
   return -1;
 }
 
-// m³ per m: the fluid the free nodes hold, Σ V_i·(1 + p_i/K_f).
-double content(const FlowNetwork& net, const std::vector<double>& p, const std::vector<double>& ap, double kf) {
+// m³ per m: the fluid the free nodes hold, Σ V_i·(1 + p_i/K_f) − s_i (s the vapour, if any).
+double content(const FlowNetwork& net, const std::vector<double>& p, const std::vector<double>& ap,
+               const std::vector<double>& vapour, double kf) {
   const std::vector<double> v = net.volumes(ap);
   double sum = 0;
   for (std::size_t i = 0; i < v.size(); ++i)
-    if (net.node_boundary()[i] < 0) sum += v[i] * (1 + p[i] / kf);
+    if (net.node_boundary()[i] < 0) sum += v[i] * (1 + p[i] / kf) - (vapour.empty() ? 0.0 : vapour[i]);
   return sum;
 }
 
@@ -51,7 +52,17 @@ void transfer_flow(const FlowNetwork& before, const FlowNetwork& now, const Flow
   const std::vector<double>& oxy = before.node_xy();
   const std::vector<double>& nxy = now.node_xy();
   const std::size_t n = now.nodes();
-  std::vector<double> p(n, flow.initial_pressure);
+  const bool lag = flow.cavitation && s.flow_void.size() == before.nodes();
+  // The share of each old node's room the vapour takes (the lag: flow_balance.h).
+  std::vector<double> old_dry(before.nodes(), 0.0);
+  if (lag) {
+    const std::vector<double> v = before.volumes(old_ap);
+    for (std::size_t j = 0; j < old_dry.size(); ++j) {
+      const double room = v[j] * (1 + old_p[j] / flow.bulk_modulus);
+      old_dry[j] = room > 0 ? std::clamp(s.flow_void[j] / room, 0.0, 1.0) : 0.0;
+    }
+  }
+  std::vector<double> p(n, flow.initial_pressure), dry(n, 0.0);
   std::vector<char> known(n, 0);
   std::vector<std::int32_t> was(n, -1);  // the node before at the same place
   std::vector<std::pair<double, std::int32_t>> by_x(before.nodes());
@@ -63,7 +74,8 @@ void transfer_flow(const FlowNetwork& before, const FlowNetwork& now, const Flow
     for (auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(x - tol, std::int32_t{-1}));
          it != by_x.end() && it->first <= x + tol && !known[i]; ++it) {
       const auto j = static_cast<std::size_t>(it->second);
-      if (std::hypot(oxy[2 * j] - x, oxy[2 * j + 1] - y) <= tol) p[i] = old_p[j], known[i] = 1, was[i] = it->second;
+      if (std::hypot(oxy[2 * j] - x, oxy[2 * j + 1] - y) <= tol)
+        p[i] = old_p[j], dry[i] = old_dry[j], known[i] = 1, was[i] = it->second;
     }
     if (known[i]) continue;
     double t = 0;
@@ -71,6 +83,7 @@ void transfer_flow(const FlowNetwork& before, const FlowNetwork& now, const Flow
     if (k < 0) continue;
     const FlowSegment& sg = before.segments()[static_cast<std::size_t>(k)];
     p[i] = (1 - t) * old_p[static_cast<std::size_t>(sg.a)] + t * old_p[static_cast<std::size_t>(sg.b)];
+    dry[i] = (1 - t) * old_dry[static_cast<std::size_t>(sg.a)] + t * old_dry[static_cast<std::size_t>(sg.b)];
     known[i] = 1;
   }
   // Nodes of new cracks: breadth first from the nodes carried over, along the new segments.
@@ -88,7 +101,9 @@ void transfer_flow(const FlowNetwork& before, const FlowNetwork& now, const Flow
     for (const std::int32_t j : next[i])
       if (!known[static_cast<std::size_t>(j)]) {
         known[static_cast<std::size_t>(j)] = 1;
-        p[static_cast<std::size_t>(j)] = p[i];
+        // With a lag a new crack opens dry: vapour at p_c, its fluid what flows in later.
+        p[static_cast<std::size_t>(j)] = lag ? flow.cavitation_pressure : p[i];
+        dry[static_cast<std::size_t>(j)] = 1;
         queue.push_back(j);
       }
   }
@@ -126,7 +141,16 @@ void transfer_flow(const FlowNetwork& before, const FlowNetwork& now, const Flow
       ap[2 * k + static_cast<std::size_t>(e)] = (1 - u) * old_ap[2 * static_cast<std::size_t>(o)] + u * old_ap[2 * static_cast<std::size_t>(o) + 1];
     }
   }
-  if (!flow.steady) s.flow_filled += content(now, p, ap, flow.bulk_modulus) - content(before, old_p, old_ap, flow.bulk_modulus);
+  std::vector<double> vapour;
+  if (lag) {
+    vapour = now.volumes(ap);
+    for (std::size_t i = 0; i < n; ++i)
+      vapour[i] = now.node_boundary()[i] >= 0 ? 0.0 : dry[i] * vapour[i] * (1 + p[i] / flow.bulk_modulus);
+  }
+  if (!flow.steady)
+    s.flow_filled += content(now, p, ap, vapour, flow.bulk_modulus) -
+                     content(before, old_p, old_ap, lag ? s.flow_void : std::vector<double>{}, flow.bulk_modulus);
+  if (lag) s.flow_void = std::move(vapour);
   s.flow_pressure = std::move(p);
   s.flow_aperture = std::move(ap);
 }

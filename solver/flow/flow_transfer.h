@@ -19,6 +19,11 @@
 // flow.filled_m3) and left out of `flow_stored`, so stored = injected − outflow still closes to the
 // linear solve's round-off (flow_balance.h) and the fill is reported beside it. From the step after
 // the re-cut the new nodes store and conduct like every other node.
+// With a fluid lag (`cavitation_pressure`, flow_balance.h) a new crack opens dry instead: its
+// nodes start at p_c with vapour s_i = V_i·(1 + p_c/K_f) and no fluid, which then flows in; the
+// nodes carried over keep the share of their room the vapour took, d_i = s_i/(V_i·(1 + p_i/K_f))
+// (linear along an old segment for a node on it), s_i = d_i·V_i·(1 + p_i/K_f) on the new network,
+// and ΔV above counts the fluid, V·(1 + p/K_f) − s.
 #pragma once
 
 #include "common/scene/flow.h"
