@@ -36,6 +36,7 @@
 #include "common/whole_file.h"
 #include "preprocess/cover_cutter.h"
 #include "reference/crack_plate.h"
+#include "solver/discretisation/stress_field.h"
 #include "solver/fracture/crack_tips.h"
 #include "solver/fracture/interaction_integral.h"
 #include "solver/fracture/tip_growth.h"
@@ -423,6 +424,59 @@ TEST(CrackTips, AClosedCrackUnderCompressionCountsItsFriction) {
   EXPECT_LT(worst_k1[1], 0.1);
   EXPECT_LT(worst_k2[1], worst_k2[0]);
   EXPECT_LT(worst_k2[1], 0.12);
+}
+
+// A tip just past a kink: the centre crack (2a = 0.5 m along x) of the plate above turns by 45° at
+// its right end into a kink L = 0.2 m long (8h at h = 0.025 m), and the kink's tip is read with the
+// finder's domain (3h: its ring ends before the kink) and with one of 1.5L that holds the kink and
+// the crack behind it. The domain integral is the same over any domain that holds only the crack
+// (interaction_integral.cpp: beyond the kink the auxiliary fields' cut follows the crack, and the
+// kinked faces add their terms): the two readings agree within 1.5 % of |K| (0.22 % measured).
+// Taking the cut straight back from the tip (TipDomain::behind null: the straight crack's) puts it
+// through the rock beyond the kink, and the large domain then reads K 6.6 % of |K| off (more than
+// 4 % asserted). Against Cotterell & Rice's
+// first-order kink (k1 = ¼(3cos(α/2) + cos(3α/2))K_I, k2 = ¼(sin(α/2) + sin(3α/2))K_I, L ≪ a; the
+// T-stress −σ and L/a = 0.8 move it by tens of per cent) the readings are printed.
+TEST(CrackTips, AKinkedTipReadsTheSameKOverADomainThatHoldsTheKink) {
+  const double Wi = 2.5, a = 0.25, L = 0.2, h = 0.025, alpha = kPi / 4;
+  nlohmann::json doc = crack_plate(-Wi, -Wi, Wi, Wi, {-a, 0}, {a, 0}, h);
+  doc["joints"][0]["points"] = {{-a, 0}, {a, 0}, {a + L * std::cos(alpha), L * std::sin(alpha)}};
+  const SceneDef s = scene_from_json(doc, "kinked");
+  const Mesh m = pre::build_mesh(s, "kinked");
+  solve::TimeStepper st(m, s, "kinked");
+  ASSERT_PRED1(test::ended_ok, st.run_until(1.0, [](std::int64_t) {}));
+  const solve::RunView v = st.view();
+  CrackTipFinder finder;
+  const std::vector<CrackTip> tips = finder.find(m, s, {});
+  ASSERT_EQ(tips.size(), 2u);
+  const CrackTip& t = tips[0].at.x > 0 ? tips[0] : tips[1];
+  // The finder reads the crack back as far as its own ring reaches (the kink, 8h back); the large
+  // domain needs it back to the centre crack's other end.
+  ASSERT_GE(t.behind.size(), 2u);
+  EXPECT_NEAR(t.behind[1].x, a, 1e-9);
+  EXPECT_NEAR(t.behind[1].y, 0, 1e-9);
+  const std::vector<Vec2> back{t.at, {a, 0}, {-a, 0}};
+  const TipElasticity el = solve::tip_elasticity(s.materials[0], s.plane);
+  const std::vector<double> stress = solve::mean_stress(m, v.space, v.state);
+  const std::vector<std::uint8_t> none;
+  auto read = [&](double radius, const std::vector<Vec2>* behind) {
+    return solve::interaction_integral(m, {t.at, t.direction, radius, t.body, behind}, el, stress, v.state.loop_u, none);
+  };
+  const solve::StressIntensity small = read(t.radius, &t.behind), large = read(1.5 * L, &back),
+                               straight = read(1.5 * L, nullptr);
+  const double k0 = kSigma * std::sqrt(kPi * a) * tada_centre(a / Wi);
+  const double c1 = 0.25 * (3 * std::cos(alpha / 2) + std::cos(1.5 * alpha)) * k0,
+               c2 = 0.25 * (std::sin(alpha / 2) + std::sin(1.5 * alpha)) * k0;
+  const double size = std::hypot(small.k1, small.k2);
+  auto off = [&](const solve::StressIntensity& k) { return std::hypot(k.k1 - small.k1, k.k2 - small.k2) / size; };
+  std::printf("  kinked tip (L %.2f m, %.0f°, h %.3f m): K_I, K_II (MPa·√m) over %.3f m %.4f, %.4f; over %.2f m %.4f, "
+              "%.4f (%.2f %% of |K| apart); cut straight back %.4f, %.4f (%.1f %%); first-order kink %.4f, %.4f\n",
+              L, alpha * 180 / kPi, h, t.radius, 1e-6 * small.k1, 1e-6 * small.k2, 1.5 * L, 1e-6 * large.k1,
+              1e-6 * large.k2, 100 * off(large), 1e-6 * straight.k1, 1e-6 * straight.k2, 100 * off(straight),
+              1e-6 * c1, 1e-6 * c2);
+  EXPECT_GT(small.k1, 0);
+  EXPECT_LT(off(large), 0.015);
+  EXPECT_GT(off(straight), 0.04);
 }
 
 }  // namespace nmm

@@ -42,7 +42,7 @@ std::vector<TipReading> read_crack_tips(const Mesh& mesh, const SceneDef& scene,
          it != by_x.end() && it->first <= t.at.x + reach; ++it)
       near.push_back(it->second);
     const TipElasticity el = tip_elasticity(scene.materials[static_cast<std::size_t>(scene.bodies[t.body].material)], scene.plane);
-    const StressIntensity k = interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, el, stress, s.loop_u,
+    const StressIntensity k = interaction_integral(mesh, {t.at, t.direction, t.radius, t.body, &t.behind}, el, stress, s.loop_u,
                                                    skip, &near, &loaded, pressure);
     TipReading r;
     r.tip = t.id;

@@ -126,6 +126,37 @@ std::vector<CrackTip> CrackTipFinder::find(const Mesh& mesh, const SceneDef& sce
     // least one triangle from the tip so that the tip's own element is not in it.
     tips[i].radius = std::max(std::min(kDomainRadius * h, d - 1.1 * h), std::min(1.1 * h, 0.5 * d));
   }
+  // Each tip's crack backwards, piece by piece, as far as the ring reaches (radius + one
+  // triangle): from each point the piece of its crack that goes on with the least turn (a crack
+  // grown from a joint's side goes on along the joint).
+  for (std::size_t i = 0; i < tips.size(); ++i) {
+    CrackTip& t = tips[i];
+    const double reach = t.radius + 2 * h;
+    std::vector<std::uint8_t> used(pieces.size(), 0);
+    Vec2 at = t.at, heading{-t.direction.x, -t.direction.y};
+    t.behind = {at};
+    while (length(at.x - t.at.x, at.y - t.at.y) <= reach && t.behind.size() < 10000) {
+      std::size_t best = pieces.size();
+      Vec2 next{};
+      double best_turn = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < pieces.size(); ++k) {
+        const Piece& p = pieces[k];
+        if (used[k] || root(parent, p.line) != tip_group[i] || distance_to_segment(at, p.a, p.b) > tol) continue;
+        for (const Vec2& end : {p.a, p.b}) {
+          const double dx = end.x - at.x, dy = end.y - at.y, l = length(dx, dy);
+          if (l <= tol) continue;
+          const double turn = std::acos(std::clamp((dx * heading.x + dy * heading.y) / l, -1.0, 1.0));
+          if (turn < best_turn) best_turn = turn, best = k, next = end;
+        }
+      }
+      if (best == pieces.size()) break;  // the crack ends here
+      used[best] = 1;
+      const double l = length(next.x - at.x, next.y - at.y);
+      heading = {(next.x - at.x) / l, (next.y - at.y) / l};
+      at = next;
+      t.behind.push_back(at);
+    }
+  }
   // Numbers: a tip where a known one was keeps its number; a tip whose crack runs through a known
   // tip's place (it grew from there) takes the nearest such; any other is new.
   std::vector<std::uint8_t> taken(known_.size(), 0);

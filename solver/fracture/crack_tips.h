@@ -27,6 +27,10 @@ struct CrackTip {
   Vec2 direction;           ///< unit, along the crack towards the tip (ahead of it)
   std::int32_t body = -1;   ///< the body it lies in
   double radius = 0;        ///< m, the interaction integral's domain
+  /// m, the tip's own crack from the tip backwards (the tip first, then each point where it turns,
+  /// along its joints and cracks as cut), as far as the domain's ring reaches: where the
+  /// integral's auxiliary fields have their cut (interaction_integral.h TipDomain::behind).
+  std::vector<Vec2> behind;
 };
 
 class CrackTipFinder {

@@ -46,6 +46,11 @@ struct TipDomain {
   Vec2 direction;       ///< unit: the crack's direction at the tip, pointing ahead of it
   double radius = 0;    ///< m, q = 1 at the mesh nodes nearer the tip than this, 0 beyond
   std::int32_t body = -1;  ///< the body whose elements the integral runs over
+  /// m, the crack from the tip backwards (CrackTip::behind; null or one point: straight behind
+  /// the tip). Where it turns away from the line behind the tip inside the ring, the auxiliary
+  /// fields take their cut along it rather than along that line, and its faces there add the
+  /// terms of faces that do not lie on the line (interaction_integral.cpp).
+  const std::vector<Vec2>* behind = nullptr;
 };
 
 /// K_I, K_II (Pa·√m; K_I > 0 opens the crack) of the field given by each element's stress

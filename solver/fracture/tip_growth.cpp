@@ -86,7 +86,7 @@ std::vector<CrackSegment> grow_by_toughness(const Mesh& mesh, const SceneDef& sc
     const MaterialDef& m = scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(t.body)].material)];
     if (!m.strength.present || m.strength.toughness <= 0) continue;
     const StressIntensity k =
-        interaction_integral(mesh, {t.at, t.direction, t.radius, t.body}, tip_elasticity(m, scene.plane),
+        interaction_integral(mesh, {t.at, t.direction, t.radius, t.body, &t.behind}, tip_elasticity(m, scene.plane),
                              scene.solver.cover_order == 0 ? s.stress : stress,
                              s.loop_u, skip, nullptr, loaded, face_pressure);
     // Faces pressed together do not open: K_I < 0 is what is left of the closing field where
