@@ -301,7 +301,7 @@ StressIntensity interaction_integral(const Mesh& mesh, const TipDomain& domain, 
             for (int mode = 1; mode <= 2; ++mode) {
               const TipField a = williams_field(el, mode, r, theta);
               if (traction) integral[mode - 1] -= 0.125 * kGw[g] * jac * len * (t1 * a.grad[0][0] + t2 * a.grad[1][0]) * qx;
-              // A stub of a face at the tip itself (a crack end cut a round-off past an edge)
+              // A sliver of a face at the tip itself (a crack end cut a round-off past an edge)
               // holds no length the field resolves.
               if (along || !gradient || !(r > 1e-6 * domain.radius)) continue;
               const double ea12 = 0.5 * (a.grad[0][1] + a.grad[1][0]);
