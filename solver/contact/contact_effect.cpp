@@ -132,9 +132,7 @@ Outcome ContactEffect::solve(EffectStep& step, bool again, StepSolution& x) {
   return outcome;
 }
 
-double ContactEffect::penetration(EffectStep& step) const {
-  return contacts_.judged_penetration(step.penetration_limit);
-}
+StepPenetration ContactEffect::penetration(EffectStep& /*step*/) const { return contacts_.deepening(); }
 
 void ContactEffect::rejected(const EffectStep& step, const Eigen::VectorXd& covers_d) const {
   trace_rejected_step(step.s, covers_d);

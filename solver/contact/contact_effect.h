@@ -39,7 +39,7 @@ class ContactEffect final : public Effect {
   void add_at_rest(EffectStep& rest) override;
   bool solves() const override { return true; }
   Outcome solve(EffectStep& step, bool again, StepSolution& x) override;
-  double penetration(EffectStep& step) const override;
+  StepPenetration penetration(EffectStep& step) const override;
   void rejected(const EffectStep& step, const Eigen::VectorXd& covers_d) const override;
   void commit(EffectStep& step, const Eigen::VectorXd& d) override;
   /// summary.json "contacts" (counts, the joint at the end, state changes), "contact_solve" (what

@@ -383,11 +383,14 @@ double ContactSet::max_dilation() const {
   return v;
 }
 
-double ContactSet::judged_penetration(double limit) const {
-  double judged = 0;
+StepPenetration ContactSet::deepening() const {
+  // p − max(p0, 0) per contact (gap = −p, at.gap: detection's at the step's start); a contact
+  // the step lets come up adds nothing and is no deepest.
+  StepPenetration judged{0, 0};
   for (const Contact& c : contacts_) {
-    const double depth = -c.gap, start = -c.at.gap;
-    judged = std::max(judged, start > limit ? depth - start : depth);
+    const double depth = -c.gap, added = depth - std::max(-c.at.gap, 0.0);
+    judged.added = std::max(judged.added, added);
+    if (added > 0) judged.deepest = std::max(judged.deepest, depth);
   }
   return judged;
 }

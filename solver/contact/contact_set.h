@@ -14,6 +14,7 @@
 #include "solver/contact/contact.h"
 #include "solver/contact/contact_detection.h"
 #include "solver/contact/joint_law.h"
+#include "solver/discretisation/effect.h"
 #include "solver/discretisation/model.h"
 
 namespace nmm::solve {
@@ -112,11 +113,12 @@ class ContactSet {
     double max_shear_stress = 0;    ///< Pa, largest |T|/L of a closed contact
   };
   Totals totals() const;
-  /// m, the penetration the step is judged by (step_control.h rejection): a contact's depth at the
-  /// step's end — or, where it was already deeper than `limit` at the step's start (a crack cut
-  /// through a loaded contact, or faces cut within round-off of each other), how much deeper the
-  /// step made it: a shorter step cannot undo what it started with, only what it adds.
-  double judged_penetration(double limit) const;
+  /// What the solved step did to its contacts' depths, as step control judges it (step_control.h
+  /// rejection): the most it added to one contact's depth at the step's start (to touching, where
+  /// the contact started open or is new) and the deepest contact it deepened. A shorter step cannot
+  /// undo the depth a contact started with (carried over a re-cut, or cut so by a crack), only
+  /// what it adds.
+  StepPenetration deepening() const;
   /// Detection's counts and its seconds so far.
   const DetectionStats& detection_stats() const { return stats_; }
   /// A set built for a re-cut mesh goes on counting where `before` (the old mesh's) stopped:

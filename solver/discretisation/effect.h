@@ -18,8 +18,8 @@
 //   assemble      its terms into K and F (every solve round)
 //   solve         at most one effect solves the system its own way (the contacts' problem)
 //   judge         at the solution: true → the step is solved again from there
-//   penetration   how deep the solved step penetrates: step control rejects it (cuts Δt) beyond
-//                 its limit (step_control.h)
+//   penetration   what the solved step added to its contacts' depths: step control rejects it
+//                 (cuts Δt) beyond its limits (step_control.h)
 //   commit        the accepted step into the state (history is committed here, never on an iterate)
 // and what the run writes of it (effect_output.h): its rows of the output steps' CSV files, the
 // files it writes at the end, its part of summary.json; and its part of the energy balance
@@ -58,6 +58,16 @@ class StepHost {
   ~StepHost() = default;
 };
 
+/// What a solved step attempt did to the depths of its contacts, as step control judges it
+/// (solver/stepping/step_control.h rejection).
+struct StepPenetration {
+  /// m, the most the step deepened one contact past its depth at the step's start (past touching,
+  /// for a contact that started open or is new); < 0: no effect judges the step's penetration.
+  double added = -1;
+  /// m, the deepest of the contacts the step made deeper (0: none).
+  double deepest = 0;
+};
+
 /// One stage of one step attempt, as the effects see it.
 struct EffectStep {
   const StepContext& context;  ///< Δt, the step's end, frames, the state it starts from (read)
@@ -65,7 +75,6 @@ struct EffectStep {
   SystemMatrix& system;        ///< the step's system (pattern, matrix, factorisation)
   Eigen::VectorXd& rhs;        ///< N/m per unknown, the step's right-hand side
   double search_distance;      ///< m, how far apart two faces may be and still touch within the step (step_control.h)
-  double penetration_limit;    ///< m, the penetration a step may reach before step control cuts it
   StepTimings& timings;        ///< s, what the step's parts cost
   StepHost& host;
   bool pattern_changed = false;  ///< set by begin_step: the coupling groups changed, the stepper builds the pattern again
@@ -141,10 +150,10 @@ class Effect : public EffectOutput, public EffectEnergy {
   /// Why the step stops when judge() still asks for another solve after max_solves() solves, at
   /// time t (s).
   virtual Outcome not_settled(double /*t*/) const { return {}; }
-  /// m, how deep the solved step penetrates as step control judges it (the contacts'), or < 0:
-  /// this effect does not judge the step. Step control (step_control.h rejection) runs when an
-  /// effect judges; it also bounds the covers' largest move.
-  virtual double penetration(EffectStep& /*step*/) const { return -1; }
+  /// What the solved step did to the depths of its contacts (the contacts'), or added < 0: this
+  /// effect does not judge the step. Step control (step_control.h rejection) runs when an effect
+  /// judges; it also bounds the covers' largest move.
+  virtual StepPenetration penetration(EffectStep& /*step*/) const { return {}; }
   /// The solved step was rejected: covers_d its covers' increment (for a trace).
   virtual void rejected(const EffectStep& /*step*/, const Eigen::VectorXd& /*covers_d*/) const {}
   /// The accepted step into the state step.s (before the covers move: state_update.h).

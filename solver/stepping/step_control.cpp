@@ -21,7 +21,7 @@ double StepControl::next(double t, double t_end) const {
   return left < dt_ * (1 - kRoundOff) ? left : dt_;
 }
 
-Outcome StepControl::rejection(double dmax, double max_penetration, bool inertia) const {
+Outcome StepControl::rejection(double dmax, const StepPenetration& penetration, bool inertia) const {
   // The reason names w0 in words: users coming from UDEC do not know DDA's symbol. The value and
   // its limit get the digits that tell them apart (6e-06 against 6e-06 would puzzle).
   const double limit = g2w0_;
@@ -38,10 +38,16 @@ Outcome StepControl::rejection(double dmax, double max_penetration, bool inertia
            " m a step may move (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
            ", w0 being half the model size as in DDA)"};
   }
-  if (max_penetration > limit) {
-    const auto [depth, allowed] = apart(max_penetration, limit);
+  if (penetration.added > limit) {
+    const auto [added, allowed] = apart(penetration.added, limit);
+    return {StopCode::penetration, "one step made a contact " + added + " m deeper, more than the " + allowed +
+           " m a step may add (max_displacement_ratio " + ratio + " × w0 " + w0 +
+           ", w0 being half the model size as in DDA)"};
+  }
+  if (penetration.deepest > penetration_cap()) {
+    const auto [depth, allowed] = apart(penetration.deepest, penetration_cap());
     return {StopCode::penetration, "a contact penetrated " + depth + " m, more than the " + allowed +
-           " m allowed (max_displacement_ratio " + ratio + " × w0 " + w0 +
+           " m allowed (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
            ", w0 being half the model size as in DDA)"};
   }
   return {};

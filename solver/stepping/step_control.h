@@ -5,10 +5,25 @@
 // With g2 = solver.max_displacement_ratio and w0 half the model size (model.h):
 //   search distance   d0 = 2.5·g2·w0 (+ the largest joint dilation, contact.h)
 //   accept a step     max_i |d_i| ≤ 2·g2·w0   (runs with the inertia term: dynamic, DDA static)
-//                     max penetration ≤ g2·w0
+//                     max_c (p_c − max(p0_c, 0)) ≤ g2·w0        what the step adds to a depth
+//                     max_c {p_c : p_c > p0_c} ≤ 2·g2·w0        the cap on a contact it deepens
 //   after a rejection Δt ← 0.3·Δt; the run stops when Δt < 1e-3·time_step
 //   after acceptance  Δt ← min(1.3·Δt, time_step)
 // Without contact every step has the full length time_step (nothing is ever rejected).
+//
+// The penetration rule, with p_c a contact's depth at the attempt's end and p0_c at its start (m,
+// positive inside; p0 < 0: it started open). Shi's rule bounds the depth itself, p_c ≤ g2·w0, and
+// a shorter step is its cure: what a step adds shrinks with Δt. A contact that starts the step
+// near the limit (carried over a re-cut at the depth it sank to under load, or cut within
+// round-off by a crack) has nothing left to add, and then no cut cures it: the run stopped at
+// the floor with "a contact penetrated 0.001001 m, more than the 0.001 m allowed" (uniaxial and
+// biaxial compression, h 0.0625 m, dynamic: docs/notes/2026-11-fracture-robustness.md). So a
+// step is judged by what it adds, p_c − max(p0_c, 0) ≤ g2·w0 — a contact new in the step, or
+// open at its start, is judged by its whole depth as before. Step by step a depth could then grow
+// without bound, a vertex passing through the edge it is held by; the cap 2·g2·w0 on any contact
+// the step deepens catches that, below contact detection's reach d0 = 2.5·g2·w0 (an accepted step
+// leaves no contact deeper than detection can follow; a contact that started deeper, cut so by a
+// crack, may stay or come up, not sink further).
 #pragma once
 
 #include "common/outcome.h"
@@ -16,6 +31,7 @@
 #include <string>
 
 #include "common/scene.h"
+#include "solver/discretisation/effect.h"
 
 namespace nmm::solve {
 
@@ -36,6 +52,9 @@ class StepControl {
   /// –, a step may move no cover more than 2·g2·w0 (contacts beyond the search distance would be
   /// missed).
   static constexpr double kMaxMove = 2.0;
+  /// –, no step may deepen a contact past 2·g2·w0: twice what one step may add, below the search
+  /// distance 2.5·g2·w0 that contact detection follows a closed contact to.
+  static constexpr double kDeepest = 2.0;
   /// –, relative to time_step: times this close count as equal (the last step of a run is cut
   /// to end at t_end unless it is within round-off of a full step, so 2N steps and N + N from a
   /// checkpoint take the same steps, bitwise).
@@ -46,16 +65,19 @@ class StepControl {
 
   /// m, how far contact detection looks for contacts a step can make (before dilation).
   double search_distance() const { return kSearch * g2w0_; }
-  /// m, the penetration a step may reach (g2·w0): rejection() cuts a step beyond it.
+  /// m, the depth a step may add to a contact (g2·w0): rejection() cuts a step that adds more.
   double penetration_limit() const { return g2w0_; }
+  /// m, the deepest a step may make a contact it deepens (2·g2·w0).
+  double penetration_cap() const { return kDeepest * g2w0_; }
   /// Whether the run has reached t_end (s) within round-off.
   bool done(double t, double t_end) const { return !(t < t_end - kRoundOff * time_step_); }
   /// s, the length of the next attempt from t: Δt, or what is left to t_end.
   double next(double t, double t_end) const;
   /// Why a solved attempt may not be accepted (step_displacement or penetration, with the
   /// reason; ok if it may): the largest cover displacement dmax (m; checked with the inertia
-  /// term only: an equilibrium increment does not shrink with Δt) and the deepest penetration (m).
-  Outcome rejection(double dmax, double max_penetration, bool inertia) const;
+  /// term only: an equilibrium increment does not shrink with Δt) and what the step did to its
+  /// contacts' depths (m; the rule above).
+  Outcome rejection(double dmax, const StepPenetration& penetration, bool inertia) const;
   /// After a rejected attempt of length h (s): false when the cut step is below the floor.
   bool cut(double h);
   /// After an accepted attempt: Δt grows back towards time_step.

@@ -113,7 +113,7 @@ void TimeStepper::build_pattern() {
 }
 
 EffectStep TimeStepper::effect_step(const StepContext& context) {
-  return {context, s_, system_, rhs_, control_.search_distance(), control_.penetration_limit(), timings_, *this};
+  return {context, s_, system_, rhs_, control_.search_distance(), timings_, *this};
 }
 
 StepContext TimeStepper::step_context(double dt) const {
@@ -180,9 +180,13 @@ Outcome TimeStepper::attempt_once(double dt) {
   const Eigen::VectorXd covers_d = d.head(b_->space.unknowns());
   if (recut_in_step) recut_start_work_ = start_force_.dot(covers_d);
   // Shi's step control judges a step whose effects judge its penetration (the contacts').
-  double penetration = -1;
-  for (const Effect* e : active) penetration = std::max(penetration, e->penetration(step));
-  if (penetration >= 0) {
+  StepPenetration penetration;
+  for (const Effect* e : active) {
+    const StepPenetration p = e->penetration(step);
+    penetration.added = std::max(penetration.added, p.added);
+    penetration.deepest = std::max(penetration.deepest, p.deepest);
+  }
+  if (penetration.added >= 0) {
     Outcome rejected = control_.rejection(covers_d.cwiseAbs().maxCoeff(), penetration, step_inertia());
     if (!rejected.ok()) {
       for (const Effect* e : active) e->rejected(step, covers_d);
