@@ -116,6 +116,44 @@ TEST(Contact, DroppedBlockComesToRestOnTheBase) {
   EXPECT_LT(vmax, 1e-2) << "m/s";
 }
 
+// Shi's penetration limit g2·w0 against a landing that must go deeper (step_control.h, the
+// penetration rule). A 1 m block set on a base on a joint of kn = 1e9 Pa/m rests at a closure
+// δ = ρ·g·H/kn = 2.6e-5 m; dropped from touching, the undamped landing reaches 2·δ. With g2·w0 =
+// δ/0.9 the landing must pass g2·w0 to come to rest: a rule on the depth (p ≤ g2·w0) cut its
+// step below the floor; judged by what a step adds (≤ g2·w0) under the cap 2·g2·w0 on a contact
+// a step deepens, the run lands deeper than g2·w0, never past 2·g2·w0, and rests at δ.
+TEST(Contact, ALandingDeeperThanTheLimitRunsThroughAndRestsAtItsClosure) {
+  SceneDef s = contact_scene(0.25, 30);
+  JointSetDef& js = s.joint_sets[0];
+  js.normal.model = NormalModel::constant;
+  js.normal.kn = 1e9;  // Pa/m
+  js.shear.model = ShearModel::constant;
+  js.shear.ks = 1e9 / 2.5;  // Pa/m
+  s.bodies = {box(0, 0, 4, 1), box(1.5, 1, 2.5, 2)};
+  s.fixed_points = held_along(0.1, 3.9, 0.1);
+  s.measure_points = {{2, 1.5}};
+  const double w0 = 2.0;                              // m, half the model's 4 m
+  const double closure = 2650 * kG * 1.0 / js.normal.kn;  // m, ρ·g·H/kn
+  const double limit = closure / 0.9;                 // m, g2·w0
+  s.solver.max_displacement_ratio = limit / w0;
+  const Mesh m = pre::build_mesh(s, "landing");
+  TimeStepper st(m, s, "landing");
+  ASSERT_PRED1(test::ended_ok, run_to(st, 1.0));
+  double deepest = 0, shallowest = 1;
+  for (const Contact& c : st.view().contacts.accepted())
+    if (c.state != ContactState::open && c.at.elem_b >= 0 && m.element_body[static_cast<std::size_t>(c.at.elem_b)] == 0) {
+      deepest = std::max(deepest, -c.gap);
+      shallowest = std::min(shallowest, -c.gap);
+    }
+  const double max_pen = st.view().state.max_penetration;
+  std::printf("landing: closure %.4e–%.4e m at rest (ρgH/kn %.4e), deepest in the run %.4e m = %.3f·g2·w0, "
+              "%zu cuts\n", shallowest, deepest, closure, max_pen, max_pen / limit, st.view().state.cuts);
+  EXPECT_GT(max_pen, limit) << "the landing goes past Shi's g2·w0";
+  EXPECT_LE(max_pen, 2 * limit) << "and never past the cap 2·g2·w0";
+  EXPECT_NEAR(deepest, closure, 0.03 * closure);
+  EXPECT_NEAR(shallowest, closure, 0.03 * closure);
+}
+
 void stack_stands(double dynamic_factor) {
   SceneDef s = contact_scene(0.25, 30);
   s.solver.dynamic_factor = dynamic_factor;
