@@ -105,14 +105,14 @@ void ContactSet::restore(std::vector<ContactHistory> history, std::vector<Contac
       c.normal_force = h.normal_force;
       c.joint = h.joint;
       c.cohesive = h.cohesive;
-      // At a zero gap: a re-cut's carried contact is allowed no deeper than a new one (1e-3·h).
-      // That loses a loaded corner's contact (the flat of a disc between platens, 1.5e-5 m deep at
-      // h 12.5 mm) to the other face's vertex at the same point. Carrying the depth as the gap
-      // cures it, but a contact carried at the penetration limit then stops a run at its next
-      // step (step_control.h: the limit is on the depth, not its growth) — uniaxial and biaxial
-      // compression at h 0.0625 m, dynamic, did (docs/notes/2026-11-fracture-robustness.md,
-      // 2026-11-30; test ContactDetection.ARecutThatSplitsNoCoverKeepsTheContactsAndTheirForces,
-      // label open).
+      // The depth it was at, as its gap: read back below as the depth detection lets it keep
+      // against that block (closed_contacts()). At gap 0, every contact a re-cut carried over was
+      // allowed no deeper than a new one (1e-3·h): a loaded corner (the flat of a disc between
+      // platens, 1.5e-5 m deep at h 12.5 mm) lost its contact to the other face's vertex at the
+      // same point, the platen's, with another tributary length (corner force 1.39 → 0.87 MN/m),
+      // though the cut was 0.1 m away and changed no cover. A contact so carried near the
+      // penetration limit is judged by what the next step adds to its depth (step_control.h).
+      c.gap = -h.depth;
       rows.push_back(c);
     }
   }

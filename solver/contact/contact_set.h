@@ -86,8 +86,8 @@ class ContactSet {
   ClosedContacts closed_contacts() const;
   /// A restart: the next step starts from this history; `rows` (the accepted step's contacts,
   /// one per history entry) are shown until then. Without rows (a mesh cracks re-cut: no step on
-  /// it yet) each entry's row holds only what the history says (its vertex, state, forces), at a
-  /// zero gap against the first element of its block.
+  /// it yet) each entry's row holds only what the history says (its vertex, state, forces, and
+  /// its depth as the gap) against the first element of its block.
   void restore(std::vector<ContactHistory> history, std::vector<Contact> rows);
   /// [me] 1 for elements of excavated bodies: no contact is detected on them.
   void set_removed_elements(std::vector<std::uint8_t> removed) { removed_ = std::move(removed); }
