@@ -6,13 +6,22 @@
 //   search distance   d0 = 2.5·g2·w0 (+ the largest joint dilation, contact.h)
 //   accept a step     max_i |d_i| ≤ 2·g2·w0   (runs with the inertia term: dynamic, DDA static)
 //                     max penetration ≤ g2·w0
+//                     no element's triangle folded:  2·A_e(x_c + d_c) > 0 for every element e
+//                     (every run, contact or not: Configuration::folded_by)
 //   after a rejection Δt ← 0.3·Δt; the run stops when Δt < 1e-3·time_step
 //   after acceptance  Δt ← min(1.3·Δt, time_step)
-// Without contact every step has the full length time_step (nothing is ever rejected).
+// Without contact every step that folds no element has the full length time_step.
+//
+// A folding element is judged on the solved step, before it is accepted: the step is rejected and
+// cut like one that moved too far (a shorter step moves the covers less), and the run stops only
+// at the floor. Found at the next attempt's start instead, the fold was already in the accepted
+// state, and no shorter step could undo it: the run stopped there (step_path_slope h2 dynamic
+// slow, element 932 of 2.6e-13 m², docs/fracture.md "Robustness matrix").
 #pragma once
 
 #include "common/outcome.h"
 
+#include <cstdint>
 #include <string>
 
 #include "common/scene.h"
@@ -56,6 +65,9 @@ class StepControl {
   /// reason; ok if it may): the largest cover displacement dmax (m; checked with the inertia
   /// term only: an equilibrium increment does not shrink with Δt) and the deepest penetration (m).
   Outcome rejection(double dmax, double max_penetration, bool inertia) const;
+  /// Why a solved attempt that would fold `element`'s triangle over (Configuration::folded_by)
+  /// may not be accepted: element_folded, cured like step_displacement by a shorter step.
+  Outcome folding(std::int64_t element) const;
   /// After a rejected attempt of length h (s): false when the cut step is below the floor.
   bool cut(double h);
   /// After an accepted attempt: Δt grows back towards time_step.
