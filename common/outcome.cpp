@@ -20,8 +20,8 @@ constexpr Named kNames[] = {
     {StopCode::bolts_not_settled, "bolts_not_settled"},
     {StopCode::fracture_cascade, "fracture_cascade"},
     {StopCode::flow_not_converged, "flow_not_converged"},
-    {StopCode::unconstrained, "unconstrained"},
     {StopCode::element_folded, "element_folded"},
+    {StopCode::unconstrained, "unconstrained"},
     {StopCode::displacement_not_finite, "displacement_not_finite"},
     {StopCode::output_failed, "output_failed"},
     {StopCode::failed, "failed"},
@@ -51,7 +51,8 @@ bool cured_by_shorter_step(StopCode code) {
     case StopCode::direction_not_finite:
     case StopCode::bolts_not_settled:
     case StopCode::fracture_cascade:
-    case StopCode::flow_not_converged: return true;
+    case StopCode::flow_not_converged:
+    case StopCode::element_folded: return true;
     default: return false;
   }
 }

@@ -26,9 +26,9 @@ enum class StopCode : std::uint8_t {
   bolts_not_settled,        ///< the bolts' springs kept switching between elastic and yielding (or slipping)
   fracture_cascade,         ///< cracks kept growing through more re-cuts than one step may take
   flow_not_converged,       ///< the coupled flow's iterations of a step did not converge (flow_effect.h)
+  element_folded,           ///< a step would fold an element's triangle over (step_control.h)
   // What no shorter step cures (the run stops at once):
   unconstrained,            ///< the system is singular: a cover or block held by nothing
-  element_folded,           ///< an element's triangle folded over
   displacement_not_finite,  ///< a solved displacement was not finite
   output_failed,            ///< an output file could not be written (a full disk): the run cannot go on
   failed,                   ///< a stopped run whose summary.json names no stop_code (older files)

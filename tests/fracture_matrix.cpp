@@ -30,6 +30,8 @@
 // body: P = |Σ_e A_e σ_e,kk| / lever over its elements that are not debris (rock_tests.h).
 // NMM_CHECK_RECUT=1 in the environment is passed on to the stepper (the re-cut checked against
 // a full cut after every re-cut, where the solver has that mode).
+// NMM_TRACE_SEGMENTS=1: every accepted step's load and new crack segments (hex floats, bit for
+// bit) to stderr, to find the first step where the runs under two kernel families part ways.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -137,6 +139,14 @@ int run(const std::string& name, const std::string& csv) {
         worst_residual = std::abs(row.residual - residual0) / work, worst_residual_step = v.state.step;
       if (n > 1 && work > 0)
         worst_undamped = std::max(worst_undamped, std::abs(row.residual + row.damped - undamped0) / work);
+      if (std::getenv("NMM_TRACE_SEGMENTS") != nullptr) {
+        static std::size_t shown = 0;
+        const auto& all = fracture_of(v).segments();
+        for (; shown < all.size(); ++shown)
+          std::fprintf(stderr, "segment %zu step %lld (%a, %a) (%a, %a)\n", shown, static_cast<long long>(all[shown].step),
+                       all[shown].a.x, all[shown].a.y, all[shown].b.x, all[shown].b.y);
+        std::fprintf(stderr, "accepted step %lld load %a\n", static_cast<long long>(n), load_of(v, sp));
+      }
       steps = n;
       previous = load;
       load = slope ? 0 : load_of(v, sp);

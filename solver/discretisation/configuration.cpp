@@ -6,21 +6,37 @@ namespace nmm::solve {
 Configuration::Configuration(const Mesh& mesh, const CoverSpace* space)
     : mesh_(&mesh), space_(space), frame_(mesh.element_count()) {}
 
+namespace {
+// Element e's frame on the cover nodes cover_xy ([2·c] m): origin its first cover's node.
+ElementFrame frame_on(const Mesh& mesh, std::size_t e, const std::vector<double>& cover_xy) {
+  const std::int32_t* ec = &mesh.element_covers[3 * e];
+  ElementFrame f;
+  const int c0 = ec[0], c1 = ec[1], c2 = ec[2];
+  f.ox = cover_xy[2 * c0];
+  f.oy = cover_xy[2 * c0 + 1];
+  const double p[6] = {0, 0, cover_xy[2 * c1] - f.ox, cover_xy[2 * c1 + 1] - f.oy,
+                       cover_xy[2 * c2] - f.ox, cover_xy[2 * c2 + 1] - f.oy};
+  f.w = triangle_weights(p);
+  return f;
+}
+}  // namespace
+
 std::int64_t Configuration::place(const std::vector<double>& cover_xy) {
   cover_xy_ = cover_xy;
   std::int64_t folded = -1;
   for (std::size_t e = 0; e < frame_.size(); ++e) {
-    const std::int32_t* ec = &mesh_->element_covers[3 * e];
-    ElementFrame& f = frame_[e];
-    const int c0 = ec[0], c1 = ec[1], c2 = ec[2];
-    f.ox = cover_xy[2 * c0];
-    f.oy = cover_xy[2 * c0 + 1];
-    const double p[6] = {0, 0, cover_xy[2 * c1] - f.ox, cover_xy[2 * c1 + 1] - f.oy,
-                         cover_xy[2 * c2] - f.ox, cover_xy[2 * c2 + 1] - f.oy};
-    f.w = triangle_weights(p);
-    if (!(f.w.twice_area > 0) && folded < 0) folded = static_cast<std::int64_t>(e);
+    frame_[e] = frame_on(*mesh_, e, cover_xy);
+    if (!(frame_[e].w.twice_area > 0) && folded < 0) folded = static_cast<std::int64_t>(e);
   }
   return folded;
+}
+
+std::int64_t Configuration::folded_by(const Eigen::VectorXd& d) const {
+  std::vector<double> moved = cover_xy_;
+  move_cover_nodes(d, moved);
+  for (std::size_t e = 0; e < frame_.size(); ++e)
+    if (!(frame_on(*mesh_, e, moved).w.twice_area > 0)) return static_cast<std::int64_t>(e);
+  return -1;
 }
 
 const ElementBasis& Configuration::basis(std::size_t e) const {

@@ -36,6 +36,11 @@ class Configuration {
   /// Places every element's frame on the cover nodes cover_xy ([2·c] m). Returns the first
   /// element whose triangle has folded over (twice its area not > 0), or -1.
   std::int64_t place(const std::vector<double>& cover_xy);
+  /// The first element whose triangle the increment d (the space's unknowns) would fold over if
+  /// the step were accepted: place() on the cover nodes moved as move_cover_nodes() moves them,
+  /// with place()'s own arithmetic, so a step this passes starts the next attempt unfolded. -1 if
+  /// none. Step control rejects such a step (step_control.h) instead of the next one stopping.
+  std::int64_t folded_by(const Eigen::VectorXd& d) const;
 
   const ElementFrame& frame(std::size_t e) const { return frame_[e]; }
   /// The shape functions of element e in its frame, in a scratch object reused by the next call

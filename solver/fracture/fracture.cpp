@@ -38,30 +38,30 @@ double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 // - a stopping crack is cut on by kOvershoot·h past that edge. In doubles its end is not exactly
 //   on the edge; cut exactly, it would stop a round-off short — the rock would not part — or
 //   cross a round-off beyond near other cuts and leave specks. Overshot, it crosses the edge at
-//   one exact point and its hair beyond is a slit of no area. A crack end that does not stop is
-//   not overshot at cover order 0: whether its element's star parts is then decided by round-off
-//   (the tension bar of tests/test_fracture.cpp starts a second crack on some BLAS kernels), but
-//   overshooting every end made the compression specimens cascade (docs/fracture.md "Not yet").
-// - at cover order n ≥ 1 (`past`) a crack end that does not stop and was not snapped onto a
-//   vertex is moved, where it lies a round-off short of its edge, onto or just past it: by
-//   steps from an ulp of its coordinates, doubled until the cutter's own exact arithmetic puts
-//   it on the edge or beyond (pre::exact_side) — at most kOvershoot·h — and its tip grows on from
-//   there (`tip`), so the crack's segments stay one chain. An end a round-off short leaves its
-//   element whole (the crack neither parts it nor any star across it) and the crack opens
-//   nothing: the 4 m bar at n = 1 then started new cracks beside it within the step, 22 segments
-//   in all (docs/higher-order-covers.md "Fracturing"). Every such end cut kOvershoot·h past
-//   instead put its kink 1e-8·h inside the next element, and the contact solve on the 2.5e-9 m
-//   edges that made failed to converge (the bar at n = 2, a time step cut). Order 0 keeps its
-//   ends where the doubles put them, its results bit for bit.
+//   one exact point and its hair beyond is a slit of no area.
+// - a crack end that does not stop and was not snapped onto a vertex is moved, where it lies a
+//   round-off short of its edge, onto or just past it: by steps from an ulp of its coordinates,
+//   doubled until the cutter's own exact arithmetic puts it on the edge or beyond
+//   (pre::exact_side) — at most kOvershoot·h — and its tip grows on from there (`tip`), so the
+//   crack's segments stay one chain. An end a round-off short leaves its element whole (the crack
+//   neither parts it nor any star across it) and the crack opens nothing, so whether it parts
+//   its element was decided by the last bits of the solution: at cover order 0 the notched beam
+//   (h 0.02 m, static, slow) parted the element at step 85 under one OpenBLAS kernel family and
+//   not under the other, and its peaks after the crack came out 87.3 / 78.7 kN/m (now 69.4 under
+//   both; docs/fracture.md "Robustness matrix"); at n = 1 the 4 m bar started new cracks beside
+//   such an end within the step, 22 segments in all (docs/higher-order-covers.md "Fracturing").
+//   Every such end cut kOvershoot·h past instead put its kink 1e-8·h inside the next element, and
+//   the contact solve on the 2.5e-9 m edges that made failed to converge (the bar at n = 2, a
+//   time step cut); the compression specimens cascaded too.
 constexpr double kSnap = 1e-2, kOvershoot = 1e-8;
 struct CrackEnd {
   Vec2 at;          // m, where the crack leaves the element (as cut)
-  Vec2 cut_to;      // m, where its segment ends (past `at` when it stops, or with `past`)
+  Vec2 cut_to;      // m, where its segment ends (past `at` when it stops or lay a round-off short)
   Vec2 tip;         // m, where a tip that grows on from this end starts: cut_to or at
   bool stops = false;
   std::int32_t stop_edge = -1;  // the loop edge (its first vertex) it stops on, where it stops
 };
-CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayExit& exit, bool past) {
+CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayExit& exit) {
   const std::int32_t b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
   const std::int32_t v = exit.edge, w = v + 1 < end ? v + 1 : b, u = v > b ? v - 1 : end - 1;
   const double h = mesh.mesh_size;
@@ -85,7 +85,7 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
   const double dx = c.at.x - from.x, dy = c.at.y - from.y, l = std::hypot(dx, dy);
   if (c.stops) {
     if (l > 0) c.cut_to = plus(c.at, kOvershoot * h / l, {dx, dy});
-  } else if (past && l > 0 && !(c.at == pv || c.at == pw)) {
+  } else if (l > 0 && !(c.at == pv || c.at == pw)) {
     const int inside = pre::exact_side(pv, pw, from);  // the side of the edge the crack comes from
     double t = std::numeric_limits<double>::epsilon() * std::max({std::abs(c.at.x), std::abs(c.at.y), h});
     while (inside != 0 && pre::exact_side(pv, pw, c.cut_to) == inside && t < kOvershoot * h) {
@@ -152,7 +152,6 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // The element's stress: at cover order n ≥ 1 its mean ∫σ dA / A (stress_field.h), the value the
   // outputs show: the strength check stays one decision per element, as at n = 0.
   const int order = scene.solver.cover_order;
-  const bool past = order >= 1;  // free crack ends on or past their edge, exactly (crack_end)
   const std::vector<double> mean = order == 0 ? std::vector<double>{} : mean_stress(mesh, order, s);
   const std::vector<double>& stress = order == 0 ? s.stress : mean;
   ratio_.resize(n);
@@ -263,7 +262,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       }
       RayExit exit;
       if (!ray_exit(mesh, u, p, tip.dir, tol, exit)) return fail("no exit", 0);
-      const CrackEnd c = crack_end(mesh, u, p, exit, past);
+      const CrackEnd c = crack_end(mesh, u, p, exit);
       if (c.stops) {
         const std::size_t v = static_cast<std::size_t>(c.stop_edge);
         const std::int32_t j = mesh.loop_edge_joint[v];
@@ -310,7 +309,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       const Vec2 d = holds ? tip.dir : direction(static_cast<std::size_t>(e), tip.dir);
       RayExit exit;
       if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
-      const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit, past);
+      const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
       add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack, holds ? drive : failure_[e].mode);
       const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
       tip.at = c.tip;
@@ -432,7 +431,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         std::fprintf(stderr, "TRACE start step %lld crack %d in element %zu ratio %.5f\n", static_cast<long long>(s.step),
                      crack, e, ratio_[e]);
       // Each end as a crack leaving the element from the other end.
-      const CrackEnd f = crack_end(mesh, e, back.at, fwd, past), r = crack_end(mesh, e, f.at, back, past);
+      const CrackEnd f = crack_end(mesh, e, back.at, fwd), r = crack_end(mesh, e, f.at, back);
       add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);
       const std::size_t first = tips_.size();
       for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})

@@ -53,6 +53,11 @@ Outcome StepControl::rejection(double dmax, const StepPenetration& penetration, 
   return {};
 }
 
+Outcome StepControl::folding(std::int64_t element) const {
+  return {StopCode::element_folded, "the step would fold element " + std::to_string(element) +
+                                        "'s triangle over (its covers' nodes moved past one another)"};
+}
+
 bool StepControl::cut(double h) {
   dt_ = kCut * h;
   return !(dt_ < floor_);

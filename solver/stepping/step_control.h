@@ -7,9 +7,11 @@
 //   accept a step     max_i |d_i| ≤ 2·g2·w0   (runs with the inertia term: dynamic, DDA static)
 //                     max_c (p_c − max(p0_c, 0)) ≤ g2·w0        what the step adds to a depth
 //                     max_c {p_c : p_c > p0_c} ≤ 2·g2·w0        the cap on a contact it deepens
+//                     no element's triangle folded:  2·A_e(x_c + d_c) > 0 for every element e
+//                     (every run, contact or not: Configuration::folded_by)
 //   after a rejection Δt ← 0.3·Δt; the run stops when Δt < 1e-3·time_step
 //   after acceptance  Δt ← min(1.3·Δt, time_step)
-// Without contact every step has the full length time_step (nothing is ever rejected).
+// Without contact every step that folds no element has the full length time_step.
 //
 // The penetration rule, with p_c a contact's depth at the attempt's end and p0_c at its start (m,
 // positive inside; p0 < 0: it started open). Shi's rule bounds the depth itself, p_c ≤ g2·w0, and
@@ -24,10 +26,17 @@
 // the step deepens catches that, below contact detection's reach d0 = 2.5·g2·w0 (an accepted step
 // leaves no contact deeper than detection can follow; a contact that started deeper, cut so by a
 // crack, may stay or come up, not sink further).
+//
+// A folding element is judged on the solved step, before it is accepted: the step is rejected and
+// cut like one that moved too far (a shorter step moves the covers less), and the run stops only
+// at the floor. Found at the next attempt's start instead, the fold was already in the accepted
+// state, and no shorter step could undo it: the run stopped there (step_path_slope h2 dynamic
+// slow, element 932 of 2.6e-13 m², docs/fracture.md "Robustness matrix").
 #pragma once
 
 #include "common/outcome.h"
 
+#include <cstdint>
 #include <string>
 
 #include "common/scene.h"
@@ -78,6 +87,9 @@ class StepControl {
   /// term only: an equilibrium increment does not shrink with Δt) and what the step did to its
   /// contacts' depths (m; the rule above).
   Outcome rejection(double dmax, const StepPenetration& penetration, bool inertia) const;
+  /// Why a solved attempt that would fold `element`'s triangle over (Configuration::folded_by)
+  /// may not be accepted: element_folded, cured like step_displacement by a shorter step.
+  Outcome folding(std::int64_t element) const;
   /// After a rejected attempt of length h (s): false when the cut step is below the floor.
   bool cut(double h);
   /// After an accepted attempt: Δt grows back towards time_step.

@@ -13,8 +13,9 @@
 //   solve       one factorisation, or the effect that solves the step its own way (the
 //               contacts' problem, contact_solve.h); solved again while an effect judges the
 //               solution wrong for what it assembled (a spring that yields)
-//   acceptance  Shi's step control (step_control.h) on the effects' penetration: a rejected
-//               attempt leaves the state as it was and the caller cuts Δt
+//   acceptance  Shi's step control (step_control.h) on the effects' penetration and on the
+//               elements the step would fold: a rejected attempt leaves the state as it was
+//               and the caller cuts Δt
 //   update      the effects commit, and the state is moved on by d (state_update.h), after the
 //               equilibrium indicators (equilibrium_indicator.h) are taken from d, v0 and a0
 //   re-cut      an effect that changes the mesh at the solution (mesh_change.h) has the
@@ -96,9 +97,9 @@ void TimeStepper::set_threads(int threads) {
 Outcome TimeStepper::compute_frames() {
   const std::int64_t e = b_->config.place(s_.cover_xy);
   if (e >= 0)
-    return stop(StopCode::element_folded, "element " + std::to_string(e) + ": its triangle has folded over at t = " +
+    return stop(StopCode::element_folded, "element " + std::to_string(e) + ": its triangle is folded over in the state at t = " +
                                               std::to_string(s_.time) +
-                                              " s (displacements too large for the time step)");
+                                              " s (a restart or a re-cut carried it; an accepted step folds none)");
   return {};
 }
 
@@ -192,6 +193,13 @@ Outcome TimeStepper::attempt_once(double dt) {
       for (const Effect* e : active) e->rejected(step, covers_d);
       return stop(rejected.code, std::move(rejected.reason));
     }
+  }
+  // A step that folds an element is rejected here, before it is accepted, so a shorter one can
+  // be tried (step_control.h); found at the next attempt's start (compute_frames) it could not.
+  if (const std::int64_t folded = b_->config.folded_by(covers_d); folded >= 0) {
+    for (const Effect* e : active) e->rejected(step, covers_d);
+    Outcome rejected = control_.folding(folded);
+    return stop(rejected.code, std::move(rejected.reason));
   }
   // Handed on with the velocity the step carries over (block_momentum.h); a step in balance at
   // its start hands nothing on, and a direct solve leaves nothing to hand on.
