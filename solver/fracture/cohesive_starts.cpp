@@ -13,6 +13,7 @@
 #include "solver/contact/cohesive_law.h"
 #include "solver/discretisation/stress_field.h"
 #include "solver/fracture/element_geometry.h"
+#include "solver/fracture/fracture.h"
 #include "solver/fracture/rock_strength.h"
 
 namespace nmm::solve {
@@ -46,6 +47,7 @@ std::vector<std::uint8_t> cohesive_starts(const Mesh& mesh, const SceneDef& scen
       may[e] = 0;
       continue;
     }
+    if (element_area(mesh, e) < Fracture::kDebrisArea * mesh.mesh_size * mesh.mesh_size) may[e] &= kMayBeReached;  // rule 5
     if (!known) continue;
     const StrengthDef& st = scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(body)].material)].strength;
     const double r_end = rock_failure(st, end[3 * e], end[3 * e + 1], end[3 * e + 2]).ratio;

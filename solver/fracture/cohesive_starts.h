@@ -39,6 +39,13 @@
 //      crack h/2 beside the first's line, a third started at x 0.475 m, and the section, cut by
 //      three cracks over different heights, opened unevenly and bent the bar: its bottom row
 //      then cracked an element a step at x 0.6–0.8 m (ratios 1.03–1.05).
+//   5. no new crack in an element smaller than a debris block (Fracture::kDebrisArea·h², a
+//      hundredth of an element): a sliver the body's boundary clips off a lattice triangle
+//      takes its strain from covers whose stars lie mostly outside the body, and a crack
+//      through it is a fraction of a millimetre long and relieves nothing (the bar at
+//      h 0.025 m: its top edge passes 0.14 mm above a lattice row at x 0.5 m, and its first
+//      three cracks started in slivers of 2e-4 of an element there, 0.27 mm long, one a step,
+//      before any crack ran across it). It may still be reached by a tip (rule 4).
 // Runs without a fracture energy are not touched (bit for bit).
 #pragma once
 
@@ -53,7 +60,7 @@
 namespace nmm::solve {
 
 /// Bits of cohesive_starts' answer for an element.
-constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3)
+constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3, 5)
 constexpr std::uint8_t kMayBeReached = 2;  ///< a tip may grow to it across rock that holds (rule 4: rules 2, 3)
 
 /// [me] kMayStart | kMayBeReached bits: what element e of `mesh` may do at the step's solution
