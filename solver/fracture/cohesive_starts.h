@@ -23,7 +23,8 @@
 //   4. an element in the band ahead of an active tip is that crack's (Fracture::find): where
 //      it is beyond its strength, loading and not beside a face, the tip grows to its level
 //      straight on, across the elements between that hold, instead of a second crack starting
-//      beside the first (also in a step that started a crack already: it is growth). The band:
+//      beside the first (also in a step that started a crack already: it is growth), and the
+//      element is disarmed as a crossed one is (its failure is that crack's). The band:
 //      the element meets the strip of half-width h/2 about the tip's line (a crack laid anywhere
 //      within its own element's width would cross it: at cover order 0 the crack's place across
 //      its line is known to an element, Bažant & Oh's crack band), and its centroid lies ahead

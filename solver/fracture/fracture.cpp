@@ -436,6 +436,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
           if (travelled >= nearest) break;
         }
         grow(tips_[tip], holding, failure_[e].mode, true);
+        // The element's failure is this crack's from now on, wherever across the band the crack
+        // passed it: disarmed as a crossed element is (rule 5 of fracture.h), not left to start a
+        // crack of its own beside the one that reached it.
+        if (!out.empty()) crossed_[e] = 1;
         if (trace_rules())
           std::fprintf(stderr, "TRACE band step %lld element %d ratio %.5f tip %zu crack %d %.4f m ahead, %d holding: %zu segments\n",
                        static_cast<long long>(s.step), best, ratio_[e], tip, tips_[tip].crack, nearest, holding,
