@@ -20,7 +20,34 @@
 //      carries bounds the element's stress across it; a second crack beside it, less than an
 //      element away, is the same failure twice. Its tips may still grow (rules 1, 4, 5 of
 //      fracture.h).
-// Growth of a crack's tips is not touched; nor are runs without a fracture energy (bit for bit).
+//   4. an element in the band ahead of an active tip is that crack's (Fracture::find): where
+//      it is beyond its strength, loading and not beside a face, the tip grows to its level
+//      straight on, across the elements between that hold, instead of a second crack starting
+//      beside the first (also in a step that started a crack already: it is growth), and the
+//      element is disarmed as a crossed one is (its failure is that crack's). The band:
+//      the element meets the strip of half-width h/2 about the tip's line (a crack laid anywhere
+//      within its own element's width would cross it: at cover order 0 the crack's place across
+//      its line is known to an element, Bažant & Oh's crack band), and its centroid lies ahead
+//      of the tip within Hillerborg's l_ch = E·G_f/σt² (the order of a cohesive process zone's
+//      length). Crossing rock that holds is what a cohesive crack may do and a brittle one may
+//      not: faces cut through rock below its strength carry its stress at once on their elastic
+//      branch (w = σ/kn ≤ w_e, 0.1 µm in the bar), so they change nothing until that rock would
+//      break — an intrinsic cohesive interface laid ahead of the tip. Measured at h 0.05 m
+//      (reference/cohesive_bar.h, Δt 1 ms, NMM_TRACE_CRACK_RULES=1): the first crack starts in
+//      the top row at x 0.500 m (step 96, ratio 1.0074) and stops there, the elements below it
+//      at 0.988; a step later the bottom row's clipped element at x 0.525 m (ratio 1.0021, the
+//      cut elements along the bar's edges carry 1–3 % more than the inner ones) started a second
+//      crack h/2 beside the first's line, a third started at x 0.475 m, and the section, cut by
+//      three cracks over different heights, opened unevenly and bent the bar: its bottom row
+//      then cracked an element a step at x 0.6–0.8 m (ratios 1.03–1.05).
+//   5. no new crack in an element smaller than a debris block (Fracture::kDebrisArea·h², a
+//      hundredth of an element): a sliver the body's boundary clips off a lattice triangle
+//      takes its strain from covers whose stars lie mostly outside the body, and a crack
+//      through it is a fraction of a millimetre long and relieves nothing (the bar at
+//      h 0.025 m: its top edge passes 0.14 mm above a lattice row at x 0.5 m, and its first
+//      three cracks started in slivers of 2e-4 of an element there, 0.27 mm long, one a step,
+//      before any crack ran across it). It may still be reached by a tip (rule 4).
+// Runs without a fracture energy are not touched (bit for bit).
 #pragma once
 
 #include <cstdint>
@@ -28,16 +55,29 @@
 
 #include "common/mesh.h"
 #include "common/scene.h"
+#include "common/vec2.h"
 #include "solver/discretisation/run_state.h"
 
 namespace nmm::solve {
 
-/// [me] 1: element e of `mesh` may start a new crack at the step's solution `solved` (rules
-/// 1–3 above for elements of a material with a fracture energy; 1 for every other element).
+/// Bits of cohesive_starts' answer for an element.
+constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3, 5)
+constexpr std::uint8_t kMayBeReached = 2;  ///< a tip may grow to it across rock that holds (rule 4: rules 2, 3)
+
+/// [me] kMayStart | kMayBeReached bits: what element e of `mesh` may do at the step's solution
+/// `solved` (rules above for elements of a material with a fracture energy; kMayStart alone for
+/// every other element).
 /// `start`: the step's accepted start carried onto `mesh`; `started_this_step`: a new crack
 /// already started in this step; `first_crack`: the scene joint index of the run's first crack
 /// segment. Empty where no material has a fracture energy.
 std::vector<std::uint8_t> cohesive_starts(const Mesh& mesh, const SceneDef& scene, const RunState& start,
                                           const RunState& solved, bool started_this_step, std::size_t first_crack);
+
+/// Rule 4's band: element e meets the strip of half-width `half_width` (m) about the line
+/// through `tip` along the unit `dir`, and the point a new crack in it would start from (its
+/// centroid, element_geometry.h inside_point) lies ahead of `tip` along `dir` by more than 0 and
+/// at most `reach` (m); `along` (m) is that distance.
+bool in_crack_band(const Mesh& mesh, std::size_t e, const Vec2& tip, const Vec2& dir, double half_width, double reach,
+                   double& along);
 
 }  // namespace nmm::solve

@@ -9,8 +9,10 @@
 
 #include "common/ring_geometry.h"
 #include "preprocess/exact_side.h"
+#include "solver/contact/cohesive_law.h"
 #include "solver/discretisation/state_bytes.h"
 #include "solver/discretisation/stress_field.h"
+#include "solver/fracture/cohesive_starts.h"
 #include "solver/fracture/crack_parting.h"
 #include "solver/fracture/element_geometry.h"
 #include "solver/fracture/tip_drive.h"
@@ -284,8 +286,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // has not parted its element, a tip reaching for the element ahead that breaks), straight on and
   // only as a rock bridge (bridge above), in the mode of the element beyond its strength that
   // drives it (`drive`: one that holds has no mode of its own).
-  auto grow = [&](Tip& tip, int forced, CrackMode drive) {
-    bool bridged = false;  // the holding elements ahead were weighed (bridge) once this growth
+  // `band`: a cohesive crack reaching an element in the band ahead of its tip (rule 4 of
+  // cohesive_starts.h) crosses the `forced` holding elements between without a bridge.
+  auto grow = [&](Tip& tip, int forced, CrackMode drive, bool band = false) {
+    bool bridged = band;  // the holding elements ahead were weighed (bridge) once this growth
     for (std::size_t guard = 0; guard < n; ++guard) {
       const std::int32_t e = grid().at(plus(tip.at, 1e-6 * h, tip.dir));
       if (e < 0) {
@@ -402,9 +406,49 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         if (!out.empty()) return out;
       }
     }
+    // In rock that softens, an element in the band ahead of an active tip is that crack's
+    // (rule 4 of cohesive_starts.h): the nearest such tip grows straight on to its level across
+    // the elements between that hold, then on through those that break.
+    if (best >= 0 && armed_[static_cast<std::size_t>(best)] && !may_start.empty() &&
+        (may_start[static_cast<std::size_t>(best)] & kMayBeReached)) {
+      const std::size_t e = static_cast<std::size_t>(best);
+      const MaterialDef& m = scene.materials[scene.bodies[mesh.element_body[e]].material];
+      const double reach = characteristic_length(m.young, m.strength);  // m, l_ch
+      std::size_t tip = tips_.size();
+      double nearest = std::numeric_limits<double>::infinity(), along = 0;
+      for (std::size_t t = 0; t < tips_.size(); ++t)
+        if (tips_[t].active && in_crack_band(mesh, e, tips_[t].at, tips_[t].dir, 0.5 * h, reach, along) &&
+            along < nearest)
+          tip = t, nearest = along;
+      if (tip < tips_.size()) {
+        // The holding elements on the tip's line up to the one that spans best's level.
+        int holding = 0;
+        Vec2 p = tips_[tip].at;
+        for (std::size_t guard = 0; guard < n; ++guard) {
+          const std::int32_t el = grid().at(plus(p, 1e-6 * h, tips_[tip].dir));
+          if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity())) break;
+          RayExit exit;
+          if (!ray_exit(mesh, static_cast<std::size_t>(el), p, tips_[tip].dir, tol, exit)) break;
+          if (ratio_[el] < 1) ++holding;
+          p = exit.at;
+          const double travelled = (p.x - tips_[tip].at.x) * tips_[tip].dir.x + (p.y - tips_[tip].at.y) * tips_[tip].dir.y;
+          if (travelled >= nearest) break;
+        }
+        grow(tips_[tip], holding, failure_[e].mode, true);
+        // The element's failure is this crack's from now on, wherever across the band the crack
+        // passed it: disarmed as a crossed element is (rule 5 of fracture.h), not left to start a
+        // crack of its own beside the one that reached it.
+        if (!out.empty()) crossed_[e] = 1;
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE band step %lld element %d ratio %.5f tip %zu crack %d %.4f m ahead, %d holding: %zu segments\n",
+                       static_cast<long long>(s.step), best, ratio_[e], tip, tips_[tip].crack, nearest, holding,
+                       out.size());
+        if (!out.empty()) return out;
+      }
+    }
     // An armed element no tip took that may not start a crack (may_start) yields to the next.
     if (best >= 0 && armed_[static_cast<std::size_t>(best)] && !may_start.empty() &&
-        !may_start[static_cast<std::size_t>(best)]) {
+        !(may_start[static_cast<std::size_t>(best)] & kMayStart)) {
       candidates.erase(std::find(candidates.begin(), candidates.end(), best));
       continue;
     }

@@ -137,15 +137,17 @@ std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& 
     auto& p = pieces[static_cast<std::size_t>(old.element_block[static_cast<std::size_t>(map.element_parent[e])])];
     if (std::find(p.begin(), p.end(), now.element_block[e]) == p.end()) p.push_back(now.element_block[e]);
   }
-  auto piece_near = [&](std::int32_t old_block, std::int32_t v) {
+  // `own` ≥ 0: a piece the entry may not follow (its vertex's own, below).
+  auto piece_near = [&](std::int32_t old_block, std::int32_t v, std::int32_t own) {
     const auto& p = pieces[static_cast<std::size_t>(old_block)];
     if (p.size() == 1) return p.front();
     if (p.empty()) return std::int32_t{-1};
     const double x = now.loop_xy[2 * static_cast<std::size_t>(v)], y = now.loop_xy[2 * static_cast<std::size_t>(v) + 1];
-    std::int32_t best = p.front();
+    std::int32_t best = p.front() == own ? p[1] : p.front();
     double best_d = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < now.contact_edge.size(); ++i) {
       const auto e = static_cast<std::size_t>(now.contact_edge_element[i]);
+      if (now.element_block[e] == own) continue;
       if (std::find(p.begin(), p.end(), now.element_block[e]) == p.end()) continue;
       const std::int32_t a = now.contact_edge[i], first = now.element_loop_offset[e], end = now.element_loop_offset[e + 1];
       const std::int32_t b = a + 1 < end ? a + 1 : first;
@@ -157,13 +159,32 @@ std::vector<ContactHistory> transfer_history(const std::vector<ContactHistory>& 
     }
     return best;
   };
+  // A cohesive face's entry against its own block — a crack that had not split it, its faces
+  // holding across it — follows the piece across the crack once a cut splits the block: its own
+  // face edges lie at no distance from the vertex, level with the other face's, and where the
+  // nearest edge was its own the entry stayed against its own piece, the contact across started
+  // without its cohesion and nothing held that point of the crack (the bar of
+  // reference/cohesive_bar.h at h 0.05 m: the top end of its first crack, 0.011 m of the 0.19 m
+  // section, carried nothing once the crack ran through, and the section's traction, eccentric
+  // by that, opened the crack 19.4 µm at its top and 0.09 µm at its bottom in one step).
+  auto block_of_vertex = [](const Mesh& mesh) {
+    std::vector<std::int32_t> b(mesh.loop_vertex_count(), -1);
+    for (std::size_t e = 0; e < mesh.element_count(); ++e)
+      for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
+        b[static_cast<std::size_t>(v)] = mesh.element_block[e];
+    return b;
+  };
+  std::vector<std::int32_t> old_block_of, now_block_of;
+  if (cohesive) old_block_of = block_of_vertex(old), now_block_of = block_of_vertex(now);
   std::vector<ContactHistory> out;
   out.reserve(history.size());
   for (ContactHistory h : history) {
     const std::int32_t v = vertex_now[static_cast<std::size_t>(h.vertex)];
     if (v < 0) continue;
+    const bool across_own =
+        cohesive && h.cohesive.on && old_block_of[static_cast<std::size_t>(h.vertex)] == h.block;
     h.vertex = v;
-    h.block = piece_near(h.block, v);
+    h.block = piece_near(h.block, v, across_own ? now_block_of[static_cast<std::size_t>(v)] : -1);
     if (h.block < 0) continue;
     out.push_back(h);
   }
