@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -141,10 +142,11 @@ void ContactEffect::rejected(const EffectStep& step, const Eigen::VectorXd& cove
 void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   // The contacts the last accepted step ended closed with and this one started without (its
   // vertex found open, or not at all, and no mirror of it closed): their end forces were gone
-  // at its start, and the step released ½ (0 − c_end)·d of them (contact_effect.h).
+  // at its start, and the step released ½ (0 − c_end)·d of them (contact_effect.h) — also where
+  // the step re-cut the mesh (ended_ carried onto it: end_unknowns_ −2).
   released_work_ = 0;
   released_.clear();
-  if (end_unknowns_ == d.size() && !ended_.empty()) {
+  if ((end_unknowns_ == d.size() || end_unknowns_ == -2) && !ended_.empty()) {
     std::vector<std::int32_t> closed;
     std::vector<std::pair<std::int32_t, std::int32_t>> found;  // (vertex, edge) of this step's contacts
     for (const Contact& c : contacts_.contacts()) {
@@ -157,29 +159,36 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
     std::sort(closed.begin(), closed.end());
     std::sort(found.begin(), found.end());
     const auto has = [&](std::int32_t v) { return v >= 0 && std::binary_search(closed.begin(), closed.end(), v); };
+    const int nd = space_.element_dofs();
     for (const EndedContact& e : ended_) {
       // Still closed, or found open on the same edge (a joint that dilated apart: its law's own,
       // which the step solves on from the dilation it carries), is not released.
       if (has(e.vertex) || has(e.mirror) || std::binary_search(found.begin(), found.end(), std::make_pair(e.vertex, e.edge)))
         continue;
-      double w = 0;
-      for (const auto& [u, f] : e.force) w += f * d[u];
-      released_work_ -= 0.5 * w;
+      released_work_ -= 0.5 * ended_work(e, d, nd);
       released_.push_back(e.vertex);
     }
     std::sort(released_.begin(), released_.end());
   }
+  // Kept for a re-cut that throws this attempt away (continue_from).
+  start_ended_.swap(ended_);
+  start_end_unknowns_ = end_unknowns_;
   // This step's closed contacts' end forces, Σ N·cn − T·cs on its rows, for the next step.
   ended_.clear();
   end_unknowns_ = d.size();
+  const Mesh& mesh = model_.mesh();
   for (std::size_t k = 0; k < problem_.contacts().size(); ++k) {
     const Contact& c = problem_.contacts()[k];
     if (c.state == ContactState::open || (c.normal_force == 0 && c.shear_force == 0)) continue;
     const ContactProblem::Row r = problem_.row(k);
-    EndedContact e{c.at.vertex, c.mirror, c.at.edge, {}};
-    for (int i = 0; i < r.size; ++i)
-      if (r.dofs[i] >= 0 && r.dofs[i] < d.size())
-        e.force.emplace_back(r.dofs[i], c.normal_force * r.cn[i] - c.shear_force * r.cs[i]);
+    // The edge's point at ω in the reference coordinates (the mesh's, which a re-cut keeps).
+    const auto q2 = static_cast<std::size_t>(c.at.edge);
+    const auto q3 = static_cast<std::size_t>(contacts_.topology().next[q2]);
+    const double bx = mesh.loop_xy[2 * q2] + c.at.omega * (mesh.loop_xy[2 * q3] - mesh.loop_xy[2 * q2]);
+    const double by = mesh.loop_xy[2 * q2 + 1] + c.at.omega * (mesh.loop_xy[2 * q3 + 1] - mesh.loop_xy[2 * q2 + 1]);
+    EndedContact e{c.at.vertex, c.mirror, c.at.edge, c.at.elem_a, c.at.elem_b, bx, by,
+                   std::vector<double>(static_cast<std::size_t>(r.size))};
+    for (int i = 0; i < r.size; ++i) e.force[static_cast<std::size_t>(i)] = c.normal_force * r.cn[i] - c.shear_force * r.cs[i];
     ended_.push_back(std::move(e));
   }
   const ContactSet::Totals totals = contacts_.totals();
@@ -191,10 +200,110 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   step.s.max_capped = std::max(step.s.max_capped, totals.capped);
 }
 
-void ContactEffect::continue_from(const ContactEffect& before, std::vector<ContactHistory> history) {
+void ContactEffect::continue_from(const ContactEffect& before, std::vector<ContactHistory> history,
+                                  const MeshPieces* from) {
   contacts_.restore(std::move(history), {});
   contacts_.continue_from(before.contacts_);
   stats_ = before.stats_;
+  // A re-cut follows an attempt that `before` committed and the step throws away: the contacts
+  // the last accepted step ended with are what `before` held before that commit.
+  if (from && before.start_end_unknowns_ != -1) {
+    ended_ = carry_ended(before.start_ended_, *from);
+    end_unknowns_ = -2;
+  }
+}
+
+double ContactEffect::ended_work(const EndedContact& e, const Eigen::VectorXd& d, int nd) const {
+  // J/m: c_end·d, each side's values on its element's local unknowns.
+  double w = 0;
+  const int* ga = space_.element_unknowns(static_cast<std::size_t>(e.elem_a));
+  const int* gb = space_.element_unknowns(static_cast<std::size_t>(e.elem_b));
+  for (int i = 0; i < nd; ++i)
+    if (ga[i] >= 0 && ga[i] < d.size()) w += e.force[static_cast<std::size_t>(i)] * d[ga[i]];
+  for (int i = 0; i < nd; ++i)
+    if (gb[i] >= 0 && gb[i] < d.size()) w += e.force[static_cast<std::size_t>(nd + i)] * d[gb[i]];
+  return w;
+}
+
+void ContactEffect::add_ended_forces(Eigen::VectorXd& f) const {
+  if (end_unknowns_ != -2 && end_unknowns_ != f.size()) return;
+  const int nd = space_.element_dofs();
+  for (const EndedContact& e : ended_) {
+    const int* ga = space_.element_unknowns(static_cast<std::size_t>(e.elem_a));
+    const int* gb = space_.element_unknowns(static_cast<std::size_t>(e.elem_b));
+    for (int i = 0; i < nd; ++i) {
+      if (ga[i] >= 0 && ga[i] < f.size()) f[ga[i]] += e.force[static_cast<std::size_t>(i)];
+      if (gb[i] >= 0 && gb[i] < f.size()) f[gb[i]] += e.force[static_cast<std::size_t>(nd + i)];
+    }
+  }
+}
+
+Eigen::VectorXd ContactEffect::started_end_forces(Eigen::Index n, bool released) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+  const int nd = space_.element_dofs();
+  for (const EndedContact& e : start_ended_) {
+    if (std::binary_search(released_.begin(), released_.end(), e.vertex) != released) continue;
+    const int* ga = space_.element_unknowns(static_cast<std::size_t>(e.elem_a));
+    const int* gb = space_.element_unknowns(static_cast<std::size_t>(e.elem_b));
+    for (int i = 0; i < nd; ++i) {
+      if (ga[i] >= 0 && ga[i] < n) f[ga[i]] += e.force[static_cast<std::size_t>(i)];
+      if (gb[i] >= 0 && gb[i] < n) f[gb[i]] += e.force[static_cast<std::size_t>(nd + i)];
+    }
+  }
+  return f;
+}
+
+std::vector<ContactEffect::EndedContact> ContactEffect::carry_ended(const std::vector<EndedContact>& ended,
+                                                                  const MeshPieces& from) const {
+  const Mesh& now = model_.mesh();
+  const Mesh& old = from.old;
+  // The vertex now of each old one (the first, as transfer_history takes it), and the element of
+  // each vertex now.
+  std::vector<std::int32_t> vertex_now(old.loop_vertex_count(), -1);
+  for (std::size_t v = 0; v < now.loop_vertex_count() && v < from.vertex_parent.size(); ++v) {
+    const std::int32_t was = from.vertex_parent[v];
+    if (was >= 0 && vertex_now[static_cast<std::size_t>(was)] < 0) vertex_now[static_cast<std::size_t>(was)] = static_cast<std::int32_t>(v);
+  }
+  const auto element_of = [&](std::int32_t v) {
+    const auto& off = now.element_loop_offset;
+    return static_cast<std::int32_t>(std::upper_bound(off.begin(), off.end(), v) - off.begin()) - 1;
+  };
+  // The pieces of each old element (CSR).
+  std::vector<std::int32_t> first(old.element_count() + 1, 0), pieces(now.element_count());
+  for (const std::int32_t p : from.element_parent) ++first[static_cast<std::size_t>(p) + 1];
+  for (std::size_t i = 1; i < first.size(); ++i) first[i] += first[i - 1];
+  std::vector<std::int32_t> at(first.begin(), first.end() - 1);
+  for (std::size_t e = 0; e < now.element_count(); ++e)
+    pieces[static_cast<std::size_t>(at[static_cast<std::size_t>(from.element_parent[e])]++)] = static_cast<std::int32_t>(e);
+  std::vector<EndedContact> out;
+  out.reserve(ended.size());
+  for (const EndedContact& c : ended) {
+    const std::int32_t va = vertex_now[static_cast<std::size_t>(c.vertex)];
+    if (va < 0) continue;
+    const std::int32_t ea = element_of(va);
+    if (ea < 0 || from.element_parent[static_cast<std::size_t>(ea)] != c.elem_a) continue;
+    // The edge now: of the pieces of the old edge's element, the loop edge nearest its point (on
+    // it but for round-off; the old edge itself, or the part of it a new crack's vertex split off).
+    std::int32_t eb = -1, edge = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::int32_t i = first[static_cast<std::size_t>(c.elem_b)]; i < first[static_cast<std::size_t>(c.elem_b) + 1]; ++i) {
+      const auto e = static_cast<std::size_t>(pieces[static_cast<std::size_t>(i)]);
+      const std::int32_t b = now.element_loop_offset[e], end = now.element_loop_offset[e + 1];
+      for (std::int32_t v = b; v < end; ++v) {
+        const std::int32_t w = v + 1 < end ? v + 1 : b;
+        const double ax = now.loop_xy[2 * static_cast<std::size_t>(v)], ay = now.loop_xy[2 * static_cast<std::size_t>(v) + 1];
+        const double dx = now.loop_xy[2 * static_cast<std::size_t>(w)] - ax, dy = now.loop_xy[2 * static_cast<std::size_t>(w) + 1] - ay;
+        const double l2 = dx * dx + dy * dy;
+        const double t = l2 > 0 ? std::clamp(((c.bx - ax) * dx + (c.by - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+        const double dist = std::hypot(ax + t * dx - c.bx, ay + t * dy - c.by);
+        if (dist < best) best = dist, eb = static_cast<std::int32_t>(e), edge = v;
+      }
+    }
+    if (eb < 0) continue;
+    const std::int32_t mirror = c.mirror >= 0 ? vertex_now[static_cast<std::size_t>(c.mirror)] : -1;
+    out.push_back({va, mirror, edge, ea, eb, c.bx, c.by, c.force});
+  }
+  return out;
 }
 
 bool ContactEffect::update_pattern(RunState& s) {
@@ -399,27 +508,28 @@ void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
       const bool slid_on = c.start_state == ContactState::sliding && c.start_shear_force * c.shear_force > 0;
       if (c.cohesive.on) {
         t.friction += end_work;
-      } else if (!e.changed_start) {
-        t.friction += slid_on ? 0.5 * (std::abs(c.shear_force) + std::abs(c.start_shear_force)) * slip : end_work;
-        // A released contact (commit) that closes again within the step and slides: it started
-        // at no force, the step took its shear force from 0 to T along the slip, and of the
-        // release ½ (0 − c_end)·d it spent ½|T|·slip on that beyond the linear path, which
-        // friction books at its end force: the motion took the rest.
-        if (c.start_state == ContactState::open && std::binary_search(released_.begin(), released_.end(), c.at.vertex))
-          t.damped -= 0.5 * end_work;
       } else {
-        // A step that cut the mesh: the start forces of the contacts on the covers the cut split
-        // are in the force r the fracture column books ½ r·d of (the start, carried onto the cut
-        // mesh, is out of balance by them there: crack_release.h), so the slip is booked at its
-        // end force. A new crack's face (it starts closed at gap 0 with no force,
-        // state_transfer.h) that slides within that step: the static step took its shear force
-        // from 0 to T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is
-        // what the crack's release gave its faces' contacts beyond their springs
-        // (crack_release.h), so the fracture column gives it back.
-        t.friction += end_work;
+        // In a step that cut the mesh, at its end force: a cut step's faces load and unload far
+        // from linearly (the crack opens under them), and the trapezoid there moved the
+        // compression cells' residual both ways (docs/energy.md `friction`).
+        t.friction += slid_on && !e.changed_start ? 0.5 * (std::abs(c.shear_force) + std::abs(c.start_shear_force)) * slip
+                                                  : end_work;
         const auto edge = static_cast<std::size_t>(c.at.edge);
-        if (edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before))
+        if (e.changed_start && edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before)) {
+          // A new crack's face (it starts closed at gap 0 with no force, state_transfer.h) that
+          // slides within the step that cut it: the static step took its shear force from 0 to
+          // T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is what
+          // the crack's release gave its faces' contacts beyond their springs (crack_release.h),
+          // so the fracture column gives it back.
           t.fracture -= 0.5 * end_work;
+        } else if (c.start_state == ContactState::open &&
+                   std::binary_search(released_.begin(), released_.end(), c.at.vertex)) {
+          // A released contact (commit; across a re-cut too) that closes again within the step
+          // and slides: it started at no force, the step took its shear force from 0 to T along
+          // the slip, and of the release ½ (0 − c_end)·d it spent ½|T|·slip on that beyond the
+          // linear path, which friction books at its end force: the motion took the rest.
+          t.damped -= 0.5 * end_work;
+        }
       }
     }
     t.friction -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,13 +69,25 @@ class ContactEffect final : public Effect {
   /// cohesion did in slip, which is not friction's, into t.fracture. In a step that cut new cracks,
   /// a new face's contact that slides from its zero start force books ½|T|·slip less in
   /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). The work
-  /// of its forces' jump between the last accepted step's end and this step's start,
-  /// ½ (c_start − c_end,prev)·d, into t.damped (below).
+  /// of the end forces of the last accepted step's closed contacts that this step started
+  /// without, ½ (0 − c_end)·d, into t.damped (below), in a step that re-cut the mesh too.
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
-  /// new mesh), the events and what the solves have cost.
-  void continue_from(const ContactEffect& before, std::vector<ContactHistory> history);
+  /// new mesh), the events and what the solves have cost; with `from` (the re-cut's map: null
+  /// at a restart) the closed contacts the last accepted step ended with, carried onto the new
+  /// mesh (carry_ended).
+  void continue_from(const ContactEffect& before, std::vector<ContactHistory> history,
+                     const MeshPieces* from = nullptr);
+  /// N/m: adds to f (the covers' unknowns) the end forces c_end = N·cn − T·cs of the closed
+  /// contacts the last accepted step ended with, carried onto this mesh: the forces the step's
+  /// start was in balance with, where they act (crack_release.h: B of a step that re-cut).
+  void add_ended_forces(Eigen::VectorXd& f) const;
+  /// N/m on the covers' n unknowns, after an accepted step: the end forces of the closed
+  /// contacts the step before it ended with, as this step started from them (carried onto the
+  /// mesh now where the step re-cut it) — those it released (`released`: its detection found the
+  /// vertex closed nowhere) or the others. What tests check the carry with.
+  Eigen::VectorXd started_end_forces(Eigen::Index n, bool released) const;
   ContactSet& set() { return contacts_; }
   const ContactSet& set() const { return contacts_; }
   const ContactProblem& problem() const { return problem_; }
@@ -105,14 +118,31 @@ class ContactEffect final : public Effect {
   // ½ (0 − c_end)·d of it, d its motion: a static step throws that motion away, a dynamic one
   // damps it as any other (energy.cpp (1) with g0 = M a1,prev − c_end). Where such a contact
   // closes again in the step and slides, friction books its slip at the end force, |T|·slip,
-  // of which the linear path from 0 took ½: `damped` gives that half back. Not across a mesh
-  // change (the cut's release is `fracture`'s: crack_release.h, a new effect) nor a restart.
+  // of which the linear path from 0 took ½: `damped` gives that half back. Not across a
+  // restart. Across a re-cut within the step (a crack) the same holds for the contacts the cut
+  // mesh's detection does not find closed again: the re-cut carries each of them onto the new
+  // mesh (carry_ended) — its vertex by the map's vertex_parent, its edge's point to the piece of
+  // the element it was on whose loop runs through it, its row's values to the same local
+  // unknowns of the piece (an element's pieces keep its triangle's nodes and cover functions, so
+  // w_k p_j at a point are the same numbers) — and the step releases ½ (0 − c_end)·d of them.
+  // The cut itself moves no energy: the release is the step's motion against the force it lost.
   struct EndedContact {
-    std::int32_t vertex, mirror, edge;
-    std::vector<std::pair<int, double>> force;  // (unknown, N/m) of c_end
+    std::int32_t vertex, mirror, edge;  // loop vertices of the mesh now
+    std::int32_t elem_a, elem_b;        // the vertex's element, the edge's element
+    double bx, by;                      // m, the edge's point in the mesh's reference coordinates
+    std::vector<double> force;          // N/m of c_end, [2·element_dofs]: elem_a's local unknowns, elem_b's
   };
+  /// The closed contacts `ended` (of the mesh before a re-cut) carried onto this mesh by `from`;
+  /// one whose vertex or edge the re-cut left in no element is dropped.
+  std::vector<EndedContact> carry_ended(const std::vector<EndedContact>& ended, const MeshPieces& from) const;
+  /// J/m, c_end·d of `e` on this space's unknowns (nd: element_dofs()).
+  double ended_work(const EndedContact& e, const Eigen::VectorXd& d, int nd) const;
   std::vector<EndedContact> ended_;   // the last accepted step's closed contacts
-  Eigen::Index end_unknowns_ = -1;    // the unknowns of that step
+  Eigen::Index end_unknowns_ = -1;    // the unknowns of that step (-2: carried across a re-cut)
+  // The list ended_ held before the last commit: the last accepted step's, where that commit was
+  // an attempt a re-cut throws away (continue_from carries it, not the attempt's).
+  std::vector<EndedContact> start_ended_;
+  Eigen::Index start_end_unknowns_ = -1;
   std::vector<std::int32_t> released_;  // sorted vertices of the contacts released at this step's start
   double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
 };

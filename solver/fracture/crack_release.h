@@ -8,16 +8,20 @@
 //                  again from its start, carried onto the cut mesh with the same fields
 //                  (state_transfer.h: K, U, V, S unchanged — no energy moves between columns at
 //                  the cut). On the cut mesh that start is out of balance by B (N/m per unknown):
-//                  the form and every effect at rest, without inertia (StepHost::force_at_rest,
-//                  but for the contacts: their start forces are not evaluated, which would move
-//                  their solve's starting point; a new face's contact has none. Measured by the
-//                  stepper on the start of the step's last attempt:
+//                  the form and every effect at rest, without inertia (StepHost::force_at_rest),
+//                  and for the contacts the end forces c_end of the closed contacts the last
+//                  accepted step ended with, carried onto the cut mesh each on the piece it acts
+//                  on (ContactEffect::add_ended_forces: their start forces are not evaluated,
+//                  which would move their solve's starting point; a new face's contact has none).
+//                  Measured by the stepper on the start of the step's last attempt:
 //                  RunView::recut_start_work = r·d, EnergyStep::cut_work). B = r + h: r what
 //                  the cut opened, h what the start was out of balance by before it — the
 //                  inertia of DDA's static steps (M·v1_prev/Δt_prev, which the damped column
 //                  books), a dynamic step's M·a0, the contact solve's tolerance, the loads of a
 //                  run's first step (gravity put on a stress-free slope) — shared among the
-//                  pieces of a cover the cut split by their mass moments (below). The step
+//                  pieces of a cover the cut split by their mass moments (below). (Without the
+//                  contacts' end forces in B, h held them too, and a split cover's pieces shared
+//                  the force of a contact on one of them by mass.) The step
 //                  solves A d = b + B (b what it would solve uncut: the loads' increments; A =
 //                  K + a0 M, a0 = 2/Δt² with inertia in the matrix, 0 in static_mode
 //                  "equilibrium"). With U(d) = U0 + f_int0·d + ½ dᵀK d a linear step's W − ΔU is

@@ -49,11 +49,15 @@ std::string MeshBound::describe_unknown(int unknown) const {
 
 void MeshBound::continue_from(MeshBound& before, std::vector<ContactHistory> history, const pre::RecutMap* map,
                               RunState& s) {
-  contact.continue_from(before.contact, std::move(history));
-  flow.continue_from(before.flow, s);
-  if (!map) return;
+  if (!map) {
+    contact.continue_from(before.contact, std::move(history));
+    flow.continue_from(before.flow, s);
+    return;
+  }
   const MeshPieces from{before.model.mesh(), before.space, map->element_parent, map->cover_parent,
                         map->vertex_parent};
+  contact.continue_from(before.contact, std::move(history), &from);
+  flow.continue_from(before.flow, s);
   for (const Effect* e : effects) e->carry_over(from, s);
 }
 

@@ -147,9 +147,14 @@ Outcome TimeStepper::attempt_once(double dt) {
   // On a mesh re-cut within this step, what the cut opened of the force its start is out of
   // balance by (crack_release.h), for the energy meter; the assembly below starts afresh.
   const bool recut_in_step = recut_step_ == s_.step;
-  if (recut_in_step)
-    start_force_ = cut_release_force(b_->model, b_->config, s_, removed_elem_, recut_.cover_parent,
-                                     force_at_rest_of_loads());
+  if (recut_in_step) {
+    // B with the contacts' forces the start was in balance with, each on the piece it acts on
+    // (the last accepted step's end forces carried over the re-cuts: contact_effect.h), so that
+    // a split cover's pieces share what it was out of balance by, not its contacts' forces.
+    Eigen::VectorXd B = force_at_rest_of_loads();
+    b_->contact.add_ended_forces(B);
+    start_force_ = cut_release_force(b_->model, b_->config, s_, removed_elem_, recut_.cover_parent, B);
+  }
 
   // Assembly and solve; an effect that judges the solution wrong for what it assembled (a
   // spring that yields, slips or breaks) has the step solved again from there.
