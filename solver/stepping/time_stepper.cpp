@@ -96,6 +96,24 @@ void TimeStepper::set_threads(int threads) {
 
 Outcome TimeStepper::compute_frames() {
   const std::int64_t e = b_->config.place(s_.cover_xy);
+  // NMM_TRACE_FOLD: the folded element's covers (node, where the node is, where the cover has
+  // put it, its parent before the step's re-cuts) on stderr: for finding where a fold came from.
+  static const bool trace = std::getenv("NMM_TRACE_FOLD") != nullptr;
+  if (e >= 0 && trace) {
+    const Mesh& m = mesh();
+    const std::size_t u = static_cast<std::size_t>(e);
+    std::fprintf(stderr, "fold: element %lld (block %d, area %.3g m2) at t %.9g, step re-cut %d\n",
+                 static_cast<long long>(e), m.element_block[u], element_area(m, u), s_.time,
+                 recut_step_ == s_.step ? 1 : 0);
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t c = m.element_covers[3 * u + static_cast<std::size_t>(k)], n = m.cover_node[static_cast<std::size_t>(c)];
+      const std::int32_t parent =
+          recut_step_ == s_.step && static_cast<std::size_t>(c) < recut_.cover_parent.size() ? recut_.cover_parent[static_cast<std::size_t>(c)] : -1;
+      std::fprintf(stderr, "fold:   cover %d node %d at %.9g %.9g, placed %.9g %.9g, parent %d\n", c, n,
+                   m.node_xy[2 * static_cast<std::size_t>(n)], m.node_xy[2 * static_cast<std::size_t>(n) + 1],
+                   s_.cover_xy[2 * static_cast<std::size_t>(c)], s_.cover_xy[2 * static_cast<std::size_t>(c) + 1], parent);
+    }
+  }
   if (e >= 0)
     return stop(StopCode::element_folded, "element " + std::to_string(e) + ": its triangle is folded over in the state at t = " +
                                               std::to_string(s_.time) +
