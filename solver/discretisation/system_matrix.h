@@ -154,6 +154,10 @@ class SystemMatrix {
     };
     return bytes(k_) + saved_.capacity() * sizeof(double) + bytes(factored_);
   }
+  /// Bytes CHOLMOD holds now (the factor, its symbolic parts, workspace), and the most it held
+  /// since the last factorize() began (its working copies included): a bench reads them.
+  std::size_t cholmod_bytes() const { return common().memory_inuse; }
+  std::size_t cholmod_peak_bytes() const { return common().memory_usage; }
   /// Bytes held for the pattern's scatter (the groups' slots and unknowns): a bench reads it.
   std::size_t scatter_bytes() const {
     return slots_.capacity() * sizeof(std::int32_t) + slot_offset_.capacity() * sizeof(std::int64_t) +
@@ -162,6 +166,8 @@ class SystemMatrix {
 
  private:
   void set_perturbation();  // perturbation_ of factored_
+  // CHOLMOD's counters (Eigen gives its common only to a non-const wrapper; read here, not written).
+  const cholmod_common& common() const { return const_cast<Llt&>(llt_).cholmod(); }
   // Eigen's CHOLMOD wrapper, with the failing column exposed.
   struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Upper> {
     int failed_column() const;
@@ -170,7 +176,15 @@ class SystemMatrix {
     /// eliminated k-th) instead of CHOLMOD's own ordering; CHOLMOD still postorders it.
     void analyze_given(const Sparse& a, std::vector<int>& perm);
     cholmod_factor* factor() { return this->m_cholmodFactor; }
+    /// factorize()'s numeric part on the permuted lower triangle `a1` (cholmod_ptranspose of the
+    /// matrix by the factor's permutation: what cholmod_factorize_p makes and factorises).
+    void factorize_permuted(cholmod_sparse* a1);
   };
+  /// The numeric factorisation of a run whose factor is kept in single precision (the largest):
+  /// the matrix's own arrays and the scatter's slots are let go while CHOLMOD's double factor
+  /// exists, and made again, the same bits, once it is rounded (system_matrix.cpp).
+  void factorize_lean();
+  void place_slots();  // slots_ of every group of the last build in k_'s pattern
   /// (P + E)⁻¹ b with the factorisation, in double: CHOLMOD's solve, or the single-precision
   /// factor's refined against factored_.
   Eigen::VectorXd solve_factored(const Eigen::VectorXd& b) const;
