@@ -608,7 +608,7 @@ void SystemMatrix::factorize_lean() {
   memory_mark("matrix let go");
   llt_.factorize_permuted(a1);
   memory_mark("numeric factorisation");
-  if (llt_.info() == Eigen::Success) keep_single();
+  if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
   memory_mark("rounded");
   // k_ = A1(q, q)ᵀ with q the inverse permutation: the upper triangle of A again.
   std::vector<int> inverse(static_cast<std::size_t>(n));
