@@ -343,7 +343,10 @@ TEST(SystemMatrixSingle, ASinglePrecisionFactorHalvesItsBytesSolvesRefinedAndRes
   const auto set_up = [&](SystemMatrix& k, bool single) {
     k.set_amd_only(true);
     k.set_block_ordering(2, n, n);
-    if (single) k.set_single_precision(n);
+    if (single) {
+      k.set_single_precision(n);
+      k.set_lean_factorisation(n);  // the factor of the largest runs (restored: CHOLMOD's own path)
+    }
     k.build_pattern(n, g.offsets, g.dofs);
   };
   SystemMatrix dbl, sgl;
@@ -399,6 +402,7 @@ TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactoris
   k.set_amd_only(true);
   k.set_block_ordering(2, n, n);
   k.set_single_precision(n);
+  k.set_lean_factorisation(n);
   k.build_pattern(n, g.offsets, g.dofs);
   const SystemMatrix::Sparse before = assembled(k, g, n);
   ASSERT_TRUE(k.factorize());

@@ -414,13 +414,14 @@ bool SystemMatrix::factorize() {
   // single-precision factor (the largest runs) the last factorised matrix is let go first (it
   // is copied again below, once this factorisation has succeeded), and before a new pattern's
   // analysis the heap's free pages are returned, so that the double values take their place.
-  const bool lean = single_from_ > 0 && size() >= single_from_;
-  if (lean) {
+  const bool single = single_from_ > 0 && size() >= single_from_;
+  const bool lean = single && size() >= lean_from_;
+  if (single) {
     Sparse().swap(factored_);
     has_factor_ = false;
   }
   if (!analysed_) {
-    if (lean) {
+    if (single) {
 #if defined(__GLIBC__)
       malloc_trim(0);
 #endif
@@ -591,6 +592,14 @@ void SystemMatrix::Llt::factorize_permuted(cholmod_sparse* a1) {
 // pattern and values k_'s own, bit for bit — and the slots are placed again
 // in it by a search per stored entry. The factor is CHOLMOD's own, the same bits as through
 // cholmod_factorize_p (test_system_matrix).
+//
+// Measured (contact_bench --trace --memory, one thread, 2026-11-30; docs/performance.md (h)):
+//   316 × 316 bricks, h = 2 m, 929,502 unknowns: the peak of a factorisation 0.44 GB lower
+//     (3.22 against 3.66 GB at step 1); giving back the matrix and the slots 1.5 s of CPU
+//     against the numeric factorisation's 4.3–6.2 s
+//   100 × 100, h = 0.5 m, 222,516 unknowns: 0.17 s (transpose 0.05, sort 0.03, slots 0.09)
+//     against 0.61 s, for 0.07 GB of a 0.95 GB peak — not worth it there: from
+//     kLeanFactorUnknowns on only.
 void SystemMatrix::factorize_lean() {
   cholmod_common& c = llt_.cholmod();
   cholmod_factor* l = llt_.factor();
@@ -625,6 +634,7 @@ void SystemMatrix::factorize_lean() {
   std::copy(static_cast<const int*>(back->i), static_cast<const int*>(back->i) + nnz, k_.innerIndexPtr());
   std::copy(static_cast<const double*>(back->x), static_cast<const double*>(back->x) + nnz, k_.valuePtr());
   cholmod_free_sparse(&back, &c);
+  memory_mark("matrix transposed");
   // A permuted symmetric transpose leaves each column's rows in the order it met them: sorted
   // here (a column holds a few dozen), so that every entry is where it was.
   int* rows = k_.innerIndexPtr();
@@ -635,6 +645,7 @@ void SystemMatrix::factorize_lean() {
         std::swap(rows[q - 1], rows[q]);
         std::swap(vals[q - 1], vals[q]);
       }
+  memory_mark("rows sorted");
   place_slots();
   memory_mark("matrix back");
 }

@@ -30,6 +30,9 @@ inline constexpr int kBlockOrderingUnknowns = 150000;
 inline constexpr double kOrderingRefill = 1.10;
 /// Unknowns from which set_single_precision() keeps the factor in single precision (system_matrix.cpp).
 inline constexpr int kSingleFactorUnknowns = 150000;
+/// Unknowns from which a single-precision run factorises lean (set_lean_factorisation(),
+/// system_matrix.cpp factorize_lean: where it pays).
+inline constexpr int kLeanFactorUnknowns = 500000;
 
 class SystemMatrix {
  public:
@@ -70,6 +73,10 @@ class SystemMatrix {
   /// the default): its solves read half the bytes; solve() refines against the factorised matrix
   /// in double (single_factor.h, system_matrix.cpp: where it pays).
   void set_single_precision(int from = kSingleFactorUnknowns) { single_from_ = from; }
+  /// With a single-precision factor, from `from` unknowns on: the matrix's arrays and the
+  /// scatter's slots are let go while CHOLMOD writes the double factor (the run's memory peak)
+  /// and made again after, the same bits (system_matrix.cpp factorize_lean).
+  void set_lean_factorisation(int from = kLeanFactorUnknowns) { lean_from_ = from; }
   /// The factor is held in single precision.
   bool single_precision() const { return single_.ready(); }
   /// Refinement passes of solves with a single-precision factor so far.
@@ -223,6 +230,7 @@ class SystemMatrix {
   int refinements_ = 0;
   SingleFactor single_;  // the factor in single precision (set_single_precision), else not ready
   int single_from_ = 0;
+  int lean_from_ = kLeanFactorUnknowns;  // set_lean_factorisation()
   mutable std::size_t single_refinements_ = 0;
 };
 
