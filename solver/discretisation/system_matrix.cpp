@@ -594,8 +594,8 @@ void SystemMatrix::Llt::factorize_permuted(cholmod_sparse* a1) {
 // cholmod_factorize_p (test_system_matrix).
 //
 // Measured (contact_bench --trace --memory, one thread, 2026-11-30; docs/performance.md (h)):
-//   316 × 316 bricks, h = 2 m, 929,502 unknowns: the peak of a factorisation 0.44 GB lower
-//     (3.22 against 3.66 GB at step 1); giving back the matrix and the slots 1.5 s of CPU
+//   316 × 316 bricks, h = 2 m, 929,502 unknowns: the run's peak (a new pattern's factorisation)
+//     3,853 against 4,302 MB; giving back the matrix and the slots 1.5 s of CPU
 //     against the numeric factorisation's 4.3–10.4 s
 //   100 × 100, h = 0.5 m, 222,516 unknowns: 0.17 s (transpose 0.05, sort 0.03, slots 0.09)
 //     against 0.61 s, for 0.07 GB of a 0.95 GB peak — not worth it there: from
