@@ -2,8 +2,11 @@
 // in DDA static mode and dynamic, the reference problem of reference/brick_wall.h.
 //
 //   contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE]
-//   contact_bench --trace N --sizes 10 [--dynamic] [--peer] [--mesh H] [--threads N]
-//       per-step counts, times and resident memory of N steps (one solver thread unless told)
+//   contact_bench --trace N --sizes 10 [--dynamic] [--peer] [--mesh H] [--threads N] [--memory]
+//       per-step counts, times and resident memory of N steps (one solver thread unless told);
+//       --memory adds a line at each phase of the system matrix's pattern, analysis and
+//       factorisation (common/memory_marks.h): resident memory, its peak within the phase, the
+//       heap's bytes in use and free, CHOLMOD's bytes, the factor, the matrix's copies, the scatter
 //   contact_bench --peer [--sizes 10,20,30] [--steps 100] [--csv FILE]
 //       [--mesh H] [--contact-tolerance T] [--threads N]
 //       the DDA code's walls (reference/brick_wall.h peer_wall), static and dynamic, the first
@@ -20,17 +23,20 @@
 // cost growing no faster than blocks^1.2. Run it with OMP_NUM_THREADS=1 for one core.
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/CholmodSupport>
 
 #include "bench/bench_common.h"
+#include "common/memory_marks.h"
 #include "reference/brick_wall.h"
 #include "preprocess/cover_cutter.h"
 #include "common/stopwatch.h"
@@ -39,7 +45,35 @@
 namespace {
 
 // A long run of one wall, one line per step: where a settling wall's work goes as it settles.
-int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int threads) {
+// The probe of --memory: one line per mark, the peak of resident memory since the last mark
+// (the phase's own, Linux's VmHWM reset at each mark) and what was live: the heap's bytes in use
+// (main arena and mmapped blocks, mallinfo2) and held free, and the system matrix's parts.
+struct MemoryTrace {
+  const nmm::solve::TimeStepper* stepper = nullptr;
+  int step = 0;            // the step being taken
+  double run_peak_mb = 0;  // the largest peak of the phases so far, MB
+  double cpu_s = nmm::bench::thread_cpu_seconds();  // at the last mark, s
+  void mark(const char* phase) {
+    const double cpu = nmm::bench::thread_cpu_seconds();
+    const nmm::bench::Resident r = nmm::bench::resident();
+    run_peak_mb = std::max(run_peak_mb, r.peak_mb);
+    const struct mallinfo2 mi = mallinfo2();
+    const nmm::solve::SystemMatrix& sys = stepper->view().system;
+    constexpr double mb = 1e-6;
+    std::printf("# memory step %d %-21s cpu %6.2f s, resident %6.0f MB, peak in phase %6.0f MB; heap in use %6.0f MB (mmapped %6.0f), "
+                "free held %5.0f MB; CHOLMOD %6.0f MB (peak in factorize %6.0f); factor %5.0f, matrix copies %4.0f, scatter %4.0f MB\n",
+                step, phase, cpu - cpu_s, r.now_mb, r.peak_mb, mb * static_cast<double>(mi.uordblks + mi.hblkhd),
+                mb * static_cast<double>(mi.hblkhd), mb * static_cast<double>(mi.fordblks),
+                mb * static_cast<double>(sys.cholmod_bytes()), mb * static_cast<double>(sys.cholmod_peak_bytes()),
+                mb * static_cast<double>(sys.factor_bytes()), mb * static_cast<double>(sys.matrix_bytes()),
+                mb * static_cast<double>(sys.scatter_bytes()));
+    std::fflush(stdout);
+    nmm::bench::reset_peak_resident();
+    cpu_s = nmm::bench::thread_cpu_seconds();  // the probe's own time left out
+  }
+};
+
+int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int threads, bool memory) {
   const nmm::SceneDef s =
       peer ? nmm::reference::peer_wall(n, n, dynamic, mesh_size) : nmm::reference::brick_wall(n, dynamic);
   const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
@@ -49,8 +83,14 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
   malloc_trim(0);
   nmm::bench::reset_peak_resident();  // peak_rss_mb below: the run's own peak, from here on
   const nmm::bench::Resident meshed = nmm::bench::resident();
-  nmm::solve::TimeStepper st(m, s, "bench");
+  // The stepper lives until the last step's matrix is copied out for the closing comparison:
+  // that comparison's own factor must not count in the run's peak (/usr/bin/time's).
+  auto held = std::make_unique<nmm::solve::TimeStepper>(m, s, "bench");
+  nmm::solve::TimeStepper& st = *held;
   st.set_threads(threads);
+  MemoryTrace trace;
+  trace.stepper = &st;
+  if (memory) nmm::set_memory_probe([&trace](const char* phase) { trace.mark(phase); });
   const nmm::bench::Resident set_up = nmm::bench::resident();
   std::printf("# resident after the cut %.0f MB (peak %.0f MB), the mesh alone %.0f MB, with the stepper %.0f MB\n",
               cut.now_mb, cut.peak_mb, meshed.now_mb, set_up.now_mb);
@@ -61,13 +101,16 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
   std::size_t cuts = st.view().state.cuts, analyses = st.view().system.analyses(),
               orderings = st.view().system.orderings();
   for (int k = 1; k <= steps; ++k) {
+    trace.step = k;
     const nmm::Stopwatch w0;
     const double c0 = nmm::bench::thread_cpu_seconds();
     const nmm::Outcome ran = st.run_until(k * s.solver.time_step, [](std::int64_t) {});
     const double ms = 1e3 * w0.seconds(), cpu_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - c0);
     const nmm::solve::ContactSolveStats& b = st.view().contact_solve;
     const nmm::solve::StepTimings& tb = st.view().timings;
-    const nmm::bench::Resident mem = nmm::bench::resident();
+    if (memory) trace.mark("end of step");
+    nmm::bench::Resident mem = nmm::bench::resident();
+    if (memory) mem.peak_mb = std::max(mem.peak_mb, trace.run_peak_mb);
     std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f,%zu\n", k, b.newton - a.newton,
                 b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
                 b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
@@ -97,7 +140,10 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
   }
   // One factorisation against one CG iteration's work (a factor solve pair and a product with
   // the matrix) on the last step's matrix, thread CPU time: what one factorisation is worth.
-  const auto& km = st.view().system.matrix();
+  nmm::set_memory_probe({});
+  std::printf("# run's peak resident %.0f MB\n", std::max(nmm::bench::resident().peak_mb, trace.run_peak_mb));
+  const nmm::solve::SystemMatrix::Sparse km = st.view().system.matrix();
+  held.reset();
   Eigen::CholmodSupernodalLLT<nmm::solve::SystemMatrix::Sparse, Eigen::Upper> llt;
   llt.analyzePattern(km);
   double f_best = 1e9, s_best = 1e9;
@@ -169,7 +215,7 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 30, 50};
   std::string csv_path = "contact_bench.csv";
   int trace_steps = 0;
-  bool trace_dynamic = false, peer = false;
+  bool trace_dynamic = false, peer = false, trace_memory = false;
   int peer_steps = 100;
   double peer_mesh = 0.5, peer_tau = 0;
   int peer_threads = 1;
@@ -178,6 +224,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
     else if (!std::strcmp(argv[i], "--trace") && i + 1 < argc) trace_steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--dynamic")) trace_dynamic = true;
+    else if (!std::strcmp(argv[i], "--memory")) trace_memory = true;
     else if (!std::strcmp(argv[i], "--peer")) peer = true;
     else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) peer_steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc) peer_mesh = std::stod(argv[++i]);
@@ -185,11 +232,12 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) peer_threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
     else {
-      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer [--mesh H]] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--contact-tolerance T] [--threads N] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer [--mesh H]] [--memory] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--contact-tolerance T] [--threads N] [--csv FILE]\n");
       return 2;
     }
   }
-  if (trace_steps > 0) return trace_run(sizes.front(), trace_dynamic, peer, trace_steps, peer_mesh, peer_threads);
+  if (trace_steps > 0)
+    return trace_run(sizes.front(), trace_dynamic, peer, trace_steps, peer_mesh, peer_threads, trace_memory);
   if (peer) return peer_run(sizes, peer_steps, peer_mesh, peer_tau, peer_threads, csv_path);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"

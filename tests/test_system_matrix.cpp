@@ -343,7 +343,10 @@ TEST(SystemMatrixSingle, ASinglePrecisionFactorHalvesItsBytesSolvesRefinedAndRes
   const auto set_up = [&](SystemMatrix& k, bool single) {
     k.set_amd_only(true);
     k.set_block_ordering(2, n, n);
-    if (single) k.set_single_precision(n);
+    if (single) {
+      k.set_single_precision(n);
+      k.set_lean_factorisation(n);  // the factor of the largest runs (restored: CHOLMOD's own path)
+    }
     k.build_pattern(n, g.offsets, g.dofs);
   };
   SystemMatrix dbl, sgl;
@@ -384,4 +387,42 @@ TEST(SystemMatrixSingle, ASinglePrecisionFactorHalvesItsBytesSolvesRefinedAndRes
   ASSERT_TRUE(sgl.single_precision());
   const Eigen::VectorXd w = sgl.solve(b);
   EXPECT_LT((b - sgl.matrix().selfadjointView<Eigen::Upper>() * w).norm(), 1e-12 * b.norm());
+}
+
+TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactorisation) {
+  // A run whose factor is kept in single precision lets go of the matrix's arrays and the
+  // scatter's slots while CHOLMOD writes the double factor, and makes them again from its
+  // permuted copy (system_matrix.cpp factorize_lean): pattern, values and the assembly through
+  // the slots placed again must be the ones before, bit for bit; a matrix that is not positive
+  // definite is reported at its unknown as on CHOLMOD's own path.
+  constexpr int kSide = 60;
+  const Groups g = plane_grid(kSide, 2);
+  const int n = 2 * kSide * kSide;
+  SystemMatrix k;
+  k.set_amd_only(true);
+  k.set_block_ordering(2, n, n);
+  k.set_single_precision(n);
+  k.set_lean_factorisation(n);
+  k.build_pattern(n, g.offsets, g.dofs);
+  const SystemMatrix::Sparse before = assembled(k, g, n);
+  ASSERT_TRUE(k.factorize());
+  ASSERT_TRUE(k.single_precision());
+  expect_same(k.matrix(), before);
+  expect_same(assembled(k, g, n), before);  // through the slots placed again
+  // The kept analysis, new values: the same again, and the solve refined to round-off.
+  for (int i = 0; i < n; ++i) k.add_diagonal(i, 3.0);
+  const SystemMatrix::Sparse shifted = k.matrix();
+  ASSERT_TRUE(k.factorize());
+  expect_same(k.matrix(), shifted);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i);
+  const Eigen::VectorXd x = k.solve(b);
+  EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * b.norm());
+  // Not positive definite at unknown 777: reported there, the matrix given back unchanged.
+  assembled(k, g, n);
+  k.add_diagonal(777, -1e6);
+  const SystemMatrix::Sparse broken = k.matrix();
+  EXPECT_FALSE(k.factorize());
+  EXPECT_EQ(k.failed_unknown(), 777);
+  expect_same(k.matrix(), broken);
 }

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/memory_marks.h"
 #include "solver/contact/contact_readout.h"
 #include "solver/contact/contact_tolerances.h"
 #include "solver/discretisation/static_support.h"
@@ -75,10 +76,13 @@ void ContactEffect::add_groups(const RunState& s, std::vector<int>& offsets, std
 
 Outcome ContactEffect::begin_step(EffectStep& step) {
   RunState& s = step.s;
+  memory_mark("step begun");
   contacts_.begin_step(s.loop_xy, step.search_distance + contacts_.max_dilation() +
                            contacts_.cohesive_reach(),
                        kContactTolerances.new_depth * model_.mesh().mesh_size, model_.w0());
+  memory_mark("contacts detected");
   problem_.build(s.loop_xy, step.context.config, model_.w0());
+  memory_mark("contact rows");
   step.pattern_changed = update_pattern(s);
   step.timings.contact_detection = contacts_.detection_stats().seconds;
   return {};

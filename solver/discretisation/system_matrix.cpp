@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 
 #include "common/error.h"
+#include "common/memory_marks.h"
 #include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/state_bytes.h"
 
@@ -156,7 +158,11 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
 }
 
 void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const std::vector<int>& dofs) {
-  if (grow_in_place(n, offsets, dofs)) return;
+  memory_mark("before pattern");
+  if (grow_in_place(n, offsets, dofs)) {
+    memory_mark("pattern grown");
+    return;
+  }
   ++builds_;
   // Column by column, without sorting the whole pattern or searching it: the groups of each
   // unknown (dof → groups incidence), then column c's rows are the unknowns ≥ c of c's groups,
@@ -260,6 +266,7 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
   // A matrix that is not positive definite is reported by us (failed_unknown), on one line;
   // CHOLMOD itself must not print.
   llt_.cholmod().print = 0;
+  memory_mark("pattern built");
 }
 
 // AMD alone. CHOLMOD's default strategy tries METIS after AMD when AMD's factor is dense
@@ -399,20 +406,30 @@ void SystemMatrix::analyse(const Sparse& a) {
 }
 
 bool SystemMatrix::factorize() {
+  cholmod_common& cc = llt_.cholmod();
+  cc.memory_usage = cc.memory_inuse;  // cholmod_peak_bytes(): this factorisation's
+  memory_mark("before factorisation");
+  // Every factorisation writes the factor's double values anew (a new pattern's are allocated,
+  // a kept one's pages refaulted: single_factor.h): the run's peak of memory. With a
+  // single-precision factor (the largest runs) the last factorised matrix is let go first (it
+  // is copied again below, once this factorisation has succeeded), and before a new pattern's
+  // analysis the heap's free pages are returned, so that the double values take their place.
+  const bool single = single_from_ > 0 && size() >= single_from_;
+  const bool lean = single && size() >= lean_from_;
+  if (single) {
+    Sparse().swap(factored_);
+    has_factor_ = false;
+  }
   if (!analysed_) {
-    // A new pattern's factor is allocated anew: the run's peak of memory. With a single-precision
-    // factor (the largest runs) the last factorised matrix is let go first (it is copied again
-    // below, once this factorisation has succeeded) and the heap's free pages are returned, so
-    // that the new factor's double values take their place.
-    if (single_from_ > 0 && size() >= single_from_) {
-      Sparse().swap(factored_);
-      has_factor_ = false;
+    if (single) {
 #if defined(__GLIBC__)
       malloc_trim(0);
 #endif
+      memory_mark("released");
     }
     analyse(k_);
     analysed_ = true;
+    memory_mark("analysis");
   }
   // The perturbation lives only in the factor: the values keep K for the refinement.
   std::vector<double> delta(regularised_.size());
@@ -426,14 +443,20 @@ bool SystemMatrix::factorize() {
     }
   }
   single_.clear();  // CHOLMOD writes the factor's values anew
-  llt_.factorize(k_);
+  if (lean)
+    factorize_lean();  // rounds the factor to single precision itself
+  else
+    llt_.factorize(k_);
+  memory_mark("factorisation");
   failed_unknown_ = -1;
   has_factor_ = llt_.info() == Eigen::Success;
   // The matrix factorised, perturbation included: a restart refactorises exactly it (bitwise).
   if (has_factor_) {
     factored_ = k_;
+    memory_mark("matrix copied");
     set_perturbation();
     keep_single();
+    memory_mark("single precision");
   }
   for (std::size_t r = 0; r < regularised_.size(); ++r) k_.valuePtr()[diagonal(regularised_[r])] -= delta[r];
   if (!has_factor_) {
@@ -549,7 +572,101 @@ void SystemMatrix::saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) con
 }
 
 void SystemMatrix::keep_single() {
-  if (single_from_ > 0 && size() >= single_from_) single_.take(llt_.factor());
+  if (!single_.ready() && single_from_ > 0 && size() >= single_from_) single_.take(llt_.factor());
+}
+
+void SystemMatrix::Llt::factorize_permuted(cholmod_sparse* a1) {
+  double beta[2] = {0, 0};  // Eigen's shift, as its factorize() hands cholmod_factorize_p
+  cholmod_super_numeric(a1, nullptr, beta, this->m_cholmodFactor, &this->cholmod());
+  // As Eigen's factorize(): on success CHOLMOD leaves minor at n.
+  this->m_info = this->m_cholmodFactor->minor == this->m_cholmodFactor->n ? Eigen::Success : Eigen::NumericalIssue;
+  this->m_factorizationIsOk = true;
+}
+
+// What cholmod_factorize_p does for a supernodal LLᵀ of an upper triangle — A1 = tril(P A Pᵀ)
+// by one permuted transpose, then cholmod_super_numeric on A1 — done here in its two parts, so
+// that between them the matrix's own arrays (k_: 18.3 M entries, 0.22 GB at 930k unknowns) and
+// the scatter's slots (0.24 GB) are let go: CHOLMOD reads only A1 while it writes the double
+// factor (1.7–1.8 GB there). Once the factor is rounded to float (half its bytes go back to the
+// system), k_ comes back from A1 by the inverse permuted transpose, each column's rows sorted —
+// pattern and values k_'s own, bit for bit — and the slots are placed again
+// in it by a search per stored entry. The factor is CHOLMOD's own, the same bits as through
+// cholmod_factorize_p (test_system_matrix).
+//
+// Measured (contact_bench --trace --memory, one thread, 2026-11-30; docs/performance.md (h)):
+//   316 × 316 bricks, h = 2 m, 929,502 unknowns: the run's peak (a new pattern's factorisation)
+//     3,853 against 4,302 MB; giving back the matrix and the slots 1.5 s of CPU
+//     against the numeric factorisation's 4.3–10.4 s
+//   100 × 100, h = 0.5 m, 222,516 unknowns: 0.17 s (transpose 0.05, sort 0.03, slots 0.09)
+//     against 0.61 s, for 0.07 GB of a 0.95 GB peak — not worth it there: from
+//     kLeanFactorUnknowns on only.
+void SystemMatrix::factorize_lean() {
+  cholmod_common& c = llt_.cholmod();
+  cholmod_factor* l = llt_.factor();
+  const int n = size();
+  const Sparse& values = k_;
+  cholmod_sparse view = Eigen::viewAsCholmod(values.selfadjointView<Eigen::Upper>());
+  cholmod_sparse* a1 = cholmod_ptranspose(&view, 2, static_cast<int*>(l->Perm), nullptr, 0, &c);
+  if (!a1) {  // no memory for the copy: CHOLMOD's own way (which would need it too)
+    llt_.factorize(k_);
+    keep_single();
+    return;
+  }
+  Sparse().swap(k_);
+  std::vector<std::int32_t>().swap(slots_);
+  memory_mark("matrix let go");
+  llt_.factorize_permuted(a1);
+  memory_mark("numeric factorisation");
+  if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
+  memory_mark("rounded");
+  // k_ = A1(q, q)ᵀ with q the inverse permutation: the upper triangle of A again.
+  std::vector<int> inverse(static_cast<std::size_t>(n));
+  const int* perm = static_cast<const int*>(l->Perm);
+  for (int k = 0; k < n; ++k) inverse[static_cast<std::size_t>(perm[k])] = k;
+  cholmod_sparse* back = cholmod_ptranspose(a1, 2, inverse.data(), nullptr, 0, &c);
+  cholmod_free_sparse(&a1, &c);
+  if (!back) throw std::bad_alloc();
+  const auto* bp = static_cast<const int*>(back->p);
+  const auto nnz = static_cast<Eigen::Index>(bp[n]);
+  k_ = Sparse(n, n);
+  k_.resizeNonZeros(nnz);
+  std::copy(bp, bp + n + 1, k_.outerIndexPtr());
+  std::copy(static_cast<const int*>(back->i), static_cast<const int*>(back->i) + nnz, k_.innerIndexPtr());
+  std::copy(static_cast<const double*>(back->x), static_cast<const double*>(back->x) + nnz, k_.valuePtr());
+  cholmod_free_sparse(&back, &c);
+  memory_mark("matrix transposed");
+  // A permuted symmetric transpose leaves each column's rows in the order it met them: sorted
+  // here (a column holds a few dozen), so that every entry is where it was.
+  int* rows = k_.innerIndexPtr();
+  double* vals = k_.valuePtr();
+  for (int col = 0; col < n; ++col)
+    for (int p = k_.outerIndexPtr()[col] + 1; p < k_.outerIndexPtr()[col + 1]; ++p)
+      for (int q = p; q > k_.outerIndexPtr()[col] && rows[q - 1] > rows[q]; --q) {
+        std::swap(rows[q - 1], rows[q]);
+        std::swap(vals[q - 1], vals[q]);
+      }
+  memory_mark("rows sorted");
+  place_slots();
+  memory_mark("matrix back");
+}
+
+void SystemMatrix::place_slots() {
+  const int* outer = k_.outerIndexPtr();
+  const int* inner = k_.innerIndexPtr();
+  const std::size_t ng = group_offsets_.size() - 1;
+  slots_.resize(static_cast<std::size_t>(slot_offset_[ng]));
+  for (std::size_t g = 0; g < ng; ++g) {
+    std::int32_t* out = slots_.data() + slot_offset_[g];
+    const int m = group_offsets_[g + 1] - group_offsets_[g];
+    const int* d = group_dofs_.data() + group_offsets_[g];
+    for (int jj = 0; jj < m; ++jj)
+      for (int ii = 0; ii < m; ++ii)
+        if (d[ii] >= d[jj]) {  // row d[jj] of column d[ii], as build_pattern placed it
+          const int* first = inner + outer[d[ii]];
+          const int* last = inner + outer[d[ii] + 1];
+          *out++ = static_cast<std::int32_t>(std::lower_bound(first, last, d[jj]) - inner);
+        }
+  }
 }
 
 Eigen::VectorXd SystemMatrix::solve_unrefined(const Eigen::VectorXd& b) const {

@@ -30,6 +30,9 @@ inline constexpr int kBlockOrderingUnknowns = 150000;
 inline constexpr double kOrderingRefill = 1.10;
 /// Unknowns from which set_single_precision() keeps the factor in single precision (system_matrix.cpp).
 inline constexpr int kSingleFactorUnknowns = 150000;
+/// Unknowns from which a single-precision run factorises lean (set_lean_factorisation(),
+/// system_matrix.cpp factorize_lean: where it pays).
+inline constexpr int kLeanFactorUnknowns = 500000;
 
 class SystemMatrix {
  public:
@@ -70,6 +73,10 @@ class SystemMatrix {
   /// the default): its solves read half the bytes; solve() refines against the factorised matrix
   /// in double (single_factor.h, system_matrix.cpp: where it pays).
   void set_single_precision(int from = kSingleFactorUnknowns) { single_from_ = from; }
+  /// With a single-precision factor, from `from` unknowns on: the matrix's arrays and the
+  /// scatter's slots are let go while CHOLMOD writes the double factor (the run's memory peak)
+  /// and made again after, the same bits (system_matrix.cpp factorize_lean).
+  void set_lean_factorisation(int from = kLeanFactorUnknowns) { lean_from_ = from; }
   /// The factor is held in single precision.
   bool single_precision() const { return single_.ready(); }
   /// Refinement passes of solves with a single-precision factor so far.
@@ -154,6 +161,10 @@ class SystemMatrix {
     };
     return bytes(k_) + saved_.capacity() * sizeof(double) + bytes(factored_);
   }
+  /// Bytes CHOLMOD holds now (the factor, its symbolic parts, workspace), and the most it held
+  /// since the last factorize() began (its working copies included): a bench reads them.
+  std::size_t cholmod_bytes() const { return common().memory_inuse; }
+  std::size_t cholmod_peak_bytes() const { return common().memory_usage; }
   /// Bytes held for the pattern's scatter (the groups' slots and unknowns): a bench reads it.
   std::size_t scatter_bytes() const {
     return slots_.capacity() * sizeof(std::int32_t) + slot_offset_.capacity() * sizeof(std::int64_t) +
@@ -162,6 +173,8 @@ class SystemMatrix {
 
  private:
   void set_perturbation();  // perturbation_ of factored_
+  // CHOLMOD's counters (Eigen gives its common only to a non-const wrapper; read here, not written).
+  const cholmod_common& common() const { return const_cast<Llt&>(llt_).cholmod(); }
   // Eigen's CHOLMOD wrapper, with the failing column exposed.
   struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Upper> {
     int failed_column() const;
@@ -170,7 +183,15 @@ class SystemMatrix {
     /// eliminated k-th) instead of CHOLMOD's own ordering; CHOLMOD still postorders it.
     void analyze_given(const Sparse& a, std::vector<int>& perm);
     cholmod_factor* factor() { return this->m_cholmodFactor; }
+    /// factorize()'s numeric part on the permuted lower triangle `a1` (cholmod_ptranspose of the
+    /// matrix by the factor's permutation: what cholmod_factorize_p makes and factorises).
+    void factorize_permuted(cholmod_sparse* a1);
   };
+  /// The numeric factorisation of a run whose factor is kept in single precision (the largest):
+  /// the matrix's own arrays and the scatter's slots are let go while CHOLMOD's double factor
+  /// exists, and made again, the same bits, once it is rounded (system_matrix.cpp).
+  void factorize_lean();
+  void place_slots();  // slots_ of every group of the last build in k_'s pattern
   /// (P + E)⁻¹ b with the factorisation, in double: CHOLMOD's solve, or the single-precision
   /// factor's refined against factored_.
   Eigen::VectorXd solve_factored(const Eigen::VectorXd& b) const;
@@ -209,6 +230,7 @@ class SystemMatrix {
   int refinements_ = 0;
   SingleFactor single_;  // the factor in single precision (set_single_precision), else not ready
   int single_from_ = 0;
+  int lean_from_ = kLeanFactorUnknowns;  // set_lean_factorisation()
   mutable std::size_t single_refinements_ = 0;
 };
 
