@@ -158,14 +158,6 @@ constexpr double kDirectionBalance = 0.7;
 // overhead, solver_threads.cpp.) So the flop ratio, at most kMaxFactorisationInCgIterations.
 // Counts, not clocks, so a run is the same on every machine.
 constexpr double kMaxFactorisationInCgIterations = 10;
-// The same with the factor in single precision (system_matrix.h, from 150,000 unknowns): its
-// solve pair reads half the bytes, while a factorisation also rounds the factor and refaults
-// the pages it gave back. Measured on the 10,000-block wall at h = 0.5 m (222,516 unknowns,
-// bench/trace_cost.py over 100 static steps, 2026-11-30): a factorisation 696 ms, a CG
-// iteration 41.7 ms, 17 iterations; with 16 instead of 10 its first steps made fewer
-// factorisations for more CG and ran faster (docs/notes/2026-11-scale.md, 2026-11-30 morning).
-// No smaller system holds its factor in single precision: their runs do not change.
-constexpr double kMaxFactorisationInCgIterationsSingle = 16;
 
 // Friction strengths that may move in one iterate, per CG iteration of the budget, for CG on the
 // kept factorisation to be worth trying. Measured on the DDA code's walls (contact_bench --peer,
@@ -177,8 +169,7 @@ constexpr int kMovedPerCgIteration = 5;
 int cg_budget(const SystemMatrix& k, std::size_t contacts) {
   const double per_iteration = 4.0 * k.factor_nonzeros() + 4.0 * static_cast<double>(k.nonzeros()) +
                                100.0 * static_cast<double>(contacts);
-  const double cap = k.single_precision() ? kMaxFactorisationInCgIterationsSingle : kMaxFactorisationInCgIterations;
-  return static_cast<int>(std::clamp(k.factor_flops() / per_iteration, 3.0, cap));
+  return static_cast<int>(std::clamp(k.factor_flops() / per_iteration, 3.0, kMaxFactorisationInCgIterations));
 }
 
 // y = H v.
