@@ -18,7 +18,8 @@
 # building. Both sides are CPU time: nmm's is the thread's CPU over its 100 steps (contact_bench);
 # the DDA code's is its process's user + system time (/usr/bin/time) over the run, cutting
 # included, per step. The runner's own ms_per_step is wall-clock (CLOCK_MONOTONIC), which on a
-# loaded machine counts the time it waited: it is kept beside it (ntdda_wall_ms_per_step).
+# loaded machine counts the time it waited: it is kept beside it (ntdda_wall_ms_per_step). Each
+# row also names the CPU and the BLAS kernels (build nmm-solve too: its --version gives them).
 set -e
 cd "$(dirname "$0")/.."
 : "${NTDDA_RUN:?set NTDDA_RUN to the DDA code's runner}"
@@ -30,7 +31,11 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 out=bench/results/peer_compare.csv
-echo "date,mode,wall_n,nmm_mesh_size,ntdda_blocks,ntdda_ms_per_step,nmm_blocks,nmm_unknowns,nmm_ms_per_step,ratio,nmm_solves_per_step,nmm_factorisations_per_step,nmm_cg_per_step,nmm_detection_ms_per_step,nmm_cuts,load_average,ntdda_wall_ms_per_step,nmm_analyses" > "$out"
+# The machine each row ran on: the CPU's model name and the BLAS kernels OpenBLAS picked for it
+# (nmm-solve --version's BLAS line, summary.json's `blas`; commas become semicolons).
+cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1 | tr ',' ';')
+blas=$( (build/bin/nmm-solve --version 2>/dev/null || true) | sed -n 's/^BLAS: //p' | tr ',' ';')
+echo "date,mode,wall_n,nmm_mesh_size,ntdda_blocks,ntdda_ms_per_step,nmm_blocks,nmm_unknowns,nmm_ms_per_step,ratio,nmm_solves_per_step,nmm_factorisations_per_step,nmm_cg_per_step,nmm_detection_ms_per_step,nmm_cuts,load_average,ntdda_wall_ms_per_step,nmm_analyses,cpu,blas" > "$out"
 for n in $SIZES; do
   for h in $MESHES; do
     build/bin/contact_bench --peer --sizes "$n" --steps $STEPS --mesh "$h" --csv "$work/nmm_$n.part" > /dev/null
@@ -52,9 +57,10 @@ for n in $SIZES; do
     # solves_per_step,factorisations_per_step,cg_per_step,friction_updates_per_step,
     # detection_ms_per_step,factorisation_ms_per_step,cg_ms_per_step,cuts,status,load_average,
     # threads,wall_ms_per_step,line_search_ms_per_step,assembly_ms_per_step,update_ms_per_step,analyses
-    grep "^$mode," "$work/nmm_$n.csv" | awk -F, -v d="$(date +%F)" -v nb="$nt_blocks" -v nm="$nt_ms" -v nw="$nt_wall" '{
+    grep "^$mode," "$work/nmm_$n.csv" | awk -F, -v d="$(date +%F)" -v nb="$nt_blocks" -v nm="$nt_ms" -v nw="$nt_wall" \
+        -v cpu="$cpu" -v blas="$blas" '{
       ratio = (nm > 0) ? sprintf("%.2f", $8 / nm) : "";
-      printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", d, $1, $2, $3, nb, (nm == "" ? "crashed" : nm), $4, $5, $8, ratio, $9, $10, $11, $13, $16, $18, nw, $24 }' >> "$out"
+      printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", d, $1, $2, $3, nb, (nm == "" ? "crashed" : nm), $4, $5, $8, ratio, $9, $10, $11, $13, $16, $18, nw, $24, cpu, blas }' >> "$out"
   done
 done
 cat "$out"

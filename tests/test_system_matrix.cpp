@@ -15,6 +15,7 @@
 
 namespace {
 
+using nmm::solve::SingleFactor;
 using nmm::solve::SystemMatrix;
 
 struct Groups {
@@ -368,6 +369,12 @@ TEST(SystemMatrixSingle, ASinglePrecisionFactorHalvesItsBytesSolvesRefinedAndRes
   const double off = (z - x).norm() / x.norm();
   EXPECT_GT(off, 1e-10);
   EXPECT_LT(off, 1e-5);
+  // The passes' two kernel sets (AVX where the CPU has it, SSE2) give the same bits.
+  const bool avx = SingleFactor::use_avx(true);
+  SingleFactor::use_avx(false);
+  const Eigen::VectorXd z_sse2 = sgl.solve_unrefined(b);
+  SingleFactor::use_avx(avx);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(z_sse2[i], z[i]) << "unknown " << i << (avx ? "" : " (no AVX here)");
   // solve() refines against the factorised matrix in double: K x = b to round-off.
   const Eigen::VectorXd y = sgl.solve(b);
   EXPECT_LT((b - sgl.matrix().selfadjointView<Eigen::Upper>() * y).norm(), 1e-12 * b.norm());

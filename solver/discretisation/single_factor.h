@@ -38,12 +38,16 @@ class SingleFactor {
   bool ready() const { return l_ != nullptr; }
   /// x = (L̃ L̃ᵀ)⁻¹ b in the unknowns' order (the permutation undone), in double.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// The passes' kernels: AVX where the CPU has it (the default), else SSE2; both give the same
+  /// bits (single_factor.cpp). Returns whether AVX is used now; a test compares the two.
+  static bool use_avx(bool on);
   /// Bytes the factor holds: float values, supernodes' row indices, per-column integers.
   std::size_t bytes() const;
 
  private:
   const cholmod_factor* l_ = nullptr;
   const float* x_ = nullptr;  // [xsize] the values, supernode by supernode, column-major
+  std::vector<double> inv_;   // [n] 1 / L_kk in the factor's column order
   int max_rows_ = 0;          // the tallest supernode's rows (work vector size)
 };
 
