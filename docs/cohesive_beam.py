@@ -3,6 +3,7 @@
 "Cohesive softening").
 
     python3 docs/cohesive_beam.py BIN_DIR OUT_DIR [--figure docs/figures/cohesive_beam.svg]
+    python3 docs/cohesive_beam.py BIN_DIR OUT_DIR --stiffness   # the beam before it cracks
 
 The beam of Petersson (1981, Lund TVBM-1006; docs/physics.md §6): span 2.0 m between roller
 supports, depth 0.2 m, a notch 0.1 m deep and 10 mm wide at mid-span, E 30 GPa, nu 0.2, plane
@@ -19,6 +20,12 @@ load strip (top, mid-span) moves down 1 um a static step (dt 1 ms), 1000 steps:
     +-----------------+---------------------------+
       ==                                        ==
      0.09-0.11 m         span 2.0 m        2.09-2.11 m
+
+--stiffness runs the beam without cracks (tensile strength 1000x) to 0.1 mm at cover orders 0
+and 1 and prints its stiffness, the slope of P against h between 0.05 and 0.1 mm (the static
+steps' inertia adds a constant to P), against the closed form: a simply supported beam with shear,
+S^3/(48EI) + S/(4 kappa G W), plus the notch's compliance 2/E * int_0^a (K/P)^2 da with K of a
+three-point bend bar of S/W = 4 (Srawley 1976), 61.4 kN/m per mm.
 
 Each run's load P (N per m of thickness) is the moving support's work per travel (energy.csv
 load_work: dW/dh), its deflection h the support's travel. Writes OUT_DIR/cohesive_beam.csv
@@ -94,8 +101,44 @@ def svg(curves, path):
     write(parts, path)
 
 
+def closed_form_stiffness():
+    """N/m per m, P/h of the notched beam (the docstring's compliance)."""
+    e, w, span, a, nu = 3e10, 0.2, 2.0, 0.1, 0.2
+
+    def k_per_p(x):  # 1/m^(3/2): K/P per unit thickness, Srawley's S/W = 4 formula
+        r = x / w
+        f = 3 * r ** 0.5 * (1.99 - r * (1 - r) * (2.15 - 3.93 * r + 2.7 * r * r)) / (2 * (1 + 2 * r) * (1 - r) ** 1.5)
+        return span / w ** 1.5 * f
+    n = 4000
+    crack = sum(2 / e * k_per_p((i + 0.5) * a / n) ** 2 * a / n for i in range(n))
+    beam = span ** 3 / (48 * e * w ** 3 / 12) + span / (4 * 5 / 6 * e / (2 * (1 + nu)) * w)
+    return 1 / (beam + crack)
+
+
+def stiffness(a, out):
+    exact = closed_form_stiffness()
+    for h in SIZES:
+        for order in (0, 1):
+            s = scene(h)
+            s["materials"]["concrete"]["strength"]["tensile"] *= 1000
+            s["solver"].update({"steps": 100, "cover_order": order})
+            name = out / f"elastic_{h}_{order}"
+            scene_file, mesh_file = out / f"elastic_{h}_{order}.json", out / f"elastic_{h}_{order}.nmm"
+            scene_file.write_text(json.dumps(s))
+            subprocess.run([f"{a.bin_dir}/nmm-preprocess", scene_file, "-o", mesh_file], check=True, capture_output=True)
+            subprocess.run([f"{a.bin_dir}/nmm-solve", mesh_file, "-o", name, "-q"], check=True, capture_output=True)
+            pts = [p for p in curve(name)[0] if 0.05 <= p[0] <= 0.1]
+            mx, my = sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts)
+            k = sum((p[0] - mx) * (p[1] - my) for p in pts) / sum((p[0] - mx) ** 2 for p in pts)
+            print(f"h {h} m, cover order {order}: {k:.1f} kN/m per mm ({100 * (k / (exact / 1e6) - 1):+.0f} % of "
+                  f"the closed form {exact / 1e6:.1f})")
+
+
 def main():
-    a, out = arguments()
+    a, out = arguments([("--stiffness", {"action": "store_true"})])
+    if a.stiffness:
+        stiffness(a, out)
+        return
     curves = {}
     with open(out / "cohesive_beam.csv", "w") as f:
         f.write("mesh_m,deflection_mm,load_kn_per_m\n")

@@ -28,6 +28,19 @@
 // strength is their tensile strength (Camacho and Ortiz's ratio of the two); with β ≠ 1 the
 // traction of an open face leans off its opening, and a pull across a crack that kinks from
 // element to element shears it.
+// Closing (the faces meet, δ = −w > 0). The crack set's spring k against the secant s(κ) < k of a
+// damaged face in tension would put a kink into the normal law at w = 0: the Newton iterates of a
+// face unloaded to a gap of nanometres then switched between the two tangents every iteration and
+// cycled (Petersson's beam, docs/notes/2026-11-cohesive.md). The stiffness instead rises from s to
+// k over the elastic opening b = w_e as the faces come into contact,
+//     σ(δ) = s·δ + (k − s)·δ²/(2b)  (0 ≤ δ ≤ b),   σ_joint(δ − (1 − s/k)·b/2)  (δ > b),
+// continuous with its tangent at δ = 0 and (for a constant kn) at b; the faces interpenetrate at
+// most (1 − s/k)·b/2 ≤ w_e/2 more under a compressive load than the crack set's law alone allows.
+// An undamaged face (s = k) keeps the crack set's law. The shear spring of a damaged face is its
+// secant β²·s(κ) (capped at the crack set's ks) whether open or closed, so that its shear force is
+// continuous through closing too: at δ = 0 the closed face's strength is its cohesion β·t_env(κ),
+// which the open face's secant traction β²·s(κ)·w_s reaches only on the envelope (β·w_s ≤ λ ≤ κ).
+//
 // Dissipated energy per unit length of crack at damage κ (the work to κ on the envelope less the
 // elastic energy the secant gives back), a function of κ alone:
 //     D(κ) = 0 (κ ≤ w_e),   ½·(σt·κ − t_env(κ)·w_e) (w_e < κ < w_c),   G_f = ½·σt·w_c (κ ≥ w_c)
@@ -84,6 +97,28 @@ CohesiveTraction cohesive_traction(const CohesiveLaw& law, double k, double kapp
   const double we = elastic_opening(law, k);
   t.stiffness = t.kappa <= we ? law.tensile / we : lambda < kappa0 ? st.secant : 0.0;
   return t;
+}
+
+CohesiveClosure cohesive_closure(const CohesiveLaw& law, double k, double kappa, double closure) {
+  CohesiveClosure c;
+  c.closure = closure;
+  if (!law.on() || !(k > 0)) return c;
+  const double b = elastic_opening(law, k), s = cohesive_state(law, k, kappa).secant;
+  if (!(s < k) || !(b > 0)) return c;
+  if (closure < b) {
+    c.band = true;
+    c.stress = s * closure + (k - s) * closure * closure / (2 * b);
+    c.stiffness = s + (k - s) * closure / b;
+    return c;
+  }
+  c.closure = closure - (1 - s / k) * 0.5 * b;
+  return c;
+}
+
+double cohesive_elastic_opening(const CohesiveLaw& law, double k) { return elastic_opening(law, k); }
+
+double cohesive_shear_secant(const CohesiveLaw& law, double k, double kappa) {
+  return law.beta * law.beta * cohesive_state(law, k, kappa).secant;
 }
 
 double cohesive_dissipation(const CohesiveLaw& law, double k, double kappa) {

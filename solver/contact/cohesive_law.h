@@ -50,6 +50,28 @@ struct CohesiveTraction {
 };
 CohesiveTraction cohesive_traction(const CohesiveLaw& law, double k, double kappa0, double opening, double slip);
 
+/// A face of damage κ closing by δ > 0 (m): the normal stress (Pa, compression positive) and its
+/// tangent (Pa/m) run from the unloading secant s(κ) at δ = 0 to the crack set's stiffness k over a
+/// band b = w_e (the elastic opening σt/k),
+///     σ = s·δ + (k − s)·δ²/(2b)   (δ < b),   the crack set's own law at δ − (1 − s/k)·b/2 beyond,
+/// so force and tangent are continuous where the face closes (cohesive_law.cpp). `band`: δ < b;
+/// beyond it the caller evaluates the crack set's law at `closure` (the shifted δ). An undamaged
+/// face (s = k) gets its law at δ itself.
+struct CohesiveClosure {
+  bool band = false;     ///< within the band: stress and stiffness hold
+  double stress = 0;     ///< Pa, compression positive
+  double stiffness = 0;  ///< Pa/m
+  double closure = 0;    ///< m, the closure the crack set's law sees beyond the band
+};
+CohesiveClosure cohesive_closure(const CohesiveLaw& law, double k, double kappa, double closure);
+
+/// Pa/m, the tangential secant of a face of damage κ, β²·s(κ): the shear stiffness of an open face,
+/// and of a closed damaged one below its strength (one spring either side of closing).
+double cohesive_shear_secant(const CohesiveLaw& law, double k, double kappa);
+
+/// m, w_e = min(σt/k, w_c/2): the opening at which the faces reach σt on the crack set's spring k.
+double cohesive_elastic_opening(const CohesiveLaw& law, double k);
+
 /// m, λ = √(⟨w_n⟩² + β²·w_s²): the effective opening of an opening w_n and a plastic slip w_s.
 double effective_opening(const CohesiveLaw& law, double opening, double slip);
 

@@ -40,7 +40,10 @@
 // spring in tension is the cohesive law at the damage κ = max(κ_start, λ(g, w_s)) of the iterate
 // (λ the effective opening), the secant t(κ)·g/κ — the envelope itself while loading — with the
 // elastic stiffness, the secant or nothing (softening) in the Newton matrix; an open face's shear
-// is β²·(t(κ)/κ)·w_s on the same secant, a closed one's strength tanφ·N + β·σt·(t(κ)/σt)·L. Such
+// is β²·(t(κ)/κ)·w_s on the same secant, a closed one's strength tanφ·N + β·σt·(t(κ)/σt)·L. A
+// damaged face closes on a normal spring that rises from its secant to the crack set's kn over
+// w_e and keeps the secant shear spring under that strength (cohesive_law.cpp "Closing"): force
+// and tangent are continuous where it closes, so its iterates do not cycle between the two. Such
 // a face is a bond while κ < w_c (it never breaks at a peak: it softens), and commit() keeps κ,
 // the plastic slip and the energy the step's softening dissipated. Π is then not convex along a
 // softening face: the exact line search finds a root of ψ all the same, and where the static
@@ -109,6 +112,18 @@ void ContactProblem::build(const std::vector<double>& xy, const Configuration& c
     w.gap0 = c.at.gap - c.joint.dilation;
     c.gap = w.gap0;
     w.shear0 = c.state == ContactState::open ? 0.0 : c.shear_el;
+    // A face whose memory is new (undamaged, no slip) but whose faces start the step open beyond
+    // the elastic opening was not cut in this step (a cut's faces coincide): its contact lost its
+    // history in a re-cut or paired a face with another piece's, already apart. Its damage is the
+    // opening it has: what the faces dissipated to get there was booked by the contact that held
+    // them, or nothing held them, and the energy balance has no part of it to give now (booked
+    // afresh, Petersson's beam at h 0.0167 m booked 0.69 J/m, G_f × 5.6 mm, for faces 2.35 mm
+    // apart in one step).
+    if (c.cohesive.on && c.cohesive.opening_max == 0 && c.cohesive.slip == 0 && c.length > 0) {
+      const CohesiveLaw& law = set_.cohesive_law(c);
+      const double k = initial_normal_stiffness(set_.laws()[c.law], c.length) / c.length;
+      if (law.on() && w.gap0 > cohesive_elastic_opening(law, k)) c.cohesive.opening_max = w.gap0;
+    }
     if (set_.cohesive_holds(c) && c.length > 0) {
       w.cohesive = &set_.cohesive_law(c);
       w.k_len = initial_normal_stiffness(set_.laws()[c.law], c.length) / c.length;
@@ -141,7 +156,12 @@ Spring normal_at(const ContactLaw& law, const Contact& c, const ContactWork& w, 
       const CohesiveTraction t = cohesive_traction(*w.cohesive, w.k_len, c.cohesive.opening_max, -closure, w.slip);
       return {-t.traction * c.length, t.stiffness * c.length, false};
     }
-    const SpringState s = normal_spring(law, closure, c.length, c.joint.closure_max);
+    // Closing: from the secant of its damage to the crack set's spring over w_e (cohesive_law.h
+    // cohesive_closure), the damage the open side has at zero opening.
+    const double kappa = std::max(c.cohesive.opening_max, effective_opening(*w.cohesive, 0.0, w.slip));
+    const CohesiveClosure b = cohesive_closure(*w.cohesive, w.k_len, kappa, closure);
+    if (b.band) return {b.stress * c.length, b.stiffness * c.length, false};
+    const SpringState s = normal_spring(law, b.closure, c.length, c.joint.closure_max);
     return {s.force, s.stiffness, s.capped};
   }
   if (w.bonded && closure < skin) {
@@ -158,9 +178,28 @@ Spring normal_at(const ContactLaw& law, const Contact& c, const ContactWork& w, 
   return {s.force, s.stiffness * (closure + skin) / (2 * skin), false};
 }
 
+// N/m, the shear spring of a damaged softening face, open or closed: its secant β²·s(κ)·L, no
+// stiffer than the crack set's (cohesive_law.cpp "Closing"); 0 for any other contact (its law's).
+double face_shear_stiffness(const ContactLaw& law, const Contact& c, const ContactWork& w) {
+  if (!w.cohesive) return 0;
+  const CohesiveState st = cohesive_state(*w.cohesive, w.k_len, w.kappa);
+  const double ks = initial_shear_stiffness(law, c.length);
+  if (c.gap <= 0 && !(st.factor < 1)) return 0;  // closed and undamaged: the crack set's law
+  return std::min(cohesive_shear_secant(*w.cohesive, w.k_len, w.kappa) * c.length, ks);
+}
+
 // The trial shear force of the spring at elastic shear s, before the strength caps it.
 double trial_shear(const ContactLaw& law, const Contact& c, const ContactWork& w, double s) {
+  const double k = face_shear_stiffness(law, c, w);
+  if (k > 0) return k * s;
   return shear_spring(law, s, w.strength, c.length).force;
+}
+
+// m, the elastic shear at which the spring reaches the strength S.
+double shear_at_cap(const ContactLaw& law, const Contact& c, const ContactWork& w, double strength) {
+  const double k = face_shear_stiffness(law, c, w);
+  if (k > 0) return strength / k;
+  return shear_at_force(law, strength, strength, c.length);
 }
 
 // Shear force at elastic shear s (m): the spring, capped at the strength S (elastoplastic: the
@@ -171,13 +210,15 @@ Spring shear_at(const ContactLaw& law, const Contact& c, const ContactWork& w, d
     // the damage, β²·s(κ)·w_s, no stiffer than the crack set's shear spring; the traction then
     // follows the faces' relative motion, so a pull across a crack that kinks puts no spurious
     // shear on it. Its cap is the envelope itself (κ includes β·w_s).
-    const double k = std::min(cohesive_beta() * cohesive_beta() *
-                                  cohesive_state(*w.cohesive, w.k_len, w.kappa).secant * c.length,
-                              initial_shear_stiffness(law, c.length));
+    const double k = face_shear_stiffness(law, c, w);
     return {k * s, k, false};
   }
   if (!(w.strength > 0)) return {};
-  const SpringState sp = shear_spring(law, s, w.strength, c.length);
+  SpringState sp;
+  if (const double k = face_shear_stiffness(law, c, w); k > 0)
+    sp = {k * s, k, false};  // a closed damaged face: the same secant, capped at its strength
+  else
+    sp = shear_spring(law, s, w.strength, c.length);
   if (std::abs(sp.force) >= w.strength) return {s > 0 ? w.strength : -w.strength, 0.0, false};
   // At the kink to round-off after sliding into the step the same way: the slip branch's tangent
   // (the force is the spring's, exact either way; contact_tolerances.h slip_kink).
@@ -201,8 +242,9 @@ double step_shear(const Contact& c, const ContactWork& w) { return c.shear - w.s
 // 99.9 % counts as slip).
 bool slides(const ContactLaw& law, const Contact& c, const ContactWork& w) {
   if (w.cohesive && c.gap > 0) return false;  // open and cohesive: the secant shear, no slip
-  const double limit =
-      linear_shear(law) ? w.strength : kContactTolerances.hyperbola_slip * w.strength;
+  const double limit = linear_shear(law) || face_shear_stiffness(law, c, w) > 0
+                           ? w.strength
+                           : kContactTolerances.hyperbola_slip * w.strength;
   return std::abs(trial_shear(law, c, w, c.shear)) >= limit;
 }
 }  // namespace
@@ -215,7 +257,7 @@ void ContactProblem::set_cohesion(const Contact& c, ContactWork& w) const {
 double ContactProblem::plastic_slip(const Contact& c, const ContactWork& w) const {
   const ContactLaw& law = set_.laws()[c.law];
   if (!(w.strength > 0) || !slides(law, c, w)) return 0;
-  return std::max(0.0, std::abs(c.shear) - shear_at_force(law, w.strength, w.strength, c.length));
+  return std::max(0.0, std::abs(c.shear) - shear_at_cap(law, c, w, w.strength));
 }
 
 std::size_t ContactProblem::assign_groups(const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
@@ -601,7 +643,7 @@ void ContactProblem::commit() {
       c.shear_el = c.shear;
     } else {
       // Sliding: the spring stays loaded at the friction limit (return mapping).
-      c.shear_el = c.slip_sign * shear_at_force(law, w.strength, w.strength, c.length);
+      c.shear_el = c.slip_sign * shear_at_cap(law, c, w, w.strength);
     }
   }
   for (std::size_t i = 0; i < contacts.size(); ++i) {
