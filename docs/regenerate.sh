@@ -7,7 +7,8 @@
 set -e
 cd "$(dirname "$0")/.."
 build/bin/nmm-joint-study docs/figures --data data
-build/bin/nmm-study docs/figures --data data
+# Prescott: the kernels every x86-64 CPU runs, as CTest study.accuracy_quick (docs/accuracy.md).
+OPENBLAS_CORETYPE=Prescott build/bin/nmm-study docs/figures --data data
 # The doc pages carry copies of these tables: their rows follow the fresh ones.
 python3 docs/sync_tables.py docs/figures/joint_studies_tables.md docs/joint-studies.md
 python3 docs/sync_tables.py docs/figures/accuracy_tables.md docs/accuracy.md

@@ -54,7 +54,7 @@ SKIP = [
      "installing is tested by CTest install.tree (into a scratch prefix)"),
     ("code-layout.md", r"^python3 tests/state_hashes\.py build --write$",
      "rewrites the table from many minutes of runs; CTest state_hashes runs the comparison"),
-    ("accuracy.md", r"^build/bin/nmm-study docs/figures ",
+    ("accuracy.md", r"^OPENBLAS_CORETYPE=Prescott build/bin/nmm-study docs/figures ",
      "about 5 min; CTest study.accuracy_quick runs its --quick variant and compares the rows"),
     ("fos-and-sweeps.md", r"--profile workflow/profiles/slurm",
      "needs a Slurm cluster and a shared /shared/scratch; CTest studies.sweep_through_slurm "
