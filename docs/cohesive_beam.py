@@ -8,10 +8,12 @@
 The beam of Petersson (1981, Lund TVBM-1006; docs/physics.md §6): span 2.0 m between roller
 supports, depth 0.2 m, a notch 0.1 m deep and 10 mm wide at mid-span, E 30 GPa, nu 0.2, plane
 stress, sigma_t 3.33 MPa, G_f 124 N/m (w_c = 74.5 um); crack faces kn 1e14 Pa/m. The test rested
-on rollers and was loaded through one, so each support and the load hold only a strip 2 cm long
-(SUPPORT), the outline having vertices at the strips' ends: strips 0.1 m long (this scene until
-2026-11-30) take end moments and made the beam 1.6-1.9x stiffer than a simply supported one. The
-load strip (top, mid-span) moves down 1 um a static step (dt 1 ms), 1000 steps:
+on rollers and was loaded through one, so each support and the load hold only a strip 4 mm long
+(SUPPORT), the outline having vertices at the strips' ends. A strip held in y takes an end moment
+that grows with its length: the unnotched beam at cover order 1, h 0.025 m, is 135.9 kN/m per mm
+on 2 cm strips (the scene until 2026-11-30, 0.1 m before that), 118.4 on 4 mm and 116.4 on 2 mm
+against 116.6 simply supported. The load strip (top, mid-span) moves down 1 um a static step
+(dt 1 ms), 1000 steps:
 
         load v 1 mm/s
           ==
@@ -19,10 +21,10 @@ load strip (top, mid-span) moves down 1 um a static step (dt 1 ms), 1000 steps:
     |                 | notch 0.1 m               |
     +-----------------+---------------------------+
       ==                                        ==
-     0.09-0.11 m         span 2.0 m        2.09-2.11 m
+   0.098-0.102 m         span 2.0 m      2.098-2.102 m
 
 --stiffness runs the beam without cracks (tensile strength 1000x) to 0.1 mm at cover orders 0
-and 1 and prints its stiffness, the slope of P against h between 0.05 and 0.1 mm (the static
+and 1, and the same beam without its notch (closed form 116.6 kN/m per mm), and prints its stiffness, the slope of P against h between 0.05 and 0.1 mm (the static
 steps' inertia adds a constant to P), against the closed form: a simply supported beam with shear,
 S^3/(48EI) + S/(4 kappa G W), plus the notch's compliance 2/E * int_0^a (K/P)^2 da with K of a
 three-point bend bar of S/W = 4 (Srawley 1976), 61.4 kN/m per mm.
@@ -41,7 +43,7 @@ from figure_page import arguments, figure_path, page, write
 
 SIZES = [0.025, 0.0167, 0.0125]
 GF_LIGAMENT = 124.0 * 0.1  # J/m
-SUPPORT = 0.02  # m, the length of each support strip and of the load strip
+SUPPORT = 0.004  # m, the length of each support strip and of the load strip
 _s = SUPPORT / 2
 OUTLINE = [[0, 0], [0.1 - _s, 0], [0.1 + _s, 0], [1.095, 0], [1.095, 0.1], [1.105, 0.1], [1.105, 0],
            [2.1 - _s, 0], [2.1 + _s, 0], [2.2, 0], [2.2, 0.2], [1.1 + _s, 0.2], [1.1 - _s, 0.2], [0, 0.2]]
@@ -101,9 +103,9 @@ def svg(curves, path):
     write(parts, path)
 
 
-def closed_form_stiffness():
-    """N/m per m, P/h of the notched beam (the docstring's compliance)."""
-    e, w, span, a, nu = 3e10, 0.2, 2.0, 0.1, 0.2
+def closed_form_stiffness(a=0.1):
+    """N/m per m, P/h of the beam with a notch a deep (the docstring's compliance)."""
+    e, w, span, nu = 3e10, 0.2, 2.0, 0.2
 
     def k_per_p(x):  # 1/m^(3/2): K/P per unit thickness, Srawley's S/W = 4 formula
         r = x / w
@@ -116,22 +118,27 @@ def closed_form_stiffness():
 
 
 def stiffness(a, out):
-    exact = closed_form_stiffness()
-    for h in SIZES:
-        for order in (0, 1):
-            s = scene(h)
-            s["materials"]["concrete"]["strength"]["tensile"] *= 1000
-            s["solver"].update({"steps": 100, "cover_order": order})
-            name = out / f"elastic_{h}_{order}"
-            scene_file, mesh_file = out / f"elastic_{h}_{order}.json", out / f"elastic_{h}_{order}.nmm"
-            scene_file.write_text(json.dumps(s))
-            subprocess.run([f"{a.bin_dir}/nmm-preprocess", scene_file, "-o", mesh_file], check=True, capture_output=True)
-            subprocess.run([f"{a.bin_dir}/nmm-solve", mesh_file, "-o", name, "-q"], check=True, capture_output=True)
-            pts = [p for p in curve(name)[0] if 0.05 <= p[0] <= 0.1]
-            mx, my = sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts)
-            k = sum((p[0] - mx) * (p[1] - my) for p in pts) / sum((p[0] - mx) ** 2 for p in pts)
-            print(f"h {h} m, cover order {order}: {k:.1f} kN/m per mm ({100 * (k / (exact / 1e6) - 1):+.0f} % of "
-                  f"the closed form {exact / 1e6:.1f})")
+    for notch in (True, False):
+        exact = closed_form_stiffness(0.1 if notch else 0.0)
+        for h in SIZES:
+            for order in (0, 1):
+                s = scene(h)
+                if not notch:  # the notch's four outline vertices taken out
+                    s["bodies"][0]["outer"] = OUTLINE[:3] + OUTLINE[7:]
+                s["materials"]["concrete"]["strength"]["tensile"] *= 1000
+                s["solver"].update({"steps": 100, "cover_order": order})
+                tag = f"{h}_{order}" + ("" if notch else "_unnotched")
+                name = out / f"elastic_{tag}"
+                scene_file, mesh_file = out / f"elastic_{tag}.json", out / f"elastic_{tag}.nmm"
+                scene_file.write_text(json.dumps(s))
+                subprocess.run([f"{a.bin_dir}/nmm-preprocess", scene_file, "-o", mesh_file], check=True,
+                               capture_output=True)
+                subprocess.run([f"{a.bin_dir}/nmm-solve", mesh_file, "-o", name, "-q"], check=True, capture_output=True)
+                pts = [p for p in curve(name)[0] if 0.05 <= p[0] <= 0.1]
+                mx, my = sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts)
+                k = sum((p[0] - mx) * (p[1] - my) for p in pts) / sum((p[0] - mx) ** 2 for p in pts)
+                print(f"{'notched' if notch else 'unnotched'} h {h} m, cover order {order}: {k:.1f} kN/m per mm "
+                      f"({100 * (k / (exact / 1e6) - 1):+.0f} % of the closed form {exact / 1e6:.1f})")
 
 
 def main():
