@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "common/memory_marks.h"
 #include "solver/discretisation/fill_ordering.h"
+#include "solver/discretisation/parked_array.h"
 #include "solver/discretisation/state_bytes.h"
 
 namespace nmm::solve {
@@ -614,11 +615,31 @@ void SystemMatrix::factorize_lean() {
   }
   Sparse().swap(k_);
   std::vector<std::int32_t>().swap(slots_);
+  // The heap's free pieces go back to the system too: a new pattern's analysis (METIS's and
+  // CHOLMOD's workspace) leaves about 0.1 GB of them held, resident under the double factor
+  // (docs/performance.md (h)). Those pages fault in again when the heap reuses them.
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+  // Nothing reads the saved values without springs or the groups' unknowns until the factor is
+  // rounded: parked in a temporary file meanwhile (parked_array.h), 0.19 GB at 930k unknowns.
+  ParkedArray<double> saved;
+  ParkedArray<int> dofs;
+  saved.park(saved_);
+  dofs.park(group_dofs_);
   memory_mark("matrix let go");
-  llt_.factorize_permuted(a1);
-  memory_mark("numeric factorisation");
-  if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
+  try {
+    llt_.factorize_permuted(a1);
+    memory_mark("numeric factorisation");
+    if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
+  } catch (...) {
+    saved.unpark(saved_);
+    dofs.unpark(group_dofs_);
+    throw;
+  }
   memory_mark("rounded");
+  saved.unpark(saved_);
+  dofs.unpark(group_dofs_);
   // k_ = A1(q, q)ᵀ with q the inverse permutation: the upper triangle of A again.
   std::vector<int> inverse(static_cast<std::size_t>(n));
   const int* perm = static_cast<const int*>(l->Perm);
