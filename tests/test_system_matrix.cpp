@@ -445,6 +445,37 @@ TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactoris
   expect_same(k.matrix(), broken);
 }
 
+TEST(SystemMatrixSingle, ALeanRunOrdersEveryNewPatternAnew) {
+  // The grown pattern of AKeptOrderingServesGrownPatterns… keeps its ordering in a run that is
+  // not lean; a lean one (the largest runs) finds a new ordering for it, and solves as before.
+  constexpr int kSide = 100;
+  const int n = 2 * kSide * kSide;
+  const Groups g = plane_grid(kSide, 2);
+  std::vector<std::pair<int, int>> near;
+  for (int j = 5; j < kSide; j += 10)
+    for (int i = 3; i + 2 < kSide; i += 7) near.emplace_back(j * kSide + i, j * kSide + i + 2);
+  const Groups grown = with_pairs(g, near);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i) - 0.2;
+  for (const bool lean : {false, true}) {
+    SystemMatrix k;
+    k.set_amd_only(true);
+    k.set_block_ordering(2, n, n);
+    k.set_single_precision(n);
+    k.set_lean_factorisation(lean ? n : n + 1);
+    k.build_pattern(n, g.offsets, g.dofs);
+    assembled(k, g, n);
+    ASSERT_TRUE(k.factorize());
+    k.build_pattern(n, grown.offsets, grown.dofs);
+    assembled(k, grown, n);
+    ASSERT_TRUE(k.factorize());
+    EXPECT_EQ(k.analyses(), 2u);
+    EXPECT_EQ(k.orderings(), lean ? 2u : 1u) << (lean ? "lean" : "not lean");
+    const Eigen::VectorXd x = k.solve(b);
+    EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * b.norm());
+  }
+}
+
 TEST(ParkedArray, GivesBackTheSameBytesAndStaysInMemoryWhereNoFileCanBeMade) {
   std::vector<double> v(100003);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::sin(0.37 * static_cast<double>(i)) * 1e-300 + static_cast<double>(i);

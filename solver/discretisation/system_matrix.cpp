@@ -361,6 +361,12 @@ void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
 // analyses as the straight one did.
 bool SystemMatrix::analyse_kept(const Sparse& a) {
   if (kept_perm_.size() != static_cast<std::size_t>(a.rows())) return false;
+  // A lean run (the largest) orders every pattern anew: there the kept ordering's factor,
+  // 1.06–1.07 × the nonzeros, took 31–37 s to factorise against 13–14 s under a new ordering
+  // (7–8 s to find) and raised the run's memory peak by its 0.11 GB more double values
+  // (316 × 316 bricks, h = 2 m, steps 15 and 22 against 6, 13 and 20; docs/performance.md (h)).
+  const auto n = static_cast<int>(a.rows());
+  if (single_from_ > 0 && n >= single_from_ && n >= lean_from_) return false;  // as factorize()'s `lean`
   // A pattern with fewer nonzeros than the one the ordering was found on has shed pairs (it
   // only grows otherwise): a new ordering of the smaller pattern has less fill than the kept one.
   if (static_cast<double>(a.nonZeros()) < kept_nonzeros_) return false;
@@ -416,7 +422,7 @@ bool SystemMatrix::factorize() {
   // is copied again below, once this factorisation has succeeded), and before a new pattern's
   // analysis the heap's free pages are returned, so that the double values take their place.
   const bool single = single_from_ > 0 && size() >= single_from_;
-  const bool lean = single && size() >= lean_from_;
+  const bool lean = single && size() >= lean_from_;  // (analyse_kept: a new ordering for each pattern)
   if (single) {
     Sparse().swap(factored_);
     has_factor_ = false;
