@@ -603,7 +603,8 @@ void SystemMatrix::Llt::factorize_permuted(cholmod_sparse* a1) {
 // Measured (contact_bench --trace --memory, one thread, 2026-11-30; docs/performance.md (h)):
 //   316 × 316 bricks, h = 2 m, 929,502 unknowns: the run's peak (a new pattern's factorisation)
 //     3,853 against 4,302 MB; giving back the matrix and the slots 1.5 s of CPU
-//     against the numeric factorisation's 4.3–10.4 s
+//     against the numeric factorisation's 4.3–10.4 s; with the parking and the heap's return,
+//     step 6's peak 3,680 against 3,855 MB (the same counts)
 //   100 × 100, h = 0.5 m, 222,516 unknowns: 0.17 s (transpose 0.05, sort 0.03, slots 0.09)
 //     against 0.61 s, for 0.07 GB of a 0.95 GB peak — not worth it there: from
 //     kLeanFactorUnknowns on only.
