@@ -4,6 +4,7 @@
 // couple only unknowns already coupled.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -11,10 +12,12 @@
 #include <gtest/gtest.h>
 
 #include "solver/discretisation/fill_ordering.h"
+#include "solver/discretisation/parked_array.h"
 #include "solver/discretisation/system_matrix.h"
 
 namespace {
 
+using nmm::solve::ParkedArray;
 using nmm::solve::SingleFactor;
 using nmm::solve::SystemMatrix;
 
@@ -412,8 +415,16 @@ TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactoris
   k.set_lean_factorisation(n);
   k.build_pattern(n, g.offsets, g.dofs);
   const SystemMatrix::Sparse before = assembled(k, g, n);
+  // The saved values (the matrix without springs) differ from the factorised ones, as in a
+  // contact step: they are parked in a file meanwhile and must come back unchanged.
+  k.save();
+  for (int i = 0; i < n; i += 7) k.add_diagonal(i, 0.1 * i);
+  const SystemMatrix::Sparse with_springs = k.matrix();
   ASSERT_TRUE(k.factorize());
   ASSERT_TRUE(k.single_precision());
+  expect_same(k.matrix(), with_springs);
+  expect_same(k.saved_matrix(), before);
+  k.restore();
   expect_same(k.matrix(), before);
   expect_same(assembled(k, g, n), before);  // through the slots placed again
   // The kept analysis, new values: the same again, and the solve refined to round-off.
@@ -432,4 +443,65 @@ TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactoris
   EXPECT_FALSE(k.factorize());
   EXPECT_EQ(k.failed_unknown(), 777);
   expect_same(k.matrix(), broken);
+}
+
+TEST(SystemMatrixSingle, ALeanRunOrdersEveryNewPatternAnew) {
+  // The grown pattern of AKeptOrderingServesGrownPatterns… keeps its ordering in a run that is
+  // not lean; a lean one (the largest runs) finds a new ordering for it, and solves as before.
+  constexpr int kSide = 100;
+  const int n = 2 * kSide * kSide;
+  const Groups g = plane_grid(kSide, 2);
+  std::vector<std::pair<int, int>> near;
+  for (int j = 5; j < kSide; j += 10)
+    for (int i = 3; i + 2 < kSide; i += 7) near.emplace_back(j * kSide + i, j * kSide + i + 2);
+  const Groups grown = with_pairs(g, near);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i) - 0.2;
+  for (const bool lean : {false, true}) {
+    SystemMatrix k;
+    k.set_amd_only(true);
+    k.set_block_ordering(2, n, n);
+    k.set_single_precision(n);
+    k.set_lean_factorisation(lean ? n : n + 1);
+    k.build_pattern(n, g.offsets, g.dofs);
+    assembled(k, g, n);
+    ASSERT_TRUE(k.factorize());
+    k.build_pattern(n, grown.offsets, grown.dofs);
+    assembled(k, grown, n);
+    ASSERT_TRUE(k.factorize());
+    EXPECT_EQ(k.analyses(), 2u);
+    EXPECT_EQ(k.orderings(), lean ? 2u : 1u) << (lean ? "lean" : "not lean");
+    const Eigen::VectorXd x = k.solve(b);
+    EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * b.norm());
+  }
+}
+
+TEST(ParkedArray, GivesBackTheSameBytesAndStaysInMemoryWhereNoFileCanBeMade) {
+  std::vector<double> v(100003);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::sin(0.37 * static_cast<double>(i)) * 1e-300 + static_cast<double>(i);
+  const std::vector<double> copy = v;
+  ParkedArray<double> parked;
+  ASSERT_TRUE(parked.park(v));
+  EXPECT_TRUE(parked.parked());
+  EXPECT_TRUE(v.empty());
+  EXPECT_EQ(v.capacity(), 0u);  // the memory itself let go
+  parked.unpark(v);
+  EXPECT_FALSE(parked.parked());
+  ASSERT_EQ(v.size(), copy.size());
+  EXPECT_EQ(std::memcmp(v.data(), copy.data(), v.size() * sizeof(double)), 0);
+  // No folder for the file: the array stays where it was, and unpark() leaves it alone.
+  const char* old = std::getenv("TMPDIR");
+  const std::string kept = old ? old : "";
+  setenv("TMPDIR", "/nonexistent-nmm-folder", 1);
+  ParkedArray<double> nowhere;
+  EXPECT_FALSE(nowhere.park(v));
+  if (old) setenv("TMPDIR", kept.c_str(), 1); else unsetenv("TMPDIR");
+  EXPECT_FALSE(nowhere.parked());
+  nowhere.unpark(v);
+  ASSERT_EQ(v.size(), copy.size());
+  EXPECT_EQ(std::memcmp(v.data(), copy.data(), v.size() * sizeof(double)), 0);
+  std::vector<int> empty;
+  ParkedArray<int> none;
+  EXPECT_FALSE(none.park(empty));  // nothing to gain
+  EXPECT_FALSE(none.parked());
 }

@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "common/memory_marks.h"
 #include "solver/discretisation/fill_ordering.h"
+#include "solver/discretisation/parked_array.h"
 #include "solver/discretisation/state_bytes.h"
 
 namespace nmm::solve {
@@ -360,6 +361,12 @@ void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
 // analyses as the straight one did.
 bool SystemMatrix::analyse_kept(const Sparse& a) {
   if (kept_perm_.size() != static_cast<std::size_t>(a.rows())) return false;
+  // A lean run (the largest) orders every pattern anew: there the kept ordering's factor,
+  // 1.06–1.07 × the nonzeros, took 31–37 s to factorise against 13–14 s under a new ordering
+  // (7–8 s to find) and raised the run's memory peak by its 0.11 GB more double values
+  // (316 × 316 bricks, h = 2 m, steps 15 and 22 against 6, 13 and 20; docs/performance.md (h)).
+  const auto n = static_cast<int>(a.rows());
+  if (single_from_ > 0 && n >= single_from_ && n >= lean_from_) return false;  // as factorize()'s `lean`
   // A pattern with fewer nonzeros than the one the ordering was found on has shed pairs (it
   // only grows otherwise): a new ordering of the smaller pattern has less fill than the kept one.
   if (static_cast<double>(a.nonZeros()) < kept_nonzeros_) return false;
@@ -415,7 +422,7 @@ bool SystemMatrix::factorize() {
   // is copied again below, once this factorisation has succeeded), and before a new pattern's
   // analysis the heap's free pages are returned, so that the double values take their place.
   const bool single = single_from_ > 0 && size() >= single_from_;
-  const bool lean = single && size() >= lean_from_;
+  const bool lean = single && size() >= lean_from_;  // (analyse_kept: a new ordering for each pattern)
   if (single) {
     Sparse().swap(factored_);
     has_factor_ = false;
@@ -596,7 +603,8 @@ void SystemMatrix::Llt::factorize_permuted(cholmod_sparse* a1) {
 // Measured (contact_bench --trace --memory, one thread, 2026-11-30; docs/performance.md (h)):
 //   316 × 316 bricks, h = 2 m, 929,502 unknowns: the run's peak (a new pattern's factorisation)
 //     3,853 against 4,302 MB; giving back the matrix and the slots 1.5 s of CPU
-//     against the numeric factorisation's 4.3–10.4 s
+//     against the numeric factorisation's 4.3–10.4 s; with the parking and the heap's return,
+//     step 6's peak 3,680 against 3,855 MB (the same counts)
 //   100 × 100, h = 0.5 m, 222,516 unknowns: 0.17 s (transpose 0.05, sort 0.03, slots 0.09)
 //     against 0.61 s, for 0.07 GB of a 0.95 GB peak — not worth it there: from
 //     kLeanFactorUnknowns on only.
@@ -614,11 +622,31 @@ void SystemMatrix::factorize_lean() {
   }
   Sparse().swap(k_);
   std::vector<std::int32_t>().swap(slots_);
+  // The heap's free pieces go back to the system too: a new pattern's analysis (METIS's and
+  // CHOLMOD's workspace) leaves about 0.1 GB of them held, resident under the double factor
+  // (docs/performance.md (h)). Those pages fault in again when the heap reuses them.
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+  // Nothing reads the saved values without springs or the groups' unknowns until the factor is
+  // rounded: parked in a temporary file meanwhile (parked_array.h), 0.19 GB at 930k unknowns.
+  ParkedArray<double> saved;
+  ParkedArray<int> dofs;
+  saved.park(saved_);
+  dofs.park(group_dofs_);
   memory_mark("matrix let go");
-  llt_.factorize_permuted(a1);
-  memory_mark("numeric factorisation");
-  if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
+  try {
+    llt_.factorize_permuted(a1);
+    memory_mark("numeric factorisation");
+    if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
+  } catch (...) {
+    saved.unpark(saved_);
+    dofs.unpark(group_dofs_);
+    throw;
+  }
   memory_mark("rounded");
+  saved.unpark(saved_);
+  dofs.unpark(group_dofs_);
   // k_ = A1(q, q)ᵀ with q the inverse permutation: the upper triangle of A again.
   std::vector<int> inverse(static_cast<std::size_t>(n));
   const int* perm = static_cast<const int*>(l->Perm);
