@@ -174,6 +174,32 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
     }
     std::sort(released_.begin(), released_.end());
   }
+  // The contacts this step found sunk with no force carried (open at its start, no force at the
+  // last step's end on the same vertex and edge: a vertex that chattered — released in a step,
+  // found again at depth in this one — or one a re-cut's detection finds deep): the step starts
+  // with their springs at N0 = N(gap0) > 0, ½ N0·closure0 that entered S from no work, and out of
+  // balance by their force c0 = N0·cn, whose motion takes ½ c0·d = ½ N0·Δg of it (as a released
+  // contact's, above, with the sign turned). Both go to `damped`: the step's start as the
+  // detection made it, not its physics.
+  {
+    std::vector<std::pair<std::int32_t, std::int32_t>> had;  // (vertex, edge) of the ended contacts
+    if (end_unknowns_ == d.size() || end_unknowns_ == -2)
+      for (const EndedContact& e : ended_) had.emplace_back(e.vertex, e.edge);
+    std::sort(had.begin(), had.end());
+    const std::vector<Contact>& cs = problem_.contacts();
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      const Contact& c = cs[k];
+      if (c.start_state != ContactState::open || std::binary_search(had.begin(), had.end(), std::make_pair(c.at.vertex, c.at.edge)))
+        continue;
+      const double n0 = problem_.normal_force_at_rest(k);
+      if (n0 <= 0) continue;
+      const ContactProblem::Row r = problem_.row(k);
+      double dg = 0;  // m, the step's change of its gap
+      for (int i = 0; i < r.size; ++i)
+        if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) dg += r.cn[i] * d[r.dofs[i]];
+      released_work_ += 0.5 * n0 * dg - 0.5 * n0 * -problem_.work(k).gap0;
+    }
+  }
   // Kept for a re-cut that throws this attempt away (continue_from).
   start_ended_.swap(ended_);
   start_end_unknowns_ = end_unknowns_;

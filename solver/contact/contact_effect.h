@@ -70,7 +70,9 @@ class ContactEffect final : public Effect {
   /// a new face's contact that slides from its zero start force books ½|T|·slip less in
   /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). The work
   /// of the end forces of the last accepted step's closed contacts that this step started
-  /// without, ½ (0 − c_end)·d, into t.damped (below), in a step that re-cut the mesh too.
+  /// without, ½ (0 − c_end)·d, into t.damped (below), in a step that re-cut the mesh too; and of
+  /// the contacts it found sunk with no force carried (a vertex that chattered), ½ c0·d less the
+  /// ½ N0·closure0 their springs started with from no work.
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the

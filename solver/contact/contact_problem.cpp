@@ -319,6 +319,13 @@ void ContactProblem::start_strengths() {
   }
 }
 
+double ContactProblem::normal_force_at_rest(std::size_t i) const {
+  const Contact& c = set_.contacts()[i];
+  const ContactWork& w = work_[i];
+  if (w.cohesive) return 0;
+  return normal_at(set_.laws()[c.law], c, w, w.gap0, skin_).force;
+}
+
 void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   std::vector<Contact>& contacts = set_.step_contacts();
   const std::vector<ContactLaw>& laws = set_.laws();

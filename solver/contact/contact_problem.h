@@ -76,6 +76,12 @@ class ContactProblem {
     return {dofs_.data() + at, cn_.data() + at, cs_.data() + at, row_};
   }
   const ContactWork& work(std::size_t i) const { return work_[i]; }
+  /// N, contact i's normal force at d = 0 on its law (its gap at the step's start, the joint's
+  /// memory of the start): what its spring pushes with before the step moves anything. Non-zero
+  /// for a contact found sunk at the start: the one closed at the last step's end (its force
+  /// carried), or one that starts the step open but deep, with no force carried (energy.h; 0
+  /// for a softening crack face, whose law has its own start).
+  double normal_force_at_rest(std::size_t i) const;
   /// The step's contacts (ContactSet::contacts()), index-aligned with the rows.
   const std::vector<Contact>& contacts() const { return set_.contacts(); }
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
