@@ -388,16 +388,22 @@ TEST(ContactPatch, TwoContactsAtOnePointCountTheFaceOnce) {
     const std::vector<double> l = tributary_lengths(t, xy, contacts, corner_length);
     const double face = face_first ? l[0] : l[1], sliver = face_first ? l[1] : l[0];
     std::printf("face first %d: L %.12g (face's vertex) + %.3g (sliver's)\n", face_first ? 1 : 0, face, sliver);
-    // The face's vertex keeps its 0.5 m (less what the sliver's already holds); the sliver's
-    // is its 2.6e-10 m or, left with nothing, a bare corner.
+    // The face's vertex keeps its 0.5 m (less what the sliver's already holds); the sliver's,
+    // less face than a bare corner's, is a bare corner.
     EXPECT_NEAR(face + std::min(sliver, 2.6e-10), 0.5, 1e-9);
-    EXPECT_LE(sliver, corner_length);
+    EXPECT_EQ(sliver, corner_length);
   }
   // The sliver's vertex alone, its half-edge of no length (1e-17 m): a bare corner.
   std::vector<double> degenerate = xy;
   degenerate[6] = -1e-17;
   const std::vector<double> l = tributary_lengths(t, degenerate, {{4, 8, 1, 2, 0.5, 0}}, corner_length);
   EXPECT_EQ(l[0], corner_length);
+  // The sliver's vertex alone with its half-edge of 2.6e-10 m: less face than a bare corner's, so
+  // a bare corner too. Its own 2.6e-10 m made its spring 240,000 times softer than a corner's,
+  // and such a vertex (3.1e-10 m, 2 N) sank through a fragment's face to the step floor
+  // (uniaxial h 0.0625 m dynamic, 2026-11-30).
+  const std::vector<double> alone = tributary_lengths(t, xy, {{4, 8, 1, 2, 0.5, 0}}, corner_length);
+  EXPECT_EQ(alone[0], corner_length);
 }
 
 // A crack's path kinks from element to element, and at every kink each face has one loop vertex

@@ -10,6 +10,7 @@
 // carry the strip tens of metres in linearised increments. What is checked is step control.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "preprocess/cover_cutter.h"
 #include "reference/cantilever.h"
 #include "solver/discretisation/configuration.h"
+#include "solver/stepping/step_control.h"
 #include "solver/stepping/time_stepper.h"
 
 namespace nmm::solve {
@@ -120,6 +122,51 @@ TEST(StepControl, StepThatFoldsAnElementIsCutAndTheRunGoesOn) {
   const auto u = st.view().state.measure[0].displacement();
   EXPECT_LT(u[1], 0);
   EXPECT_NEAR(u[0], 0, 1e-6);
+}
+
+// The penetration rule on the numbers alone (g2 = 1e-3, w0 = 1 m: g2·w0 = 1 mm, cap 2 mm, a
+// contact at or past it may sink 0.01 mm, detection's reach 2.5 mm). A contact carried past the
+// cap that sinks by round-off is no reason to cut (before 2026-11-30 it stopped uniaxial h
+// 0.0625 m dynamic at the step floor: "a contact penetrated 0.00201 m, more than the 0.002 m
+// allowed"); one that sinks in earnest past the cap is, and so is any that reaches the reach.
+StepPenetration deepened(double start, double end) { return {end - std::max(start, 0.0), end, start, end}; }
+
+TEST(StepControl, AContactPastTheCapIsJudgedByHowFarTheStepSinksIt) {
+  SolverDef solver;
+  solver.time_step = 1e-3;
+  solver.max_displacement_ratio = 1e-3;
+  const StepControl control(solver, 1.0, solver.time_step);
+  const double g2w0 = 1e-3;
+  ASSERT_DOUBLE_EQ(control.penetration_cap(), 2 * g2w0);
+  const auto judge = [&](double start, double end) { return control.rejection(0, deepened(start, end), true); };
+  // Within the cap: Shi's rule on what the step adds.
+  EXPECT_TRUE(judge(0, 0.9 * g2w0).ok());
+  EXPECT_EQ(judge(0, 1.1 * g2w0).code, StopCode::penetration);
+  EXPECT_TRUE(judge(1.5 * g2w0, 1.99 * g2w0).ok());
+  // Deepened past the cap from well under it: cut, as before.
+  const Outcome crossed = judge(1.5 * g2w0, 2.1 * g2w0);
+  EXPECT_EQ(crossed.code, StopCode::penetration);
+  EXPECT_NE(crossed.reason.find("a contact penetrated 0.0021 m, more than the 0.002 m allowed"), std::string::npos)
+      << crossed;
+  // Started past the cap (the stopping case's 2.01 mm) and sank by round-off, or by less than
+  // 0.01·g2·w0: accepted. With the cap alone (p ≤ 2·g2·w0) both were rejected at every Δt.
+  EXPECT_TRUE(judge(2.01e-3, 2.01e-3 + 1e-15).ok());
+  EXPECT_TRUE(judge(2.01e-3, 2.01e-3 + 0.9e-5).ok());
+  // Started just under the cap: it may end 0.01·g2·w0 below its start, not more.
+  EXPECT_TRUE(judge(1.999e-3, 2.005e-3).ok());
+  EXPECT_EQ(judge(1.999e-3, 2.011e-3).code, StopCode::penetration);
+  // Sinking in earnest past the cap: cut (a shorter step sinks it less).
+  const Outcome sinking = judge(2.1e-3, 2.13e-3);
+  EXPECT_EQ(sinking.code, StopCode::penetration);
+  EXPECT_TRUE(cured_by_shorter_step(sinking.code));
+  EXPECT_NE(sinking.reason.find("sank 3e-05 m in it, more than the 1e-05 m allowed"), std::string::npos) << sinking;
+  // However slowly, not past contact detection's reach 2.5·g2·w0: a contact sunk that far stops
+  // the run at the floor instead of being lost.
+  const Outcome lost = judge(2.4995e-3, 2.5005e-3);
+  EXPECT_EQ(lost.code, StopCode::penetration);
+  EXPECT_NE(lost.reason.find("past the 0.0025 m contact detection follows"), std::string::npos) << lost;
+  // A contact the step lets come up is judged by nothing, however deep.
+  EXPECT_TRUE(control.rejection(0, {0, 0, 0, 0}, true).ok());
 }
 
 }  // namespace

@@ -137,7 +137,7 @@ Outcome ContactEffect::solve(EffectStep& step, bool again, StepSolution& x) {
   return outcome;
 }
 
-StepPenetration ContactEffect::penetration(EffectStep& /*step*/) const { return contacts_.deepening(); }
+StepPenetration ContactEffect::penetration(EffectStep& step) const { return contacts_.deepening(step.allowance); }
 
 void ContactEffect::rejected(const EffectStep& step, const Eigen::VectorXd& covers_d) const {
   trace_rejected_step(step.s, covers_d);

@@ -401,14 +401,18 @@ double ContactSet::max_dilation() const {
   return v;
 }
 
-StepPenetration ContactSet::deepening() const {
+StepPenetration ContactSet::deepening(const PenetrationAllowance& allowed) const {
   // p − max(p0, 0) per contact (gap = −p, at.gap: detection's at the step's start); a contact
   // the step lets come up adds nothing and is no deepest.
-  StepPenetration judged{0, 0};
+  StepPenetration judged{0, 0, 0, 0};
+  double worst = -allowed.cap;  // m, p − allowed.deepest(p0) of judged.worst_*
   for (const Contact& c : contacts_) {
-    const double depth = -c.gap, added = depth - std::max(-c.at.gap, 0.0);
+    const double depth = -c.gap, start = -c.at.gap, added = depth - std::max(start, 0.0);
     judged.added = std::max(judged.added, added);
-    if (added > 0) judged.deepest = std::max(judged.deepest, depth);
+    if (!(added > 0)) continue;
+    judged.deepest = std::max(judged.deepest, depth);
+    const double past = depth - allowed.deepest(std::max(start, 0.0));
+    if (past > worst) worst = past, judged.worst_start = std::max(start, 0.0), judged.worst_end = depth;
   }
   return judged;
 }

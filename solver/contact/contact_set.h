@@ -115,10 +115,11 @@ class ContactSet {
   Totals totals() const;
   /// What the solved step did to its contacts' depths, as step control judges it (step_control.h
   /// rejection): the most it added to one contact's depth at the step's start (to touching, where
-  /// the contact started open or is new) and the deepest contact it deepened. A shorter step cannot
+  /// the contact started open or is new), the deepest contact it deepened, and of those the one
+  /// furthest past what `allowed` lets it reach from its depth at the start. A shorter step cannot
   /// undo the depth a contact started with (carried over a re-cut, or cut so by a crack), only
   /// what it adds.
-  StepPenetration deepening() const;
+  StepPenetration deepening(const PenetrationAllowance& allowed) const;
   /// Detection's counts and its seconds so far.
   const DetectionStats& detection_stats() const { return stats_; }
   /// A set built for a re-cut mesh goes on counting where `before` (the old mesh's) stopped:

@@ -165,7 +165,9 @@ std::vector<double> tributary_lengths(const ContactTopology& topo, const std::ve
     // the face; it sank 1 mm). What P's own halves reach past the others' at P stays P's.
     if (std::isfinite(beyond_lo)) length[i] += std::max(std::min(beyond_lo, 0.0) - lo_v, 0.0);
     if (std::isfinite(beyond_hi)) length[i] += std::max(hi_v - std::max(beyond_hi, 0.0), 0.0);
-    if (!(length[i] > 0)) length[i] = corner_length;
+    // Less face than a bare corner's is a sliver where cracks met within round-off (4.9e-10 m,
+    // 3.1e-10 m): no face, so a corner, whose spring holds it like any other corner's.
+    if (!(length[i] >= corner_length)) length[i] = corner_length;
   }
   return length;
 }

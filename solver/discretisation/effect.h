@@ -58,6 +58,15 @@ class StepHost {
   ~StepHost() = default;
 };
 
+/// How deep step control lets a step make a contact it deepens (solver/stepping/step_control.h):
+/// no deeper than `cap`, or than `sink` below where the contact started, whichever is deeper.
+struct PenetrationAllowance {
+  double cap = 0;   ///< m, 2·g2·w0
+  double sink = 0;  ///< m, what a contact that starts at or past the cap may sink in one step
+  /// m, how deep a contact that starts the step `start` deep (m) may end it.
+  double deepest(double start) const { return start + sink > cap ? start + sink : cap; }
+};
+
 /// What a solved step attempt did to the depths of its contacts, as step control judges it
 /// (solver/stepping/step_control.h rejection).
 struct StepPenetration {
@@ -66,6 +75,9 @@ struct StepPenetration {
   double added = -1;
   /// m, the deepest of the contacts the step made deeper (0: none).
   double deepest = 0;
+  /// m, of the contacts the step made deeper, the one furthest past its allowance
+  /// (PenetrationAllowance::deepest): its depth at the step's start and at its end (0, 0: none).
+  double worst_start = 0, worst_end = 0;
 };
 
 /// One stage of one step attempt, as the effects see it.
@@ -75,6 +87,7 @@ struct EffectStep {
   SystemMatrix& system;        ///< the step's system (pattern, matrix, factorisation)
   Eigen::VectorXd& rhs;        ///< N/m per unknown, the step's right-hand side
   double search_distance;      ///< m, how far apart two faces may be and still touch within the step (step_control.h)
+  PenetrationAllowance allowance;  ///< how deep the step may make a contact it deepens (step_control.h)
   StepTimings& timings;        ///< s, what the step's parts cost
   StepHost& host;
   bool pattern_changed = false;  ///< set by begin_step: the coupling groups changed, the stepper builds the pattern again

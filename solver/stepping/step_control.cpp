@@ -44,10 +44,27 @@ Outcome StepControl::rejection(double dmax, const StepPenetration& penetration, 
            " m a step may add (max_displacement_ratio " + ratio + " × w0 " + w0 +
            ", w0 being half the model size as in DDA)"};
   }
-  if (penetration.deepest > penetration_cap()) {
-    const auto [depth, allowed] = apart(penetration.deepest, penetration_cap());
+  const PenetrationAllowance allow = allowance();
+  const double p0 = penetration.worst_start, p = penetration.worst_end;
+  if (p > allow.deepest(p0)) {
+    if (allow.deepest(p0) > allow.cap) {
+      const auto [sank, allowed] = apart(p - p0, allow.sink);
+      return {StopCode::penetration, "a contact that started the step " + format_rough(p0, 6) +
+             " m deep, at or past the " + format_rough(allow.cap, 3) + " m cap, sank " + sank +
+             " m in it, more than the " + allowed + " m allowed (" + format_rough(kSink, 3) +
+             " × max_displacement_ratio " + ratio + " × w0 " + w0 + ", w0 being half the model size as in DDA)"};
+    }
+    const auto [depth, allowed] = apart(p, allow.cap);
     return {StopCode::penetration, "a contact penetrated " + depth + " m, more than the " + allowed +
            " m allowed (2 × max_displacement_ratio " + ratio + " × w0 " + w0 +
+           ", w0 being half the model size as in DDA)"};
+  }
+  // However slowly a contact sinks past the cap, contact detection loses it at its search
+  // distance: a run whose contact gets there stops (no cut keeps what it has already sunk).
+  if (penetration.deepest > search_distance()) {
+    const auto [depth, allowed] = apart(penetration.deepest, search_distance());
+    return {StopCode::penetration, "a contact penetrated " + depth + " m, past the " + allowed +
+           " m contact detection follows a contact to (2.5 × max_displacement_ratio " + ratio + " × w0 " + w0 +
            ", w0 being half the model size as in DDA)"};
   }
   return {};

@@ -6,7 +6,8 @@
 //   search distance   d0 = 2.5·g2·w0 (+ the largest joint dilation, contact.h)
 //   accept a step     max_i |d_i| ≤ 2·g2·w0   (runs with the inertia term: dynamic, DDA static)
 //                     max_c (p_c − max(p0_c, 0)) ≤ g2·w0        what the step adds to a depth
-//                     max_c {p_c : p_c > p0_c} ≤ 2·g2·w0        the cap on a contact it deepens
+//                     p_c ≤ max(2·g2·w0, p0_c + 0.01·g2·w0)      the cap on a contact it deepens
+//                     max_c {p_c : p_c > p0_c} ≤ 2.5·g2·w0     detection's reach, whatever the start
 //                     no element's triangle folded:  2·A_e(x_c + d_c) > 0 for every element e
 //                     (every run, contact or not: Configuration::folded_by)
 //   after a rejection Δt ← 0.3·Δt; the run stops when Δt < 1e-3·time_step
@@ -24,8 +25,11 @@
 // open at its start, is judged by its whole depth as before. Step by step a depth could then grow
 // without bound, a vertex passing through the edge it is held by; the cap 2·g2·w0 on any contact
 // the step deepens catches that, below contact detection's reach d0 = 2.5·g2·w0 (an accepted step
-// leaves no contact deeper than detection can follow; a contact that started deeper, cut so by a
-// crack, may stay or come up, not sink further).
+// leaves no contact deeper than detection can follow). A contact that starts at or within
+// 0.01·g2·w0 of the cap (carried over a re-cut, cut so by a crack, or sunk there) may end the
+// step 0.01·g2·w0 below its start: judged by its depth alone, a contact that sank past the cap by
+// round-off could be cured by no cut. One that sinks in earnest has its steps cut to that much
+// sinking each, and at the reach d0 the run stops at the floor: detection would lose it.
 //
 // A folding element is judged on the solved step, before it is accepted: the step is rejected and
 // cut like one that moved too far (a shorter step moves the covers less), and the run stops only
@@ -64,6 +68,10 @@ class StepControl {
   /// –, no step may deepen a contact past 2·g2·w0: twice what one step may add, below the search
   /// distance 2.5·g2·w0 that contact detection follows a closed contact to.
   static constexpr double kDeepest = 2.0;
+  /// –, a contact that starts a step at or near the cap may sink this × g2·w0 in it, past the
+  /// cap: enough for the round-off a contact at rest sinks by, a hundredth of what a step may add
+  /// to a shallower one, so that a contact sinking in earnest has its steps cut.
+  static constexpr double kSink = 0.01;
   /// –, relative to time_step: times this close count as equal (the last step of a run is cut
   /// to end at t_end unless it is within round-off of a full step, so 2N steps and N + N from a
   /// checkpoint take the same steps, bitwise).
@@ -76,8 +84,10 @@ class StepControl {
   double search_distance() const { return kSearch * g2w0_; }
   /// m, the depth a step may add to a contact (g2·w0): rejection() cuts a step that adds more.
   double penetration_limit() const { return g2w0_; }
-  /// m, the deepest a step may make a contact it deepens (2·g2·w0).
+  /// m, the deepest a step may make a contact it deepens (2·g2·w0), unless it started near it.
   double penetration_cap() const { return kDeepest * g2w0_; }
+  /// How deep a step may make a contact it deepens: the cap, or kSink·g2·w0 below its start.
+  PenetrationAllowance allowance() const { return {penetration_cap(), kSink * g2w0_}; }
   /// Whether the run has reached t_end (s) within round-off.
   bool done(double t, double t_end) const { return !(t < t_end - kRoundOff * time_step_); }
   /// s, the length of the next attempt from t: Δt, or what is left to t_end.

@@ -132,7 +132,7 @@ void TimeStepper::build_pattern() {
 }
 
 EffectStep TimeStepper::effect_step(const StepContext& context) {
-  return {context, s_, system_, rhs_, control_.search_distance(), timings_, *this};
+  return {context, s_, system_, rhs_, control_.search_distance(), control_.allowance(), timings_, *this};
 }
 
 StepContext TimeStepper::step_context(double dt) const {
@@ -209,6 +209,11 @@ Outcome TimeStepper::attempt_once(double dt) {
     const StepPenetration p = e->penetration(step);
     penetration.added = std::max(penetration.added, p.added);
     penetration.deepest = std::max(penetration.deepest, p.deepest);
+    const PenetrationAllowance allowed = control_.allowance();
+    if (p.worst_end - allowed.deepest(p.worst_start) > penetration.worst_end - allowed.deepest(penetration.worst_start)) {
+      penetration.worst_start = p.worst_start;
+      penetration.worst_end = p.worst_end;
+    }
   }
   if (penetration.added >= 0) {
     Outcome rejected = control_.rejection(covers_d.cwiseAbs().maxCoeff(), penetration, step_inertia());
