@@ -24,8 +24,14 @@
 //    piece is a mesh edge only (no joint, no boundary on it). A joint ending inside the star
 //    leaves the pieces on its two faces joined around its tip, so it does not split the cover.
 //    Blocks: components of all MEs joined across every mesh-only edge.
-// 6. Coordinates go to double once, at output (CGAL::to_double of the exact point), so the same
-//    scene always gives the same bytes. Sliver elements (a joint passing 1e-9·h beside a node)
+// 6. Coordinates go to double once, after the last insertion: each arrangement vertex's exact
+//    coordinates rounded to the nearest double (round_exact), a function of the exact point
+//    alone. CGAL::to_double of a lazy number would return the midpoint of whatever interval its
+//    construction left (up to 1e-5 wide, relative), and that interval depends on which
+//    predicates happened to force the exact value: the same joint across the same mesh edge
+//    rounded 1 ulp apart in a region cut and a whole cut, and the re-cut, which links blocks by
+//    rounded edges, split a block (issue 48). So the same scene always gives the same bytes, and
+//    a point gives the same double in every cut that has it. Sliver elements (a joint passing 1e-9·h beside a node)
 //    are kept as they are: dropping or merging them would lose area or change the topology. Only
 //    specks are dropped: faces that, rounded, enclose no positive area or fit in 1e-9·h (Cutter::
 //    speck), where three cuts meet within round-off of one point. A piece of mesh edge that
@@ -69,7 +75,8 @@ using Traits     = CGAL::Arr_consolidated_curve_data_traits_2<SegTraits, CurveTa
 using Point      = Traits::Point_2;
 using Segment    = Kernel::Segment_2;
 using Curve      = Traits::Curve_2;
-using Dcel       = CGAL::Arr_face_extended_dcel<Traits, std::int32_t>;
+// Vertices carry their rounded coordinates (round_vertices), faces their index.
+using Dcel       = CGAL::Arr_extended_dcel<Traits, Vec2, std::uint8_t, std::int32_t>;
 using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 using Halfedge_handle = Arrangement::Halfedge_const_handle;
 using Face_handle     = Arrangement::Face_const_handle;
@@ -189,7 +196,22 @@ RawMesh make_raw_mesh(const SceneDef& scene, const std::vector<std::array<std::i
 
 Point to_point(const Vec2& p) { return Point(p.x, p.y); }
 
-Vec2 to_vec(const Point& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
+// The double nearest to an exact coordinate (ties to the lower), from the exact value and not
+// from the interval CGAL's filter carries (file comment, step 6). Inputs (lattice nodes, joint
+// and boundary ends) are doubles already and cost nothing; a constructed point is computed
+// exactly once here.
+double round_exact(const Kernel::FT& v) {
+  double r;
+  if (CGAL::fit_in_double(v.approx(), r)) return r;
+  using ET = Kernel::FT::ET;
+  const ET& e = v.exact();
+  const std::pair<double, double> iv = CGAL::to_interval(e);  // the tightest interval about e
+  if (iv.first == iv.second) return iv.first;
+  const ET mid = (ET(iv.first) + ET(iv.second)) / 2;
+  return e <= mid ? iv.first : iv.second;
+}
+
+Vec2 round_exact(const Point& p) { return {round_exact(p.x()), round_exact(p.y())}; }
 
 // Per-face labels found by union–find over the arrangement's faces.
 struct FaceLabels {
@@ -214,6 +236,7 @@ class Cutter {
   void number_faces();
   void label_faces();
   void bridge_holes();
+  void round_vertices();
   Mesh extract();
   bool speck(Face_handle face) const;
 
@@ -353,7 +376,7 @@ void Cutter::label_faces() {
       // One connected region said to be inside two bodies, or inside and outside one: bodies
       // overlap (the geometry checks already ensured each polygon is simple).
       const std::int32_t a = body_witness[root], b = witness;
-      const Vec2 p = to_vec(h->source()->point());
+      const Vec2 p = round_exact(h->source()->point());
       std::ostringstream msg;
       msg << "overlaps body " << std::min(a, b) << " (near x = " << p.x << ", y = " << p.y
           << "); bodies may touch but not overlap";
@@ -420,6 +443,10 @@ void Cutter::bridge_holes() {
   for (const Curve& c : bridges) CGAL::insert(arr_, c);
 }
 
+void Cutter::round_vertices() {
+  for (auto v = arr_.vertices_begin(); v != arr_.vertices_end(); ++v) v->set_data(round_exact(v->point()));
+}
+
 // A face that is no rock in doubles: its loop, rounded, fits in a box of side 1e-9·h or encloses
 // no positive area. Exact arithmetic gives such specks where three cuts meet within round-off of
 // one point (a crack ending on a joint beside a mesh edge); as an element it would have zero or
@@ -428,9 +455,9 @@ bool Cutter::speck(Face_handle face) const {
   Box box = Box::empty();
   double twice_area = 0;  // m², about the first vertex (less cancellation)
   auto c = *face->outer_ccbs_begin(), start = c;
-  const Vec2 o = to_vec(c->source()->point());
+  const Vec2 o = c->source()->data();
   do {
-    const Vec2 p = to_vec(c->source()->point()), q = to_vec(c->target()->point());
+    const Vec2 p = c->source()->data(), q = c->target()->data();
     box.add(p.x, p.y);
     twice_area += (p.x - o.x) * (q.y - o.y) - (q.x - o.x) * (p.y - o.y);
   } while (++c != start);
@@ -487,7 +514,7 @@ Mesh Cutter::extract() {
     mesh.element_body.push_back(lab_.body[f]);
     auto c = *face->outer_ccbs_begin(), start = c;
     do {
-      const Vec2 p = to_vec(c->source()->point());
+      const Vec2 p = c->source()->data();
       mesh.loop_xy.push_back(p.x);
       mesh.loop_xy.push_back(p.y);
       std::uint8_t kinds = 0;
@@ -516,7 +543,7 @@ Mesh Cutter::extract() {
     // A piece of mesh edge that rounds to one point (three cuts meeting within round-off of it)
     // joins nothing: in doubles it is no edge, and the re-cut (recut.cpp), which links elements
     // by their rounded edges, must find the same blocks and covers as this cut.
-    if (to_vec(e->source()->point()) == to_vec(e->target()->point())) continue;
+    if (e->source()->data() == e->target()->data()) continue;
     const std::int32_t m1 = face_me[e->face()->data()], m2 = face_me[e->twin()->face()->data()];
     if (m1 < 0 || m2 < 0) continue;
     block_uf.unite(m1, m2);
@@ -593,6 +620,7 @@ Mesh Cutter::run(CutTimings* timings) {
   t.labelling = t0.seconds();
 
   t0.restart();
+  round_vertices();
   Mesh mesh = extract();
   t.covers = t0.seconds();
   if (timings) *timings = t;

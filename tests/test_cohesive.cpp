@@ -331,7 +331,11 @@ TEST(CohesiveBar, OneCrackAndItsFractureEnergyWhateverTheStep) {
 // cracks' length. The two faces' vertices at one point of an opening crack stand the opening w
 // apart; told apart by their distance (1e-3·h), both took their whole halves once w passed
 // 0.1 mm: the bar's contacts stood for 0.286 m of its 0.213 m of crack at step 151, the force
-// jumped 25 % and its post-peak curve left Hillerborg's by 6.2 % there (1.8 % since).
+// jumped 25 % and its post-peak curve left Hillerborg's by 6.2 % there (1.8 % since). The bound
+// is 1e-6·h: the faces' lengths are taken on the moving faces, which stretch by nanometres as the
+// bar deforms, so two paths a round-off apart end on either side of the cracks' length (4.9e-9 m
+// under and, since the cut rounds each vertex from its exact value, 1.06e-9 m over at step 260,
+// 2026-11-30), far from the defect's 0.073 m.
 TEST(CohesiveBar, FacesStandForNoMoreCrackThanWasCut) {
   SceneDef s;
   const Mesh m = mesh_of(cohesive_bar(0.1), "bar", s);
@@ -351,7 +355,7 @@ TEST(CohesiveBar, FacesStandForNoMoreCrackThanWasCut) {
   std::printf("%d steps with cohesive faces; their lengths exceed the cracks' by %.3g m at most (step %lld)\n", steps,
               worst, static_cast<long long>(at));
   EXPECT_GT(steps, 100);
-  EXPECT_LE(worst, 1e-9);
+  EXPECT_LE(worst, 1e-7);
 }
 
 // Petersson's (1981) beam in three-point bending (docs/cohesive_beam.py has the same scene): span

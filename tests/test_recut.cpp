@@ -167,4 +167,42 @@ TEST(Recut, CracksThroughNodesAlongEdgesAndFromATip) {
   check_recut(two_bodies(), {{4.1, 0.3}, {4.2, 0.35}}, "crack inside one triangle");
 }
 
+// A point a joint constructs on a mesh edge gets one double in every cut (issue 48). The re-cut
+// links blocks across mesh-only edges by their rounded end points, so an old element beside the
+// region and a re-cut element in it must round their common vertex alike. CGAL's to_double of a
+// lazy number gave the midpoint of whatever interval the construction left, and the region cut
+// and the whole cut forced the exact value at different points: here the older joint's crossing
+// of a mesh edge came out 1 ulp apart (8 loop vertices with a twin a round-off away, 2 not in the
+// whole cut), and on the step-path slope at h 0.5 m such a pair cut a three-sided piece off its
+// block (2 blocks against 1 at t 0.02 s). Now every vertex is rounded from its exact value.
+TEST(Recut, AConstructedPointRoundsAlikeInTheRegionAndTheWholeCut) {
+  SceneDef s = reference::interface_scene(0.5, 30);
+  s.bodies = {reference::box(0, 0, 4, 3)};
+  JointDef j;  // an older joint, crossing mesh edges at constructed points
+  j.set = 0;
+  j.points = {{1.2750553671578448, 0.23540875034156006}, {2.1365271935998549, 1.8158726987588176}};
+  s.joints.push_back(j);
+  const pre::RecutMap map = check_recut(s, {{1.9564727882763981, 0.8660254037844386}, {2.0003418491968414, 1.0917288845608044}},
+                                        "crack from a mesh row beside an older joint");
+  const Mesh old = pre::build_mesh(s, "old");
+  s.joints.push_back({0, {{1.9564727882763981, 0.8660254037844386}, {2.0003418491968414, 1.0917288845608044}}});
+  const Mesh whole = pre::build_mesh(s, "whole");
+  pre::RecutMap map2;
+  const Mesh m = pre::recut(old, s, 1, "recut", map2);
+  std::set<std::pair<double, double>> whole_points;
+  for (std::size_t v = 0; v < whole.loop_vertex_count(); ++v) whole_points.insert({whole.loop_xy[2 * v], whole.loop_xy[2 * v + 1]});
+  std::size_t not_whole = 0, twins = 0;
+  for (std::size_t v = 0; v < m.loop_vertex_count(); ++v) {
+    const double x = m.loop_xy[2 * v], y = m.loop_xy[2 * v + 1];
+    not_whole += whole_points.count({x, y}) == 0;
+    for (std::size_t w = 0; w < m.loop_vertex_count(); ++w) {
+      const double u = m.loop_xy[2 * w], z = m.loop_xy[2 * w + 1];
+      twins += (u != x || z != y) && std::abs(u - x) < 1e-12 && std::abs(z - y) < 1e-12;
+    }
+  }
+  EXPECT_EQ(not_whole, 0u) << "re-cut loop vertices that are not the whole cut's, bit for bit";
+  EXPECT_EQ(twins, 0u) << "loop vertices of the re-cut with another double for the same point";
+  EXPECT_GT(map.region_triangles, 0u);
+}
+
 }  // namespace nmm
