@@ -21,8 +21,9 @@ namespace nmm::solve {
 
 namespace {
 
-// NMM_TRACE_CRACK_RULES=1: each bridge weighed, each re-armed or in-line crack grown and each new
-// crack started, to stderr.
+// NMM_TRACE_CRACK_RULES=1: each bridge weighed, each re-armed or in-line crack grown, each new
+// crack started and each new block of at most three elements a cut made (debris or not), to
+// stderr.
 bool trace_rules() {
   static const bool on = std::getenv("NMM_TRACE_CRACK_RULES") != nullptr;
   return on;
@@ -521,6 +522,7 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
   std::vector<std::uint8_t> touched(mesh.triangle_count(), 0);
   for (const std::int32_t t : map.cut_triangles) touched[static_cast<std::size_t>(t)] = 1;
   std::vector<double> block_area(mesh.block_count(), 0.0);
+  std::vector<std::int32_t> block_elements(mesh.block_count(), 0);
   std::vector<std::uint8_t> block_new(mesh.block_count(), 0), block_old_debris(mesh.block_count(), 1);
   for (std::size_t e = 0; e < n; ++e) {
     const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
@@ -528,17 +530,25 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
     debris[e] = debris_.empty() ? 0 : debris_[p];
     const std::size_t b = static_cast<std::size_t>(mesh.element_block[e]);
     block_area[b] += element_area(mesh, e);
+    ++block_elements[b];
     block_new[b] = block_new[b] || crossed_[p] || touched[static_cast<std::size_t>(mesh.element_triangle[e])];
     block_old_debris[b] = block_old_debris[b] && debris[e];
   }
   const double limit = kDebrisArea * mesh.mesh_size * mesh.mesh_size;
+  const double sliver = kSliverArea * mesh.mesh_size * mesh.mesh_size;
   std::vector<std::uint8_t> block_debris(mesh.block_count(), 0);
-  for (std::size_t b = 0; b < block_area.size(); ++b)
-    if (block_new[b] && !block_old_debris[b] && block_area[b] < limit) {
+  for (std::size_t b = 0; b < block_area.size(); ++b) {
+    if (block_new[b] && !block_old_debris[b] && block_elements[b] <= 3 && trace_rules())
+      std::fprintf(stderr, "TRACE new block %zu: %d elements, %.4g m2 = %.4g h2%s\n", b, block_elements[b],
+                   block_area[b], block_area[b] / (mesh.mesh_size * mesh.mesh_size),
+                   block_area[b] < limit || (block_elements[b] == 1 && block_area[b] < sliver) ? ": debris" : "");
+    if (block_new[b] && !block_old_debris[b] &&
+        (block_area[b] < limit || (block_elements[b] == 1 && block_area[b] < sliver))) {
       block_debris[b] = 1;
       ++debris_blocks_;
       debris_area_ += block_area[b];
     }
+  }
   for (std::size_t e = 0; e < n; ++e)
     debris[e] = debris[e] || block_debris[static_cast<std::size_t>(mesh.element_block[e])];
   // An element of next to no area none of whose covers reaches beyond a speck is debris too,
