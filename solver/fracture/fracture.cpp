@@ -65,7 +65,7 @@ double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 //   moves by at most kGrid·h/2 for it (a segment an element long turns by 5e-7 rad).
 constexpr double kSnap = 1e-2, kOvershoot = 1e-8, kGrid = 1e-6;
 // `exit` moved along its edge onto the nearest of the points kGrid·h apart from its first vertex
-// (an ulp off the edge's line at most: the exact test in crack_end takes it from there).
+// (a round-off off the edge's line at most: the exact test in crack_end takes it from there).
 RayExit on_grid(const Mesh& mesh, std::size_t e, const RayExit& exit) {
   const std::int32_t b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
   const std::int32_t v = exit.edge, w = v + 1 < end ? v + 1 : b;
