@@ -23,7 +23,10 @@
 //     under 1 % of the work done at every step, in the bar and in a notched beam in three-point
 //     bending whose steps re-cut several times; the energy each cracking step books is what the
 //     beam's stiffness lost at fixed grip (Clapeyron: ½ h²·Δk); the cut itself moves no energy
-//     between columns.
+//     between columns;
+//   - a crack that cuts a sliver off a single element (a block of one element under
+//     kSliverArea·h²) makes it debris; a larger single-element piece, or a small piece of two
+//     elements, stays rock.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,6 +48,8 @@
 #include "reference/rock_tests.h"
 #include "solver/contact/contact_effect.h"
 #include "solver/fracture/crack_parting.h"
+#include "solver/fracture/element_geometry.h"
+#include "solver/fracture/fracture.h"
 #include "solver/fracture/rock_strength.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/fracture/step_start.h"
@@ -875,6 +880,83 @@ TEST(Fracture, ARecutCarriesTheContactsEndForcesOntoThePiecesTheyActOn) {
   EXPECT_GE(cut_steps, 3);
   EXPECT_GE(released_steps, 1);
   EXPECT_GT(released, 100.0);  // J/m: what a re-cut lost to the residual before
+}
+
+// Sliver pieces (issue 48): a block a crack cuts off a single element has no stiffness path to the
+// rock beside it, and below kSliverArea·h² its own contacts were all that held it (one of
+// 1.5e-2·h² under a biaxial specimen's platen moved 2 mm a step at every Δt). A crack is cut by
+// hand across a corner of a square at rest (h 0.25 m, a lattice of near-equilateral triangles),
+// as the fracture rule cuts one, from a along one side to b along the other: the corner piece is
+// the triangle a·b/2; Fracture::cut sees the re-cut mesh.
+namespace {
+struct CornerPiece {
+  int elements = 0;        // of the re-cut mesh, inside the corner triangle
+  double area = 0;         // m², theirs
+  int debris = 0;          // of them, debris
+  int debris_blocks = 0;
+  double debris_area = 0;  // m², Fracture's count
+};
+CornerPiece cut_corner(const Vec2& corner, double a, double b) {
+  const nlohmann::json strength = {{"tensile", 1e6}, {"cohesion", 4e6}, {"friction_deg", 35}};
+  const SceneDef s = scene_from_json(specimen(1, 1, 0.25, 0, 0, strength), "corner");
+  const Mesh m = pre::build_mesh(s, "corner");
+  TimeStepper st(m, s, "corner");
+  solve::Fracture f(s);
+  EXPECT_TRUE(f.active());
+  EXPECT_TRUE(f.find(m, s, st.view().state, {}).empty());  // at rest nothing breaks
+  // From (a, 0) to (0, b) in the corner's axes (pointing into the square), 10 % past both sides.
+  const double sx = corner.x == 0 ? 1 : -1, sy = corner.y == 0 ? 1 : -1;
+  CrackSegment seg;
+  seg.a = {corner.x + sx * 1.1 * a, corner.y - sy * 0.1 * b};
+  seg.b = {corner.x - sx * 0.1 * a, corner.y + sy * 1.1 * b};
+  SceneDef cracked = s;
+  cracked.joints.push_back({s.fracture.crack_set, {seg.a, seg.b}});
+  pre::RecutMap map;
+  const Mesh now = pre::recut(m, cracked, s.joints.size(), "corner", map);
+  f.cut({seg}, now, map);
+  CornerPiece p;
+  for (std::size_t e = 0; e < now.element_count(); ++e) {
+    const Vec2 q = solve::inside_point(now, e);
+    if (sx * (q.x - corner.x) / a + sy * (q.y - corner.y) / b >= 1) continue;
+    ++p.elements;
+    p.area += element_area(now, e);
+    p.debris += f.debris()[e];
+  }
+  p.debris_blocks = f.debris_blocks();
+  p.debris_area = f.debris_area();
+  std::printf("corner (%g, %g), a %g m, b %g m: %d elements, %.4g m2 = %.4g h2, %d debris (%d blocks, %.4g m2)\n",
+              corner.x, corner.y, a, b, p.elements, p.area, p.area / 0.0625, p.debris, p.debris_blocks, p.debris_area);
+  return p;
+}
+}  // namespace
+
+TEST(Fracture, ASliverACrackCutsOffOneElementIsDebris) {
+  const double h2 = 0.25 * 0.25;
+  ASSERT_LT(solve::Fracture::kDebrisArea, 0.015);
+  ASSERT_GT(solve::Fracture::kSliverArea, 0.015);
+  ASSERT_LT(solve::Fracture::kSliverArea, 0.078);
+  // 1.5e-2·h², the biaxial sliver's share, of one element (the corner triangle (0, 1),
+  // (0.0774, 1), (0, 0.866) m): above kDebrisArea, debris.
+  const double c15 = std::sqrt(2 * 0.015 * h2), c3 = std::sqrt(2 * 0.03 * h2);
+  const CornerPiece one = cut_corner({0, 1}, c15, c15);
+  ASSERT_EQ(one.elements, 1);
+  EXPECT_NEAR(one.area, c15 * c15 / 2, 1e-12);
+  EXPECT_EQ(one.debris, 1);
+  EXPECT_EQ(one.debris_blocks, 1);
+  EXPECT_NEAR(one.debris_area, c15 * c15 / 2, 1e-12);
+  // 7.8e-2·h² of one element (the corner triangle at (1, 1)): a piece of rock, kept.
+  const CornerPiece big = cut_corner({1, 1}, 0.075, 0.13);
+  ASSERT_EQ(big.elements, 1);
+  EXPECT_NEAR(big.area, 0.075 * 0.13 / 2, 1e-12);
+  EXPECT_EQ(big.debris, 0);
+  EXPECT_EQ(big.debris_blocks, 0);
+  // 3e-2·h² over the two elements that meet at the corner (0, 0): a stiffness path across
+  // their shared edge; kept.
+  const CornerPiece two = cut_corner({0, 0}, c3, c3);
+  ASSERT_EQ(two.elements, 2);
+  EXPECT_NEAR(two.area, c3 * c3 / 2, 1e-12);
+  EXPECT_EQ(two.debris, 0);
+  EXPECT_EQ(two.debris_blocks, 0);
 }
 
 // A piece is a block that contacts, supports or inertia hold, or debris (issue 48; docs/fracture.md

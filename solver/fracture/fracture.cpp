@@ -21,8 +21,9 @@ namespace nmm::solve {
 
 namespace {
 
-// NMM_TRACE_CRACK_RULES=1: each bridge weighed, each re-armed or in-line crack grown and each new
-// crack started, to stderr.
+// NMM_TRACE_CRACK_RULES=1: each bridge weighed, each re-armed or in-line crack grown, each new
+// crack started and each new block of at most three elements a cut made (debris or not), to
+// stderr.
 bool trace_rules() {
   static const bool on = std::getenv("NMM_TRACE_CRACK_RULES") != nullptr;
   return on;
@@ -55,7 +56,30 @@ double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 //   Every such end cut kOvershoot·h past instead put its kink 1e-8·h inside the next element, and
 //   the contact solve on the 2.5e-9 m edges that made failed to converge (the bar at n = 2, a
 //   time step cut); the compression specimens cascaded too.
-constexpr double kSnap = 1e-2, kOvershoot = 1e-8;
+// - before any of this, the exit is rounded to a grid along its edge, kGrid·h apart: the exit
+//   follows from a direction read off the solution, whose last bits the BLAS kernel decides, and
+//   every decision above (and the exact one) is then taken on a point both kernel families agree
+//   on. Without it the notched beam (h 0.02 m, static, fast) cut its meshes of step 46 an element
+//   apart under the Haswell and the Prescott kernels (an end on or past its edge as computed
+//   under one, moved past it under the other) and its peaks came out 81.0 / 74.1 kN/m. The end
+//   moves by at most kGrid·h/2 for it (a segment an element long turns by 5e-7 rad).
+constexpr double kSnap = 1e-2, kOvershoot = 1e-8, kGrid = 1e-6;
+// `exit` moved along its edge onto the nearest of the points kGrid·h apart from its first vertex
+// (a round-off off the edge's line at most: the exact test in crack_end takes it from there).
+RayExit on_grid(const Mesh& mesh, std::size_t e, const RayExit& exit) {
+  const std::int32_t b = mesh.element_loop_offset[e], end = mesh.element_loop_offset[e + 1];
+  const std::int32_t v = exit.edge, w = v + 1 < end ? v + 1 : b;
+  const Vec2 pv{mesh.loop_xy[2 * v], mesh.loop_xy[2 * v + 1]}, pw{mesh.loop_xy[2 * w], mesh.loop_xy[2 * w + 1]};
+  const Vec2 edge{pw.x - pv.x, pw.y - pv.y};
+  const double length = std::hypot(edge.x, edge.y);  // m
+  RayExit out = exit;
+  if (!(length > 0)) return out;
+  const double cells = std::ceil(length / (kGrid * mesh.mesh_size));
+  const double along = dot({exit.at.x - pv.x, exit.at.y - pv.y}, edge) / (length * length);  // –, 0 at pv
+  const double k = std::clamp(std::round(along * cells), 0.0, cells);
+  out.at = k == 0 ? pv : k == cells ? pw : plus(pv, k / cells, edge);
+  return out;
+}
 struct CrackEnd {
   Vec2 at;          // m, where the crack leaves the element (as cut)
   Vec2 cut_to;      // m, where its segment ends (past `at` when it stops or lay a round-off short)
@@ -70,11 +94,11 @@ CrackEnd crack_end(const Mesh& mesh, std::size_t e, const Vec2& from, const RayE
   auto vertex = [&](std::int32_t k) { return Vec2{mesh.loop_xy[2 * k], mesh.loop_xy[2 * k + 1]}; };
   auto stop_edge = [&](std::int32_t k) { return (mesh.loop_edge_origin[k] & (kEdgeBoundary | kEdgeJoint)) != 0; };
   CrackEnd c;
-  c.at = exit.at;
+  c.at = on_grid(mesh, e, exit).at;
   c.stops = stop_edge(v);
   if (c.stops) c.stop_edge = v;
   const Vec2 pv = vertex(v), pw = vertex(w);
-  const double dv = std::hypot(exit.at.x - pv.x, exit.at.y - pv.y), dw = std::hypot(exit.at.x - pw.x, exit.at.y - pw.y);
+  const double dv = std::hypot(c.at.x - pv.x, c.at.y - pv.y), dw = std::hypot(c.at.x - pw.x, c.at.y - pw.y);
   if (std::min(dv, dw) < kSnap * h) {
     const bool at_v = dv <= dw;
     const Vec2 snapped = at_v ? pv : pw;
@@ -474,8 +498,9 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       if (trace_rules())
         std::fprintf(stderr, "TRACE start step %lld crack %d in element %zu ratio %.5f\n", static_cast<long long>(s.step),
                      crack, e, ratio_[e]);
-      // Each end as a crack leaving the element from the other end.
-      const CrackEnd f = crack_end(mesh, e, back.at, fwd), r = crack_end(mesh, e, f.at, back);
+      // Each end as a crack leaving the element from the other end (on its edge's grid, so that
+      // the forward end's overshoot is taken along a line both kernel families agree on).
+      const CrackEnd f = crack_end(mesh, e, on_grid(mesh, e, back).at, fwd), r = crack_end(mesh, e, f.at, back);
       add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);
       const std::size_t first = tips_.size();
       for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
@@ -497,6 +522,7 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
   std::vector<std::uint8_t> touched(mesh.triangle_count(), 0);
   for (const std::int32_t t : map.cut_triangles) touched[static_cast<std::size_t>(t)] = 1;
   std::vector<double> block_area(mesh.block_count(), 0.0);
+  std::vector<std::int32_t> block_elements(mesh.block_count(), 0);
   std::vector<std::uint8_t> block_new(mesh.block_count(), 0), block_old_debris(mesh.block_count(), 1);
   for (std::size_t e = 0; e < n; ++e) {
     const std::size_t p = static_cast<std::size_t>(map.element_parent[e]);
@@ -504,17 +530,25 @@ void Fracture::cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, 
     debris[e] = debris_.empty() ? 0 : debris_[p];
     const std::size_t b = static_cast<std::size_t>(mesh.element_block[e]);
     block_area[b] += element_area(mesh, e);
+    ++block_elements[b];
     block_new[b] = block_new[b] || crossed_[p] || touched[static_cast<std::size_t>(mesh.element_triangle[e])];
     block_old_debris[b] = block_old_debris[b] && debris[e];
   }
   const double limit = kDebrisArea * mesh.mesh_size * mesh.mesh_size;
+  const double sliver = kSliverArea * mesh.mesh_size * mesh.mesh_size;
   std::vector<std::uint8_t> block_debris(mesh.block_count(), 0);
-  for (std::size_t b = 0; b < block_area.size(); ++b)
-    if (block_new[b] && !block_old_debris[b] && block_area[b] < limit) {
+  for (std::size_t b = 0; b < block_area.size(); ++b) {
+    if (block_new[b] && !block_old_debris[b] && block_elements[b] <= 3 && trace_rules())
+      std::fprintf(stderr, "TRACE new block %zu: %d elements, %.4g m2 = %.4g h2%s\n", b, block_elements[b],
+                   block_area[b], block_area[b] / (mesh.mesh_size * mesh.mesh_size),
+                   block_area[b] < limit || (block_elements[b] == 1 && block_area[b] < sliver) ? ": debris" : "");
+    if (block_new[b] && !block_old_debris[b] &&
+        (block_area[b] < limit || (block_elements[b] == 1 && block_area[b] < sliver))) {
       block_debris[b] = 1;
       ++debris_blocks_;
       debris_area_ += block_area[b];
     }
+  }
   for (std::size_t e = 0; e < n; ++e)
     debris[e] = debris[e] || block_debris[static_cast<std::size_t>(mesh.element_block[e])];
   // An element of next to no area none of whose covers reaches beyond a speck is debris too,

@@ -78,7 +78,8 @@ class Fracture {
                                  const std::vector<std::uint8_t>& may_start = {});
   /// The segments `find` returned were cut into `mesh` (`map`: from it to the mesh they were
   /// found on): they join the record, the elements they crossed are disarmed, and the blocks
-  /// they cut off that are smaller than kDebrisArea·h² become debris.
+  /// they cut off that are smaller than kDebrisArea·h², or of one element and smaller than
+  /// kSliverArea·h², become debris.
   void cut(const std::vector<CrackSegment>& segments, const Mesh& mesh, const pre::RecutMap& map);
 
   /// [me] 1: debris — an element of a block the cracks cut off smaller than kDebrisArea·h². It
@@ -90,6 +91,12 @@ class Fracture {
   /// its peak): a block under a hundredth of an element is debris.
   const std::vector<std::uint8_t>& debris() const { return debris_; }
   static constexpr double kDebrisArea = 1e-2;
+  /// ×h², below which a new block of a single element is debris too: a sliver the cracks cut
+  /// off one element, whose three covers reach no other element, has no stiffness path to the
+  /// rock beside it and only its contacts hold it. One of 5.76e-5 m² (1.5e-2·h²) under a
+  /// biaxial specimen's platen moved 2.05–2.56 mm a step at every Δt down to the floor, and
+  /// stopped the run (docs/fracture.md "Small pieces").
+  static constexpr double kSliverArea = 5e-2;
   /// ×h², the least support a physical cover of a run that can crack keeps unknowns of its own
   /// with (cover_unknowns.cpp): a corner the cracks cut off at a node, less than a hundredth of
   /// an element, moves with a neighbour cover. Flaps of 1.5e-3·h² on a loaded boundary were
