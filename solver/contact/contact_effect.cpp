@@ -104,12 +104,16 @@ Outcome ContactEffect::solve(EffectStep& step, bool again, StepSolution& x) {
   const double tau = sv.contact_tolerance;
   // A dynamic run hands the blocks' share of the residual on to the next step (block_momentum.h).
   const bool hand_on = sv.dynamic && sv.dynamic_factor > 0;
-  const auto solve = [&](bool warm) {
+  const auto solve = [&](ContactStart start) {
     return solve_contact_step(step.system, problem_, rhs_base_, tau,
                               contacts_.softening() ? displacement_tolerance(tau, model_.w0()) : 0.0, x.d, stats_,
-                              hand_on ? &x.residual : nullptr, warm);
+                              hand_on ? &x.residual : nullptr, start);
   };
-  Outcome outcome = solve(again);
+  // A re-solve on a re-cut mesh starts from the solution on the mesh before (x.guess), which
+  // differs from it by the new cracks' opening only.
+  const bool guess = !again && x.guess && x.d.size() == rhs_base_.size();
+  x.guess = false;
+  Outcome outcome = solve(again ? ContactStart::warm : guess ? ContactStart::guess : ContactStart::zero);
   // Bonds and cohesion break only at a solution of the step, and the step is solved again with
   // them broken until no unbroken contact is beyond its peak (contact_problem.h break_at_peak). Each
   // round breaks at least one contact, so this ends.
@@ -118,7 +122,7 @@ Outcome ContactEffect::solve(EffectStep& step, bool again, StepSolution& x) {
     if (!resolved) ++stats_.steps_resolved_for_breaks;
     resolved = true;
     ++stats_.break_resolves;
-    outcome = solve(true);  // from the solution before the breaks
+    outcome = solve(ContactStart::warm);  // from the solution before the breaks
   }
   // Softening crack faces (cohesive_law.h): where the static path snaps back — the crack would
   // release more energy than it can take — the step's Newton iterations find no balance and

@@ -46,6 +46,11 @@
 // the sliding block at τ = 1e-3 with directions solved to 1e-2 (kForcing): +0.084 % off Coulomb
 // without the hand-on, +0.037 % with it, as with τ = 1e-8.
 //
+// Start. Any d₀ will do for the argument above (Π is convex, every accepted α lowers it): a
+// step starts from d = 0, or from a guess — the same step's solution on the mesh before a crack
+// re-cut it (ContactStart::guess), which then differs from the answer by what the new cracks
+// open, so the friction fixed point below starts near its end instead of from the step's start.
+//
 // Friction. S = tanφ·N + c·L needs the normal force. Each of the first kMergedUpdates Newton
 // iterates updates every strength from its own N (the friction state lags one iterate, as in
 // DDA's open–close passes, instead of a round of full solves per update); for fixed strengths
@@ -260,15 +265,17 @@ double line_search(const F& psi, double psi0, double tol) {
 
 Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
-                                       Eigen::VectorXd* residual, bool warm) {
+                                       Eigen::VectorXd* residual, ContactStart start) {
   // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
   static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
   const Eigen::Index n = b.size();
   Eigen::VectorXd ra = b;  // b − A d, kept up to date without a product per iteration
   Eigen::VectorXd r(n), delta(n), adelta(n);
-  if (warm) {
-    // From the solution of the same step before contacts broke (ContactProblem::break_at_peak has
-    // set their broken strengths; the others are the fixed point's at d).
+  if (start != ContactStart::zero) {
+    // warm: from the solution of the same step before contacts broke (ContactProblem::break_at_peak
+    // has set their broken strengths; the others are the fixed point's at d). guess: from the
+    // solution on the mesh before a re-cut, with the step's start strengths.
+    if (start == ContactStart::guess) contacts.start_strengths();
     system.saved_times(d, adelta);
     ra -= adelta;
   } else {
@@ -314,7 +321,8 @@ Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const
     // last step's, already in the strengths) for the first kMergedUpdates iterates; after that,
     // only once the iterate is in balance (a round of the fixed point per update), so a strength
     // swinging between two values cannot keep Newton from converging.
-    const bool merged = it > 0 && it <= kMergedUpdates;
+    // From a guess the first iterate's N are the guess's, not the last step's: they count too.
+    const bool merged = (it > 0 || start == ContactStart::guess) && it <= kMergedUpdates;
     int moved = 0;  // friction strengths this iterate moved
     if (merged || r_norm <= tol) {
       moved = contacts.update_strengths(tol);

@@ -58,6 +58,16 @@ struct ContactSolveStats {
 inline constexpr double kDisplacementTolerance = 3e-4;  ///< × τ·w0
 inline double displacement_tolerance(double tau, double w0) { return kDisplacementTolerance * tau * w0; }
 
+/// Where a step's Newton iterations begin (solve_contact_step).
+enum class ContactStart {
+  zero,   ///< d = 0, with the strengths the step started with
+  warm,   ///< d as given, with the strengths the contacts hold (the same step solved again after
+          ///< contacts broke at its solution)
+  guess,  ///< d as given — the solution of the same step on the mesh before a re-cut, carried
+          ///< onto the new covers (time_stepper.cpp) — with the strengths the step started with,
+          ///< which follow the guess's normal forces from its first iterate on
+};
+
 /// Minimises Π(d) = ½dᵀAd − bᵀd + Σ contact energies over the step's increment d, with A and
 /// b the system without contacts (`system` holds A in its saved values), to the force tolerance
 /// τ (solver.contact_tolerance: the largest out-of-balance force on an unknown, as a fraction of
@@ -67,11 +77,10 @@ inline double displacement_tolerance(double tau, double w0) { return kDisplaceme
 /// normal forces (block_momentum.h hands its blocks' share to the next step). The contacts'
 /// states are left to the caller (ContactProblem::break_at_peak, settle_states). Returns ok, or
 /// unconstrained (a factorisation failed), contact_not_converged or direction_not_finite (the
-/// caller cuts the step) with the reason in words; its time is the caller's to set. `warm`: start from d
-/// as given, with the strengths the contacts hold (the same step solved again after contacts
-/// broke at its solution), instead of from d = 0 with the strengths the step started with.
+/// caller cuts the step) with the reason in words; its time is the caller's to set. `start`:
+/// where the iterations begin (ContactStart).
 Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
-                                       Eigen::VectorXd* residual = nullptr, bool warm = false);
+                                       Eigen::VectorXd* residual = nullptr, ContactStart start = ContactStart::zero);
 
 }  // namespace nmm::solve

@@ -109,6 +109,10 @@ struct StepSolution {
   Eigen::VectorXd d;         ///< the increment of every unknown
   Eigen::VectorXd residual;  ///< N/m, the out-of-balance force handed on (block_momentum.h)
   bool iterated = false;     ///< the solve took an iterative (Newton) direction
+  /// d holds a start guess for the first solve of the attempt (the same step's solution on the
+  /// mesh before a re-cut, carried onto the new covers: time_stepper.cpp attempt); an effect that
+  /// solves iteratively may start from it, a direct solve ignores it.
+  bool guess = false;
 };
 
 class Effect : public EffectOutput, public EffectEnergy {

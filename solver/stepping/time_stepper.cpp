@@ -140,6 +140,9 @@ StepContext TimeStepper::step_context(double dt) const {
 }
 
 Outcome TimeStepper::attempt_once(double dt) {
+  // The start guess is this attempt's alone: a shorter attempt after it starts from 0.
+  std::vector<double> carried;
+  carried.swap(carried_);
   // The effects that take part in the run's steps (mesh_bound.h), and the one that solves the
   // step its own way (the contacts' problem); without it one factorisation and solve — where no
   // two faces can touch (an opening excavated from one unjointed block), no contact detection.
@@ -177,6 +180,26 @@ Outcome TimeStepper::attempt_once(double dt) {
   // Assembly and solve; an effect that judges the solution wrong for what it assembled (a
   // spring that yields, slips or breaks) has the step solved again from there.
   StepSolution x;
+  // On a mesh a crack re-cut within this step: the iterative solve starts from the solution the
+  // step had on the mesh before (carried_, taken by this attempt alone), which differs from this
+  // one's by what the new cracks open. From d = 0 each re-solve ran the whole friction fixed
+  // point of a sliding, breaking wedge again: 17 factorisations of the 18 a first attempt takes
+  // (docs/fracture.md "Robustness matrix"). Covers of removed elements (debris) are held: 0.
+  if (!carried.empty() && solver) {
+    const std::size_t dpc = static_cast<std::size_t>(b_->space.dofs_per_cover());
+    std::vector<std::uint8_t> held(mesh().cover_count(), 0);
+    for (std::size_t e = 0; e < mesh().element_count(); ++e)
+      if (removed_elem_[e])
+        for (int k = 0; k < 3; ++k) held[static_cast<std::size_t>(mesh().element_covers[3 * e + k])] = 1;
+    x.d = Eigen::VectorXd::Zero(rhs_.size());
+    for (std::size_t c = 0; c < held.size() && dpc * (c + 1) <= carried.size(); ++c) {
+      const int u = b_->space.first_unknown(c);
+      // A sliver cover shares its neighbour's unknowns: the owner's increment is the one kept.
+      if (held[c] || b_->space.cover_of_unknown(u) != static_cast<int>(c)) continue;
+      for (std::size_t k = 0; k < dpc; ++k) x.d[u + static_cast<Eigen::Index>(k)] = carried[dpc * c + k];
+    }
+    x.guess = true;
+  }
   for (int round = 0;; ++round) {
     watch.restart();
     b_->form.assemble(context, system_, rhs_);
@@ -193,6 +216,7 @@ Outcome TimeStepper::attempt_once(double dt) {
     if (round + 1 >= again->max_solves()) return again->not_settled(s_.time);
   }
   const Eigen::VectorXd& d = x.d;
+  if (changes_.active()) solved_d_ = d;  // what a re-cut at this solution carries (attempt)
   for (Eigen::Index i = 0; i < d.size(); ++i)
     if (!std::isfinite(d[i]))
       return stop(StopCode::displacement_not_finite,
@@ -321,9 +345,21 @@ Outcome TimeStepper::attempt(double dt) {
     if (!change->change(mesh(), scene(), scene_name_, s_, removed_elem_, b_->space.dofs_per_cover(),
                         step_start_.state(), step_start_.history(), b_->effects, m, timings_))
       return o;
+    // The solution just found, each new cover taking its parent's increment: the re-solve's
+    // start guess (attempt_once).
+    const std::size_t dpc = static_cast<std::size_t>(b_->space.dofs_per_cover());
+    std::vector<double> carried(dpc * m.map.cover_parent.size(), 0.0);
+    for (std::size_t c = 0; c < m.map.cover_parent.size(); ++c) {
+      const std::int32_t p = m.map.cover_parent[c];
+      if (p < 0 || static_cast<std::size_t>(p) >= mesh().cover_count()) continue;
+      const Eigen::Index u = b_->space.first_unknown(static_cast<std::size_t>(p));
+      if (u + static_cast<Eigen::Index>(dpc) > solved_d_.size()) continue;
+      for (std::size_t k = 0; k < dpc; ++k) carried[dpc * c + k] = solved_d_[u + static_cast<Eigen::Index>(k)];
+    }
     step_start_.restore(s_);  // the start, carried onto the new mesh, with this solve's diagnostics
     watch.restart();
     change_mesh(std::move(m));
+    carried_ = std::move(carried);
     change->count_resolve();
     change->book(watch.seconds(), timings_);
   }

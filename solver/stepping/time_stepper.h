@@ -162,6 +162,11 @@ class TimeStepper : private StepHost {
   std::vector<std::uint8_t> removed_elem_;      // [me] 1: its body is excavated
 
   Eigen::VectorXd rhs_;
+  // The start guess of the next attempt, by cover of the mesh now (dofs_per_cover each): the
+  // solution of the same step on the mesh before a re-cut, each new cover its parent's
+  // increment (as transfer_state carries the state); empty: none (attempt_once starts from 0).
+  std::vector<double> carried_;
+  Eigen::VectorXd solved_d_;     // the last attempt's solution, in unknown order (a re-cut carries it)
   Eigen::VectorXd start_force_;  // N/m, r of the attempt on a re-cut mesh (recut_start_work_)
   SystemMatrix system_;
   StepTimings timings_;
