@@ -210,6 +210,44 @@ TEST(ContactTolerance, SettlingWallKeepsItsFactorisation) {
   EXPECT_LE(static_cast<double>(cs.factorisations) / steps, 0.3);
 }
 
+TEST(ContactTolerance, ASinglePrecisionFactorGivesItsDirectionsByCgAndTheSameWall) {
+  // The static 10 × 10 wall, its first 30 steps, with its factor in double and in single
+  // precision (which the largest runs keep: system_matrix.h). After a factorisation the single
+  // factor's direction is CG's on it, to the forcing term as every other direction, not a solve
+  // refined to round-off (contact_solve.cpp): no refinement pass (7 before), and every brick
+  // where the double run puts it.
+  PeerWall dbl(10, false), sgl(10, false);
+  TimeStepperProbe::set_single_precision(sgl.st, 1);
+  const double t = 30 * dbl.scene.solver.time_step;
+  ASSERT_PRED1(test::ended_ok, dbl.st.run_until(t, [](std::int64_t) {}));
+  ASSERT_PRED1(test::ended_ok, sgl.st.run_until(t, [](std::int64_t) {}));
+  const SystemMatrix& k = sgl.st.view().system;
+  ASSERT_TRUE(k.single_precision());
+  EXPECT_FALSE(dbl.st.view().system.single_precision());
+  const ContactSolveStats &a = dbl.st.view().contact_solve, &b = sgl.st.view().contact_solve;
+  std::printf("static 10 x 10 wall, 30 steps: double %ld Newton, %ld CG, %ld factorisations; single %ld, %ld, %ld, "
+              "%zu refinement passes\n",
+              a.newton, a.cg_iterations, a.factorisations, b.newton, b.cg_iterations, b.factorisations,
+              k.single_refinements());
+  EXPECT_GT(b.factorisations, 0);
+  EXPECT_EQ(k.single_refinements(), 0u);
+  // Where the covers are: the largest difference against the largest displacement of the run.
+  const std::vector<double>&x0 = dbl.st.view().state.cover_xy, &x1 = sgl.st.view().state.cover_xy;
+  const TimeStepper fresh(dbl.mesh, dbl.scene, "wall");
+  const std::vector<double>& start = fresh.view().state.cover_xy;
+  ASSERT_EQ(x0.size(), x1.size());
+  double off = 0, moved = 0;
+  for (std::size_t i = 0; i < x0.size(); ++i) {
+    off = std::max(off, std::abs(x1[i] - x0[i]));
+    moved = std::max(moved, std::abs(x0[i] - start[i]));
+  }
+  // The paths part by round-off and the friction fixed point lands elsewhere within its
+  // tolerance: 0.9 % of the largest displacement (1.1 % with the refined directions before).
+  std::printf("largest displacement %.3e m, largest difference %.3e m\n", moved, off);
+  EXPECT_GT(moved, 1e-4);
+  EXPECT_LT(off, 2e-2 * moved);
+}
+
 TEST(BlockMomentum, SpreadsEachBlocksForceAndMomentByMassAndGetsThemBack) {
   // The sliding block's mesh at cover order 1: the block and its base, each of many covers.
   const SceneDef s = reference::sliding_block_tilted(30, 20, 0.5, 1);

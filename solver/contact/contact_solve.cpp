@@ -382,17 +382,25 @@ Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const
       stats.factorisation_seconds += t0.seconds();
       if (!ok) return {StopCode::unconstrained, "the system matrix is not positive definite"};
       const std::size_t outside = contacts.outside_pattern().springs;
-      if (outside == 0) {
+      // A factor held in single precision (the largest runs, system_matrix.h) solves H exactly
+      // only through refinement passes in double (to 1e-13 of r: one or two more solve pairs and
+      // products), far past the forcing term a direction needs. Its direction is CG's on the new
+      // factor instead, whose first iteration is the unrefined solve and which stops at the
+      // forcing term as any other run; should it not, the refined solve. Measured on the
+      // 10,000-block wall at h = 0.5 m: docs/performance.md (h), "The direction after a
+      // factorisation".
+      if (outside == 0 && !system.single_precision()) {
         delta = system.solve(r);
         // The exact solve leaves r's round-off null component amplified by 1/ε in δ (zero field,
         // but rᵀδ then gives the line search a false slope): remove it.
         system.remove_null_part(delta);
       } else {
         // Springs of pairs not in the pattern are not in the factorisation: H − P has rank
-        // `outside`, which CG resolves in about as many iterations. Should it not, P's own
-        // direction P⁻¹r is still one of descent (P is symmetric positive definite).
+        // `outside`, which CG resolves in about as many iterations (with none outside, P = H up
+        // to the factor's rounding). Should it not, P's own direction P⁻¹r is still one of
+        // descent (P is symmetric positive definite).
         const Stopwatch t2;
-        const int cap = std::max(budget, 2 * static_cast<int>(outside) + 10);
+        const int cap = outside == 0 ? budget : std::max(budget, 2 * static_cast<int>(outside) + 10);
         if (!pcg(system, contacts, r, cg_target, cg_target_inf, cap, delta, stats)) {
           delta = system.solve(r);
           system.remove_null_part(delta);

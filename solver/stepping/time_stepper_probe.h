@@ -31,6 +31,9 @@ class TimeStepperProbe {
   /// The last attempt's contact problem: its rows, working values and what it left outside the
   /// sparse pattern (contact_problem.h).
   static const ContactProblem& contact_problem(const TimeStepper& st) { return st.b_->contact.problem(); }
+  /// Keeps the factor in single precision from `from` unknowns (system_matrix.h; a run does so
+  /// from kSingleFactorUnknowns, larger than a test's scenes), until the effects are numbered again.
+  static void set_single_precision(TimeStepper& st, int from) { st.system_.set_single_precision(from); }
 };
 
 }  // namespace nmm::solve
