@@ -243,21 +243,35 @@ Groups with_pairs(Groups g, const std::vector<std::pair<int, int>>& pairs) {
   for (const auto& [a, b] : pairs) g.add({2 * a, 2 * a + 1, 2 * b, 2 * b + 1});
   return g;
 }
+
+// 100 × 100 covers of 2 unknowns (METIS on the covers from 20,000 unknowns), the pattern grown by
+// pairs of covers two columns apart (contacts between near elements), and a right-hand side.
+struct GrownGrid {
+  static constexpr int kSide = 100;
+  int n = 2 * kSide * kSide;
+  Groups g = plane_grid(kSide, 2);
+  Groups grown;
+  Eigen::VectorXd b;
+  GrownGrid() : b(n) {
+    std::vector<std::pair<int, int>> near;
+    for (int j = 5; j < kSide; j += 10)
+      for (int i = 3; i + 2 < kSide; i += 7) near.emplace_back(j * kSide + i, j * kSide + i + 2);
+    grown = with_pairs(g, near);
+    for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i) - 0.2;
+  }
+};
 }  // namespace
 
 TEST(SystemMatrixOrdering, AKeptOrderingServesGrownPatternsAndRestartsBitwise) {
   // 100 × 100 covers, METIS on the covers from 20,000 unknowns. The pattern grows by pairs of
   // covers two columns apart (contacts between near elements): the ordering found at the first
   // analysis is kept, and a factorisation under it solves as an ordering found anew.
-  constexpr int kSide = 100;
-  const int n = 2 * kSide * kSide;
-  const Groups g = plane_grid(kSide, 2);
-  std::vector<std::pair<int, int>> near;
-  for (int j = 5; j < kSide; j += 10)
-    for (int i = 3; i + 2 < kSide; i += 7) near.emplace_back(j * kSide + i, j * kSide + i + 2);
-  const Groups grown = with_pairs(g, near);
-  Eigen::VectorXd b(n);
-  for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i) - 0.2;
+  constexpr int kSide = GrownGrid::kSide;
+  const GrownGrid grid;
+  const int n = grid.n;
+  const Groups& g = grid.g;
+  const Groups& grown = grid.grown;
+  const Eigen::VectorXd& b = grid.b;
   const auto set_up = [&](SystemMatrix& k) {
     k.set_amd_only(true);
     k.set_block_ordering(2, n, n);
@@ -448,15 +462,11 @@ TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactoris
 TEST(SystemMatrixSingle, ALeanRunOrdersEveryNewPatternAnew) {
   // The grown pattern of AKeptOrderingServesGrownPatterns… keeps its ordering in a run that is
   // not lean; a lean one (the largest runs) finds a new ordering for it, and solves as before.
-  constexpr int kSide = 100;
-  const int n = 2 * kSide * kSide;
-  const Groups g = plane_grid(kSide, 2);
-  std::vector<std::pair<int, int>> near;
-  for (int j = 5; j < kSide; j += 10)
-    for (int i = 3; i + 2 < kSide; i += 7) near.emplace_back(j * kSide + i, j * kSide + i + 2);
-  const Groups grown = with_pairs(g, near);
-  Eigen::VectorXd b(n);
-  for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i) - 0.2;
+  const GrownGrid grid;
+  const int n = grid.n;
+  const Groups& g = grid.g;
+  const Groups& grown = grid.grown;
+  const Eigen::VectorXd& b = grid.b;
   for (const bool lean : {false, true}) {
     SystemMatrix k;
     k.set_amd_only(true);
