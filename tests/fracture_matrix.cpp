@@ -32,12 +32,17 @@
 // a full cut after every re-cut, where the solver has that mode).
 // NMM_TRACE_SEGMENTS=1: every accepted step's load and new crack segments (hex floats, bit for
 // bit) to stderr, to find the first step where the runs under two kernel families part ways.
+// NMM_TRACE_COST=1: after every accepted step, the run's cost so far (steps solved again after a
+// re-cut, cut attempts, factorisations, solve pairs, Newton and CG iterations, this process's CPU
+// seconds, and the wall seconds of StepTimings' parts) with its contacts, unknowns, segments and
+// debris blocks, to stderr: where a cell's CPU goes, step by step (docs/fracture.md).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <algorithm>
 #include <cstring>
+#include <ctime>
 #include <exception>
 #include <fstream>
 #include <limits>
@@ -146,6 +151,19 @@ int run(const std::string& name, const std::string& csv) {
           std::fprintf(stderr, "segment %zu step %lld (%a, %a) (%a, %a)\n", shown, static_cast<long long>(all[shown].step),
                        all[shown].a.x, all[shown].a.y, all[shown].b.x, all[shown].b.y);
         std::fprintf(stderr, "accepted step %lld load %a\n", static_cast<long long>(n), load_of(v, sp));
+      }
+      if (std::getenv("NMM_TRACE_COST") != nullptr) {
+        // Where a run's work goes, step by step: cumulative counts and this process's CPU time.
+        std::fprintf(stderr, "cost step %lld t %.6g dt %.3g resolves %ld cuts %lld fact %ld solves %ld newton %ld cg %ld "
+                     "contacts %zu unknowns %ld segments %zu debris %d cpu %.2f detect %.2f assemble %.2f factor %.2f solve %.2f "
+                     "fracture %.2f geometry %.2f\n",
+                     static_cast<long long>(n), v.state.time, v.state.dt, fracture_of(v).resolves(),
+                     static_cast<long long>(v.state.cuts), v.timings.factorisations, v.timings.solves_count,
+                     v.contact_solve.newton, v.contact_solve.cg_iterations, v.contacts.contacts().size(),
+                     static_cast<long>(v.space.unknowns()), fracture_of(v).segments().size(),
+                     fracture_of(v).debris_blocks(), static_cast<double>(std::clock()) / CLOCKS_PER_SEC,
+                     v.timings.contact_detection, v.timings.assembly, v.timings.factorisation, v.timings.solves,
+                     v.timings.effect("fracture"), v.timings.geometry_update);
       }
       steps = n;
       previous = load;
