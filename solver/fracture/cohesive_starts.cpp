@@ -8,7 +8,6 @@
 #include "solver/fracture/cohesive_starts.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "solver/contact/cohesive_law.h"
@@ -19,18 +18,8 @@
 
 namespace nmm::solve {
 
-namespace {
-// m, the distance from p to the segment a–b.
-double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-  const double t = l2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
-  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
-}
-}  // namespace
-
 std::vector<std::uint8_t> cohesive_starts(const Mesh& mesh, const SceneDef& scene, const RunState& start,
-                                          const RunState& solved, bool started_this_step, std::size_t first_crack,
-                                          const std::vector<CrackSegment>& cracks) {
+                                          const RunState& solved, bool started_this_step, std::size_t first_crack) {
   std::vector<std::uint8_t> soft(scene.bodies.size(), 0);
   bool any = false;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -64,22 +53,7 @@ std::vector<std::uint8_t> cohesive_starts(const Mesh& mesh, const SceneDef& scen
     const double r_end = rock_failure(st, end[3 * e], end[3 * e + 1], end[3 * e + 2]).ratio;
     if (r_end < 1) continue;  // not a candidate anyway
     const double r_start = rock_failure(st, begin[3 * e], begin[3 * e + 1], begin[3 * e + 2]).ratio;
-    if (!(r_end > r_start)) {
-      may[e] = 0;  // rule 2: unloading
-      continue;
-    }
-    // Rule 6: within l_ch of a crack of the run the element is that crack's to reach (rule 4)
-    // or shielded by it, never the start of another.
-    if (may[e] & kMayStart) {
-      const MaterialDef& mat = scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(body)].material)];
-      const double reach = characteristic_length(mat.young, mat.strength);
-      const Vec2 c = inside_point(mesh, e);
-      for (const CrackSegment& seg : cracks)
-        if (distance_to_segment(c, seg.a, seg.b) < reach) {
-          may[e] &= kMayBeReached;
-          break;
-        }
-    }
+    if (!(r_end > r_start)) may[e] = 0;  // rule 2: unloading
   }
   return may;
 }

@@ -47,16 +47,6 @@
 //      h 0.025 m: its top edge passes 0.14 mm above a lattice row at x 0.5 m, and its first
 //      three cracks started in slivers of 2e-4 of an element there, 0.27 mm long, one a step,
 //      before any crack ran across it). It may still be reached by a tip (rule 4).
-//   6. no new crack within Hillerborg's l_ch of a crack of the run (its segments as cut, from the
-//      element's centroid): the crack-tracking rule of smeared-crack codes (Cervera, Pelà, Clemente
-//      & Roca 2010, "A crack-tracking technique for localized damage in quasi-brittle materials";
-//      Saloustros, Cervera & Pelà 2019: an exclusion radius about each crack inside which no new
-//      one starts), with l_ch, the order of a cohesive crack's process zone and rule 4's reach,
-//      as the radius. A crack that has started is the one that fails: beyond its strength in the
-//      band ahead of its tip an element is its to reach (rule 4), beside it one unloading the
-//      crack will shield. Petersson's beam at h 0.0125 m (docs/fracture.md): without it cracks
-//      started at both corners of the notch's flat end and 17 mm either side while the tip's crack
-//      stayed one element long, a band 5 cm wide; with it one crack runs up from the notch's tip.
 // Runs without a fracture energy are not touched (bit for bit).
 #pragma once
 
@@ -67,12 +57,11 @@
 #include "common/scene.h"
 #include "common/vec2.h"
 #include "solver/discretisation/run_state.h"
-#include "solver/fracture/fracture.h"
 
 namespace nmm::solve {
 
 /// Bits of cohesive_starts' answer for an element.
-constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3, 5, 6)
+constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3, 5)
 constexpr std::uint8_t kMayBeReached = 2;  ///< a tip may grow to it across rock that holds (rule 4: rules 2, 3)
 
 /// [me] kMayStart | kMayBeReached bits: what element e of `mesh` may do at the step's solution
@@ -80,11 +69,9 @@ constexpr std::uint8_t kMayBeReached = 2;  ///< a tip may grow to it across rock
 /// every other element).
 /// `start`: the step's accepted start carried onto `mesh`; `started_this_step`: a new crack
 /// already started in this step; `first_crack`: the scene joint index of the run's first crack
-/// segment; `cracks`: the run's crack segments (Fracture::segments, rule 6). Empty where no
-/// material has a fracture energy.
+/// segment. Empty where no material has a fracture energy.
 std::vector<std::uint8_t> cohesive_starts(const Mesh& mesh, const SceneDef& scene, const RunState& start,
-                                          const RunState& solved, bool started_this_step, std::size_t first_crack,
-                                          const std::vector<CrackSegment>& cracks);
+                                          const RunState& solved, bool started_this_step, std::size_t first_crack);
 
 /// Rule 4's band: element e meets the strip of half-width `half_width` (m) about the line
 /// through `tip` along the unit `dir`, and the point a new crack in it would start from (its

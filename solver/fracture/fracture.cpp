@@ -334,15 +334,9 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       // element ahead's stress: the strength rule only starts cracks there.
       const MaterialDef& ahead = scene.materials[scene.bodies[mesh.element_body[e]].material];
       if (ahead.strength.toughness > 0) return;
-      Vec2 d = holds ? tip.dir : direction(static_cast<std::size_t>(e), tip.dir);
+      const Vec2 d = holds ? tip.dir : direction(static_cast<std::size_t>(e), tip.dir);
       RayExit exit;
-      if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) {
-        // A band's crack whose element's own direction leaves it at once from the tip (a tip at
-        // its vertex) goes on straight, as it came to it (rule 4 of cohesive_starts.h), instead
-        // of stopping there for good (Petersson's beam at h 0.0125 m: 500 steps).
-        if (!band || holds || !ray_exit(mesh, static_cast<std::size_t>(e), tip.at, tip.dir, tol, exit)) return;
-        d = tip.dir;
-      }
+      if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
       const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
       add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack, holds ? drive : failure_[e].mode);
       const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
@@ -515,16 +509,6 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
     }
   }
-  return out;
-}
-
-std::vector<CrackSegment> Fracture::growing_segments() const {
-  std::vector<std::uint8_t> growing(static_cast<std::size_t>(cracks_), 0);
-  for (const Tip& t : tips_)
-    if (t.active && t.crack >= 0 && t.crack < cracks_) growing[static_cast<std::size_t>(t.crack)] = 1;
-  std::vector<CrackSegment> out;
-  for (const CrackSegment& c : segments_)
-    if (c.crack >= 0 && c.crack < cracks_ && growing[static_cast<std::size_t>(c.crack)]) out.push_back(c);
   return out;
 }
 

@@ -109,8 +109,6 @@ class Fracture {
   /// Every segment cut so far, in order: the run's crack joints follow the scene's joints in it.
   const std::vector<CrackSegment>& segments() const { return segments_; }
   int crack_count() const { return cracks_; }
-  /// The segments of the cracks that still have an active tip (cohesive_starts.h rule 6).
-  std::vector<CrackSegment> growing_segments() const;
   /// Steps taken again because their solution broke the rock (this invocation: diagnostics).
   long resolves() const { return resolves_; }
   void count_resolve() { ++resolves_; }
