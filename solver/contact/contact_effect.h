@@ -100,6 +100,8 @@ class ContactEffect final : public Effect {
   /// Grows the pattern by the step's new element pairs (the rule at update_pattern in
   /// contact_effect.cpp); true: s.pattern_pairs changed.
   bool update_pattern(RunState& s);
+  /// With NMM_TRACE_ENERGY set: each contact's share of the step's energy, on stderr.
+  void trace_energy_step(const EnergyStep& e, const EnergyTerms& t) const;
   /// With NMM_TRACE_PEN set: what a rejected step moved most and its deepest contacts, on stderr.
   void trace_rejected_step(const RunState& s, const Eigen::VectorXd& covers_d) const;
 
@@ -133,6 +135,8 @@ class ContactEffect final : public Effect {
     std::int32_t elem_a, elem_b;        // the vertex's element, the edge's element
     double bx, by;                      // m, the edge's point in the mesh's reference coordinates
     std::vector<double> force;          // N/m of c_end, [2·element_dofs]: elem_a's local unknowns, elem_b's
+    double shear_force = 0;             // N, its T at that end
+    double stored = 0;                  // J/m, its springs' ½ N·closure + ½ |T·s_el| at that end
   };
   /// The closed contacts `ended` (of the mesh before a re-cut) carried onto this mesh by `from`;
   /// one whose vertex or edge the re-cut left in no element is dropped.
@@ -147,6 +151,8 @@ class ContactEffect final : public Effect {
   Eigen::Index start_end_unknowns_ = -1;
   std::vector<std::int32_t> released_;  // sorted vertices of the contacts released at this step's start
   double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
+  std::vector<double> start_shear_;   // N, [contact] the shear force T0 this step started with (commit)
+  Eigen::VectorXd trace_d_;           // NMM_TRACE_ENERGY: the accepted step's motion
 };
 
 }  // namespace nmm::solve
