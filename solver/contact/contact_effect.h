@@ -61,11 +61,13 @@ class ContactEffect final : public Effect {
   /// (N normal force, closure = −gap, T shear force, s_el elastic shear: exact for constant
   /// springs, the secant energy for nonlinear laws).
   void energy_state(const EnergyState& e, EnergyTerms& t) const override;
-  /// Energy of the step: the work of friction in sliding contacts, |T|·|s − s_el| (s the trial
-  /// elastic shear, s_el the shear left at the limit: the step's slip), less what the asperities
-  /// return as opening — a Barton–Bandis joint that dilates by Δv (joint_law.h) pushes its faces
-  /// apart with N over it (and takes N·|Δv| back sliding down toward its start) — into
-  /// t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
+  /// Energy of the step: the work of friction in sliding contacts, ½(|T0| + |T|)·|s − s_el| (s
+  /// the trial elastic shear, s_el the shear left at the limit: the step's slip; T0 the shear
+  /// force the step started with, 0 where it started open with none; |T| where it turned), and
+  /// ½ T0·s in one that slid into the step and opens in it (its spring keeps no shear), less
+  /// what the asperities return as opening — a Barton–Bandis joint that dilates by Δv
+  /// (joint_law.h) pushes its faces apart with N over it (and takes N·|Δv| back sliding down
+  /// toward its start) — into t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
   /// cohesion did in slip, which is not friction's, into t.fracture. In a step that cut new cracks,
   /// a new face's contact that slides from its zero start force books ½|T|·slip less in
   /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). The work
