@@ -16,6 +16,16 @@
 //          │   base   │ held
 //          └──────────┘
 //
+//    The same block in the step its contacts close from open and slide (1b: its first step,
+//    the traction put on at once on faces that touch with no force) and in the step they slide
+//    on into and open (1c: the traction turned to a pull that lifts the block). A static step's
+//    balance gives each contact −½ (c0 + c1)·d exactly (c0 its force at the start, c1 at the
+//    end, d the step's motion), its springs keeping ½ N·closure + ½ T·s_el, so friction's share
+//    is the trapezoid ½ (|T0| + |T1|)·slip: from no force, ½ tanφ·N1·Δs (the end force booked
+//    twice that, and the compression cells' contacts that close and slide after a crack left
+//    R at −500 J/m a step); into the opening, ½ tanφ·N0·Δs over the shear the spring lets go
+//    of (nothing booked before).
+//
 // 2. A moving support pushing a pre-stressed body. A column under the in-situ stress σyy = −p
 //    (σxx = 0: its free sides carry nothing) stands on a roller and is shortened by a roller
 //    moving down on its top. Both rollers carry the in-situ reaction p·w locked in (integrators.cpp
@@ -123,6 +133,99 @@ TEST(EnergyPaths, FrictionUnderAFallingNormalForceIsItsIntegral) {
   EXPECT_NEAR(friction_fall, closed, 0.003 * closed);
   EXPECT_GT(std::abs(end_force_rule - closed), 0.05 * closed);  // the old rule fails this check
   EXPECT_LT(std::abs(residual), 0.01 * work);
+}
+
+// The block of FrictionUnderAFallingNormalForceIsItsIntegral pressed by p·table(t) and pushed at v.
+nlohmann::json pushed_block(double p, double v, double dt, int steps, const nlohmann::json& table) {
+  return {{"name", "pushed-block"},
+          {"plane", "strain"},
+          {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
+          {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", 1e13}}},
+                                     {"shear", {{"model", "constant"}, {"ks", 1e13}}}}}}},
+          {"interface_set", "joint"},
+          {"mesh", {{"size", 0.25}}},
+          {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}}},
+                      {{"material", "stiff"}, {"outer", {{0, 0.5}, {1, 0.5}, {1, 1}, {0, 1}}}}}},
+          {"supports", {{{"points", {{0, 0}, {1, 0}}}, {"fix", "xy"}},
+                        {{"points", {{0, 0.5}, {0, 1}}}, {"fix", "x"}, {"velocity", {v, 0}}}}},
+          {"tractions", {{{"points", {{1, 1}, {0, 1}}}, {"normal", -p}, {"shear", 0}, {"table", table}}}},
+          {"solver", {{"time_step", dt}, {"steps", steps}, {"support_stiffness", 1e15}}}};
+}
+
+// N/m, the closed contacts' normal forces summed (contacts.csv's normal_force), at the state now.
+double closed_normal_force(const solve::RunView& view) {
+  double n = 0;
+  for (const solve::Contact& c : view.contacts.contacts())
+    if (c.state != solve::ContactState::open) n += c.normal_force;
+  return n;
+}
+
+// m, the upper block's bottom face's mean x displacement less the base's top's (pushed_block's
+// joint at y = 0.5): the slip, which the top's travel overstates by the blocks' shear strain.
+double joint_slip(const Mesh& mesh, const solve::RunState& s) {
+  double sum[2] = {0, 0};
+  int n[2] = {0, 0};
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const int body = mesh.cover_body[static_cast<std::size_t>(mesh.element_covers[3 * e])];
+    for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
+      const auto k = 2 * static_cast<std::size_t>(v);
+      if (std::abs(s.loop_xy[k + 1] - s.loop_u[k + 1] - 0.5) < 1e-9) sum[body] += s.loop_u[k], ++n[body];
+    }
+  }
+  return n[0] && n[1] ? sum[1] / n[1] - sum[0] / n[0] : NAN;
+}
+
+TEST(EnergyPaths, AContactThatClosesAndSlidesWithinAStepBooksHalfItsEndForce) {
+  const double p = 1e6, w = 1, tan_phi = std::tan(30 * kPi / 180), dt = 1e-3, v = 0.2;
+  MeteredRun r(pushed_block(p, v, dt, 1, {{0, 1}, {1, 1}}), "closing");
+  double normal = 0, travel = 0, slip = 0;
+  const Outcome o = r.st.run_until(dt * (1 - 1e-9), [&](std::int64_t) {
+    const solve::RunView view = r.st.view();
+    r.meter.after_step(view.state, solve::energy_sources(view), true);
+    normal = closed_normal_force(view);
+    travel = mean_displacement(view.state, 1, 1.0, 0);  // the block's top
+    slip = joint_slip(r.mesh, view.state);
+  });
+  ASSERT_PRED1(test::ended_ok, o);
+  const solve::EnergyRow& end = r.meter.rows().back();
+  const double closed = 0.5 * tan_phi * normal * slip;  // J/m: the shear force from 0 to tanφ·N1
+  std::printf("closing contacts: N1 %.6g N/m (p·w %.6g), travel %.6g m, slip %.6g m; friction %.6g J/m, "
+              "½ tanφ·N1·Δs %.6g (end force %.6g); work %.6g, damped %.6g, residual %.4g J/m\n",
+              normal, p * w, travel, slip, end.friction, closed, 2 * closed, end.load_work, end.damped, end.residual);
+  EXPECT_NEAR(normal, p * w, 0.01 * p * w);     // the contacts carry the traction
+  EXPECT_NEAR(travel, v * dt, 0.02 * v * dt);   // and the block slid with the support
+  EXPECT_NEAR(end.friction, closed, 0.005 * closed);
+  EXPECT_LT(std::abs(end.residual), 1e-3 * end.load_work);  // the step's balance closes
+}
+
+TEST(EnergyPaths, AContactThatSlidesIntoItsOpeningBooksHalfItsStartForce) {
+  const double p = 1e6, w = 1, tan_phi = std::tan(30 * kPi / 180), dt = 1e-3, v = 0.2;
+  const int steady = 5;  // steps pressed by p; the next one pulls the block off the base
+  const double t_lift = steady * dt;
+  MeteredRun r(pushed_block(p, v, dt, steady + 1, {{0, 1}, {t_lift, 1}, {t_lift + dt, -0.1}}), "opening");
+  double normal = 0, x_prev = 0, x = 0, slip_prev = 0, slip = 0, friction_lift = 0, closed_after = 0;
+  const Outcome o = r.st.run_until((steady + 1) * dt * (1 - 1e-9), [&](std::int64_t n) {
+    const solve::RunView view = r.st.view();
+    r.meter.after_step(view.state, solve::energy_sources(view), true);
+    x_prev = x, slip_prev = slip;
+    x = mean_displacement(view.state, 1, 1.0, 0);
+    slip = joint_slip(r.mesh, view.state);
+    if (n == steady) normal = closed_normal_force(view);
+    if (n == steady + 1) {
+      const auto& rows = r.meter.rows();
+      friction_lift = rows[rows.size() - 1].friction - rows[rows.size() - 2].friction;
+      closed_after = closed_normal_force(view);
+    }
+  });
+  ASSERT_PRED1(test::ended_ok, o);
+  const double closed = 0.5 * tan_phi * normal * (slip - slip_prev);  // J/m: the shear force from tanφ·N0 to 0
+  std::printf("opening contacts: N0 %.6g N/m, closed after %.6g N/m, travel %.6g m, slip %.6g m; friction in the "
+              "lift %.6g J/m, ½ tanφ·N0·Δs %.6g\n",
+              normal, closed_after, x - x_prev, slip - slip_prev, friction_lift, closed);
+  EXPECT_NEAR(normal, p * w, 0.01 * p * w);
+  EXPECT_EQ(closed_after, 0.0);                     // the block left the base
+  EXPECT_NEAR(x - x_prev, v * dt, 0.02 * v * dt);   // still pushed along
+  EXPECT_NEAR(friction_lift, closed, 0.005 * closed);
 }
 
 TEST(EnergyPaths, AMovingSupportWorksWithItsLockedInReaction) {

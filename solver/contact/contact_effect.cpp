@@ -190,7 +190,27 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
     if (end_unknowns_ == d.size() || end_unknowns_ == -2)
       for (const EndedContact& e : ended_) had.emplace_back(e.vertex, e.edge);
     std::sort(had.begin(), had.end());
+    // The shear force each contact starts the step with in its balance (energy_step's T0): the
+    // history's where it starts closed; where it starts open, the end force of a contact the
+    // last step ended closed on the same vertex and edge (a Barton–Bandis joint that dilated
+    // apart between the steps: the step's start is in balance with that force, which the
+    // release above leaves to it), else none.
+    std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, double>> ended_shear;
+    if (end_unknowns_ == d.size() || end_unknowns_ == -2)
+      for (const EndedContact& e : ended_) ended_shear.push_back({{e.vertex, e.edge}, e.shear_force});
+    std::sort(ended_shear.begin(), ended_shear.end());
     const std::vector<Contact>& cs = problem_.contacts();
+    start_shear_.assign(cs.size(), 0.0);
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      const Contact& c = cs[k];
+      if (c.start_state != ContactState::open) {
+        start_shear_[k] = c.start_shear_force;
+        continue;
+      }
+      const auto at = std::lower_bound(ended_shear.begin(), ended_shear.end(),
+                                       std::make_pair(std::make_pair(c.at.vertex, c.at.edge), -std::numeric_limits<double>::infinity()));
+      if (at != ended_shear.end() && at->first == std::make_pair(c.at.vertex, c.at.edge)) start_shear_[k] = at->second;
+    }
     for (std::size_t k = 0; k < cs.size(); ++k) {
       const Contact& c = cs[k];
       if (c.start_state != ContactState::open || std::binary_search(had.begin(), had.end(), std::make_pair(c.at.vertex, c.at.edge)))
@@ -204,6 +224,8 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       released_work_ += 0.5 * n0 * dg - 0.5 * n0 * -problem_.work(k).gap0;
     }
   }
+  static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
+  if (trace) trace_d_ = d;
   // Kept for a re-cut that throws this attempt away (continue_from).
   start_ended_.swap(ended_);
   start_end_unknowns_ = end_unknowns_;
@@ -211,9 +233,11 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   ended_.clear();
   end_unknowns_ = d.size();
   const Mesh& mesh = model_.mesh();
+  std::vector<std::size_t> ended_index;
   for (std::size_t k = 0; k < problem_.contacts().size(); ++k) {
     const Contact& c = problem_.contacts()[k];
     if (c.state == ContactState::open || (c.normal_force == 0 && c.shear_force == 0)) continue;
+    ended_index.push_back(k);
     const ContactProblem::Row r = problem_.row(k);
     // The edge's point at ω in the reference coordinates (the mesh's, which a re-cut keeps).
     const auto q2 = static_cast<std::size_t>(c.at.edge);
@@ -221,12 +245,16 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
     const double bx = mesh.loop_xy[2 * q2] + c.at.omega * (mesh.loop_xy[2 * q3] - mesh.loop_xy[2 * q2]);
     const double by = mesh.loop_xy[2 * q2 + 1] + c.at.omega * (mesh.loop_xy[2 * q3 + 1] - mesh.loop_xy[2 * q2 + 1]);
     EndedContact e{c.at.vertex, c.mirror, c.at.edge, c.at.elem_a, c.at.elem_b, bx, by,
-                   std::vector<double>(static_cast<std::size_t>(r.size))};
+                   std::vector<double>(static_cast<std::size_t>(r.size)), c.shear_force, 0.0};
     for (int i = 0; i < r.size; ++i) e.force[static_cast<std::size_t>(i)] = c.normal_force * r.cn[i] - c.shear_force * r.cs[i];
     ended_.push_back(std::move(e));
   }
   const ContactSet::Totals totals = contacts_.totals();
   contacts_.end_step(problem_);
+  for (std::size_t i = 0; i < ended_index.size(); ++i) {
+    const Contact& c = contacts_.contacts()[ended_index[i]];
+    ended_[i].stored = 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+  }
   // A face that softened through a quarter of w_c in one step: the static path snapped back
   // (summary.json fracture.snap_back_steps).
   if (problem_.max_damage_jump() >= 0.25) ++stats_.snap_back_steps;
@@ -526,51 +554,142 @@ void ContactEffect::energy_state(const EnergyState& /*e*/, EnergyTerms& t) const
 
 void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
   const std::vector<std::int32_t>& joint = e.model.mesh().loop_edge_joint;
-  for (const Contact& c : contacts_.contacts()) {
+  const std::vector<Contact>& contacts = contacts_.contacts();
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    const double t0 = k < start_shear_.size() ? start_shear_[k] : 0.0;  // N, T0 (commit)
     if (c.state == ContactState::sliding) {
-      // The step's slip (trial elastic shear less what the spring keeps) under the shear force.
-      // A contact that slid at the step's start and slides on the same way: the force went
-      // linearly from its start to its end as every other force of the balance (the supports'
-      // ē, the strain energy's ½(σ0 + σ1)), ½(T_start + T)·slip, so a face sliding while its
-      // normal force falls books ∫N·tanφ ds where the end force would book less. Any other
-      // (it starts to slide, turns, or is a joint point's contact found anew on another vertex
-      // with no start force: a shear box's joint re-pairs its points as it slides, and half its
-      // friction went missing with ½(0 + T)) and cohesive faces (their cohesion's share of the
-      // end force is taken out: cohesion_slip_work, cohesive_law.h) book the end force.
+      // The step's slip (trial elastic shear less what the spring keeps) under the shear force,
+      // taken linear over the step from T0, the force the contact starts it with (the last
+      // accepted step's end force, carried across a re-cut; 0 where it starts open with none:
+      // commit), to T at its end, as the step takes every force of the balance (the supports'
+      // ē, the strain energy's ½(σ0 + σ1)): ½(|T0| + |T|)·slip. That is what a static step's balance gives the contact
+      // exactly, W − ΔU − ½ dᵀ(2M/Δt²)d = −½ (c0 + c1)·d, its springs taking the rest, whether it
+      // slid on, started to slide from sticking, or closed from open within the step; so a face
+      // sliding while its normal force falls books ∫N·tanφ ds, and one that closes and slides
+      // from no force half its end force (booked at its end force, the compression cells'
+      // contacts that close and slide in the steps after a crack left R at −500 J/m a step:
+      // docs/energy.md `friction`). Cohesive faces book the end force (their cohesion's share
+      // of it is taken out: cohesion_slip_work, cohesive_law.h), as do a contact that turns and
+      // the two below that start at no force and give half of it back where the energy came from.
       const double slip = std::abs(c.shear - c.shear_el);
       const double end_work = std::abs(c.shear_force) * slip;
-      const bool slid_on = c.start_state == ContactState::sliding && c.start_shear_force * c.shear_force > 0;
+      const auto edge = static_cast<std::size_t>(c.at.edge);
       if (c.cohesive.on) {
         t.friction += end_work;
+      } else if (e.changed_start && edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before)) {
+        // A new crack's face (it starts closed at gap 0 with no force, state_transfer.h) that
+        // slides within the step that cut it: the static step took its shear force from 0 to
+        // T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is what
+        // the crack's release gave its faces' contacts beyond their springs (crack_release.h),
+        // so the fracture column gives it back.
+        t.friction += end_work;
+        t.fracture -= 0.5 * end_work;
+      } else if (c.start_state == ContactState::open &&
+                 std::binary_search(released_.begin(), released_.end(), c.at.vertex)) {
+        // A released contact (commit; across a re-cut too) that closes again within the step
+        // and slides: it started at no force, the step took its shear force from 0 to T along
+        // the slip, and of the release ½ (0 − c_end)·d it spent ½|T|·slip on that beyond the
+        // linear path, which friction books at its end force: the motion took the rest.
+        t.friction += end_work;
+        t.damped -= 0.5 * end_work;
+      } else if (t0 * c.shear_force >= 0) {
+        t.friction += 0.5 * (std::abs(t0) + std::abs(c.shear_force)) * slip;
       } else {
-        // In a step that cut the mesh, at its end force: a cut step's faces load and unload far
-        // from linearly (the crack opens under them), and the trapezoid there moved the
-        // compression cells' residual both ways (docs/energy.md `friction`).
-        t.friction += slid_on && !e.changed_start ? 0.5 * (std::abs(c.shear_force) + std::abs(c.start_shear_force)) * slip
-                                                  : end_work;
-        const auto edge = static_cast<std::size_t>(c.at.edge);
-        if (e.changed_start && edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before)) {
-          // A new crack's face (it starts closed at gap 0 with no force, state_transfer.h) that
-          // slides within the step that cut it: the static step took its shear force from 0 to
-          // T along the slip, ½|T|·slip, and friction books |T|·slip — the other half is what
-          // the crack's release gave its faces' contacts beyond their springs (crack_release.h),
-          // so the fracture column gives it back.
-          t.fracture -= 0.5 * end_work;
-        } else if (c.start_state == ContactState::open &&
-                   std::binary_search(released_.begin(), released_.end(), c.at.vertex)) {
-          // A released contact (commit; across a re-cut too) that closes again within the step
-          // and slides: it started at no force, the step took its shear force from 0 to T along
-          // the slip, and of the release ½ (0 − c_end)·d it spent ½|T|·slip on that beyond the
-          // linear path, which friction books at its end force: the motion took the rest.
-          t.damped -= 0.5 * end_work;
-        }
+        // Turned (T0 against T): the end force. (The balance's ½(T − |T0|)·slip, or 0 where the
+        // start force was the larger, left the Barton–Bandis shear box's reversal at R = 208
+        // against 115 J/m: its dilation and secant springs are not the linear step's.)
+        t.friction += end_work;
       }
+    } else if (c.state == ContactState::open && c.start_state == ContactState::sliding && !c.cohesive.on) {
+      // A contact that slid into the step and opens within it: the same trapezoid, from T0 to
+      // no force, over the shear its spring lets go of as the faces part, the trial shear s
+      // (the start's elastic shear plus the step's shear motion): ½ T0·s, where the faces
+      // slid on the way T0 pushed (what the balance gives it less the ½|T0·s_el| its spring
+      // held, within its normal spring's −½ N0·gap: measured on uniaxial compression h 0.125 m,
+      // static, slow, 164.8 of 158.1 J/m over its run; docs/energy.md `friction`).
+      t.friction += std::max(0.0, 0.5 * t0 * c.shear);
     }
     t.friction -= c.normal_force * c.dilation_step;  // the asperities' opening (0 but Barton–Bandis)
     t.fracture += c.cohesive_step;
     t.friction -= c.cohesion_slip_work;
   }
   t.damped += released_work_;
+  trace_energy_step(e, t);
+}
+
+void ContactEffect::trace_energy_step(const EnergyStep& e, const EnergyTerms& t) const {
+  // NMM_TRACE_ENERGY: each contact's share of the step's energy on stderr — the work the
+  // static step's balance gives it exactly, −½ (c_prev + c_end)·d (c_prev the end force the last
+  // accepted step ended with on the same vertex and edge, carried across a re-cut), against what
+  // the meter books for it: its springs' change and its friction. For finding which rule leaves
+  // a residual (docs/energy.md).
+  static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
+  if (!trace || trace_d_.size() == 0) return;
+  const Eigen::VectorXd& d = trace_d_;
+  const int nd = space_.element_dofs();
+  const bool have_prev = start_end_unknowns_ == d.size() || start_end_unknowns_ == -2;
+  std::vector<char> used(start_ended_.size(), 0);
+  const std::vector<Contact>& cs = contacts_.contacts();
+  double sum_exact = 0, sum_booked = 0;
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const Contact& c = cs[k];
+    const ContactProblem::Row r = problem_.row(k);
+    double dg = 0, ds = 0;
+    for (int i = 0; i < r.size; ++i)
+      if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
+        dg += r.cn[i] * d[r.dofs[i]];
+        ds += r.cs[i] * d[r.dofs[i]];
+      }
+    const double end_work = c.state == ContactState::open ? 0.0 : c.normal_force * dg - c.shear_force * ds;
+    double prev_work = 0, prev_stored = 0;
+    int matched = -1;
+    if (have_prev)
+      for (std::size_t j = 0; j < start_ended_.size(); ++j)
+        if (!used[j] && start_ended_[j].vertex == c.at.vertex && start_ended_[j].edge == c.at.edge) {
+          used[j] = 1;
+          matched = static_cast<int>(j);
+          prev_work = ended_work(start_ended_[j], d, nd);
+          prev_stored = start_ended_[j].stored;
+          break;
+        }
+    if (matched < 0 && have_prev)  // the vertex's end force on another edge (it moved on along its face)
+      for (std::size_t j = 0; j < start_ended_.size(); ++j)
+        if (!used[j] && (start_ended_[j].vertex == c.at.vertex || (c.mirror >= 0 && start_ended_[j].vertex == c.mirror))) {
+          used[j] = 1;
+          matched = -2 - static_cast<int>(j);
+          prev_work = ended_work(start_ended_[j], d, nd);
+          prev_stored = start_ended_[j].stored;
+          break;
+        }
+    const double exact = -0.5 * (prev_work + end_work);
+    const double stored = c.state == ContactState::open
+                              ? 0.0
+                              : 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+    const double slip = c.state == ContactState::sliding ? std::abs(c.shear - c.shear_el) : 0.0;
+    if (prev_work == 0 && end_work == 0 && prev_stored == 0 && stored == 0) continue;
+    const bool rel = std::binary_search(released_.begin(), released_.end(), c.at.vertex);
+    const std::vector<std::int32_t>& joint = e.model.mesh().loop_edge_joint;
+    const auto edge = static_cast<std::size_t>(c.at.edge);
+    const bool new_face = e.changed_start && edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before);
+    sum_exact += exact;
+    sum_booked += stored - prev_stored;
+    std::fprintf(stderr,
+                 "ec %lld v %d e %d m %d rel %d nf %d s0 %d s1 %d N0 %.6g g0 %.6g g1 %.6g sh %.6g N1 %.6g T0 %.6g T1 %.6g dg %.6g ds %.6g slip %.6g exact %.6g dS %.6g len %.6g\n",
+                 static_cast<long long>(e.s.step), c.at.vertex, c.at.edge, matched, rel ? 1 : 0, new_face ? 1 : 0, static_cast<int>(c.start_state),
+                 static_cast<int>(c.state), problem_.work(k).start_normal_force, problem_.work(k).gap0, c.gap, c.shear,
+                 c.normal_force, c.start_shear_force, c.shear_force, dg, ds, slip, exact,
+                 stored - prev_stored, c.length);
+  }
+  double released = 0, released_stored = 0;
+  for (std::size_t j = 0; j < start_ended_.size() && have_prev; ++j)
+    if (!used[j]) {
+      released += -0.5 * ended_work(start_ended_[j], d, nd);
+      released_stored += start_ended_[j].stored;
+    }
+  std::fprintf(stderr, "es %lld exact %.6g dS %.6g released %.6g released_stored %.6g friction %.6g damped %.6g cut %d\n",
+               static_cast<long long>(e.s.step), sum_exact, sum_booked, released, released_stored, t.friction, t.damped,
+               e.changed_start ? 1 : 0);
 }
 
 }  // namespace nmm::solve

@@ -61,11 +61,13 @@ class ContactEffect final : public Effect {
   /// (N normal force, closure = −gap, T shear force, s_el elastic shear: exact for constant
   /// springs, the secant energy for nonlinear laws).
   void energy_state(const EnergyState& e, EnergyTerms& t) const override;
-  /// Energy of the step: the work of friction in sliding contacts, |T|·|s − s_el| (s the trial
-  /// elastic shear, s_el the shear left at the limit: the step's slip), less what the asperities
-  /// return as opening — a Barton–Bandis joint that dilates by Δv (joint_law.h) pushes its faces
-  /// apart with N over it (and takes N·|Δv| back sliding down toward its start) — into
-  /// t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
+  /// Energy of the step: the work of friction in sliding contacts, ½(|T0| + |T|)·|s − s_el| (s
+  /// the trial elastic shear, s_el the shear left at the limit: the step's slip; T0 the shear
+  /// force the step started with, 0 where it started open with none; |T| where it turned), and
+  /// ½ T0·s in one that slid into the step and opens in it (its spring keeps no shear), less
+  /// what the asperities return as opening — a Barton–Bandis joint that dilates by Δv
+  /// (joint_law.h) pushes its faces apart with N over it (and takes N·|Δv| back sliding down
+  /// toward its start) — into t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
   /// cohesion did in slip, which is not friction's, into t.fracture. In a step that cut new cracks,
   /// a new face's contact that slides from its zero start force books ½|T|·slip less in
   /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). The work
@@ -100,6 +102,8 @@ class ContactEffect final : public Effect {
   /// Grows the pattern by the step's new element pairs (the rule at update_pattern in
   /// contact_effect.cpp); true: s.pattern_pairs changed.
   bool update_pattern(RunState& s);
+  /// With NMM_TRACE_ENERGY set: each contact's share of the step's energy, on stderr.
+  void trace_energy_step(const EnergyStep& e, const EnergyTerms& t) const;
   /// With NMM_TRACE_PEN set: what a rejected step moved most and its deepest contacts, on stderr.
   void trace_rejected_step(const RunState& s, const Eigen::VectorXd& covers_d) const;
 
@@ -133,6 +137,8 @@ class ContactEffect final : public Effect {
     std::int32_t elem_a, elem_b;        // the vertex's element, the edge's element
     double bx, by;                      // m, the edge's point in the mesh's reference coordinates
     std::vector<double> force;          // N/m of c_end, [2·element_dofs]: elem_a's local unknowns, elem_b's
+    double shear_force = 0;             // N, its T at that end
+    double stored = 0;                  // J/m, its springs' ½ N·closure + ½ |T·s_el| at that end
   };
   /// The closed contacts `ended` (of the mesh before a re-cut) carried onto this mesh by `from`;
   /// one whose vertex or edge the re-cut left in no element is dropped.
@@ -147,6 +153,8 @@ class ContactEffect final : public Effect {
   Eigen::Index start_end_unknowns_ = -1;
   std::vector<std::int32_t> released_;  // sorted vertices of the contacts released at this step's start
   double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
+  std::vector<double> start_shear_;   // N, [contact] the shear force T0 this step started with (commit)
+  Eigen::VectorXd trace_d_;           // NMM_TRACE_ENERGY: the accepted step's motion
 };
 
 }  // namespace nmm::solve
