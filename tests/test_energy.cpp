@@ -43,6 +43,10 @@
 //    so their springs still hold S ≈ S0 at the step's end and the meter must book what the
 //    detection put in — S0 less ½ c0·d, the share of the push c0 = N0·cn the static step threw
 //    away (contact_effect.cpp commit) — or R ≈ −S (unbooked, R = −0.98 S0).
+//    The same blocks in a dynamic step, the upper one moving up fast enough to leave the lower
+//    within the step: the joint ends open with no force, the implicit step (forces at its end)
+//    neither spends nor keeps S0, K stays ½ m v0² and nothing is booked; the start force's
+//    trapezoid ½ N0·Δg over the whole lift would put 4 S0 in `damped` (R = −4 S0).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -317,6 +321,65 @@ TEST(EnergyPaths, AContactFoundSunkWithNoForceBooksTheEnergyItsSpringsStartWith)
   EXPECT_LT(end.springs, 1.01 * s0);
   // ...and the balance closes: what remains is ½ (2M/Δt²) d², the static step's inertia term,
   // about 1 % of S0 here.
+  EXPECT_LT(std::abs(end.residual), 0.02 * s0);
+}
+
+TEST(EnergyPaths, AContactFoundSunkThatOpensWithinTheStepBooksNothing) {
+  // The blocks of the test above in a dynamic step (β = ½, no gravity), the upper one found p
+  // deep in the lower and moving up at v0 with v0·Δt = 5p: the step ends with the joint open,
+  // its end force 0, so the implicit step, which sees its forces at its end, neither spends nor
+  // keeps the ½ N0·closure0 the detection put into the springs (S never held it): K stays
+  // ½ m v0², S ends at 0, Q = ½ dᵀM (a1,prev + a1) − ΔK = 0 and the balance closes with nothing
+  // booked. The start force's trapezoid ½ N0·Δg (Δg = 5p) less ½ N0·closure0 would book
+  // ½ kn·w·p·(5p − p) = 4 S0 in `damped` (R = −4 S0).
+  const double kn = 1e10, w = 1, p = 1e-4, h = 0.25;  // Pa/m, m, m
+  const double dt = 5e-5, v0 = 5 * p / dt;            // s, m/s (10 m/s)
+  const nlohmann::json doc = {
+      {"name", "sunk-contact-opens"},
+      {"plane", "strain"},
+      {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
+      {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", kn}}},
+                                 {"shear", {{"model", "constant"}, {"ks", kn}}}}}}},
+      {"interface_set", "joint"},
+      {"mesh", {{"size", h}}},
+      {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {w, 0}, {w, 0.5}, {0, 0.5}}}},
+                  {{"material", "stiff"}, {"outer", {{0, 0.5}, {w, 0.5}, {w, 1}, {0, 1}}}}}},
+      {"supports", {{{"points", {{0, 0}, {w, 0}}}, {"fix", "xy"}}}},
+      {"solver", {{"time_step", dt}, {"steps", 1}, {"dynamic", true}, {"newmark_beta", 0.5}}}};
+  const SceneDef scene = scene_from_json(doc, "sunk-opens");
+  const Mesh mesh = pre::build_mesh(scene, "sunk-opens");
+  solve::TimeStepper st(mesh, scene, "sunk-opens");
+  // The upper body moved down by p and moving up at v0: its covers' constant terms, nodes and
+  // loop vertices.
+  solve::RunState moved = st.view().state;
+  const std::size_t m = moved.cover_u.size() / mesh.cover_count();
+  for (std::size_t c = 0; c < mesh.cover_count(); ++c)
+    if (mesh.cover_body[c] == 1) moved.cover_u[m * c + 1] -= p, moved.cover_xy[2 * c + 1] -= p, moved.velocity[m * c + 1] = v0;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    if (mesh.cover_body[static_cast<std::size_t>(mesh.element_covers[3 * e])] != 1) continue;
+    for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
+      moved.loop_u[2 * static_cast<std::size_t>(v) + 1] -= p, moved.loop_xy[2 * static_cast<std::size_t>(v) + 1] -= p;
+  }
+  st.restore(moved, solve::save_contact_history(st.view().contacts), "sunk-opens");
+  solve::EnergyMeter meter(st.view().model, &st.view().space);
+  meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
+  const Outcome o = st.run_until(dt * (1 - 1e-9), [&](std::int64_t) {
+    const solve::RunView view = st.view();
+    meter.after_step(view.state, solve::energy_sources(view), true);
+  });
+  ASSERT_PRED1(test::ended_ok, o);
+  const solve::EnergyRow& first = meter.rows().front();
+  const solve::EnergyRow& end = meter.rows().back();
+  const double s0 = 0.5 * kn * w * p * p;    // J/m, the joint's springs at the step's start
+  const double k0 = 0.5 * 2650 * 0.5 * v0 * v0;  // J/m, ½ m v0² of the upper block
+  std::printf("sunk contact that opens: S0 = %.6g, K0 = %.6g J/m; after the step K %.8g, S %.6g, damped %.6g, "
+              "residual %.4g J/m\n",
+              s0, k0, end.kinetic, end.springs, end.damped - first.damped, end.residual);
+  EXPECT_NEAR(first.kinetic, k0, 1e-9 * k0);
+  EXPECT_NEAR(end.kinetic, k0, 1e-6 * k0);     // no force at the step's end: a1 = 0
+  EXPECT_LT(std::abs(end.springs), 1e-9 * s0);  // the joint ended open
+  // Booked as a contact that stayed closed: damped 4 S0, R −4 S0.
+  EXPECT_LT(std::abs(end.damped - first.damped), 0.02 * s0);
   EXPECT_LT(std::abs(end.residual), 0.02 * s0);
 }
 

@@ -184,7 +184,12 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   // with their springs at N0 = N(gap0) > 0, ½ N0·closure0 that entered S from no work, and out of
   // balance by their force c0 = N0·cn, whose motion takes ½ c0·d = ½ N0·Δg of it (as a released
   // contact's, above, with the sign turned). Both go to `damped`: the step's start as the
-  // detection made it, not its physics.
+  // detection made it, not its physics. A contact the step opens (Δg > closure0: the notched
+  // beam's halves, found sunk where they struck, bounce apart) ends with no force: the step,
+  // which sees the forces at its end, neither spent nor kept the start energy, which S never
+  // held, and ½ N0·Δg would count the start force over a motion it did not push through (the
+  // beam at h 0.02 m, dynamic, fast: 81 of the 123 contacts found sunk in its step 73 opened;
+  // R −2.07 J/m, 2.2 % of the work, booked so).
   {
     std::vector<std::pair<std::int32_t, std::int32_t>> had;  // (vertex, edge) of the ended contacts
     if (end_unknowns_ == d.size() || end_unknowns_ == -2)
@@ -221,7 +226,10 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       double dg = 0;  // m, the step's change of its gap
       for (int i = 0; i < r.size; ++i)
         if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) dg += r.cn[i] * d[r.dofs[i]];
-      released_work_ += 0.5 * n0 * dg - 0.5 * n0 * -problem_.work(k).gap0;
+      // Its start force's work stops where the gap closes: ½ N0·min(Δg, closure0) − ½ N0·closure0,
+      // = −½ N0·max(closure1, 0): 0 for a contact the step opens.
+      const double closure0 = -problem_.work(k).gap0;
+      released_work_ += 0.5 * n0 * std::min(dg, closure0) - 0.5 * n0 * closure0;
     }
   }
   static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;

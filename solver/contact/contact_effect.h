@@ -74,7 +74,8 @@ class ContactEffect final : public Effect {
   /// of the end forces of the last accepted step's closed contacts that this step started
   /// without, ½ (0 − c_end)·d, into t.damped (below), in a step that re-cut the mesh too; and of
   /// the contacts it found sunk with no force carried (a vertex that chattered), ½ c0·d less the
-  /// ½ N0·closure0 their springs started with from no work.
+  /// ½ N0·closure0 their springs started with from no work, c0·d taken up to the gap's close
+  /// (0 for one the step opens).
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
