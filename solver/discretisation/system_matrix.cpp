@@ -364,13 +364,13 @@ void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
 bool SystemMatrix::analyse_kept(const Sparse& a) {
   if (kept_perm_.size() != static_cast<std::size_t>(a.rows())) return false;
   // A lean run (the largest) orders every pattern anew that does not lie within the last
-  // factor (keeps_symbolic: that one needs no analysis, its factor does not grow): there the
+  // factor (keeps_symbolic: that one keeps the ordering, its factor does not grow): there the
   // kept ordering's factor, 1.06–1.07 × the nonzeros, took 31–37 s to factorise against 13–14 s
   // under a new ordering
   // (7–8 s to find) and raised the run's memory peak by its 0.11 GB more double values
   // (316 × 316 bricks, h = 2 m, steps 15 and 22 against 6, 13 and 20; docs/performance.md (h)).
-  // (A restored checkpoint analyses under its ordering in any run: the factor it rebuilds was
-  // made under it, by a new ordering or by a pattern kept within its fill, keeps_symbolic.)
+  // (A restored checkpoint, and a pattern within the last factor, keeps_symbolic, are analysed
+  // under the kept ordering in any run: restoring_.)
   const auto n = static_cast<int>(a.rows());
   if (!restoring_ && single_from_ > 0 && n >= single_from_ && n >= lean_from_) return false;  // as factorize()'s `lean`
   // A pattern with fewer nonzeros than the one the ordering was found on has shed pairs (it
@@ -380,17 +380,21 @@ bool SystemMatrix::analyse_kept(const Sparse& a) {
   return llt_.cholmod().lnz <= kOrderingRefill * kept_fill_;
 }
 
-// A grown pattern whose every entry lies within the last analysis's factor needs no analysis.
-// A factor's structure under a fixed ordering is that of the matrix's filled graph: with the
-// new entries inside L + Lᵀ (in the factor's order) the filled graph is the same, and so are the
-// elimination tree, the column counts, CHOLMOD's postordering and its supernodes: the same
-// symbolic factor an analysis under kept_perm_ gives (analyse_kept), which then costs nothing,
-// nor does its factor grow. New contacts couple covers of neighbouring elements, which nested
-// dissection's fill often already couples. Only under a kept ordering (METIS on the covers), whose
-// checkpoint carries the ordering (factor_source), so that a restarted run, which analyses the
-// factorised matrix under it, gets this factor's supernodes again; and not for a pattern that
-// shed pairs since the ordering was found (fewer nonzeros than then): that one is ordered anew,
-// its fill being less (analyse_kept). Work: one search among its supernode's rows per nonzero.
+// A lean run (from kLeanFactorUnknowns) orders every new pattern anew (analyse_kept), METIS's
+// 7–8 s at 930k unknowns, except one grown within the last factor: every entry of the pattern
+// lies within the rows of its supernodes, in its order. Such entries add no fill beyond that
+// factor's structure (a supernode's rows below its columns lie within its parent's), so the
+// analysis under the kept ordering (cholmod_analyze_p, without METIS) gives a factor no larger
+// than the last one, and of its speed — not the kept orderings' 1.06–1.07 × the nonzeros that
+// took twice as long to factorise (analyse_kept). (Factorising such a pattern with the last
+// analysis itself, with no analysis at all, is exact too but not the factor a restart makes: a
+// relaxed supernode holds explicit zeros, and an entry there changes the filled graph and
+// with it the supernodes the restart's analysis finds; the 10,000-block wall at h = 0.5 m
+// parted from the run with analyses at step 13, docs/notes/2026-11-scale.md.) A restart
+// analyses under the checkpoint's ordering in any run, as the straight run did. Only under a
+// kept ordering (METIS on the covers), and not for a pattern that shed pairs since the ordering
+// was found (fewer nonzeros than then): that one is ordered anew, its fill being less. Work: one
+// search among its supernode's rows per entry added since the last analysis.
 bool SystemMatrix::keeps_symbolic(const Sparse& a) const {
   const auto n = static_cast<int>(a.rows());
   if (block_ <= 0 || n < block_from_ || kept_perm_.size() != static_cast<std::size_t>(n)) return false;
@@ -492,11 +496,13 @@ bool SystemMatrix::factorize() {
 #endif
       memory_mark("released");
     }
-    if (keeps_symbolic(k_)) {
-      ++kept_analyses_;
-    } else {
-      analyse(k_);
-    }
+    // A lean run analyses a pattern grown within the last factor under the kept ordering
+    // (keeps_symbolic), instead of ordering it anew.
+    const bool within = lean && keeps_symbolic(k_);
+    kept_analyses_ += within ? 1 : 0;
+    restoring_ = within;
+    analyse(k_);
+    restoring_ = false;
     analysed_ = true;
     in_factor_ = true;
     added_since_.clear();
