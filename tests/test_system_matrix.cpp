@@ -486,6 +486,104 @@ TEST(SystemMatrixSingle, ALeanRunOrdersEveryNewPatternAnew) {
   }
 }
 
+TEST(SystemMatrixOrdering, APatternGrownWithinItsFactorKeepsItsOrderingAndRestartsBitwise) {
+  // 100 × 100 covers, METIS on the covers from 20,000 unknowns. Two covers u, w that are both
+  // coupled to a cover k and eliminated after it are coupled in the factor (the fill of k's
+  // elimination): pairs of such covers, not coupled in the matrix, grow the pattern within the
+  // factor. A lean run then analyses it under the kept ordering instead of ordering it anew, as a
+  // run that is not lean does anyway, its factor no larger; a checkpoint restored from it solves
+  // bit for bit as the straight run, now and after the next factorisation of new values. A
+  // pair outside the factor is ordered anew in a lean run.
+  constexpr int kSide = 100;
+  const Groups g = plane_grid(kSide, 2);
+  const int n = 2 * kSide * kSide;
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.21 * i) - 0.2;
+  for (const bool lean : {false, true}) {
+    SCOPED_TRACE(lean ? "lean" : "not lean");
+    const auto set_up = [&](SystemMatrix& k) {
+      k.set_amd_only(true);
+      k.set_block_ordering(2, n, n);
+      k.set_single_precision(n);
+      k.set_lean_factorisation(lean ? n : n + 1);
+    };
+    SystemMatrix k;
+    set_up(k);
+    k.build_pattern(n, g.offsets, g.dofs);
+    const SystemMatrix::Sparse a = assembled(k, g, n);
+    ASSERT_TRUE(k.factorize());
+    ASSERT_EQ(k.orderings(), 1u);
+    // The ordering, from the checkpoint's bytes (after it: its fill and the pattern's nonzeros).
+    const std::string bytes = k.factor_source();
+    std::vector<int> perm(static_cast<std::size_t>(n));
+    std::memcpy(perm.data(), bytes.data() + bytes.size() - 2 * sizeof(double) - perm.size() * sizeof(int),
+                perm.size() * sizeof(int));
+    std::vector<int> at(static_cast<std::size_t>(n));
+    for (int p = 0; p < n; ++p) at[static_cast<std::size_t>(perm[static_cast<std::size_t>(p)])] = p;
+    const auto coupled = [&](int u, int w) {  // covers u, w share an entry of the matrix
+      const int c = 2 * std::max(u, w), r = 2 * std::min(u, w);
+      const int* first = a.innerIndexPtr() + a.outerIndexPtr()[c];
+      const int* last = a.innerIndexPtr() + a.outerIndexPtr()[c + 1];
+      return std::binary_search(first, last, r);
+    };
+    std::vector<std::pair<int, int>> within;
+    for (int cover = 0; cover < kSide * kSide && within.size() < 40; cover += 97) {
+      std::vector<int> later;  // covers coupled to `cover`, eliminated after it
+      for (int other = std::max(0, cover - 2 * kSide); other < std::min(kSide * kSide, cover + 2 * kSide + 1); ++other)
+        if (other != cover && coupled(cover, other) && at[static_cast<std::size_t>(2 * other)] > at[static_cast<std::size_t>(2 * cover)])
+          later.push_back(other);
+      for (std::size_t i = 0; i < later.size(); ++i)
+        for (std::size_t j = i + 1; j < later.size(); ++j)
+          if (!coupled(later[i], later[j])) within.emplace_back(later[i], later[j]);
+    }
+    ASSERT_GE(within.size(), 10u);
+    const Groups grown = with_pairs(g, within);
+    const double fill = k.factor_nonzeros();
+    k.build_pattern(n, grown.offsets, grown.dofs);
+    assembled(k, grown, n);
+    ASSERT_GT(k.nonzeros(), static_cast<std::size_t>(a.nonZeros()));  // a new pattern
+    ASSERT_TRUE(k.factorize());
+    EXPECT_EQ(k.analyses(), 2u);
+    EXPECT_EQ(k.kept_analyses(), lean ? 1u : 0u);  // (a run that is not lean does not ask)
+    EXPECT_EQ(k.orderings(), 1u);
+    EXPECT_EQ(k.factor_nonzeros(), fill);  // within the factor: no new fill
+    const Eigen::VectorXd x = k.solve(b);
+    EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * b.norm());
+    // Restored: analysed under the checkpoint's ordering, the same factor, the same bits.
+    SystemMatrix restored;
+    set_up(restored);
+    restored.build_pattern(n, grown.offsets, grown.dofs);
+    ASSERT_TRUE(restored.factor_from_source(k.factor_source()));
+    EXPECT_EQ(restored.orderings(), 0u);
+    EXPECT_EQ(restored.factor_nonzeros(), fill);
+    const Eigen::VectorXd y = restored.solve(b);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(y[i], x[i]) << "unknown " << i;
+    for (SystemMatrix* m : {&k, &restored}) {
+      assembled(*m, grown, n);
+      for (int i = 0; i < n; i += 3) m->add_diagonal(i, 0.5);
+      ASSERT_TRUE(m->factorize());
+    }
+    const Eigen::VectorXd x2 = k.solve(b), y2 = restored.solve(b);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(y2[i], x2[i]) << "unknown " << i;
+    EXPECT_EQ(restored.orderings(), 0u);
+    // Pairs across the plane lie outside the factor: analysed (in a lean run, ordered anew).
+    std::vector<std::pair<int, int>> far;
+    for (int i = 0; i < 50; ++i) far.emplace_back((i * 37) % (kSide * kSide), (i * 7919 + 5000) % (kSide * kSide));
+    const Groups wide = with_pairs(grown, far);
+    k.build_pattern(n, wide.offsets, wide.dofs);
+    assembled(k, wide, n);
+    ASSERT_TRUE(k.factorize());
+    EXPECT_EQ(k.analyses(), 3u);
+    EXPECT_EQ(k.kept_analyses(), lean ? 1u : 0u);
+    if (lean) {
+      EXPECT_EQ(k.orderings(), 2u);
+    }
+    EXPECT_GT(k.factor_nonzeros(), fill);
+    const Eigen::VectorXd z = k.solve(b);
+    EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * z).norm(), 1e-12 * b.norm());
+  }
+}
+
 TEST(ParkedArray, GivesBackTheSameBytesAndStaysInMemoryWhereNoFileCanBeMade) {
   std::vector<double> v(100003);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::sin(0.37 * static_cast<double>(i)) * 1e-300 + static_cast<double>(i);

@@ -120,6 +120,7 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
       }
     }
     new_outer[static_cast<std::size_t>(n)] = w;
+    if (in_factor_) added_since_.insert(added_since_.end(), added.begin(), added.end());
     k_ = Sparse(n, n);
     k_.resizeNonZeros(w);
     std::copy(new_outer.begin(), new_outer.end(), k_.outerIndexPtr());
@@ -255,6 +256,7 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
                     std::equal(outer.begin(), outer.end(), k_.outerIndexPtr()) &&
                     std::equal(inner.begin(), inner.end(), k_.innerIndexPtr());
   if (!same) {
+    in_factor_ = false;
     k_ = Sparse(n, n);
     k_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
     std::copy(outer.begin(), outer.end(), k_.outerIndexPtr());
@@ -361,17 +363,77 @@ void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
 // analyses as the straight one did.
 bool SystemMatrix::analyse_kept(const Sparse& a) {
   if (kept_perm_.size() != static_cast<std::size_t>(a.rows())) return false;
-  // A lean run (the largest) orders every pattern anew: there the kept ordering's factor,
-  // 1.06–1.07 × the nonzeros, took 31–37 s to factorise against 13–14 s under a new ordering
+  // A lean run (the largest) orders every pattern anew that does not lie within the last
+  // factor (keeps_symbolic: that one keeps the ordering, its factor does not grow): there the
+  // kept ordering's factor, 1.06–1.07 × the nonzeros, took 31–37 s to factorise against 13–14 s
+  // under a new ordering
   // (7–8 s to find) and raised the run's memory peak by its 0.11 GB more double values
   // (316 × 316 bricks, h = 2 m, steps 15 and 22 against 6, 13 and 20; docs/performance.md (h)).
+  // (A restored checkpoint, and a pattern within the last factor, keeps_symbolic, are analysed
+  // under the kept ordering in any run: restoring_.)
   const auto n = static_cast<int>(a.rows());
-  if (single_from_ > 0 && n >= single_from_ && n >= lean_from_) return false;  // as factorize()'s `lean`
+  if (!restoring_ && single_from_ > 0 && n >= single_from_ && n >= lean_from_) return false;  // as factorize()'s `lean`
   // A pattern with fewer nonzeros than the one the ordering was found on has shed pairs (it
   // only grows otherwise): a new ordering of the smaller pattern has less fill than the kept one.
   if (static_cast<double>(a.nonZeros()) < kept_nonzeros_) return false;
   llt_.analyze_given(a, kept_perm_);
   return llt_.cholmod().lnz <= kOrderingRefill * kept_fill_;
+}
+
+// A lean run (from kLeanFactorUnknowns) orders every new pattern anew (analyse_kept), METIS's
+// 7–8 s at 930k unknowns, except one grown within the last factor: every entry of the pattern
+// lies within the rows of its supernodes, in its order. Such entries add no fill beyond that
+// factor's structure (a supernode's rows below its columns lie within its parent's), so the
+// analysis under the kept ordering (cholmod_analyze_p, without METIS) gives a factor no larger
+// than the last one, and of its speed — not the kept orderings' 1.06–1.07 × the nonzeros that
+// took twice as long to factorise (analyse_kept). (Factorising such a pattern with the last
+// analysis itself, with no analysis at all, is exact too but not the factor a restart makes: a
+// relaxed supernode holds explicit zeros, and an entry there changes the filled graph and
+// with it the supernodes the restart's analysis finds; the 10,000-block wall at h = 0.5 m
+// parted from the run with analyses at step 13, docs/notes/2026-11-scale.md.) A restart
+// analyses under the checkpoint's ordering in any run, as the straight run did. Only under a
+// kept ordering (METIS on the covers), and not for a pattern that shed pairs since the ordering
+// was found (fewer nonzeros than then): that one is ordered anew, its fill being less. Work: one
+// search among its supernode's rows per entry added since the last analysis.
+bool SystemMatrix::keeps_symbolic(const Sparse& a) const {
+  const auto n = static_cast<int>(a.rows());
+  if (block_ <= 0 || n < block_from_ || kept_perm_.size() != static_cast<std::size_t>(n)) return false;
+  if (static_cast<double>(a.nonZeros()) < kept_nonzeros_) return false;
+  const cholmod_factor* f = const_cast<Llt&>(llt_).factor();
+  if (!f || !f->is_super || static_cast<int>(f->n) != n || !f->Perm || f->nsuper == 0) return false;
+  const int* perm = static_cast<const int*>(f->Perm);
+  const int* super = static_cast<const int*>(f->super);
+  const int* pi = static_cast<const int*>(f->pi);
+  const int* rows = static_cast<const int*>(f->s);
+  std::vector<int> order(static_cast<std::size_t>(n)), snode(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) order[static_cast<std::size_t>(perm[k])] = k;
+  for (std::size_t s = 0; s < f->nsuper; ++s)
+    for (int c = super[s]; c < super[s + 1]; ++c) snode[static_cast<std::size_t>(c)] = static_cast<int>(s);
+  // A supernode's rows: its own columns, then the rows below, each part ascending in CHOLMOD's
+  // supernodal analysis; checked here, a linear search where they are not.
+  std::vector<char> sorted(f->nsuper);
+  for (std::size_t s = 0; s < f->nsuper; ++s) sorted[s] = std::is_sorted(rows + pi[s], rows + pi[s + 1]);
+  const auto within = [&](int j, int i) {
+    int c = order[static_cast<std::size_t>(j)], r = order[static_cast<std::size_t>(i)];
+    if (r < c) std::swap(r, c);
+    const auto s = static_cast<std::size_t>(snode[static_cast<std::size_t>(c)]);
+    const int* first = rows + pi[s];
+    const int* last = rows + pi[s + 1];
+    return sorted[s] ? std::binary_search(first, last, r) : std::find(first, last, r) != last;
+  };
+  // Where the pattern at the last analysis is known to lie within, the entries added since
+  // (the same answer as checking every one, in a tenth of the time or less).
+  if (in_factor_) {
+    for (const auto& [j, i] : added_since_)
+      if (!within(j, i)) return false;
+    return true;
+  }
+  const int* outer = a.outerIndexPtr();
+  const int* inner = a.innerIndexPtr();
+  for (int j = 0; j < n; ++j)
+    for (int p = outer[j]; p < outer[j + 1]; ++p)
+      if (!within(j, inner[p])) return false;
+  return true;
 }
 
 void SystemMatrix::analyse(const Sparse& a) {
@@ -434,8 +496,16 @@ bool SystemMatrix::factorize() {
 #endif
       memory_mark("released");
     }
+    // A lean run analyses a pattern grown within the last factor under the kept ordering
+    // (keeps_symbolic), instead of ordering it anew.
+    const bool within = lean && keeps_symbolic(k_);
+    kept_analyses_ += within ? 1 : 0;
+    restoring_ = within;
     analyse(k_);
+    restoring_ = false;
     analysed_ = true;
+    in_factor_ = true;
+    added_since_.clear();
     memory_mark("analysis");
   }
   // The perturbation lives only in the factor: the values keep K for the refinement.
@@ -548,7 +618,11 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   kept_perm_ = std::move(perm);
   kept_fill_ = fill;
   kept_nonzeros_ = nonzeros;
+  restoring_ = true;
   analyse(m);
+  restoring_ = false;
+  in_factor_ = false;  // the next factorisation checks the run's own pattern whole
+  added_since_.clear();
   llt_.factorize(m);
   analysed_ = false;
   has_factor_ = llt_.info() == Eigen::Success;

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/CholmodSupport>
@@ -145,6 +146,9 @@ class SystemMatrix {
   std::string ordering() const { return ordering_; }
   /// METIS orderings on the covers found so far (the analyses that reused one are not counted).
   std::size_t orderings() const { return orderings_; }
+  /// New patterns a lean run analysed under its kept ordering, not ordered anew, so far: every
+  /// entry of theirs lay within the last analysis's factor (system_matrix.cpp keeps_symbolic).
+  std::size_t kept_analyses() const { return kept_analyses_; }
 
   int failed_unknown() const { return failed_unknown_; }
   int size() const { return static_cast<int>(k_.rows()); }
@@ -222,6 +226,17 @@ class SystemMatrix {
   double kept_nonzeros_ = 0;     // the matrix's nonzeros (upper triangle) at that analysis
   std::size_t orderings_ = 0;    // kept_perm_ found anew so far
   bool analyse_kept(const Sparse& a);  // analyse a under kept_perm_; false if its fill has grown too far
+  /// a's pattern lies within the factor of the last analysis under kept_perm_ (its supernodes'
+  /// rows, in its order): analysed under kept_perm_, its factor stays within that one's
+  /// structure, and a lean run keeps the ordering for it (system_matrix.cpp).
+  bool keeps_symbolic(const Sparse& a) const;
+  std::size_t kept_analyses_ = 0;  // kept_analyses()
+  // The pattern as it was at the last analysis or kept one lies within the factor, and these
+  // (column, row) entries have been added to it since (grow_in_place); false: not known (a
+  // pattern built anew, a restored factor), keeps_symbolic() checks every entry.
+  bool in_factor_ = false;
+  std::vector<std::pair<int, int>> added_since_;
+  bool restoring_ = false;         // analyse() under kept_perm_ in any run (a restore; keeps_symbolic)
   int block_ = 0, blocked_ = 0, block_from_ = kBlockOrderingUnknowns;  // set_block_ordering()
   int failed_unknown_ = -1;
   std::vector<int> regularised_;
