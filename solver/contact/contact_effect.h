@@ -147,6 +147,10 @@ class ContactEffect final : public Effect {
   Eigen::Index start_end_unknowns_ = -1;
   std::vector<std::int32_t> released_;  // sorted vertices of the contacts released at this step's start
   double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
+  // commit()'s scratch, kept between steps: the vertices closed at the step's start (by loop
+  // vertex) and sorted (vertex, edge) pairs.
+  std::vector<std::uint8_t> commit_closed_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> commit_pairs_;
 };
 
 }  // namespace nmm::solve
