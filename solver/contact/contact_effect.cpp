@@ -154,24 +154,31 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   // the step re-cut the mesh (ended_ carried onto it: end_unknowns_ −2).
   released_work_ = 0;
   released_.clear();
+  // (vertex, edge) pairs sorted for binary searches: detection lists its contacts, and so the
+  // ended ones, in that order already, which the check finds in one pass instead of a sort.
+  const auto sort_pairs = [](std::vector<std::pair<std::int32_t, std::int32_t>>& p) {
+    if (!std::is_sorted(p.begin(), p.end())) std::sort(p.begin(), p.end());
+  };
+  std::vector<std::pair<std::int32_t, std::int32_t>>& pairs = commit_pairs_;
   if ((end_unknowns_ == d.size() || end_unknowns_ == -2) && !ended_.empty()) {
-    std::vector<std::int32_t> closed;
-    std::vector<std::pair<std::int32_t, std::int32_t>> found;  // (vertex, edge) of this step's contacts
+    // The vertices closed at this step's start (with their mirrors), marked by vertex.
+    std::vector<std::uint8_t>& closed = commit_closed_;
+    closed.assign(model_.mesh().loop_vertex_count(), 0);
+    pairs.clear();  // (vertex, edge) of this step's contacts
     for (const Contact& c : contacts_.contacts()) {
-      found.emplace_back(c.at.vertex, c.at.edge);
+      pairs.emplace_back(c.at.vertex, c.at.edge);
       if (c.start_state != ContactState::open) {
-        closed.push_back(c.at.vertex);
-        if (c.mirror >= 0) closed.push_back(c.mirror);
+        for (const std::int32_t v : {c.at.vertex, c.mirror})
+          if (v >= 0 && static_cast<std::size_t>(v) < closed.size()) closed[static_cast<std::size_t>(v)] = 1;
       }
     }
-    std::sort(closed.begin(), closed.end());
-    std::sort(found.begin(), found.end());
-    const auto has = [&](std::int32_t v) { return v >= 0 && std::binary_search(closed.begin(), closed.end(), v); };
+    sort_pairs(pairs);
+    const auto has = [&](std::int32_t v) { return v >= 0 && static_cast<std::size_t>(v) < closed.size() && closed[static_cast<std::size_t>(v)] != 0; };
     const int nd = space_.element_dofs();
     for (const EndedContact& e : ended_) {
       // Still closed, or found open on the same edge (a joint that dilated apart: its law's own,
       // which the step solves on from the dilation it carries), is not released.
-      if (has(e.vertex) || has(e.mirror) || std::binary_search(found.begin(), found.end(), std::make_pair(e.vertex, e.edge)))
+      if (has(e.vertex) || has(e.mirror) || std::binary_search(pairs.begin(), pairs.end(), std::make_pair(e.vertex, e.edge)))
         continue;
       released_work_ -= 0.5 * ended_work(e, d, nd);
       released_.push_back(e.vertex);
@@ -191,10 +198,11 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   // beam at h 0.02 m, dynamic, fast: 81 of the 123 contacts found sunk in its step 73 opened;
   // R −2.07 J/m, 2.2 % of the work, booked so).
   {
-    std::vector<std::pair<std::int32_t, std::int32_t>> had;  // (vertex, edge) of the ended contacts
+    std::vector<std::pair<std::int32_t, std::int32_t>>& had = pairs;  // (vertex, edge) of the ended contacts
+    had.clear();
     if (end_unknowns_ == d.size() || end_unknowns_ == -2)
       for (const EndedContact& e : ended_) had.emplace_back(e.vertex, e.edge);
-    std::sort(had.begin(), had.end());
+    sort_pairs(had);
     // The shear force each contact starts the step with in its balance (energy_step's T0): the
     // history's where it starts closed; where it starts open, the end force of a contact the
     // last step ended closed on the same vertex and edge (a Barton–Bandis joint that dilated
@@ -237,8 +245,10 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   // Kept for a re-cut that throws this attempt away (continue_from).
   start_ended_.swap(ended_);
   start_end_unknowns_ = end_unknowns_;
-  // This step's closed contacts' end forces, Σ N·cn − T·cs on its rows, for the next step.
-  ended_.clear();
+  // This step's closed contacts' end forces, Σ N·cn − T·cs on its rows, for the next step,
+  // written over the list two steps old (its entries' force arrays reused, not allocated anew
+  // for each of the step's hundreds of closed contacts).
+  std::size_t kept = 0;
   end_unknowns_ = d.size();
   const Mesh& mesh = model_.mesh();
   std::vector<std::size_t> ended_index;
@@ -252,11 +262,21 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
     const auto q3 = static_cast<std::size_t>(contacts_.topology().next[q2]);
     const double bx = mesh.loop_xy[2 * q2] + c.at.omega * (mesh.loop_xy[2 * q3] - mesh.loop_xy[2 * q2]);
     const double by = mesh.loop_xy[2 * q2 + 1] + c.at.omega * (mesh.loop_xy[2 * q3 + 1] - mesh.loop_xy[2 * q2 + 1]);
-    EndedContact e{c.at.vertex, c.mirror, c.at.edge, c.at.elem_a, c.at.elem_b, bx, by,
-                   std::vector<double>(static_cast<std::size_t>(r.size)), c.shear_force, 0.0};
+    if (kept == ended_.size()) ended_.emplace_back();
+    EndedContact& e = ended_[kept++];
+    e.vertex = c.at.vertex;
+    e.mirror = c.mirror;
+    e.edge = c.at.edge;
+    e.elem_a = c.at.elem_a;
+    e.elem_b = c.at.elem_b;
+    e.bx = bx;
+    e.by = by;
+    e.force.resize(static_cast<std::size_t>(r.size));
+    e.shear_force = c.shear_force;
+    e.stored = 0.0;
     for (int i = 0; i < r.size; ++i) e.force[static_cast<std::size_t>(i)] = c.normal_force * r.cn[i] - c.shear_force * r.cs[i];
-    ended_.push_back(std::move(e));
   }
+  ended_.resize(kept);
   const ContactSet::Totals totals = contacts_.totals();
   contacts_.end_step(problem_);
   for (std::size_t i = 0; i < ended_index.size(); ++i) {

@@ -156,6 +156,10 @@ class ContactEffect final : public Effect {
   double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
   std::vector<double> start_shear_;   // N, [contact] the shear force T0 this step started with (commit)
   Eigen::VectorXd trace_d_;           // NMM_TRACE_ENERGY: the accepted step's motion
+  // commit()'s scratch, kept between steps: the vertices closed at the step's start (by loop
+  // vertex) and sorted (vertex, edge) pairs.
+  std::vector<std::uint8_t> commit_closed_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> commit_pairs_;
 };
 
 }  // namespace nmm::solve
