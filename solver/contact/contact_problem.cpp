@@ -329,6 +329,8 @@ double ContactProblem::normal_force_at_rest(std::size_t i) const {
 void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   std::vector<Contact>& contacts = set_.step_contacts();
   const std::vector<ContactLaw>& laws = set_.laws();
+  springs_.clear();
+  double scale = 0;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     Contact& c = contacts[k];
     ContactWork& w = work_[k];
@@ -355,9 +357,12 @@ void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
     c.capped = n.capped;
     c.shear_force = t.force;
     c.ks_now = t.stiffness;
+    scale = std::max({scale, std::abs(n.force), std::abs(t.force)});
+    if (n.stiffness != 0 || t.stiffness != 0) springs_.push_back({k, n.stiffness, t.stiffness});
     if (n.force == 0 && t.force == 0) continue;
     for (int i = 0; i < row_; ++i) r[dof[i]] += n.force * cn[i] - t.force * cs[i];
   }
+  force_scale_ = scale;
 }
 
 void ContactProblem::add_tangents(SystemMatrix& k) const {
@@ -375,25 +380,28 @@ void ContactProblem::add_tangents(SystemMatrix& k) const {
 }
 
 void ContactProblem::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
-  const std::vector<Contact>& contacts = set_.contacts();
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    if (c.kn_now == 0 && c.ks_now == 0) continue;
-    const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
-    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
+  // Over the contacts with a spring only (springs_, in the contacts' order): the same sums.
+  const double* vv = v.data();
+  double* yy = y.data();
+  for (const TangentSprings& sp : springs_) {
+    const std::size_t at = sp.contact * static_cast<std::size_t>(row_);
+    const int* dof = dofs_.data() + at;
+    const double *cn = cn_.data() + at, *cs = cs_.data() + at;
     double a = 0, b = 0;
     for (int i = 0; i < row_; ++i) {
-      a += cn[i] * v[dof[i]];
-      b += cs[i] * v[dof[i]];
+      a += cn[i] * vv[dof[i]];
+      b += cs[i] * vv[dof[i]];
     }
-    a *= c.kn_now;
-    b *= c.ks_now;
-    for (int i = 0; i < row_; ++i) y[dof[i]] += a * cn[i] + b * cs[i];
+    a *= sp.kn;
+    b *= sp.ks;
+    for (int i = 0; i < row_; ++i) yy[dof[i]] += a * cn[i] + b * cs[i];
   }
 }
 
 void ContactProblem::set_direction(const Eigen::VectorXd& delta) {
   std::vector<Contact>& contacts = set_.step_contacts();
+  along_normal_.clear();
+  along_shear_.clear();
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     ContactWork& w = work_[k];
     const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
@@ -405,20 +413,39 @@ void ContactProblem::set_direction(const Eigen::VectorXd& delta) {
     }
     w.rate_gap = dg;
     w.rate_shear = ds;
+    // The line search takes α ≥ 0 only. A contact open beyond the skin that opens further along
+    // δ, neither bonded nor a softening face, has N = 0 at every such α (normal_at): its term is
+    // 0. A shear term counts only with a strength (directional_force()).
+    const Contact& c = contacts[k];
+    const bool stays_open = !w.cohesive && !w.bonded && c.gap > skin_ && dg > 0;
+    if (dg != 0 && !stays_open) along_normal_.push_back(static_cast<std::uint32_t>(k));
+    if (ds != 0 && w.strength > 0) along_shear_.push_back(static_cast<std::uint32_t>(k));
   }
 }
 
 double ContactProblem::directional_force(double alpha) const {
   const std::vector<Contact>& contacts = set_.contacts();
   const std::vector<ContactLaw>& laws = set_.laws();
+  // Contact by contact in the contacts' order, normal term before shear term, as over all
+  // contacts: the terms left out (set_direction()) are exactly zero, so the sum is the same.
   double sum = 0;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
+  std::size_t in = 0, is = 0;
+  const std::size_t nn = along_normal_.size(), ns = along_shear_.size();
+  while (in < nn || is < ns) {
+    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    const std::uint32_t kn = in < nn ? along_normal_[in] : kNone, ks = is < ns ? along_shear_[is] : kNone;
+    const std::uint32_t k = std::min(kn, ks);
     const Contact& c = contacts[k];
     const ContactWork& w = work_[k];
     const ContactLaw& law = laws[c.law];
-    if (w.rate_gap != 0) sum += normal_at(law, c, w, c.gap + alpha * w.rate_gap, skin_).force * w.rate_gap;
-    if (w.rate_shear != 0 && w.strength > 0)
+    if (kn == k) {
+      sum += normal_at(law, c, w, c.gap + alpha * w.rate_gap, skin_).force * w.rate_gap;
+      ++in;
+    }
+    if (ks == k) {
       sum -= shear_at(law, c, w, c.shear + alpha * w.rate_shear).force * w.rate_shear;
+      ++is;
+    }
   }
   return sum;
 }
@@ -515,13 +542,6 @@ int ContactProblem::softening_faces() const {
   return n;
 }
 
-double ContactProblem::force_scale() const {
-  const std::vector<Contact>& contacts = set_.contacts();
-  double f = 0;
-  for (const Contact& c : contacts) f = std::max({f, std::abs(c.normal_force), std::abs(c.shear_force)});
-  return f;
-}
-
 int ContactProblem::update_strengths(double force_floor) {
   std::vector<Contact>& contacts = set_.step_contacts();
   const std::vector<ContactLaw>& laws = set_.laws();
@@ -616,6 +636,13 @@ void ContactProblem::settle_states() {
     if (before == ContactState::sliding && now == ContactState::locked) ++set_.events.stuck;
     c.state = now;
   }
+  // The open contacts' springs are gone: tangent_times() follows.
+  springs_.erase(std::remove_if(springs_.begin(), springs_.end(),
+                                [&](const TangentSprings& sp) {
+                                  const Contact& c = contacts[sp.contact];
+                                  return c.kn_now == 0 && c.ks_now == 0;
+                                }),
+                 springs_.end());
 }
 
 void ContactProblem::commit() {

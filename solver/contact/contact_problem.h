@@ -140,7 +140,7 @@ class ContactProblem {
   /// opening, below w_c).
   int softening_faces() const;
   /// Largest |N| and |T| of the last forces_at(), N (a scale for the residual tolerance).
-  double force_scale() const;
+  double force_scale() const { return force_scale_; }
   /// After an inner solve: shear strengths follow the normal forces (the friction fixed point).
   /// Bonds do not break here: an iterate is not the step (break_at_peak()). Returns the number of
   /// contacts whose strength changed where it matters (at or near the limit) by more than 0.1 %
@@ -178,6 +178,19 @@ class ContactProblem {
   std::vector<int> dofs_;        // [contact · row_] this step's rows: unknowns,
   std::vector<double> cn_, cs_;  // [contact · row_] –, gap and slip per unit unknown
   mutable Eigen::MatrixXd block_;  // add_tangents()' scratch
+  // The Newton kernels' short lists, so that their loops touch only the contacts that count (a
+  // wall's step has many open ones): the contacts with a tangent spring (kn or ks ≠ 0) at the
+  // last forces_at(), with those springs (tangent_times() reads nothing else), in the contacts'
+  // order; and, of set_direction(), the contacts whose normal force, or shear force, may be
+  // non-zero somewhere along the direction (directional_force()). Leaving out a term that is
+  // exactly zero leaves each sum the same, bit for bit.
+  struct TangentSprings {
+    std::size_t contact;
+    double kn, ks;  // N/m
+  };
+  std::vector<TangentSprings> springs_;
+  std::vector<std::uint32_t> along_normal_, along_shear_;
+  double force_scale_ = 0;          // N, forces_at()'s largest |N| and |T|
   std::vector<ContactWork> work_;  // [contact] the step's contacts' inner-solve working values
   std::vector<std::int32_t> group_run_;  // [element + 1] assign_groups()' scratch: CSR into its pairs
   bool elastic_predictor_ = false;  // new touching contacts stick in the first inner solve

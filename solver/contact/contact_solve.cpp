@@ -192,7 +192,7 @@ void hessian_times(const SystemMatrix& k, const ContactProblem& contacts, const 
 // (docs/higher-order-covers.md "Keeping the null space out"). No iterative refinement: a
 // preconditioner needs none.
 void precondition(const SystemMatrix& k, const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-  z = k.solve_unrefined(r);
+  k.solve_unrefined(r, z);  // into z's storage: no allocation per CG iteration
   k.remove_null_part(z);
 }
 

@@ -772,10 +772,17 @@ void SystemMatrix::place_slots() {
 }
 
 Eigen::VectorXd SystemMatrix::solve_unrefined(const Eigen::VectorXd& b) const {
-  if (!single_.ready()) return llt_.solve(b);
   Eigen::VectorXd x;
-  single_.solve(b, x);
+  solve_unrefined(b, x);
   return x;
+}
+
+void SystemMatrix::solve_unrefined(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  if (!single_.ready()) {
+    x = llt_.solve(b);
+    return;
+  }
+  single_.solve(b, x);
 }
 
 Eigen::VectorXd SystemMatrix::solve_factored(const Eigen::VectorXd& b) const {

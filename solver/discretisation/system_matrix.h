@@ -115,6 +115,9 @@ class SystemMatrix {
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
   /// Solves with the last factorisation only, no iterative refinement: a preconditioner's solve.
   Eigen::VectorXd solve_unrefined(const Eigen::VectorXd& b) const;
+  /// The same into x, reusing its storage (a single-precision factor's solve allocates nothing:
+  /// the CG runs call it once per iteration).
+  void solve_unrefined(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// Removes from x its component in the null space of the factorised matrix P (the
   /// zero-field combinations of the cover coefficients, docs/higher-order-covers.md "Keeping
   /// the null space out"): x ← x − (P + E)⁻¹ E x with E the diagonal perturbation of the factor.
