@@ -271,42 +271,60 @@ TEST(EnergyPaths, AMovingSupportWorksWithItsLockedInReaction) {
   EXPECT_LT(std::abs(end.residual), 0.005 * closed);
 }
 
-TEST(EnergyPaths, AContactFoundSunkWithNoForceBooksTheEnergyItsSpringsStartWith) {
-  const double kn = 1e10, w = 1, p = 1e-4, h = 0.25;  // Pa/m, m, m (p < 1e-3·h: a new contact's depth)
-  const double dt = 5e-5;  // s: 2M/Δt² = 1.06e12 N/m against kn·w = 1e10 N/m per block
-  const nlohmann::json doc = {
-      {"name", "sunk-contact"},
-      {"plane", "strain"},
-      {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
-      {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", kn}}},
-                                 {"shear", {{"model", "constant"}, {"ks", kn}}}}}}},
-      {"interface_set", "joint"},
-      {"mesh", {{"size", h}}},
-      {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {w, 0}, {w, 0.5}, {0, 0.5}}}},
-                  {{"material", "stiff"}, {"outer", {{0, 0.5}, {w, 0.5}, {w, 1}, {0, 1}}}}}},
-      {"supports", {{{"points", {{0, 0}, {w, 0}}}, {"fix", "xy"}}}},
-      {"solver", {{"time_step", dt}, {"steps", 1}}}};
-  const SceneDef scene = scene_from_json(doc, "sunk");
-  const Mesh mesh = pre::build_mesh(scene, "sunk");
-  solve::TimeStepper st(mesh, scene, "sunk");
-  // The upper body moved down by p: its covers' constant terms, nodes and loop vertices.
+// Two stiff blocks w × 0.5 m on a joint of constant kn = ks, the lower held at its base: the scene
+// of the two tests below (a static step, or a dynamic one with β = ½).
+nlohmann::json stacked_blocks(const std::string& name, double kn, double w, double h, double dt, bool dynamic) {
+  nlohmann::json solver = {{"time_step", dt}, {"steps", 1}};
+  if (dynamic) solver["dynamic"] = true, solver["newmark_beta"] = 0.5;
+  return {{"name", name},
+          {"plane", "strain"},
+          {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
+          {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", kn}}},
+                                     {"shear", {{"model", "constant"}, {"ks", kn}}}}}}},
+          {"interface_set", "joint"},
+          {"mesh", {{"size", h}}},
+          {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {w, 0}, {w, 0.5}, {0, 0.5}}}},
+                      {{"material", "stiff"}, {"outer", {{0, 0.5}, {w, 0.5}, {w, 1}, {0, 1}}}}}},
+          {"supports", {{{"points", {{0, 0}, {w, 0}}}, {"fix", "xy"}}}},
+          {"solver", solver}};
+}
+
+// The upper block (body 1) moved down by p — its covers' constant terms, nodes and loop
+// vertices — and given the upward velocity v0 (m/s), with no contact force carried.
+void sink_upper_block(solve::TimeStepper& st, const Mesh& mesh, double p, double v0, const std::string& name) {
   solve::RunState moved = st.view().state;
   const std::size_t m = moved.cover_u.size() / mesh.cover_count();
   for (std::size_t c = 0; c < mesh.cover_count(); ++c)
-    if (mesh.cover_body[c] == 1) moved.cover_u[m * c + 1] -= p, moved.cover_xy[2 * c + 1] -= p;
+    if (mesh.cover_body[c] == 1) moved.cover_u[m * c + 1] -= p, moved.cover_xy[2 * c + 1] -= p, moved.velocity[m * c + 1] = v0;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     if (mesh.cover_body[static_cast<std::size_t>(mesh.element_covers[3 * e])] != 1) continue;
     for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
       moved.loop_u[2 * static_cast<std::size_t>(v) + 1] -= p, moved.loop_xy[2 * static_cast<std::size_t>(v) + 1] -= p;
   }
-  st.restore(moved, solve::save_contact_history(st.view().contacts), "sunk");
+  st.restore(moved, solve::save_contact_history(st.view().contacts), name);
+}
+
+// One step of Δt metered as nmm-solve meters it, from the state st holds now.
+solve::EnergyMeter metered_step(solve::TimeStepper& st, double dt) {
   solve::EnergyMeter meter(st.view().model, &st.view().space);
   meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
   const Outcome o = st.run_until(dt * (1 - 1e-9), [&](std::int64_t) {
     const solve::RunView view = st.view();
     meter.after_step(view.state, solve::energy_sources(view), true);
   });
-  ASSERT_PRED1(test::ended_ok, o);
+  EXPECT_PRED1(test::ended_ok, o);
+  return meter;
+}
+
+TEST(EnergyPaths, AContactFoundSunkWithNoForceBooksTheEnergyItsSpringsStartWith) {
+  const double kn = 1e10, w = 1, p = 1e-4, h = 0.25;  // Pa/m, m, m (p < 1e-3·h: a new contact's depth)
+  const double dt = 5e-5;  // s: 2M/Δt² = 1.06e12 N/m against kn·w = 1e10 N/m per block
+  const SceneDef scene = scene_from_json(stacked_blocks("sunk-contact", kn, w, h, dt, false), "sunk");
+  const Mesh mesh = pre::build_mesh(scene, "sunk");
+  solve::TimeStepper st(mesh, scene, "sunk");
+  sink_upper_block(st, mesh, p, 0.0, "sunk");
+  const solve::EnergyMeter meter = metered_step(st, dt);
+  ASSERT_GE(meter.rows().size(), 2u);
   const solve::EnergyRow& first = meter.rows().front();
   const solve::EnergyRow& end = meter.rows().back();
   const double s0 = 0.5 * kn * w * p * p;  // J/m, the joint's springs at the step's start
@@ -334,40 +352,12 @@ TEST(EnergyPaths, AContactFoundSunkThatOpensWithinTheStepBooksNothing) {
   // ½ kn·w·p·(5p − p) = 4 S0 in `damped` (R = −4 S0).
   const double kn = 1e10, w = 1, p = 1e-4, h = 0.25;  // Pa/m, m, m
   const double dt = 5e-5, v0 = 5 * p / dt;            // s, m/s (10 m/s)
-  const nlohmann::json doc = {
-      {"name", "sunk-contact-opens"},
-      {"plane", "strain"},
-      {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
-      {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", kn}}},
-                                 {"shear", {{"model", "constant"}, {"ks", kn}}}}}}},
-      {"interface_set", "joint"},
-      {"mesh", {{"size", h}}},
-      {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {w, 0}, {w, 0.5}, {0, 0.5}}}},
-                  {{"material", "stiff"}, {"outer", {{0, 0.5}, {w, 0.5}, {w, 1}, {0, 1}}}}}},
-      {"supports", {{{"points", {{0, 0}, {w, 0}}}, {"fix", "xy"}}}},
-      {"solver", {{"time_step", dt}, {"steps", 1}, {"dynamic", true}, {"newmark_beta", 0.5}}}};
-  const SceneDef scene = scene_from_json(doc, "sunk-opens");
+  const SceneDef scene = scene_from_json(stacked_blocks("sunk-contact-opens", kn, w, h, dt, true), "sunk-opens");
   const Mesh mesh = pre::build_mesh(scene, "sunk-opens");
   solve::TimeStepper st(mesh, scene, "sunk-opens");
-  // The upper body moved down by p and moving up at v0: its covers' constant terms, nodes and
-  // loop vertices.
-  solve::RunState moved = st.view().state;
-  const std::size_t m = moved.cover_u.size() / mesh.cover_count();
-  for (std::size_t c = 0; c < mesh.cover_count(); ++c)
-    if (mesh.cover_body[c] == 1) moved.cover_u[m * c + 1] -= p, moved.cover_xy[2 * c + 1] -= p, moved.velocity[m * c + 1] = v0;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    if (mesh.cover_body[static_cast<std::size_t>(mesh.element_covers[3 * e])] != 1) continue;
-    for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v)
-      moved.loop_u[2 * static_cast<std::size_t>(v) + 1] -= p, moved.loop_xy[2 * static_cast<std::size_t>(v) + 1] -= p;
-  }
-  st.restore(moved, solve::save_contact_history(st.view().contacts), "sunk-opens");
-  solve::EnergyMeter meter(st.view().model, &st.view().space);
-  meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
-  const Outcome o = st.run_until(dt * (1 - 1e-9), [&](std::int64_t) {
-    const solve::RunView view = st.view();
-    meter.after_step(view.state, solve::energy_sources(view), true);
-  });
-  ASSERT_PRED1(test::ended_ok, o);
+  sink_upper_block(st, mesh, p, v0, "sunk-opens");
+  const solve::EnergyMeter meter = metered_step(st, dt);
+  ASSERT_GE(meter.rows().size(), 2u);
   const solve::EnergyRow& first = meter.rows().front();
   const solve::EnergyRow& end = meter.rows().back();
   const double s0 = 0.5 * kn * w * p * p;    // J/m, the joint's springs at the step's start

@@ -59,6 +59,30 @@ constexpr int kN = 9;
 
 Groups base() { return Groups{}.add({0, 1, 2}).add({2, 3, 4}).add({4, 5, 6}).add({6, 7, 8}).add({0, 1, 4, 5}); }
 
+// k's checkpoint restored into a matrix (set up by set_up) of the pattern g: analysed under the
+// checkpoint's ordering (none found anew), with k's fill, it solves b bit for bit as k does, and
+// so does the next factorisation of new values in both. k is refactorised.
+template <class SetUp>
+void expect_restored_bitwise(SystemMatrix& k, const SetUp& set_up, const Groups& g, int n, const Eigen::VectorXd& b) {
+  const Eigen::VectorXd x = k.solve(b);
+  SystemMatrix restored;
+  set_up(restored);
+  restored.build_pattern(n, g.offsets, g.dofs);
+  ASSERT_TRUE(restored.factor_from_source(k.factor_source()));
+  EXPECT_EQ(restored.orderings(), 0u);
+  EXPECT_EQ(restored.factor_nonzeros(), k.factor_nonzeros());
+  const Eigen::VectorXd y = restored.solve(b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(y[i], x[i]) << "unknown " << i;
+  for (SystemMatrix* m : {&k, &restored}) {
+    assembled(*m, g, n);
+    for (int i = 0; i < n; i += 3) m->add_diagonal(i, 0.5);
+    ASSERT_TRUE(m->factorize());
+  }
+  const Eigen::VectorXd x2 = k.solve(b), y2 = restored.solve(b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(y2[i], x2[i]) << "unknown " << i;
+  EXPECT_EQ(restored.orderings(), 0u);
+}
+
 }  // namespace
 
 TEST(SystemMatrixPattern, GrowthByCoupledUnknownsKeepsPatternAndAnalysis) {
@@ -304,22 +328,7 @@ TEST(SystemMatrixOrdering, AKeptOrderingServesGrownPatternsAndRestartsBitwise) {
   // The checkpoint carries the kept ordering: restored into a matrix of the grown pattern, the
   // factorisation solves bit for bit as the straight one, and so does the next factorisation
   // of new values (which analyses the pattern again, under the restored ordering).
-  SystemMatrix restored;
-  set_up(restored);
-  restored.build_pattern(n, grown.offsets, grown.dofs);
-  ASSERT_TRUE(restored.factor_from_source(k.factor_source()));
-  EXPECT_EQ(restored.orderings(), 0u);
-  EXPECT_EQ(restored.factor_nonzeros(), k.factor_nonzeros());
-  const Eigen::VectorXd y = restored.solve(b);
-  for (int i = 0; i < n; ++i) ASSERT_EQ(y[i], x[i]) << "unknown " << i;
-  for (SystemMatrix* m : {&k, &restored}) {
-    assembled(*m, grown, n);
-    for (int i = 0; i < n; i += 3) m->add_diagonal(i, 0.5);
-    ASSERT_TRUE(m->factorize());
-  }
-  const Eigen::VectorXd x2 = k.solve(b), y2 = restored.solve(b);
-  for (int i = 0; i < n; ++i) ASSERT_EQ(y2[i], x2[i]) << "unknown " << i;
-  EXPECT_EQ(restored.orderings(), 0u);
+  expect_restored_bitwise(k, set_up, grown, n, b);
 
   // Couplings across the whole plane fill the kept ordering's factor beyond kOrderingRefill:
   // a new ordering is found.
@@ -550,22 +559,7 @@ TEST(SystemMatrixOrdering, APatternGrownWithinItsFactorKeepsItsOrderingAndRestar
     const Eigen::VectorXd x = k.solve(b);
     EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * b.norm());
     // Restored: analysed under the checkpoint's ordering, the same factor, the same bits.
-    SystemMatrix restored;
-    set_up(restored);
-    restored.build_pattern(n, grown.offsets, grown.dofs);
-    ASSERT_TRUE(restored.factor_from_source(k.factor_source()));
-    EXPECT_EQ(restored.orderings(), 0u);
-    EXPECT_EQ(restored.factor_nonzeros(), fill);
-    const Eigen::VectorXd y = restored.solve(b);
-    for (int i = 0; i < n; ++i) ASSERT_EQ(y[i], x[i]) << "unknown " << i;
-    for (SystemMatrix* m : {&k, &restored}) {
-      assembled(*m, grown, n);
-      for (int i = 0; i < n; i += 3) m->add_diagonal(i, 0.5);
-      ASSERT_TRUE(m->factorize());
-    }
-    const Eigen::VectorXd x2 = k.solve(b), y2 = restored.solve(b);
-    for (int i = 0; i < n; ++i) ASSERT_EQ(y2[i], x2[i]) << "unknown " << i;
-    EXPECT_EQ(restored.orderings(), 0u);
+    expect_restored_bitwise(k, set_up, grown, n, b);
     // Pairs across the plane lie outside the factor: analysed (in a lean run, ordered anew).
     std::vector<std::pair<int, int>> far;
     for (int i = 0; i < 50; ++i) far.emplace_back((i * 37) % (kSide * kSide), (i * 7919 + 5000) % (kSide * kSide));
