@@ -89,27 +89,30 @@ double mean_displacement(const solve::RunState& s, int axis, double at, int d) {
   return n ? sum / n : NAN;
 }
 
+// A stiff block on another (1 m × 0.5 m each, a joint of kn = ks = 1e13 Pa/m, φ 30°), the lower
+// held, the upper pressed by p·table(t) on its top and pushed at v by its left side.
+nlohmann::json pushed_block(double p, double v, double dt, int steps, const nlohmann::json& table) {
+  return {{"name", "pushed-block"},
+          {"plane", "strain"},
+          {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
+          {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", 1e13}}},
+                                     {"shear", {{"model", "constant"}, {"ks", 1e13}}}}}}},
+          {"interface_set", "joint"},
+          {"mesh", {{"size", 0.25}}},
+          {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}}},
+                      {{"material", "stiff"}, {"outer", {{0, 0.5}, {1, 0.5}, {1, 1}, {0, 1}}}}}},
+          {"supports", {{{"points", {{0, 0}, {1, 0}}}, {"fix", "xy"}},
+                        {{"points", {{0, 0.5}, {0, 1}}}, {"fix", "x"}, {"velocity", {v, 0}}}}},
+          {"tractions", {{{"points", {{1, 1}, {0, 1}}}, {"normal", -p}, {"shear", 0}, {"table", table}}}},
+          {"solver", {{"time_step", dt}, {"steps", steps}, {"support_stiffness", 1e15}}}};
+}
+
 TEST(EnergyPaths, FrictionUnderAFallingNormalForceIsItsIntegral) {
   const double p = 1e6, w = 1, tan_phi = std::tan(30 * kPi / 180);
   const double dt = 1e-3, v = 0.2;  // s; m/s: 0.2 mm a step, 400× what the block's own shear strain gives back
   const int steady = 10, falling = 5;  // steps at p, then steps while p falls to p/2
   const double t_fall = steady * dt, t_end = (steady + falling) * dt;
-  const nlohmann::json doc = {
-      {"name", "falling-normal-force"},
-      {"plane", "strain"},
-      {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
-      {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", 1e13}}},
-                                 {"shear", {{"model", "constant"}, {"ks", 1e13}}}}}}},
-      {"interface_set", "joint"},
-      {"mesh", {{"size", 0.25}}},
-      {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}}},
-                  {{"material", "stiff"}, {"outer", {{0, 0.5}, {1, 0.5}, {1, 1}, {0, 1}}}}}},
-      {"supports", {{{"points", {{0, 0}, {1, 0}}}, {"fix", "xy"}},
-                    {{"points", {{0, 0.5}, {0, 1}}}, {"fix", "x"}, {"velocity", {v, 0}}}}},
-      {"tractions", {{{"points", {{1, 1}, {0, 1}}}, {"normal", -p}, {"shear", 0},
-                      {"table", {{0, 1}, {t_fall, 1}, {t_end, 0.5}}}}}},
-      {"solver", {{"time_step", dt}, {"steps", steady + falling}, {"support_stiffness", 1e15}}}};
-  MeteredRun r(doc, "falling");
+  MeteredRun r(pushed_block(p, v, dt, steady + falling, {{0, 1}, {t_fall, 1}, {t_end, 0.5}}), "falling");
   double friction_fall = 0, closed = 0, end_force_rule = 0, x_prev = 0, n_prev = p * w;
   const Outcome o = r.st.run_until(t_end * (1 - 1e-9), [&](std::int64_t n) {
     const solve::RunView view = r.st.view();
@@ -137,23 +140,6 @@ TEST(EnergyPaths, FrictionUnderAFallingNormalForceIsItsIntegral) {
   EXPECT_NEAR(friction_fall, closed, 0.003 * closed);
   EXPECT_GT(std::abs(end_force_rule - closed), 0.05 * closed);  // the old rule fails this check
   EXPECT_LT(std::abs(residual), 0.01 * work);
-}
-
-// The block of FrictionUnderAFallingNormalForceIsItsIntegral pressed by p·table(t) and pushed at v.
-nlohmann::json pushed_block(double p, double v, double dt, int steps, const nlohmann::json& table) {
-  return {{"name", "pushed-block"},
-          {"plane", "strain"},
-          {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
-          {"joint_sets", {{"joint", {{"friction_deg", 30}, {"normal", {{"model", "constant"}, {"kn", 1e13}}},
-                                     {"shear", {{"model", "constant"}, {"ks", 1e13}}}}}}},
-          {"interface_set", "joint"},
-          {"mesh", {{"size", 0.25}}},
-          {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}}},
-                      {{"material", "stiff"}, {"outer", {{0, 0.5}, {1, 0.5}, {1, 1}, {0, 1}}}}}},
-          {"supports", {{{"points", {{0, 0}, {1, 0}}}, {"fix", "xy"}},
-                        {{"points", {{0, 0.5}, {0, 1}}}, {"fix", "x"}, {"velocity", {v, 0}}}}},
-          {"tractions", {{{"points", {{1, 1}, {0, 1}}}, {"normal", -p}, {"shear", 0}, {"table", table}}}},
-          {"solver", {{"time_step", dt}, {"steps", steps}, {"support_stiffness", 1e15}}}};
 }
 
 // N/m, the closed contacts' normal forces summed (contacts.csv's normal_force), at the state now.
