@@ -154,10 +154,10 @@ int run(const std::string& name, const std::string& csv) {
       }
       if (std::getenv("NMM_TRACE_COST") != nullptr) {
         // Where a run's work goes, step by step: cumulative counts and this process's CPU time.
-        std::fprintf(stderr, "cost step %lld t %.6g dt %.3g resolves %ld batched %ld cuts %lld fact %ld solves %ld newton %ld cg %ld "
+        std::fprintf(stderr, "cost step %lld t %.6g dt %.3g resolves %ld cuts %lld fact %ld solves %ld newton %ld cg %ld "
                      "contacts %zu unknowns %ld segments %zu debris %d cpu %.2f detect %.2f assemble %.2f factor %.2f solve %.2f "
                      "fracture %.2f geometry %.2f\n",
-                     static_cast<long long>(n), v.state.time, v.state.dt, fracture_of(v).resolves(), fracture_of(v).batched(),
+                     static_cast<long long>(n), v.state.time, v.state.dt, fracture_of(v).resolves(),
                      static_cast<long long>(v.state.cuts), v.timings.factorisations, v.timings.solves_count,
                      v.contact_solve.newton, v.contact_solve.cg_iterations, v.contacts.contacts().size(),
                      static_cast<long>(v.space.unknowns()), fracture_of(v).segments().size(),
@@ -253,11 +253,10 @@ int run(const std::string& name, const std::string& csv) {
   // Where the run's time went (wall seconds, StepTimings): a cracking step is solved again after
   // each re-cut, and a step cut for a shorter one is solved again too.
   const solve::StepTimings& tm = v.timings;
-  std::printf("  cost: %ld steps solved again after a re-cut (%ld cracks batched with another block's), %lld attempts cut; "
-              "%ld factorisations, %ld solves; "
+  std::printf("  cost: %ld steps solved again after a re-cut, %lld attempts cut; %ld factorisations, %ld solves; "
               "contact detection %.1f s, assembly %.1f s, factorisation %.1f s, solves %.1f s, fracture %.1f s\n",
-              fracture_of(v).resolves(), fracture_of(v).batched(), static_cast<long long>(v.state.cuts),
-              tm.factorisations, tm.solves_count, tm.contact_detection, tm.assembly, tm.factorisation, tm.solves, tm.effect("fracture"));
+              fracture_of(v).resolves(), static_cast<long long>(v.state.cuts), tm.factorisations, tm.solves_count,
+              tm.contact_detection, tm.assembly, tm.factorisation, tm.solves, tm.effect("fracture"));
   if (!outcome.ok()) std::printf("  stop: %s\n", test::text(outcome).c_str());
   if (!pass) std::printf("  failed: %s\n", failed.c_str());
   std::fflush(stdout);

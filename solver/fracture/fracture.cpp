@@ -220,9 +220,6 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       }
     return best;
   };
-  // [block] 1: a segment of this find lies in it (add); `closed` [block] 1: a block an earlier
-  // action of this find cut, where no later one may start or grow a crack (the rule per block).
-  std::vector<std::uint8_t> cut_block(mesh.block_count(), 0), closed(mesh.block_count(), 0);
   auto add = [&](std::size_t e, const Vec2& a, const Vec2& b, std::int32_t crack, CrackMode mode) {
     if (a == b) {  // a tip that grew by nothing: no segment (the cutter takes none)
       crossed_[e] = 1;
@@ -239,7 +236,6 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     seg.time = s.time;
     out.push_back(seg);
     crossed_[e] = 1;
-    cut_block[static_cast<std::size_t>(mesh.element_block[e])] = 1;
   };
   // The scene's joints, then one per crack segment cut so far (fracture_effect.cpp).
   const std::int32_t first_crack = static_cast<std::int32_t>(scene.joints.size() - segments_.size());
@@ -325,7 +321,6 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         return;
       }
       if (crossed_[e] || !(ratio_[e] > -std::numeric_limits<double>::infinity())) return;
-      if (closed[static_cast<std::size_t>(mesh.element_block[e])]) return;  // another action's block
       const bool holds = ratio_[e] < 1;
       if (holds && forced <= 0) return;
       if (holds && !bridged) {  // only as a rock bridge to a stop (tip_drive.h)
@@ -355,12 +350,9 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   };
   for (std::size_t t = 0; t < tips_.size(); ++t)
     if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
-  // At most one new crack per block, and only in a block where no crack grew: the step is solved
-  // again with what grew (time_stepper.cpp attempt), and the stress a grown crack relieves must not
-  // start another. Blocks meet only through contacts, so a crack in one block relieves another
-  // only through the contact forces the re-solve finds: the rules below act once per block, the
-  // blocks in turn by their highest ratio, each closed to later actions once one cut it.
-  closed = cut_block;
+  // At most one new crack, and only where no crack grew: the step is solved again with what grew
+  // (time_stepper.cpp attempt), and the stress a grown crack relieves must not start another.
+  if (!out.empty()) return out;
   // The candidates: armed elements beyond their strength (a new crack through the element), and
   // disarmed ones whose crack has not parted them (rule 4: its tips grow on instead), each with
   // the active tips at the ends of the crack cut through its triangle.
@@ -392,151 +384,130 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       if (!regrow[i].empty()) candidates.push_back(over_[i]);
     }
   }
-  // One action (rules 2, 4, 5) among the candidates left: it adds to `out` past `before`, or
-  // nothing where its element cannot start a crack.
-  auto act = [&](std::size_t before) {
-    // The highest ratio, and of the ratios within kTie of it the lowest index: in a uniform field
-    // the ratios differ in their last bits, which the BLAS kernel decides. A re-armed element whose
-    // crack's tips cannot grow (the element ahead cannot break, or is crossed) yields to the next.
-    constexpr double kTie = 1e-9;
-    constexpr int kReach = 3;
-    std::int32_t best = -1;
-    for (;;) {
-      best = -1;
-      double highest = 0;
-      for (const std::int32_t e : candidates) highest = std::max(highest, ratio_[static_cast<std::size_t>(e)]);
-      for (const std::int32_t e : candidates)  // ascending
-        if (ratio_[static_cast<std::size_t>(e)] >= highest / (1 + kTie)) {
-          best = e;
-          break;
-        }
-      if (best >= 0 && armed_[static_cast<std::size_t>(best)]) {
-        // An element straight ahead of an active tip, within kReach elements of it, is that
-        // crack's to break: the tip grows on to it through the elements between, even where they
-        // hold (their stress averages the tip's concentration away), instead of a second crack
-        // starting in line with the first (rule 5; the 4 m bar of tests/test_fracture.cpp on the
-        // Prescott kernels started one two elements ahead of its first crack's tip).
-        std::size_t tip = tips_.size();
-        int between = kReach;
-        for (std::size_t t = 0; t < tips_.size(); ++t) {
-          if (!tips_[t].active) continue;
-          Vec2 p = tips_[t].at;
-          for (int k = 0; k < between; ++k) {
-            const std::int32_t el = grid().at(plus(p, 1e-6 * h, tips_[t].dir));
-            if (el < 0 || crossed_[el] || closed[static_cast<std::size_t>(mesh.element_block[el])]) break;
-            if (el == best) {
-              tip = t, between = k;
-              break;
-            }
-            RayExit exit;
-            if (!ray_exit(mesh, static_cast<std::size_t>(el), p, tips_[t].dir, tol, exit)) break;
-            p = exit.at;
+  // The highest ratio, and of the ratios within kTie of it the lowest index: in a uniform field
+  // the ratios differ in their last bits, which the BLAS kernel decides. A re-armed element whose
+  // crack's tips cannot grow (the element ahead cannot break, or is crossed) yields to the next.
+  constexpr double kTie = 1e-9;
+  constexpr int kReach = 3;
+  std::int32_t best = -1;
+  for (;;) {
+    best = -1;
+    double highest = 0;
+    for (const std::int32_t e : candidates) highest = std::max(highest, ratio_[static_cast<std::size_t>(e)]);
+    for (const std::int32_t e : candidates)  // ascending
+      if (ratio_[static_cast<std::size_t>(e)] >= highest / (1 + kTie)) {
+        best = e;
+        break;
+      }
+    if (best >= 0 && armed_[static_cast<std::size_t>(best)]) {
+      // An element straight ahead of an active tip, within kReach elements of it, is that
+      // crack's to break: the tip grows on to it through the elements between, even where they
+      // hold (their stress averages the tip's concentration away), instead of a second crack
+      // starting in line with the first (rule 5; the 4 m bar of tests/test_fracture.cpp on the
+      // Prescott kernels started one two elements ahead of its first crack's tip).
+      std::size_t tip = tips_.size();
+      int between = kReach;
+      for (std::size_t t = 0; t < tips_.size(); ++t) {
+        if (!tips_[t].active) continue;
+        Vec2 p = tips_[t].at;
+        for (int k = 0; k < between; ++k) {
+          const std::int32_t el = grid().at(plus(p, 1e-6 * h, tips_[t].dir));
+          if (el < 0 || crossed_[el]) break;
+          if (el == best) {
+            tip = t, between = k;
+            break;
           }
-        }
-        if (tip < tips_.size()) {
-          grow(tips_[tip], between, failure_[static_cast<std::size_t>(best)].mode);
-          if (trace_rules())
-            std::fprintf(stderr, "TRACE in line step %lld element %d tip %zu crack %d between %d: %zu segments\n",
-                         static_cast<long long>(s.step), best, tip, tips_[tip].crack, between, out.size());
-          if (out.size() > before) return;
+          RayExit exit;
+          if (!ray_exit(mesh, static_cast<std::size_t>(el), p, tips_[t].dir, tol, exit)) break;
+          p = exit.at;
         }
       }
-      // In rock that softens, an element in the band ahead of an active tip is that crack's
-      // (rule 4 of cohesive_starts.h): the nearest such tip grows straight on to its level across
-      // the elements between that hold, then on through those that break.
-      if (best >= 0 && armed_[static_cast<std::size_t>(best)] && !may_start.empty() &&
-          (may_start[static_cast<std::size_t>(best)] & kMayBeReached)) {
-        const std::size_t e = static_cast<std::size_t>(best);
-        const MaterialDef& m = scene.materials[scene.bodies[mesh.element_body[e]].material];
-        const double reach = characteristic_length(m.young, m.strength);  // m, l_ch
-        std::size_t tip = tips_.size();
-        double nearest = std::numeric_limits<double>::infinity(), along = 0;
-        for (std::size_t t = 0; t < tips_.size(); ++t)
-          if (tips_[t].active && in_crack_band(mesh, e, tips_[t].at, tips_[t].dir, 0.5 * h, reach, along) &&
-              along < nearest)
-            tip = t, nearest = along;
-        if (tip < tips_.size()) {
-          // The holding elements on the tip's line up to the one that spans best's level.
-          int holding = 0;
-          Vec2 p = tips_[tip].at;
-          for (std::size_t guard = 0; guard < n; ++guard) {
-            const std::int32_t el = grid().at(plus(p, 1e-6 * h, tips_[tip].dir));
-            if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity())) break;
-            RayExit exit;
-            if (!ray_exit(mesh, static_cast<std::size_t>(el), p, tips_[tip].dir, tol, exit)) break;
-            if (ratio_[el] < 1) ++holding;
-            p = exit.at;
-            const double travelled = (p.x - tips_[tip].at.x) * tips_[tip].dir.x + (p.y - tips_[tip].at.y) * tips_[tip].dir.y;
-            if (travelled >= nearest) break;
-          }
-          grow(tips_[tip], holding, failure_[e].mode, true);
-          // The element's failure is this crack's from now on, wherever across the band the crack
-          // passed it: disarmed as a crossed element is (rule 5 of fracture.h), not left to start a
-          // crack of its own beside the one that reached it.
-          if (!out.empty()) crossed_[e] = 1;
-          if (trace_rules())
-            std::fprintf(stderr, "TRACE band step %lld element %d ratio %.5f tip %zu crack %d %.4f m ahead, %d holding: %zu segments\n",
-                         static_cast<long long>(s.step), best, ratio_[e], tip, tips_[tip].crack, nearest, holding,
-                         out.size());
-          if (out.size() > before) return;
-        }
-      }
-      // An armed element no tip took that may not start a crack (may_start) yields to the next.
-      if (best >= 0 && armed_[static_cast<std::size_t>(best)] && !may_start.empty() &&
-          !(may_start[static_cast<std::size_t>(best)] & kMayStart)) {
-        candidates.erase(std::find(candidates.begin(), candidates.end(), best));
-        continue;
-      }
-      if (best < 0 || armed_[static_cast<std::size_t>(best)]) break;
-      // Its crack grows on from its tips, through one element each even where it holds, then on
-      // through those that break: the step is solved again on it.
-      const std::size_t i = static_cast<std::size_t>(std::find(over_.begin(), over_.end(), best) - over_.begin());
-      for (const std::size_t t : regrow[i]) grow(tips_[t], 1, failure_[static_cast<std::size_t>(best)].mode);
-      if (trace_rules())
-        std::fprintf(stderr, "TRACE re-armed step %lld element %d ratio %.4f tips %zu: %zu segments\n",
-                     static_cast<long long>(s.step), best, ratio_[static_cast<std::size_t>(best)], regrow[i].size(),
-                     out.size());
-      if (out.size() > before) return;
-      candidates.erase(std::find(candidates.begin(), candidates.end(), best));
-    }
-    if (best >= 0) {
-      const std::size_t e = static_cast<std::size_t>(best);
-      const Vec2 p = inside_point(mesh, e);
-      const Vec2 d = direction_as_cut(mesh, s, order, e, failure_[e].direction);
-      RayExit fwd, back;
-      if (ray_exit(mesh, e, p, d, 0, fwd) && ray_exit(mesh, e, p, {-d.x, -d.y}, 0, back)) {
-        const std::int32_t crack = cracks_++;
+      if (tip < tips_.size()) {
+        grow(tips_[tip], between, failure_[static_cast<std::size_t>(best)].mode);
         if (trace_rules())
-          std::fprintf(stderr, "TRACE start step %lld crack %d in element %zu ratio %.5f\n", static_cast<long long>(s.step),
-                       crack, e, ratio_[e]);
-        // Each end as a crack leaving the element from the other end (on its edge's grid, so that
-        // the forward end's overshoot is taken along a line both kernel families agree on).
-        const CrackEnd f = crack_end(mesh, e, on_grid(mesh, e, back).at, fwd), r = crack_end(mesh, e, f.at, back);
-        add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);
-        const std::size_t first = tips_.size();
-        for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
-          tips_.push_back({end.tip, dir, crack, !end.stops});
-        for (std::size_t t = first; t < tips_.size(); ++t)
-          if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
+          std::fprintf(stderr, "TRACE in line step %lld element %d tip %zu crack %d between %d: %zu segments\n",
+                       static_cast<long long>(s.step), best, tip, tips_[tip].crack, between, out.size());
+        if (!out.empty()) return out;
       }
     }
-  };
-  for (int round = 0;; ++round) {
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                    [&](std::int32_t e) {
-                                      return closed[static_cast<std::size_t>(mesh.element_block[static_cast<std::size_t>(e)])] != 0;
-                                    }),
-                     candidates.end());
-    if (candidates.empty()) break;
-    const std::size_t before = out.size();
-    act(before);
-    if (out.size() == before) break;
-    // What the rule of one crack per re-solve would have left to the next re-solve.
-    if (before > 0) ++batched_;
-    if (trace_rules() && before > 0)
-      std::fprintf(stderr, "TRACE per block step %lld round %d: %zu segments, %zu in all\n",
-                   static_cast<long long>(s.step), round, out.size() - before, out.size());
-    closed = cut_block;
+    // In rock that softens, an element in the band ahead of an active tip is that crack's
+    // (rule 4 of cohesive_starts.h): the nearest such tip grows straight on to its level across
+    // the elements between that hold, then on through those that break.
+    if (best >= 0 && armed_[static_cast<std::size_t>(best)] && !may_start.empty() &&
+        (may_start[static_cast<std::size_t>(best)] & kMayBeReached)) {
+      const std::size_t e = static_cast<std::size_t>(best);
+      const MaterialDef& m = scene.materials[scene.bodies[mesh.element_body[e]].material];
+      const double reach = characteristic_length(m.young, m.strength);  // m, l_ch
+      std::size_t tip = tips_.size();
+      double nearest = std::numeric_limits<double>::infinity(), along = 0;
+      for (std::size_t t = 0; t < tips_.size(); ++t)
+        if (tips_[t].active && in_crack_band(mesh, e, tips_[t].at, tips_[t].dir, 0.5 * h, reach, along) &&
+            along < nearest)
+          tip = t, nearest = along;
+      if (tip < tips_.size()) {
+        // The holding elements on the tip's line up to the one that spans best's level.
+        int holding = 0;
+        Vec2 p = tips_[tip].at;
+        for (std::size_t guard = 0; guard < n; ++guard) {
+          const std::int32_t el = grid().at(plus(p, 1e-6 * h, tips_[tip].dir));
+          if (el < 0 || crossed_[el] || !(ratio_[el] > -std::numeric_limits<double>::infinity())) break;
+          RayExit exit;
+          if (!ray_exit(mesh, static_cast<std::size_t>(el), p, tips_[tip].dir, tol, exit)) break;
+          if (ratio_[el] < 1) ++holding;
+          p = exit.at;
+          const double travelled = (p.x - tips_[tip].at.x) * tips_[tip].dir.x + (p.y - tips_[tip].at.y) * tips_[tip].dir.y;
+          if (travelled >= nearest) break;
+        }
+        grow(tips_[tip], holding, failure_[e].mode, true);
+        // The element's failure is this crack's from now on, wherever across the band the crack
+        // passed it: disarmed as a crossed element is (rule 5 of fracture.h), not left to start a
+        // crack of its own beside the one that reached it.
+        if (!out.empty()) crossed_[e] = 1;
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE band step %lld element %d ratio %.5f tip %zu crack %d %.4f m ahead, %d holding: %zu segments\n",
+                       static_cast<long long>(s.step), best, ratio_[e], tip, tips_[tip].crack, nearest, holding,
+                       out.size());
+        if (!out.empty()) return out;
+      }
+    }
+    // An armed element no tip took that may not start a crack (may_start) yields to the next.
+    if (best >= 0 && armed_[static_cast<std::size_t>(best)] && !may_start.empty() &&
+        !(may_start[static_cast<std::size_t>(best)] & kMayStart)) {
+      candidates.erase(std::find(candidates.begin(), candidates.end(), best));
+      continue;
+    }
+    if (best < 0 || armed_[static_cast<std::size_t>(best)]) break;
+    // Its crack grows on from its tips, through one element each even where it holds, then on
+    // through those that break: the step is solved again on it.
+    const std::size_t i = static_cast<std::size_t>(std::find(over_.begin(), over_.end(), best) - over_.begin());
+    for (const std::size_t t : regrow[i]) grow(tips_[t], 1, failure_[static_cast<std::size_t>(best)].mode);
+    if (trace_rules())
+      std::fprintf(stderr, "TRACE re-armed step %lld element %d ratio %.4f tips %zu: %zu segments\n",
+                   static_cast<long long>(s.step), best, ratio_[static_cast<std::size_t>(best)], regrow[i].size(),
+                   out.size());
+    if (!out.empty()) return out;
+    candidates.erase(std::find(candidates.begin(), candidates.end(), best));
+  }
+  if (best >= 0) {
+    const std::size_t e = static_cast<std::size_t>(best);
+    const Vec2 p = inside_point(mesh, e);
+    const Vec2 d = direction_as_cut(mesh, s, order, e, failure_[e].direction);
+    RayExit fwd, back;
+    if (ray_exit(mesh, e, p, d, 0, fwd) && ray_exit(mesh, e, p, {-d.x, -d.y}, 0, back)) {
+      const std::int32_t crack = cracks_++;
+      if (trace_rules())
+        std::fprintf(stderr, "TRACE start step %lld crack %d in element %zu ratio %.5f\n", static_cast<long long>(s.step),
+                     crack, e, ratio_[e]);
+      // Each end as a crack leaving the element from the other end (on its edge's grid, so that
+      // the forward end's overshoot is taken along a line both kernel families agree on).
+      const CrackEnd f = crack_end(mesh, e, on_grid(mesh, e, back).at, fwd), r = crack_end(mesh, e, f.at, back);
+      add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);
+      const std::size_t first = tips_.size();
+      for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
+        tips_.push_back({end.tip, dir, crack, !end.stops});
+      for (std::size_t t = first; t < tips_.size(); ++t)
+        if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
+    }
   }
   return out;
 }

@@ -7,12 +7,9 @@
 //      is crossed from the tip along its crack direction (turned to continue the crack) to where
 //      the line leaves it, and so on through the next element, until an element holds or the
 //      crack reaches a body boundary or a joint; tips lie on element edges;
-//   2. in each block where no tip grew, at most one new crack starts: in the element most beyond
-//      its strength (largest ratio, then lowest index) that is armed, a segment through the
-//      element (its centroid) along its crack direction, both of whose ends then grow as in 1;
-//      the blocks are taken in turn by their highest ratio, and a block an action of 2, 4 or 5
-//      cut is closed to the later ones (blocks meet only through contacts: docs/fracture.md
-//      "One crack per block");
+//   2. if no tip grew, at most one new crack starts: in the element most beyond its strength
+//      (largest ratio, then lowest index) that is armed, a segment through the element (its
+//      centroid) along its crack direction, both of whose ends then grow as in 1;
 //   3. the step is solved again from its start on the cracked mesh (time_stepper.cpp attempt),
 //      and 1–3 repeat until its solution breaks nothing more. A crack thus grows and relieves
 //      the stress at the load of the step that broke the rock, whatever the step's length.
@@ -115,10 +112,6 @@ class Fracture {
   /// Steps taken again because their solution broke the rock (this invocation: diagnostics).
   long resolves() const { return resolves_; }
   void count_resolve() { ++resolves_; }
-  /// Actions of rules 2, 4, 5 a find took in a block after another block's crack had grown or
-  /// started in it (this invocation: diagnostics): the re-solves one crack per solution would
-  /// have taken on top.
-  long batched() const { return batched_; }
 
   /// The checkpoint's FRACTURE section (tips, armed elements, segments), and back; `mesh`: the
   /// cracked mesh the section belongs to.
@@ -154,7 +147,6 @@ class Fracture {
   int debris_blocks_ = 0;
   double debris_area_ = 0;                 // m²
   long resolves_ = 0;
-  long batched_ = 0;
 };
 
 }  // namespace nmm::solve
