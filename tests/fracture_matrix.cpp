@@ -144,6 +144,10 @@ int run(const std::string& name, const std::string& csv) {
         worst_residual = std::abs(row.residual - residual0) / work, worst_residual_step = v.state.step;
       if (n > 1 && work > 0)
         worst_undamped = std::max(worst_undamped, std::abs(row.residual + row.damped - undamped0) / work);
+      if (std::getenv("NMM_TRACE_ENERGY") != nullptr)  // each step's row, next to the contacts' trace
+        std::fprintf(stderr, "row %lld W %.9g U %.9g S %.9g K %.9g V %.9g friction %.9g damped %.9g fracture %.9g R %.9g\n",
+                     static_cast<long long>(v.state.step), row.load_work, row.strain, row.springs, row.kinetic, row.gravity,
+                     row.friction, row.damped, row.fracture, row.residual);
       if (std::getenv("NMM_TRACE_SEGMENTS") != nullptr) {
         static std::size_t shown = 0;
         const auto& all = fracture_of(v).segments();

@@ -830,12 +830,30 @@ TEST(Fracture, ARecutCarriesTheContactsEndForcesOntoThePiecesTheyActOn) {
   int cut_steps = 0, released_steps = 0;
   double released = 0, worst = 0;  // J/m, Σ ½ (0 − c_end)·d over the cut steps; –
   double differ = 0, total = 0;    // J/m, Σ |c_end·d − c_start·d| and Σ Σ|c_start·d| over them
+  std::vector<solve::ContactEffect::EndedShear> last;  // the last accepted step's closed contacts at its end
+  std::size_t carried = 0, sheared = 0;  // of them, carried across a re-cut; with a shear force
   const Outcome o = st.run_until(sp.end_time * (1 - 1e-9), [&](std::int64_t) {
     const solve::RunView v = st.view();
-    if (v.topology == topology) return;
-    topology = v.topology;
     const auto* contact = solve::find_effect<solve::ContactEffect>(v);
     ASSERT_NE(contact, nullptr);
+    const std::vector<solve::ContactEffect::EndedShear> ended = contact->ended_shear(false);
+    if (v.topology == topology) {
+      last = ended;
+      return;
+    }
+    topology = v.topology;
+    // Each contact carried keeps its end shear force and springs' energy, bit for bit: T0 of a
+    // contact found open on its edge (energy_step's friction) and the trace's start energy.
+    for (const solve::ContactEffect::EndedShear& e : contact->ended_shear(true)) {
+      const auto was = std::find_if(last.begin(), last.end(), [&](const solve::ContactEffect::EndedShear& l) {
+        return l.bx == e.bx && l.by == e.by && l.shear_force == e.shear_force && l.stored == e.stored;
+      });
+      EXPECT_NE(was, last.end()) << "step " << v.state.step << ": a carried contact at (" << e.bx << ", " << e.by
+                                 << ") has T " << e.shear_force << " N, " << e.stored << " J/m";
+      ++carried;
+      if (e.shear_force != 0) ++sheared;
+    }
+    last = ended;
     // m, the step's solution on the cut mesh: the state now less its start carried onto it.
     const Eigen::Index n = v.space.unknowns();
     const int dpc = v.space.dofs_per_cover();
@@ -880,6 +898,8 @@ TEST(Fracture, ARecutCarriesTheContactsEndForcesOntoThePiecesTheyActOn) {
   EXPECT_GE(cut_steps, 3);
   EXPECT_GE(released_steps, 1);
   EXPECT_GT(released, 100.0);  // J/m: what a re-cut lost to the residual before
+  std::printf("%zu contacts carried across the re-cuts, %zu of them with a shear force\n", carried, sheared);
+  EXPECT_GT(sheared, 10u);
 }
 
 // Sliver pieces (issue 48): a block a crack cuts off a single element has no stiffness path to the

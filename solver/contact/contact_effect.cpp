@@ -197,6 +197,8 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   // held, and ½ N0·Δg would count the start force over a motion it did not push through (the
   // beam at h 0.02 m, dynamic, fast: 81 of the 123 contacts found sunk in its step 73 opened;
   // R −2.07 J/m, 2.2 % of the work, booked so).
+  static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
+  if (trace) trace_sunk_.assign(problem_.contacts().size(), 0.0);
   {
     std::vector<std::pair<std::int32_t, std::int32_t>>& had = pairs;  // (vertex, edge) of the ended contacts
     had.clear();
@@ -237,10 +239,11 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       // Its start force's work stops where the gap closes: ½ N0·min(Δg, closure0) − ½ N0·closure0,
       // = −½ N0·max(closure1, 0): 0 for a contact the step opens.
       const double closure0 = -problem_.work(k).gap0;
-      released_work_ += 0.5 * n0 * std::min(dg, closure0) - 0.5 * n0 * closure0;
+      const double sunk = 0.5 * n0 * std::min(dg, closure0) - 0.5 * n0 * closure0;
+      released_work_ += sunk;
+      if (trace) trace_sunk_[k] = sunk;
     }
   }
-  static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
   if (trace) trace_d_ = d;
   // Kept for a re-cut that throws this attempt away (continue_from).
   start_ended_.swap(ended_);
@@ -301,6 +304,12 @@ void ContactEffect::continue_from(const ContactEffect& before, std::vector<Conta
     ended_ = carry_ended(before.start_ended_, *from);
     end_unknowns_ = -2;
   }
+}
+
+std::vector<ContactEffect::EndedShear> ContactEffect::ended_shear(bool started) const {
+  std::vector<EndedShear> out;
+  for (const EndedContact& e : started ? start_ended_ : ended_) out.push_back({e.bx, e.by, e.shear_force, e.stored});
+  return out;
 }
 
 double ContactEffect::ended_work(const EndedContact& e, const Eigen::VectorXd& d, int nd) const {
@@ -391,7 +400,9 @@ std::vector<ContactEffect::EndedContact> ContactEffect::carry_ended(const std::v
     }
     if (eb < 0) continue;
     const std::int32_t mirror = c.mirror >= 0 ? vertex_now[static_cast<std::size_t>(c.mirror)] : -1;
-    out.push_back({va, mirror, edge, ea, eb, c.bx, c.by, c.force});
+    // Its end shear force and springs' energy with it: T0 of a contact found open on its edge
+    // (commit's start_shear_) and the trace's start energy are the same across the re-cut.
+    out.push_back({va, mirror, edge, ea, eb, c.bx, c.by, c.force, c.shear_force, c.stored});
   }
   return out;
 }
@@ -581,10 +592,15 @@ void ContactEffect::energy_state(const EnergyState& /*e*/, EnergyTerms& t) const
 }
 
 void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
+  for (std::size_t k = 0; k < contacts_.contacts().size(); ++k) book_contact(e, k, t);
+  t.damped += released_work_;
+  trace_energy_step(e, t);
+}
+
+void ContactEffect::book_contact(const EnergyStep& e, std::size_t k, EnergyTerms& t) const {
   const std::vector<std::int32_t>& joint = e.model.mesh().loop_edge_joint;
-  const std::vector<Contact>& contacts = contacts_.contacts();
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
+  {
+    const Contact& c = contacts_.contacts()[k];
     const double t0 = k < start_shear_.size() ? start_shear_[k] : 0.0;  // N, T0 (commit)
     if (c.state == ContactState::sliding) {
       // The step's slip (trial elastic shear less what the spring keeps) under the shear force,
@@ -642,8 +658,6 @@ void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
     t.fracture += c.cohesive_step;
     t.friction -= c.cohesion_slip_work;
   }
-  t.damped += released_work_;
-  trace_energy_step(e, t);
 }
 
 void ContactEffect::trace_energy_step(const EnergyStep& e, const EnergyTerms& t) const {
@@ -702,12 +716,17 @@ void ContactEffect::trace_energy_step(const EnergyStep& e, const EnergyTerms& t)
     const bool new_face = e.changed_start && edge < joint.size() && joint[edge] >= static_cast<std::int32_t>(e.joints_before);
     sum_exact += exact;
     sum_booked += stored - prev_stored;
+    EnergyTerms b;  // what the meter books for it besides its springs
+    book_contact(e, k, b);
+    const double sunk = k < trace_sunk_.size() ? trace_sunk_[k] : 0.0;
     std::fprintf(stderr,
-                 "ec %lld v %d e %d m %d rel %d nf %d s0 %d s1 %d N0 %.6g g0 %.6g g1 %.6g sh %.6g N1 %.6g T0 %.6g T1 %.6g dg %.6g ds %.6g slip %.6g exact %.6g dS %.6g len %.6g\n",
+                 "ec %lld v %d e %d m %d rel %d nf %d s0 %d s1 %d N0 %.6g g0 %.6g g1 %.6g sh %.6g N1 %.6g T0 %.6g T1 %.6g dg %.6g ds %.6g slip %.6g exact %.6g dS %.6g len %.6g "
+                 "t0 %.6g fr %.6g fx %.6g dp %.6g sunk %.6g left %.6g\n",
                  static_cast<long long>(e.s.step), c.at.vertex, c.at.edge, matched, rel ? 1 : 0, new_face ? 1 : 0, static_cast<int>(c.start_state),
                  static_cast<int>(c.state), problem_.work(k).start_normal_force, problem_.work(k).gap0, c.gap, c.shear,
                  c.normal_force, c.start_shear_force, c.shear_force, dg, ds, slip, exact,
-                 stored - prev_stored, c.length);
+                 stored - prev_stored, c.length, k < start_shear_.size() ? start_shear_[k] : 0.0, b.friction, b.fracture,
+                 b.damped, sunk, exact - (stored - prev_stored) - b.friction - b.fracture - b.damped - sunk);
   }
   double released = 0, released_stored = 0;
   for (std::size_t j = 0; j < start_ended_.size() && have_prev; ++j)
@@ -715,9 +734,9 @@ void ContactEffect::trace_energy_step(const EnergyStep& e, const EnergyTerms& t)
       released += -0.5 * ended_work(start_ended_[j], d, nd);
       released_stored += start_ended_[j].stored;
     }
-  std::fprintf(stderr, "es %lld exact %.6g dS %.6g released %.6g released_stored %.6g friction %.6g damped %.6g cut %d\n",
+  std::fprintf(stderr, "es %lld exact %.6g dS %.6g released %.6g released_stored %.6g friction %.6g damped %.6g cut %d booked_released %.6g\n",
                static_cast<long long>(e.s.step), sum_exact, sum_booked, released, released_stored, t.friction, t.damped,
-               e.changed_start ? 1 : 0);
+               e.changed_start ? 1 : 0, released_work_);
 }
 
 }  // namespace nmm::solve

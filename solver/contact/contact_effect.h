@@ -93,6 +93,16 @@ class ContactEffect final : public Effect {
   /// mesh now where the step re-cut it) — those it released (`released`: its detection found the
   /// vertex closed nowhere) or the others. What tests check the carry with.
   Eigen::VectorXd started_end_forces(Eigen::Index n, bool released) const;
+  /// A closed contact at a step's end as the next step starts from it: its edge's point in the
+  /// mesh's reference coordinates (which a re-cut keeps), its end shear force and springs' energy.
+  struct EndedShear {
+    double bx, by;       // m
+    double shear_force;  // N, T at that end
+    double stored;       // J/m, ½ N·closure + ½ |T·s_el| at that end
+  };
+  /// After an accepted step: its closed contacts at its end (`started` false), or those of the
+  /// step before as this step started from them, carried onto the mesh now where it re-cut.
+  std::vector<EndedShear> ended_shear(bool started) const;
   ContactSet& set() { return contacts_; }
   const ContactSet& set() const { return contacts_; }
   const ContactProblem& problem() const { return problem_; }
@@ -103,6 +113,8 @@ class ContactEffect final : public Effect {
   /// Grows the pattern by the step's new element pairs (the rule at update_pattern in
   /// contact_effect.cpp); true: s.pattern_pairs changed.
   bool update_pattern(RunState& s);
+  /// Adds contact k's friction, fracture and damped terms of the step to t (energy_step).
+  void book_contact(const EnergyStep& e, std::size_t k, EnergyTerms& t) const;
   /// With NMM_TRACE_ENERGY set: each contact's share of the step's energy, on stderr.
   void trace_energy_step(const EnergyStep& e, const EnergyTerms& t) const;
   /// With NMM_TRACE_PEN set: what a rejected step moved most and its deepest contacts, on stderr.
@@ -156,6 +168,7 @@ class ContactEffect final : public Effect {
   double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
   std::vector<double> start_shear_;   // N, [contact] the shear force T0 this step started with (commit)
   Eigen::VectorXd trace_d_;           // NMM_TRACE_ENERGY: the accepted step's motion
+  std::vector<double> trace_sunk_;    // J/m, NMM_TRACE_ENERGY: [contact] its found-sunk booking (commit)
   // commit()'s scratch, kept between steps: the vertices closed at the step's start (by loop
   // vertex) and sorted (vertex, edge) pairs.
   std::vector<std::uint8_t> commit_closed_;
