@@ -607,3 +607,58 @@ TEST(ParkedArray, GivesBackTheSameBytesAndStaysInMemoryWhereNoFileCanBeMade) {
   EXPECT_FALSE(none.park(empty));  // nothing to gain
   EXPECT_FALSE(none.parked());
 }
+
+namespace {
+// k's factorisation (its matrix gathered into the factor's order, permuted_lower.h) against
+// CHOLMOD's own of the same matrix (cholmod_factorize_p, which permutes it itself), analysed
+// with the same settings: the same solve, bit for bit.
+void expect_cholmods_own(SystemMatrix& k, bool amd_only, int n) {
+  Eigen::CholmodSupernodalLLT<SystemMatrix::Sparse, Eigen::Upper> own;
+  own.cholmod().print = 0;
+  if (amd_only) {
+    own.cholmod().nmethods = 1;
+    own.cholmod().method[0].ordering = CHOLMOD_AMD;
+  }
+  own.compute(k.matrix());
+  ASSERT_EQ(own.info(), Eigen::Success);
+  ASSERT_TRUE(k.factorize());
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.5;
+  const Eigen::VectorXd x = k.solve(b), y = own.solve(b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(x[i], y[i]) << "unknown " << i;
+  EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-10 * b.norm());
+}
+}  // namespace
+
+TEST(SystemMatrixPermuted, TheMatrixGatheredInItsFactorsOrderFactorisesAsCholmodsOwnBitwise) {
+  // AMD on a plane grid, then CHOLMOD's default strategy on a cube grid (METIS kept there):
+  // each factorised as cholmod_factorize_p would (the same bits), with the layout made at the
+  // analysis, kept for new values, and laid out again for a grown pattern's new analysis.
+  for (const bool cube : {false, true}) {
+    const int side = cube ? 20 : 40;
+    const Groups g = cube ? cube_grid(side) : plane_grid(side, 2);
+    const int n = cube ? side * side * side : 2 * side * side;
+    SystemMatrix k;
+    k.set_amd_only(!cube);
+    k.build_pattern(n, g.offsets, g.dofs);
+    assembled(k, g, n);
+    expect_cholmods_own(k, !cube, n);
+    EXPECT_EQ(k.ordering(), cube ? "metis" : "amd");
+    // New values, the same analysis: the layout is reused.
+    for (int i = 0; i < n; i += 5) k.add_diagonal(i, 0.3 * i);
+    expect_cholmods_own(k, !cube, n);
+    EXPECT_EQ(k.analyses(), 1u);
+    // A grown pattern (the first unknown coupled with the last two): a new analysis, a new layout.
+    Groups grown = g;
+    grown.add({0, n - 2, n - 1});
+    k.build_pattern(n, grown.offsets, grown.dofs);
+    assembled(k, grown, n);
+    expect_cholmods_own(k, !cube, n);
+    EXPECT_EQ(k.analyses(), 2u);
+    // Not positive definite at one unknown: reported there, as on CHOLMOD's own path.
+    assembled(k, grown, n);
+    k.add_diagonal(n / 3, -1e6);
+    EXPECT_FALSE(k.factorize());
+    EXPECT_EQ(k.failed_unknown(), n / 3);
+  }
+}

@@ -210,10 +210,12 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
     // last step ended closed on the same vertex and edge (a Barton–Bandis joint that dilated
     // apart between the steps: the step's start is in balance with that force, which the
     // release above leaves to it), else none.
-    std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, double>> ended_shear;
+    // (In detection's order, ended_ is mostly sorted already: sorted only when not.)
+    std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, double>>& ended_shear = commit_ended_shear_;
+    ended_shear.clear();
     if (end_unknowns_ == d.size() || end_unknowns_ == -2)
       for (const EndedContact& e : ended_) ended_shear.push_back({{e.vertex, e.edge}, e.shear_force});
-    std::sort(ended_shear.begin(), ended_shear.end());
+    if (!std::is_sorted(ended_shear.begin(), ended_shear.end())) std::sort(ended_shear.begin(), ended_shear.end());
     const std::vector<Contact>& cs = problem_.contacts();
     start_shear_.assign(cs.size(), 0.0);
     for (std::size_t k = 0; k < cs.size(); ++k) {
@@ -254,7 +256,8 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   std::size_t kept = 0;
   end_unknowns_ = d.size();
   const Mesh& mesh = model_.mesh();
-  std::vector<std::size_t> ended_index;
+  std::vector<std::size_t>& ended_index = commit_ended_index_;
+  ended_index.clear();
   for (std::size_t k = 0; k < problem_.contacts().size(); ++k) {
     const Contact& c = problem_.contacts()[k];
     if (c.state == ContactState::open || (c.normal_force == 0 && c.shear_force == 0)) continue;

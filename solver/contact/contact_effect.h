@@ -173,6 +173,8 @@ class ContactEffect final : public Effect {
   // vertex) and sorted (vertex, edge) pairs.
   std::vector<std::uint8_t> commit_closed_;
   std::vector<std::pair<std::int32_t, std::int32_t>> commit_pairs_;
+  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, double>> commit_ended_shear_;  // commit: ((vertex, edge), T)
+  std::vector<std::size_t> commit_ended_index_;  // commit: the contact each entry of ended_ is
 };
 
 }  // namespace nmm::solve

@@ -438,7 +438,8 @@ bool SystemMatrix::keeps_symbolic(const Sparse& a) const {
 
 void SystemMatrix::analyse(const Sparse& a) {
   ++analyses_;
-  single_.clear();  // the analysis frees the factor
+  single_.clear();     // the analysis frees the factor
+  permuted_.clear();   // and its permutation
   const cholmod_common& c = llt_.cholmod();
   if (block_ > 0 && a.rows() >= block_from_) {
     bool ok = analyse_kept(a);
@@ -522,6 +523,8 @@ bool SystemMatrix::factorize() {
   single_.clear();  // CHOLMOD writes the factor's values anew
   if (lean)
     factorize_lean();  // rounds the factor to single precision itself
+  else if (!single)
+    factorize_in_order();
   else
     llt_.factorize(k_);
   memory_mark("factorisation");
@@ -654,6 +657,27 @@ void SystemMatrix::saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) con
 
 void SystemMatrix::keep_single() {
   if (!single_.ready() && single_from_ > 0 && size() >= single_from_) single_.take(llt_.factor());
+}
+
+// cholmod_factorize_p's supernodal LLᵀ of an upper triangle, A1 = tril(P A Pᵀ) by
+// cholmod_ptranspose and then cholmod_super_numeric on A1, with A1's layout kept from the
+// analysis (permuted_lower.h): a factorisation gathers A's values into it, one pass, where
+// cholmod_ptranspose counted, allocated and placed anew. The same A1, so the same factor bit
+// for bit (test_system_matrix). Measured (perf over contact_bench --peer --sizes 10 --mesh 2
+// --steps 200, both modes, 2026-11-30): cholmod_ptranspose was 1.8 % of the run and 22 % of
+// cholmod_factorize_p (super_numeric 6.5 %); docs/performance.md (e).
+void SystemMatrix::factorize_in_order() {
+  cholmod_factor* l = llt_.factor();
+  if (!l || !l->is_super) {  // (Eigen's supernodal wrapper: not met) CHOLMOD's own way
+    llt_.factorize(k_);
+    return;
+  }
+  if (!permuted_.ready())  // as cholmod_factorize_p: no permutation under the natural ordering
+    permuted_.build(size(), k_.outerIndexPtr(), k_.innerIndexPtr(),
+                    l->ordering == CHOLMOD_NATURAL ? nullptr : static_cast<const int*>(l->Perm));
+  permuted_.fill(k_.valuePtr());
+  cholmod_sparse a1 = permuted_.view();
+  llt_.factorize_permuted(&a1);
 }
 
 void SystemMatrix::Llt::factorize_permuted(cholmod_sparse* a1) {

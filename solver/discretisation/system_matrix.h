@@ -9,6 +9,9 @@
 // The upper triangle, not the lower: CHOLMOD's supernodal factorisation first copies the matrix
 // into its fill-reducing order, which takes one transpose of an upper triangle and two of a
 // lower one (cholmod_factorize_p). The copy is the same matrix either way, and so is the factor.
+// Below kSingleFactorUnknowns that copy's layout is kept from one factorisation to the next
+// (permuted_lower.h): each factorisation gathers the values into it and hands it to CHOLMOD's
+// numeric factorisation itself.
 #pragma once
 
 #include <array>
@@ -20,6 +23,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 
+#include "solver/discretisation/permuted_lower.h"
 #include "solver/discretisation/single_factor.h"
 
 namespace nmm::solve {
@@ -166,7 +170,7 @@ class SystemMatrix {
       return static_cast<std::size_t>(a.nonZeros()) * (sizeof(double) + sizeof(int)) +
              static_cast<std::size_t>(a.outerSize() + 1) * sizeof(int);
     };
-    return bytes(k_) + saved_.capacity() * sizeof(double) + bytes(factored_);
+    return bytes(k_) + saved_.capacity() * sizeof(double) + bytes(factored_) + permuted_.bytes();
   }
   /// Bytes CHOLMOD holds now (the factor, its symbolic parts, workspace), and the most it held
   /// since the last factorize() began (its working copies included): a bench reads them.
@@ -198,6 +202,9 @@ class SystemMatrix {
   /// the matrix's own arrays and the scatter's slots are let go while CHOLMOD's double factor
   /// exists, and made again, the same bits, once it is rounded (system_matrix.cpp).
   void factorize_lean();
+  /// The numeric factorisation of the others: the matrix gathered into its factor's order
+  /// (permuted_), which CHOLMOD factorises without copying it (system_matrix.cpp).
+  void factorize_in_order();
   void place_slots();  // slots_ of every group of the last build in k_'s pattern
   /// (P + E)⁻¹ b with the factorisation, in double: CHOLMOD's solve, or the single-precision
   /// factor's refined against factored_.
@@ -218,6 +225,9 @@ class SystemMatrix {
   /// Value index of unknown i's diagonal entry: the last of its column (rows ≤ i, sorted).
   int diagonal(int i) const { return k_.outerIndexPtr()[i + 1] - 1; }
   Llt llt_;
+  // The matrix in the factor's order (its layout from the last analysis; not ready: lay it out
+  // before the next factorisation). Below single_from_ only: the largest runs keep no copy.
+  PermutedLower permuted_;
   bool analysed_ = false;
   bool has_factor_ = false;
   std::size_t analyses_ = 0;
