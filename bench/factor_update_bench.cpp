@@ -71,8 +71,10 @@ Springs springs_of(const nmm::solve::ContactProblem& cs) {
     const int m = row.size;
     Spring s;
     s.dofs.assign(row.dofs, row.dofs + m);
-    s.cn.assign(row.cn, row.cn + m);
-    s.cs.assign(row.cs, row.cs + m);
+    for (int k = 0; k < m; ++k) {
+      s.cn.push_back(row.cn(k));
+      s.cs.push_back(row.cs(k));
+    }
     s.kn = c.kn_now;
     s.ks = c.ks_now;
     out[{c.at.vertex, c.at.elem_a, c.at.elem_b}] = std::move(s);

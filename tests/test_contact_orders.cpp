@@ -112,8 +112,8 @@ TEST(ContactOrders, RowsAreTheFullApproximation) {
       const ContactProblem::Row row = pr.row(i);
       double dg = 0, ds = 0;
       for (int k = 0; k < row.size; ++k) {
-        dg += row.cn[k] * d[row.dofs[k]];
-        ds += row.cs[k] * d[row.dofs[k]];
+        dg += row.cn(k) * d[row.dofs[k]];
+        ds += row.cs(k) * d[row.dofs[k]];
       }
       const std::int32_t p = c.at.vertex, q2 = c.at.edge;
       // Q3: the next vertex of Q2's loop in its element.

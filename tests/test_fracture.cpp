@@ -874,7 +874,7 @@ TEST(Fracture, ARecutCarriesTheContactsEndForcesOntoThePiecesTheyActOn) {
       double w = 0;
       for (int i = 0; i < r.size; ++i)
         if (r.dofs[i] >= 0 && r.dofs[i] < n)
-          w += (p.work(k).start_normal_force * r.cn[i] - q.start_shear_force * r.cs[i]) * d[r.dofs[i]];
+          w += (p.work(k).start_normal_force * r.cn(i) - q.start_shear_force * r.cs(i)) * d[r.dofs[i]];
       start += w;
       scale += std::abs(w);
     }

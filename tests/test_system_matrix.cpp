@@ -495,6 +495,54 @@ TEST(SystemMatrixSingle, ALeanRunOrdersEveryNewPatternAnew) {
   }
 }
 
+TEST(SystemMatrixSingle, TheSpareHalfStaysForTheSamePatternAndGoesWithANewOne) {
+  // Below the lean size the pages of the rounded factor's second half stay resident for the
+  // next factorisation of the same pattern (system_matrix.cpp keep_single) and go back when the
+  // pattern changes; a lean run gives them back at once. The factor written over the kept pages
+  // (which hold the old values' bytes) must be the one a fresh array gets: the same bits.
+  const GrownGrid grid;
+  const int n = grid.n;
+  const auto set_up = [&](SystemMatrix& k, bool lean) {
+    k.set_amd_only(true);
+    k.set_block_ordering(2, n, n);
+    k.set_single_precision(n);
+    k.set_lean_factorisation(lean ? n : n + 1);
+    k.build_pattern(n, grid.g.offsets, grid.g.dofs);
+  };
+  SystemMatrix lean, kept;
+  set_up(lean, true);
+  set_up(kept, false);
+  for (SystemMatrix* k : {&lean, &kept}) {
+    assembled(*k, grid.g, n);
+    ASSERT_TRUE(k->factorize());
+    ASSERT_TRUE(k->single_precision());
+  }
+  EXPECT_EQ(lean.factor_spare_bytes(), 0u);
+  // About half the double values' bytes (whole pages only).
+  EXPECT_GT(static_cast<double>(kept.factor_spare_bytes()), 0.3 * static_cast<double>(kept.factor_bytes()));
+  // New values, the same pattern: refactorised over the kept pages, against a fresh matrix.
+  SystemMatrix fresh;
+  set_up(fresh, false);
+  for (SystemMatrix* k : {&kept, &fresh}) {
+    assembled(*k, grid.g, n);
+    for (int i = 0; i < n; i += 5) k->add_diagonal(i, 2.0);
+    ASSERT_TRUE(k->factorize());
+  }
+  EXPECT_EQ(kept.analyses(), 1u);
+  EXPECT_GT(kept.factor_spare_bytes(), 0u);
+  const Eigen::VectorXd z = kept.solve_unrefined(grid.b), zf = fresh.solve_unrefined(grid.b);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(z[i], zf[i]) << "unknown " << i;
+  // A grown pattern: the spare pages go back before its arrays are made.
+  kept.build_pattern(n, grid.grown.offsets, grid.grown.dofs);
+  EXPECT_EQ(kept.factor_spare_bytes(), 0u);
+  assembled(kept, grid.grown, n);
+  ASSERT_TRUE(kept.factorize());
+  EXPECT_EQ(kept.analyses(), 2u);
+  EXPECT_GT(kept.factor_spare_bytes(), 0u);
+  const Eigen::VectorXd x = kept.solve(grid.b);
+  EXPECT_LT((grid.b - kept.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * grid.b.norm());
+}
+
 TEST(SystemMatrixOrdering, APatternGrownWithinItsFactorKeepsItsOrderingAndRestartsBitwise) {
   // 100 × 100 covers, METIS on the covers from 20,000 unknowns. Two covers u, w that are both
   // coupled to a cover k and eliminated after it are coupled in the factor (the fill of k's

@@ -237,7 +237,7 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       const ContactProblem::Row r = problem_.row(k);
       double dg = 0;  // m, the step's change of its gap
       for (int i = 0; i < r.size; ++i)
-        if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) dg += r.cn[i] * d[r.dofs[i]];
+        if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) dg += r.cn(i) * d[r.dofs[i]];
       // Its start force's work stops where the gap closes: ½ N0·min(Δg, closure0) − ½ N0·closure0,
       // = −½ N0·max(closure1, 0): 0 for a contact the step opens.
       const double closure0 = -problem_.work(k).gap0;
@@ -280,7 +280,7 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
     e.force.resize(static_cast<std::size_t>(r.size));
     e.shear_force = c.shear_force;
     e.stored = 0.0;
-    for (int i = 0; i < r.size; ++i) e.force[static_cast<std::size_t>(i)] = c.normal_force * r.cn[i] - c.shear_force * r.cs[i];
+    for (int i = 0; i < r.size; ++i) e.force[static_cast<std::size_t>(i)] = c.normal_force * r.cn(i) - c.shear_force * r.cs(i);
   }
   ended_.resize(kept);
   const ContactSet::Totals totals = contacts_.totals();
@@ -683,8 +683,8 @@ void ContactEffect::trace_energy_step(const EnergyStep& e, const EnergyTerms& t)
     double dg = 0, ds = 0;
     for (int i = 0; i < r.size; ++i)
       if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
-        dg += r.cn[i] * d[r.dofs[i]];
-        ds += r.cs[i] * d[r.dofs[i]];
+        dg += r.cn(i) * d[r.dofs[i]];
+        ds += r.cs(i) * d[r.dofs[i]];
       }
     const double end_work = c.state == ContactState::open ? 0.0 : c.normal_force * dg - c.shear_force * ds;
     double prev_work = 0, prev_stored = 0;

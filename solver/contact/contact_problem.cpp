@@ -77,8 +77,8 @@ void ContactProblem::build(const std::vector<double>& xy, const Configuration& c
   row_ = 2 * nd;
   const std::size_t rows = contacts.size() * static_cast<std::size_t>(row_);
   dofs_.resize(rows);
-  cn_.resize(rows);
-  cs_.resize(rows);
+  phi_.resize(rows / 2);
+  tangent_.resize(2 * contacts.size());
   std::vector<double> phi_a(static_cast<std::size_t>(nf)), phi_b(static_cast<std::size_t>(nf));
   work_.assign(contacts.size(), ContactWork{});
   for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -87,26 +87,27 @@ void ContactProblem::build(const std::vector<double>& xy, const Configuration& c
     const std::int32_t p = c.at.vertex, q2 = c.at.edge, q3 = topo.next[q2];
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const double dx = xy[2 * q3] - xy[2 * q2], dy = xy[2 * q3 + 1] - xy[2 * q2 + 1];
-    const double l = length(dx, dy), tx = dx / l, ty = dy / l, nx = ty, ny = -tx;
+    const double l = length(dx, dy), tx = dx / l, ty = dy / l;
     const double p0x = xy[2 * q2] + c.at.omega * dx, p0y = xy[2 * q2 + 1] + c.at.omega * dy;
     config.shape_values(static_cast<std::size_t>(c.at.elem_a), px, py, phi_a.data());
     config.shape_values(static_cast<std::size_t>(c.at.elem_b), p0x, p0y, phi_b.data());
     const int* ga = space_.element_unknowns(static_cast<std::size_t>(c.at.elem_a));
     const int* gb = space_.element_unknowns(static_cast<std::size_t>(c.at.elem_b));
     int* dof = dofs_.data() + i * static_cast<std::size_t>(row_);
-    double* cn = cn_.data() + i * static_cast<std::size_t>(row_);
-    double* cs = cs_.data() + i * static_cast<std::size_t>(row_);
-    const double n_dir[2] = {nx, ny}, t_dir[2] = {tx, ty};
-    for (int a = 0; a < nf; ++a)
+    double* phi = phi_.data() + i * static_cast<std::size_t>(nd);
+    // Row: cn = φ·n, cs = φ·t per unknown, n = (ty, −tx); B's φ negated (−φ_B·n: negation is
+    // exact).
+    tangent_[2 * i] = tx;
+    tangent_[2 * i + 1] = ty;
+    for (int a = 0; a < nf; ++a) {
+      phi[a] = phi_a[a];
+      phi[nf + a] = -phi_b[a];
       for (int sd = 0; sd < 2; ++sd) {
         const int la = 2 * a + sd, lb = nd + 2 * a + sd;
         dof[la] = ga[la];
         dof[lb] = gb[la];
-        cn[la] = phi_a[a] * n_dir[sd];
-        cs[la] = phi_a[a] * t_dir[sd];
-        cn[lb] = -phi_b[a] * n_dir[sd];
-        cs[lb] = -phi_b[a] * t_dir[sd];
       }
+    }
     w.start_normal_force = c.normal_force;
     w.start_broken = c.broken;
     w.gap0 = c.at.gap - c.joint.dilation;
@@ -135,6 +136,34 @@ void ContactProblem::build(const std::vector<double>& xy, const Configuration& c
 }
 
 namespace {
+// cnᵀv and csᵀv of a row (ContactProblem::Row: unknown 2a + s has cn = φ_a·n_s, cs = φ_a·t_s),
+// term by term in the unknowns' order as over stored cn and cs: the same bits.
+inline void row_dots(const int* dof, const double* phi, int pairs, double tx, double ty, const double* v, double& dn,
+                     double& dt) {
+  const double nx = ty, ny = -tx;
+  double a = 0, b = 0;
+  for (int j = 0; j < pairs; ++j) {
+    const double p = phi[j], v0 = v[dof[2 * j]], v1 = v[dof[2 * j + 1]];
+    a += (p * nx) * v0;
+    b += (p * tx) * v0;
+    a += (p * ny) * v1;
+    b += (p * ty) * v1;
+  }
+  dn = a;
+  dt = b;
+}
+// y += fn·cn + ft·cs over a row, entry by entry in the unknowns' order (a repeated unknown
+// takes its terms in the same order as over stored cn and cs).
+inline void row_add(const int* dof, const double* phi, int pairs, double tx, double ty, double fn, double ft,
+                    double* y) {
+  const double nx = ty, ny = -tx;
+  for (int j = 0; j < pairs; ++j) {
+    const double p = phi[j];
+    y[dof[2 * j]] += fn * (p * nx) + ft * (p * tx);
+    y[dof[2 * j + 1]] += fn * (p * ny) + ft * (p * ty);
+  }
+}
+
 // A spring's force and tangent at one point of the line search.
 struct Spring {
   double force = 0;      // N (normal: compression > 0; shear: along the shear)
@@ -336,12 +365,10 @@ void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
     ContactWork& w = work_[k];
     const ContactLaw& law = laws[c.law];
     const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
-    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
+    const double* phi = phi_.data() + k * static_cast<std::size_t>(row_ / 2);
+    const double tx = tangent_[2 * k], ty = tangent_[2 * k + 1];
     double dg = 0, ds = 0;
-    for (int i = 0; i < row_; ++i) {
-      dg += cn[i] * d[dof[i]];
-      ds += cs[i] * d[dof[i]];
-    }
+    row_dots(dof, phi, row_ / 2, tx, ty, d.data(), dg, ds);
     c.gap = w.gap0 + dg;
     c.shear = w.shear0 + ds;
     if (w.cohesive) {  // the damage of this iterate (its cohesion follows in update_strengths)
@@ -360,7 +387,7 @@ void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
     scale = std::max({scale, std::abs(n.force), std::abs(t.force)});
     if (n.stiffness != 0 || t.stiffness != 0) springs_.push_back({k, n.stiffness, t.stiffness});
     if (n.force == 0 && t.force == 0) continue;
-    for (int i = 0; i < row_; ++i) r[dof[i]] += n.force * cn[i] - t.force * cs[i];
+    row_add(dof, phi, row_ / 2, tx, ty, n.force, -t.force, r.data());
   }
   force_scale_ = scale;
 }
@@ -368,11 +395,18 @@ void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
 void ContactProblem::add_tangents(SystemMatrix& k) const {
   const std::vector<Contact>& contacts = set_.contacts();
   block_.resize(row_, row_);
+  cn_.resize(static_cast<std::size_t>(row_));
+  cs_.resize(static_cast<std::size_t>(row_));
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
     const int group = work_[i].group;
     if ((c.kn_now == 0 && c.ks_now == 0) || group < 0) continue;  // outside the pattern: CG's
-    const Eigen::Map<const Eigen::VectorXd> cn(cn_.data() + i * static_cast<std::size_t>(row_), row_), cs(cs_.data() + i * static_cast<std::size_t>(row_), row_);
+    const Row row_i = row(i);
+    for (int j = 0; j < row_; ++j) {
+      cn_[static_cast<std::size_t>(j)] = row_i.cn(j);
+      cs_[static_cast<std::size_t>(j)] = row_i.cs(j);
+    }
+    const Eigen::Map<const Eigen::VectorXd> cn(cn_.data(), row_), cs(cs_.data(), row_);
     block_.noalias() = c.kn_now * cn * cn.transpose();
     if (c.ks_now != 0) block_.noalias() += c.ks_now * cs * cs.transpose();
     k.add_group(static_cast<std::size_t>(group), block_.data());
@@ -384,17 +418,12 @@ void ContactProblem::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y)
   const double* vv = v.data();
   double* yy = y.data();
   for (const TangentSprings& sp : springs_) {
-    const std::size_t at = sp.contact * static_cast<std::size_t>(row_);
-    const int* dof = dofs_.data() + at;
-    const double *cn = cn_.data() + at, *cs = cs_.data() + at;
+    const int* dof = dofs_.data() + sp.contact * static_cast<std::size_t>(row_);
+    const double* phi = phi_.data() + sp.contact * static_cast<std::size_t>(row_ / 2);
+    const double tx = tangent_[2 * sp.contact], ty = tangent_[2 * sp.contact + 1];
     double a = 0, b = 0;
-    for (int i = 0; i < row_; ++i) {
-      a += cn[i] * vv[dof[i]];
-      b += cs[i] * vv[dof[i]];
-    }
-    a *= sp.kn;
-    b *= sp.ks;
-    for (int i = 0; i < row_; ++i) yy[dof[i]] += a * cn[i] + b * cs[i];
+    row_dots(dof, phi, row_ / 2, tx, ty, vv, a, b);
+    row_add(dof, phi, row_ / 2, tx, ty, a * sp.kn, b * sp.ks, yy);
   }
 }
 
@@ -404,13 +433,9 @@ void ContactProblem::set_direction(const Eigen::VectorXd& delta) {
   along_shear_.clear();
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     ContactWork& w = work_[k];
-    const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
-    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
     double dg = 0, ds = 0;
-    for (int i = 0; i < row_; ++i) {
-      dg += cn[i] * delta[dof[i]];
-      ds += cs[i] * delta[dof[i]];
-    }
+    row_dots(dofs_.data() + k * static_cast<std::size_t>(row_), phi_.data() + k * static_cast<std::size_t>(row_ / 2),
+             row_ / 2, tangent_[2 * k], tangent_[2 * k + 1], delta.data(), dg, ds);
     w.rate_gap = dg;
     w.rate_shear = ds;
     // The line search takes α ≥ 0 only. A contact open beyond the skin that opens further along
@@ -506,8 +531,7 @@ std::array<double, ContactProblem::kLineKinds> ContactProblem::line_model_residu
     const Contact& c = contacts[k];
     const ContactWork& w = work_[k];
     const ContactLaw& law = laws[c.law];
-    const int* dof = dofs_.data() + k * static_cast<std::size_t>(row_);
-    const double *cn = cn_.data() + k * static_cast<std::size_t>(row_), *cs = cs_.data() + k * static_cast<std::size_t>(row_);
+    const Row row_k = row(k);
     // The kinds as line_model_error() sorts them, between α = 0 and the α taken.
     if (w.rate_gap != 0) {
       const Spring a = normal_at(law, c, w, c.gap, skin_), b = normal_at(law, c, w, c.gap + alpha * w.rate_gap, skin_);
@@ -515,7 +539,7 @@ std::array<double, ContactProblem::kLineKinds> ContactProblem::line_model_residu
       const double e = b.force - (a.force - a.stiffness * alpha * w.rate_gap);
       const int kind = a.stiffness < half && b.stiffness > half ? 0 : a.stiffness > half && b.stiffness < half ? 1 : 2;
       if (e != 0)
-        for (int i = 0; i < row_; ++i) r[kind][dof[i]] += e * cn[i];
+        for (int i = 0; i < row_; ++i) r[kind][row_k.dofs[i]] += e * row_k.cn(i);
     }
     if (w.rate_shear != 0 && w.strength > 0) {
       const Spring a = shear_at(law, c, w, c.shear), b = shear_at(law, c, w, c.shear + alpha * w.rate_shear);
@@ -524,7 +548,7 @@ std::array<double, ContactProblem::kLineKinds> ContactProblem::line_model_residu
                        : a.stiffness == 0 && (b.stiffness > 0 || a.force * b.force < 0) ? 4
                                                                                       : 5;
       if (e != 0)
-        for (int i = 0; i < row_; ++i) r[kind][dof[i]] -= e * cs[i];
+        for (int i = 0; i < row_; ++i) r[kind][row_k.dofs[i]] -= e * row_k.cs(i);
     }
   }
   std::array<double, kLineKinds> out{};

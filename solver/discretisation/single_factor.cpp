@@ -258,8 +258,8 @@ bool SingleFactor::use_avx(bool on) {
   return g_avx;
 }
 
-bool SingleFactor::take(cholmod_factor* l) {
-  l_ = nullptr;
+bool SingleFactor::take(cholmod_factor* l, bool keep_spare) {
+  clear();
   if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || l->itype != CHOLMOD_INT || !l->x) return false;
   const std::size_t size = l->xsize;
   auto* bytes = static_cast<unsigned char*>(l->x);
@@ -279,11 +279,18 @@ bool SingleFactor::take(cholmod_factor* l) {
   const auto* from = reinterpret_cast<const double*>(bytes);
 #if defined(__linux__)
   // The pages wholly inside the second half go back to the system (zero-filled if touched
-  // again: CHOLMOD's next factorisation writes every value first).
+  // again: CHOLMOD's next factorisation writes every value first), now or at release_spare().
+  // Kept, a refactorisation of the same pattern writes resident pages: on the 10,000-block
+  // wall at h = 0.5 m (222,516 unknowns, 117 MB of such pages) the kernel's zeroing of them
+  // was 4–7 % of a step's CPU (docs/notes/2026-11-scale.md).
   const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
   const auto begin = reinterpret_cast<std::uintptr_t>(to + size), end = reinterpret_cast<std::uintptr_t>(from + size);
   const std::uintptr_t first = (begin + page - 1) / page * page, last = end / page * page;
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+  if (last > first) {
+    spare_begin_ = first;
+    spare_end_ = last;
+    if (!keep_spare) release_spare();
+  }
   // CHOLMOD's next factorisation touches them again: in 2 MB pages, 512 times fewer faults.
   constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
   const auto start = reinterpret_cast<std::uintptr_t>(bytes);
@@ -305,6 +312,14 @@ bool SingleFactor::take(cholmod_factor* l) {
   x_ = to;
   l_ = l;
   return true;
+}
+
+void SingleFactor::release_spare() {
+#if defined(__linux__)
+  if (spare_end_ > spare_begin_)
+    madvise(reinterpret_cast<void*>(spare_begin_), spare_end_ - spare_begin_, MADV_DONTNEED);
+#endif
+  spare_begin_ = spare_end_ = 0;
 }
 
 void SingleFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {

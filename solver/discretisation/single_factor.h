@@ -14,12 +14,16 @@
 //
 // In place: the float values take the first half of CHOLMOD's own value array (value k, 8 bytes
 // at 8k, is read before float k, 4 bytes at 4k, is written), and the pages of the second half
-// go back to the system (madvise). CHOLMOD's next numeric factorisation writes every value of
-// that array again, so the factor's structure (supernodes, rows, permutation) is shared and
-// the double values no longer exist: every solve of a SystemMatrix in this mode comes here.
+// go back to the system (madvise): at once, or (keep_spare) when the matrix's pattern changes
+// (release_spare()), since the next factorisation of the same pattern writes them again and a
+// page given back comes back zero-filled by the kernel on that write. CHOLMOD's next numeric
+// factorisation writes every value of that array again, so the factor's structure (supernodes,
+// rows, permutation) is shared and the double values no longer exist: every solve of a
+// SystemMatrix in this mode comes here.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,9 +36,18 @@ class SingleFactor {
   /// Rounds the numeric supernodal LLᵀ factor `l` (int indices, real) to float in place; `l`
   /// must then not be solved by CHOLMOD until it is factorised again. False (and nothing done)
   /// for a factor of another kind.
-  bool take(cholmod_factor* l);
-  /// Forgets the factor (before CHOLMOD refactorises or frees it).
-  void clear() { l_ = nullptr; }
+  /// The pages of the array's second half (the double values' tail) go back to the system now,
+  /// or with `keep_spare` at release_spare().
+  bool take(cholmod_factor* l, bool keep_spare = false);
+  /// Gives back the pages of the second half that take() kept (nothing if none are kept).
+  void release_spare();
+  /// Bytes of the second half kept resident (take's keep_spare), 0 once given back.
+  std::size_t spare_bytes() const { return spare_end_ - spare_begin_; }
+  /// Forgets the factor (before CHOLMOD refactorises or frees it: the kept pages are its).
+  void clear() {
+    l_ = nullptr;
+    spare_begin_ = spare_end_ = 0;
+  }
   bool ready() const { return l_ != nullptr; }
   /// x = (L̃ L̃ᵀ)⁻¹ b in the unknowns' order (the permutation undone), in double.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
@@ -49,6 +62,7 @@ class SingleFactor {
   const float* x_ = nullptr;  // [xsize] the values, supernode by supernode, column-major
   std::vector<double> inv_;   // [n] 1 / L_kk in the factor's column order
   int max_rows_ = 0;          // the tallest supernode's rows (work vector size)
+  std::uintptr_t spare_begin_ = 0, spare_end_ = 0;  // the kept pages of the second half (take)
 };
 
 }  // namespace nmm::solve

@@ -164,6 +164,9 @@ class SystemMatrix {
   std::size_t builds() const { return builds_; }  ///< patterns built from scratch so far (not grown in place)
   /// Bytes of CHOLMOD's factor (values, supernodes' row indices, permutation), 0 without one.
   std::size_t factor_bytes() const { return single_.ready() ? single_.bytes() : llt_.bytes(); }
+  /// Bytes of a single-precision factor's spare half kept resident (keep_single: below the lean
+  /// factorisation's size, until the pattern changes), else 0.
+  std::size_t factor_spare_bytes() const { return single_.spare_bytes(); }
   /// Bytes of the matrix's copies: the pattern and values, the saved values, the factorised one.
   std::size_t matrix_bytes() const {
     const auto bytes = [](const Sparse& a) {
