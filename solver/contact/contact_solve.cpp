@@ -368,10 +368,7 @@ Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const
       // A run that needed more than half its budget says the factorisation is far from H: the
       // next direction is cheaper from a new one (which later runs reuse) than from another
       // long CG run.
-      // Not where that factorisation would also analyse a grown pattern of the largest runs
-      // (SystemMatrix::dear_refactorisation): there a run that converged keeps the factor, and
-      // only one that spends its budget factorises.
-      refresh = solved && 2 * (stats.cg_iterations - before) > budget && !system.dear_refactorisation();
+      refresh = solved && 2 * (stats.cg_iterations - before) > budget;
       stats.cg_seconds += t0.seconds();
     } else {
       refresh = false;

@@ -127,14 +127,6 @@ class SystemMatrix {
   void remove_null_part(Eigen::VectorXd& x) const;
   /// A successful factorisation of this size exists.
   bool has_factor() const { return has_factor_; }
-  /// A lean run (set_lean_factorisation: the largest) whose pattern gained entries since its
-  /// factorisation: the next one analyses the new pattern too (a METIS ordering at 930k
-  /// unknowns, about 0.6 × the numeric factorisation). Read from the factorised matrix, which
-  /// a checkpoint restores, so that a restarted run answers as the straight one.
-  bool dear_refactorisation() const {
-    return has_factor_ && single_from_ > 0 && size() >= single_from_ && size() >= lean_from_ &&
-           k_.nonZeros() != factored_.nonZeros();
-  }
   /// Forgets the factorisation (the next solve must factorise first).
   void drop_factor() { has_factor_ = false; }
   /// The matrix the current factorisation was made from (pattern and values) as bytes, empty
