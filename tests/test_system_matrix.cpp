@@ -102,6 +102,28 @@ TEST(SystemMatrixPattern, GrowthByCoupledUnknownsKeepsPatternAndAnalysis) {
   EXPECT_EQ(k.analyses(), 1u) << "the pattern did not change: its analysis holds";
 }
 
+TEST(SystemMatrixPattern, SuccessiveGrowthsInPlaceAssembleAsAFreshBuild) {
+  // The scatter grows within its own arrays, from the last group to the first, into the room
+  // kept by the growth before (system_matrix.cpp grow_in_place): growths in a row, by groups
+  // inside the old couplings and by new couplings, before, among and after the old groups, must
+  // assemble each pattern as a build from scratch does, bit for bit.
+  SystemMatrix k;
+  k.build_pattern(kN, base().offsets, base().dofs);
+  const std::vector<Groups> growths = {
+      Groups{}.add({0, 1, 2}).add({1, 2}).add({2, 3, 4}).add({4, 5, 6}).add({6, 7, 8}).add({0, 1, 4, 5}),
+      Groups{}.add({0, 1}).add({0, 1, 2}).add({1, 2}).add({2, 3, 4}).add({4, 5, 6}).add({5, 4, 5}).add({6, 7, 8}).add({0, 1, 4, 5}).add({7, 8}),
+      Groups{}.add({0, 1}).add({0, 1, 2}).add({1, 2}).add({2, 3, 4}).add({3, 6}).add({4, 5, 6}).add({5, 4, 5}).add({6, 7, 8}).add({0, 1, 4, 5}).add({7, 8}).add({8, 0, 7}),
+      Groups{}.add({2, 8}).add({0, 1}).add({0, 1, 2}).add({1, 2}).add({2, 3, 4}).add({3, 6}).add({4, 5, 6}).add({5, 4, 5}).add({6, 7, 8}).add({0, 1, 4, 5}).add({7, 8}).add({8, 0, 7}).add({3, 4})};
+  for (std::size_t i = 0; i < growths.size(); ++i) {
+    SCOPED_TRACE("growth " + std::to_string(i + 1));
+    k.build_pattern(kN, growths[i].offsets, growths[i].dofs);
+    EXPECT_EQ(k.builds(), 1u) << "grown in place";
+    SystemMatrix fresh;
+    fresh.build_pattern(kN, growths[i].offsets, growths[i].dofs);
+    expect_same(assembled(k, growths[i], kN), assembled(fresh, growths[i], kN));
+  }
+}
+
 TEST(SystemMatrixPattern, NewCouplingsAreMergedAndDroppedGroupsRebuild) {
   // Groups coupling unknowns not yet coupled (3 with 6; 0 with 8 and 7, the first and last
   // columns): new nonzeros merged into their columns, and a new analysis.
@@ -422,12 +444,14 @@ TEST(SystemMatrixSingle, ASinglePrecisionFactorHalvesItsBytesSolvesRefinedAndRes
   EXPECT_LT((b - sgl.matrix().selfadjointView<Eigen::Upper>() * w).norm(), 1e-12 * b.norm());
 }
 
-TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactorisation) {
-  // A run whose factor is kept in single precision lets go of the matrix's arrays and the
-  // scatter's slots while CHOLMOD writes the double factor, and makes them again from its
-  // permuted copy (system_matrix.cpp factorize_lean): pattern, values and the assembly through
-  // the slots placed again must be the ones before, bit for bit; a matrix that is not positive
-  // definite is reported at its unknown as on CHOLMOD's own path.
+namespace {
+// A run whose factor is kept in single precision lets go of the matrix's arrays and the
+// scatter's slots while CHOLMOD writes the double factor: parked in temporary files and read
+// back, or, where no file can be written, made again from its permuted copy (system_matrix.cpp
+// factorize_lean). Either way pattern, values and the assembly through the slots must be the
+// ones before, bit for bit; a matrix that is not positive definite is reported at its unknown
+// as on CHOLMOD's own path.
+void expect_lean_factorisation_bitwise() {
   constexpr int kSide = 60;
   const Groups g = plane_grid(kSide, 2);
   const int n = 2 * kSide * kSide;
@@ -466,6 +490,20 @@ TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactoris
   EXPECT_FALSE(k.factorize());
   EXPECT_EQ(k.failed_unknown(), 777);
   expect_same(k.matrix(), broken);
+}
+}  // namespace
+
+TEST(SystemMatrixSingle, TheMatrixAndItsScatterComeBackBitwiseAfterALeanFactorisation) {
+  expect_lean_factorisation_bitwise();  // parked in files
+  // No folder for the files: made again from CHOLMOD's permuted copy.
+  const char* old = std::getenv("TMPDIR");
+  const std::string kept = old ? old : "";
+  setenv("TMPDIR", "/nonexistent-nmm-folder", 1);
+  {
+    SCOPED_TRACE("no files: made again");
+    expect_lean_factorisation_bitwise();
+  }
+  if (old) setenv("TMPDIR", kept.c_str(), 1); else unsetenv("TMPDIR");
 }
 
 TEST(SystemMatrixSingle, ALeanRunOrdersEveryNewPatternAnew) {

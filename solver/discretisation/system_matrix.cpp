@@ -22,6 +22,10 @@ namespace {
 // older checkpoint's note there starts with its length, far smaller).
 constexpr std::uint64_t kOrderingTag = 0x474E49524544524FULL;
 
+// A grown scatter's arrays keep 1/kScatterRoom of their size as room for the next growths
+// (grow_in_place).
+constexpr std::size_t kScatterRoom = 64;
+
 // y ← y + α·A v (α = ±1) for the symmetric A whose upper triangle is (outer, inner, values),
 // diagonal last in each column. The sums run in the order of Eigen's product with the lower
 // triangle in columns (the storage before the upper one): into y_i the terms of the columns
@@ -138,16 +142,26 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
   for (std::size_t g = 0; g < ng; ++g)
     slot_offset[g + 1] = slot_offset[g] + (old_of[g] != kNew ? slot_offset_[old_of[g] + 1] - slot_offset_[old_of[g]]
                                                               : stored_entries(dofs.data() + offsets[g], offsets[g + 1] - offsets[g]));
-  std::vector<std::int32_t> slots(static_cast<std::size_t>(slot_offset[ng]));
-  for (std::size_t g = 0; g < ng; ++g) {
-    std::int32_t* out = slots.data() + slot_offset[g];
+  // The slots are grown in their own array, from the last group to the first: only groups are
+  // inserted, so each old group's slots move up (never down) past the new groups before it, and
+  // a group moved or placed never lands on an old group's slots still to move. The array keeps
+  // a little room to grow (kScatterRoom), so that most growths neither allocate nor fault in a
+  // second array of the slots' size (0.24 GB at 930k unknowns, where the pattern grows by pairs
+  // of already coupled covers in most static steps); the groups' unknowns likewise.
+  const auto room = [](std::size_t size) { return size + size / kScatterRoom + 64; };
+  const auto total = static_cast<std::size_t>(slot_offset[ng]);
+  if (slots_.capacity() < total) slots_.reserve(room(total));
+  slots_.resize(total);
+  for (std::size_t g = ng; g-- > 0;) {
+    std::int32_t* out = slots_.data() + slot_offset[g];
     if (old_of[g] != kNew) {
       const std::int32_t* first = slots_.data() + slot_offset_[old_of[g]];
-      const std::int32_t* last = slots_.data() + slot_offset_[old_of[g] + 1];
-      if (moved.empty())
-        std::copy(first, last, out);
-      else
-        for (const std::int32_t* it = first; it != last; ++it) *out++ = moved[static_cast<std::size_t>(*it)];
+      const std::ptrdiff_t len = slot_offset_[old_of[g] + 1] - slot_offset_[old_of[g]];
+      if (moved.empty()) {
+        if (out != first) std::copy_backward(first, first + len, out + len);
+      } else {
+        for (std::ptrdiff_t k = len; k-- > 0;) out[k] = moved[static_cast<std::size_t>(first[k])];
+      }
     } else {
       const int m = offsets[g + 1] - offsets[g];
       const int* d = dofs.data() + offsets[g];
@@ -157,9 +171,9 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     }
   }
   slot_offset_ = std::move(slot_offset);
-  slots_ = std::move(slots);
   group_offsets_ = offsets;
-  group_dofs_ = dofs;
+  if (group_dofs_.capacity() < dofs.size()) group_dofs_.reserve(room(dofs.size()));
+  group_dofs_.assign(dofs.begin(), dofs.end());
   set_zero();
   return true;
 }
@@ -704,10 +718,11 @@ void SystemMatrix::Llt::factorize_permuted(cholmod_sparse* a1) {
 // by one permuted transpose, then cholmod_super_numeric on A1 — done here in its two parts, so
 // that between them the matrix's own arrays (k_: 18.3 M entries, 0.22 GB at 930k unknowns) and
 // the scatter's slots (0.24 GB) are let go: CHOLMOD reads only A1 while it writes the double
-// factor (1.7–1.8 GB there). Once the factor is rounded to float (half its bytes go back to the
-// system), k_ comes back from A1 by the inverse permuted transpose, each column's rows sorted —
-// pattern and values k_'s own, bit for bit — and the slots are placed again
-// in it by a search per stored entry. The factor is CHOLMOD's own, the same bits as through
+// factor (1.7–1.8 GB there). Meanwhile both wait in temporary files (parked_array.h); once the
+// factor is rounded to float (half its bytes go back to the system) they are read back, bit for
+// bit. Should a file not be written, that part comes back the first way: k_ from A1 by the
+// inverse permuted transpose, each column's rows sorted, and the slots placed again in it by a
+// search per stored entry. The factor is CHOLMOD's own, the same bits as through
 // cholmod_factorize_p (test_system_matrix).
 //
 // Measured (contact_bench --trace --memory, one thread, 2026-11-30; docs/performance.md (h)):
@@ -730,6 +745,18 @@ void SystemMatrix::factorize_lean() {
     keep_single();
     return;
   }
+  // The matrix's arrays and the slots are parked (parked_array.h) and read back once the factor
+  // is rounded: the same bytes, where making them again from A1 (the inverse permuted
+  // transpose, each column's rows sorted, a search per slot) took 2.8 s of CPU at 930k unknowns
+  // against 0.2–0.3 s to write and read their 0.47 GB. Should a file not be written, that part
+  // is let go and made again from A1 as before.
+  const auto nnz = static_cast<std::size_t>(k_.nonZeros());
+  ParkingFile outer_file, rows_file, values_file;
+  const bool matrix_parked = outer_file.write(k_.outerIndexPtr(), (static_cast<std::size_t>(n) + 1) * sizeof(int)) &&
+                             rows_file.write(k_.innerIndexPtr(), nnz * sizeof(int)) &&
+                             values_file.write(k_.valuePtr(), nnz * sizeof(double));
+  ParkedArray<std::int32_t> slots;
+  const bool slots_parked = slots.park(slots_);
   Sparse().swap(k_);
   std::vector<std::int32_t>().swap(slots_);
   // The heap's free pieces go back to the system too: a new pattern's analysis (METIS's and
@@ -745,46 +772,64 @@ void SystemMatrix::factorize_lean() {
   saved.park(saved_);
   dofs.park(group_dofs_);
   memory_mark("matrix let go");
+  const auto matrix_back = [&]() {
+    k_ = Sparse(n, n);
+    k_.resizeNonZeros(static_cast<Eigen::Index>(nnz));
+    outer_file.read(k_.outerIndexPtr());
+    rows_file.read(k_.innerIndexPtr());
+    values_file.read(k_.valuePtr());
+  };
   try {
     llt_.factorize_permuted(a1);
     memory_mark("numeric factorisation");
     if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
   } catch (...) {
+    cholmod_free_sparse(&a1, &c);
     saved.unpark(saved_);
     dofs.unpark(group_dofs_);
+    if (matrix_parked) matrix_back();
+    slots.unpark(slots_);
     throw;
   }
   memory_mark("rounded");
   saved.unpark(saved_);
   dofs.unpark(group_dofs_);
-  // k_ = A1(q, q)ᵀ with q the inverse permutation: the upper triangle of A again.
-  std::vector<int> inverse(static_cast<std::size_t>(n));
-  const int* perm = static_cast<const int*>(l->Perm);
-  for (int k = 0; k < n; ++k) inverse[static_cast<std::size_t>(perm[k])] = k;
-  cholmod_sparse* back = cholmod_ptranspose(a1, 2, inverse.data(), nullptr, 0, &c);
-  cholmod_free_sparse(&a1, &c);
-  if (!back) throw std::bad_alloc();
-  const auto* bp = static_cast<const int*>(back->p);
-  const auto nnz = static_cast<Eigen::Index>(bp[n]);
-  k_ = Sparse(n, n);
-  k_.resizeNonZeros(nnz);
-  std::copy(bp, bp + n + 1, k_.outerIndexPtr());
-  std::copy(static_cast<const int*>(back->i), static_cast<const int*>(back->i) + nnz, k_.innerIndexPtr());
-  std::copy(static_cast<const double*>(back->x), static_cast<const double*>(back->x) + nnz, k_.valuePtr());
-  cholmod_free_sparse(&back, &c);
-  memory_mark("matrix transposed");
-  // A permuted symmetric transpose leaves each column's rows in the order it met them: sorted
-  // here (a column holds a few dozen), so that every entry is where it was.
-  int* rows = k_.innerIndexPtr();
-  double* vals = k_.valuePtr();
-  for (int col = 0; col < n; ++col)
-    for (int p = k_.outerIndexPtr()[col] + 1; p < k_.outerIndexPtr()[col + 1]; ++p)
-      for (int q = p; q > k_.outerIndexPtr()[col] && rows[q - 1] > rows[q]; --q) {
-        std::swap(rows[q - 1], rows[q]);
-        std::swap(vals[q - 1], vals[q]);
-      }
-  memory_mark("rows sorted");
-  place_slots();
+  if (matrix_parked) {
+    cholmod_free_sparse(&a1, &c);
+    matrix_back();
+    memory_mark("matrix read back");
+  } else {
+    // k_ = A1(q, q)ᵀ with q the inverse permutation: the upper triangle of A again.
+    std::vector<int> inverse(static_cast<std::size_t>(n));
+    const int* perm = static_cast<const int*>(l->Perm);
+    for (int k = 0; k < n; ++k) inverse[static_cast<std::size_t>(perm[k])] = k;
+    cholmod_sparse* back = cholmod_ptranspose(a1, 2, inverse.data(), nullptr, 0, &c);
+    cholmod_free_sparse(&a1, &c);
+    if (!back) throw std::bad_alloc();
+    const auto* bp = static_cast<const int*>(back->p);
+    k_ = Sparse(n, n);
+    k_.resizeNonZeros(static_cast<Eigen::Index>(bp[n]));
+    std::copy(bp, bp + n + 1, k_.outerIndexPtr());
+    std::copy(static_cast<const int*>(back->i), static_cast<const int*>(back->i) + bp[n], k_.innerIndexPtr());
+    std::copy(static_cast<const double*>(back->x), static_cast<const double*>(back->x) + bp[n], k_.valuePtr());
+    cholmod_free_sparse(&back, &c);
+    memory_mark("matrix transposed");
+    // A permuted symmetric transpose leaves each column's rows in the order it met them: sorted
+    // here (a column holds a few dozen), so that every entry is where it was.
+    int* rows = k_.innerIndexPtr();
+    double* vals = k_.valuePtr();
+    for (int col = 0; col < n; ++col)
+      for (int p = k_.outerIndexPtr()[col] + 1; p < k_.outerIndexPtr()[col + 1]; ++p)
+        for (int q = p; q > k_.outerIndexPtr()[col] && rows[q - 1] > rows[q]; --q) {
+          std::swap(rows[q - 1], rows[q]);
+          std::swap(vals[q - 1], vals[q]);
+        }
+    memory_mark("rows sorted");
+  }
+  if (slots_parked)
+    slots.unpark(slots_);
+  else
+    place_slots();
   memory_mark("matrix back");
 }
 
