@@ -229,6 +229,15 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       if (c.start_state != ContactState::open || std::binary_search(had.begin(), had.end(), std::make_pair(c.at.vertex, c.at.edge)))
         continue;
       const double n0 = problem_.normal_force_at_rest(k);
+      const double gap0 = problem_.work(k).gap0;  // m
+      if (n0 <= 0 && gap0 > 0 && c.state != ContactState::open) {
+        // Closes from open within the step (contact_effect.h): its end force N1 acts over the
+        // step's whole motion, −½ c1·d = ½ N1·(gap0 + closure1), of which its spring keeps
+        // ½ N1·closure1; ½ N1·gap0 is what the implicit step took out of the motion before the
+        // faces touched (an impact the scheme damps).
+        released_work_ += 0.5 * std::max(0.0, c.normal_force) * gap0;
+        continue;
+      }
       if (n0 <= 0) continue;
       const ContactProblem::Row r = problem_.row(k);
       double dg = 0;  // m, the step's change of its gap
@@ -391,7 +400,9 @@ std::vector<ContactEffect::EndedContact> ContactEffect::carry_ended(const std::v
     }
     if (eb < 0) continue;
     const std::int32_t mirror = c.mirror >= 0 ? vertex_now[static_cast<std::size_t>(c.mirror)] : -1;
-    out.push_back({va, mirror, edge, ea, eb, c.bx, c.by, c.force});
+    // With its end shear force and stored energy: the T0 of a contact found open on the same
+    // edge (commit) and the trace's springs (NMM_TRACE_ENERGY) in the step that re-cut.
+    out.push_back({va, mirror, edge, ea, eb, c.bx, c.by, c.force, c.shear_force, c.stored});
   }
   return out;
 }
