@@ -47,6 +47,8 @@
 //    within the step: the joint ends open with no force, the implicit step (forces at its end)
 //    neither spends nor keeps S0, K stays ½ m v0² and nothing is booked; the start force's
 //    trapezoid ½ N0·Δg over the whole lift would put 4 S0 in `damped` (R = −4 S0).
+//    And the converse: the upper block above the lower, moving down to close the joint within
+//    the step — the implicit step applies the end force over the gap too (½ N1·g0 in `damped`).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -357,6 +359,42 @@ TEST(EnergyPaths, AContactFoundSunkThatOpensWithinTheStepBooksNothing) {
   // Booked as a contact that stayed closed: damped 4 S0, R −4 S0.
   EXPECT_LT(std::abs(end.damped - first.damped), 0.02 * s0);
   EXPECT_LT(std::abs(end.residual), 0.02 * s0);
+}
+
+TEST(EnergyPaths, AContactThatClosesFromOpenWithinAStepBooksItsEndForceOverTheGap) {
+  // The blocks of the tests above in a dynamic step (β = ½, no gravity), the upper one g0 above
+  // the lower and moving down at v0 with v0·Δt = 2 g0: the joint closes within the step and ends
+  // at closure c1 under N1 = kn·w·c1. Rigid blocks (E = 5e11 Pa, 1000× the joint over 0.5 m),
+  // one degree of freedom: from rest of force (a0 = 0), a1 = N1/m up and d = v0·Δt − ¼Δt²·a1
+  // down, so c1 = (v0·Δt − g0)/(1 + ¼Δt²·kn·w/m). The implicit step applies N1 over the whole
+  // motion d = g0 + c1: K falls by N1·d, the scheme damps Q = ½ N1·d (energy.cpp (1)), the
+  // spring keeps ½ N1·c1, and ½ N1·g0 — the end force over the gap the faces closed before they
+  // touched — is the impact the step took out of the motion: `damped` books it, or R = ½ N1·g0.
+  const double kn = 1e10, w = 1, g0 = 2e-5, h = 0.25;  // Pa/m, m, m, m
+  const double dt = 5e-5, v0 = 2 * g0 / dt;            // s, m/s (0.8 m/s)
+  const SceneDef scene = scene_from_json(stacked_blocks("closing-contact", kn, w, h, dt, true), "closing");
+  const Mesh mesh = pre::build_mesh(scene, "closing");
+  solve::TimeStepper st(mesh, scene, "closing");
+  sink_upper_block(st, mesh, -g0, -v0, "closing");
+  const solve::EnergyMeter meter = metered_step(st, dt);
+  ASSERT_GE(meter.rows().size(), 2u);
+  const solve::EnergyRow& first = meter.rows().front();
+  const solve::EnergyRow& end = meter.rows().back();
+  const double m = 2650 * w * 0.5;                                     // kg/m, the upper block
+  const double c1 = (v0 * dt - g0) / (1 + 0.25 * dt * dt * kn * w / m);  // m
+  const double n1 = kn * w * c1;                                       // N/m
+  const double impact = 0.5 * n1 * g0;                                 // J/m
+  std::printf("closing contact: c1 = %.6g m, N1 = %.6g N/m; S %.6g (½N1·c1 %.6g), K %.6g → %.6g, damped %.6g "
+              "(½N1·(g0 + c1) + ½N1·g0 = %.6g), U %.4g, residual %.4g J/m (½N1·g0 = %.6g unbooked)\n",
+              c1, n1, end.springs, 0.5 * n1 * c1, first.kinetic, end.kinetic, end.damped - first.damped,
+              0.5 * n1 * (g0 + c1) + impact, end.strain - first.strain, end.residual, impact);
+  EXPECT_LT(std::abs(first.springs), 1e-12);       // open at the start
+  EXPECT_NEAR(end.springs, 0.5 * n1 * c1, 0.03 * 0.5 * n1 * c1);  // closed at c1 at the end
+  EXPECT_NEAR(first.kinetic - end.kinetic, n1 * (g0 + c1), 0.03 * n1 * (g0 + c1));
+  // The rigid one-degree model within 3 % (the blocks are elastic and the joint's contact points
+  // share N1 unevenly); without the impact's share `damped` would be a third less.
+  EXPECT_NEAR(end.damped - first.damped, 0.5 * n1 * (g0 + c1) + impact, 0.03 * (0.5 * n1 * (g0 + c1) + impact));
+  EXPECT_LT(std::abs(end.residual), 1e-3 * impact);
 }
 
 }  // namespace

@@ -233,6 +233,15 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       if (c.start_state != ContactState::open || std::binary_search(had.begin(), had.end(), std::make_pair(c.at.vertex, c.at.edge)))
         continue;
       const double n0 = problem_.normal_force_at_rest(k);
+      const double gap0 = problem_.work(k).gap0;  // m
+      if (n0 <= 0 && gap0 > 0 && c.state != ContactState::open) {
+        // Closes from open within the step (contact_effect.h): its end force N1 acts over the
+        // step's whole motion, −½ c1·d = ½ N1·(gap0 + closure1), of which its spring keeps
+        // ½ N1·closure1; ½ N1·gap0 is what the implicit step took out of the motion before the
+        // faces touched (an impact the scheme damps).
+        released_work_ += 0.5 * std::max(0.0, c.normal_force) * gap0;
+        continue;
+      }
       if (n0 <= 0) continue;
       const ContactProblem::Row r = problem_.row(k);
       double dg = 0;  // m, the step's change of its gap

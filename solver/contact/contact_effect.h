@@ -70,12 +70,14 @@ class ContactEffect final : public Effect {
   /// toward its start) — into t.friction; what softening crack faces dissipated (cohesive_law.h D(κ)), and the work their
   /// cohesion did in slip, which is not friction's, into t.fracture. In a step that cut new cracks,
   /// a new face's contact that slides from its zero start force books ½|T|·slip less in
-  /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). The work
-  /// of the end forces of the last accepted step's closed contacts that this step started
-  /// without, ½ (0 − c_end)·d, into t.damped (below), in a step that re-cut the mesh too; and of
-  /// the contacts it found sunk with no force carried (a vertex that chattered), ½ c0·d less the
-  /// ½ N0·closure0 their springs started with from no work, c0·d taken up to the gap's close
-  /// (0 for one the step opens).
+  /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). Into
+  /// t.damped: the work of the end forces of the last accepted step's closed contacts that this
+  /// step started without, ½ (0 − c_end)·d (below), in a step that re-cut the mesh too; of the
+  /// contacts it found sunk with no force carried (a vertex that chattered),
+  /// ½ c0·d less the ½ N0·closure0 their springs started with from no work, c0·d taken up to the
+  /// gap's close (0 for one the step opens); and of those that close from open (gap0 > 0, no
+  /// force carried), ½ N1·gap0: the implicit step applies their end force N1 over its whole
+  /// motion, the part before the faces touched too, of which their springs keep ½ N1·closure1.
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
