@@ -47,6 +47,32 @@
 //      h 0.025 m: its top edge passes 0.14 mm above a lattice row at x 0.5 m, and its first
 //      three cracks started in slivers of 2e-4 of an element there, 0.27 mm long, one a step,
 //      before any crack ran across it). It may still be reached by a tip (rule 4).
+//   6. no new crack within Hillerborg's l_ch = E·G_f/σt² of a growing crack (one with an active
+//      tip; its segments as cut, from the element's centroid). A cohesive crack's process zone
+//      softens over a length of the order of l_ch, and while it softens it unloads the rock
+//      about it: the crack band of Bažant & Oh (1983, "Crack band theory for fracture of
+//      concrete") localises into one band for that reason, and smeared-crack codes that track
+//      cracks enforce it as an exclusion radius about each crack inside which no new one starts
+//      (Cervera, Pelà, Clemente & Roca 2010, "A crack-tracking technique for localized damage in
+//      quasi-brittle materials"; Saloustros, Cervera & Pelà 2019). A crack that has started is the
+//      one that fails: beyond its strength in the band ahead of its tip an element is its to
+//      reach (rule 4), beside it one the softening crack will shield. Petersson's beam at
+//      h 0.0125 m (docs/fracture.md): without it cracks started at both corners of the notch's
+//      flat end and 17 mm either side while the tip's crack stayed one element long, a band 5 cm
+//      wide; with it one crack runs up from the notch's tip.
+//   7. no new crack in an element holding a physical cover that reaches round a gap of the body
+//      (a slot, a notch narrower than h): a node's star reaches round the gap's end and stays one
+//      cover (physical covers are the connected pieces of star ∩ body), so the pieces on both
+//      sides take it and their constant strain carries the gap's opening as their own. Found
+//      geometrically: two elements of the cover whose inside points see each other only across a
+//      body boundary edge of the cover's elements. Their stress is the gap end's concentration
+//      smeared over them, not the rock's: an element on a reflex corner of the outline (the
+//      gap's end) keeps its start (kGapEnd), and a crack started there leaves from the gap's end
+//      (its reflex corners within h of each other) along their bisector (gap_end), not along the
+//      element's own σ1. It may still be reached by a tip. Petersson's beam (10 mm slot): at
+//      h 0.025 and 0.0167 m the first crack started in such a piece beside a notch wall 10–30 mm
+//      below the slot's end, and at h 0.025 m the end's own element cracked horizontally; now one
+//      crack runs up from the slot's end at all three meshes.
 // Runs without a fracture energy are not touched (bit for bit).
 #pragma once
 
@@ -57,21 +83,31 @@
 #include "common/scene.h"
 #include "common/vec2.h"
 #include "solver/discretisation/run_state.h"
+#include "solver/fracture/fracture.h"
 
 namespace nmm::solve {
 
 /// Bits of cohesive_starts' answer for an element.
-constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3, 5)
+constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3, 5–7)
 constexpr std::uint8_t kMayBeReached = 2;  ///< a tip may grow to it across rock that holds (rule 4: rules 2, 3)
+constexpr std::uint8_t kGapEnd = 4;  ///< a crack started in it leaves from the gap's end (rule 7, gap_end)
 
 /// [me] kMayStart | kMayBeReached bits: what element e of `mesh` may do at the step's solution
 /// `solved` (rules above for elements of a material with a fracture energy; kMayStart alone for
 /// every other element).
 /// `start`: the step's accepted start carried onto `mesh`; `started_this_step`: a new crack
 /// already started in this step; `first_crack`: the scene joint index of the run's first crack
-/// segment. Empty where no material has a fracture energy.
+/// segment; `cracks`: the segments of the growing cracks (Fracture::growing_segments, rule 6).
+/// Empty where no material has a fracture energy.
 std::vector<std::uint8_t> cohesive_starts(const Mesh& mesh, const SceneDef& scene, const RunState& start,
-                                          const RunState& solved, bool started_this_step, std::size_t first_crack);
+                                          const RunState& solved, bool started_this_step, std::size_t first_crack,
+                                          const std::vector<CrackSegment>& cracks);
+
+/// Rule 7: where a crack started in element e, which holds a reflex corner of the body's
+/// outline (a notch's or slot's end), leaves from: `at` the mean of its corners, `dir` the unit
+/// sum of their angles' bisectors into the body (a slot's flat end: along the slot). False where
+/// e has no such corner.
+bool gap_end(const Mesh& mesh, const SceneDef& scene, std::size_t e, Vec2& at, Vec2& dir);
 
 /// Rule 4's band: element e meets the strip of half-width `half_width` (m) about the line
 /// through `tip` along the unit `dir`, and the point a new crack in it would start from (its

@@ -334,9 +334,27 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       // element ahead's stress: the strength rule only starts cracks there.
       const MaterialDef& ahead = scene.materials[scene.bodies[mesh.element_body[e]].material];
       if (ahead.strength.toughness > 0) return;
-      const Vec2 d = holds ? tip.dir : direction(static_cast<std::size_t>(e), tip.dir);
+      Vec2 d = holds ? tip.dir : direction(static_cast<std::size_t>(e), tip.dir);
+      // In rock that softens a tip that only clips an element's corner (straight on it would
+      // leave within kCornerClip·h) or crosses a sliver (rule 5 of cohesive_starts.h) goes on
+      // straight: the element's constant stress belongs to rock mostly off the crack's line.
+      // Petersson's beam at h 0.0167 m: a tip passing a lattice node turned with each triangle
+      // round it, curled through five pieces 0.1–0.2 mm long and stopped on its own face.
+      if (!may_start.empty() && !holds) {
+        RayExit straight;
+        if (element_area(mesh, static_cast<std::size_t>(e)) < kDebrisArea * h * h ||
+            (ray_exit(mesh, static_cast<std::size_t>(e), tip.at, tip.dir, tol, straight) &&
+             std::hypot(straight.at.x - tip.at.x, straight.at.y - tip.at.y) < kCornerClip * h))
+          d = tip.dir;
+      }
       RayExit exit;
-      if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) return;
+      if (!ray_exit(mesh, static_cast<std::size_t>(e), tip.at, d, tol, exit)) {
+        // A band's crack whose element's own direction leaves it at once from the tip (a tip at
+        // its vertex) goes on straight, as it came to it (rule 4 of cohesive_starts.h), instead
+        // of stopping there for good (Petersson's beam at h 0.0125 m: 500 steps).
+        if (!band || holds || !ray_exit(mesh, static_cast<std::size_t>(e), tip.at, tip.dir, tol, exit)) return;
+        d = tip.dir;
+      }
       const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
       add(static_cast<std::size_t>(e), tip.at, c.cut_to, tip.crack, holds ? drive : failure_[e].mode);
       const double dx = c.at.x - tip.at.x, dy = c.at.y - tip.at.y, l = std::hypot(dx, dy);
@@ -489,9 +507,23 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     candidates.erase(std::find(candidates.begin(), candidates.end(), best));
   }
   if (best >= 0) {
-    const std::size_t e = static_cast<std::size_t>(best);
-    const Vec2 p = inside_point(mesh, e);
-    const Vec2 d = direction_as_cut(mesh, s, order, e, failure_[e].direction);
+    std::size_t e = static_cast<std::size_t>(best);
+    Vec2 p = inside_point(mesh, e);
+    Vec2 d = direction_as_cut(mesh, s, order, e, failure_[e].direction);
+    // At a gap's end whose covers reach round it (rule 7 of cohesive_starts.h) the element's
+    // stress is the gap's opening smeared over it, not the tip's field: the crack leaves from the
+    // gap's end along its bisector, in the element there, through the middle of the chord it cuts.
+    Vec2 gap_at, gap_dir;
+    if (!may_start.empty() && (may_start[e] & kGapEnd) && gap_end(mesh, scene, e, gap_at, gap_dir)) {
+      const std::int32_t there = grid().at(plus(gap_at, 1e-6 * h, gap_dir));
+      RayExit probe;
+      if (there >= 0 && !crossed_[static_cast<std::size_t>(there)] &&
+          ray_exit(mesh, static_cast<std::size_t>(there), plus(gap_at, 1e-6 * h, gap_dir), gap_dir, 0, probe)) {
+        e = static_cast<std::size_t>(there);
+        p = {0.5 * (gap_at.x + probe.at.x), 0.5 * (gap_at.y + probe.at.y)};
+        d = gap_dir;
+      }
+    }
     RayExit fwd, back;
     if (ray_exit(mesh, e, p, d, 0, fwd) && ray_exit(mesh, e, p, {-d.x, -d.y}, 0, back)) {
       const std::int32_t crack = cracks_++;
@@ -501,7 +533,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       // Each end as a crack leaving the element from the other end (on its edge's grid, so that
       // the forward end's overshoot is taken along a line both kernel families agree on).
       const CrackEnd f = crack_end(mesh, e, on_grid(mesh, e, back).at, fwd), r = crack_end(mesh, e, f.at, back);
-      add(e, r.cut_to, f.cut_to, crack, failure_[e].mode);
+      add(e, r.cut_to, f.cut_to, crack, failure_[static_cast<std::size_t>(best)].mode);
       const std::size_t first = tips_.size();
       for (const auto& [end, dir] : {std::make_pair(f, d), std::make_pair(r, Vec2{-d.x, -d.y})})
         tips_.push_back({end.tip, dir, crack, !end.stops});
@@ -509,6 +541,16 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         if (tips_[t].active) grow(tips_[t], 0, CrackMode::tensile);
     }
   }
+  return out;
+}
+
+std::vector<CrackSegment> Fracture::growing_segments() const {
+  std::vector<std::uint8_t> growing(static_cast<std::size_t>(cracks_), 0);
+  for (const Tip& t : tips_)
+    if (t.active && t.crack >= 0 && t.crack < cracks_) growing[static_cast<std::size_t>(t.crack)] = 1;
+  std::vector<CrackSegment> out;
+  for (const CrackSegment& c : segments_)
+    if (c.crack >= 0 && c.crack < cracks_ && growing[static_cast<std::size_t>(c.crack)]) out.push_back(c);
   return out;
 }
 

@@ -91,6 +91,9 @@ class Fracture {
   /// its peak): a block under a hundredth of an element is debris.
   const std::vector<std::uint8_t>& debris() const { return debris_; }
   static constexpr double kDebrisArea = 1e-2;
+  /// A cohesive tip that would cross less than kCornerClip·h of an element straight on keeps its
+  /// direction there (a corner clip: the element's stress is the rock's off the crack's line).
+  static constexpr double kCornerClip = 0.1;
   /// ×h², below which a new block of a single element is debris too: a sliver the cracks cut
   /// off one element, whose three covers reach no other element, has no stiffness path to the
   /// rock beside it and only its contacts hold it. One of 5.76e-5 m² (1.5e-2·h²) under a
@@ -109,6 +112,8 @@ class Fracture {
   /// Every segment cut so far, in order: the run's crack joints follow the scene's joints in it.
   const std::vector<CrackSegment>& segments() const { return segments_; }
   int crack_count() const { return cracks_; }
+  /// The segments of the cracks that still have an active tip (cohesive_starts.h rule 6).
+  std::vector<CrackSegment> growing_segments() const;
   /// Steps taken again because their solution broke the rock (this invocation: diagnostics).
   long resolves() const { return resolves_; }
   void count_resolve() { ++resolves_; }

@@ -82,7 +82,8 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
   std::vector<CrackSegment> segments =
       fracture_.find(mesh, scene, solved, removed,
                      cohesive_ ? cohesive_starts(mesh, scene, start, solved, started_in_step_ == start.step,
-                                                 scene.joints.size() - fracture_.segments().size())
+                                                 scene.joints.size() - fracture_.segments().size(),
+                                                 fracture_.growing_segments())
                                : std::vector<std::uint8_t>{});
   if (fracture_.crack_count() > cracks_before) started_in_step_ = start.step;
   if (segments.empty() && any_toughness(scene)) {  // the strength broke nothing: tips that reach their toughness grow
