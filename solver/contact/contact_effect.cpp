@@ -20,6 +20,11 @@
 namespace nmm::solve {
 
 namespace {
+// J/m, the energy a closed contact's springs hold: ½ N·closure + ½ |T·s_el| (docs/energy.md).
+double springs_energy(const Contact& c) {
+  return 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+}
+
 // How many times the pairs the contacts use (this step's and the last accepted step's) the
 // sparse pattern may hold before a growth rebuilds it from those alone (ContactEffect::update_pattern).
 // Measured on the DDA code's walls (contact_bench --peer, 100 steps, one thread): at 1.1 the
@@ -296,7 +301,7 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   contacts_.end_step(problem_);
   for (std::size_t i = 0; i < ended_index.size(); ++i) {
     const Contact& c = contacts_.contacts()[ended_index[i]];
-    ended_[i].stored = 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+    ended_[i].stored = springs_energy(c);
   }
   // A face that softened through a quarter of w_c in one step: the static path snapped back
   // (summary.json fracture.snap_back_steps).
@@ -600,7 +605,7 @@ void ContactEffect::effect_names(const RunState& /*s*/, std::vector<std::string>
 void ContactEffect::energy_state(const EnergyState& /*e*/, EnergyTerms& t) const {
   for (const Contact& c : contacts_.contacts())
     if (c.state != ContactState::open)
-      t.stored += 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+      t.stored += springs_energy(c);
 }
 
 void ContactEffect::energy_step(const EnergyStep& e, EnergyTerms& t) const {
@@ -719,7 +724,7 @@ void ContactEffect::trace_energy_step(const EnergyStep& e, const EnergyTerms& t)
     const double exact = -0.5 * (prev_work + end_work);
     const double stored = c.state == ContactState::open
                               ? 0.0
-                              : 0.5 * std::max(0.0, c.normal_force * -c.gap) + 0.5 * std::abs(c.shear_force * c.shear_el);
+                              : springs_energy(c);
     const double slip = c.state == ContactState::sliding ? std::abs(c.shear - c.shear_el) : 0.0;
     if (prev_work == 0 && end_work == 0 && prev_stored == 0 && stored == 0) continue;
     const bool rel = std::binary_search(released_.begin(), released_.end(), c.at.vertex);
