@@ -17,9 +17,11 @@ direction leaves (r / F_tol before its strength update) and, from the trace's "m
 lines, what made it up: the median over calls of |r|∞ / F_tol at the point the first line
 search took — "all", the residual there; "linear", what the linear model leaves (CG's inexact
 direction); and each kind of spring change along it (its contacts' departure from their linear
-model; the parts may cancel, so they do not add up to "all"). Last, why the factorisations were made:
+model; the parts may cancel, so they do not add up to "all"). Then why the factorisations were made:
 "many strengths moved" (more than 5 per CG iteration of the budget since the last direction),
 "CG budget spent", or "refresh" (after a CG run of more than half its budget, or a drifting one).
+Last, from the trace's "accepted tol" lines, the force tolerance F_tol (N) the accepted steps
+used: smallest, median, largest (F_tol is τ times the step's largest contact force).
 """
 import argparse
 import collections
@@ -29,6 +31,7 @@ import sys
 SOLVE = re.compile(r"it (\d+) r/tol (\S+) solved_cg \d alpha (\S+)")
 MOVED = re.compile(r"it (\d+) strengths moved (\d+) at r/tol (\S+)")
 COUNTS = re.compile(r".* cg (\d+) fac (\d+) budget (\d+)")
+ACCEPTED = re.compile(r"accepted tol (\S+) N")
 
 
 def short_kind(line):
@@ -54,7 +57,12 @@ def main():
     first_parts = collections.defaultdict(list)  # part -> |r|inf / F_tol after each first direction
     factorised = collections.Counter()
     last_cg, last_fac = 0, 0
+    tolerances = []     # N, F_tol of each accepted step
     for i, line in enumerate(lines):
+        m = ACCEPTED.match(line)
+        if m:
+            tolerances.append(float(m.group(1)))
+            continue
         m = MOVED.match(line)
         if m:
             moved_at[int(m.group(1))] = (int(m.group(2)), float(m.group(3)))
@@ -119,6 +127,10 @@ def main():
               ", ".join(f"{k} {v:.3g}" for k, v in med.items()))
     if factorised:
         print("factorisations: " + ", ".join(f"{k} {v}" for k, v in factorised.most_common()))
+    if tolerances:
+        t = sorted(tolerances)
+        print(f"F_tol of the {len(t)} accepted steps: smallest {t[0]:.3g} N, median {t[len(t) // 2]:.3g} N, "
+              f"largest {t[-1]:.3g} N")
     return 0
 
 

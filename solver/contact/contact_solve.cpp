@@ -266,7 +266,8 @@ double line_search(const F& psi, double psi0, double tol) {
 Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const Eigen::VectorXd& b,
                                        double tau, double u_tol, Eigen::VectorXd& d, ContactSolveStats& stats,
                                        Eigen::VectorXd* residual, ContactStart start) {
-  // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr.
+  // NMM_TRACE_CONTACT_SOLVE=1 prints every Newton iteration and friction update on stderr, and the
+  // force tolerance F_tol each accepted step used ("accepted tol", N).
   static const bool trace = std::getenv("NMM_TRACE_CONTACT_SOLVE") != nullptr;
   const Eigen::Index n = b.size();
   Eigen::VectorXd ra = b;  // b − A d, kept up to date without a product per iteration
@@ -461,6 +462,7 @@ Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const
   const double u_accepted = u_err;
   evaluate();
   if (residual) *residual = r;
+  if (trace) std::fprintf(stderr, "accepted tol %.6e N r/tol %.3e\n", tol, r_norm / tol);
   stats.max_force_tolerance = std::max(stats.max_force_tolerance, tol);
   stats.max_displacement_error = std::max(stats.max_displacement_error, std::max(u_accepted, 0.0));
   double kn_min = std::numeric_limits<double>::infinity();
