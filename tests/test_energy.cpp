@@ -49,6 +49,21 @@
 //    trapezoid ½ N0·Δg over the whole lift would put 4 S0 in `damped` (R = −4 S0).
 //    And the converse: the upper block above the lower, moving down to close the joint within
 //    the step — the implicit step applies the end force over the gap too (½ N1·g0 in `damped`).
+//
+// 4. A vertex that passes a corner onto the next edge. A stiff wedge, its apex down on a held
+//    base, pressed by a traction on its top and pushed sideways 1 mm a step (frictionless: N
+//    alone), crosses x = 1 m in its second step, where the base's top turns down by θ = 5°. The
+//    third step starts with the apex closed on the sloping edge: its history goes on (kept per
+//    vertex and block), its spring is loaded afresh from its gap to that edge, N0 = kn·L·closure0
+//    with closure0 = δ·cosθ − ε·sinθ (δ its depth below the flat edge, ε how far past the
+//    corner), along that edge's normal. The step started in balance with the old end force
+//    N_prev on the flat edge, so the detection swapped c_prev for c0 at once and S_prev =
+//    ½ N_prev·δ for S0 = ½ N0·closure0 with no work; the step's motion takes ½ (c0 − c_prev)·d
+//    + S_prev − S0 (4.3 J/m here, against 1.8 J/m in the springs before it) into `damped`, or R
+//    jumps by as much (contact_effect.cpp moved_on_work). The same wedge over a straight face
+//    (θ = 0) passes from one element's edge to the next at x = 1 m: the same point, normal and
+//    depth, the force goes on, and the rule books nothing (releasing the old spring alone would
+//    book −½ c_prev·d + S_prev there).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -395,6 +410,109 @@ TEST(EnergyPaths, AContactThatClosesFromOpenWithinAStepBooksItsEndForceOverTheGa
   // share N1 unevenly); without the impact's share `damped` would be a third less.
   EXPECT_NEAR(end.damped - first.damped, 0.5 * n1 * (g0 + c1) + impact, 0.03 * (0.5 * n1 * (g0 + c1) + impact));
   EXPECT_LT(std::abs(end.residual), 1e-3 * impact);
+}
+
+// A wedge (apex down at x = 0.9985 m, y = 0.5 m; 0.5 m wide, frictionless joint of kn 1e10 Pa/m)
+// pressed by 100 kPa on its top and pushed along x at 1 m/s by a roller on its left side, in
+// static steps of 1 ms, on a held base whose top is flat to x = 1 m and falls by tanθ beyond.
+nlohmann::json wedge_over_corner(double tan_theta) {
+  return {{"name", "wedge-over-corner"},
+          {"plane", "strain"},
+          {"materials", {{"stiff", {{"density", 2650}, {"young", 5e11}, {"poisson", 0.25}}}}},
+          {"joint_sets", {{"joint", {{"friction_deg", 0}, {"normal", {{"model", "constant"}, {"kn", 1e10}}},
+                                     {"shear", {{"model", "constant"}, {"ks", 1e10}}}}}}},
+          {"interface_set", "joint"},
+          {"mesh", {{"size", 0.25}}},
+          {"bodies", {{{"material", "stiff"}, {"outer", {{0, 0}, {2, 0}, {2, 0.5 - tan_theta}, {1, 0.5}, {0, 0.5}}}},
+                      {{"material", "stiff"},
+                       {"outer", {{0.9985, 0.5}, {1.2485, 0.75}, {1.2485, 1.0}, {0.7485, 1.0}, {0.7485, 0.75}}}}}},
+          {"supports", {{{"points", {{0, 0}, {2, 0}}}, {"fix", "xy"}},
+                        {{"points", {{0.7485, 0.75}, {0.7485, 1.0}}}, {"fix", "x"}, {"velocity", {1.0, 0}}}}},
+          {"tractions", {{{"points", {{1.2485, 1.0}, {0.7485, 1.0}}}, {"normal", -1e5}, {"shear", 0}}}},
+          {"solver", {{"time_step", 1e-3}, {"steps", 3}, {"support_stiffness", 1e15}}}};
+}
+
+// What the wedge's third step books, the apex's contact at the ends of steps 2 and 3 and the closed
+// form of the moved-on rule from the apex's place.
+struct CornerPass {
+  int edge2 = -1, edge3 = -1;  // the apex's contact's edge at the end of steps 2 and 3
+  double n_prev = 0, closure_prev = 0;  // N/m, m: its force and depth below the flat edge after step 2
+  double n0 = 0, closure0 = 0;          // N/m, m: its start force and depth on the edge of step 3
+  double rule = 0;                      // J/m, ½ (c0 − c_prev)·d + S_prev − S0
+  double springs2 = 0, residual_step = 0, damped_step = 0;  // J/m: S after step 2; R and damped over step 3
+};
+
+CornerPass pass_corner(double theta_deg, const std::string& name) {
+  const double theta = theta_deg * kPi / 180, kn = 1e10;
+  MeteredRun r(wedge_over_corner(std::tan(theta)), name);
+  CornerPass c;
+  // The base's corner at (1, 0.5) m: the apex's place is taken from it (the base moves a little).
+  std::size_t corner = r.mesh.loop_xy.size();
+  for (std::size_t v = 0; 2 * v < r.mesh.loop_xy.size(); ++v)
+    if (std::abs(r.mesh.loop_xy[2 * v] - 1) < 1e-9 && std::abs(r.mesh.loop_xy[2 * v + 1] - 0.5) < 1e-9) corner = v;
+  EXPECT_LT(corner, r.mesh.loop_xy.size());
+  if (corner == r.mesh.loop_xy.size()) return c;
+  double x2 = 0, y2 = 0;
+  const Outcome o = r.st.run_until(3e-3 * (1 - 1e-9), [&](std::int64_t n) {
+    const solve::RunView view = r.st.view();
+    r.meter.after_step(view.state, solve::energy_sources(view), true);
+    const solve::Contact* apex = nullptr;
+    for (const solve::Contact& k : view.contacts.contacts())
+      if (k.state != solve::ContactState::open) apex = &k;
+    if (!apex) return;
+    const auto v = 2 * static_cast<std::size_t>(apex->at.vertex);
+    const double x = view.state.loop_xy[v] - view.state.loop_xy[2 * corner];
+    const double y = view.state.loop_xy[v + 1] - view.state.loop_xy[2 * corner + 1];
+    if (n == 2) {
+      c.edge2 = apex->at.edge;
+      c.n_prev = apex->normal_force;
+      c.closure_prev = -y;
+      c.springs2 = r.meter.rows().back().springs;
+      x2 = x, y2 = y;
+    }
+    if (n == 3) {
+      c.edge3 = apex->at.edge;
+      // Its depth below the sloping edge at the step's start, and the spring there (kn·L).
+      c.closure0 = -(x2 * std::sin(theta) + y2 * std::cos(theta));
+      c.n0 = kn * apex->length * c.closure0;
+      const double dg_prev = y - y2;                                                  // on the flat edge's normal
+      const double dg_new = (x - x2) * std::sin(theta) + (y - y2) * std::cos(theta);  // on the sloping one's
+      c.rule = 0.5 * (c.n0 * dg_new - c.n_prev * dg_prev) + 0.5 * c.n_prev * c.closure_prev - 0.5 * c.n0 * c.closure0;
+      const auto& rows = r.meter.rows();
+      c.residual_step = rows.back().residual - rows[rows.size() - 2].residual;
+      c.damped_step = rows.back().damped - rows[rows.size() - 2].damped;
+    }
+  });
+  EXPECT_PRED1(test::ended_ok, o);
+  std::printf("%s (θ %g°): apex on edge %d after step 2 (N %.6g N/m, δ %.6g m, S %.6g J/m), on edge %d in step 3 "
+              "(N0 %.6g N/m, closure0 %.6g m); ½(c0 − c_prev)·d + S_prev − S0 = %.6g J/m; step 3: damped %.6g, "
+              "residual %.4g J/m\n",
+              name.c_str(), theta_deg, c.edge2, c.n_prev, c.closure_prev, c.springs2, c.edge3, c.n0, c.closure0, c.rule,
+              c.damped_step, c.residual_step);
+  return c;
+}
+
+TEST(EnergyPaths, AVertexThatPassesACornerReleasesItsOldSpringAndLoadsTheNext) {
+  const CornerPass c = pass_corner(5, "corner");
+  ASSERT_NE(c.edge2, c.edge3);  // the apex passed onto the next edge between the steps
+  ASSERT_GT(c.closure0, 0);     // and starts closed on it
+  // Most of the spring is let go at the corner: the sloping edge lies ε·sinθ above the apex's
+  // depth (N0 a sixth of N_prev here), a jump the step's motion takes.
+  EXPECT_LT(c.n0, 0.5 * c.n_prev);
+  EXPECT_GT(c.rule, c.springs2);  // a term of the size of S (it is not round-off)
+  // The balance closes with it booked (before the rule: R jumped by the whole of it, 4.28 J/m).
+  EXPECT_LT(std::abs(c.residual_step), 0.01 * c.rule);
+}
+
+TEST(EnergyPaths, AVertexThatPassesOntoTheNextEdgeOfAStraightFaceKeepsItsForce) {
+  const CornerPass c = pass_corner(0, "straight");
+  ASSERT_NE(c.edge2, c.edge3);  // from one element's edge to the next
+  ASSERT_GT(c.closure0, 0);
+  // The same point, normal and depth: the force goes on, and the rule books next to nothing
+  // (the old spring released alone, −½ c_prev·d + S_prev, would be 2.2 J/m here).
+  EXPECT_NEAR(c.n0, c.n_prev, 1e-3 * c.n_prev);
+  EXPECT_LT(std::abs(c.rule), 2e-3 * c.springs2);
+  EXPECT_LT(std::abs(c.residual_step), 5e-3 * c.springs2);
 }
 
 }  // namespace

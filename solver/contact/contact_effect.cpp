@@ -259,6 +259,7 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       released_work_ += sunk;
       if (trace) trace_sunk_[k] = sunk;
     }
+    if (end_unknowns_ == d.size() || end_unknowns_ == -2) released_work_ += moved_on_work(d, had);
   }
   if (trace) trace_d_ = d;
   // Kept for a re-cut that throws this attempt away (continue_from).
@@ -327,6 +328,86 @@ std::vector<ContactEffect::EndedShear> ContactEffect::ended_shear(bool started) 
   std::vector<EndedShear> out;
   for (const EndedContact& e : started ? start_ended_ : ended_) out.push_back({e.bx, e.by, e.shear_force, e.stored});
   return out;
+}
+
+double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had) {
+  // The moved-on rule (contact_effect.h). Contact history is kept per vertex and block
+  // (contact_set.cpp begin_step), so a vertex that ended the last step closed on edge e1 of a
+  // block and starts this one on another edge e2 of it (past a corner, or onto the next element's
+  // edge of a straight face) starts closed with its state and shear, while its normal spring is
+  // loaded afresh from its gap to e2: N0 = N(gap0) along e2's normal, on e2's row. The old spring
+  // is gone with its pair. The step started in balance with the old end force c_prev and solves
+  // from the new start force c0 = N0·cn − T0·cs, a jump c0 − c_prev the detection applied at once,
+  // and the springs' energy went from S_prev (½ N·closure + ½ |T·s_el| on e1) to S0 (the same on
+  // e2) with no work. Booked as the found-sunk and released rules book theirs (a new spring
+  // loaded, an old one released): ½ (c0 − c_prev)·d + S_prev − S0 in `damped`, the step's motion
+  // against the jump and the springs' change the detection made. Where the force goes on across
+  // the corner (a straight face: the same point, normal and closure) both terms vanish; a corner
+  // of angle θ turns c0 by θ and sets closure0 by the vertex's place past the corner.
+  // Matched by vertex, mirrors included (the other face's vertex at the same point hands its
+  // history on: contact_set.cpp), summed per vertex: a vertex may end on two edges at a corner.
+  double booked = 0;
+  const std::vector<Contact>& cs = problem_.contacts();
+  std::vector<std::pair<std::int32_t, std::int32_t>>& now = moved_pairs_;  // (vertex, edge) of this step's contacts
+  now.clear();
+  for (const Contact& c : cs) now.emplace_back(c.at.vertex, c.at.edge);
+  std::sort(now.begin(), now.end());
+  std::vector<std::int32_t>& group = moved_group_;  // by loop vertex: the group of its ended contacts, −1 none
+  group.assign(model_.mesh().loop_vertex_count(), -1);
+  const auto group_of = [&](std::int32_t v) { return v >= 0 && static_cast<std::size_t>(v) < group.size() ? group[static_cast<std::size_t>(v)] : -1; };
+  std::vector<double>& old_part = moved_old_;  // J/m per group: Σ ½ c_prev·d − S_prev
+  std::vector<double>& new_part = moved_new_;  // J/m per group: Σ ½ c0·d − S0 (NaN: none)
+  old_part.clear();
+  new_part.clear();
+  const int nd = space_.element_dofs();
+  for (const EndedContact& e : ended_) {
+    // Released (commit: closed nowhere now) or on the same pair now: the other rules'.
+    if (std::binary_search(released_.begin(), released_.end(), e.vertex) ||
+        std::binary_search(now.begin(), now.end(), std::make_pair(e.vertex, e.edge)))
+      continue;
+    std::int32_t g = group_of(e.vertex);
+    if (g < 0) g = group_of(e.mirror);
+    if (g < 0) {
+      g = static_cast<std::int32_t>(old_part.size());
+      old_part.push_back(0.0);
+      new_part.push_back(std::numeric_limits<double>::quiet_NaN());
+    }
+    for (const std::int32_t v : {e.vertex, e.mirror})
+      if (v >= 0 && static_cast<std::size_t>(v) < group.size()) group[static_cast<std::size_t>(v)] = g;
+    old_part[static_cast<std::size_t>(g)] += 0.5 * ended_work(e, d, nd) - e.stored;
+  }
+  if (old_part.empty()) return 0.0;
+  static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
+  std::vector<std::size_t> first(old_part.size(), cs.size());  // the group's first new contact (trace)
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const Contact& c = cs[k];
+    if (c.start_state == ContactState::open || std::binary_search(had.begin(), had.end(), std::make_pair(c.at.vertex, c.at.edge)))
+      continue;
+    std::int32_t g = group_of(c.at.vertex);
+    if (g < 0) g = group_of(c.mirror);
+    if (g < 0) continue;
+    const ContactProblem::Row r = problem_.row(k);
+    double dg = 0, ds = 0;  // m, the step's change of its gap and shear
+    for (int i = 0; i < r.size; ++i)
+      if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
+        dg += r.cn(i) * d[r.dofs[i]];
+        ds += r.cs(i) * d[r.dofs[i]];
+      }
+    const ContactWork& w = problem_.work(k);
+    const double n0 = problem_.normal_force_at_rest(k);  // N, its spring at the gap it starts with
+    const double t0 = k < start_shear_.size() ? start_shear_[k] : c.start_shear_force;  // N, T0
+    const double s0 = 0.5 * std::max(0.0, n0 * -w.gap0) + 0.5 * std::abs(t0 * w.shear0);  // J/m
+    double& part = new_part[static_cast<std::size_t>(g)];
+    part = (std::isnan(part) ? 0.0 : part) + 0.5 * (n0 * dg - t0 * ds) - s0;
+    if (first[static_cast<std::size_t>(g)] == cs.size()) first[static_cast<std::size_t>(g)] = k;
+  }
+  for (std::size_t g = 0; g < old_part.size(); ++g) {
+    if (std::isnan(new_part[g])) continue;  // no contact of its vertex starts on another edge
+    const double b = new_part[g] - old_part[g];
+    booked += b;
+    if (trace && first[g] < trace_sunk_.size()) trace_sunk_[first[g]] += b;
+  }
+  return booked;
 }
 
 double ContactEffect::ended_work(const EndedContact& e, const Eigen::VectorXd& d, int nd) const {

@@ -77,7 +77,9 @@ class ContactEffect final : public Effect {
   /// ½ c0·d less the ½ N0·closure0 their springs started with from no work, c0·d taken up to the
   /// gap's close (0 for one the step opens); and of those that close from open (gap0 > 0, no
   /// force carried), ½ N1·gap0: the implicit step applies their end force N1 over its whole
-  /// motion, the part before the faces touched too, of which their springs keep ½ N1·closure1.
+  /// motion, the part before the faces touched too, of which their springs keep ½ N1·closure1;
+  /// and of a vertex that ended closed on one edge and starts closed on another (moved_on_work),
+  /// ½ (c0 − c_prev)·d + S_prev − S0.
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
@@ -160,6 +162,12 @@ class ContactEffect final : public Effect {
   std::vector<EndedContact> carry_ended(const std::vector<EndedContact>& ended, const MeshPieces& from) const;
   /// J/m, c_end·d of `e` on this space's unknowns (nd: element_dofs()).
   double ended_work(const EndedContact& e, const Eigen::VectorXd& d, int nd) const;
+  /// J/m into `damped` (the moved-on rule, contact_effect.cpp): for each vertex the last step
+  /// ended closed on one edge (ended_, not released, its pair not among this step's) that starts
+  /// this step closed on another (its history carried, its pair not in `had`, the ended pairs
+  /// sorted), ½ (c0 − c_prev)·d + S_prev − S0: the old spring released, the new one loaded at its
+  /// start gap. Called by commit() before ended_ is replaced.
+  double moved_on_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had);
   std::vector<EndedContact> ended_;   // the last accepted step's closed contacts
   Eigen::Index end_unknowns_ = -1;    // the unknowns of that step (-2: carried across a re-cut)
   // The list ended_ held before the last commit: the last accepted step's, where that commit was
@@ -177,6 +185,11 @@ class ContactEffect final : public Effect {
   std::vector<std::pair<std::int32_t, std::int32_t>> commit_pairs_;
   std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, double>> commit_ended_shear_;  // commit: ((vertex, edge), T)
   std::vector<std::size_t> commit_ended_index_;  // commit: the contact each entry of ended_ is
+  // moved_on_work()'s scratch: this step's (vertex, edge) pairs, the group of each loop vertex,
+  // and each group's old and new parts (J/m).
+  std::vector<std::pair<std::int32_t, std::int32_t>> moved_pairs_;
+  std::vector<std::int32_t> moved_group_;
+  std::vector<double> moved_old_, moved_new_;
 };
 
 }  // namespace nmm::solve
