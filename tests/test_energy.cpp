@@ -49,6 +49,9 @@
 //    trapezoid ½ N0·Δg over the whole lift would put 4 S0 in `damped` (R = −4 S0).
 //    And the converse: the upper block above the lower, moving down to close the joint within
 //    the step — the implicit step applies the end force over the gap too (½ N1·g0 in `damped`).
+//    Then, closed so under N1, the upper block sent up out of the joint in the next step: the
+//    scheme's trapezoid takes N1 over the whole lift, the springs held ½ N1·c1 (`damped` gives
+//    back ½ N1·(Δg − c1)).
 //
 // 4. A vertex that passes a corner onto the next edge. A stiff wedge, its apex down on a held
 //    base, pressed by a traction on its top and pushed sideways 1 mm a step (frictionless: N
@@ -513,6 +516,48 @@ TEST(EnergyPaths, AVertexThatPassesOntoTheNextEdgeOfAStraightFaceKeepsItsForce) 
   EXPECT_NEAR(c.n0, c.n_prev, 1e-3 * c.n_prev);
   EXPECT_LT(std::abs(c.rule), 2e-3 * c.springs2);
   EXPECT_LT(std::abs(c.residual_step), 5e-3 * c.springs2);
+TEST(EnergyPaths, AContactThatOpensWithinAStepGivesBackItsStartForceBeyondTheGap) {
+  // The blocks of the tests above in two dynamic steps (β = ½, no gravity). The first closes the
+  // joint as in the test above: the upper block, g0 above the lower and moving down at v0, ends
+  // it at closure c1 under N1, the force the second step starts in balance with (M·a1,prev =
+  // N1 up on the upper block). Then the upper block is sent up at v_up with v_up·Δt = 5·c1: the
+  // joint opens within the second step and ends it with no force, so a1 = 0, K stays ½ m v_up²
+  // and d = v_up·Δt = Δg. The time scheme's identity (energy.cpp (1)) takes the start force
+  // linear over the whole lift, Q = ½ dᵀM (a1,prev + a1) − ΔK = ½ N1·Δg, but N1 pushed the faces
+  // apart only until the gap opened: ½ N1·c1, what the springs held (S falls by it). `damped`
+  // gives back ½ N1·(Δg − c1), or R = −½ N1·(Δg − c1) = −4 × the springs' ½ N1·c1.
+  const double kn = 1e10, w = 1, g0 = 2e-5, h = 0.25;  // Pa/m, m, m, m
+  const double dt = 5e-5, v0 = 2 * g0 / dt;            // s, m/s (0.8 m/s)
+  const SceneDef scene = scene_from_json(stacked_blocks("opening-contact", kn, w, h, dt, true), "opening");
+  const Mesh mesh = pre::build_mesh(scene, "opening");
+  solve::TimeStepper st(mesh, scene, "opening");
+  sink_upper_block(st, mesh, -g0, -v0, "opening");
+  st.step(dt);  // the joint closes
+  const double n1 = closed_normal_force(st.view());  // N/m
+  const double m = 2650 * w * 0.5;                                       // kg/m, the upper block
+  const double c1 = (v0 * dt - g0) / (1 + 0.25 * dt * dt * kn * w / m);  // m (the test above)
+  const double v_up = 5 * c1 / dt;                                       // m/s
+  sink_upper_block(st, mesh, 0.0, v_up, "opening");  // sent up, the contact and a1,prev kept
+  solve::EnergyMeter meter(st.view().model, &st.view().space);
+  meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
+  st.step(dt);  // the joint opens
+  meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
+  ASSERT_EQ(meter.rows().size(), 2u);
+  const solve::EnergyRow& first = meter.rows().front();
+  const solve::EnergyRow& end = meter.rows().back();
+  const double held = 0.5 * n1 * c1;               // J/m, the springs at the start
+  const double beyond = 0.5 * n1 * (v_up * dt - c1);  // J/m, the trapezoid's share beyond the gap
+  std::printf("opening contact: N1 = %.6g N/m, c1 = %.6g m; S %.6g → %.6g (½N1·c1 %.6g), K %.8g → %.8g, damped %.6g, "
+              "U %.4g → %.4g, residual %.4g J/m (½N1·(Δg − c1) = %.6g)\n",
+              n1, c1, first.springs, end.springs, held, first.kinetic, end.kinetic, end.damped - first.damped,
+              first.strain, end.strain, end.residual, beyond);
+  EXPECT_NEAR(n1, kn * w * c1, 0.03 * kn * w * c1);   // closed at c1 under N1 after the first step
+  EXPECT_NEAR(first.springs, held, 0.03 * held);
+  EXPECT_LT(std::abs(end.springs), 1e-3 * held);     // open at the second step's end (but a corner)
+  EXPECT_NEAR(end.kinetic, first.kinetic, 1e-4 * first.kinetic);  // no force at its end: a1 = 0
+  // What the motion lost is what the springs gave up (the trapezoid would book 5 × that).
+  EXPECT_NEAR(end.damped - first.damped, held, 0.05 * held);
+  EXPECT_LT(std::abs(end.residual), 0.05 * held);
 }
 
 }  // namespace

@@ -248,10 +248,7 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
         continue;
       }
       if (n0 <= 0) continue;
-      const ContactProblem::Row r = problem_.row(k);
-      double dg = 0;  // m, the step's change of its gap
-      for (int i = 0; i < r.size; ++i)
-        if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) dg += r.cn(i) * d[r.dofs[i]];
+      const double dg = gap_change(k, d);  // m, the step's change of its gap
       // Its start force's work stops where the gap closes: ½ N0·min(Δg, closure0) − ½ N0·closure0,
       // = −½ N0·max(closure1, 0): 0 for a contact the step opens.
       const double closure0 = -problem_.work(k).gap0;
@@ -260,6 +257,11 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       if (trace) trace_sunk_[k] = sunk;
     }
     if (end_unknowns_ == d.size() || end_unknowns_ == -2) released_work_ += moved_on_work(d, had);
+  }
+  for (std::size_t k = 0; k < problem_.contacts().size(); ++k) {
+    const double opened = opened_work(k, d);
+    released_work_ += opened;
+    if (trace) trace_sunk_[k] += opened;
   }
   if (trace) trace_d_ = d;
   // Kept for a re-cut that throws this attempt away (continue_from).
@@ -309,6 +311,34 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   if (problem_.max_damage_jump() >= 0.25) ++stats_.snap_back_steps;
   step.s.max_penetration = std::max(step.s.max_penetration, totals.max_penetration);
   step.s.max_capped = std::max(step.s.max_capped, totals.capped);
+}
+
+double ContactEffect::gap_change(std::size_t k, const Eigen::VectorXd& d) const {
+  const ContactProblem::Row r = problem_.row(k);
+  double dg = 0;
+  for (int i = 0; i < r.size; ++i)
+    if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) dg += r.cn(i) * d[r.dofs[i]];
+  return dg;
+}
+
+double ContactEffect::opened_work(std::size_t k, const Eigen::VectorXd& d) const {
+  // A contact that starts a dynamic step closed under the normal force N0 it carries (the last
+  // accepted step's end force, in the step's start balance M·a1,prev) and ends it open: the
+  // time scheme's identity takes its start force linear over the step's whole motion,
+  // ½ N0·Δg (energy.cpp (1)), but the force pushed the faces apart only until the gap opened,
+  // ½ N0·closure0 — what its springs held, which S gives up. The rest, ½ N0·(Δg − closure0),
+  // the contact never did: `damped` gives it back. (Its shear start force stays on the
+  // trapezoid, which friction books: ½ T0·s, book_contact.) Uniaxial compression h 0.0625 m,
+  // dynamic, fast: 58 contacts that slid into the first crack's step and open in it left
+  // −515 J/m in R without it (docs/energy.md `damped`). Not in static steps, whose balance
+  // is their own (not measured there).
+  if (!model_.scene().solver.dynamic) return 0;
+  const Contact& c = problem_.contacts()[k];
+  if (c.start_state == ContactState::open || c.state != ContactState::open || c.cohesive.on) return 0;
+  const double n0 = problem_.work(k).start_normal_force;  // N
+  const double closure0 = std::max(0.0, -problem_.work(k).gap0);  // m
+  if (!(n0 > 0)) return 0;
+  return -0.5 * n0 * std::max(0.0, gap_change(k, d) - closure0);
 }
 
 void ContactEffect::continue_from(const ContactEffect& before, std::vector<ContactHistory> history,

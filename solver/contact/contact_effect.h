@@ -79,7 +79,10 @@ class ContactEffect final : public Effect {
   /// force carried), ½ N1·gap0: the implicit step applies their end force N1 over its whole
   /// motion, the part before the faces touched too, of which their springs keep ½ N1·closure1;
   /// and of a vertex that ended closed on one edge and starts closed on another (moved_on_work),
-  /// ½ (c0 − c_prev)·d + S_prev − S0.
+  /// ½ (c0 − c_prev)·d + S_prev − S0;
+  /// and in a dynamic step, of those that start closed under a carried N0 and end open,
+  /// −½ N0·(Δg − closure0): the scheme's trapezoid of their start force beyond the gap's opening
+  /// (opened_work).
   void energy_step(const EnergyStep& e, EnergyTerms& t) const override;
 
   /// Carries on from the contacts of the run's mesh before a re-cut: `history` (mapped onto the
@@ -119,6 +122,12 @@ class ContactEffect final : public Effect {
   bool update_pattern(RunState& s);
   /// Adds contact k's friction, fracture and damped terms of the step to t (energy_step).
   void book_contact(const EnergyStep& e, std::size_t k, EnergyTerms& t) const;
+  /// m, the change of contact k's gap over the step's motion d (its row's cn·d).
+  double gap_change(std::size_t k, const Eigen::VectorXd& d) const;
+  /// J/m, what `damped` gives back for contact k in a dynamic step that it starts closed under
+  /// its carried normal force N0 and ends open: −½ N0·(Δg − closure0), the part of the time
+  /// scheme's trapezoid of its start force beyond where its gap opened (0 otherwise).
+  double opened_work(std::size_t k, const Eigen::VectorXd& d) const;
   /// With NMM_TRACE_ENERGY set: each contact's share of the step's energy, on stderr.
   void trace_energy_step(const EnergyStep& e, const EnergyTerms& t) const;
   /// With NMM_TRACE_PEN set: what a rejected step moved most and its deepest contacts, on stderr.
@@ -178,7 +187,7 @@ class ContactEffect final : public Effect {
   double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
   std::vector<double> start_shear_;   // N, [contact] the shear force T0 this step started with (commit)
   Eigen::VectorXd trace_d_;           // NMM_TRACE_ENERGY: the accepted step's motion
-  std::vector<double> trace_sunk_;    // J/m, NMM_TRACE_ENERGY: [contact] its found-sunk booking (commit)
+  std::vector<double> trace_sunk_;    // J/m, NMM_TRACE_ENERGY: [contact] its found-sunk or opened booking (commit)
   // commit()'s scratch, kept between steps: the vertices closed at the step's start (by loop
   // vertex) and sorted (vertex, edge) pairs.
   std::vector<std::uint8_t> commit_closed_;
