@@ -149,7 +149,13 @@ std::vector<std::uint8_t> cohesive_starts(const Mesh& mesh, const SceneDef& scen
       continue;
     }
     if (element_area(mesh, e) < Fracture::kDebrisArea * mesh.mesh_size * mesh.mesh_size) may[e] &= kMayBeReached;  // rule 5
-    if (tied[e] == 1) may[e] &= kMayBeReached;  // rule 7
+    Vec2 gap_at, gap_dir;
+    if (tied[e] == 1) {  // rule 7: its stress is the gap's end's, smeared: a start there or none
+      if (gap_end(mesh, scene, e, gap_at, gap_dir))
+        may[e] |= kGapEnd | kGapOnly;
+      else
+        may[e] &= kMayBeReached;
+    }
     if (tied[e] == 2) may[e] |= kGapEnd;
     if (!known) continue;
     const StrengthDef& st = scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(body)].material)].strength;
@@ -182,8 +188,8 @@ bool gap_end(const Mesh& mesh, const SceneDef& scene, std::size_t e, Vec2& at, V
   std::vector<std::uint8_t> in(corners.size(), 0);
   for (std::size_t i = 0; i < corners.size(); ++i)
     for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1] && !in[i]; ++v)
-      in[i] = std::abs(mesh.loop_xy[2 * static_cast<std::size_t>(v)] - corners[i].first.x) <= tol &&
-              std::abs(mesh.loop_xy[2 * static_cast<std::size_t>(v) + 1] - corners[i].first.y) <= tol;
+      in[i] = std::hypot(mesh.loop_xy[2 * static_cast<std::size_t>(v)] - corners[i].first.x,
+                         mesh.loop_xy[2 * static_cast<std::size_t>(v) + 1] - corners[i].first.y) <= mesh.mesh_size + tol;
   // The gap's end: e's corners and every reflex corner within an element's size of one of them
   // (both corners of a slot narrower than h, which the covers reach round together).
   double x = 0, y = 0, dx = 0, dy = 0;

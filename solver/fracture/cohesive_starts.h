@@ -8,7 +8,7 @@
 // (the bar's section unloads by about 1 % per µm of travel once its crack softens) elements
 // beside the crack were beyond σt while it unloaded them, and each started a crack of its own,
 // as many as the step's overshoot and the scatter allowed (the cohesive bar: 7–9 cracks, the
-// number following the step). Three rules, in the materials with a fracture energy only:
+// number following the step). The rules, in the materials with a fracture energy only:
 //   1. at most one new crack a step: the step is solved again with it (time_stepper.cpp), and
 //      the next crack is decided on the next step's state, in which the first one had a whole
 //      step to soften and relieve the rest;
@@ -72,7 +72,28 @@
 //      element's own σ1. It may still be reached by a tip. Petersson's beam (10 mm slot): at
 //      h 0.025 and 0.0167 m the first crack started in such a piece beside a notch wall 10–30 mm
 //      below the slot's end, and at h 0.025 m the end's own element cracked horizontally; now one
-//      crack runs up from the slot's end at all three meshes.
+//      crack runs up from the slot's end at all three meshes. A tied piece beyond its strength
+//      with a reflex corner within h of its vertices starts that crack too (kGapOnly: at the
+//      gap's end or nowhere): the concentration it carries is the gap end's, and the end's own
+//      element, wider than the slot, reached σt only at 24.2 kN/m at h 0.025 m (16.4 now; 14.9
+//      and 14.2 kN/m at h 0.0167 and 0.0125 m).
+//   8. a cohesive tip grows on where the rock at the tip has failed although the element ahead,
+//      whose constant stress averages the tip's field over h, holds (Fracture::find, grow):
+//      (a) a tip inside the star of a node whose cover the crack has not parted at an element
+//      beyond its strength behind it (crack_parting.h: the faces cannot open over the crack's
+//      last element, and that element carries the tip's concentration) crosses the holding
+//      element ahead without a bridge; Petersson's beam at h 0.0167 m: a crack 1 cm long waited
+//      140 steps, its own elements at 1.3–2.4 σt, the element ahead at 0.18 σt;
+//      (b) the normal stress across the tip's line at the tip, recovered from the two elements
+//      ahead on the line by linear extrapolation of their stresses (at their inside points'
+//      distances) back to the tip, reaches σt: the tip crosses the element ahead, one a solution.
+//      A crack band element's stress is its band's mean (Bažant & Oh 1983); the tip of a
+//      discrete cohesive crack advances where the stress at the tip reaches σt (Hillerborg,
+//      Modéer & Petersson 1976), which the mean over an element ahead underestimates by its
+//      gradient across h. A cohesive face cut through holding rock carries its stress on the
+//      elastic branch (rule 4), so a tip one element early changes little.
+//      (c) a tip whose element's own crack direction leaves that element at once (a tip on its
+//      vertex) goes on straight (as rule 4's band tip did), instead of stopping for good.
 // Runs without a fracture energy are not touched (bit for bit).
 #pragma once
 
@@ -91,6 +112,7 @@ namespace nmm::solve {
 constexpr std::uint8_t kMayStart = 1;    ///< a new crack may start in it (rules 1–3, 5–7)
 constexpr std::uint8_t kMayBeReached = 2;  ///< a tip may grow to it across rock that holds (rule 4: rules 2, 3)
 constexpr std::uint8_t kGapEnd = 4;  ///< a crack started in it leaves from the gap's end (rule 7, gap_end)
+constexpr std::uint8_t kGapOnly = 8;  ///< with kGapEnd: it starts a crack only there (rule 7: a piece tied round the gap)
 
 /// [me] kMayStart | kMayBeReached bits: what element e of `mesh` may do at the step's solution
 /// `solved` (rules above for elements of a material with a fracture energy; kMayStart alone for

@@ -20,6 +20,10 @@ TriangleElements::TriangleElements(const Mesh& mesh) : mesh_(&mesh), elements_(m
 }
 
 bool TriangleElements::shares_a_cover(const Mesh& mesh, std::size_t e, std::int32_t first_crack) const {
+  return shared_nodes(mesh, e, first_crack) != 0;
+}
+
+unsigned TriangleElements::shared_nodes(const Mesh& mesh, std::size_t e, std::int32_t first_crack) const {
   // Across each of e's edges on a crack, the piece of the same triangle with that edge reversed
   // (its ends within 1e-9·h): e itself where the crack ends inside it (a slit, both faces e's,
   // every cover shared). An edge with no such piece (a crack along the triangle's own edge, the
@@ -31,6 +35,7 @@ bool TriangleElements::shares_a_cover(const Mesh& mesh, std::size_t e, std::int3
   auto next = [&](std::size_t el, std::int32_t v) {
     return v + 1 < mesh.element_loop_offset[el + 1] ? v + 1 : mesh.element_loop_offset[el];
   };
+  unsigned shared = 0;
   for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
     if (mesh.loop_edge_joint[static_cast<std::size_t>(v)] < first_crack) continue;  // -1 (none) or a scene joint
     const Vec2 p = vertex(v), q = vertex(next(e, v));
@@ -40,9 +45,40 @@ bool TriangleElements::shares_a_cover(const Mesh& mesh, std::size_t e, std::int3
       for (std::int32_t w = mesh.element_loop_offset[o]; w < mesh.element_loop_offset[o + 1] && !across; ++w)
         across = near(vertex(w), q) && near(vertex(next(o, w)), p);
       if (!across) continue;
+      unsigned here = 0;
       for (int k = 0; k < 3; ++k)
         if (mesh.element_covers[3 * o + static_cast<std::size_t>(k)] == mesh.element_covers[3 * e + static_cast<std::size_t>(k)])
-          return true;
+          here |= 1u << k;
+      shared |= here;
+    }
+  }
+  return shared;
+}
+
+bool inside_star(const Mesh& mesh, std::size_t e, unsigned nodes, const Vec2& p) {
+  const std::size_t t = static_cast<std::size_t>(mesh.element_triangle[e]);
+  const double tol = 1e-9 * mesh.mesh_size * mesh.mesh_size;  // ×(edge length) ≈ 1e-9·h of distance
+  auto node = [&](std::int32_t n) { return Vec2{mesh.node_xy[2 * static_cast<std::size_t>(n)], mesh.node_xy[2 * static_cast<std::size_t>(n) + 1]}; };
+  for (int k = 0; k < 3; ++k) {
+    if (!(nodes & (1u << k))) continue;
+    const std::int32_t centre = mesh.triangle_nodes[3 * t + static_cast<std::size_t>(k)];
+    for (std::size_t u = 0; u < mesh.triangle_count(); ++u) {
+      const std::int32_t* q = &mesh.triangle_nodes[3 * u];
+      if (q[0] != centre && q[1] != centre && q[2] != centre) continue;
+      // p inside the star's triangle u, off the edge opposite the centre (the star's outer edge)
+      // by more than the tolerance; on the edges that meet at the centre counts as inside.
+      const Vec2 a = node(q[0]), b = node(q[1]), c = node(q[2]);
+      const double area2 = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+      const Vec2 v[3] = {a, b, c};
+      bool in = true;
+      for (int i = 0; i < 3 && in; ++i) {
+        const Vec2& m = v[(i + 1) % 3];
+        const Vec2& n = v[(i + 2) % 3];
+        const double side = ((n.x - m.x) * (p.y - m.y) - (p.x - m.x) * (n.y - m.y)) * (area2 > 0 ? 1 : -1);
+        const bool outer = q[i] == centre;  // the edge opposite node i: opposite the centre
+        in = outer ? side > tol : side >= -tol;
+      }
+      if (in) return true;
     }
   }
   return false;

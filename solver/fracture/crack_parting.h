@@ -37,6 +37,9 @@ class TriangleElements {
   /// physical cover as e at some node: the crack has not parted e from it. (Pieces only a scene
   /// joint separates from e are not compared.)
   bool shares_a_cover(const Mesh& mesh, std::size_t e, std::int32_t first_crack) const;
+  /// The nodes of e's triangle (bit k: Mesh::triangle_nodes[3·t + k]) whose cover such a piece
+  /// shares with e: the stars the crack has not yet run right across. 0 where e is parted.
+  unsigned shared_nodes(const Mesh& mesh, std::size_t e, std::int32_t first_crack) const;
   bool of(const Mesh& mesh) const { return &mesh == mesh_ && mesh.element_count() == elements_; }
 
  private:
@@ -45,6 +48,10 @@ class TriangleElements {
   std::vector<std::size_t> offset_;  // [triangles + 1]
   std::vector<std::int32_t> element_;
 };
+
+/// Point p lies inside (not on the outer edge of) the star of a node of e's triangle flagged in
+/// `nodes` (bit k: Mesh::triangle_nodes[3·t + k]): a crack ending at p has not run across it.
+bool inside_star(const Mesh& mesh, std::size_t e, unsigned nodes, const Vec2& p);
 
 /// The indices into `ends_a`/`ends_b` (a crack's segments, as cut) of the segments that lie in
 /// triangle t of `mesh` (their mid-point within 1e-9·h of it), and of every segment joined to

@@ -312,8 +312,44 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   // drives it (`drive`: one that holds has no mode of its own).
   // `band`: a cohesive crack reaching an element in the band ahead of its tip (rule 4 of
   // cohesive_starts.h) crosses the `forced` holding elements between without a bridge.
+  // An element of a material with a fracture energy (rock that softens), in a run that weighs
+  // cohesive starts.
+  auto cohesive_rock = [&](std::size_t e) {
+    return !may_start.empty() &&
+           cohesive_law(scene.materials[scene.bodies[mesh.element_body[e]].material].strength).on();
+  };
+  // Rule 8 of cohesive_starts.h: the normal stress across a cohesive tip's line at the tip,
+  // recovered from the two elements ahead on its line (their stresses at their inside points'
+  // distances ahead, extrapolated linearly back to the tip), reaches σt.
+  auto tip_stress_breaks = [&](std::size_t e1, const Tip& tip) {
+    const double nx = -tip.dir.y, ny = tip.dir.x;
+    auto s_nn = [&](std::size_t u) {
+      return stress[3 * u] * nx * nx + stress[3 * u + 1] * ny * ny + 2 * stress[3 * u + 2] * nx * ny;
+    };
+    auto ahead = [&](std::size_t u) {
+      const Vec2 c = inside_point(mesh, u);
+      return (c.x - tip.at.x) * tip.dir.x + (c.y - tip.at.y) * tip.dir.y;
+    };
+    const double sigma_t = scene.materials[scene.bodies[mesh.element_body[e1]].material].strength.tensile;
+    const double d1 = ahead(e1), s1 = s_nn(e1);
+    double at_tip = s1;
+    RayExit exit;
+    if (ray_exit(mesh, e1, tip.at, tip.dir, tol, exit)) {
+      const std::int32_t e2 = grid().at(plus(exit.at, 1e-6 * h, tip.dir));
+      if (e2 >= 0 && !crossed_[static_cast<std::size_t>(e2)] && mesh.element_body[static_cast<std::size_t>(e2)] == mesh.element_body[e1] &&
+          ratio_[static_cast<std::size_t>(e2)] > -std::numeric_limits<double>::infinity()) {
+        const double d2 = ahead(static_cast<std::size_t>(e2)), s2 = s_nn(static_cast<std::size_t>(e2));
+        if (d1 > 0 && d2 > d1 + 0.1 * h) at_tip = s1 + (s1 - s2) * d1 / (d2 - d1);
+      }
+    }
+    if (trace_rules())
+      std::fprintf(stderr, "TRACE tip stress step %lld tip (%.4f,%.4f) element %zu s_nn %.4g at the tip %.4g (sigma_t %.4g)\n",
+                   static_cast<long long>(s.step), tip.at.x, tip.at.y, e1, s1, at_tip, sigma_t);
+    return sigma_t > 0 && at_tip >= sigma_t;
+  };
   auto grow = [&](Tip& tip, int forced, CrackMode drive, bool band = false) {
     bool bridged = band;  // the holding elements ahead were weighed (bridge) once this growth
+    bool recovered = false;  // rule 8 let it cross one holding element
     for (std::size_t guard = 0; guard < n; ++guard) {
       const std::int32_t e = grid().at(plus(tip.at, 1e-6 * h, tip.dir));
       if (e < 0) {
@@ -322,6 +358,19 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       }
       if (crossed_[e] || !(ratio_[e] > -std::numeric_limits<double>::infinity())) return;
       const bool holds = ratio_[e] < 1;
+      if (holds && forced <= 0 && !may_start.empty() && trace_rules())
+        std::fprintf(stderr, "TRACE holds step %lld tip (%.4f,%.4f) dir (%.3f,%.3f) crack %d element %d ratio %.4f snn %.4g area %.3g h2\n",
+                     static_cast<long long>(s.step), tip.at.x, tip.at.y, tip.dir.x, tip.dir.y, tip.crack, e, ratio_[e],
+                     stress[3 * e] * tip.dir.y * tip.dir.y + stress[3 * e + 1] * tip.dir.x * tip.dir.x -
+                         2 * stress[3 * e + 2] * tip.dir.x * tip.dir.y,
+                     element_area(mesh, static_cast<std::size_t>(e)) / (h * h));
+      if (holds && forced <= 0 && !band && !recovered && cohesive_rock(static_cast<std::size_t>(e)) &&
+          tip_stress_breaks(static_cast<std::size_t>(e), tip)) {
+        // Rule 8 of cohesive_starts.h: straight on through it, as rule 4's band crosses, one
+        // element a solution (the next is weighed on the solution with this one cut).
+        forced = 1;
+        bridged = recovered = true;
+      }
       if (holds && forced <= 0) return;
       if (holds && !bridged) {  // only as a rock bridge to a stop (tip_drive.h)
         const int span = bridge(tip, drive);
@@ -352,7 +401,9 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
         // A band's crack whose element's own direction leaves it at once from the tip (a tip at
         // its vertex) goes on straight, as it came to it (rule 4 of cohesive_starts.h), instead
         // of stopping there for good (Petersson's beam at h 0.0125 m: 500 steps).
-        if (!band || holds || !ray_exit(mesh, static_cast<std::size_t>(e), tip.at, tip.dir, tol, exit)) return;
+        if (!(band || cohesive_rock(static_cast<std::size_t>(e))) || holds ||
+            !ray_exit(mesh, static_cast<std::size_t>(e), tip.at, tip.dir, tol, exit))
+          return;
         d = tip.dir;
       }
       const CrackEnd c = crack_end(mesh, static_cast<std::size_t>(e), tip.at, exit);
@@ -498,7 +549,16 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     // Its crack grows on from its tips, through one element each even where it holds, then on
     // through those that break: the step is solved again on it.
     const std::size_t i = static_cast<std::size_t>(std::find(over_.begin(), over_.end(), best) - over_.begin());
-    for (const std::size_t t : regrow[i]) grow(tips_[t], 1, failure_[static_cast<std::size_t>(best)].mode);
+    // In rock that softens, a tip that lies inside the star of a node whose cover the crack has
+    // not parted at `best` (crack_parting.h) crosses the holding element ahead without a bridge
+    // (rule 8 of cohesive_starts.h): a crack that ends inside a star cannot open, and a cohesive
+    // face cut through rock that holds carries its stress on its elastic branch.
+    const unsigned tying = cohesive_rock(static_cast<std::size_t>(best))
+                               ? parted_->shared_nodes(mesh, static_cast<std::size_t>(best), first_crack)
+                               : 0u;
+    for (const std::size_t t : regrow[i])
+      grow(tips_[t], 1, failure_[static_cast<std::size_t>(best)].mode,
+           tying != 0 && inside_star(mesh, static_cast<std::size_t>(best), tying, tips_[t].at));
     if (trace_rules())
       std::fprintf(stderr, "TRACE re-armed step %lld element %d ratio %.4f tips %zu: %zu segments\n",
                    static_cast<long long>(s.step), best, ratio_[static_cast<std::size_t>(best)], regrow[i].size(),
@@ -517,11 +577,13 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     if (!may_start.empty() && (may_start[e] & kGapEnd) && gap_end(mesh, scene, e, gap_at, gap_dir)) {
       const std::int32_t there = grid().at(plus(gap_at, 1e-6 * h, gap_dir));
       RayExit probe;
-      if (there >= 0 && !crossed_[static_cast<std::size_t>(there)] &&
+      if (there >= 0 && !crossed_[static_cast<std::size_t>(there)] && may_start[static_cast<std::size_t>(there)] != 0 &&
           ray_exit(mesh, static_cast<std::size_t>(there), plus(gap_at, 1e-6 * h, gap_dir), gap_dir, 0, probe)) {
         e = static_cast<std::size_t>(there);
         p = {0.5 * (gap_at.x + probe.at.x), 0.5 * (gap_at.y + probe.at.y)};
         d = gap_dir;
+      } else if (may_start[e] & kGapOnly) {
+        return out;  // the gap's end is cracked or holds a face already: a piece tied round it starts nothing
       }
     }
     RayExit fwd, back;
