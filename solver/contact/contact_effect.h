@@ -159,8 +159,9 @@ class ContactEffect final : public Effect {
   /// The closed contacts `ended` (of the mesh before a re-cut) carried onto this mesh by `from`;
   /// one whose vertex or edge the re-cut left in no element is dropped.
   std::vector<EndedContact> carry_ended(const std::vector<EndedContact>& ended, const MeshPieces& from) const;
-  /// Contact k of the step, found open at its start, is held there by its law (a dilated
-  /// Barton–Bandis joint, a cohesive face): an end force on its vertex and edge is not released.
+  /// Contact k of the step, found open at its start, is held there by its law (a Barton–Bandis
+  /// joint, a force at rest: a cohesive face's traction): an end force on its vertex and edge is
+  /// not released.
   bool held_open(std::size_t k) const;
   /// J/m, `damped`'s booking for `e` released at this step's start: ½ (0 − c_end)·d + e.stored.
   double released_energy(const EndedContact& e, const Eigen::VectorXd& d, int nd) const;
