@@ -67,11 +67,21 @@
 //    (θ = 0) passes from one element's edge to the next at x = 1 m: the same point, normal and
 //    depth, the force goes on, and the rule books nothing (releasing the old spring alone would
 //    book −½ c_prev·d + S_prev there).
+//
+// 5. A contact released between steps. The blocks of 3 after their static step, the joint closed
+//    under N with its springs holding S1 = ½ N·closure + ½ |T·s_el| (energy.csv's springs at that
+//    row); before the next step the upper block is lifted out of the search distance with its
+//    contacts' history, as a vertex that slid past its edge's end onto a face that turns away is
+//    found closed nowhere (the fracture matrix's compression cells, the steps after a crack). The
+//    step starts with no spring there: S1 leaves S with no work, and the step's balance never
+//    sees it. `damped` books it with ½ (0 − c_end)·d, or R = S1 (contact_effect.cpp
+//    released_energy).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -310,11 +320,11 @@ void sink_upper_block(solve::TimeStepper& st, const Mesh& mesh, double p, double
   st.restore(moved, solve::save_contact_history(st.view().contacts), name);
 }
 
-// One step of Δt metered as nmm-solve meters it, from the state st holds now.
-solve::EnergyMeter metered_step(solve::TimeStepper& st, double dt) {
+// One step of Δt metered as nmm-solve meters it, from the state st holds now (at t = t0).
+solve::EnergyMeter metered_step(solve::TimeStepper& st, double dt, double t0 = 0) {
   solve::EnergyMeter meter(st.view().model, &st.view().space);
   meter.after_step(st.view().state, solve::energy_sources(st.view()), true);
-  const Outcome o = st.run_until(dt * (1 - 1e-9), [&](std::int64_t) {
+  const Outcome o = st.run_until(t0 + dt * (1 - 1e-9), [&](std::int64_t) {
     const solve::RunView view = st.view();
     meter.after_step(view.state, solve::energy_sources(view), true);
   });
@@ -558,6 +568,54 @@ TEST(EnergyPaths, AContactThatOpensWithinAStepGivesBackItsStartForceBeyondTheGap
   // What the motion lost is what the springs gave up (the trapezoid would book 5 × that).
   EXPECT_NEAR(end.damped - first.damped, held, 0.05 * held);
   EXPECT_LT(std::abs(end.residual), 0.05 * held);
+// The blocks of 3 after their static step, the joint closed under N ≈ kn·w·p, then lifted by
+// `lift` with the contacts' history (test 5): the meter's rows before and after the next step.
+std::pair<solve::EnergyRow, solve::EnergyRow> step_after_lift(double lift, const std::string& name) {
+  const double kn = 1e10, w = 1, p = 1e-4, h = 0.25;  // Pa/m, m, m
+  const double dt = 5e-5;                             // s (the static step of 3)
+  const SceneDef scene = scene_from_json(stacked_blocks(name, kn, w, h, dt, false), name);
+  const Mesh mesh = pre::build_mesh(scene, name);
+  solve::TimeStepper st(mesh, scene, name);
+  sink_upper_block(st, mesh, p, 0.0, name);
+  metered_step(st, dt);
+  sink_upper_block(st, mesh, -lift, 0.0, name);
+  const solve::EnergyMeter meter = metered_step(st, dt, dt);
+  EXPECT_GE(meter.rows().size(), 2u);
+  const solve::EnergyRow& first = meter.rows().front();
+  const solve::EnergyRow& end = meter.rows().back();
+  std::printf("%s: lifted %.3g m; S before the step %.6g J/m (½kn·w·p² = %.6g); after it S %.6g, U %.4g, "
+              "damped %.6g, work %.4g, residual %.4g J/m\n",
+              name.c_str(), lift, first.springs, 0.5 * kn * w * p * p, end.springs, end.strain - first.strain,
+              end.damped - first.damped, end.load_work, end.residual);
+  return {first, end};
+}
+
+TEST(EnergyPaths, AContactReleasedBetweenStepsBooksTheEnergyItsSpringsHeld) {
+  // Lifted 0.1 m (0.4 h: out of the search distance): found closed nowhere.
+  const auto [first, end] = step_after_lift(0.1, "released-contact");
+  const double s0 = 0.5 * 1e10 * 1 * 1e-4 * 1e-4;  // J/m, ½kn·w·p²
+  EXPECT_GT(first.springs, 0.9 * s0);              // the joint held its springs' energy...
+  EXPECT_LT(std::abs(end.springs), 1e-4 * s0);     // ...and the step ends without them (the base's support springs)
+  // What the step's motion releases against the lost end forces is small here (stiff heavy
+  // blocks, no load, ½ (0 − c_end)·d = 0.34 J/m): `damped` is the springs' energy, and R would be
+  // S1 without it (measured: +48.1 J/m; now −2e-6).
+  EXPECT_NEAR(end.damped - first.damped, first.springs, 0.02 * first.springs);
+  EXPECT_LT(std::abs(end.residual), 0.02 * first.springs);
+}
+
+TEST(EnergyPaths, AContactFoundOpenOnItsEdgeWithNoForceIsReleased) {
+  // Lifted 2p: the detection finds the vertex on the same edge again, about p open, and the
+  // constant-stiffness joint gives it no force at rest — released as one found closed nowhere
+  // (contact_effect.cpp held_open). Before, a contact found open on its edge kept its end force
+  // in the bookings (a Barton–Bandis joint that dilated apart is still held so): those the
+  // detection found on their edges booked nothing, and R kept 25.2 J/m.
+  const double p = 1e-4;
+  const auto [first, end] = step_after_lift(2 * p, "open-on-its-edge");
+  const double s0 = 0.5 * 1e10 * 1 * p * p;  // J/m
+  EXPECT_GT(first.springs, 0.9 * s0);
+  EXPECT_LT(std::abs(end.springs), 1e-4 * s0);
+  EXPECT_NEAR(end.damped - first.damped, first.springs, 0.02 * first.springs);
+  EXPECT_LT(std::abs(end.residual), 0.02 * first.springs);
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ class ContactEffect final : public Effect {
   /// a new face's contact that slides from its zero start force books ½|T|·slip less in
   /// t.fracture (the static step's friction force went from 0 to T: crack_release.h). Into
   /// t.damped: the work of the end forces of the last accepted step's closed contacts that this
-  /// step started without, ½ (0 − c_end)·d (below), in a step that re-cut the mesh too; of the
+  /// step started without, ½ (0 − c_end)·d (below), and the energy their springs held at that
+  /// end, which left S with no work (released_energy), in a step that re-cut the mesh too; of the
   /// contacts it found sunk with no force carried (a vertex that chattered),
   /// ½ c0·d less the ½ N0·closure0 their springs started with from no work, c0·d taken up to the
   /// gap's close (0 for one the step opens); and of those that close from open (gap0 > 0, no
@@ -169,6 +170,12 @@ class ContactEffect final : public Effect {
   /// The closed contacts `ended` (of the mesh before a re-cut) carried onto this mesh by `from`;
   /// one whose vertex or edge the re-cut left in no element is dropped.
   std::vector<EndedContact> carry_ended(const std::vector<EndedContact>& ended, const MeshPieces& from) const;
+  /// Contact k of the step, found open at its start, is held there by its law (a Barton–Bandis
+  /// joint, a force at rest: a cohesive face's traction): an end force on its vertex and edge is
+  /// not released.
+  bool held_open(std::size_t k) const;
+  /// J/m, `damped`'s booking for `e` released at this step's start: ½ (0 − c_end)·d + e.stored.
+  double released_energy(const EndedContact& e, const Eigen::VectorXd& d, int nd) const;
   /// J/m, c_end·d of `e` on this space's unknowns (nd: element_dofs()).
   double ended_work(const EndedContact& e, const Eigen::VectorXd& d, int nd) const;
   /// J/m into `damped` (the moved-on rule, contact_effect.cpp): for each vertex the last step
@@ -184,7 +191,7 @@ class ContactEffect final : public Effect {
   std::vector<EndedContact> start_ended_;
   Eigen::Index start_end_unknowns_ = -1;
   std::vector<std::int32_t> released_;  // sorted vertices of the contacts released at this step's start
-  double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step
+  double released_work_ = 0;          // J/m, ½ (0 − c_end)·d of them over this step and their springs' end energy
   std::vector<double> start_shear_;   // N, [contact] the shear force T0 this step started with (commit)
   Eigen::VectorXd trace_d_;           // NMM_TRACE_ENERGY: the accepted step's motion
   std::vector<double> trace_sunk_;    // J/m, NMM_TRACE_ENERGY: [contact] its found-sunk or opened booking (commit)
@@ -199,6 +206,7 @@ class ContactEffect final : public Effect {
   std::vector<std::pair<std::int32_t, std::int32_t>> moved_pairs_;
   std::vector<std::int32_t> moved_group_;
   std::vector<double> moved_old_, moved_new_;
+  std::vector<std::uint8_t> commit_released_;    // commit: [ended_] 1 where this step released it
 };
 
 }  // namespace nmm::solve

@@ -355,6 +355,10 @@ double ContactProblem::normal_force_at_rest(std::size_t i) const {
   return normal_at(set_.laws()[c.law], c, w, w.gap0, skin_).force;
 }
 
+double ContactProblem::law_force_at_rest(std::size_t i) const {
+  return normal_at(set_.laws()[set_.contacts()[i].law], set_.contacts()[i], work_[i], work_[i].gap0, skin_).force;
+}
+
 void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   std::vector<Contact>& contacts = set_.step_contacts();
   const std::vector<ContactLaw>& laws = set_.laws();

@@ -86,6 +86,9 @@ class ContactProblem {
   /// carried), or one that starts the step open but deep, with no force carried (energy.h; 0
   /// for a softening crack face, whose law has its own start).
   double normal_force_at_rest(std::size_t i) const;
+  /// N, contact i's normal force at d = 0 by its law, a softening crack face's cohesive traction
+  /// too (tension < 0): 0 where nothing holds it at the step's start.
+  double law_force_at_rest(std::size_t i) const;
   /// The step's contacts (ContactSet::contacts()), index-aligned with the rows.
   const std::vector<Contact>& contacts() const { return set_.contacts(); }
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
