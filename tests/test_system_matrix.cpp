@@ -748,3 +748,63 @@ TEST(SystemMatrixPermuted, TheMatrixGatheredInItsFactorsOrderFactorisesAsCholmod
     EXPECT_EQ(k.failed_unknown(), n / 3);
   }
 }
+
+TEST(SystemMatrixSingle, AFactorOutgrownByItsPatternIsKnownAndItsCountRestarts) {
+  // A lean run (the largest) whose pattern grew since its factorisation says so
+  // (factor_outgrown: the contact solve then keeps the factor until CG has spent a factorisation's
+  // worth on it); smaller runs never do. The iterations counted on it travel with the
+  // factorisation in a checkpoint (a restarted run counts on from them) and a factorisation
+  // starts them again from 0.
+  const GrownGrid grid;
+  const int n = grid.n;
+  for (const bool lean : {false, true}) {
+    SCOPED_TRACE(lean ? "lean" : "not lean");
+    const auto set_up = [&](SystemMatrix& k) {
+      k.set_amd_only(true);
+      k.set_block_ordering(2, n, n);
+      k.set_single_precision(n);
+      k.set_lean_factorisation(lean ? n : n + 1);
+    };
+    SystemMatrix k;
+    set_up(k);
+    k.build_pattern(n, grid.g.offsets, grid.g.dofs);
+    EXPECT_FALSE(k.factor_outgrown());  // no factor yet
+    assembled(k, grid.g, n);
+    ASSERT_TRUE(k.factorize());
+    EXPECT_FALSE(k.factor_outgrown());
+    const std::string unchanged = k.factor_source();
+    // The same pattern built again (the steps without a growth): not outgrown.
+    k.build_pattern(n, grid.g.offsets, grid.g.dofs);
+    EXPECT_FALSE(k.factor_outgrown());
+    k.build_pattern(n, grid.grown.offsets, grid.grown.dofs);
+    assembled(k, grid.grown, n);
+    EXPECT_EQ(k.factor_outgrown(), lean);
+    k.count_outgrown_iterations(37);
+    k.count_outgrown_iterations(6);
+    EXPECT_EQ(k.outgrown_iterations(), 43);
+    // Restored into a run on the grown pattern: outgrown as the straight run, the same count,
+    // the same solves.
+    SystemMatrix restored;
+    set_up(restored);
+    restored.build_pattern(n, grid.grown.offsets, grid.grown.dofs);
+    ASSERT_TRUE(restored.factor_from_source(k.factor_source()));
+    EXPECT_EQ(restored.factor_outgrown(), lean);
+    EXPECT_EQ(restored.outgrown_iterations(), 43);
+    const Eigen::VectorXd x = k.solve_unrefined(grid.b), y = restored.solve_unrefined(grid.b);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(y[i], x[i]) << "unknown " << i;
+    // Without a count the bytes are those of a checkpoint written before the count existed.
+    EXPECT_EQ(k.factor_source().size(), unchanged.size() + 2 * sizeof(std::uint64_t));
+    SystemMatrix older;
+    set_up(older);
+    older.build_pattern(n, grid.grown.offsets, grid.grown.dofs);
+    ASSERT_TRUE(older.factor_from_source(unchanged));
+    EXPECT_EQ(older.outgrown_iterations(), 0);
+    EXPECT_EQ(older.factor_outgrown(), lean);
+    // A factorisation of the grown pattern: not outgrown, counted from 0.
+    ASSERT_TRUE(k.factorize());
+    EXPECT_FALSE(k.factor_outgrown());
+    EXPECT_EQ(k.outgrown_iterations(), 0);
+    const Eigen::VectorXd z = k.solve(grid.b);
+    EXPECT_LT((grid.b - k.matrix().selfadjointView<Eigen::Upper>() * z).norm(), 1e-12 * grid.b.norm());
+  }
+}
