@@ -83,10 +83,7 @@
 // the rank of the left-out springs).
 //
 // A CG run that needs more than half its budget shows the kept factorisation is far from H: the
-// next direction comes from a new factorisation, which the following runs then reuse. In the
-// largest runs, not while the pattern has outgrown the factor (that factorisation would also
-// order it anew) until CG has spent about such a factorisation's worth on it
-// (kOutgrownCgIterations).
+// next direction comes from a new factorisation, which the following runs then reuse.
 #include "solver/contact/contact_solve.h"
 
 #include <algorithm>
@@ -173,16 +170,6 @@ constexpr double kMaxFactorisationInCgIterations = 10;
 // 90 % of the runs after at most 4 moved strengths, 83 % after 5–19, 36 % after 20–49, 3 % after
 // 50–99 and never after 100 or more — those runs spent their whole budget and then factorised.
 constexpr int kMovedPerCgIteration = 5;
-
-// CG iterations a factorisation may precondition, once the pattern has outgrown it, before a
-// run past half its budget factorises again (contact_solve below; SystemMatrix::factor_outgrown,
-// from 500,000 unknowns). There that factorisation also orders and analyses the new pattern:
-// on the 100,000-block wall (929,502 unknowns, one thread) METIS's 7 s and a numeric
-// factorisation, 25–35 s in all at a growth, against about 0.3 s per CG iteration
-// (docs/performance.md (h)). Without the cap a factor kept from a growth preconditioned CG runs
-// of 6–10 iterations that kept converging, 132 of them over 4 steps, with no end
-// (docs/notes/2026-11-scale.md). A count, not a clock: a run is the same on every machine.
-constexpr long kOutgrownCgIterations = 80;
 
 int cg_budget(const SystemMatrix& k, std::size_t contacts) {
   const double per_iteration = 4.0 * k.factor_nonzeros() + 4.0 * static_cast<double>(k.nonzeros()) +
@@ -382,14 +369,6 @@ Outcome solve_contact_step(SystemMatrix& system, ContactProblem& contacts, const
       // next direction is cheaper from a new one (which later runs reuse) than from another
       // long CG run.
       refresh = solved && 2 * (stats.cg_iterations - before) > budget;
-      // Not yet where that factorisation would also analyse a pattern the factor no longer
-      // has (the largest runs: SystemMatrix::factor_outgrown), until the CG iterations spent on
-      // that factor are worth one such factorisation (kOutgrownCgIterations). Until then a run
-      // that converged keeps the factor and only a spent budget factorises.
-      if (system.factor_outgrown()) {
-        system.count_outgrown_iterations(stats.cg_iterations - before);
-        if (system.outgrown_iterations() < kOutgrownCgIterations) refresh = false;
-      }
       stats.cg_seconds += t0.seconds();
     } else {
       refresh = false;

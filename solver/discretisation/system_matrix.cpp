@@ -21,9 +21,6 @@ namespace {
 // Marks the kept ordering in factor_source()'s bytes, after the matrix ("ORDERING" in ASCII: an
 // older checkpoint's note there starts with its length, far smaller).
 constexpr std::uint64_t kOrderingTag = 0x474E49524544524FULL;
-// Marks the CG iterations preconditioned since the pattern outgrew the factor ("OUTGROWN"), after
-// the ordering.
-constexpr std::uint64_t kOutgrownTag = 0x4E574F524754554FULL;
 
 // A grown scatter's arrays keep 1/kScatterRoom of their size as room for the next growths
 // (grow_in_place).
@@ -138,7 +135,6 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     std::copy(new_outer.begin(), new_outer.end(), k_.outerIndexPtr());
     std::copy(new_inner.begin(), new_inner.end(), k_.innerIndexPtr());
     analysed_ = false;
-    outgrown_ = -1;
     outer = k_.outerIndexPtr();
     inner = k_.innerIndexPtr();
   }
@@ -288,7 +284,6 @@ void SystemMatrix::build_pattern(int n, const std::vector<int>& offsets, const s
     std::copy(outer.begin(), outer.end(), k_.outerIndexPtr());
     std::copy(inner.begin(), inner.end(), k_.innerIndexPtr());
     analysed_ = false;
-    outgrown_ = -1;
   }
   std::fill(k_.valuePtr(), k_.valuePtr() + inner.size(), 0.0);
   group_offsets_ = offsets;
@@ -513,8 +508,6 @@ bool SystemMatrix::factorize() {
   // analysis the heap's free pages are returned, so that the double values take their place.
   const bool single = single_from_ > 0 && size() >= single_from_;
   const bool lean = single && size() >= lean_from_;  // (analyse_kept: a new ordering for each pattern)
-  outgrown_iterations_ = 0;  // a new factorisation, of this pattern
-  outgrown_ = -1;
   if (single) {
     Sparse().swap(factored_);
     has_factor_ = false;
@@ -592,23 +585,7 @@ std::string SystemMatrix::factor_source() const {
     w.put<double>(kept_fill_);
     w.put<double>(kept_nonzeros_);
   }
-  // The CG iterations it has preconditioned since the pattern outgrew it (a lean run's contact
-  // solve reads them), where there are any: a restart counts on from them.
-  if (outgrown_iterations_ > 0) {
-    w.put<std::uint64_t>(kOutgrownTag);
-    w.put<std::int64_t>(outgrown_iterations_);
-  }
   return w.take();
-}
-
-bool SystemMatrix::factor_outgrown() const {
-  if (!has_factor_ || single_from_ <= 0 || size() < single_from_ || size() < lean_from_) return false;
-  // Compared once per pattern and factorisation (28 M entries at 930k unknowns: some 20 ms).
-  if (outgrown_ < 0)
-    outgrown_ = !(k_.nonZeros() == factored_.nonZeros() && k_.rows() == factored_.rows() &&
-                  std::equal(k_.outerIndexPtr(), k_.outerIndexPtr() + k_.rows() + 1, factored_.outerIndexPtr()) &&
-                  std::equal(k_.innerIndexPtr(), k_.innerIndexPtr() + k_.nonZeros(), factored_.innerIndexPtr()));
-  return outgrown_ == 1;
 }
 
 bool SystemMatrix::factor_from_source(const std::string& bytes) {
@@ -617,7 +594,6 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   std::vector<double> values, note;
   std::vector<int> perm;
   double fill = 0, nonzeros = 0;
-  std::int64_t outgrown = 0;
   try {
     ByteReader r(bytes, "", "FACTOR");
     outer = r.get_vector<int>(static_cast<std::size_t>(n + 1), "column starts");
@@ -630,11 +606,6 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
       perm = r.get_vector<int>(static_cast<std::size_t>(n), "ordering");
       fill = r.get<double>();
       nonzeros = r.get<double>();
-    }
-    if (r.peek<std::uint64_t>(0) == kOutgrownTag) {
-      r.get<std::uint64_t>();
-      outgrown = r.get<std::int64_t>();
-      if (outgrown < 0) return false;
     }
     // Older checkpoints end with a note on the springs factorised (no longer used): skipped.
     if (!r.at_end()) note = r.get_vector<double>(SIZE_MAX, "note");
@@ -679,8 +650,6 @@ bool SystemMatrix::factor_from_source(const std::string& bytes) {
   added_since_.clear();
   llt_.factorize(m);
   analysed_ = false;
-  outgrown_iterations_ = outgrown;
-  outgrown_ = -1;
   has_factor_ = llt_.info() == Eigen::Success;
   if (has_factor_) {
     factored_ = std::move(m);

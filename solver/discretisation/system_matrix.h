@@ -133,17 +133,6 @@ class SystemMatrix {
   bool has_factor() const { return has_factor_; }
   /// Forgets the factorisation (the next solve must factorise first).
   void drop_factor() { has_factor_ = false; }
-  /// A lean run (set_lean_factorisation: the largest) whose pattern is no longer the factorised
-  /// matrix's (it grew or shed pairs since): the next factorisation analyses it too (at 930k
-  /// unknowns METIS's 7 s and a numeric factorisation, 25–35 s, docs/performance.md (h)).
-  /// Compared with the factorised matrix's pattern, which a checkpoint restores, so that a
-  /// restarted run answers as the straight one. False in smaller runs and without a factor.
-  bool factor_outgrown() const;
-  /// CG iterations preconditioned by the current factorisation while factor_outgrown() (the
-  /// contact solve counts them: count_outgrown_iterations); 0 after a factorisation. A
-  /// checkpoint carries them with the factorisation (factor_source()).
-  long outgrown_iterations() const { return outgrown_iterations_; }
-  void count_outgrown_iterations(long iterations) { outgrown_iterations_ += iterations; }
   /// The matrix the current factorisation was made from (pattern and values) as bytes, empty
   /// without one: a checkpoint keeps it so that a restarted run preconditions with the same
   /// factorisation as the straight run (bitwise equal results).
@@ -244,9 +233,6 @@ class SystemMatrix {
   PermutedLower permuted_;
   bool analysed_ = false;
   bool has_factor_ = false;
-  long outgrown_iterations_ = 0;  // outgrown_iterations()
-  // factor_outgrown()'s answer while the pattern and the factorisation stay (−1: not known).
-  mutable int outgrown_ = -1;
   std::size_t analyses_ = 0;
   std::size_t builds_ = 0;
   double factor_nonzeros_ = 0, factor_flops_ = 0;
