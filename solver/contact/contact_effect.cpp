@@ -450,6 +450,8 @@ double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<
     if (trace && first[g] < trace_sunk_.size()) trace_sunk_[first[g]] += b;
   }
   return booked;
+}
+
 bool ContactEffect::held_open(std::size_t k) const {
   // A contact found open that its law still holds at the step's start: a Barton–Bandis joint
   // whose faces dilated apart (its gap less the dilation it carries is closed: a force at rest),
