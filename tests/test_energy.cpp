@@ -526,6 +526,8 @@ TEST(EnergyPaths, AVertexThatPassesOntoTheNextEdgeOfAStraightFaceKeepsItsForce) 
   EXPECT_NEAR(c.n0, c.n_prev, 1e-3 * c.n_prev);
   EXPECT_LT(std::abs(c.rule), 2e-3 * c.springs2);
   EXPECT_LT(std::abs(c.residual_step), 5e-3 * c.springs2);
+}
+
 TEST(EnergyPaths, AContactThatOpensWithinAStepGivesBackItsStartForceBeyondTheGap) {
   // The blocks of the tests above in two dynamic steps (β = ½, no gravity). The first closes the
   // joint as in the test above: the upper block, g0 above the lower and moving down at v0, ends
@@ -568,6 +570,8 @@ TEST(EnergyPaths, AContactThatOpensWithinAStepGivesBackItsStartForceBeyondTheGap
   // What the motion lost is what the springs gave up (the trapezoid would book 5 × that).
   EXPECT_NEAR(end.damped - first.damped, held, 0.05 * held);
   EXPECT_LT(std::abs(end.residual), 0.05 * held);
+}
+
 // The blocks of 3 after their static step, the joint closed under N ≈ kn·w·p, then lifted by
 // `lift` with the contacts' history (test 5): the meter's rows before and after the next step.
 std::pair<solve::EnergyRow, solve::EnergyRow> step_after_lift(double lift, const std::string& name) {
