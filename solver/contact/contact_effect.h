@@ -216,6 +216,7 @@ class ContactEffect final : public Effect {
   std::vector<double> moved_old_, moved_new_;
   std::vector<std::uint8_t> commit_released_;    // commit: [ended_] 1 where this step released it
   std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>> reloaded_ended_;  // reloaded_work: ((vertex, edge), index in ended_)
+  std::vector<double> reloaded_n0_;  // N, [contact] N0 its springs were set afresh at (reloaded_work; NaN: not)
 };
 
 }  // namespace nmm::solve
