@@ -469,7 +469,7 @@ double ContactEffect::reloaded_work(const Eigen::VectorXd& d, const std::vector<
   // vertices carried 1.02 and 0.79 MN/m into step 169 and 0.63 MN/m into step 174, whose
   // springs started them at 0.37, 0.32 and 0.44 of that: 136, 100 and 106 J/m left in R without
   // it (docs/energy.md). Between two steps on one mesh c0 and c_prev differ by the geometry's update
-  // and the length's drift as the faces slide (90 J/m over that run's 247 steps).
+  // and the length's drift as the faces slide.
   reloaded_n0_.assign(problem_.contacts().size(), std::numeric_limits<double>::quiet_NaN());
   if (end_unknowns_ != d.size() && end_unknowns_ != -2) return 0.0;  // no ended contacts on this mesh
   std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>>& ended = reloaded_ended_;
@@ -485,6 +485,12 @@ double ContactEffect::reloaded_work(const Eigen::VectorXd& d, const std::vector<
     const std::pair<std::int32_t, std::int32_t> pair{c.at.vertex, c.at.edge};
     if (c.start_state == ContactState::open || problem_.work(k).cohesive || !std::binary_search(had.begin(), had.end(), pair))
       continue;
+    // Linear springs only: a Bandis–Barton or hyperbolic joint starts from the memory it carries
+    // (closure, dilation, travel), its law's own path, not springs set afresh (with it the
+    // Barton–Bandis shear box of tests/test_barton_bandis.cpp booked −4.5 kJ/m in `damped`, R 9.8 %).
+    const ContactLaw& law = contacts_.laws()[static_cast<std::size_t>(c.law)];
+    if (law.normal != NormalModel::constant && law.normal != NormalModel::penalty) continue;
+    if (law.shear != ShearModel::constant && law.shear != ShearModel::penalty) continue;
     const auto at = std::lower_bound(ended.begin(), ended.end(), std::make_pair(pair, std::size_t{0}));
     if (at == ended.end() || at->first != pair) continue;
     const EndedContact& e = ended_[at->second];
