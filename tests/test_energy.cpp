@@ -76,6 +76,11 @@
 //    step starts with no spring there: S1 leaves S with no work, and the step's balance never
 //    sees it. `damped` books it with ½ (0 − c_end)·d, or R = S1 (contact_effect.cpp
 //    released_energy).
+//    Lifted by half its closure instead, the joint is found closed again on the same edges, its
+//    springs set afresh at about ½ N and ¼ S1, while the step starts in balance with the end
+//    force it carries — as a re-cut that shortens a contact's tributary length sets its springs
+//    at the same closure (the crack's mouth under a platen): `damped` books S1 − S0 with
+//    ½ (c0 − c_prev)·d, or R = S1 − S0 (contact_effect.cpp reloaded_work).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -620,6 +625,23 @@ TEST(EnergyPaths, AContactFoundOpenOnItsEdgeWithNoForceIsReleased) {
   EXPECT_LT(std::abs(end.springs), 1e-4 * s0);
   EXPECT_NEAR(end.damped - first.damped, first.springs, 0.02 * first.springs);
   EXPECT_LT(std::abs(end.residual), 0.02 * first.springs);
+}
+
+TEST(EnergyPaths, AContactFoundCloserOnItsEdgeBooksItsSpringsSetAfresh) {
+  // Lifted p/2: the detection finds each vertex on the same edge again, closed at about half its
+  // closure, and sets its springs afresh there, N0 = kn·L·closure0 ≈ ½ N_prev, S0 ≈ ¼ S_prev,
+  // while the step starts in balance with the end force N_prev it carries — as a re-cut that
+  // shortens a contact's tributary length sets its springs at L_now/L_prev of their force and
+  // energy at the same closure (uniaxial compression h 0.1 m, dynamic, the crack's mouth). The
+  // springs gave up S_prev − S0 with no work, and the step's motion takes ½ (c0 − c_prev)·d:
+  // `damped` books both (contact_effect.cpp reloaded_work), or R = S_prev − S0.
+  const double p = 1e-4;
+  const auto [first, end] = step_after_lift(0.5 * p, "closer-on-its-edge");
+  const double s_prev = first.springs, s0 = 0.25 * s_prev;  // J/m
+  EXPECT_GT(s_prev, 0.9 * 0.5 * 1e10 * 1 * p * p);         // closed under N ≈ kn·w·p
+  EXPECT_NEAR(end.springs, s0, 0.05 * s0);                 // stiff heavy blocks barely move in the step
+  EXPECT_NEAR(end.damped - first.damped, s_prev - s0, 0.02 * (s_prev - s0));
+  EXPECT_LT(std::abs(end.residual), 0.02 * (s_prev - s0));
 }
 
 }  // namespace

@@ -269,6 +269,7 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       if (trace) trace_sunk_[k] = sunk;
     }
     if (end_unknowns_ == d.size() || end_unknowns_ == -2) released_work_ += moved_on_work(d, had);
+    released_work_ += reloaded_work(d, had);
   }
   for (std::size_t k = 0; k < problem_.contacts().size(); ++k) {
     const double opened = opened_work(k, d);
@@ -347,7 +348,8 @@ double ContactEffect::opened_work(std::size_t k, const Eigen::VectorXd& d) const
   if (!model_.scene().solver.dynamic) return 0;
   const Contact& c = problem_.contacts()[k];
   if (c.start_state == ContactState::open || c.state != ContactState::open || c.cohesive.on) return 0;
-  const double n0 = problem_.work(k).start_normal_force;  // N
+  // N: the carried force, or the one its springs were set afresh at (reloaded_work)
+  const double n0 = k < reloaded_n0_.size() && !std::isnan(reloaded_n0_[k]) ? reloaded_n0_[k] : problem_.work(k).start_normal_force;
   const double closure0 = std::max(0.0, -problem_.work(k).gap0);  // m
   if (!(n0 > 0)) return 0;
   return -0.5 * n0 * std::max(0.0, gap_change(k, d) - closure0);
@@ -448,6 +450,69 @@ double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<
     const double b = new_part[g] - old_part[g];
     booked += b;
     if (trace && first[g] < trace_sunk_.size()) trace_sunk_[first[g]] += b;
+  }
+  return booked;
+}
+
+double ContactEffect::reloaded_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had) {
+  // The reloaded rule (contact_effect.h). A contact that starts the step closed on the vertex and
+  // edge it ended the last accepted step on carries its end force c_prev into the step's start
+  // balance (the scheme's M·a1,prev; across a re-cut, B of crack_release.h, which holds the end
+  // forces carry_ended put on the cut mesh): the trapezoid of the step's work takes c_prev at its
+  // start. But the step solves from its springs set afresh by the detection, c0 = N0·cn − T0·cs,
+  // N0 = N(gap0) and T0 = T(s_el,0) on its tributary length now, whose energy is S0 = ½ N0·
+  // closure0 + ½ |T0·s_el,0|: a jump c0 − c_prev the detection applied at once, and S_prev → S0
+  // with no work. As the moved-on rule books its jump, ½ (c0 − c_prev)·d + S_prev − S0 goes to
+  // `damped`. Where a re-cut ends a crack on the contact's face (the crack's mouth under a
+  // platen) its tributary length falls at the same closure and elastic shear, and with it its
+  // force and energy: uniaxial compression h 0.1 m, dynamic, slow (Haswell), the mouth's two
+  // vertices carried 1.02 and 0.79 MN/m into step 169 and 0.63 MN/m into step 174, whose
+  // springs started them at 0.37, 0.32 and 0.44 of that: 136, 100 and 106 J/m left in R without
+  // it (docs/energy.md). Between two steps on one mesh c0 and c_prev differ by the geometry's update
+  // and the length's drift as the faces slide.
+  reloaded_n0_.assign(problem_.contacts().size(), std::numeric_limits<double>::quiet_NaN());
+  if (end_unknowns_ != d.size() && end_unknowns_ != -2) return 0.0;  // no ended contacts on this mesh
+  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>>& ended = reloaded_ended_;
+  ended.clear();
+  for (std::size_t i = 0; i < ended_.size(); ++i) ended.push_back({{ended_[i].vertex, ended_[i].edge}, i});
+  if (!std::is_sorted(ended.begin(), ended.end())) std::sort(ended.begin(), ended.end());
+  static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
+  const int nd = space_.element_dofs();
+  const std::vector<Contact>& cs = problem_.contacts();
+  double booked = 0;
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const Contact& c = cs[k];
+    const std::pair<std::int32_t, std::int32_t> pair{c.at.vertex, c.at.edge};
+    if (c.start_state == ContactState::open || problem_.work(k).cohesive || !std::binary_search(had.begin(), had.end(), pair))
+      continue;
+    // Linear springs only: a Bandis–Barton or hyperbolic joint starts from the memory it carries
+    // (closure, dilation, travel), its law's own path, not springs set afresh (with it the
+    // Barton–Bandis shear box of tests/test_barton_bandis.cpp booked −4.5 kJ/m in `damped`, R 9.8 %).
+    const ContactLaw& law = contacts_.laws()[static_cast<std::size_t>(c.law)];
+    if (law.normal != NormalModel::constant && law.normal != NormalModel::penalty) continue;
+    if (law.shear != ShearModel::constant && law.shear != ShearModel::penalty) continue;
+    const auto at = std::lower_bound(ended.begin(), ended.end(), std::make_pair(pair, std::size_t{0}));
+    if (at == ended.end() || at->first != pair) continue;
+    const EndedContact& e = ended_[at->second];
+    const ContactProblem::Row r = problem_.row(k);
+    double dg = 0, ds = 0;  // m, the step's change of its gap and shear
+    for (int i = 0; i < r.size; ++i)
+      if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
+        dg += r.cn(i) * d[r.dofs[i]];
+        ds += r.cs(i) * d[r.dofs[i]];
+      }
+    const ContactWork& w = problem_.work(k);
+    const double n0 = problem_.normal_force_at_rest(k), t0 = problem_.shear_force_at_rest(k);  // N
+    const double s0 = 0.5 * std::max(0.0, n0 * -w.gap0) + 0.5 * std::abs(t0 * w.shear0);     // J/m
+    const double b = 0.5 * (n0 * dg - t0 * ds) - s0 - (0.5 * ended_work(e, d, nd) - e.stored);
+    booked += b;
+    // The step's forces start from c0 now: friction's trapezoid takes T0 from it (book_contact),
+    // and opened_work N0 (both took the carried force, and booked the jump twice: uniaxial h
+    // 0.125 m, static, fast, step 77, three contacts cut to 1 mm of face that slid into the step
+    // and open in it, 54, 64 and 17 J/m too much).
+    start_shear_[k] = t0;
+    reloaded_n0_[k] = n0;
+    if (trace && k < trace_sunk_.size()) trace_sunk_[k] += b;
   }
   return booked;
 }

@@ -80,7 +80,8 @@ class ContactEffect final : public Effect {
   /// force carried), ½ N1·gap0: the implicit step applies their end force N1 over its whole
   /// motion, the part before the faces touched too, of which their springs keep ½ N1·closure1;
   /// and of a vertex that ended closed on one edge and starts closed on another (moved_on_work),
-  /// ½ (c0 − c_prev)·d + S_prev − S0;
+  /// ½ (c0 − c_prev)·d + S_prev − S0, and the same of one that starts closed on the same edge with
+  /// its springs set afresh (reloaded_work: a tributary length a re-cut shortened);
   /// and in a dynamic step, of those that start closed under a carried N0 and end open,
   /// −½ N0·(Δg − closure0): the scheme's trapezoid of their start force beyond the gap's opening
   /// (opened_work).
@@ -184,6 +185,13 @@ class ContactEffect final : public Effect {
   /// sorted), ½ (c0 − c_prev)·d + S_prev − S0: the old spring released, the new one loaded at its
   /// start gap. Called by commit() before ended_ is replaced.
   double moved_on_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had);
+  /// J/m into `damped` (the reloaded rule, contact_effect.cpp): for each contact that starts this
+  /// step closed on the vertex and edge an ended contact of ended_ (not released: its pair in
+  /// `had`, sorted) ended on, ½ (c0 − c_prev)·d + S_prev − S0 — its springs set afresh by the
+  /// detection (c0, S0: on its tributary length now, which a re-cut that ends a crack on its face
+  /// shortens) while the step started in balance with the end force c_prev it carries. Called by
+  /// commit() before ended_ is replaced.
+  double reloaded_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had);
   std::vector<EndedContact> ended_;   // the last accepted step's closed contacts
   Eigen::Index end_unknowns_ = -1;    // the unknowns of that step (-2: carried across a re-cut)
   // The list ended_ held before the last commit: the last accepted step's, where that commit was
@@ -207,6 +215,8 @@ class ContactEffect final : public Effect {
   std::vector<std::int32_t> moved_group_;
   std::vector<double> moved_old_, moved_new_;
   std::vector<std::uint8_t> commit_released_;    // commit: [ended_] 1 where this step released it
+  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>> reloaded_ended_;  // reloaded_work: ((vertex, edge), index in ended_)
+  std::vector<double> reloaded_n0_;  // N, [contact] N0 its springs were set afresh at (reloaded_work; NaN: not)
 };
 
 }  // namespace nmm::solve

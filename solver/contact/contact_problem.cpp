@@ -359,6 +359,17 @@ double ContactProblem::law_force_at_rest(std::size_t i) const {
   return normal_at(set_.laws()[set_.contacts()[i].law], set_.contacts()[i], work_[i], work_[i].gap0, skin_).force;
 }
 
+double ContactProblem::shear_force_at_rest(std::size_t i) const {
+  const Contact& c = set_.contacts()[i];
+  if (c.start_state == ContactState::open || work_[i].cohesive) return 0;
+  // The strength start_strengths() gives it (the iterations have moved work_[i].strength since):
+  // from the normal force it carries, unbroken as it started.
+  const ContactLaw& law = set_.laws()[c.law];
+  ContactWork w = work_[i];
+  w.strength = shear_strength(law, std::max(w.start_normal_force, 0.0), c.length, w.start_broken, c.joint);
+  return shear_at(law, c, w, w.shear0).force;
+}
+
 void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
   std::vector<Contact>& contacts = set_.step_contacts();
   const std::vector<ContactLaw>& laws = set_.laws();

@@ -89,6 +89,11 @@ class ContactProblem {
   /// N, contact i's normal force at d = 0 by its law, a softening crack face's cohesive traction
   /// too (tension < 0): 0 where nothing holds it at the step's start.
   double law_force_at_rest(std::size_t i) const;
+  /// N, contact i's shear force at d = 0: its spring at the elastic shear it starts with, on its
+  /// length now, capped at its strength of the step's start (start_strengths()) — what the step
+  /// starts from. 0 for one that starts open, and for a softening crack face (its cohesion has its
+  /// own start).
+  double shear_force_at_rest(std::size_t i) const;
   /// The step's contacts (ContactSet::contacts()), index-aligned with the rows.
   const std::vector<Contact>& contacts() const { return set_.contacts(); }
   /// Sets each contact's coupling group: first_group + the index of its pair in `pairs` (sorted),
