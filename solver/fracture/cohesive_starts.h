@@ -83,7 +83,9 @@
 //      beyond its strength behind it (crack_parting.h: the faces cannot open over the crack's
 //      last element, and that element carries the tip's concentration) crosses the holding
 //      element ahead without a bridge; Petersson's beam at h 0.0167 m: a crack 1 cm long waited
-//      140 steps, its own elements at 1.3–2.4 σt, the element ahead at 0.18 σt;
+//      140 steps, its own elements at 1.3–2.4 σt, the element ahead at 0.18 σt. Not into an
+//      element shut across the tip's line (σ_nn ≤ 0): at cover order 1 (h 0.0167 m) the tip ran
+//      through the compressed top to 1.3 mm below the top edge and the contact solve failed;
 //      (b) the normal stress across the tip's line at the tip, recovered from the two elements
 //      ahead on the line by linear extrapolation of their stresses (at their inside points'
 //      distances) back to the tip, reaches σt: the tip crosses the element ahead, one a solution.
