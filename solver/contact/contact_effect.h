@@ -81,7 +81,9 @@ class ContactEffect final : public Effect {
   /// motion, the part before the faces touched too, of which their springs keep ½ N1·closure1;
   /// and of a vertex that ended closed on one edge and starts closed on another (moved_on_work),
   /// ½ (c0 − c_prev)·d + S_prev − S0, and the same of one that starts closed on the same edge with
-  /// its springs set afresh (reloaded_work: a tributary length a re-cut shortened);
+  /// its springs set afresh (reloaded_work: a tributary length a re-cut shortened); of one found open
+  /// with no force at rest on the edge it ended closed on while its vertex or mirror starts closed
+  /// elsewhere, which commit does not release, the same ½ (0 − c_end)·d + S_end (open_on_edge_work);
   /// and in a dynamic step, of those that start closed under a carried N0 and end open,
   /// −½ N0·(Δg − closure0): the scheme's trapezoid of their start force beyond the gap's opening
   /// (opened_work).
@@ -192,6 +194,11 @@ class ContactEffect final : public Effect {
   /// shortens) while the step started in balance with the end force c_prev it carries. Called by
   /// commit() before ended_ is replaced.
   double reloaded_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had);
+  /// J/m into `damped` (contact_effect.cpp): for each contact the last step ended closed with,
+  /// not released by commit (its vertex or mirror starts closed elsewhere), that this step finds
+  /// open on the same edge with no force at rest (not held_open): its release,
+  /// ½ (0 − c_end)·d + S_end. Called by commit() after commit_released_ is set.
+  double open_on_edge_work(const Eigen::VectorXd& d);
   std::vector<EndedContact> ended_;   // the last accepted step's closed contacts
   Eigen::Index end_unknowns_ = -1;    // the unknowns of that step (-2: carried across a re-cut)
   // The list ended_ held before the last commit: the last accepted step's, where that commit was
@@ -217,6 +224,7 @@ class ContactEffect final : public Effect {
   std::vector<std::uint8_t> commit_released_;    // commit: [ended_] 1 where this step released it
   std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>> reloaded_ended_;  // reloaded_work: ((vertex, edge), index in ended_)
   std::vector<double> reloaded_n0_;  // N, [contact] N0 its springs were set afresh at (reloaded_work; NaN: not)
+  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>> open_pairs_;  // open_on_edge_work: ((vertex, edge), contact)
 };
 
 }  // namespace nmm::solve
