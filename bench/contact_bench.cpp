@@ -95,11 +95,13 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
   std::printf("# resident after the cut %.0f MB (peak %.0f MB), the mesh alone %.0f MB, with the stepper %.0f MB\n",
               cut.now_mb, cut.peak_mb, meshed.now_mb, set_up.now_mb);
   std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
-              "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses,rss_mb,peak_rss_mb,orderings,kept_analyses\n");
+              "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses,rss_mb,peak_rss_mb,orderings,kept_analyses,placed_analyses,"
+              "factor_mnz,factor_gflop\n");
   nmm::solve::ContactSolveStats a = st.view().contact_solve;
   nmm::solve::StepTimings ta = st.view().timings;
   std::size_t cuts = st.view().state.cuts, analyses = st.view().system.analyses(),
-              orderings = st.view().system.orderings(), kept = st.view().system.kept_analyses();
+              orderings = st.view().system.orderings(), kept = st.view().system.kept_analyses(),
+              placed = st.view().system.placed_analyses();
   for (int k = 1; k <= steps; ++k) {
     trace.step = k;
     const nmm::Stopwatch w0;
@@ -111,13 +113,15 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
     if (memory) trace.mark("end of step");
     nmm::bench::Resident mem = nmm::bench::resident();
     if (memory) mem.peak_mb = std::max(mem.peak_mb, trace.run_peak_mb);
-    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f,%zu,%zu\n", k, b.newton - a.newton,
+    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f,%zu,%zu,%zu,%.3f,%.3f\n", k, b.newton - a.newton,
                 b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
                 b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
                 st.view().state.cuts - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
                 1e3 * (b.cg_seconds - a.cg_seconds), 1e3 * (tb.contact_detection - ta.contact_detection), cpu_ms,
                 st.view().system.analyses() - analyses, mem.now_mb, mem.peak_mb,
-                st.view().system.orderings() - orderings, st.view().system.kept_analyses() - kept);
+                st.view().system.orderings() - orderings, st.view().system.kept_analyses() - kept,
+                st.view().system.placed_analyses() - placed, 1e-6 * st.view().system.factor_nonzeros(),
+                1e-9 * st.view().system.factor_flops());
     std::fflush(stdout);
     if (!ran.ok()) {
       std::printf("# stopped: %s\n", ran.reason.c_str());
@@ -138,6 +142,7 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
     analyses = st.view().system.analyses();
     orderings = st.view().system.orderings();
     kept = st.view().system.kept_analyses();
+    placed = st.view().system.placed_analyses();
   }
   // One factorisation against one CG iteration's work (a factor solve pair and a product with
   // the matrix) on the last step's matrix, thread CPU time: what one factorisation is worth.

@@ -4,6 +4,15 @@
 // product), for the system matrix of the wall after a few static steps.
 //
 //   ordering_bench [--sizes 100] [--mesh 0.5] [--steps 3] [--reps 3] [--csv FILE]
+//   ordering_bench --growth [--sizes 100] [--mesh 0.5] [--steps 30] [--csv FILE]
+//
+// --growth: the wall step by step; at each step whose matrix pattern grew, the new pattern under
+// METIS anew (metis_covers), under the order of the last one's factor as is (kept), and with the
+// new pairs' covers placed in it (placed: fill_ordering.h placed_ordering, what a lean run does
+// while its fill stays within bounds), one numeric factorisation each. The order carried to the
+// next growth is the placed one while its nonzeros stay within kOrderingRefill of the last METIS
+// ordering's and its flops within 1.25 × the last carried factor's, as in a lean run
+// (system_matrix.cpp analyse_kept).
 //
 // Orderings, each analysed by CHOLMOD (supernodal LLᵀ, postordered, as nmm-solve factorises):
 //   amd           CHOLMOD's AMD on the matrix (what runs with contact used before 2026-11-29)
@@ -111,6 +120,129 @@ Result run(const Sparse& a, int ordering, int block, int reps) {
   }
   return r;
 }
+// cholmod_analyze_p under `perm` (CHOLMOD postorders it); the numeric factorisation timed too
+// when `factor` is set. Returns the factor (symbolic, its values freed) for the next growth.
+cholmod_factor* analyse(const Sparse& a, std::vector<int>& perm, bool factor, cholmod_common& c, Result& r) {
+  cholmod_sparse m = view(a);
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 1;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  c.final_ll = 1;
+  double t = nmm::bench::thread_cpu_seconds();
+  cholmod_factor* l = cholmod_analyze_p(&m, perm.data(), nullptr, 0, &c);
+  r.analyse_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - t);
+  r.factor_nnz = c.lnz;
+  r.flops = c.fl;
+  r.factor_ms = 0;
+  if (factor) {
+    t = nmm::bench::thread_cpu_seconds();
+    cholmod_factorize(&m, l, &c);
+    r.factor_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - t);
+    r.ok = c.status == CHOLMOD_OK && l->minor == l->n;
+    // Back to a symbolic factor: the next growth reads its supernodes' rows alone.
+    cholmod_change_factor(CHOLMOD_PATTERN, 1, 1, 1, 1, l, &c);
+  } else {
+    r.ok = l != nullptr;
+  }
+  return l;
+}
+
+int growth(const std::vector<int>& sizes, double h, int steps, const std::string& csv_path) {
+  const char* header =
+      "wall_n,mesh_size_m,step,unknowns,matrix_nnz_upper,outside_entries,ordering,factor_nnz,factor_gflops,"
+      "order_ms,analyse_ms,factor_ms,carried,load_average,ok\n";
+  std::ofstream csv = nmm::bench::start_csv(csv_path, header);
+  for (int n : sizes) {
+    const nmm::SceneDef wall = nmm::reference::peer_wall(n, n, false, h);
+    const nmm::Mesh wm = nmm::pre::build_mesh(wall, "wall");
+    nmm::solve::TimeStepper st(wm, wall, "wall");
+    st.set_threads(1);
+    const int block = st.view().space.dofs_per_cover(), blocked = st.view().space.unknowns();
+    cholmod_common c;
+    cholmod_start(&c);
+    c.print = 0;
+    std::vector<int> carried;   // the order the last pattern was analysed under
+    cholmod_factor* last = nullptr;
+    double metis_fill = 0;      // factor nonzeros of the last METIS ordering when found
+    double last_flops = 0;      // flops of the last pattern's factor under the carried order
+    std::size_t last_nnz = 0;
+    for (int k = 1; k <= steps; ++k) {
+      const nmm::Outcome ran = st.run_until(k * wall.solver.time_step, [](std::int64_t) {});
+      if (!ran.ok()) {
+        std::fprintf(stderr, "wall %d: %s\n", n, ran.reason.c_str());
+        break;
+      }
+      const Sparse& a = st.view().system.matrix();
+      if (static_cast<std::size_t>(a.nonZeros()) == last_nnz) continue;
+      const bool grew = last && static_cast<std::size_t>(a.nonZeros()) > last_nnz;
+      last_nnz = static_cast<std::size_t>(a.nonZeros());
+      const auto line = [&](const char* name, const Result& r, std::size_t outside, bool kept) {
+        char out[600];
+        std::snprintf(out, sizeof out, "%d,%g,%d,%ld,%ld,%zu,%s,%.0f,%.3f,%.1f,%.1f,%.1f,%d,%.2f,%d\n", n, h, k,
+                      static_cast<long>(a.rows()), static_cast<long>(a.nonZeros()), outside, name, r.factor_nnz,
+                      r.flops / 1e9, r.order_ms, r.analyse_ms, r.factor_ms, kept ? 1 : 0, nmm::bench::load_average(),
+                      r.ok ? 1 : 0);
+        csv << out;
+        std::fputs(out, stdout);
+        std::fflush(stdout);
+      };
+      // METIS anew.
+      Result rm;
+      double t = nmm::bench::thread_cpu_seconds();
+      std::vector<int> metis = nmm::solve::block_ordering(static_cast<int>(a.rows()), a.outerIndexPtr(),
+                                                          a.innerIndexPtr(), block, nmm::solve::FillOrdering::metis,
+                                                          blocked);
+      rm.order_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - t);
+      cholmod_factor* lm = analyse(a, metis, true, c, rm);
+      std::size_t outside_count = 0;
+      bool keep_placed = false;
+      double placed_flops = 0;
+      cholmod_factor* lp = nullptr;
+      std::vector<int> placed;
+      if (grew) {
+        // The entries outside the last factor, and the placed order.
+        const nmm::solve::FactorRows rows(*last);
+        std::vector<std::pair<int, int>> outside;
+        const int* outer = a.outerIndexPtr();
+        const int* inner = a.innerIndexPtr();
+        for (int j = 0; j < a.cols(); ++j)
+          for (int p = outer[j]; p < outer[j + 1]; ++p)
+            if (!rows.within(j, inner[p])) outside.emplace_back(j, inner[p]);
+        outside_count = outside.size();
+        Result rk;
+        cholmod_factor* lk = analyse(a, carried, true, c, rk);
+        cholmod_free_factor(&lk, &c);
+        line("kept", rk, outside_count, false);
+        Result rp;
+        t = nmm::bench::thread_cpu_seconds();
+        placed = nmm::solve::placed_ordering(*last, outside, block, blocked);
+        rp.order_ms = 1e3 * (nmm::bench::thread_cpu_seconds() - t);
+        lp = analyse(a, placed, true, c, rp);
+        keep_placed = rp.factor_nnz <= nmm::solve::kOrderingRefill * metis_fill && rp.flops <= 1.25 * last_flops;
+        placed_flops = rp.flops;
+        line("placed", rp, outside_count, keep_placed);
+      }
+      line("metis_covers", rm, outside_count, !keep_placed);
+      cholmod_free_factor(&last, &c);
+      if (keep_placed) {
+        last_flops = placed_flops;
+        last = lp;
+        carried = std::move(placed);
+        cholmod_free_factor(&lm, &c);
+      } else {
+        if (lp) cholmod_free_factor(&lp, &c);
+        last = lm;
+        carried = std::move(metis);
+        metis_fill = rm.factor_nnz;
+        last_flops = rm.flops;
+      }
+    }
+    cholmod_free_factor(&last, &c);
+    cholmod_finish(&c);
+  }
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -118,18 +250,21 @@ int main(int argc, char** argv) {
   double h = 0.5;
   int steps = 3, reps = 3;
   std::string csv_path = "ordering_bench.csv";
+  bool growths = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc) h = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
+    else if (!std::strcmp(argv[i], "--growth")) growths = true;
     else {
-      std::fprintf(stderr, "usage: ordering_bench [--sizes 100] [--mesh 0.5] [--steps 3] [--reps 3] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: ordering_bench [--growth] [--sizes 100] [--mesh 0.5] [--steps 3] [--reps 3] [--csv FILE]\n");
       return 2;
     }
   }
   nmm::solve::set_solver_threads(1);
+  if (growths) return growth(sizes, h, steps, csv_path);
   const char* header =
       "wall_n,mesh_size_m,steps,unknowns,matrix_nnz_upper,ordering,factor_nnz,factor_nnz_per_unknown,"
       "factor_gflops,order_ms,analyse_ms,factor_ms,solve_pair_ms,load_average,ok\n";

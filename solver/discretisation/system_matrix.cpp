@@ -22,6 +22,14 @@ namespace {
 // older checkpoint's note there starts with its length, far smaller).
 constexpr std::uint64_t kOrderingTag = 0x474E49524544524FULL;
 
+// A placed order (analyse_kept) serves while its factor's flops stay within this factor of the
+// last analysis's. The new pairs joined under the kept order as it is cost 2.2–2.9 × METIS's
+// flops anew (the 10,000-block walls' first growth); METIS's own flops grow with the pattern, by
+// 9.9 % on the 100,000-block wall between steps 1 and 14, where a bound of 1.10 sent the placed
+// order to METIS; a placed factor's extra flops (+3 to +12 % at 222k unknowns) cost less than a
+// METIS ordering (6 s at 930k unknowns against a numeric factorisation's 10–15 s).
+constexpr double kPlacedFlops = 1.25;
+
 // A grown scatter's arrays keep 1/kScatterRoom of their size as room for the next growths
 // (grow_in_place).
 constexpr std::size_t kScatterRoom = 64;
@@ -385,16 +393,33 @@ void SystemMatrix::Llt::analyze_given(const Sparse& a, std::vector<int>& perm) {
 // analyses as the straight one did.
 bool SystemMatrix::analyse_kept(const Sparse& a) {
   if (kept_perm_.size() != static_cast<std::size_t>(a.rows())) return false;
-  // A lean run (the largest) orders every pattern anew that does not lie within the last
-  // factor (keeps_symbolic: that one keeps the ordering, its factor does not grow): there the
-  // kept ordering's factor, 1.06–1.07 × the nonzeros, took 31–37 s to factorise against 13–14 s
-  // under a new ordering
-  // (7–8 s to find) and raised the run's memory peak by its 0.11 GB more double values
-  // (316 × 316 bricks, h = 2 m, steps 15 and 22 against 6, 13 and 20; docs/performance.md (h)).
-  // (A restored checkpoint, and a pattern within the last factor, keeps_symbolic, are analysed
-  // under the kept ordering in any run: restoring_.)
+  // A lean run (the largest) does not analyse a pattern that does not lie within the last
+  // factor (keeps_symbolic: that one keeps the ordering, its factor does not grow) under the
+  // kept ordering as it is: there the kept ordering's factor, 1.06–1.07 × the nonzeros, took
+  // 31–37 s to factorise against 13–14 s under a new ordering (7–8 s to find) and raised the
+  // run's memory peak by its 0.11 GB more double values (316 × 316 bricks, h = 2 m, steps 15
+  // and 22 against 6, 13 and 20; docs/performance.md (h)): the new pairs join paths of the
+  // elimination tree (fill_ordering.cpp placed_ordering), their flops twice the nonzeros' share.
+  // It places the new pairs' covers in it instead, or orders it anew. (A restored checkpoint,
+  // and a pattern within the last factor, keeps_symbolic, are analysed under the kept ordering
+  // in any run: restoring_.)
   const auto n = static_cast<int>(a.rows());
-  if (!restoring_ && single_from_ > 0 && n >= single_from_ && n >= lean_from_) return false;  // as factorize()'s `lean`
+  if (!restoring_ && single_from_ > 0 && n >= single_from_ && n >= lean_from_) {  // as factorize()'s `lean`
+    // A grown pattern with its new pairs placed (keeps_symbolic, placed_ordering): kept while
+    // its factor's nonzeros stay within kOrderingRefill of the nested dissection's when found
+    // (so that a restart, analysing under it, keeps it too), and its flops within kPlacedFlops
+    // of the last analysis's (a restart's too: it analyses the same pattern under the same
+    // order). On the 10,000-block wall at h = 2 m the placed orders' factors stayed within
+    // -1 to +3 % of METIS's anew in nonzeros and flops over 40 steps, a METIS ordering's
+    // nonzeros growing by 7 % with the pattern (bench/ordering_bench.cpp --growth).
+    if (placed_.size() != static_cast<std::size_t>(n)) return false;
+    llt_.analyze_given(a, placed_);
+    if (llt_.cholmod().lnz > kOrderingRefill * kept_fill_ || llt_.cholmod().fl > kPlacedFlops * factor_flops_)
+      return false;
+    kept_perm_.swap(placed_);
+    ++placed_analyses_;
+    return true;
+  }
   // A pattern with fewer nonzeros than the one the ordering was found on has shed pairs (it
   // only grows otherwise): a new ordering of the smaller pattern has less fill than the kept one.
   if (static_cast<double>(a.nonZeros()) < kept_nonzeros_) return false;
@@ -402,8 +427,9 @@ bool SystemMatrix::analyse_kept(const Sparse& a) {
   return llt_.cholmod().lnz <= kOrderingRefill * kept_fill_;
 }
 
-// A lean run (from kLeanFactorUnknowns) orders every new pattern anew (analyse_kept), METIS's
-// 7–8 s at 930k unknowns, except one grown within the last factor: every entry of the pattern
+// A lean run (from kLeanFactorUnknowns) does not keep its order as it is for a new pattern
+// (analyse_kept: it places the new pairs, or orders anew, METIS's 7–8 s at 930k unknowns),
+// except for one grown within the last factor: every entry of the pattern
 // lies within the rows of its supernodes, in its order. Such entries add no fill beyond that
 // factor's structure (a supernode's rows below its columns lie within its parent's), so the
 // analysis under the kept ordering (cholmod_analyze_p, without METIS) gives a factor no larger
@@ -417,45 +443,43 @@ bool SystemMatrix::analyse_kept(const Sparse& a) {
 // kept ordering (METIS on the covers), and not for a pattern that shed pairs since the ordering
 // was found (fewer nonzeros than then): that one is ordered anew, its fill being less. Work: one
 // search among its supernode's rows per entry added since the last analysis.
-bool SystemMatrix::keeps_symbolic(const Sparse& a) const {
+bool SystemMatrix::keeps_symbolic(const Sparse& a, std::vector<int>* placed) const {
   const auto n = static_cast<int>(a.rows());
   if (block_ <= 0 || n < block_from_ || kept_perm_.size() != static_cast<std::size_t>(n)) return false;
   if (static_cast<double>(a.nonZeros()) < kept_nonzeros_) return false;
   const cholmod_factor* f = const_cast<Llt&>(llt_).factor();
-  if (!f || !f->is_super || static_cast<int>(f->n) != n || !f->Perm || f->nsuper == 0) return false;
-  const int* perm = static_cast<const int*>(f->Perm);
-  const int* super = static_cast<const int*>(f->super);
-  const int* pi = static_cast<const int*>(f->pi);
-  const int* rows = static_cast<const int*>(f->s);
-  std::vector<int> order(static_cast<std::size_t>(n)), snode(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) order[static_cast<std::size_t>(perm[k])] = k;
-  for (std::size_t s = 0; s < f->nsuper; ++s)
-    for (int c = super[s]; c < super[s + 1]; ++c) snode[static_cast<std::size_t>(c)] = static_cast<int>(s);
-  // A supernode's rows: its own columns, then the rows below, each part ascending in CHOLMOD's
-  // supernodal analysis; checked here, a linear search where they are not.
-  std::vector<char> sorted(f->nsuper);
-  for (std::size_t s = 0; s < f->nsuper; ++s) sorted[s] = std::is_sorted(rows + pi[s], rows + pi[s + 1]);
-  const auto within = [&](int j, int i) {
-    int c = order[static_cast<std::size_t>(j)], r = order[static_cast<std::size_t>(i)];
-    if (r < c) std::swap(r, c);
-    const auto s = static_cast<std::size_t>(snode[static_cast<std::size_t>(c)]);
-    const int* first = rows + pi[s];
-    const int* last = rows + pi[s + 1];
-    return sorted[s] ? std::binary_search(first, last, r) : std::find(first, last, r) != last;
+  if (!f || static_cast<int>(f->n) != n) return false;
+  const FactorRows rows(*f);
+  if (!rows.ready()) return false;
+  const auto within = [&](int j, int i) { return rows.within(j, i); };
+  // The entries outside, for placed_ordering (a lean run): a few per new pair of covers; past
+  // n / kOutsideShare of them the pattern is ordered anew.
+  std::vector<std::pair<int, int>> outside;
+  const std::size_t limit = placed ? static_cast<std::size_t>(n) / kOutsideShare : 0;
+  const auto note = [&](int j, int i) {
+    if (outside.size() <= limit) outside.emplace_back(j, i);
   };
   // Where the pattern at the last analysis is known to lie within, the entries added since
   // (the same answer as checking every one, in a tenth of the time or less).
   if (in_factor_) {
     for (const auto& [j, i] : added_since_)
-      if (!within(j, i)) return false;
-    return true;
+      if (!within(j, i)) {
+        if (!placed) return false;
+        note(j, i);
+      }
+  } else {
+    const int* outer = a.outerIndexPtr();
+    const int* inner = a.innerIndexPtr();
+    for (int j = 0; j < n; ++j)
+      for (int p = outer[j]; p < outer[j + 1]; ++p)
+        if (!within(j, inner[p])) {
+          if (!placed) return false;
+          note(j, inner[p]);
+        }
   }
-  const int* outer = a.outerIndexPtr();
-  const int* inner = a.innerIndexPtr();
-  for (int j = 0; j < n; ++j)
-    for (int p = outer[j]; p < outer[j + 1]; ++p)
-      if (!within(j, inner[p])) return false;
-  return true;
+  if (outside.empty()) return true;
+  if (outside.size() <= limit) *placed = placed_ordering(*f, outside, block_, blocked_);
+  return false;
 }
 
 void SystemMatrix::analyse(const Sparse& a) {
@@ -521,11 +545,12 @@ bool SystemMatrix::factorize() {
     }
     // A lean run analyses a pattern grown within the last factor under the kept ordering
     // (keeps_symbolic), instead of ordering it anew.
-    const bool within = lean && keeps_symbolic(k_);
+    const bool within = lean && keeps_symbolic(k_, &placed_);
     kept_analyses_ += within ? 1 : 0;
     restoring_ = within;
     analyse(k_);
     restoring_ = false;
+    std::vector<int>().swap(placed_);
     analysed_ = true;
     in_factor_ = true;
     added_since_.clear();

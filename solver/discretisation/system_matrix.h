@@ -33,6 +33,12 @@ inline constexpr int kBlockOrderingUnknowns = 150000;
 /// A kept ordering serves a grown pattern while its factor has at most this many times the
 /// nonzeros it had when the ordering was found (system_matrix.cpp).
 inline constexpr double kOrderingRefill = 1.10;
+/// A lean run's grown pattern keeps its order with the new pairs placed (fill_ordering.h
+/// placed_ordering) while its factor stays within kOrderingRefill of the nested dissection's
+/// nonzeros (a restart analyses under the kept order as long as that holds) and within 1.25 ×
+/// the last analysis's flops, and while fewer than one entry in kOutsideShare unknowns lies
+/// outside the last factor (system_matrix.cpp analyse_kept).
+inline constexpr int kOutsideShare = 16;
 /// Unknowns from which set_single_precision() keeps the factor in single precision (system_matrix.cpp).
 inline constexpr int kSingleFactorUnknowns = 150000;
 /// Unknowns from which a single-precision run factorises lean (set_lean_factorisation(),
@@ -156,6 +162,9 @@ class SystemMatrix {
   /// New patterns a lean run analysed under its kept ordering, not ordered anew, so far: every
   /// entry of theirs lay within the last analysis's factor (system_matrix.cpp keeps_symbolic).
   std::size_t kept_analyses() const { return kept_analyses_; }
+  /// New patterns a lean run analysed under its last order with the new pairs' covers placed
+  /// (fill_ordering.h placed_ordering), not ordered anew by METIS, so far.
+  std::size_t placed_analyses() const { return placed_analyses_; }
 
   int failed_unknown() const { return failed_unknown_; }
   int size() const { return static_cast<int>(k_.rows()); }
@@ -245,8 +254,13 @@ class SystemMatrix {
   /// a's pattern lies within the factor of the last analysis under kept_perm_ (its supernodes'
   /// rows, in its order): analysed under kept_perm_, its factor stays within that one's
   /// structure, and a lean run keeps the ordering for it (system_matrix.cpp).
-  bool keeps_symbolic(const Sparse& a) const;
+  /// With `placed` (a lean run), an order for a pattern that does not lie within: the last
+  /// factor's, with the covers of the entries outside placed (placed_ordering; left empty when
+  /// too many lie outside).
+  bool keeps_symbolic(const Sparse& a, std::vector<int>* placed = nullptr) const;
   std::size_t kept_analyses_ = 0;  // kept_analyses()
+  std::vector<int> placed_;        // keeps_symbolic's placed order for the analysis at hand
+  std::size_t placed_analyses_ = 0;  // placed_analyses()
   // The pattern as it was at the last analysis or kept one lies within the factor, and these
   // (column, row) entries have been added to it since (grow_in_place); false: not known (a
   // pattern built anew, a restored factor), keeps_symbolic() checks every entry.
