@@ -214,25 +214,17 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
   static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
   if (trace) trace_sunk_.assign(problem_.contacts().size(), 0.0);
   {
-    // (vertex, edge) of the ended contacts this step did not release: a released one found open
-    // on its edge starts the step with no force, as any other found open (the rules below).
-    std::vector<std::pair<std::int32_t, std::int32_t>>& had = pairs;
-    had.clear();
+    // The ended contacts by (vertex, edge); had(): those this step did not release — a released
+    // one found open on its edge starts the step with no force, as any other found open (the
+    // rules below).
+    ended_pairs_.reset(model_.mesh().loop_vertex_count());
     if (end_unknowns_ == d.size() || end_unknowns_ == -2)
-      for (std::size_t i = 0; i < ended_.size(); ++i)
-        if (commit_released_[i] == 0) had.emplace_back(ended_[i].vertex, ended_[i].edge);
-    sort_pairs(had);
+      for (std::size_t i = 0; i < ended_.size(); ++i) ended_pairs_.add(ended_[i].vertex, ended_[i].edge, i);
     // The shear force each contact starts the step with in its balance (energy_step's T0): the
     // history's where it starts closed; where it starts open, the end force of a contact the
     // last step ended closed on the same vertex and edge (a Barton–Bandis joint that dilated
     // apart between the steps: the step's start is in balance with that force, which the
-    // release above leaves to it), else none.
-    // (In detection's order, ended_ is mostly sorted already: sorted only when not.)
-    std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, double>>& ended_shear = commit_ended_shear_;
-    ended_shear.clear();
-    if (end_unknowns_ == d.size() || end_unknowns_ == -2)
-      for (const EndedContact& e : ended_) ended_shear.push_back({{e.vertex, e.edge}, e.shear_force});
-    if (!std::is_sorted(ended_shear.begin(), ended_shear.end())) std::sort(ended_shear.begin(), ended_shear.end());
+    // release above leaves to it), else none (of two such ended contacts, the lower force).
     const std::vector<Contact>& cs = problem_.contacts();
     start_shear_.assign(cs.size(), 0.0);
     for (std::size_t k = 0; k < cs.size(); ++k) {
@@ -241,14 +233,15 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
         start_shear_[k] = c.start_shear_force;
         continue;
       }
-      const auto at = std::lower_bound(ended_shear.begin(), ended_shear.end(),
-                                       std::make_pair(std::make_pair(c.at.vertex, c.at.edge), -std::numeric_limits<double>::infinity()));
-      if (at != ended_shear.end() && at->first == std::make_pair(c.at.vertex, c.at.edge)) start_shear_[k] = at->second;
+      bool found = false;
+      ended_pairs_.for_each(c.at.vertex, c.at.edge, [&](std::size_t i) {
+        if (!found || ended_[i].shear_force < start_shear_[k]) start_shear_[k] = ended_[i].shear_force;
+        found = true;
+      });
     }
     for (std::size_t k = 0; k < cs.size(); ++k) {
       const Contact& c = cs[k];
-      if (c.start_state != ContactState::open || std::binary_search(had.begin(), had.end(), std::make_pair(c.at.vertex, c.at.edge)))
-        continue;
+      if (c.start_state != ContactState::open || had(c)) continue;
       const double n0 = problem_.normal_force_at_rest(k);
       const double gap0 = problem_.work(k).gap0;  // m
       if (n0 <= 0 && gap0 > 0 && c.state != ContactState::open) {
@@ -268,8 +261,8 @@ void ContactEffect::commit(EffectStep& step, const Eigen::VectorXd& d) {
       released_work_ += sunk;
       if (trace) trace_sunk_[k] = sunk;
     }
-    if (end_unknowns_ == d.size() || end_unknowns_ == -2) released_work_ += moved_on_work(d, had) + open_on_edge_work(d);
-    released_work_ += reloaded_work(d, had);
+    if (end_unknowns_ == d.size() || end_unknowns_ == -2) released_work_ += moved_on_work(d) + open_on_edge_work(d);
+    released_work_ += reloaded_work(d);
   }
   for (std::size_t k = 0; k < problem_.contacts().size(); ++k) {
     const double opened = opened_work(k, d);
@@ -374,7 +367,13 @@ std::vector<ContactEffect::EndedShear> ContactEffect::ended_shear(bool started) 
   return out;
 }
 
-double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had) {
+bool ContactEffect::had(const Contact& c) const {
+  bool found = false;
+  ended_pairs_.for_each(c.at.vertex, c.at.edge, [&](std::size_t i) { found = found || commit_released_[i] == 0; });
+  return found;
+}
+
+double ContactEffect::moved_on_work(const Eigen::VectorXd& d) {
   // The moved-on rule (contact_effect.h). Contact history is kept per vertex and block
   // (contact_set.cpp begin_step), so a vertex that ended the last step closed on edge e1 of a
   // block and starts this one on another edge e2 of it (past a corner, or onto the next element's
@@ -392,10 +391,9 @@ double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<
   // history on: contact_set.cpp), summed per vertex: a vertex may end on two edges at a corner.
   double booked = 0;
   const std::vector<Contact>& cs = problem_.contacts();
-  std::vector<std::pair<std::int32_t, std::int32_t>>& now = moved_pairs_;  // (vertex, edge) of this step's contacts
-  now.clear();
-  for (const Contact& c : cs) now.emplace_back(c.at.vertex, c.at.edge);
-  std::sort(now.begin(), now.end());
+  PairIndex& now = step_pairs_;  // this step's contacts by (vertex, edge)
+  now.reset(model_.mesh().loop_vertex_count());
+  for (std::size_t k = 0; k < cs.size(); ++k) now.add(cs[k].at.vertex, cs[k].at.edge, k);
   std::vector<std::int32_t>& group = moved_group_;  // by loop vertex: the group of its ended contacts, −1 none
   group.assign(model_.mesh().loop_vertex_count(), -1);
   const auto group_of = [&](std::int32_t v) { return v >= 0 && static_cast<std::size_t>(v) < group.size() ? group[static_cast<std::size_t>(v)] : -1; };
@@ -406,9 +404,7 @@ double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<
   const int nd = space_.element_dofs();
   for (const EndedContact& e : ended_) {
     // Released (commit: closed nowhere now) or on the same pair now: the other rules'.
-    if (std::binary_search(released_.begin(), released_.end(), e.vertex) ||
-        std::binary_search(now.begin(), now.end(), std::make_pair(e.vertex, e.edge)))
-      continue;
+    if (std::binary_search(released_.begin(), released_.end(), e.vertex) || now.contains(e.vertex, e.edge)) continue;
     std::int32_t g = group_of(e.vertex);
     if (g < 0) g = group_of(e.mirror);
     if (g < 0) {
@@ -425,8 +421,7 @@ double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<
   std::vector<std::size_t> first(old_part.size(), cs.size());  // the group's first new contact (trace)
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const Contact& c = cs[k];
-    if (c.start_state == ContactState::open || std::binary_search(had.begin(), had.end(), std::make_pair(c.at.vertex, c.at.edge)))
-      continue;
+    if (c.start_state == ContactState::open || had(c)) continue;
     std::int32_t g = group_of(c.at.vertex);
     if (g < 0) g = group_of(c.mirror);
     if (g < 0) continue;
@@ -454,7 +449,7 @@ double ContactEffect::moved_on_work(const Eigen::VectorXd& d, const std::vector<
   return booked;
 }
 
-double ContactEffect::reloaded_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had) {
+double ContactEffect::reloaded_work(const Eigen::VectorXd& d) {
   // The reloaded rule (contact_effect.h). A contact that starts the step closed on the vertex and
   // edge it ended the last accepted step on carries its end force c_prev into the step's start
   // balance (the scheme's M·a1,prev; across a re-cut, B of crack_release.h, which holds the end
@@ -472,28 +467,22 @@ double ContactEffect::reloaded_work(const Eigen::VectorXd& d, const std::vector<
   // and the length's drift as the faces slide.
   reloaded_n0_.assign(problem_.contacts().size(), std::numeric_limits<double>::quiet_NaN());
   if (end_unknowns_ != d.size() && end_unknowns_ != -2) return 0.0;  // no ended contacts on this mesh
-  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>>& ended = reloaded_ended_;
-  ended.clear();
-  for (std::size_t i = 0; i < ended_.size(); ++i) ended.push_back({{ended_[i].vertex, ended_[i].edge}, i});
-  if (!std::is_sorted(ended.begin(), ended.end())) std::sort(ended.begin(), ended.end());
   static const bool trace = std::getenv("NMM_TRACE_ENERGY") != nullptr;
   const int nd = space_.element_dofs();
   const std::vector<Contact>& cs = problem_.contacts();
   double booked = 0;
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const Contact& c = cs[k];
-    const std::pair<std::int32_t, std::int32_t> pair{c.at.vertex, c.at.edge};
-    if (c.start_state == ContactState::open || problem_.work(k).cohesive || !std::binary_search(had.begin(), had.end(), pair))
-      continue;
+    if (c.start_state == ContactState::open || problem_.work(k).cohesive || !had(c)) continue;
     // Linear springs only: a Bandis–Barton or hyperbolic joint starts from the memory it carries
     // (closure, dilation, travel), its law's own path, not springs set afresh (with it the
     // Barton–Bandis shear box of tests/test_barton_bandis.cpp booked −4.5 kJ/m in `damped`, R 9.8 %).
     const ContactLaw& law = contacts_.laws()[static_cast<std::size_t>(c.law)];
     if (law.normal != NormalModel::constant && law.normal != NormalModel::penalty) continue;
     if (law.shear != ShearModel::constant && law.shear != ShearModel::penalty) continue;
-    const auto at = std::lower_bound(ended.begin(), ended.end(), std::make_pair(pair, std::size_t{0}));
-    if (at == ended.end() || at->first != pair) continue;
-    const EndedContact& e = ended_[at->second];
+    std::size_t first = ended_.size();  // the first ended contact on its (vertex, edge)
+    ended_pairs_.for_each(c.at.vertex, c.at.edge, [&](std::size_t i) { first = std::min(first, i); });
+    const EndedContact& e = ended_[first];
     const ContactProblem::Row r = problem_.row(k);
     double dg = 0, ds = 0;  // m, the step's change of its gap and shear
     for (int i = 0; i < r.size; ++i)

@@ -183,22 +183,65 @@ class ContactEffect final : public Effect {
   double ended_work(const EndedContact& e, const Eigen::VectorXd& d, int nd) const;
   /// J/m into `damped` (the moved-on rule, contact_effect.cpp): for each vertex the last step
   /// ended closed on one edge (ended_, not released, its pair not among this step's) that starts
-  /// this step closed on another (its history carried, its pair not in `had`, the ended pairs
-  /// sorted), ½ (c0 − c_prev)·d + S_prev − S0: the old spring released, the new one loaded at its
-  /// start gap. Called by commit() before ended_ is replaced.
-  double moved_on_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had);
+  /// this step closed on another (its history carried, its pair not among the ended ones this
+  /// step did not release: had()), ½ (c0 − c_prev)·d + S_prev − S0: the old spring released,
+  /// the new one loaded at its start gap. Called by commit() before ended_ is replaced, with
+  /// ended_pairs_ and commit_released_ set.
+  double moved_on_work(const Eigen::VectorXd& d);
   /// J/m into `damped` (the reloaded rule, contact_effect.cpp): for each contact that starts this
-  /// step closed on the vertex and edge an ended contact of ended_ (not released: its pair in
-  /// `had`, sorted) ended on, ½ (c0 − c_prev)·d + S_prev − S0 — its springs set afresh by the
+  /// step closed on the vertex and edge an ended contact of ended_ this step did not release
+  /// (had()) ended on, ½ (c0 − c_prev)·d + S_prev − S0 — its springs set afresh by the
   /// detection (c0, S0: on its tributary length now, which a re-cut that ends a crack on its face
   /// shortens) while the step started in balance with the end force c_prev it carries. Called by
   /// commit() before ended_ is replaced.
-  double reloaded_work(const Eigen::VectorXd& d, const std::vector<std::pair<std::int32_t, std::int32_t>>& had);
+  double reloaded_work(const Eigen::VectorXd& d);
   /// J/m into `damped` (contact_effect.cpp): for each contact the last step ended closed with,
   /// not released by commit (its vertex or mirror starts closed elsewhere), that this step finds
   /// open on the same edge with no force at rest (not held_open): its release,
   /// ½ (0 − c_end)·d + S_end. Called by commit() after commit_released_ is set.
   double open_on_edge_work(const Eigen::VectorXd& d);
+  /// (vertex, edge) pairs found by their vertex: each loop vertex heads a chain of its few pairs
+  /// (a vertex has at most a contact per block). commit() and moved_on_work() look contacts up
+  /// in it instead of binary searches over the step's sorted pairs.
+  class PairIndex {
+   public:
+    /// Empties it, for a mesh of `vertices` loop vertices.
+    void reset(std::size_t vertices) {
+      for (const Entry& e : entries_) head_[static_cast<std::size_t>(e.vertex)] = -1;
+      entries_.clear();
+      head_.resize(vertices, -1);
+    }
+    /// Adds (vertex, edge) as `item` (a vertex outside the mesh is left out: no contact of the
+    /// mesh has it).
+    void add(std::int32_t vertex, std::int32_t edge, std::size_t item) {
+      if (vertex < 0 || static_cast<std::size_t>(vertex) >= head_.size()) return;
+      std::int32_t& h = head_[static_cast<std::size_t>(vertex)];
+      entries_.push_back({vertex, edge, h, static_cast<std::uint32_t>(item)});
+      h = static_cast<std::int32_t>(entries_.size() - 1);
+    }
+    /// visit(item) for each item added as (vertex, edge).
+    template <class Visit>
+    void for_each(std::int32_t vertex, std::int32_t edge, const Visit& visit) const {
+      if (vertex < 0 || static_cast<std::size_t>(vertex) >= head_.size()) return;
+      for (std::int32_t i = head_[static_cast<std::size_t>(vertex)]; i >= 0; i = entries_[static_cast<std::size_t>(i)].next)
+        if (entries_[static_cast<std::size_t>(i)].edge == edge) visit(static_cast<std::size_t>(entries_[static_cast<std::size_t>(i)].item));
+    }
+    bool contains(std::int32_t vertex, std::int32_t edge) const {
+      bool found = false;
+      for_each(vertex, edge, [&](std::size_t) { found = true; });
+      return found;
+    }
+
+   private:
+    struct Entry {
+      std::int32_t vertex, edge, next;
+      std::uint32_t item;
+    };
+    std::vector<std::int32_t> head_;  // [loop vertex] its chain's last entry, −1: none
+    std::vector<Entry> entries_;
+  };
+  /// Contact c's (vertex, edge) is among the ended contacts this step did not release (commit()).
+  bool had(const Contact& c) const;
   std::vector<EndedContact> ended_;   // the last accepted step's closed contacts
   Eigen::Index end_unknowns_ = -1;    // the unknowns of that step (-2: carried across a re-cut)
   // The list ended_ held before the last commit: the last accepted step's, where that commit was
@@ -214,15 +257,14 @@ class ContactEffect final : public Effect {
   // vertex) and sorted (vertex, edge) pairs.
   std::vector<std::uint8_t> commit_closed_;
   std::vector<std::pair<std::int32_t, std::int32_t>> commit_pairs_;
-  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, double>> commit_ended_shear_;  // commit: ((vertex, edge), T)
   std::vector<std::size_t> commit_ended_index_;  // commit: the contact each entry of ended_ is
-  // moved_on_work()'s scratch: this step's (vertex, edge) pairs, the group of each loop vertex,
-  // and each group's old and new parts (J/m).
-  std::vector<std::pair<std::int32_t, std::int32_t>> moved_pairs_;
+  PairIndex ended_pairs_;  // commit: ended_ by (vertex, edge), as carried into the step (else empty)
+  // moved_on_work()'s scratch: this step's contacts by (vertex, edge), the group of each loop
+  // vertex, and each group's old and new parts (J/m).
+  PairIndex step_pairs_;
   std::vector<std::int32_t> moved_group_;
   std::vector<double> moved_old_, moved_new_;
   std::vector<std::uint8_t> commit_released_;    // commit: [ended_] 1 where this step released it
-  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>> reloaded_ended_;  // reloaded_work: ((vertex, edge), index in ended_)
   std::vector<double> reloaded_n0_;  // N, [contact] N0 its springs were set afresh at (reloaded_work; NaN: not)
   std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>> open_pairs_;  // open_on_edge_work: ((vertex, edge), contact)
 };

@@ -132,6 +132,12 @@ void ContactProblem::build(const std::vector<double>& xy, const Configuration& c
       w.kappa = c.cohesive.opening_max;
       set_cohesion(c, w);
     }
+    const ContactLaw& law = set_.laws()[c.law];
+    w.linear = !w.cohesive && law.normal != NormalModel::bandis_barton && linear_shear(law);
+    if (w.linear) {
+      w.kn0 = initial_normal_stiffness(law, c.length);
+      w.ks0 = initial_shear_stiffness(law, c.length);
+    }
   }
 }
 
@@ -170,6 +176,41 @@ struct Spring {
   double stiffness = 0;  // N/m, tangent
   bool capped = false;
 };
+
+// The springs of a contact whose law is a straight line (ContactWork::linear): normal_at() and
+// shear_at() below for such a contact, inline, in the same operations (their laws' force is
+// k·δ with k = initial_normal_stiffness or initial_shear_stiffness, joint_law.cpp): the same
+// bits. The Newton kernels call these in their loops over all contacts.
+inline Spring straight_normal(double k, bool bonded, double g, double skin) {
+  const double closure = -g;
+  if (bonded && closure < skin) return {k * closure, k, false};
+  if (closure >= skin) return {k * closure, k, false};
+  if (closure <= -skin) return {};
+  const double e = (closure + skin) * (closure + skin) / (4 * skin);
+  return {k * e, k * (closure + skin) / (2 * skin), false};
+}
+inline double straight_normal_force(double k, bool bonded, double g, double skin) {
+  const double closure = -g;
+  if (bonded && closure < skin) return k * closure;
+  if (closure >= skin) return k * closure;
+  if (closure <= -skin) return 0.0;
+  return k * ((closure + skin) * (closure + skin) / (4 * skin));
+}
+// `sliding_in`: it slid into the step (start_state sliding) the way of `slip_sign`.
+inline Spring straight_shear(double k, double strength, bool sliding_in, int slip_sign, double s) {
+  if (!(strength > 0)) return {};
+  const double f = k * s;
+  if (std::abs(f) >= strength) return {s > 0 ? strength : -strength, 0.0, false};
+  if (sliding_in && f * slip_sign > 0 && std::abs(f) >= (1 - kContactTolerances.slip_kink) * strength)
+    return {f, 0.0, false};
+  return {f, k, false};
+}
+inline double straight_shear_force(double k, double strength, double s) {
+  if (!(strength > 0)) return 0.0;
+  const double f = k * s;
+  if (std::abs(f) >= strength) return s > 0 ? strength : -strength;
+  return f;
+}
 
 // Normal force at gap g (m): the closure law in compression; in tension only a bond holds (with
 // the initial stiffness). The closure the law sees is smoothed over a skin of ±τ around touching,
@@ -392,8 +433,9 @@ void ContactProblem::forces_at(const Eigen::VectorXd& d, Eigen::VectorXd& r) {
       w.kappa = std::max(c.cohesive.opening_max, effective_opening(*w.cohesive, c.gap, w.slip));
       w.bonded = w.kappa < w.cohesive->w_c;
     }
-    const Spring n = normal_at(law, c, w, c.gap, skin_);
-    const Spring t = shear_at(law, c, w, c.shear);
+    const Spring n = w.linear ? straight_normal(w.kn0, w.bonded, c.gap, skin_) : normal_at(law, c, w, c.gap, skin_);
+    const Spring t = w.linear ? straight_shear(w.ks0, w.strength, c.start_state == ContactState::sliding, c.slip_sign, c.shear)
+                              : shear_at(law, c, w, c.shear);
     c.normal_force = n.force;
     c.kn_now = n.stiffness;
     c.capped = n.capped;
@@ -444,8 +486,7 @@ void ContactProblem::tangent_times(const Eigen::VectorXd& v, Eigen::VectorXd& y)
 
 void ContactProblem::set_direction(const Eigen::VectorXd& delta) {
   std::vector<Contact>& contacts = set_.step_contacts();
-  along_normal_.clear();
-  along_shear_.clear();
+  along_.clear();
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     ContactWork& w = work_[k];
     double dg = 0, ds = 0;
@@ -458,8 +499,11 @@ void ContactProblem::set_direction(const Eigen::VectorXd& delta) {
     // 0. A shear term counts only with a strength (directional_force()).
     const Contact& c = contacts[k];
     const bool stays_open = !w.cohesive && !w.bonded && c.gap > skin_ && dg > 0;
-    if (dg != 0 && !stays_open) along_normal_.push_back(static_cast<std::uint32_t>(k));
-    if (ds != 0 && w.strength > 0) along_shear_.push_back(static_cast<std::uint32_t>(k));
+    const auto index = static_cast<std::uint32_t>(k);
+    if (dg != 0 && !stays_open)
+      along_.push_back({c.gap, dg, w.kn0, 0.0, index, w.linear ? LineTerm::linear_normal : LineTerm::normal, w.bonded});
+    if (ds != 0 && w.strength > 0)
+      along_.push_back({c.shear, ds, w.ks0, w.strength, index, w.linear ? LineTerm::linear_shear : LineTerm::shear, false});
   }
 }
 
@@ -468,23 +512,27 @@ double ContactProblem::directional_force(double alpha) const {
   const std::vector<ContactLaw>& laws = set_.laws();
   // Contact by contact in the contacts' order, normal term before shear term, as over all
   // contacts: the terms left out (set_direction()) are exactly zero, so the sum is the same.
+  // (x + α·rate is c.gap + α·w.rate_gap, c.shear + α·w.rate_shear, as set_direction() found them.)
   double sum = 0;
-  std::size_t in = 0, is = 0;
-  const std::size_t nn = along_normal_.size(), ns = along_shear_.size();
-  while (in < nn || is < ns) {
-    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-    const std::uint32_t kn = in < nn ? along_normal_[in] : kNone, ks = is < ns ? along_shear_[is] : kNone;
-    const std::uint32_t k = std::min(kn, ks);
-    const Contact& c = contacts[k];
-    const ContactWork& w = work_[k];
-    const ContactLaw& law = laws[c.law];
-    if (kn == k) {
-      sum += normal_at(law, c, w, c.gap + alpha * w.rate_gap, skin_).force * w.rate_gap;
-      ++in;
-    }
-    if (ks == k) {
-      sum -= shear_at(law, c, w, c.shear + alpha * w.rate_shear).force * w.rate_shear;
-      ++is;
+  for (const LineTerm& e : along_) {
+    const double at = e.x + alpha * e.rate;
+    switch (e.kind) {
+      case LineTerm::linear_normal:
+        sum += straight_normal_force(e.k, e.bonded, at, skin_) * e.rate;
+        break;
+      case LineTerm::linear_shear:
+        sum -= straight_shear_force(e.k, e.cap, at) * e.rate;
+        break;
+      case LineTerm::normal: {
+        const Contact& c = contacts[e.contact];
+        sum += normal_at(laws[c.law], c, work_[e.contact], at, skin_).force * e.rate;
+        break;
+      }
+      case LineTerm::shear: {
+        const Contact& c = contacts[e.contact];
+        sum -= shear_at(laws[c.law], c, work_[e.contact], at).force * e.rate;
+        break;
+      }
     }
   }
   return sum;

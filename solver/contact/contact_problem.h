@@ -42,6 +42,12 @@ struct ContactWork {
   double slip = 0;    ///< m, plastic slip since the crack formed, at the last iterate
   double kappa = 0;   ///< m, damage at the last iterate
   double c_coh = 0;   ///< N, the softened shear cohesion c·factor(κ)·L, in the strength
+  // A contact whose springs are straight lines (not a softening face; a constant or penalty
+  // normal spring, a linear shear spring): the Newton kernels evaluate it inline from these
+  // (contact_problem.cpp straight_normal, straight_shear), the same numbers as its law's.
+  bool linear = false;
+  double kn0 = 0;     ///< N/m, its normal spring (initial_normal_stiffness), when `linear`
+  double ks0 = 0;     ///< N/m, its shear spring (initial_shear_stiffness), when `linear`
 };
 
 class ContactProblem {
@@ -207,7 +213,20 @@ class ContactProblem {
     double kn, ks;  // N/m
   };
   std::vector<TangentSprings> springs_;
-  std::vector<std::uint32_t> along_normal_, along_shear_;
+  // set_direction()'s terms of ψ, in the order directional_force() sums them (contact by
+  // contact, normal before shear): each with the values it reads along α, so that a line
+  // search's evaluations read one short array, not the contacts (kind: LineTerm::Kind).
+  struct LineTerm {
+    enum Kind : std::uint8_t { linear_normal, linear_shear, normal, shear };
+    double x;       // m, the gap or the shear at α = 0
+    double rate;    // m per unit α
+    double k;       // N/m, the linear spring (linear kinds)
+    double cap;     // N, the shear strength (linear_shear)
+    std::uint32_t contact;
+    Kind kind;
+    bool bonded;    // linear_normal: the spring holds tension
+  };
+  std::vector<LineTerm> along_;
   double force_scale_ = 0;          // N, forces_at()'s largest |N| and |T|
   std::vector<ContactWork> work_;  // [contact] the step's contacts' inner-solve working values
   std::vector<std::int32_t> group_run_;  // [element + 1] assign_groups()' scratch: CSR into its pairs
