@@ -327,6 +327,17 @@ double ContactEffect::gap_change(std::size_t k, const Eigen::VectorXd& d) const 
   return dg;
 }
 
+std::pair<double, double> ContactEffect::row_motion(std::size_t k, const Eigen::VectorXd& d) const {
+  const ContactProblem::Row r = problem_.row(k);
+  double dg = 0, ds = 0;
+  for (int i = 0; i < r.size; ++i)
+    if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
+      dg += r.cn(i) * d[r.dofs[i]];
+      ds += r.cs(i) * d[r.dofs[i]];
+    }
+  return {dg, ds};
+}
+
 double ContactEffect::opened_work(std::size_t k, const Eigen::VectorXd& d) const {
   // A contact that starts a dynamic step closed under the normal force N0 it carries (the last
   // accepted step's end force, in the step's start balance M·a1,prev) and ends it open: the
@@ -425,13 +436,7 @@ double ContactEffect::moved_on_work(const Eigen::VectorXd& d) {
     std::int32_t g = group_of(c.at.vertex);
     if (g < 0) g = group_of(c.mirror);
     if (g < 0) continue;
-    const ContactProblem::Row r = problem_.row(k);
-    double dg = 0, ds = 0;  // m, the step's change of its gap and shear
-    for (int i = 0; i < r.size; ++i)
-      if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
-        dg += r.cn(i) * d[r.dofs[i]];
-        ds += r.cs(i) * d[r.dofs[i]];
-      }
+    const auto [dg, ds] = row_motion(k, d);  // m, the step's change of its gap and shear
     const ContactWork& w = problem_.work(k);
     const double n0 = problem_.normal_force_at_rest(k);  // N, its spring at the gap it starts with
     const double t0 = k < start_shear_.size() ? start_shear_[k] : c.start_shear_force;  // N, T0
@@ -483,13 +488,7 @@ double ContactEffect::reloaded_work(const Eigen::VectorXd& d) {
     std::size_t first = ended_.size();  // the first ended contact on its (vertex, edge)
     ended_pairs_.for_each(c.at.vertex, c.at.edge, [&](std::size_t i) { first = std::min(first, i); });
     const EndedContact& e = ended_[first];
-    const ContactProblem::Row r = problem_.row(k);
-    double dg = 0, ds = 0;  // m, the step's change of its gap and shear
-    for (int i = 0; i < r.size; ++i)
-      if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
-        dg += r.cn(i) * d[r.dofs[i]];
-        ds += r.cs(i) * d[r.dofs[i]];
-      }
+    const auto [dg, ds] = row_motion(k, d);  // m, the step's change of its gap and shear
     const ContactWork& w = problem_.work(k);
     const double n0 = problem_.normal_force_at_rest(k), t0 = problem_.shear_force_at_rest(k);  // N
     const double s0 = 0.5 * std::max(0.0, n0 * -w.gap0) + 0.5 * std::abs(t0 * w.shear0);     // J/m
@@ -933,13 +932,7 @@ void ContactEffect::trace_energy_step(const EnergyStep& e, const EnergyTerms& t)
   double sum_exact = 0, sum_booked = 0;
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const Contact& c = cs[k];
-    const ContactProblem::Row r = problem_.row(k);
-    double dg = 0, ds = 0;
-    for (int i = 0; i < r.size; ++i)
-      if (r.dofs[i] >= 0 && r.dofs[i] < d.size()) {
-        dg += r.cn(i) * d[r.dofs[i]];
-        ds += r.cs(i) * d[r.dofs[i]];
-      }
+    const auto [dg, ds] = row_motion(k, d);  // m
     const double end_work = c.state == ContactState::open ? 0.0 : c.normal_force * dg - c.shear_force * ds;
     double prev_work = 0, prev_stored = 0;
     int matched = -1;

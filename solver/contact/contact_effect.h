@@ -128,6 +128,8 @@ class ContactEffect final : public Effect {
   void book_contact(const EnergyStep& e, std::size_t k, EnergyTerms& t) const;
   /// m, the change of contact k's gap over the step's motion d (its row's cn·d).
   double gap_change(std::size_t k, const Eigen::VectorXd& d) const;
+  /// m, the change of contact k's gap and shear over the step's motion d (cn·d, cs·d on its row).
+  std::pair<double, double> row_motion(std::size_t k, const Eigen::VectorXd& d) const;
   /// J/m, what `damped` gives back for contact k in a dynamic step that it starts closed under
   /// its carried normal force N0 and ends open: −½ N0·(Δg − closure0), the part of the time
   /// scheme's trapezoid of its start force beyond where its gap opened (0 otherwise).
