@@ -1,7 +1,7 @@
 // Reusing a factorisation when contact springs switch: three ways measured against each other on
 // the DDA code's brick walls (reference/brick_wall.h peer_wall), static and dynamic.
 //
-//   factor_update_bench [--sizes 10,20,30] [--mesh 2] [--steps 30] [--from 10] [--csv FILE]
+//   factor_update_bench [--sizes 10,20,30] [--mesh 2] [--steps 30] [--from 10] [--csv FILE] [--kinds]
 //
 // Between two consecutive accepted steps k and k+1 of a settling wall, some contacts' spring
 // tangents change (a contact opens or closes, sticks or slides); the rest of the Newton matrix
@@ -27,6 +27,12 @@
 //               solve does before it refactorises), iterations to ‖H1 x − b‖ ≤ 1e-2‖b‖ (the
 //               solve's forcing term) and to 1e-8‖b‖, each iteration a factor solve pair and a
 //               product with H1.
+// With --kinds, instead (its own columns): CHOLMOD's two kinds of factor of H1 against each other
+//   supernodal  LLᵀ by dense blocks (BLAS), what the contact solve keeps;
+//   simplicial  LLᵀ and LDLᵀ column by column (cholmod_rowfac), no BLAS;
+// the numeric factorisation (analysis reused, same AMD ordering) and one solve pair
+// (cholmod_solve, as a CG iteration's preconditioner), and the analysis's flops per factor
+// nonzero, which CHOLMOD_AUTO compares with supernodal_switch (40) to choose between them.
 // Times are thread CPU, best of 2, one core (run with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1).
 // One row per wall and mode: means over the step pairs from --from to --steps (and the contacts
 // with a normal spring at the end of a step: the size of the contact space), and r's largest.
@@ -137,6 +143,73 @@ int pcg_iterations(const Sparse& h, const Llt& p, const Eigen::VectorXd& b, doub
     rz = rz1;
   }
   return -1;
+}
+
+// CHOLMOD's supernodal and simplicial factors of one matrix: numeric factorisation and solve
+// pair, CPU ms (the analysis reused; each kind under the same AMD ordering).
+struct Kinds {
+  double super_ms = 0, super_solve_ms = 0, ll_ms = 0, ll_solve_ms = 0, ldl_ms = 0, ldl_solve_ms = 0;
+  double flops_per_lnz = 0, super_lnz = 0, simplicial_lnz = 0, max_difference = 0;
+};
+
+Kinds factor_kinds(Sparse h, const Eigen::VectorXd& rhs) {
+  Kinds out;
+  h.makeCompressed();
+  cholmod_sparse v = Eigen::viewAsCholmod(h);
+  v.stype = -1;
+  Eigen::VectorXd b = rhs;
+  cholmod_dense bd = Eigen::viewAsCholmod(b);
+  Eigen::VectorXd x_super;
+  // kind: 0 supernodal LLᵀ, 1 simplicial LLᵀ, 2 simplicial LDLᵀ.
+  for (int kind = 0; kind < 3; ++kind) {
+    cholmod_common cc;
+    cholmod_start(&cc);
+    cc.nmethods = 1;
+    cc.method[0].ordering = CHOLMOD_AMD;
+    cc.postorder = 1;
+    cc.supernodal = kind == 0 ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
+    cc.final_ll = kind != 2;
+    cc.print = 0;
+    cholmod_factor* l = cholmod_analyze(&v, &cc);
+    if (kind == 0) out.flops_per_lnz = cc.fl / std::max(cc.lnz, 1.0);
+    const double ms = cpu_ms([&] { cholmod_factorize(&v, l, &cc); });
+    // A solve pair: the mean of 20, best of 2 (one is tens of µs on the smallest wall).
+    cholmod_dense* x = nullptr;
+    const double solve_ms = cpu_ms([&] {
+      for (int i = 0; i < 20; ++i) {
+        if (x) cholmod_free_dense(&x, &cc);
+        x = cholmod_solve(CHOLMOD_A, l, &bd, &cc);
+      }
+    }) / 20;
+    const Eigen::Map<Eigen::VectorXd> xv(static_cast<double*>(x->x), h.rows());
+    if (kind == 0) {
+      x_super = xv;
+      out.super_ms = ms, out.super_solve_ms = solve_ms, out.super_lnz = cc.lnz;
+    } else {
+      out.max_difference = std::max(out.max_difference, (xv - x_super).norm() / x_super.norm());
+      (kind == 1 ? out.ll_ms : out.ldl_ms) = ms;
+      (kind == 1 ? out.ll_solve_ms : out.ldl_solve_ms) = solve_ms;
+      out.simplicial_lnz = cc.lnz;
+    }
+    cholmod_free_dense(&x, &cc);
+    cholmod_free_factor(&l, &cc);
+    cholmod_finish(&cc);
+  }
+  return out;
+}
+
+// The Newton matrix at the end of a step: A and the springs' tangents of `after`.
+Sparse with_springs(const Sparse& a, const Springs& after) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < a.outerSize(); ++j)
+    for (Sparse::InnerIterator it(a, j); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (const auto& [key, s] : after) {
+    add_term(t, s.dofs, s.cn, s.kn);
+    add_term(t, s.dofs, s.cs, s.ks);
+  }
+  Sparse h(a.rows(), a.cols());
+  h.setFromTriplets(t.begin(), t.end());
+  return h;
 }
 
 Pair measure(const Sparse& a, const Springs& before, const Springs& after, const Eigen::VectorXd& rhs) {
@@ -266,14 +339,16 @@ int main(int argc, char** argv) {
   double h = 2;
   int steps = 30, from = 10;
   std::string csv_path = "factor_update.csv";
+  bool kinds = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc) h = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--from") && i + 1 < argc) from = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
+    else if (!std::strcmp(argv[i], "--kinds")) kinds = true;
     else {
-      std::fprintf(stderr, "usage: factor_update_bench [--sizes 10,20,30] [--mesh 2] [--steps 30] [--from 10] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: factor_update_bench [--sizes 10,20,30] [--mesh 2] [--steps 30] [--from 10] [--csv FILE] [--kinds]\n");
       return 2;
     }
   }
@@ -283,7 +358,10 @@ int main(int argc, char** argv) {
   }
   std::ofstream csv = nmm::bench::start_csv(
       csv_path,
-      "mode,wall_n,mesh_size_m,unknowns,closed_contacts_mean,step_pairs,changed_normal_mean,changed_shear_mean,switched_on_off_mean,changed_max,"
+      kinds ? "mode,wall_n,mesh_size_m,unknowns,step_pairs,flops_per_factor_nonzero,supernodal_factor_nonzeros,"
+              "simplicial_factor_nonzeros,supernodal_factorise_ms,simplicial_llt_factorise_ms,simplicial_ldlt_factorise_ms,"
+              "supernodal_solve_ms,simplicial_llt_solve_ms,simplicial_ldlt_solve_ms,solution_difference_max,load_average\n"
+            : "mode,wall_n,mesh_size_m,unknowns,closed_contacts_mean,step_pairs,changed_normal_mean,changed_shear_mean,switched_on_off_mean,changed_max,"
       "factorise_ms,updown_ms,updown_per_term_us,simplicial_build_ms,updown_relative_residual_max,"
       "cg_iterations_forcing,cg_iterations_1e-8,load_average\n");
   for (const bool dynamic : {false, true})
@@ -293,6 +371,7 @@ int main(int argc, char** argv) {
       nmm::solve::TimeStepper st(m, s, "bench");
       st.set_threads(1);
       Springs last;
+      Kinds ksum;
       Pair sum;
       int pairs = 0, worst = 0, cg_failed = 0;
       double err = 0;
@@ -303,7 +382,15 @@ int main(int argc, char** argv) {
           break;
         }
         Springs now = springs_of(nmm::solve::TimeStepperProbe::contact_problem(st));
-        if (k > from) {
+        if (k > from && kinds) {
+          const Kinds q = factor_kinds(with_springs(Sparse(st.view().system.saved_matrix().transpose()), now),
+                                       nmm::solve::TimeStepperProbe::rhs(st));
+          ksum.flops_per_lnz += q.flops_per_lnz, ksum.super_lnz += q.super_lnz, ksum.simplicial_lnz += q.simplicial_lnz;
+          ksum.super_ms += q.super_ms, ksum.ll_ms += q.ll_ms, ksum.ldl_ms += q.ldl_ms;
+          ksum.super_solve_ms += q.super_solve_ms, ksum.ll_solve_ms += q.ll_solve_ms, ksum.ldl_solve_ms += q.ldl_solve_ms;
+          ksum.max_difference = std::max(ksum.max_difference, q.max_difference);
+          ++pairs;
+        } else if (k > from) {
           // The system keeps the upper triangle; this bench works on the lower one.
           const Pair p = measure(Sparse(st.view().system.saved_matrix().transpose()), last, now,
                                  nmm::solve::TimeStepperProbe::rhs(st));
@@ -324,6 +411,19 @@ int main(int argc, char** argv) {
         last = std::move(now);
       }
       if (pairs == 0) continue;
+      if (kinds) {
+        const double q = pairs;
+        char line[600];
+        std::snprintf(line, sizeof line, "%s,%d,%.3g,%d,%d,%.1f,%.0f,%.0f,%.3f,%.3f,%.3f,%.4f,%.4f,%.4f,%.1e,%.2f\n",
+                      dynamic ? "dynamic" : "static", n, h, st.view().space.unknowns(), pairs, ksum.flops_per_lnz / q,
+                      ksum.super_lnz / q, ksum.simplicial_lnz / q, ksum.super_ms / q, ksum.ll_ms / q, ksum.ldl_ms / q,
+                      ksum.super_solve_ms / q, ksum.ll_solve_ms / q, ksum.ldl_solve_ms / q, ksum.max_difference,
+                      nmm::bench::load_average());
+        csv << line;
+        std::fputs(line, stdout);
+        std::fflush(stdout);
+        continue;
+      }
       const double q = pairs, terms = sum.r_normal + sum.r_shear;
       char line[600];
       std::snprintf(line, sizeof line, "%s,%d,%.3g,%d,%.0f,%d,%.1f,%.1f,%.1f,%d,%.3f,%.3f,%.2f,%.3f,%.1e,%.1f,%.1f,%.2f%s\n",
