@@ -188,6 +188,79 @@ TEST(Fracture, ACrackIsTiedToAJointThroughItsEndsAndTheCracksItEndsOn) {
   EXPECT_EQ(via[0], 1);
 }
 
+// The tie runs through chains of any length and in any order of the segments: a zigzag of 300
+// cracks, numbered from its free end to the joint, ties each through the next (jointed_cracks
+// finds the fixed point from each tied segment through a grid of the ends), while a crack beside
+// each link, 2·tol off its end, stays free; and on random segments the set is that of the
+// all-pairs fixed point, written out here.
+TEST(Fracture, ATieRunsThroughAChainOfAnyOrderAsTheAllPairsFixedPoint) {
+  std::vector<JointDef> joints(1);
+  joints[0].points = {{0, 0}, {10, 0}};
+  const double tol = 1e-6;
+  const int links = 300;
+  std::vector<Vec2> a, b;
+  std::vector<std::int32_t> crack;
+  for (int k = 0; k < links; ++k) {  // link k from height k·0.1 to (k + 1)·0.1; its id counts down
+    const double x0 = (k % 2) ? 1.0 : 1.05, x1 = (k % 2) ? 1.05 : 1.0;
+    a.push_back({x0, k * 0.1});
+    b.push_back({x1, (k + 1) * 0.1});
+    crack.push_back(links - 1 - k);
+  }
+  for (int k = 1; k < links; ++k) {  // a free crack starting 2·tol beside each link's start
+    a.push_back({a[static_cast<std::size_t>(k)].x + 2 * tol, a[static_cast<std::size_t>(k)].y});
+    b.push_back({a[static_cast<std::size_t>(k)].x + 0.07, a[static_cast<std::size_t>(k)].y + 0.05});
+    crack.push_back(links - 1 + k);
+  }
+  const int cracks = 2 * links - 1;
+  const std::vector<std::uint8_t> tied = solve::jointed_cracks(joints, 1, a, b, crack, cracks, tol);
+  ASSERT_EQ(tied.size(), static_cast<std::size_t>(cracks));
+  for (int c = 0; c < links; ++c) EXPECT_EQ(tied[static_cast<std::size_t>(c)], 1) << "link " << c;
+  for (int c = links; c < cracks; ++c) EXPECT_EQ(tied[static_cast<std::size_t>(c)], 0) << "beside " << c;
+
+  // Random short segments, some sharing ends, several per crack, against the all-pairs passes.
+  auto to_segment = [](const Vec2& p, const Vec2& s, const Vec2& e) {
+    const double dx = e.x - s.x, dy = e.y - s.y, l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((p.x - s.x) * dx + (p.y - s.y) * dy) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(s.x + t * dx - p.x, s.y + t * dy - p.y);
+  };
+  std::uint64_t seed = 12345;
+  auto uniform = [&]() {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0;
+  };
+  for (int trial = 0; trial < 5; ++trial) {
+    const int n = 400, ids = 120;
+    std::vector<Vec2> ra, rb;
+    std::vector<std::int32_t> rc;
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p = i > 0 && uniform() < 0.5 ? rb[static_cast<std::size_t>(uniform() * i)]
+                                              : Vec2{10 * uniform(), 10 * uniform() - 0.2};
+      ra.push_back(p);
+      rb.push_back({p.x + 0.6 * (uniform() - 0.5), p.y + 0.6 * (uniform() - 0.5)});
+      rc.push_back(uniform() < 0.05 ? -1 : static_cast<std::int32_t>(uniform() * ids));
+    }
+    std::vector<std::uint8_t> want(ids, 0);
+    auto is_tied = [&](std::int32_t c) { return c < 0 || want[static_cast<std::size_t>(c)] != 0; };
+    for (int i = 0; i < n; ++i)
+      if (rc[static_cast<std::size_t>(i)] >= 0 && (to_segment(ra[static_cast<std::size_t>(i)], {0, 0}, {10, 0}) <= 0.01 ||
+                                                   to_segment(rb[static_cast<std::size_t>(i)], {0, 0}, {10, 0}) <= 0.01))
+        want[static_cast<std::size_t>(rc[static_cast<std::size_t>(i)])] = 1;
+    for (bool more = true; more;) {
+      more = false;
+      for (std::size_t i = 0; i < ra.size(); ++i)
+        for (std::size_t k = 0; k < ra.size() && !is_tied(rc[i]); ++k)
+          if (is_tied(rc[k]) && (to_segment(ra[i], ra[k], rb[k]) <= 0.01 || to_segment(rb[i], ra[k], rb[k]) <= 0.01))
+            want[static_cast<std::size_t>(rc[i])] = 1, more = true;
+    }
+    const std::vector<std::uint8_t> got = solve::jointed_cracks(joints, 1, ra, rb, rc, ids, 0.01);
+    int tied_count = 0;
+    for (const std::uint8_t w : want) tied_count += w;
+    EXPECT_GT(tied_count, 5) << "trial " << trial;  // the chains reach some cracks …
+    EXPECT_LT(tied_count, ids) << "trial " << trial;  // … not all
+    EXPECT_EQ(got, want) << "trial " << trial;
+  }
+}
+
 // Rule 4 of fracture.h tells a crack that has not parted its element (crack_parting.h) by the
 // covers of the pieces across it: at cover order 0 the jump across a crack is Σ_k λ_k·(u_k⁺ − u_k⁻),
 // with no term for a node whose star the crack did not run right across. A crack 0.1 m long in

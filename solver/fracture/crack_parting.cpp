@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <utility>
 
 namespace nmm::solve {
@@ -84,11 +83,30 @@ bool inside_star(const Mesh& mesh, std::size_t e, unsigned nodes, const Vec2& p)
   return false;
 }
 
+CrackEnds::CrackEnds(const std::vector<Vec2>& ends_a, const std::vector<Vec2>& ends_b) : a_(&ends_a), b_(&ends_b) {
+  sorted_.reserve(2 * ends_a.size());
+  for (std::size_t i = 0; i < ends_a.size(); ++i) {
+    sorted_.push_back({ends_a[i].x, ends_a[i].y, i});
+    sorted_.push_back({ends_b[i].x, ends_b[i].y, i});
+  }
+  std::sort(sorted_.begin(), sorted_.end(), [](const End& p, const End& q) {
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    return p.index < q.index;
+  });
+}
+
 std::vector<std::size_t> cracks_through_triangle(const Mesh& mesh, std::size_t t, const std::vector<Vec2>& ends_a,
                                                  const std::vector<Vec2>& ends_b) {
+  return cracks_through_triangle(mesh, t, CrackEnds(ends_a, ends_b));
+}
+
+std::vector<std::size_t> cracks_through_triangle(const Mesh& mesh, std::size_t t, const CrackEnds& ends) {
   // Barycentric coordinates of the segment's mid-point in the triangle, each ≥ −tol / (its
   // height): inside or on it within 1e-9·h. A segment is cut from edge to edge of one element,
   // so its mid-point lies in that element's triangle.
+  const std::vector<Vec2>& ends_a = ends.a();
+  const std::vector<Vec2>& ends_b = ends.b();
   Vec2 n[3];
   for (int k = 0; k < 3; ++k) {
     const std::size_t node = static_cast<std::size_t>(mesh.triangle_nodes[3 * t + static_cast<std::size_t>(k)]);
@@ -111,19 +129,14 @@ std::vector<std::size_t> cracks_through_triangle(const Mesh& mesh, std::size_t t
   for (std::size_t i = 0; i < count; ++i)
     if (inside({(ends_a[i].x + ends_b[i].x) / 2, (ends_a[i].y + ends_b[i].y) / 2})) in[i] = 1, queue.push_back(i);
   if (queue.empty()) return queue;
-  // Segments by end point (exact), then the chains through those found.
-  std::multimap<std::pair<double, double>, std::size_t> by_end;
-  for (std::size_t i = 0; i < count; ++i) {
-    by_end.emplace(std::make_pair(ends_a[i].x, ends_a[i].y), i);
-    by_end.emplace(std::make_pair(ends_b[i].x, ends_b[i].y), i);
-  }
+  // The chains through those found, by end point (exact). The closure does not depend on the
+  // order the joined segments are visited in, and the result is sorted.
   for (std::size_t q = 0; q < queue.size(); ++q) {
     const std::size_t i = queue[q];
-    for (const Vec2& p : {ends_a[i], ends_b[i]}) {
-      const auto [lo, hi] = by_end.equal_range({p.x, p.y});
-      for (auto it = lo; it != hi; ++it)
-        if (!in[it->second]) in[it->second] = 1, queue.push_back(it->second);
-    }
+    for (const Vec2& p : {ends_a[i], ends_b[i]})
+      ends.at(p, [&](std::size_t k) {
+        if (!in[k]) in[k] = 1, queue.push_back(k);
+      });
   }
   std::sort(queue.begin(), queue.end());
   return queue;

@@ -429,6 +429,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
   std::vector<std::vector<std::size_t>> regrow(over_.size());
   {
     std::vector<Vec2> ends_a, ends_b;
+    std::unique_ptr<CrackEnds> ends;  // once, for every element below that needs it
     for (std::size_t i = 0; i < over_.size(); ++i) {
       const std::size_t e = static_cast<std::size_t>(over_[i]);
       if (crossed_[e]) continue;
@@ -438,10 +439,12 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       }
       if (!parted_ || !parted_->of(mesh)) parted_ = std::make_shared<const TriangleElements>(mesh);
       if (!parted_->shares_a_cover(mesh, e, first_crack)) continue;
-      if (ends_a.empty())
+      if (!ends) {
         for (const CrackSegment& c : segments_) ends_a.push_back(c.a), ends_b.push_back(c.b);
+        ends = std::make_unique<CrackEnds>(ends_a, ends_b);
+      }
       const std::vector<std::size_t> chain =
-          cracks_through_triangle(mesh, static_cast<std::size_t>(mesh.element_triangle[e]), ends_a, ends_b);
+          cracks_through_triangle(mesh, static_cast<std::size_t>(mesh.element_triangle[e]), *ends);
       for (std::size_t t = 0; t < tips_.size(); ++t) {
         if (!tips_[t].active) continue;
         for (const std::size_t k : chain)
