@@ -905,6 +905,7 @@ TEST(Fracture, ARecutCarriesTheContactsEndForcesOntoThePiecesTheyActOn) {
   double differ = 0, total = 0;    // J/m, Σ |c_end·d − c_start·d| and Σ Σ|c_start·d| over them
   std::vector<solve::ContactEffect::EndedShear> last;  // the last accepted step's closed contacts at its end
   std::size_t carried = 0, sheared = 0;  // of them, carried across a re-cut; with a shear force
+  std::size_t dropped = 0;               // of them, not carried
   const Outcome o = st.run_until(sp.end_time * (1 - 1e-9), [&](std::int64_t) {
     const solve::RunView v = st.view();
     const auto* contact = solve::find_effect<solve::ContactEffect>(v);
@@ -915,9 +916,17 @@ TEST(Fracture, ARecutCarriesTheContactsEndForcesOntoThePiecesTheyActOn) {
       return;
     }
     topology = v.topology;
+    // Every one is carried: a re-cut keeps each loop vertex at its point, on its own face where a
+    // crack ends inside its element (the loop passes that point twice: contact_effect.cpp
+    // old_vertex_on_its_side). The map's first vertex at the point alone dropped the other face's:
+    // 12 of 945 here (2026-12-01; within 0.0039 over all before, 0.0036 now; released 1213.16 →
+    // 1215.16 J/m).
+    const std::vector<solve::ContactEffect::EndedShear> started = contact->ended_shear(true);
+    EXPECT_EQ(started.size(), last.size()) << "step " << v.state.step << ": closed contacts dropped by the re-cut";
+    dropped += last.size() - std::min(last.size(), started.size());
     // Each contact carried keeps its end shear force and springs' energy, bit for bit: T0 of a
     // contact found open on its edge (energy_step's friction) and the trace's start energy.
-    for (const solve::ContactEffect::EndedShear& e : contact->ended_shear(true)) {
+    for (const solve::ContactEffect::EndedShear& e : started) {
       const auto was = std::find_if(last.begin(), last.end(), [&](const solve::ContactEffect::EndedShear& l) {
         return l.bx == e.bx && l.by == e.by && l.shear_force == e.shear_force && l.stored == e.stored;
       });
@@ -971,7 +980,8 @@ TEST(Fracture, ARecutCarriesTheContactsEndForcesOntoThePiecesTheyActOn) {
   EXPECT_GE(cut_steps, 3);
   EXPECT_GE(released_steps, 1);
   EXPECT_GT(released, 100.0);  // J/m: what a re-cut lost to the residual before
-  std::printf("%zu contacts carried across the re-cuts, %zu of them with a shear force\n", carried, sheared);
+  std::printf("%zu contacts carried across the re-cuts, %zu of them with a shear force; %zu dropped\n", carried, sheared,
+              dropped);
   EXPECT_GT(sheared, 10u);
 }
 

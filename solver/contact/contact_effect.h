@@ -159,7 +159,8 @@ class ContactEffect final : public Effect {
   // of which the linear path from 0 took ½: `damped` gives that half back. Not across a
   // restart. Across a re-cut within the step (a crack) the same holds for the contacts the cut
   // mesh's detection does not find closed again: the re-cut carries each of them onto the new
-  // mesh (carry_ended) — its vertex by the map's vertex_parent, its edge's point to the piece of
+  // mesh (carry_ended) — its vertex by the map's vertex_parent (of a crack's two faces where the
+  // crack ends inside its element, its own face's vertex), its edge's point to the piece of
   // the element it was on whose loop runs through it, its row's values to the same local
   // unknowns of the piece (an element's pieces keep its triangle's nodes and cover functions, so
   // w_k p_j at a point are the same numbers) — and the step releases ½ (0 − c_end)·d of them.
