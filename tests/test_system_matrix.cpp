@@ -11,6 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#if defined(__x86_64__) || defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 #include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/parked_array.h"
 #include "solver/discretisation/system_matrix.h"
@@ -538,6 +542,44 @@ TEST(SystemMatrixSingle, ALeanRunPlacesAGrownPatternsPairsInsteadOfOrderingAnew)
     const Eigen::VectorXd x = k.solve(b);
     EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-12 * b.norm());
   }
+}
+
+TEST(SystemMatrixSingle, ALeanFactorTakesValuesBelowFloatsNormalRangeAsZero) {
+  // Two unknowns coupled by 1e-40, below float's smallest normal (1.18e-38): L = [1 0; 1e-40 1].
+  // Rounded as it is, L̃'s off-diagonal value is a subnormal float and the solve of b = (1, 0)
+  // gives z₁ ≈ −1e-40; a lean run's factor holds 0 there (single_factor.h), so z₁ = 0, and
+  // leaves the control register (flush-to-zero for its numeric factorisation) as it found it.
+  constexpr int n = 2;
+  const Groups g = Groups{}.add({0, 1});
+  const double block[4] = {1.0, 1e-40, 1e-40, 1.0};
+  const auto set_up = [&](SystemMatrix& k, bool lean) {
+    k.set_amd_only(true);
+    k.set_single_precision(n);
+    k.set_lean_factorisation(lean ? n : n + 1);
+    k.build_pattern(n, g.offsets, g.dofs);
+    k.set_zero();
+    k.add_group(0, block);
+  };
+  SystemMatrix lean, kept;
+  set_up(lean, true);
+  set_up(kept, false);
+#if defined(__x86_64__) || defined(__SSE2__)
+  const unsigned csr = _mm_getcsr();
+#endif
+  for (SystemMatrix* k : {&lean, &kept}) {
+    ASSERT_TRUE(k->factorize());
+    ASSERT_TRUE(k->single_precision());
+  }
+#if defined(__x86_64__) || defined(__SSE2__)
+  EXPECT_EQ(_mm_getcsr(), csr);
+#endif
+  const Eigen::VectorXd b = Eigen::Vector2d(1.0, 0.0);
+  const Eigen::VectorXd zk = kept.solve_unrefined(b), zl = lean.solve_unrefined(b);
+  EXPECT_EQ(zk[0], 1.0);
+  EXPECT_LT(zk[1], -0.9e-40);
+  EXPECT_GT(zk[1], -1.1e-40);
+  EXPECT_EQ(zl[0], 1.0);
+  EXPECT_EQ(zl[1], 0.0);
 }
 
 TEST(SystemMatrixSingle, TheSpareHalfStaysForTheSamePatternAndGoesWithANewOne) {

@@ -17,8 +17,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -258,7 +260,7 @@ bool SingleFactor::use_avx(bool on) {
   return g_avx;
 }
 
-bool SingleFactor::take(cholmod_factor* l, bool keep_spare) {
+bool SingleFactor::take(cholmod_factor* l, bool keep_spare, bool flush_subnormal) {
   clear();
   if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || l->itype != CHOLMOD_INT || !l->x) return false;
   const std::size_t size = l->xsize;
@@ -272,7 +274,13 @@ bool SingleFactor::take(cholmod_factor* l, bool keep_spare) {
   for (std::size_t k = 0; k < size; k += kChunk) {
     const std::size_t m = std::min(kChunk, size - k);
     std::memcpy(in, bytes + k * sizeof(double), m * sizeof(double));
-    for (std::size_t i = 0; i < m; ++i) out[i] = static_cast<float>(in[i]);
+    if (flush_subnormal) {
+      for (std::size_t i = 0; i < m; ++i)
+        out[i] = std::fabs(in[i]) < static_cast<double>(std::numeric_limits<float>::min()) ? 0.0f
+                                                                                           : static_cast<float>(in[i]);
+    } else {
+      for (std::size_t i = 0; i < m; ++i) out[i] = static_cast<float>(in[i]);
+    }
     std::memcpy(bytes + k * sizeof(float), out, m * sizeof(float));
   }
   const auto* to = reinterpret_cast<const float*>(bytes);
@@ -291,11 +299,18 @@ bool SingleFactor::take(cholmod_factor* l, bool keep_spare) {
     spare_end_ = last;
     if (!keep_spare) release_spare();
   }
-  // CHOLMOD's next factorisation touches them again: in 2 MB pages, 512 times fewer faults.
-  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
-  const auto start = reinterpret_cast<std::uintptr_t>(bytes);
-  const std::uintptr_t huge_first = (start + kHuge - 1) / kHuge * kHuge, huge_last = end / kHuge * kHuge;
-  if (huge_last > huge_first) madvise(reinterpret_cast<void*>(huge_first), huge_last - huge_first, MADV_HUGEPAGE);
+  // CHOLMOD's next factorisation touches them again: in 2 MB pages, 512 times fewer faults —
+  // where the spare half stays resident (keep_spare). Where it went back at once (the lean
+  // runs), the refactorisation faulted its 0.9 GB in again as 2 MB pages, which the kernel
+  // zeroes and, on a busy machine, first compacts: at 930k unknowns 1.8–2.4 s of the
+  // kernel's page clearing per refactorisation against 1.1 s for a whole new 1.8 GB factor in
+  // 4 KB pages (perf, docs/notes/2026-11-scale.md, 2026-12-01): those stay 4 KB pages.
+  if (keep_spare) {
+    constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+    const auto start = reinterpret_cast<std::uintptr_t>(bytes);
+    const std::uintptr_t huge_first = (start + kHuge - 1) / kHuge * kHuge, huge_last = end / kHuge * kHuge;
+    if (huge_last > huge_first) madvise(reinterpret_cast<void*>(huge_first), huge_last - huge_first, MADV_HUGEPAGE);
+  }
 #endif
   const int* pi = static_cast<const int*>(l->pi);
   max_rows_ = 0;

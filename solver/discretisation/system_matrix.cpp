@@ -5,6 +5,10 @@
 #include <limits>
 #include <new>
 
+#if defined(__x86_64__) || defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -33,6 +37,38 @@ constexpr double kPlacedFlops = 1.25;
 // A grown scatter's arrays keep 1/kScatterRoom of their size as room for the next growths
 // (grow_in_place).
 constexpr std::size_t kScatterRoom = 64;
+
+// A lean run's numeric factorisation (factorize_lean) runs with the SSE control register's
+// flush-to-zero and denormals-are-zero bits set: a result below 2.2e-308 is 0, an operand there
+// is read as 0. The wall's factor holds tens of millions of values between 1e-290 and 1e-38
+// (fill between nearly decoupled blocks, single_factor.h), whose products fall below the
+// double range, and each such product costs the CPU a microcode assist inside the dense
+// kernels. At 930k unknowns they grow over the run (values below 1.18e-38: 25 M of 204 M at
+// step 1, 51 M of 219 M at step 14, with 44,548 subnormal doubles in the factor), and the
+// numeric factorisation's CPU with them (5.5 s at step 1, 13.1 s at step 14, 163 against 141
+// Gflop; `perf`: the time in dgemm's kernel, 2.8 × per flop); with the two bits step 1's three
+// factorisations took 5.7 / 5.2 / 5.2 s against 5.5 / 5.6 / 6.1 s (docs/notes/2026-11-scale.md,
+// 2026-12-01). The values lost are below 1e-300 of the factor's scale. The bits stay the same on every x86-64 CPU (the two bits
+// are SSE's, and AVX follows them); a restart refactorises under them too. OpenBLAS's own
+// threads (more than one solver thread) keep their register as it is: deterministic per
+// thread count, as the partition of CHOLMOD's and OpenBLAS's loops already is.
+class FlushSubnormals {
+ public:
+#if defined(__x86_64__) || defined(__SSE2__)
+  FlushSubnormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kFtz | kDaz); }
+  ~FlushSubnormals() { _mm_setcsr(saved_); }
+
+ private:
+  static constexpr unsigned kFtz = 0x8000, kDaz = 0x0040;
+  unsigned saved_;
+
+ public:
+#else
+  FlushSubnormals() = default;
+#endif
+  FlushSubnormals(const FlushSubnormals&) = delete;
+  FlushSubnormals& operator=(const FlushSubnormals&) = delete;
+};
 
 // y ← y + α·A v (α = ±1) for the symmetric A whose upper triangle is (outer, inner, values),
 // diagonal last in each column. The sums run in the order of Eigen's product with the lower
@@ -707,7 +743,7 @@ void SystemMatrix::keep_single() {
   // pattern changes (build_pattern): the next factorisation of this pattern writes it without
   // the kernel's zeroing of fresh pages; the lean runs need that memory at once.
   if (!single_.ready() && single_from_ > 0 && size() >= single_from_)
-    single_.take(llt_.factor(), /*keep_spare=*/size() < lean_from_);
+    single_.take(llt_.factor(), /*keep_spare=*/size() < lean_from_, /*flush_subnormal=*/size() >= lean_from_);
 }
 
 // cholmod_factorize_p's supernodal LLᵀ of an upper triangle, A1 = tril(P A Pᵀ) by
@@ -805,9 +841,13 @@ void SystemMatrix::factorize_lean() {
     values_file.read(k_.valuePtr());
   };
   try {
-    llt_.factorize_permuted(a1);
+    {
+      const FlushSubnormals flush;
+      llt_.factorize_permuted(a1);
+    }
     memory_mark("numeric factorisation");
-    if (llt_.info() == Eigen::Success) single_.take(l);  // (keep_single() reads size(): k_ is let go)
+    // (keep_single() reads size(): k_ is let go)
+    if (llt_.info() == Eigen::Success) single_.take(l, /*keep_spare=*/false, /*flush_subnormal=*/true);
   } catch (...) {
     cholmod_free_sparse(&a1, &c);
     saved.unpark(saved_);
