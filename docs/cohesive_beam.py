@@ -7,12 +7,15 @@
 
 The beam of Petersson (1981, Lund TVBM-1006; docs/physics.md §6): span 2.0 m between roller
 supports, depth 0.2 m, a notch 0.1 m deep and 10 mm wide at mid-span, E 30 GPa, nu 0.2, plane
-stress, sigma_t 3.33 MPa, G_f 124 N/m (w_c = 74.5 um); crack faces kn 1e14 Pa/m. The test rested
-on rollers and was loaded through one, so each support and the load hold only a strip 4 mm long
-(SUPPORT), the outline having vertices at the strips' ends. A strip held in y takes an end moment
-that grows with its length: the unnotched beam at cover order 1, h 0.025 m, is 135.9 kN/m per mm
-on 2 cm strips (the scene until 2026-11-30, 0.1 m before that), 118.4 on 4 mm and 116.4 on 2 mm
-against 116.6 simply supported. The load strip (top, mid-span) moves down 1 um a static step
+stress, sigma_t 3.33 MPa, G_f 124 N/m (w_c = 74.5 um); crack faces kn 1e14 Pa/m; cover order 1
+(docs/higher-order-covers.md). The test rested on rollers and was loaded through one, which let
+the beam turn on them: each support and the load hold a strip 0.4 mm long (SUPPORT), the outline
+having vertices at the strips' ends, the left support in x too (a pin). A strip held in y holds
+the beam's end straight and takes a moment that grows with its length: the unnotched beam at cover
+order 1, h 0.025 m, is 135.9 kN/m per mm on 2 cm strips, 118.4 on 4 mm and 116.4 on 2 mm against
+116.6 simply supported, and after the peak, as the beam turns, the 4 mm strips (the scene until
+2026-12-01, with a fixed point at (0.1, 0.01) that took most of the left reaction) pulled their
+outer ends down and cracked the bottom skin over them at h 0.0125 m. The load strip (top, mid-span) moves down 1 um a static step
 (dt 1 ms), 1000 steps:
 
         load v 1 mm/s
@@ -43,7 +46,7 @@ from figure_page import arguments, figure_path, page, write
 
 SIZES = [0.025, 0.0167, 0.0125]
 GF_LIGAMENT = 124.0 * 0.1  # J/m
-SUPPORT = 0.004  # m, the length of each support strip and of the load strip
+SUPPORT = 0.0004  # m, the length of each support strip and of the load strip
 _s = SUPPORT / 2
 OUTLINE = [[0, 0], [0.1 - _s, 0], [0.1 + _s, 0], [1.095, 0], [1.095, 0.1], [1.105, 0.1], [1.105, 0],
            [2.1 - _s, 0], [2.1 + _s, 0], [2.2, 0], [2.2, 0.2], [1.1 + _s, 0.2], [1.1 - _s, 0.2], [0, 0.2]]
@@ -60,12 +63,11 @@ def scene(h):
         "bodies": [{"material": "concrete", "outer": OUTLINE}],
         "fracture": {"crack_set": "crack"},
         "mesh": {"size": h},
-        "supports": [{"points": [[0.1 - SUPPORT / 2, 0], [0.1 + SUPPORT / 2, 0]], "fix": "y"},
+        "supports": [{"points": [[0.1 - SUPPORT / 2, 0], [0.1 + SUPPORT / 2, 0]], "fix": "xy"},
                      {"points": [[2.1 - SUPPORT / 2, 0], [2.1 + SUPPORT / 2, 0]], "fix": "y"},
                      {"points": [[1.1 - SUPPORT / 2, 0.2], [1.1 + SUPPORT / 2, 0.2]], "fix": "y",
                       "velocity": [0, -1e-3]}],
-        "fixed_points": [[0.1, 0.01]],
-        "solver": {"time_step": 1e-3, "steps": 1000, "dynamic": False, "output_every": 2},
+        "solver": {"time_step": 1e-3, "steps": 1000, "dynamic": False, "output_every": 2, "cover_order": 1},
     }
 
 

@@ -96,6 +96,17 @@
 //      elastic branch (rule 4), so a tip one element early changes little.
 //      (c) a tip whose element's own crack direction leaves that element at once (a tip on its
 //      vertex) goes on straight (as rule 4's band tip did), instead of stopping for good.
+//      (d) a tensile tip crosses an element that breaks along Erdogan & Sih's (1963) kink,
+//      θ = 2·atan((σ_nn − √(σ_nn² + 8σ_tn²))/(4σ_tn)) from its line, σ_nn and σ_tn the element's
+//      traction on the tip's line (in place of K_I and K_II), not normal to the element's σ1,
+//      where the element is pulled open across the line (σ_nn > 0; one shut across it keeps its
+//      own σ1 direction: holding the tip there instead raised Petersson's beam's work at order 0,
+//      h 0.0167 m, from 11.22 to 14.02 J/m, its tip held 30 steps at y 0.148 m). σ1 is the direction a crack starts
+//      in; a tip's kink is set by its opening and sliding, and the stress along its line (the
+//      T-stress, positive along a deep crack in bending) does not turn it. Petersson's beam at cover
+//      order 1, h 0.0125 m: the element ahead of the tip at y 0.162 m reached σt along the crack
+//      (σyy 3.33 MPa, σxx across it 1.43, σxy 0) and the crack turned horizontal (step 575); at
+//      order 0 the same at y 0.173 m (step 832).
 // Runs without a fracture energy are not touched (bit for bit).
 #pragma once
 

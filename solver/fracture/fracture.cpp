@@ -15,6 +15,7 @@
 #include "solver/fracture/cohesive_starts.h"
 #include "solver/fracture/crack_parting.h"
 #include "solver/fracture/element_geometry.h"
+#include "solver/fracture/interaction_integral.h"
 #include "solver/fracture/tip_drive.h"
 
 namespace nmm::solve {
@@ -384,6 +385,17 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
       const MaterialDef& ahead = scene.materials[scene.bodies[mesh.element_body[e]].material];
       if (ahead.strength.toughness > 0) return;
       Vec2 d = holds ? tip.dir : direction(static_cast<std::size_t>(e), tip.dir);
+      // In rock that softens a tensile tip kinks by Erdogan & Sih's rule read from the element's
+      // traction on the tip's line (rule 8d of cohesive_starts.h), not along the element's own σ1,
+      // where the element is pulled open across that line; one shut across it keeps its own.
+      const std::size_t u = static_cast<std::size_t>(e);
+      const double tx = tip.dir.x, ty = tip.dir.y, nx = -ty, ny = tx;
+      const double s_nn = stress[3 * u] * nx * nx + stress[3 * u + 1] * ny * ny + 2 * stress[3 * u + 2] * nx * ny;
+      if (!holds && cohesive_rock(u) && failure_[u].mode == CrackMode::tensile && s_nn > 0) {
+        const double s_tn = stress[3 * u] * tx * nx + stress[3 * u + 1] * ty * ny + stress[3 * u + 2] * (tx * ny + ty * nx);
+        const double kink = mts_angle(s_nn, s_tn), c = std::cos(kink), sn = std::sin(kink);
+        d = Vec2{c * tx - sn * ty, sn * tx + c * ty};
+      }
       // In rock that softens a tip that only clips an element's corner (straight on it would
       // leave within kCornerClip·h) or crosses a sliver (rule 5 of cohesive_starts.h) goes on
       // straight: the element's constant stress belongs to rock mostly off the crack's line.
