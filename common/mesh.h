@@ -27,6 +27,10 @@ enum EdgeOrigin : std::uint8_t {
   kEdgeJoint = 2,     ///< lies on a joint (loop_edge_joint names it)
   kEdgeBoundary = 4,  ///< lies on a body boundary (outer or hole)
   kEdgeBridge = 8,    ///< zero-width bridge joining a hole to the element's outer boundary
+  /// a gap end's extension: a narrow gap of a body boundary (a slot) carried on from its end to
+  /// the edge of the triangle holding the end; it splits the covers of the stars that it and the
+  /// gap separate, and nothing else (no contact; elements across it are one block)
+  kEdgeExtension = 16,
 };
 
 struct Mesh {

@@ -188,13 +188,13 @@ void validate_mesh(const Mesh& mesh, const std::string& name) {
             " loop vertices");
   check_size(name, "LOOPORIG", "loop_edge_origin", mesh.loop_edge_origin.size(), vertices,
              "there are " + n(vertices64) + " loop vertices");
-  constexpr unsigned kKnownOrigins = kEdgeMesh | kEdgeJoint | kEdgeBoundary | kEdgeBridge;
+  constexpr unsigned kKnownOrigins = kEdgeMesh | kEdgeJoint | kEdgeBoundary | kEdgeBridge | kEdgeExtension;
   for (std::size_t v = 0; v < vertices; ++v) {
     const unsigned flags = mesh.loop_edge_origin[v];
     if (flags == 0 || (flags & ~kKnownOrigins) != 0)
       bad(name, "LOOPORIG",
           "loop vertex " + n(static_cast<std::int64_t>(v)) + " edge origin flags are " + n(flags) +
-              "; they must be a nonzero combination of 1, 2, 4 and 8");
+              "; they must be a nonzero combination of 1, 2, 4, 8 and 16");
   }
   check_size(name, "LOOPJNT", "loop_edge_joint", mesh.loop_edge_joint.size(), vertices,
              "there are " + n(vertices64) + " loop vertices");

@@ -69,8 +69,9 @@ SceneDef scene_from_json(const json& doc, const std::string& file) {
     scene.interface_set = find_by_name(scene.joint_sets, *iface, "joint set", "joint_sets");
 
   const JsonReader mesh = root["mesh"];
-  mesh.check_keys({"size"});
+  mesh.check_keys({"size", "split_gap_ends"});
   scene.mesh_size = mesh.number("size", kPositive);
+  if (mesh.has("split_gap_ends")) scene.split_gap_ends = mesh["split_gap_ends"].as_bool();
   // Every number derived from the mesh size (triangle and node counts, node coordinates) is
   // checked here, where the message can name /mesh/size (common/lattice.h).
   const std::string lattice = lattice_problem(scene.bodies, scene.mesh_size);

@@ -62,6 +62,10 @@ struct SceneDef {
   std::vector<JointDef> joints;
   int interface_set = -1;  ///< joint set for touching bodies, -1 if absent
   double mesh_size = 0;    ///< m, side of the equilateral mathematical triangles
+  /// "mesh.split_gap_ends": the end of a body-boundary gap narrower than the mesh (a slot) is
+  /// carried on to the edge of its triangle for the covers, which it then splits (cover_cutter.cpp
+  /// step 5); false (default): covers are the connected pieces of star ∩ body minus joints
+  bool split_gap_ends = false;
   std::vector<Vec2> fixed_points;    ///< m
   std::vector<LoadDef> loads;
   std::vector<TimeTable> load_tables;  ///< [load] factor on its force over time (empty: 1); may be shorter than loads

@@ -24,6 +24,20 @@
 //    piece is a mesh edge only (no joint, no boundary on it). A joint ending inside the star
 //    leaves the pieces on its two faces joined around its tip, so it does not split the cover.
 //    Blocks: components of all MEs joined across every mesh-only edge.
+//    Gap ends (scene mesh.split_gap_ends, off by default): where a body's boundary turns back on
+//    itself by at least 150° within less than h — the end of a slot narrower than the mesh, at a
+//    vertex (a sharp notch) or along an edge shorter than h between two reflex corners (a flat
+//    slot end) — the gap is carried on from the end's middle, along the bisector of the walls,
+//    to the edge of the mesh triangle that holds the end: an extension curve (kEdgeExtension),
+//    cut into the arrangement like a joint but with no contact and no block boundary on it. A
+//    cover is then a piece of star ∩ body minus joints and extensions: a star the gap enters and
+//    ends in is split along the gap and its extension when they separate it (the node opposite
+//    the exit edge), and stays whole when its pieces join round the extension's end (the exit
+//    edge's nodes). This is the crack of the extended finite element and manifold methods with
+//    its tip moved onto the edge of the element holding it (Wells & Sluys 2001, IJNME 50:2667;
+//    Zheng & Xu 2014, IJNME 97:986 on covers a tip cuts partially): the walls of a slot narrower
+//    than h are no longer tied by the covers reaching round its end; the jump across the
+//    extension falls to zero at the triangle's edge, so the field is continuous ahead of it.
 // 6. Coordinates go to double once, after the last insertion: each arrangement vertex's exact
 //    coordinates rounded to the nearest double (round_exact), a function of the exact point
 //    alone. CGAL::to_double of a lazy number would return the midpoint of whatever interval its
@@ -43,6 +57,7 @@
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +70,7 @@
 
 #include "common/error.h"
 #include "common/lattice.h"
+#include "common/math_constants.h"
 #include "nmm_version.h"
 #include "common/stopwatch.h"
 
@@ -237,6 +253,7 @@ class Cutter {
   void label_faces();
   void bridge_holes();
   void round_vertices();
+  void gap_end_extensions(std::vector<Curve>& curves) const;
   Mesh extract();
   bool speck(Face_handle face) const;
 
@@ -298,7 +315,73 @@ void Cutter::insert_curves() {
       }
     }
   }
+  if (scene_.split_gap_ends) gap_end_extensions(curves);
   CGAL::insert(arr_, curves.begin(), curves.end());
+}
+
+// Step 5's gap ends: each end of a body-boundary gap narrower than h, carried on from the end's
+// middle along the walls' bisector to the edge of the mesh triangle holding it (exact: the end
+// on the triangle's edge is the exact intersection, so the extension parts that triangle and
+// no other). Only triangles of this cut are searched: a region cut that lacks the triangle has
+// none of the stars it splits whole (recut.cpp takes those stars' covers from the old mesh).
+void Cutter::gap_end_extensions(std::vector<Curve>& curves) const {
+  const double h = scene_.mesh_size;
+  // The boundary turns back on itself at an end: a turn of at least 150° (5π/6 rad).
+  constexpr double kTurnBack = 5 * kPi / 6;
+  std::int32_t id = 0;
+  for (const BodyDef& body : scene_.bodies) {
+    for (std::size_t r = 0; r <= body.holes.size(); ++r) {
+      Ring ring = r == 0 ? body.outer : body.holes[r - 1];
+      if ((r == 0) != (ring_signed_area(ring) > 0)) std::reverse(ring.begin(), ring.end());  // body on the left
+      const std::size_t n = ring.size();
+      auto dir = [&](std::size_t k) {  // unit direction of edge k → k + 1
+        const Vec2& p = ring[k % n];
+        const Vec2& q = ring[(k + 1) % n];
+        const double l = std::hypot(q.x - p.x, q.y - p.y);
+        return Vec2{(q.x - p.x) / l, (q.y - p.y) / l};
+      };
+      auto turn = [&](std::size_t k) {  // rad at vertex k, < 0 clockwise: a reflex corner of the body
+        const Vec2 a = dir(k + n - 1), b = dir(k);
+        return std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y);
+      };
+      for (std::size_t k = 0; k < n; ++k) {
+        Point start;
+        Vec2 in, out;  // the wall into the end and the wall out of it
+        const Vec2& p = ring[k];
+        const Vec2& q = ring[(k + 1) % n];
+        if (turn(k) <= -kTurnBack) {
+          start = to_point(p);
+          in = dir(k + n - 1), out = dir(k);
+        } else if (turn(k) < 0 && turn(k + 1) < 0 && turn(k + 1) > -kTurnBack && turn(k) + turn(k + 1) <= -kTurnBack &&
+                   std::hypot(q.x - p.x, q.y - p.y) < h) {
+          start = CGAL::midpoint(to_point(p), to_point(q));
+          in = dir(k + n - 1), out = dir(k + 1);
+        } else {
+          continue;
+        }
+        // On into the body: the walls' bisector, away from the gap.
+        const Vec2 d{in.x - out.x, in.y - out.y};
+        const Kernel::Ray_2 ray(start, Kernel::Vector_2(d.x, d.y));
+        const Vec2 s = round_exact(start);
+        const double tol = 1e-9 * h;
+        for (const auto& t : raw_.tri) {
+          const Vec2 &a = raw_.node_xy[t[0]], &b = raw_.node_xy[t[1]], &c = raw_.node_xy[t[2]];
+          if (s.x < std::min({a.x, b.x, c.x}) - tol || s.x > std::max({a.x, b.x, c.x}) + tol ||
+              s.y < std::min({a.y, b.y, c.y}) - tol || s.y > std::max({a.y, b.y, c.y}) + tol)
+            continue;
+          const auto hit = CGAL::intersection(ray, Kernel::Triangle_2(to_point(a), to_point(b), to_point(c)));
+          if (!hit) continue;
+          const Segment* seg = boost::get<Segment>(&*hit);
+          if (!seg || seg->is_degenerate()) continue;
+          const Point end = seg->source() == start ? seg->target() : seg->target() == start ? seg->source() : start;
+          if (end == start) continue;  // the ray crosses this triangle further on: not the end's
+          curves.emplace_back(Segment(start, end), CurveTag{kEdgeExtension, id});
+          break;
+        }
+        ++id;
+      }
+    }
+  }
 }
 
 void Cutter::number_faces() {
@@ -539,7 +622,10 @@ Mesh Cutter::extract() {
   // joined across mesh-only edges (see the file comment, step 5).
   UnionFind slot_uf(3 * ne), block_uf(ne);
   for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e) {
-    if (edge_kinds(e) != kEdgeMesh) continue;
+    // A gap end's extension joins blocks but not covers (step 5), on a mesh edge or inside a triangle.
+    const std::uint8_t kinds = edge_kinds(e);
+    const bool extension = (kinds & kEdgeExtension) != 0;
+    if ((kinds & ~kEdgeExtension) != kEdgeMesh && kinds != kEdgeExtension) continue;
     // A piece of mesh edge that rounds to one point (three cuts meeting within round-off of it)
     // joins nothing: in doubles it is no edge, and the re-cut (recut.cpp), which links elements
     // by their rounded edges, must find the same blocks and covers as this cut.
@@ -547,6 +633,7 @@ Mesh Cutter::extract() {
     const std::int32_t m1 = face_me[e->face()->data()], m2 = face_me[e->twin()->face()->data()];
     if (m1 < 0 || m2 < 0) continue;
     block_uf.unite(m1, m2);
+    if (extension) continue;
     const MeshEdge& me = raw_.edges[e->curve().data().begin()->id];
     const auto& t1 = raw_.tri[lab_.tri[me_faces[m1]]];
     const auto& t2 = raw_.tri[lab_.tri[me_faces[m2]]];

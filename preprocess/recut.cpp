@@ -112,7 +112,9 @@ void link_blocks(Mesh& m) {
     return k;
   };
   auto joins = [&](std::int32_t v, std::int32_t e) {
-    if (m.loop_edge_origin[v] != kEdgeMesh) return false;
+    // A gap end's extension (cover_cutter.cpp step 5) joins blocks as a mesh edge does.
+    const std::uint8_t o = m.loop_edge_origin[v];
+    if (o != kEdgeMesh && o != kEdgeExtension && o != (kEdgeMesh | kEdgeExtension)) return false;
     const EdgeKey k = edge(v, e, false);
     return k.x0 != k.x1 || k.y0 != k.y1;
   };

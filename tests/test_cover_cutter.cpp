@@ -144,6 +144,54 @@ TEST(CoverCutter, SeedFig2CrackSplitsCrossedCoversAndTipLeavesCoverWhole) {
   EXPECT_EQ(slit_loops, 2);
 }
 
+// A slot narrower than the mesh (mesh.split_gap_ends, cover_cutter.cpp step 5): Petersson's beam's
+// 10 mm slot, 0.1 m deep, at h 0.025 m. Its flat end (y 0.1 m, x 1.095–1.105 m) lies in the
+// triangle (1.1, 0.0866), (1.1125, 0.1083), (1.0875, 0.1083); the node (1.1, 0.0866) lies in the
+// slot and its star reaches round the end, so by default its one cover holds both walls. With
+// the split the end is carried on up x = 1.1 to the triangle's top edge: that triangle is two
+// elements, the node has one cover per wall, the top edge's two nodes keep one each (their
+// stars join round the extension's end), the body stays one block and no contact lies on the
+// extension. A slot wider than h has no such end and is cut as before.
+SceneDef slot_scene(double width, bool split) {
+  SceneDef s = box_scene(0, 0, 2.2, 0.2, 0.025);
+  const double a = 1.1 - width / 2, b = 1.1 + width / 2;
+  s.bodies[0].outer = {{0, 0}, {a, 0}, {a, 0.1}, {b, 0.1}, {b, 0}, {2.2, 0}, {2.2, 0.2}, {0, 0.2}};
+  s.split_gap_ends = split;
+  return s;
+}
+
+TEST(CoverCutter, NarrowSlotEndSplitsTheCoversReachingRoundIt) {
+  const double r = 0.025 * std::sqrt(3.0) / 2;
+  const SceneDef joined_scene = slot_scene(0.01, false), split_scene = slot_scene(0.01, true);
+  const Mesh joined = build_mesh(joined_scene, "t"), split = build_mesh(split_scene, "t");
+  expect_consistent(joined, joined_scene);
+  expect_consistent(split, split_scene);
+  EXPECT_EQ(covers_at(joined, 1.1, 4 * r), 1);
+  EXPECT_EQ(covers_at(split, 1.1, 4 * r), 2);
+  EXPECT_EQ(covers_at(split, 1.0875, 5 * r), 1);
+  EXPECT_EQ(covers_at(split, 1.1125, 5 * r), 1);
+  EXPECT_EQ(split.cover_count(), joined.cover_count() + 1);
+  EXPECT_EQ(split.element_count(), joined.element_count() + 1);
+  EXPECT_EQ(split.block_count(), 1u);
+  // The extension: one loop edge on each side, on x = 1.1 from the slot's end to the top edge.
+  int on_extension = 0;
+  for (std::size_t e = 0; e < split.element_count(); ++e)
+    for (std::int32_t v = split.element_loop_offset[e]; v < split.element_loop_offset[e + 1]; ++v) {
+      if (!(split.loop_edge_origin[v] & kEdgeExtension)) continue;
+      ++on_extension;
+      const std::int32_t w = v + 1 < split.element_loop_offset[e + 1] ? v + 1 : split.element_loop_offset[e];
+      EXPECT_EQ(split.loop_xy[2 * v], 1.1);
+      EXPECT_EQ(split.loop_xy[2 * w], 1.1);
+      EXPECT_NEAR(std::abs(split.loop_xy[2 * w + 1] - split.loop_xy[2 * v + 1]), 5 * r - 0.1, 1e-12);
+    }
+  EXPECT_EQ(on_extension, 2);
+  for (std::int32_t v : split.contact_edge) EXPECT_FALSE(split.loop_edge_origin[v] & kEdgeExtension);
+  // 30 mm is wider than h: no gap end, the same mesh with or without the key.
+  const Mesh wide_joined = build_mesh(slot_scene(0.03, false), "t"), wide_split = build_mesh(slot_scene(0.03, true), "t");
+  EXPECT_EQ(wide_split.element_count(), wide_joined.element_count());
+  EXPECT_EQ(wide_split.element_covers, wide_joined.element_covers);
+}
+
 TEST(CoverCutter, ThroughJointMakesTwoBlocksWithExactAreas) {
   SceneDef s = box_scene(0, 0, 4, 2, 0.3);
   add_joint(s, {{1.0, -1.0}, {3.0, 3.0}});  // y = 2x - 3 crosses y=0 at 1.5, y=2 at 2.5

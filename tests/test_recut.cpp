@@ -205,4 +205,17 @@ TEST(Recut, AConstructedPointRoundsAlikeInTheRegionAndTheWholeCut) {
   EXPECT_GT(map.region_triangles, 0u);
 }
 
+// A slot narrower than h with its end carried on (mesh.split_gap_ends, cover_cutter.cpp step 5):
+// the re-cut gives the whole cut's covers round the slot, for a crack that runs up from the
+// slot's end along its extension and for one beside it.
+TEST(Recut, ASlotsGapEndIsCutAsTheWholeMeshWouldBe) {
+  SceneDef s = reference::interface_scene(0.025, 30);
+  BodyDef beam = reference::box(0, 0, 2.2, 0.2);
+  beam.outer = {{0, 0}, {1.095, 0}, {1.095, 0.1}, {1.105, 0.1}, {1.105, 0}, {2.2, 0}, {2.2, 0.2}, {0, 0.2}};
+  s.bodies = {beam};
+  s.split_gap_ends = true;
+  check_recut(s, {{1.1, 0.1}, {1.1, 0.14}}, "crack up from the slot's end, along its extension");
+  check_recut(s, {{1.112, 0.104}, {1.13, 0.15}}, "crack beside the slot's end");
+}
+
 }  // namespace nmm
