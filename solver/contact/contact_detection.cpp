@@ -362,15 +362,8 @@ ContactTopology build_contact_topology(const Mesh& mesh) {
 
 namespace {
 
-// A candidate edge's start, unit tangent and length.
-struct EdgeGeometry {
-  double x, y, tx, ty, l;
-  std::int32_t q2, element;
-  bool usable;  // not degenerate
-};
-
 void edge_geometry(const ContactTopology& topo, const std::vector<double>& xy,
-                   std::vector<EdgeGeometry>& geometry) {
+                   std::vector<CandidateEdgeFrame>& geometry) {
   geometry.resize(topo.edges.size());
   for (std::size_t k = 0; k < topo.edges.size(); ++k) {
     const std::int32_t q2 = topo.edges[k], q3 = topo.next[q2];
@@ -402,7 +395,7 @@ bool list_holds(const CandidateList& list, const std::vector<double>& xy, double
 // own cell. Each vertex's edges ascend, as the grid's cells held them, so the narrow phase meets
 // candidates in the same order whichever list it reads.
 void build_candidate_list(const ContactTopology& topo, const std::vector<double>& xy,
-                          const std::vector<EdgeGeometry>& geometry, double need, CandidateList& list) {
+                          const std::vector<CandidateEdgeFrame>& geometry, double need, CandidateList& list) {
   const double reach = kContactTolerances.list_reach * need;
   list.reach = reach;
   list.xy = xy;
@@ -412,7 +405,7 @@ void build_candidate_list(const ContactTopology& topo, const std::vector<double>
     x0 = std::min(x0, xy[i]);
     y0 = std::min(y0, xy[i + 1]);
   }
-  for (const EdgeGeometry& g : geometry) mean_length += g.l;
+  for (const CandidateEdgeFrame& g : geometry) mean_length += g.l;
   mean_length /= static_cast<double>(geometry.size());
   const double cell = std::max(mean_length, 2 * reach);
   auto cell_of = [&](double x, double y) {
@@ -444,7 +437,7 @@ void build_candidate_list(const ContactTopology& topo, const std::vector<double>
     const std::int64_t k = key(ci, cj);
     for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
          it != entries.end() && it->first == k; ++it) {
-      const EdgeGeometry& g = geometry[static_cast<std::size_t>(it->second)];
+      const CandidateEdgeFrame& g = geometry[static_cast<std::size_t>(it->second)];
       if (g.element == ea) continue;
       // Distance from P to the segment (to its start if it has no direction).
       const double rx = px - g.x, ry = py - g.y;
@@ -471,13 +464,15 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   const ContactTolerances& tl = kContactTolerances;
   const double p_max = std::min(tl.closed_depth * topo.mesh_size, d0);
 
-  // Each candidate edge's start, unit tangent and length, once per call (not once per vertex
-  // that meets it: about 25 vertices per edge in a brick wall).
-  std::vector<EdgeGeometry> geometry;
-  edge_geometry(topo, xy, geometry);
-  // The candidates: the Verlet list, built anew when a vertex has moved too far for it.
+  // The candidates: the Verlet list, built anew when a vertex has moved too far for it; it also
+  // keeps the call's working arrays from one call to the next.
   CandidateList own;
   CandidateList& cand = list ? *list : own;
+  // Each candidate edge's start, unit tangent and length, once per call (not once per vertex
+  // that meets it: about 25 vertices per edge in a brick wall).
+  std::vector<CandidateEdgeFrame>& geometry = cand.frames;
+  edge_geometry(topo, xy, geometry);
+  out.reserve(cand.last_found + cand.last_found / 8 + 16);
   const double beside = tl.beside_edge * topo.mesh_size;  // how far past its ends an edge reaches
   if (!list_holds(cand, xy, d0 + beside)) {
     build_candidate_list(topo, xy, geometry, d0 + beside, cand);
@@ -537,7 +532,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     const auto [closed_lo, closed_hi] = closed.range(p);
     bests.clear();
     for (std::int32_t ci = cand.offset[vi]; ci < cand.offset[vi + 1]; ++ci) {
-      const EdgeGeometry& eg = geometry[static_cast<std::size_t>(cand.edges[ci])];
+      const CandidateEdgeFrame& eg = geometry[static_cast<std::size_t>(cand.edges[ci])];
       const std::int32_t q2 = eg.q2, eb = eg.element;  // of another element, not continuous with P
       ++tested;
       if (!eg.usable) continue;
@@ -619,8 +614,10 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     std::sort(bests.begin(), bests.end(), [](const Best& a, const Best& b) { return a.block < b.block; });
     for (const Best& b : bests) out.push_back(b.c);
   }
+  cand.last_found = out.size();
   // One contact per point of a joint: drop the mirror of a contact between coincident vertices.
-  std::vector<char> drop(out.size(), 0);
+  std::vector<char>& drop = cand.drop;
+  drop.assign(out.size(), 0);
   const double tol = tl.same_point * topo.mesh_size;
   auto near = [&](std::int32_t u, std::int32_t v) {
     return length(xy[2 * u] - xy[2 * v], xy[2 * u + 1] - xy[2 * v + 1]) <= tol;
@@ -629,7 +626,10 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   // each one's by block. first_out[v]: v's first contact in `out`, or −1 (with a binary search
   // over `out` per contact this part took 102 of detection's 324 µs a step on the 10 × 10 brick
   // wall at h = 2 m, 420 of 1,120 on the 20 × 20; about 35 and 110 µs now).
-  std::vector<std::int32_t> first_out(topo.next.size(), -1);
+  // Kept at −1 between calls (reset below for the vertices set here): no pass over every loop
+  // vertex per call.
+  std::vector<std::int32_t>& first_out = cand.first_out;
+  if (first_out.size() != topo.next.size()) first_out.assign(topo.next.size(), -1);
   for (std::size_t c = out.size(); c-- > 0;) first_out[static_cast<std::size_t>(out[c].vertex)] = static_cast<std::int32_t>(c);
   auto contact_of = [&](std::int32_t v, std::int32_t block) -> std::size_t {
     const std::int32_t f = first_out[static_cast<std::size_t>(v)];
@@ -657,15 +657,17 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
     std::sort(near_pairs->begin(), near_pairs->end());
     near_pairs->erase(std::unique(near_pairs->begin(), near_pairs->end()), near_pairs->end());
   }
-  std::vector<ContactCandidate> kept;
-  kept.reserve(out.size());
+  for (const ContactCandidate& c : out) first_out[static_cast<std::size_t>(c.vertex)] = -1;
+  // The kept ones, in order, moved down over the dropped ones (no second list).
+  std::size_t kept = 0;
   for (std::size_t c = 0; c < out.size(); ++c)
-    if (!drop[c]) kept.push_back(out[c]);
+    if (!drop[c]) out[kept++] = out[c];
+  out.resize(kept);
   if (stats) {
     stats->pairs_tested += tested;
-    stats->contacts += kept.size();
+    stats->contacts += kept;
   }
-  return kept;
+  return out;
 }
 
 }  // namespace nmm::solve

@@ -94,12 +94,25 @@ struct ClosedContacts {
 /// when the list was built, ascending. detect_contacts reuses it while no loop vertex has moved
 /// more than half of (reach − what the search needs) since then, and builds it anew otherwise.
 /// Only a cache: the contacts found do not depend on when it was built.
+/// A candidate edge's start (m), unit tangent, length (m), first vertex and element at one call.
+struct CandidateEdgeFrame {
+  double x, y, tx, ty, l;
+  std::int32_t q2, element;
+  bool usable;  ///< not degenerate
+};
+
 struct CandidateList {
   double reach = 0;                  ///< m, the distance it was built for
   std::vector<double> xy;            ///< [2·v] m, loop vertex positions when it was built
   std::vector<std::int32_t> offset;  ///< [vertices + 1] CSR into `edges`
   std::vector<std::int32_t> edges;   ///< indices into ContactTopology::edges
   std::size_t builds = 0;            ///< times built
+  // Each call's working arrays, kept between calls so that a step allocates none of them (their
+  // contents are rewritten by every call: no state of the run).
+  std::vector<CandidateEdgeFrame> frames;        ///< [candidate edge] this call's frames
+  std::vector<std::int32_t> first_out;  ///< [loop vertex] −1 between calls
+  std::vector<char> drop;               ///< [contact found]
+  std::size_t last_found = 0;           ///< contacts the last call found before the joint-point rule
 };
 
 /// Element pairs (a, b) with a vertex of a and an edge of b within the search distance, facing
