@@ -41,6 +41,7 @@
 #include "preprocess/cover_cutter.h"
 #include "common/stopwatch.h"
 #include "solver/stepping/time_stepper.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -218,6 +219,7 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::vector<int> sizes{10, 20, 30, 50};
   std::string csv_path = "contact_bench.csv";
   int trace_steps = 0;

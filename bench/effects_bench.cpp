@@ -38,6 +38,7 @@
 #include "reference/scene_pieces.h"
 #include "solver/stepping/time_stepper.h"
 #include "common/stopwatch.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -220,6 +221,7 @@ std::string percent(const char* what, double x) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   bool quick = false;
   std::string csv_path = "effects_bench.csv";
   for (int i = 1; i < argc; ++i) {

@@ -56,6 +56,7 @@
 #include "reference/brick_wall.h"
 #include "solver/stepping/time_stepper.h"
 #include "solver/stepping/time_stepper_probe.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 using Sparse = nmm::solve::SystemMatrix::Sparse;
@@ -335,6 +336,7 @@ Pair measure(const Sparse& a, const Springs& before, const Springs& after, const
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::vector<int> sizes{10, 20, 30};
   double h = 2;
   int steps = 30, from = 10;

@@ -44,6 +44,7 @@
 #include "solver/flow/flow_balance.h"
 #include "solver/flow/flow_network.h"
 #include "solver/output/solve_run.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -105,6 +106,7 @@ Timed timed(F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   bool quick = false;
   int joints = 2000, steps = 5;
   std::string csv_path = "flow_bench.csv";

@@ -27,10 +27,12 @@
 
 #include "reference/slides.h"
 #include "common/stopwatch.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::string csv = "fos_bench.csv";
   int repeats = 1;
   for (int i = 1; i < argc; ++i) {

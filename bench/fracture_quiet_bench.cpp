@@ -37,6 +37,7 @@
 #include "reference/rock_tests.h"
 #include "solver/fracture/step_start.h"
 #include "solver/stepping/time_stepper.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -161,6 +162,7 @@ int measure(double elements, bool dynamic, int rounds, int steps, std::ofstream&
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   double elements = 1e5;
   std::vector<bool> modes{false, true};  // static, dynamic
   int rounds = 6, steps = 4;

@@ -41,6 +41,7 @@
 #include "reference/brick_wall.h"
 #include "solver/stepping/time_stepper.h"
 #include "common/stopwatch.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 using Sparse = nmm::solve::SystemMatrix::Sparse;
@@ -105,6 +106,7 @@ nmm::SceneDef monolith(int n, double h) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::vector<int> sizes{10, 20, 30, 50};
   int reps = 3;
   std::string csv_path = "matrix_bench.csv";

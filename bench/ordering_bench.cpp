@@ -43,6 +43,7 @@
 #include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/solver_threads.h"
 #include "solver/stepping/time_stepper.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 using Sparse = nmm::solve::SystemMatrix::Sparse;
@@ -246,6 +247,7 @@ int growth(const std::vector<int>& sizes, double h, int steps, const std::string
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::vector<int> sizes{100};
   double h = 0.5;
   int steps = 3, reps = 3;

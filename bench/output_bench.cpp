@@ -41,12 +41,14 @@
 #include "solver/stepping/time_stepper.h"
 #include "common/vtk_writer.h"
 #include "common/vtu_compressed.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 namespace fs = std::filesystem;
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::string scene_path = std::string(NMM_SOURCE_DIR) + "/data/block_on_incline.json";
   std::string csv_path = "output_bench.csv";
   int frames = 100;

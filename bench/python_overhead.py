@@ -24,6 +24,7 @@ import argparse
 import csv
 import json
 import os
+import re
 import resource
 import statistics
 import subprocess
@@ -46,11 +47,20 @@ nmm.solve(sys.argv[1], out=sys.argv[2], set={'solver.steps': int(sys.argv[3])})
 """
 
 
-def timed(cmd):
+def same_kernels():
+    """The environment with OPENBLAS_CORETYPE set to the kernel set nmm-solve runs: where OpenBLAS
+    fell back to old kernels nmm-solve chooses newer ones, which the module cannot (docs/performance.md,
+    *BLAS kernels*); the Python runs get the same set, so that the three ways compute the same bits."""
+    out = subprocess.run(["nmm-solve", "--version"], check=True, stdout=subprocess.PIPE, text=True).stdout
+    m = re.search(r"kernels (\S+) ", out)
+    return dict(os.environ, OPENBLAS_CORETYPE=m.group(1)) if m else dict(os.environ)
+
+
+def timed(cmd, env):
     """(wall s, CPU s of the child, its stdout) of one run."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    p = subprocess.run(cmd, check=True, stdout=subprocess.PIPE, text=True)
+    p = subprocess.run(cmd, check=True, stdout=subprocess.PIPE, text=True, env=env)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), p.stdout
@@ -75,13 +85,14 @@ def main():
         "step": lambda out: [py, "-c", STEP_SCRIPT, mesh, out, str(a.steps)],
     }
     names = list(ways)
+    env = same_kernels()
     rows, ratios = [], {"solve": [], "step": []}
     for rep in range(a.reps):
         order = names[rep % 3:] + names[:rep % 3]
         walls = {}
         for way in order:
             out = os.path.join(a.work, f"{way}_{rep}")
-            wall, cpu, stdout = timed(ways[way](out))
+            wall, cpu, stdout = timed(ways[way](out), env)
             loop = [float(line.split()[1]) for line in stdout.splitlines() if line.startswith("loop_s ")]
             with open(os.path.join(out, "summary.json")) as f:
                 summary = json.load(f)

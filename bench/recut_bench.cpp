@@ -24,6 +24,7 @@
 #include "preprocess/recut.h"
 #include "solver/fracture/state_transfer.h"
 #include "solver/stepping/time_stepper.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -48,6 +49,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::string csv_path;
   for (int i = 1; i < argc; ++i)
     if (std::strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv_path = argv[++i];

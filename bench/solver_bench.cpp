@@ -25,11 +25,13 @@
 #include "preprocess/cover_cutter.h"
 #include "common/stopwatch.h"
 #include "solver/stepping/time_stepper.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   bool quick = false;
   std::string csv_path = "solver_bench.csv";
   for (int i = 1; i < argc; ++i) {

@@ -55,6 +55,7 @@
 #include "solver/output/run_energy.h"
 #include "solver/stepping/time_stepper.h"
 #include "tests/ended_ok.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace nmm {
 namespace {
@@ -289,6 +290,7 @@ int run(const std::string& name, const std::string& csv) {
 }  // namespace nmm
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   if (argc == 4 && std::strcmp(argv[2], "--scene") == 0) {  // the cell's scene, for nmm-preprocess
     nmm::reference::RockTestCase c;
     if (!nmm::reference::rock_test_case_from_name(argv[1], c)) return 2;

@@ -33,6 +33,7 @@
 #include "solver/discretisation/blas_info.h"
 #include "nmm_version.h"
 #include "common/whole_file.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -73,6 +74,7 @@ SceneDef from_json(const nlohmann::json& doc, const std::string& name) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   if (argc != 2) {
     std::fprintf(stderr, "usage: reference_state_hashes DATA_DIR (the repository's data/)\n");
     return 2;

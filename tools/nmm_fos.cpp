@@ -36,6 +36,7 @@
 #include "common/svg_plot.h"
 #include "studies/trial_verdict.h"
 #include "common/vtk_writer.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;
@@ -56,6 +57,7 @@ std::string factor_id(double f) { return "F" + nmm::format_fixed(f, 6); }
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   CLI::App app{"nmm-fos: factor of safety by strength reduction (trials are nmm-solve runs)"};
   std::string mesh_path, out_dir, restart, config_path, sets_word, engine_word = "threads";
   std::string profile, snakefile, solver, watch_word = "auto";

@@ -37,6 +37,7 @@
 #include "common/svg_plot.h"
 #include "solver/stepping/time_stepper.h"
 #include "common/vtk_writer.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -94,6 +95,7 @@ std::string num(double v) { return format_rough(v, 4); }
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   CLI::App app{"nmm-joint-study: the seed paper's validation studies, rerun"};
   std::string out, data = "data";
   bool quick = false;

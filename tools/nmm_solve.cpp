@@ -35,8 +35,10 @@
 #include "solver/output/solve_run.h"
 #include "solver/stepping/equilibrium_indicator.h"
 #include "solver/stepping/interrupt.h"
+#include "solver/discretisation/blas_kernels.h"
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   CLI::App app{"nmm-solve: NMM time stepping with contacts on a preprocessed mesh"};
   std::string mesh_path, out_dir, config_path, restart_path, field_name = "displacement";
   std::vector<std::string> sets;

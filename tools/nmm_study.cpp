@@ -94,6 +94,7 @@
 #include "common/stopwatch.h"
 #include "common/math_constants.h"
 #include "common/number_format.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace {
 
@@ -817,6 +818,7 @@ void write_plot(const std::vector<Row>& rows, const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   CLI::App app{"nmm-study: accuracy against run time on reference problems with known answers"};
   std::string out, data = "data";
   bool quick = false;

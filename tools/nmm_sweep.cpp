@@ -23,11 +23,13 @@
 #include "studies/sweep.h"
 #include "studies/sweep_picture.h"
 #include "common/vtk_writer.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace fs = std::filesystem;
 using namespace nmm::studies;
 
 int main(int argc, char** argv) {
+  nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   CLI::App app{"nmm-sweep: independent nmm-solve runs over a list or product of variants"};
   std::string sweep_path, out_dir, engine_word = "threads", profile, snakefile;
   int workers = 1;

@@ -66,8 +66,9 @@ std::string blas_warning(const BlasInfo& b) {
   // Measured: docs/performance.md "BLAS kernels".
   return "OpenBLAS runs its " + b.core +
          " kernels on a CPU with AVX2: factorisations take about 1.5 times as long as with its "
-         "Haswell kernels (docs/performance.md \"BLAS kernels\"); choose them with "
-         "OPENBLAS_CORETYPE=Haswell (SkylakeX where the CPU has AVX-512)";
+         "Haswell kernels (docs/performance.md \"BLAS kernels\"); nmm's programs choose those "
+         "themselves unless OPENBLAS_CORETYPE or NMM_BLAS_KERNELS=keep is set (OPENBLAS_CORETYPE="
+         "SkylakeX where the CPU has AVX-512, Haswell where it has AVX2)";
 }
 
 }  // namespace nmm::solve

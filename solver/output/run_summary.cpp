@@ -3,6 +3,7 @@
 
 #include "nmm_version.h"
 #include "solver/discretisation/blas_info.h"
+#include "solver/discretisation/blas_kernels.h"
 
 namespace nmm::solve {
 
@@ -83,6 +84,7 @@ nlohmann::json run_summary(const RunView& st, const RunRecord& o) {
   const BlasInfo blas = blas_info();
   summary["blas"] = {{"library", blas.library},
                      {"core", blas.core},
+                     {"chosen", chosen_blas_kernels()},
                      {"config", blas.config},
                      {"threads", blas.threads},
                      {"cpu_avx2", blas.cpu_avx2},
