@@ -34,6 +34,7 @@
 #include "solver/stepping/restart.h"
 #include "solver/stepping/run_view.h"
 #include "solver/stepping/time_stepper.h"
+#include "tests/csv_rows.h"
 #include "tests/ended_ok.h"
 #include "tests/temp_dir.h"
 
@@ -237,22 +238,7 @@ BarCurve bar_curve(double size, const test::TempDir& dir, double dt = 1e-3) {
   r.summary = run.run();
   r.outcome = run.outcome();
   const auto read = [&](const std::string& file) {
-    std::vector<std::map<std::string, double>> rows;
-    std::ifstream csv(dir.path("run/" + file));
-    std::string line, cell;
-    std::getline(csv, line);
-    std::vector<std::string> names;
-    for (std::istringstream head(line); std::getline(head, cell, ',');) names.push_back(cell);
-    while (std::getline(csv, line)) {
-      std::map<std::string, double> row;
-      std::istringstream in(line);
-      for (const std::string& n : names) {
-        std::getline(in, cell, ',');
-        row[n] = std::stod(cell);
-      }
-      rows.push_back(row);
-    }
-    return rows;
+    return test::csv_rows(dir.path("run/" + file));
   };
   const auto energy = read("energy.csv"), history = read("history.csv");
   std::map<double, std::map<double, double>> ux;  // step → point → ux
@@ -406,18 +392,7 @@ BeamResult petersson_beam(double h) {
   const nlohmann::json summary = run.run();
   BeamResult r;
   double last_w = 0, last_t = 0;
-  std::ifstream csv(dir.path("run/energy.csv"));
-  std::string line, cell;
-  std::getline(csv, line);
-  std::vector<std::string> names;
-  for (std::istringstream head(line); std::getline(head, cell, ',');) names.push_back(cell);
-  while (std::getline(csv, line)) {
-    std::map<std::string, double> row;
-    std::istringstream in(line);
-    for (const std::string& n : names) {
-      std::getline(in, cell, ',');
-      row[n] = std::stod(cell);
-    }
+  for (std::map<std::string, double>& row : test::csv_rows(dir.path("run/energy.csv"))) {
     const double dh = 1e-3 * (row["time"] - last_t);
     if (dh > 0) r.peak = std::max(r.peak, (row["load_work"] - last_w) / dh);
     last_w = r.work = row["load_work"];

@@ -59,6 +59,7 @@
 #include "solver/output/solve_run.h"
 #include "solver/output/energy.h"
 #include "solver/discretisation/model.h"
+#include "tests/csv_rows.h"
 #include "tests/cut_crack.h"
 #include "tests/ended_ok.h"
 #include "tests/rock_stress.h"
@@ -683,20 +684,7 @@ EnergyRun energy_run(const nlohmann::json& doc, const std::string& name, const t
   run.add(watch);
   r.summary = run.run();
   r.outcome = run.outcome();
-  std::ifstream csv(dir.path("run/energy.csv"));
-  std::string line, cell;
-  std::getline(csv, line);
-  std::vector<std::string> names;
-  for (std::istringstream head(line); std::getline(head, cell, ',');) names.push_back(cell);
-  while (std::getline(csv, line)) {
-    std::map<std::string, double> row;
-    std::istringstream in(line);
-    for (const std::string& n : names) {
-      std::getline(in, cell, ',');
-      row[n] = std::stod(cell);
-    }
-    r.rows.push_back(row);
-  }
+  r.rows = test::csv_rows(dir.path("run/energy.csv"));
   return r;
 }
 
