@@ -43,7 +43,11 @@ if [ -e "$build/python/nmm/__init__.py" ]; then
   site=$(ls -d "$prefix"/lib/python3*/site-packages)
   [ -f "$site/nmm/__init__.py" ] && ls "$site"/nmm/_nmm*.so >/dev/null ||
     { echo "not installed: the package nmm in $prefix/lib/python3*/site-packages"; exit 1; }
-  PYTHONPATH=$site "$build/bin/python3" -c "
+  # The module runs on the kernels OpenBLAS picked at import; nmm-solve may have chosen better
+  # ones (summary.json blas.chosen, docs/performance.md *BLAS kernels*): the same bits need the
+  # same family, as docs/python.md *Same answers* tells a user.
+  chosen=$("$build/bin/python3" -c "import json; print(json.load(open('incline_run/summary.json'))['blas'].get('chosen', ''))")
+  ${chosen:+env OPENBLAS_CORETYPE=$chosen} PYTHONPATH=$site "$build/bin/python3" -c "
 import nmm, sys
 assert nmm.__file__.startswith('$site'), nmm.__file__
 mesh = nmm.Mesh.load('incline.nmm')
