@@ -36,17 +36,22 @@ three-point bend bar of S/W = 4 (Srawley 1976), 61.4 kN/m per mm.
 Each run's load P (N per m of thickness) is the moving support's work per travel (energy.csv
 load_work: dW/dh), its deflection h the support's travel. Writes OUT_DIR/cohesive_beam.csv
 (h_mm, mesh, deflection_mm, load_kn_per_m) and the figure, and prints per mesh the peak, the
-work of fracture (load_work at the end) against G_f x ligament = 12.4 J/m, the run's status and
-wall time.
+load work at the end (1 mm) and energy.csv's `fracture` there, each against the same beam's
+converged answer (docs/cohesive_beam_reference.py, its curve docs/figures/cohesive_beam_reference.csv,
+drawn dashed), the run's status and wall time. At 1 mm the crack has not parted the ligament: the
+converged beam has taken 10.09 J/m of load work there, of the G_f x ligament = 12.4 J/m it takes
+to full separation.
 """
 import csv
 import json
+import pathlib
 import subprocess
 
 from figure_page import arguments, figure_path, page, write
 
 SIZES = [0.025, 0.0167, 0.0125]
 GF_LIGAMENT = 124.0 * 0.1  # J/m
+REFERENCE = pathlib.Path(__file__).parent / "figures" / "cohesive_beam_reference.csv"
 SUPPORT = 0.0004  # m, the length of each support strip and of the load strip
 _s = SUPPORT / 2
 OUTLINE = [[0, 0], [0.1 - _s, 0], [0.1 + _s, 0], [1.095, 0], [1.095, 0.1], [1.105, 0.1], [1.105, 0],
@@ -83,7 +88,28 @@ def curve(run):
     return out, float(rows[-1]["load_work"])
 
 
-def svg(curves, path):
+def reference():
+    """The converged curve [(deflection_mm, load_kn_per_m)] from the origin, the load work at 1 mm
+    (J/m) and the dissipation there (J/m), of docs/cohesive_beam_reference.py."""
+    rows = list(csv.DictReader(open(REFERENCE)))
+    pts = [(0.0, 0.0)] + [(float(r["deflection_mm"]), float(r["load_kn_per_m"])) for r in rows]
+    work, n = 0.0, 4000
+    for i in range(n):  # the trapezoidal rule on the curve as drawn, straight between its points
+        x0, x1 = i / n, (i + 1) / n
+        work += 0.5 * (at(pts, x0) + at(pts, x1)) * (x1 - x0)
+    diss = at([(float(r["deflection_mm"]), float(r["dissipated_j_per_m"])) for r in rows], 1.0)
+    return pts, work, diss
+
+
+def at(pts, x):
+    """y of the polyline pts (ascending x) at x."""
+    for (x0, y0), (x1, y1) in zip(pts, pts[1:]):
+        if x0 <= x <= x1:
+            return y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+    return pts[-1][1]
+
+
+def svg(curves, path, ref=None):
     w, ht, m = 640, 400, 60
     xmax = max(max(p[0] for p in c) for c in curves.values()) * 1.05
     ymax = max(max(p[1] for p in c) for c in curves.values()) * 1.1
@@ -103,6 +129,10 @@ def svg(curves, path):
         pts = " ".join(f"{sx(x):.1f},{sy(y):.1f}" for x, y in c)
         parts.append(f'<polyline points="{pts}" fill="none" stroke="{colours[i]}" stroke-width="1.5"/>')
         parts.append(f'<text x="{w - m - 150}" y="{m + 16 * (i + 1)}" fill="{colours[i]}">h = {h} m</text>')
+    if ref:
+        pts = " ".join(f"{sx(x):.1f},{sy(y):.1f}" for x, y in ref if x <= xmax)
+        parts.append(f'<polyline points="{pts}" fill="none" stroke="black" stroke-dasharray="5,4" stroke-width="1.2"/>')
+        parts.append(f'<text x="{w - m - 150}" y="{m + 16 * (len(curves) + 1)}">converged (reference)</text>')
     write(parts, path)
 
 
@@ -151,6 +181,10 @@ def main():
         stiffness(a, out)
         return
     curves = {}
+    ref, ref_work, ref_diss = reference()
+    ref_peak = max(ref, key=lambda p: p[1])
+    print(f"converged: peak {ref_peak[1]:.4g} kN/m at {ref_peak[0]:.3f} mm; load work at 1 mm {ref_work:.4g} J/m, "
+          f"dissipated {ref_diss:.4g} J/m")
     with open(out / "cohesive_beam.csv", "w") as f:
         f.write("mesh_m,deflection_mm,load_kn_per_m\n")
         for h in SIZES:
@@ -165,11 +199,13 @@ def main():
                 f.write(f"{h},{x:.6g},{y:.6g}\n")
             s = json.load(open(run / "summary.json"))
             peak = max(c, key=lambda p: p[1])
+            fracture = float(list(csv.DictReader(open(run / "energy.csv")))[-1]["fracture"])
             print(f"h {h} m: {s['status']} after {s['steps_completed']} steps ({s['wall_seconds']:.1f} s); peak "
-                  f"{peak[1]:.4g} kN/m at {peak[0]:.3f} mm; work of fracture {work:.4g} J/m "
-                  f"({100 * (work / GF_LIGAMENT - 1):+.1f} % of G_f x ligament {GF_LIGAMENT} J/m); "
-                  f"{s['fracture']['cracks']} cracks, dissipated {s['fracture']['dissipated_j']:.4g} J/m")
-    svg(curves, figure_path(a, out, "cohesive_beam.svg"))
+                  f"{peak[1]:.4g} kN/m at {peak[0]:.3f} mm ({100 * (peak[1] / ref_peak[1] - 1):+.1f} %); load work "
+                  f"{work:.4g} J/m ({100 * (work / ref_work - 1):+.1f} %; {100 * (work / GF_LIGAMENT - 1):+.1f} % of "
+                  f"G_f x ligament {GF_LIGAMENT} J/m); fracture {fracture:.4g} J/m ({100 * (fracture / ref_diss - 1):+.1f} %); "
+                  f"{s['fracture']['cracks']} cracks")
+    svg(curves, figure_path(a, out, "cohesive_beam.svg"), ref)
 
 
 if __name__ == "__main__":

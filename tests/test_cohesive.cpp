@@ -352,12 +352,16 @@ TEST(CohesiveBar, FacesStandForNoMoreCrackThanWasCut) {
 // their outer ends down as the beam turned after its peak, and at h 0.0125 m cracked the bottom
 // skin over both (steps 619 and 661, σyy 1.47 MPa there in the elastic beam at 0.3 mm, 0.09 MPa on
 // 0.4 mm strips); the fixed point (0.1, 0.01) that held the beam in x took 80–100 % of the left
-// reaction. The target: peak load and work of fracture within 5 % across h = 0.025, 0.0167,
-// 0.0125 m, and the work within 10 % of G_f × ligament = 12.4 J/m. Not met (label open): measured
-// 2026-12-01, one crack straight up from the slot's end at each mesh (rule 8d of cohesive_starts.h:
-// before it the crack turned horizontal at y 0.162 m, h 0.0125 m), peaks 19.63, 19.44 and 17.84
-// kN/m, load work at 1 mm 11.48, 11.52 and 10.85 J/m: h 0.0125 m is −9 % and −6 % of h 0.025 m,
-// its work −12.5 % of 12.4 J/m (docs/notes/2026-11-cohesive.md "beam50e (15th session)").
+// reaction. The targets: peak load and load work at 1 mm within 5 % across h = 0.025, 0.0167,
+// 0.0125 m (PeterssonMeshIndependent), and each mesh within 10 % of the same beam's converged answer
+// (docs/cohesive_beam_reference.py: Petersson's fictitious-crack method with the crack's path
+// known, on 2.5 mm squares: 17.09 kN/m, 10.02 J/m at 1 mm). G_f × ligament = 12.4 J/m is the work
+// to full separation; at 1 mm the converged beam has taken 10.02 J/m of it (−19 %), so the work
+// at 1 mm is held to the converged value, not to 12.4. Measured 2026-12-01 (docs/fracture.md):
+// peaks 17.96, 18.28 and 17.91 kN/m (+5.1, +7.0, +4.8 %), work at 1 mm 11.15, 11.04 and 10.85
+// J/m (+11.3, +10.2, +8.2 %): the meshes agree (1.8 and 2.7 %), the two coarse ones' work is
+// above 10 % of the converged value (label open). Before the point stress of rules 7 and 8b
+// (cohesive_starts.h) the peaks were 19.63, 19.44, 17.84 kN/m.
 // One test per mesh (each writes its peak and work for CohesiveBeam.PeterssonMeshIndependent).
 struct BeamResult {
   double peak = 0;  // N/m, the largest dW/dh of the moving strip
@@ -418,9 +422,10 @@ TEST_P(PeterssonBeam, LoadDeflectionAndWorkOfFracture) {
   const double h = GetParam();
   std::remove(beam_result_path(h).c_str());
   const BeamResult r = petersson_beam(h);
-  EXPECT_NEAR(r.work, 12.4, 1.24) << "h " << h;
-  if (HasFailure()) return;
+  if (HasFailure()) return;  // the run did not end: nothing to compare
   std::ofstream(beam_result_path(h)) << r.peak << ' ' << r.work << '\n';
+  EXPECT_NEAR(r.peak, 17.09e3, 0.1 * 17.09e3) << "h " << h;  // N/m, converged peak
+  EXPECT_NEAR(r.work, 10.02, 0.1 * 10.02) << "h " << h;      // J/m, converged load work at 1 mm
 }
 
 INSTANTIATE_TEST_SUITE_P(CohesiveBeam, PeterssonBeam, ::testing::Values(0.025, 0.0167, 0.0125),

@@ -30,7 +30,12 @@ std::vector<double> mean_stress(const Mesh& mesh, int order, const RunState& s) 
 
 std::array<double, 3> stress_at(const Mesh& mesh, const CoverSpace& space, const RunState& s,
                                 std::size_t e, double x, double y) {
-  const std::size_t T = static_cast<std::size_t>(space.terms());
+  return stress_at(mesh, space.order(), s, e, x, y);
+}
+
+std::array<double, 3> stress_at(const Mesh& mesh, int order, const RunState& s, std::size_t e, double x, double y) {
+  const std::size_t T = static_cast<std::size_t>(monomial_count(order));
+  const double h = basis_scale(mesh);
   std::array<double, 3> out{};
   const std::int32_t c0 = mesh.element_covers[3 * e];
   const double ox = s.cover_xy[2 * c0], oy = s.cover_xy[2 * c0 + 1];
@@ -38,7 +43,7 @@ std::array<double, 3> stress_at(const Mesh& mesh, const CoverSpace& space, const
     Poly p;
     p.degree = kMonomials.p[t] + kMonomials.q[t];
     p.c[t] = 1;
-    const double v = p((x - ox) / space.scale(), (y - oy) / space.scale());
+    const double v = p((x - ox) / h, (y - oy) / h);
     for (int r = 0; r < 3; ++r) out[r] += s.stress[3 * (T * e + t) + r] * v;
   }
   return out;

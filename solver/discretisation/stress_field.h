@@ -24,5 +24,7 @@ std::vector<double> mean_stress(const Mesh& mesh, int order, const RunState& s);
 /// Pa, σxx σyy τxy of element e at the point (x, y) (m) of the state's configuration.
 std::array<double, 3> stress_at(const Mesh& mesh, const CoverSpace& space, const RunState& s,
                                 std::size_t e, double x, double y);
+/// The same for a run of cover order `order` (bases scaled by basis_scale(mesh)), as mean_stress.
+std::array<double, 3> stress_at(const Mesh& mesh, int order, const RunState& s, std::size_t e, double x, double y);
 
 }  // namespace nmm::solve

@@ -76,7 +76,12 @@
 //      with a reflex corner within h of its vertices starts that crack too (kGapOnly: at the
 //      gap's end or nowhere): the concentration it carries is the gap end's, and the end's own
 //      element, wider than the slot, reached σt only at 24.2 kN/m at h 0.025 m (16.4 now; 14.9
-//      and 14.2 kN/m at h 0.0167 and 0.0125 m).
+//      and 14.2 kN/m at h 0.0167 and 0.0125 m). At cover order n ≥ 1 such an element is judged
+//      by the stress at the point its crack would leave from (the middle of the gap's end), read
+//      from the polynomial of the element there (stress_field.h stress_at), not by its mean: the
+//      mean of an element h wide smears the end's concentration, and Petersson's beam at order 1,
+//      h 0.025 m, started its crack at 0.273 mm, at its peak (19.63 kN/m, +15 % of the converged
+//      17.09 kN/m of docs/cohesive_beam_reference.py); with the point at 0.191 mm.
 //   8. a cohesive tip grows on where the rock at the tip has failed although the element ahead,
 //      whose constant stress averages the tip's field over h, holds (Fracture::find, grow):
 //      (a) a tip inside the star of a node whose cover the crack has not parted at an element
@@ -86,9 +91,13 @@
 //      140 steps, its own elements at 1.3–2.4 σt, the element ahead at 0.18 σt. Not into an
 //      element shut across the tip's line (σ_nn ≤ 0): at cover order 1 (h 0.0167 m) the tip ran
 //      through the compressed top to 1.3 mm below the top edge and the contact solve failed;
-//      (b) the normal stress across the tip's line at the tip, recovered from the two elements
-//      ahead on the line by linear extrapolation of their stresses (at their inside points'
-//      distances) back to the tip, reaches σt: the tip crosses the element ahead, one a solution.
+//      (b) the normal stress across the tip's line at the tip reaches σt: the tip crosses the
+//      element ahead, one a solution. At cover order n ≥ 1 that stress is the element ahead's own
+//      polynomial read at the tip (its field is linear or better); at order 0 it is recovered from
+//      the two elements ahead on the line by linear extrapolation of their stresses (at their
+//      inside points' distances) back to the tip. At order 1 the extrapolated means of two elements
+//      held Petersson's beam at h 0.0167 m until 19.44 kN/m (+14 % of the converged 17.09); read
+//      at the tip, 18.28 (docs/notes/2026-11-cohesive.md, beam50f).
 //      A crack band element's stress is its band's mean (Bažant & Oh 1983); the tip of a
 //      discrete cohesive crack advances where the stress at the tip reaches σt (Hillerborg,
 //      Modéer & Petersson 1976), which the mean over an element ahead underestimates by its

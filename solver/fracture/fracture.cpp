@@ -2,6 +2,7 @@
 #include "solver/fracture/fracture.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -209,6 +210,36 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     if (!grid_ || !grid_->of(mesh)) grid_ = std::make_shared<const ElementGrid>(mesh);
     return *grid_;
   };
+  // Rule 7 of cohesive_starts.h at cover order n ≥ 1: an element at a gap's end whose covers reach
+  // round it is judged by the stress at the point its crack would leave from (the middle of the
+  // gap's end), read from the polynomial of the element there, where its mean would smear the
+  // end's concentration over h; the gap's end is the one place it may start a crack (kGapEnd).
+  if (order >= 1 && !may_start.empty()) {
+    bool added = false;
+    for (std::size_t e = 0; e < n; ++e) {
+      if (!(may_start[e] & kGapEnd) || !(ratio_[e] > -std::numeric_limits<double>::infinity())) continue;
+      Vec2 at, dir;
+      if (!gap_end(mesh, scene, e, at, dir)) continue;
+      const std::int32_t there = grid().at(plus(at, 1e-6 * h, dir));
+      if (there < 0) continue;
+      const std::size_t u = static_cast<std::size_t>(there);
+      const Vec2 x = current_point(mesh, s, order, u, at);
+      const std::array<double, 3> sg = stress_at(mesh, order, s, u, x.x, x.y);
+      const RockFailure f = rock_failure(scene.materials[scene.bodies[mesh.element_body[e]].material].strength, sg[0],
+                                         sg[1], sg[2]);
+      if (!(f.ratio > ratio_[e])) continue;
+      if (ratio_[e] < 1 && f.ratio >= 1) {
+        over_.push_back(static_cast<std::int32_t>(e));
+        added = true;
+        if (trace_rules())
+          std::fprintf(stderr, "TRACE gap end step %lld element %zu: ratio %.4f at (%.4f,%.4f) in element %zu\n",
+                       static_cast<long long>(s.step), e, f.ratio, at.x, at.y, u);
+      }
+      ratio_[e] = f.ratio;
+      failure_[e] = f;
+    }
+    if (added) std::sort(over_.begin(), over_.end());
+  }
   // The crack direction in element e (as cut) closest to `along`.
   auto direction = [&](std::size_t e, const Vec2& along) {
     const RockFailure& f = failure_[e];
@@ -319,9 +350,10 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     return !may_start.empty() &&
            cohesive_law(scene.materials[scene.bodies[mesh.element_body[e]].material].strength).on();
   };
-  // Rule 8 of cohesive_starts.h: the normal stress across a cohesive tip's line at the tip,
-  // recovered from the two elements ahead on its line (their stresses at their inside points'
-  // distances ahead, extrapolated linearly back to the tip), reaches σt.
+  // Rule 8 of cohesive_starts.h: the normal stress across a cohesive tip's line at the tip
+  // reaches σt: at cover order n ≥ 1 the element ahead's own stress polynomial read at the tip; at
+  // order 0 recovered from the two elements ahead on its line (their stresses at their inside
+  // points' distances ahead, extrapolated linearly back to the tip).
   auto tip_stress_breaks = [&](std::size_t e1, const Tip& tip) {
     const double nx = -tip.dir.y, ny = tip.dir.x;
     auto s_nn = [&](std::size_t u) {
@@ -335,7 +367,11 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
     const double d1 = ahead(e1), s1 = s_nn(e1);
     double at_tip = s1;
     RayExit exit;
-    if (ray_exit(mesh, e1, tip.at, tip.dir, tol, exit)) {
+    if (order >= 1) {  // the element's own field is linear or better: read it at the tip
+      const Vec2 x = current_point(mesh, s, order, e1, tip.at);
+      const std::array<double, 3> sg = stress_at(mesh, order, s, e1, x.x, x.y);
+      at_tip = sg[0] * nx * nx + sg[1] * ny * ny + 2 * sg[2] * nx * ny;
+    } else if (ray_exit(mesh, e1, tip.at, tip.dir, tol, exit)) {
       const std::int32_t e2 = grid().at(plus(exit.at, 1e-6 * h, tip.dir));
       if (e2 >= 0 && !crossed_[static_cast<std::size_t>(e2)] && mesh.element_body[static_cast<std::size_t>(e2)] == mesh.element_body[e1] &&
           ratio_[static_cast<std::size_t>(e2)] > -std::numeric_limits<double>::infinity()) {
