@@ -13,6 +13,12 @@
 //       STEPS steps timed whole: what bench/ntdda_compare.sh sets beside the DDA code's time.
 //       T overrides solver.contact_tolerance; N solver threads (default 1, 0: nmm-solve's
 //       default); the CSV gives this thread's CPU time and the wall-clock time per step.
+//   --mesh-dir DIR (with --peer, or --trace --peer): each wall's cut mesh is read from
+//       DIR/peer_N_hH.nmm when it is there, else cut and written there. What it is for: running
+//       the steps under valgrind (callgrind's instruction counts, a measure the machine's load
+//       does not move), where the cut itself cannot run — CGAL's interval arithmetic sets the
+//       FPU's rounding mode, which valgrind does not follow. Cut once outside valgrind, then:
+//         valgrind --tool=callgrind build/bin/contact_bench --peer --sizes 10 --mesh 2 --mesh-dir DIR
 //
 // Bricks 1 m × 0.5 m, odd rows shifted by half a brick, all touching their neighbours (one
 // interface set, penalty 2e11 N/m, φ = 35°), mesh size 0.5 m, Δt = 1e-3 s. Each wall takes 5
@@ -37,6 +43,7 @@
 
 #include "bench/bench_common.h"
 #include "common/memory_marks.h"
+#include "common/mesh_file.h"
 #include "reference/brick_wall.h"
 #include "preprocess/cover_cutter.h"
 #include "common/stopwatch.h"
@@ -44,6 +51,20 @@
 #include "solver/discretisation/blas_kernels.h"
 
 namespace {
+
+// The wall's cut mesh: from `dir` when a run before cut it there (see the header), else cut now
+// (and written there when `dir` is given). Static and dynamic walls share the cut.
+nmm::Mesh wall_mesh(const nmm::SceneDef& s, int n, double h, const std::string& dir) {
+  if (dir.empty()) return nmm::pre::build_mesh(s, "bench");
+  char name[96];
+  std::snprintf(name, sizeof name, "/peer_%d_h%g.nmm", n, h);
+  const std::string path = dir + name;
+  if (std::ifstream(path).good()) return nmm::read_mesh_file(path);
+  nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
+  m.scene_sha256 = nmm::sha256(m.scene_text);  // the file's reader checks it (the cut in memory leaves it unset)
+  nmm::write_mesh_file(m, path);
+  return m;
+}
 
 // A long run of one wall, one line per step: where a settling wall's work goes as it settles.
 // The probe of --memory: one line per mark, the peak of resident memory since the last mark
@@ -74,10 +95,11 @@ struct MemoryTrace {
   }
 };
 
-int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int threads, bool memory) {
+int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int threads, bool memory,
+              const std::string& mesh_dir) {
   const nmm::SceneDef s =
       peer ? nmm::reference::peer_wall(n, n, dynamic, mesh_size) : nmm::reference::brick_wall(n, dynamic);
-  const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
+  const nmm::Mesh m = peer ? wall_mesh(s, n, mesh_size, mesh_dir) : nmm::pre::build_mesh(s, "bench");
   // The cut's working memory, freed but still held by malloc, goes back to the system: what is
   // resident from here on is what nmm-solve holds, which reads the cut mesh from its file.
   const nmm::bench::Resident cut = nmm::bench::resident();
@@ -173,7 +195,8 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
 }
 // The peer's walls: the first `steps` steps timed whole (thread CPU), as the DDA code's
 // ms_per_step covers its whole analysis.
-int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int threads, const std::string& csv_path) {
+int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int threads, const std::string& csv_path,
+             const std::string& mesh_dir) {
   const char* header =
       "mode,wall_n,mesh_size,blocks,unknowns,contacts,steps,cpu_ms_per_step,solves_per_step,"
       "factorisations_per_step,cg_per_step,friction_updates_per_step,detection_ms_per_step,"
@@ -184,7 +207,7 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
     for (int n : sizes) {
       nmm::SceneDef s = nmm::reference::peer_wall(n, n, dynamic, h);
       if (tau > 0) s.solver.contact_tolerance = tau;
-      const nmm::Mesh m = nmm::pre::build_mesh(s, "bench");
+      const nmm::Mesh m = wall_mesh(s, n, h, mesh_dir);
       nmm::solve::TimeStepper st(m, s, "bench");
       st.set_threads(threads);
       std::int64_t done = 0;
@@ -221,7 +244,7 @@ int peer_run(const std::vector<int>& sizes, int steps, double h, double tau, int
 int main(int argc, char** argv) {
   nmm::solve::choose_blas_kernels(argv);  // OpenBLAS's kernels, before any BLAS call (blas_kernels.h)
   std::vector<int> sizes{10, 20, 30, 50};
-  std::string csv_path = "contact_bench.csv";
+  std::string csv_path = "contact_bench.csv", mesh_dir;
   int trace_steps = 0;
   bool trace_dynamic = false, peer = false, trace_memory = false;
   int peer_steps = 100;
@@ -239,14 +262,15 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--contact-tolerance") && i + 1 < argc) peer_tau = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) peer_threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
+    else if (!std::strcmp(argv[i], "--mesh-dir") && i + 1 < argc) mesh_dir = argv[++i];
     else {
-      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer [--mesh H]] [--memory] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--contact-tolerance T] [--threads N] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: contact_bench [--quick] [--sizes 10,20,30,50] [--csv FILE] | --trace STEPS --sizes N [--dynamic] [--peer [--mesh H]] [--memory] | --peer [--sizes 10,20,30] [--steps 100] [--mesh H] [--contact-tolerance T] [--threads N] [--csv FILE] [--mesh-dir DIR]\n");
       return 2;
     }
   }
   if (trace_steps > 0)
-    return trace_run(sizes.front(), trace_dynamic, peer, trace_steps, peer_mesh, peer_threads, trace_memory);
-  if (peer) return peer_run(sizes, peer_steps, peer_mesh, peer_tau, peer_threads, csv_path);
+    return trace_run(sizes.front(), trace_dynamic, peer, trace_steps, peer_mesh, peer_threads, trace_memory, mesh_dir);
+  if (peer) return peer_run(sizes, peer_steps, peer_mesh, peer_tau, peer_threads, csv_path, mesh_dir);
   const char* header =
       "mode,wall_n,blocks,elements,unknowns,contacts,step_ms,detection_ms,assembly_ms,"
       "factorisation_ms,solves_ms,update_ms,iterations_per_step,factorisations_per_step,"

@@ -103,7 +103,7 @@ class SystemMatrix {
 
   /// Saves the current values; restore() brings them back (the part of the matrix that does not
   /// change during the open–close iteration of a step).
-  void save() { saved_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros()); }
+  void save();
   void restore() { std::copy(saved_.begin(), saved_.end(), k_.valuePtr()); }
   /// The matrix with the saved values (pattern and values; a bench reads it).
   Sparse saved_matrix() const {
@@ -233,6 +233,10 @@ class SystemMatrix {
   std::vector<int> group_offsets_, group_dofs_;  // the groups of the last build (build_pattern's)
   bool grow_in_place(int n, const std::vector<int>& offsets, const std::vector<int>& dofs);
   std::vector<double> saved_;
+  // The saved values' nonzero entries (every diagonal kept, last in its column), in k_'s order:
+  // what saved_times() multiplies, below single_from_ (save()). Empty: it multiplies saved_.
+  std::vector<int> saved_outer_, saved_inner_;
+  std::vector<double> saved_nonzero_;
   Sparse factored_;  // the matrix of the current factorisation
   /// Value index of unknown i's diagonal entry: the last of its column (rows ≤ i, sorted).
   int diagonal(int i) const { return k_.outerIndexPtr()[i + 1] - 1; }
