@@ -103,7 +103,7 @@ class SystemMatrix {
 
   /// Saves the current values; restore() brings them back (the part of the matrix that does not
   /// change during the open–close iteration of a step).
-  void save() { saved_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros()); }
+  void save();
   void restore() { std::copy(saved_.begin(), saved_.end(), k_.valuePtr()); }
   /// The matrix with the saved values (pattern and values; a bench reads it).
   Sparse saved_matrix() const {
