@@ -13,6 +13,9 @@ the state update); c1 a Newton iteration's own work (residual, friction strength
 search); c2 a CG iteration (a solve pair with the kept factor, a product with H); c3 a numeric
 factorisation (with restoring the matrix and adding the springs); c4 a symbolic analysis. Prints
 the coefficients (ms), R², the mean counts per step, and each part's ms per step and share.
+Parts whose counts are the same in every fitted step cannot be told apart and are fitted as one
+(at 930k unknowns every factorisation after the first step analyses a grown pattern: "per
+factorisation + per analysis"); a part no fitted step has is left out.
 The counts are exact; the CPU times are the machine's (a loaded machine's steps scatter more).
 """
 import sys
@@ -56,9 +59,22 @@ def main():
     rows = [r for r in rows_of(sys.argv[1]) if r[0] >= first]
     if len(rows) < 6:
         raise SystemExit("trace_cost.py: fewer than 6 steps to fit")
-    x = [[1.0, r[1], r[2], r[3], r[4]] for r in rows]
+    names = ["fixed part", "per solve", "per CG iteration", "per factorisation", "per analysis"]
+    cols = [[1.0] * len(rows)] + [[r[j] for r in rows] for j in range(1, 5)]
+    # Columns that are all zero, or equal to an earlier one, carry no part of their own.
+    kept, kept_names = [], []
+    for col, name in zip(cols, names):
+        if not any(col):
+            continue
+        same = next((i for i, c in enumerate(kept) if c == col), None)
+        if same is None:
+            kept.append(col)
+            kept_names.append(name)
+        else:
+            kept_names[same] += " + " + name
+    x = [[c[i] for c in kept] for i in range(len(rows))]
     y = [r[5] for r in rows]
-    k = 5
+    k = len(kept)
     a = [[sum(xi[i] * xi[j] for xi in x) for j in range(k)] for i in range(k)]
     b = [sum(xi[i] * yi for xi, yi in zip(x, y)) for i in range(k)]
     c = solve(a, b)
@@ -67,10 +83,9 @@ def main():
     ym = sum(y) / n
     pred = [sum(ci * xij for ci, xij in zip(c, xi)) for xi in x]
     r2 = 1 - sum((yi - pi) ** 2 for yi, pi in zip(y, pred)) / sum((yi - ym) ** 2 for yi in y)
-    names = ["fixed part", "per solve", "per CG iteration", "per factorisation", "per analysis"]
     print(f"steps {rows[0][0]}-{rows[-1][0]} ({n}), {ym:.1f} ms CPU per step, fit R^2 = {r2:.3f}")
     print("part,ms_each,count_per_step,ms_per_step,share")
-    for name, ci, mi in zip(names, c, mean):
+    for name, ci, mi in zip(kept_names, c, mean):
         print(f"{name},{ci:.1f},{mi:.3f},{ci * mi:.1f},{100 * ci * mi / ym:.1f} %")
 
 

@@ -4,6 +4,7 @@
 // couple only unknowns already coupled.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -125,6 +126,47 @@ TEST(SystemMatrixPattern, SuccessiveGrowthsInPlaceAssembleAsAFreshBuild) {
     SystemMatrix fresh;
     fresh.build_pattern(kN, growths[i].offsets, growths[i].dofs);
     expect_same(assembled(k, growths[i], kN), assembled(fresh, growths[i], kN));
+  }
+}
+
+TEST(SystemMatrixPattern, ManyNewCouplingsMergedWithinTheMatrixArraysAssembleAsAFreshBuild) {
+  // A growth merges its new entries into the matrix's own arrays, from the last column to the
+  // first, and moves each old group's slots by the new entries before them (grow_in_place):
+  // many new couplings per growth, several in one column, in the first and the last columns,
+  // over growths in a row that reuse the arrays' room, must assemble as a fresh build, and the
+  // saved values (save(), whose copy keeps room too) must be the assembled ones.
+  constexpr int n = 240;
+  Groups g;
+  for (int e = 0; e + 2 < n; e += 2) g.add({e, e + 1, e + 2});  // a chain of elements
+  SystemMatrix k;
+  k.build_pattern(n, g.offsets, g.dofs);
+  std::uint32_t state = 12345;  // a fixed pseudo-random sequence: the same pairs every run
+  const auto next = [&state](int below) {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<int>((state >> 8) % static_cast<std::uint32_t>(below));
+  };
+  std::size_t last_nonzeros = k.nonzeros();
+  for (int growth = 1; growth <= 5; ++growth) {
+    SCOPED_TRACE("growth " + std::to_string(growth));
+    // New pairs after the old groups (a contact's pair of elements), each coupling two distant
+    // unknowns; some share an unknown (several new entries in one column).
+    for (int p = 0; p < 30; ++p) {
+      const int a = next(n), b = (a + 7 + next(n - 14)) % n;
+      g.add({a, b, p % 3 == 0 ? 0 : n - 1});
+    }
+    k.build_pattern(n, g.offsets, g.dofs);
+    EXPECT_EQ(k.builds(), 1u) << "grown in place";
+    EXPECT_GT(k.nonzeros(), last_nonzeros);
+    last_nonzeros = k.nonzeros();
+    SystemMatrix fresh;
+    fresh.build_pattern(n, g.offsets, g.dofs);
+    const SystemMatrix::Sparse a = assembled(k, g, n);
+    expect_same(a, assembled(fresh, g, n));
+    k.save();
+    k.set_zero();
+    expect_same(k.saved_matrix(), a);
+    k.restore();
+    expect_same(k.matrix(), a);
   }
 }
 

@@ -150,38 +150,57 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
         if (d[ii] >= d[jj] && find(outer, inner, d[jj], d[ii]) < 0) added.emplace_back(d[ii], d[jj]);
   }
   if (o != old_ng) return false;
-  std::vector<int> moved;  // [old nonzero] its position in the grown matrix (empty: unchanged)
+  const auto room = [](std::size_t size) { return size + size / kScatterRoom + 64; };
+  // The new entries are merged into the matrix's own arrays, from the last column to the first:
+  // every old entry moves up (never down) by the new entries before it, so nothing still to be
+  // read is overwritten. The arrays keep a little room to grow (kScatterRoom), as the slots do:
+  // a growth that made new arrays (the matrix's rows and values, a map of the old positions,
+  // 0.37 GB at 930k unknowns) had the kernel fault in and clear them in every static step there.
+  // `shift[c]`: the new entries in the columns before c, by which column c's old entries move
+  // up, plus those above each entry's row in its own column (shifted_position).
+  std::vector<int> shift;  // [column + 1] (empty: nothing added)
   if (!added.empty()) {
     std::sort(added.begin(), added.end());
     added.erase(std::unique(added.begin(), added.end()), added.end());
     const auto nnz = static_cast<std::size_t>(k_.nonZeros());
-    std::vector<int> new_outer(static_cast<std::size_t>(n) + 1), new_inner(nnz + added.size());
-    moved.resize(nnz);
-    std::size_t a = 0;
-    int w = 0;
-    for (int c = 0; c < n; ++c) {
-      new_outer[static_cast<std::size_t>(c)] = w;
-      int p = outer[c];
-      const int end = outer[c + 1];
-      while (p < end || (a < added.size() && added[a].first == c)) {
-        if (a < added.size() && added[a].first == c && (p == end || added[a].second < inner[p])) {
-          new_inner[static_cast<std::size_t>(w++)] = added[a++].second;
-        } else {
-          moved[static_cast<std::size_t>(p)] = w;
-          new_inner[static_cast<std::size_t>(w++)] = inner[p++];
-        }
+    const std::size_t grown = nnz + added.size();
+    shift.assign(static_cast<std::size_t>(n) + 1, 0);
+    for (const auto& [col, row] : added) ++shift[static_cast<std::size_t>(col) + 1];
+    for (int c = 0; c < n; ++c) shift[static_cast<std::size_t>(c) + 1] += shift[static_cast<std::size_t>(c)];
+    const auto capacity = static_cast<std::size_t>(k_.data().allocatedSize());
+    if (capacity < grown) k_.data().reserve(static_cast<Eigen::Index>(room(grown) - nnz));
+    k_.resizeNonZeros(static_cast<Eigen::Index>(grown));  // within the room: the same arrays
+    int* outer_w = k_.outerIndexPtr();
+    int* inner_w = k_.innerIndexPtr();
+    std::size_t a = added.size();
+    for (int c = n; c-- > 0;) {
+      int p = outer_w[c + 1];  // the old end of column c (not yet shifted)
+      const int begin = outer_w[c];
+      auto w = static_cast<std::size_t>(p) + static_cast<std::size_t>(shift[static_cast<std::size_t>(c) + 1]);
+      while (p > begin || (a > 0 && added[a - 1].first == c)) {
+        if (a > 0 && added[a - 1].first == c && (p == begin || added[a - 1].second > inner_w[p - 1]))
+          inner_w[--w] = added[--a].second;
+        else
+          inner_w[--w] = inner_w[--p];
       }
     }
-    new_outer[static_cast<std::size_t>(n)] = w;
+    for (int c = 0; c <= n; ++c) outer_w[c] += shift[static_cast<std::size_t>(c)];
     if (in_factor_) added_since_.insert(added_since_.end(), added.begin(), added.end());
-    k_ = Sparse(n, n);
-    k_.resizeNonZeros(w);
-    std::copy(new_outer.begin(), new_outer.end(), k_.outerIndexPtr());
-    std::copy(new_inner.begin(), new_inner.end(), k_.innerIndexPtr());
     analysed_ = false;
     outer = k_.outerIndexPtr();
     inner = k_.innerIndexPtr();
   }
+  // Where an old entry (row, col) at old position p lies now.
+  const auto shifted_position = [&](std::int32_t p, int row, int col) {
+    const auto c = static_cast<std::size_t>(col);
+    int up = shift[c];
+    // The new entries of column col lie in `added` at [shift[c], shift[c + 1]), sorted by row.
+    if (shift[c + 1] > shift[c]) {
+      const auto first = added.begin() + shift[c], last = added.begin() + shift[c + 1];
+      up += static_cast<int>(std::lower_bound(first, last, std::make_pair(col, row)) - first);
+    }
+    return p + up;
+  };
   std::vector<std::int64_t> slot_offset(ng + 1, 0);
   for (std::size_t g = 0; g < ng; ++g)
     slot_offset[g + 1] = slot_offset[g] + (old_of[g] != kNew ? slot_offset_[old_of[g] + 1] - slot_offset_[old_of[g]]
@@ -192,7 +211,6 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
   // a little room to grow (kScatterRoom), so that most growths neither allocate nor fault in a
   // second array of the slots' size (0.24 GB at 930k unknowns, where the pattern grows by pairs
   // of already coupled covers in most static steps); the groups' unknowns likewise.
-  const auto room = [](std::size_t size) { return size + size / kScatterRoom + 64; };
   const auto total = static_cast<std::size_t>(slot_offset[ng]);
   if (slots_.capacity() < total) slots_.reserve(room(total));
   slots_.resize(total);
@@ -201,10 +219,21 @@ bool SystemMatrix::grow_in_place(int n, const std::vector<int>& offsets, const s
     if (old_of[g] != kNew) {
       const std::int32_t* first = slots_.data() + slot_offset_[old_of[g]];
       const std::ptrdiff_t len = slot_offset_[old_of[g] + 1] - slot_offset_[old_of[g]];
-      if (moved.empty()) {
+      if (shift.empty()) {
         if (out != first) std::copy_backward(first, first + len, out + len);
       } else {
-        for (std::ptrdiff_t k = len; k-- > 0;) out[k] = moved[static_cast<std::size_t>(first[k])];
+        // The group's stored entries in build_pattern's order (row d[jj], column d[ii] for
+        // d[ii] ≥ d[jj]), walked backwards: out lies at or above first, so each slot is read
+        // before anything is written over it.
+        const int m = offsets[g + 1] - offsets[g];
+        const int* d = dofs.data() + offsets[g];
+        std::ptrdiff_t k = len;
+        for (int jj = m; jj-- > 0;)
+          for (int ii = m; ii-- > 0;)
+            if (d[ii] >= d[jj]) {
+              --k;
+              out[k] = shifted_position(first[k], d[jj], d[ii]);
+            }
       }
     } else {
       const int m = offsets[g + 1] - offsets[g];
@@ -352,6 +381,18 @@ void SystemMatrix::set_amd_only(bool on) {
   cholmod_common& c = llt_.cholmod();
   c.nmethods = on ? 1 : 0;
   c.method[0].ordering = on ? CHOLMOD_AMD : CHOLMOD_GIVEN;  // CHOLMOD_GIVEN: cholmod_defaults'
+}
+
+void SystemMatrix::save() {
+  // The copy keeps room to grow (kScatterRoom), as the matrix's arrays do: a pattern grown by
+  // a few entries (most static steps at 930k unknowns) made it a fresh 0.15 GB array each step,
+  // faulted in and cleared by the kernel.
+  const auto nnz = static_cast<std::size_t>(k_.nonZeros());
+  if (saved_.capacity() < nnz) {
+    saved_.clear();
+    saved_.reserve(nnz + nnz / kScatterRoom + 64);
+  }
+  saved_.assign(k_.valuePtr(), k_.valuePtr() + nnz);
 }
 
 void SystemMatrix::set_zero() { std::fill(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), 0.0); }
