@@ -383,18 +383,6 @@ void SystemMatrix::set_amd_only(bool on) {
   c.method[0].ordering = on ? CHOLMOD_AMD : CHOLMOD_GIVEN;  // CHOLMOD_GIVEN: cholmod_defaults'
 }
 
-void SystemMatrix::save() {
-  // The copy keeps room to grow (kScatterRoom), as the matrix's arrays do: a pattern grown by
-  // a few entries (most static steps at 930k unknowns) made it a fresh 0.15 GB array each step,
-  // faulted in and cleared by the kernel.
-  const auto nnz = static_cast<std::size_t>(k_.nonZeros());
-  if (saved_.capacity() < nnz) {
-    saved_.clear();
-    saved_.reserve(nnz + nnz / kScatterRoom + 64);
-  }
-  saved_.assign(k_.valuePtr(), k_.valuePtr() + nnz);
-}
-
 void SystemMatrix::set_zero() { std::fill(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), 0.0); }
 
 void SystemMatrix::add_group(std::size_t g, const double* k) {
@@ -785,7 +773,15 @@ void SystemMatrix::remove_null_part(Eigen::VectorXd& x) const {
 // product's 211 M → 54 M, this gathering 24 M. The largest runs (from single_from_ on) keep no
 // second copy of A: their memory counts more than these passes.
 void SystemMatrix::save() {
-  saved_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
+  // The copy keeps room to grow (kScatterRoom), as the matrix's arrays do: a pattern grown by
+  // a few entries (most static steps at 930k unknowns) made it a fresh 0.15 GB array each step,
+  // faulted in and cleared by the kernel.
+  const auto nnz = static_cast<std::size_t>(k_.nonZeros());
+  if (saved_.capacity() < nnz) {
+    saved_.clear();
+    saved_.reserve(nnz + nnz / kScatterRoom + 64);
+  }
+  saved_.assign(k_.valuePtr(), k_.valuePtr() + nnz);
   const int n = static_cast<int>(k_.rows());
   if (single_from_ > 0 && n >= single_from_) {
     saved_outer_.clear();
