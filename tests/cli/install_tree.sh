@@ -46,8 +46,10 @@ if [ -e "$build/python/nmm/__init__.py" ]; then
   # The module runs on the kernels OpenBLAS picked at import; nmm-solve may have chosen better
   # ones (summary.json blas.chosen, docs/performance.md *BLAS kernels*): the same bits need the
   # same family, as docs/python.md *Same answers* tells a user.
+  # (`env` always: where nmm-solve kept OpenBLAS's own choice, as on an AMD EPYC, chosen is empty,
+  # and an assignment after an expansion that vanished would be run as the command.)
   chosen=$("$build/bin/python3" -c "import json; print(json.load(open('incline_run/summary.json'))['blas'].get('chosen', ''))")
-  ${chosen:+env OPENBLAS_CORETYPE=$chosen} PYTHONPATH=$site "$build/bin/python3" -c "
+  env ${chosen:+OPENBLAS_CORETYPE=$chosen} PYTHONPATH=$site "$build/bin/python3" -c "
 import nmm, sys
 assert nmm.__file__.startswith('$site'), nmm.__file__
 mesh = nmm.Mesh.load('incline.nmm')
