@@ -51,6 +51,7 @@
 //    speck), where three cuts meet within round-off of one point. A piece of mesh edge that
 //    rounds to one point joins neither covers nor blocks (the re-cut links by rounded edges).
 #include "preprocess/cover_cutter.h"
+#include "preprocess/loop_area.h"
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
 #include <CGAL/Arr_extended_dcel.h>
@@ -533,18 +534,18 @@ void Cutter::round_vertices() {
 // A face that is no rock in doubles: its loop, rounded, fits in a box of side 1e-9·h or encloses
 // no positive area. Exact arithmetic gives such specks where three cuts meet within round-off of
 // one point (a crack ending on a joint beside a mesh edge); as an element it would have zero or
-// negative mass and stiffness, and its covers no stiffness at all.
+// negative mass and stiffness, and its covers no stiffness at all. The area's sign is the rounded
+// loop's own (loop_area.h), whatever corner the arrangement's loop starts at.
 bool Cutter::speck(Face_handle face) const {
   Box box = Box::empty();
-  double twice_area = 0;  // m², about the first vertex (less cancellation)
+  std::vector<Vec2> loop;
   auto c = *face->outer_ccbs_begin(), start = c;
-  const Vec2 o = c->source()->data();
   do {
-    const Vec2 p = c->source()->data(), q = c->target()->data();
+    const Vec2 p = c->source()->data();
     box.add(p.x, p.y);
-    twice_area += (p.x - o.x) * (q.y - o.y) - (q.x - o.x) * (p.y - o.y);
+    loop.push_back(p);
   } while (++c != start);
-  return twice_area <= 0 || box.longer_side() < 1e-9 * scene_.mesh_size;
+  return box.longer_side() < 1e-9 * scene_.mesh_size || loop_area_sign(loop.data(), loop.size()) <= 0;
 }
 
 Mesh Cutter::extract() {

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "preprocess/cover_cutter.h"
+#include "preprocess/loop_area.h"
 #include "common/error.h"
 #include "common/mesh.h"
 #include "common/scene.h"
@@ -440,3 +441,47 @@ TEST(CoverCutter, SameSceneSameMesh) {
 
 }  // namespace
 }  // namespace nmm::pre
+
+namespace nmm {
+namespace {
+
+// A bow-tie needle four vertices long whose rounded loop encloses exactly no area (checked in
+// rationals): summed in doubles from its four corners it reads 0, 0, +2.7e-20 and −2.7e-20 m².
+// The cutter keeps a face whose loop encloses positive area, so a cut whose arrangement starts
+// this loop at its third corner kept an element the same cut starting at its first dropped.
+TEST(LoopArea, TheSignOfANeedleDoesNotDependOnTheCornerItsLoopStartsAt) {
+  const std::vector<Vec2> needle{{1.1039200385961945, 0.2251440608216108},
+                                 {1.1664200385961945, 0.1979896145240991},
+                                 {1.1226700385961945, 0.21699772693235728},
+                                 {1.1476700385961944, 0.20613594841335262}};
+  int positive_in_doubles = 0, negative_in_doubles = 0;
+  for (std::size_t r = 0; r < needle.size(); ++r) {
+    std::vector<Vec2> loop(needle.begin() + static_cast<std::ptrdiff_t>(r), needle.end());
+    loop.insert(loop.end(), needle.begin(), needle.begin() + static_cast<std::ptrdiff_t>(r));
+    EXPECT_EQ(pre::loop_area_sign(loop.data(), loop.size()), 0) << "starting at corner " << r;
+    double twice_area = 0;  // the rule the cutter had: the double sum about the first corner
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Vec2 o = loop[0], p = loop[i], q = loop[(i + 1) % loop.size()];
+      twice_area += (p.x - o.x) * (q.y - o.y) - (q.x - o.x) * (p.y - o.y);
+    }
+    positive_in_doubles += twice_area > 0;
+    negative_in_doubles += twice_area < 0;
+  }
+  // The case is one that tells the rules apart: the double sum's sign moves with the start.
+  EXPECT_EQ(positive_in_doubles, 1);
+  EXPECT_EQ(negative_in_doubles, 1);
+}
+
+TEST(LoopArea, ATriangleAnticlockwiseIsPositiveAndClockwiseNegative) {
+  const std::vector<Vec2> ccw{{0.1, 0.1}, {0.3, 0.1}, {0.1, 0.7}};
+  const std::vector<Vec2> cw{{0.1, 0.1}, {0.1, 0.7}, {0.3, 0.1}};
+  EXPECT_EQ(pre::loop_area_sign(ccw.data(), ccw.size()), 1);
+  EXPECT_EQ(pre::loop_area_sign(cw.data(), cw.size()), -1);
+  // A sliver one ulp off its line: positive however small, as the exact cut sees it.
+  const double y = std::nextafter(0.2, 1.0);
+  const std::vector<Vec2> sliver{{0.1, 0.2}, {0.9, 0.2}, {0.5, y}};
+  EXPECT_EQ(pre::loop_area_sign(sliver.data(), sliver.size()), 1);
+}
+
+}  // namespace
+}  // namespace nmm
