@@ -85,4 +85,20 @@ Lattice make_lattice(const std::vector<BodyDef>& bodies, double h) {
   return L;
 }
 
+double snap_tolerance(const Vec2& node, double h) {
+  return 16 * std::numeric_limits<double>::epsilon() * std::max({std::abs(node.x), std::abs(node.y), h});
+}
+
+Vec2 Lattice::snap(const Vec2& p) const {
+  if (!(h > 0) || !std::isfinite(p.x) || !std::isfinite(p.y)) return p;
+  const double j = std::nearbyint(p.y / dy);
+  const double shift = std::fmod(std::abs(j), 2.0) == 1.0 ? 0.5 : 0.0;
+  const double i = std::nearbyint(p.x / h - shift);
+  const Vec2 n = node(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j));
+  const double tol = snap_tolerance(n, h);
+  if (std::abs(p.y - n.y) > tol) return p;
+  if (std::abs(p.x - n.x) <= tol) return n;
+  return {p.x, n.y};
+}
+
 }  // namespace nmm

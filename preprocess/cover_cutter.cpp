@@ -283,8 +283,12 @@ void Cutter::insert_curves() {
     return !region_ || Box{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)}
                            .overlaps(region_box_);
   };
+  // Joint points within round-off of a lattice node or row are put on it (Lattice::snap), in
+  // every cut alike: the whole cut, a region cut and the re-cut check see the same segments.
+  std::vector<Vec2> pts;
   for (std::size_t j = 0; j < scene_.joints.size(); ++j) {
-    const auto& pts = scene_.joints[j].points;
+    pts.clear();
+    for (const Vec2& p : scene_.joints[j].points) pts.push_back(raw_.lat.snap(p));
     for (std::size_t k = 0; k + 1 < pts.size(); ++k)
       // A segment of no length (a crack grown by a round-off) cuts nothing, and CGAL's sweep
       // takes no degenerate segment.

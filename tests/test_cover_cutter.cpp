@@ -110,6 +110,33 @@ TEST(CoverCutter, UncutSquareHasOneCoverPerNode) {
   EXPECT_NEAR(len, 14.0, 1e-12);
 }
 
+// An edge crack typed along the node row y = 0 from either side of a 1 m strip, 0.3 m long, h =
+// 0.05 m: node 6 lies at 6 × 0.05 = 0.30000000000000004, node 14 at 0.7000000000000001. Typed from
+// the left, the crack ended 5.6e-17 m short of node 6, so the edge from node 5 was not cut to its
+// end and node 5's star stayed whole (its faces tied one node before the tip); from the right it ran
+// an ulp past node 14 and split node 15's star. Snapped onto its node, either way every star it
+// crosses splits and the tip's star stays whole: the two meshes mirror each other cover for cover.
+TEST(CoverCutter, AJointEndWithinRoundOffOfANodeEndsOnIt) {
+  auto covers_on_row = [](Vec2 from, Vec2 to) {
+    SceneDef s = box_scene(0, -1, 1, 1, 0.05);
+    add_joint(s, {from, to});
+    const Mesh m = build_mesh(s, "t");
+    expect_consistent(m, s);
+    std::map<long, int> at;  // node x in units of 1e-6 m → its physical covers
+    for (std::size_t pc = 0; pc < m.cover_count(); ++pc) {
+      const Vec2 n{m.node_xy[2 * m.cover_node[pc]], m.node_xy[2 * m.cover_node[pc] + 1]};
+      if (n.y == 0) ++at[std::lround(n.x * 1e6)];
+    }
+    return at;
+  };
+  const std::map<long, int> left = covers_on_row({0, 0}, {0.3, 0}), right = covers_on_row({1, 0}, {0.7, 0});
+  for (int k = 0; k <= 20; ++k) {
+    const long x = 50000L * k, mirror = 1000000L - x;
+    EXPECT_EQ(left.at(x), k < 6 ? 2 : 1) << "node at x = " << x * 1e-6;
+    EXPECT_EQ(left.at(x), right.at(mirror)) << "node at x = " << x * 1e-6;
+  }
+}
+
 // Seed paper Fig. 2: a crack AB inside the body. With h = 1 and the crack on y = 0.3 from
 // x = -1.2 to x = 2.2, the stars crossed from side to side are those of nodes (0,0), (1,0)
 // [row 0] and (-0.5, √3/2), (0.5, √3/2), (1.5, √3/2) [row 1]: each splits into two physical
