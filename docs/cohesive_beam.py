@@ -17,7 +17,8 @@ order 1, h 0.025 m, is 135.9 kN/m per mm on 2 cm strips, 118.4 on 4 mm and 116.4
 116.6 simply supported, and after the peak, as the beam turns, the 4 mm strips (the scene until
 2026-12-01, with a fixed point at (0.1, 0.01) that took most of the left reaction) pulled their
 outer ends down and cracked the bottom skin over them at h 0.0125 m. The load strip (top, mid-span) moves down 1 um a static step
-(dt 1 ms), 1000 steps:
+(dt 1 ms), 1000 equilibrium steps (static_mode "equilibrium", K d = F: DDA's static steps keep the
+inertia term 2M/dt^2, a drag of about 0.7 kN/m at 1 um a step that the load work would pay):
 
         load v 1 mm/s
           ==
@@ -28,8 +29,8 @@ outer ends down and cracked the bottom skin over them at h 0.0125 m. The load st
    0.098-0.102 m         span 2.0 m      2.098-2.102 m
 
 --stiffness runs the beam without cracks (tensile strength 1000x) to 0.1 mm at cover orders 0
-and 1, and the same beam without its notch (closed form 116.6 kN/m per mm), and prints its stiffness, the slope of P against h between 0.05 and 0.1 mm (the static
-steps' inertia adds a constant to P), against the closed form: a simply supported beam with shear,
+and 1, and the same beam without its notch (closed form 116.6 kN/m per mm), and prints its stiffness, the slope of P against h between 0.05 and 0.1 mm (in DDA's static
+steps their inertia adds a constant to P), against the closed form: a simply supported beam with shear,
 S^3/(48EI) + S/(4 kappa G W), plus the notch's compliance 2/E * int_0^a (K/P)^2 da with K of a
 three-point bend bar of S/W = 4 (Srawley 1976), 61.4 kN/m per mm.
 
@@ -39,7 +40,7 @@ load_work: dW/dh), its deflection h the support's travel. Writes OUT_DIR/cohesiv
 load work at the end (1 mm) and energy.csv's `fracture` there, each against the same beam's
 converged answer (docs/cohesive_beam_reference.py, its curve docs/figures/cohesive_beam_reference.csv,
 drawn dashed), the run's status and wall time. At 1 mm the crack has not parted the ligament: the
-converged beam has taken 10.09 J/m of load work there, of the G_f x ligament = 12.4 J/m it takes
+converged beam has taken 10.02 J/m of load work there, of the G_f x ligament = 12.4 J/m it takes
 to full separation.
 """
 import csv
@@ -73,7 +74,8 @@ def scene(h, split=False):
                      {"points": [[2.1 - SUPPORT / 2, 0], [2.1 + SUPPORT / 2, 0]], "fix": "y"},
                      {"points": [[1.1 - SUPPORT / 2, 0.2], [1.1 + SUPPORT / 2, 0.2]], "fix": "y",
                       "velocity": [0, -1e-3]}],
-        "solver": {"time_step": 1e-3, "steps": 1000, "dynamic": False, "output_every": 2, "cover_order": 1},
+        "solver": {"time_step": 1e-3, "steps": 1000, "dynamic": False, "static_mode": "equilibrium",
+                   "output_every": 2, "cover_order": 1},
     }
 
 
