@@ -64,6 +64,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -248,11 +249,22 @@ class Cutter {
   /// The lattice node indices of the kept triangles, in the output mesh's triangle order.
   const std::vector<std::array<std::int32_t, 3>>& kept_triangles() const { return kept_; }
 
+  /// GrowingCut: run() that keeps the arrangement as the sweep left it (the bridges for holes go
+  /// into a copy), so that grow() can add joints to it.
+  Mesh run_kept();
+  /// Inserts the segments of the scene's joints from `first_joint` on into the kept arrangement,
+  /// one at a time (CGAL's incremental insertion), and extracts the mesh as run_kept() does. The
+  /// scene (the reference this cutter holds) must be the kept one with joints appended.
+  Mesh grow(std::size_t first_joint);
+
  private:
+  void make_raw_mesh_of_scene();
   void insert_curves();
   void number_faces();
   void label_faces();
+  std::vector<Curve> find_bridges() const;
   void bridge_holes();
+  Mesh finish_kept();
   void round_vertices();
   void gap_end_extensions(std::vector<Curve>& curves) const;
   Mesh extract();
@@ -266,6 +278,10 @@ class Cutter {
   RawMesh raw_;
   std::vector<BoundarySeg> boundary_;
   Arrangement arr_;
+  // The arrangement the mesh is extracted from: arr_, or (run_kept, grow) a copy of it with the
+  // bridges for holes inserted.
+  Arrangement bridged_;
+  Arrangement* out_ = &arr_;
   FaceLabels lab_;
 };
 
@@ -489,9 +505,14 @@ void Cutter::label_faces() {
 }
 
 void Cutter::bridge_holes() {
+  for (const Curve& c : find_bridges()) CGAL::insert(arr_, c);
+}
+
+std::vector<Curve> Cutter::find_bridges() const {
   // Bridges for all holes are found first (handles stay valid), then inserted. Each goes from a
   // hole's top vertex straight up to the face boundary above it, which lies strictly higher, so
-  // the bridges form a forest rooted at the outer boundary: no face is split.
+  // the bridges form a forest rooted at the outer boundary: no face is split. The top vertex and
+  // the boundary above are the face's, whatever order the arrangement keeps its faces and loops in.
   std::vector<Curve> bridges;
   for (std::size_t f = 0; f < lab_.faces.size(); ++f) {
     const Face_handle face = lab_.faces[f];
@@ -528,11 +549,11 @@ void Cutter::bridge_holes() {
       bridges.emplace_back(Segment(top, Point(top.x(), best_y)), CurveTag{kEdgeBridge, 0});
     }
   }
-  for (const Curve& c : bridges) CGAL::insert(arr_, c);
+  return bridges;
 }
 
 void Cutter::round_vertices() {
-  for (auto v = arr_.vertices_begin(); v != arr_.vertices_end(); ++v) v->set_data(round_exact(v->point()));
+  for (auto v = out_->vertices_begin(); v != out_->vertices_end(); ++v) v->set_data(round_exact(v->point()));
 }
 
 // A face that is no rock in doubles: its loop, rounded, fits in a box of side 1e-9·h or encloses
@@ -626,7 +647,7 @@ Mesh Cutter::extract() {
   // Physical covers and blocks: union–find over (element, triangle corner) slots and elements,
   // joined across mesh-only edges (see the file comment, step 5).
   UnionFind slot_uf(3 * ne), block_uf(ne);
-  for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e) {
+  for (auto e = out_->edges_begin(); e != out_->edges_end(); ++e) {
     // A gap end's extension joins blocks but not covers (step 5), on a mesh edge or inside a triangle.
     const std::uint8_t kinds = edge_kinds(e);
     const bool extension = (kinds & kEdgeExtension) != 0;
@@ -681,9 +702,7 @@ Mesh Cutter::extract() {
   return mesh;
 }
 
-Mesh Cutter::run(CutTimings* timings) {
-  CutTimings t;
-  nmm::Stopwatch t0;
+void Cutter::make_raw_mesh_of_scene() {
   raw_ = make_raw_mesh(scene_, region_);
   if (region_) {
     region_box_ = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
@@ -695,6 +714,12 @@ Mesh Cutter::run(CutTimings* timings) {
                        std::max(region_box_.x1, p.x), std::max(region_box_.y1, p.y)};
       }
   }
+}
+
+Mesh Cutter::run(CutTimings* timings) {
+  CutTimings t;
+  nmm::Stopwatch t0;
+  make_raw_mesh_of_scene();
   t.mesh_generation = t0.seconds();
 
   t0.restart();
@@ -719,7 +744,104 @@ Mesh Cutter::run(CutTimings* timings) {
   return mesh;
 }
 
+Mesh Cutter::run_kept() {
+  make_raw_mesh_of_scene();
+  insert_curves();
+  return finish_kept();
+}
+
+Mesh Cutter::grow(std::size_t first_joint) {
+  // The same segments insert_curves() takes (a whole cut: no region), each on its own: a zone
+  // walk from its left end, splitting the edges it crosses or runs along (their tags merge, as in
+  // the sweep). The arrangement of a set of segments is one whatever order they go in; only the
+  // order CGAL keeps faces, vertices and loops in differs, which extract() does not depend on
+  // beyond numbering.
+  for (std::size_t j = first_joint; j < scene_.joints.size(); ++j) {
+    const auto& pts = scene_.joints[j].points;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+      if (!(pts[k] == pts[k + 1]))
+        CGAL::insert(arr_, Curve(Segment(to_point(pts[k]), to_point(pts[k + 1])),
+                                 CurveTag{kEdgeJoint, static_cast<std::int32_t>(j)}));
+  }
+  return finish_kept();
+}
+
+Mesh Cutter::finish_kept() {
+  number_faces();
+  label_faces();
+  const std::vector<Curve> bridges = find_bridges();
+  out_ = &arr_;
+  if (!bridges.empty()) {
+    // The bridges go into a copy, so that arr_ stays the arrangement of the scene's curves alone
+    // for the next growth. The copy's faces carry their indices (face data), so the labels hold.
+    bridged_ = arr_;
+    out_ = &bridged_;
+    for (auto f = bridged_.faces_begin(); f != bridged_.faces_end(); ++f) lab_.faces[f->data()] = f;
+    const std::size_t faces_before = bridged_.number_of_faces();
+    for (const Curve& c : bridges) CGAL::insert(bridged_, c);
+    if (bridged_.number_of_faces() != faces_before) throw std::logic_error("cover cutter: a hole bridge split a face");
+  }
+  round_vertices();
+  Mesh mesh = extract();
+  mesh.tool_version = NMM_VERSION;
+  return mesh;
+}
+
+// The cut inputs of a scene (what make_raw_mesh, insert_curves and gap_end_extensions read): the
+// bodies' rings (and their materials' indices, which label nothing but name the body's rock), the
+// mesh size and the gap-end switch. Materials, supports, loads and the rest do not enter the cut.
+bool same_bodies_and_mesh(const SceneDef& a, const SceneDef& b) {
+  if (a.mesh_size != b.mesh_size || a.split_gap_ends != b.split_gap_ends || a.bodies.size() != b.bodies.size())
+    return false;
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    const BodyDef &p = a.bodies[i], &q = b.bodies[i];
+    if (p.material != q.material || p.outer != q.outer || p.holes != q.holes) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+// The kept cut (GrowingCut): the scene it is of, with its file name (the cutter holds references
+// to both), and the cutter whose arrangement is that scene's curves after the sweep and growths.
+struct GrowingCut::Impl {
+  SceneDef scene;
+  std::string file;
+  std::unique_ptr<Cutter> cutter;
+};
+
+GrowingCut::GrowingCut() : impl_(std::make_unique<Impl>()) {}
+GrowingCut::~GrowingCut() = default;
+GrowingCut::GrowingCut(GrowingCut&&) noexcept = default;
+GrowingCut& GrowingCut::operator=(GrowingCut&&) noexcept = default;
+
+Mesh GrowingCut::cut(const SceneDef& scene, const std::string& file) {
+  if (scene.bodies.empty()) throw InputError(file, "/bodies", "no bodies");
+  Impl& k = *impl_;
+  // A growth: the kept scene's bodies and mesh, and its joints, each unchanged, first.
+  bool growth = k.cutter != nullptr && same_bodies_and_mesh(k.scene, scene) && scene.joints.size() >= k.scene.joints.size();
+  for (std::size_t j = 0; growth && j < k.scene.joints.size(); ++j)
+    growth = scene.joints[j].set == k.scene.joints[j].set && scene.joints[j].points == k.scene.joints[j].points;
+  try {
+    if (growth) {
+      const std::size_t first = k.scene.joints.size();
+      k.scene.joints.insert(k.scene.joints.end(), scene.joints.begin() + static_cast<std::ptrdiff_t>(first),
+                            scene.joints.end());
+      k.file = file;
+      ++grown_;
+      return k.cutter->grow(first);
+    }
+    k.cutter.reset();
+    k.scene = scene;
+    k.file = file;
+    k.cutter = std::make_unique<Cutter>(k.scene, k.file);
+    ++fresh_;
+    return k.cutter->run_kept();
+  } catch (...) {
+    k.cutter.reset();  // an arrangement left half-grown is no scene's
+    throw;
+  }
+}
 
 RegionCut cut_region(const SceneDef& scene, const std::vector<std::array<std::int32_t, 3>>& lattice_triangles,
                      const std::string& file) {

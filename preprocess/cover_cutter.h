@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,31 @@ struct RegionCut {
 /// them. The scene must be one build_mesh accepts.
 RegionCut cut_region(const SceneDef& scene, const std::vector<std::array<std::int32_t, 3>>& lattice_triangles,
                      const std::string& file);
+
+/// A cut kept from one call to the next, for a scene that grows by joints (the re-cut check,
+/// solver/fracture/recut_check.h, after every re-cut of a cracking run). cut() gives the mesh
+/// build_mesh gives (the same cut, common/mesh_compare.h; elements, covers and blocks may be
+/// numbered and loops started otherwise). When the scene is the kept one with joints appended —
+/// the same bodies (rings and materials' indices), mesh size and gap-end switch, and every kept
+/// joint unchanged, compared — only the new joints' segments are inserted into the kept exact
+/// arrangement; any other scene is cut from nothing and kept.
+class GrowingCut {
+ public:
+  GrowingCut();
+  ~GrowingCut();
+  GrowingCut(GrowingCut&&) noexcept;
+  GrowingCut& operator=(GrowingCut&&) noexcept;
+
+  /// The mesh of a scene that passed parse_scene() and check_scene_geometry(); throws as build_mesh.
+  Mesh cut(const SceneDef& scene, const std::string& file);
+  /// Calls that grew the kept cut, and calls that cut from nothing.
+  std::size_t grown() const { return grown_; }
+  std::size_t fresh() const { return fresh_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::size_t grown_ = 0, fresh_ = 0;
+};
 
 }  // namespace nmm::pre

@@ -218,4 +218,86 @@ TEST(Recut, ASlotsGapEndIsCutAsTheWholeMeshWouldBe) {
   check_recut(s, {{1.112, 0.104}, {1.13, 0.15}}, "crack beside the slot's end");
 }
 
+// pre::GrowingCut (cover_cutter.h), the re-cut check's full cut: a scene grown by batches of
+// crack segments, each batch inserted into the arrangement kept from the last cut, gives at every
+// growth the cut build_mesh gives of the whole scene (mesh_difference: the same elements, covers,
+// blocks and contact edges; numbering and loop starts may differ). The batches cross mesh nodes,
+// run along mesh edges, end inside elements (an island: a hole bridged in the copy, not in the
+// kept arrangement), cross earlier segments and the older joint, and cut a small piece off.
+namespace {
+void grow_and_compare(pre::GrowingCut& g, SceneDef& s, const std::vector<std::vector<Vec2>>& batch, const char* what,
+                      bool expect_growth = true) {
+  for (const auto& seg : batch) s.joints.push_back({0, seg});
+  const std::size_t grown = g.grown(), fresh = g.fresh();
+  const Mesh m = g.cut(s, "grown");
+  const Mesh whole = pre::build_mesh(s, "whole");
+  EXPECT_EQ(g.grown(), grown + (expect_growth ? 1 : 0)) << what;
+  EXPECT_EQ(g.fresh(), fresh + (expect_growth ? 0 : 1)) << what;
+  EXPECT_EQ(m.element_count(), whole.element_count()) << what;
+  EXPECT_EQ(m.cover_count(), whole.cover_count()) << what;
+  EXPECT_EQ(m.block_count(), whole.block_count()) << what;
+  EXPECT_EQ(mesh_difference(m, whole), "") << what;
+  EXPECT_NEAR(total_area(m), total_area(whole), 1e-12 * total_area(whole)) << what;
+  std::printf("%s: %zu joints, elements %zu, covers %zu, blocks %zu\n", what, s.joints.size(), m.element_count(),
+              m.cover_count(), m.block_count());
+}
+}  // namespace
+
+TEST(GrowingCut, EachCutIsTheWholeCutOfTheScene) {
+  const double dy = 0.5 * std::sqrt(3.0) / 2;  // m, the lattice's row spacing at h = 0.5 m
+  SceneDef s = two_bodies();
+  pre::GrowingCut g;
+  const Mesh first = g.cut(s, "first");
+  EXPECT_EQ(g.fresh(), 1u);
+  EXPECT_EQ(mesh_difference(first, pre::build_mesh(s, "whole")), "");
+  // x = 1 passes the lattice nodes (1, 0) and (1, 2·dy); the second runs along the row y = 2·dy
+  // through nodes (3.5, 4.0) and ends inside the mesh edge (4.0 … 4.5).
+  grow_and_compare(g, s, {{{1.0, 0.2}, {1.0, 1.6}}, {{3.3, 2 * dy}, {4.4, 2 * dy}}}, "through nodes, along edges");
+  const std::size_t elements_before_island = pre::build_mesh(s, "w").element_count();
+  // Wholly inside one triangle (the face gets a hole, bridged), and one ending inside an element.
+  grow_and_compare(g, s, {{{4.1, 0.3}, {4.2, 0.35}}, {{2.2, 0.1}, {2.45, 0.45}}}, "inside elements");
+  EXPECT_GT(pre::build_mesh(s, "w").element_count(), elements_before_island);
+  // Across the first batch's vertical segment and across the older joint, and two crossing each other.
+  grow_and_compare(g, s, {{{0.7, 1.2}, {1.4, 1.0}}, {{1.6, 0.5}, {1.9, 1.4}}, {{1.55, 1.3}, {2.0, 0.6}}},
+                   "across earlier segments");
+  // A corner of the lower body cut off: a block of its own.
+  const std::size_t blocks = pre::build_mesh(s, "w").block_count();
+  grow_and_compare(g, s, {{{5.75, -0.05}, {6.05, 0.25}}}, "a corner cut off");
+  EXPECT_EQ(pre::build_mesh(s, "w").block_count(), blocks + 1);
+  // A tiny piece: a segment one micrometre beside the lattice node (2.5, 0) across the row.
+  grow_and_compare(g, s, {{{2.45, -0.01}, {2.5 + 1e-6, 0.03}}, {{2.48, 0.02}, {2.56, -0.02}}}, "a small piece");
+  // One more batch after all that, from the older joint's tip.
+  grow_and_compare(g, s, {{{2.6, 1.3}, {3.4, 1.9}}, {{3.4, 1.9}, {3.5, 2.0}}}, "on from a tip up to the interface");
+
+  // Not a growth: an earlier joint moved, one dropped, the mesh size changed — each cut from
+  // nothing, still the whole cut; and the growth resumes from the scene cut last.
+  SceneDef moved = s;
+  moved.joints[2].points[1].x += 0.01;
+  grow_and_compare(g, moved, {}, "an earlier segment moved", false);
+  SceneDef dropped = moved;
+  dropped.joints.pop_back();
+  grow_and_compare(g, dropped, {}, "the last segment dropped (a step taken again)", false);
+  grow_and_compare(g, dropped, {{{4.5, 3.1}, {4.9, 3.6}}}, "growing again after it");
+  SceneDef finer = dropped;
+  finer.mesh_size = 0.4;
+  grow_and_compare(g, finer, {}, "another mesh size", false);
+  SceneDef moved_body = finer;
+  moved_body.bodies[1].outer[0].x += 0.1;
+  grow_and_compare(g, moved_body, {}, "a body changed", false);
+}
+
+// A slot's gap end carried on (split_gap_ends): its extension depends on the bodies and the mesh
+// only, so the kept arrangement keeps it; cracks up the extension and beside it grow the cut.
+TEST(GrowingCut, ASlotsGapEndGrowsAsTheWholeCut) {
+  SceneDef s = reference::interface_scene(0.025, 30);
+  BodyDef beam = reference::box(0, 0, 2.2, 0.2);
+  beam.outer = {{0, 0}, {1.095, 0}, {1.095, 0.1}, {1.105, 0.1}, {1.105, 0}, {2.2, 0}, {2.2, 0.2}, {0, 0.2}};
+  s.bodies = {beam};
+  s.split_gap_ends = true;
+  pre::GrowingCut g;
+  g.cut(s, "first");
+  grow_and_compare(g, s, {{{1.1, 0.1}, {1.1, 0.14}}}, "up from the slot's end, along its extension");
+  grow_and_compare(g, s, {{{1.112, 0.104}, {1.13, 0.15}}, {{1.1, 0.14}, {1.09, 0.19}}}, "beside the slot's end");
+}
+
 }  // namespace nmm

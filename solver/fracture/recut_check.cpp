@@ -19,12 +19,18 @@ bool recut_check_enabled() {
 }
 
 std::string recut_difference(const Mesh& before, const Mesh& recut, const SceneDef& cracked,
-                             const std::string& scene_name) {
-  const Mesh full = pre::build_mesh(cracked, scene_name);
+                             const std::string& scene_name, pre::GrowingCut& full_cut) {
+  Mesh full = full_cut.cut(cracked, scene_name);
   std::string diff = mesh_difference(recut, full);
   const char* dump = std::getenv("NMM_CHECK_RECUT_DUMP");
   if (diff.empty() || dump == nullptr) return diff;
   const std::string prefix = dump;
+  // The run's scene and its digest, as the re-cut carries them (a mesh file without them is not
+  // one nmm-inspect reads: the digest must be the scene's).
+  full.tool = "nmm-solve";
+  full.scene_file = before.scene_file;
+  full.scene_text = before.scene_text;
+  full.scene_sha256 = before.scene_sha256;
   write_mesh_file(before, prefix + ".before.nmm");
   write_mesh_file(recut, prefix + ".recut.nmm");
   write_mesh_file(full, prefix + ".full.nmm");

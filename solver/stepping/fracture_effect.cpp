@@ -108,7 +108,8 @@ bool FractureEffect::change(const Mesh& mesh, const SceneDef& scene, const std::
   // The check mode (docs/fracture.md "Re-cutting"): a re-cut that is not the full cut is a
   // defect of the re-cut, not of the run's physics: it ends the run with the difference.
   if (recut_check_enabled())
-    if (const std::string diff = recut_difference(mesh, *out.mesh, *out.scene, scene_name); !diff.empty())
+    if (const std::string diff = recut_difference(mesh, *out.mesh, *out.scene, scene_name, full_cut_);
+        !diff.empty())
       throw RunError("NMM_CHECK_RECUT: at t = " + std::to_string(start.time) + " s the re-cut of " +
                      std::to_string(segments.size()) + " crack segment(s) is not the full cut: " + diff);
   transfer_state(mesh, *out.mesh, out.map, dofs_per_cover, start);

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "preprocess/cover_cutter.h"
 #include "solver/flow/flow_network.h"
 #include "solver/fracture/crack_tip_readout.h"
 #include "solver/fracture/fracture.h"
@@ -97,6 +98,8 @@ class FractureEffect final : public MeshChange {
                                      const RunState& s);
 
   Fracture fracture_;
+  // The check mode's full cut (recut_check.h), kept from one re-cut to the next: one per run.
+  pre::GrowingCut full_cut_;
   std::unique_ptr<FlowNetwork> flow_network_;  // of the mesh below (the same derivation as the flow effect's)
   const Mesh* flow_mesh_ = nullptr;
   std::size_t flow_mesh_vertices_ = 0;
