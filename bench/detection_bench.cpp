@@ -4,7 +4,12 @@
 // its Verlet list, and each reusing the list one call built (what most steps pay), with whether
 // the two find the same contacts.
 //
-//   detection_bench [--sizes 10,20,30,50] [--reps 20] [--csv FILE]
+//   detection_bench [--sizes 10,20,30,50] [--reps 20] [--csv FILE] [--peer] [--mesh H] [--steps K]
+//
+// --peer: the DDA code's walls of contact_bench --peer (reference/brick_wall.h peer_wall), mesh
+// size H (default 2 m), after K static steps (default 3): what the 10,000- and 100,000-block
+// walls of docs/performance.md (h) detect in a step (their search distance 2.5·g2·w0 grows with
+// the wall's width: w0 is half the model's size).
 //
 // Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), fastest and median of `reps`
 // calls: on a machine shared with other jobs the wall-clock time of a call includes the time
@@ -29,26 +34,32 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 30, 50};
   int reps = 20;
   std::string csv_path = "detection_bench.csv";
+  bool peer = false;
+  double mesh_size = 2;
+  int steps = 3;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = nmm::bench::parse_sizes(argv[++i]);
     else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
+    else if (!std::strcmp(argv[i], "--peer")) peer = true;
+    else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc) mesh_size = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::max(1, std::atoi(argv[++i]));
     else {
-      std::fprintf(stderr, "usage: detection_bench [--sizes 10,20,30,50] [--reps 20] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: detection_bench [--sizes 10,20,30,50] [--reps 20] [--csv FILE] [--peer] [--mesh H] [--steps K]\n");
       return 2;
     }
   }
   const char* header =
       "wall_n,blocks,elements,candidate_edges,candidate_vertices,search_distance_m,pairs_tested,"
       "contacts,near_pairs,fastest_ms,median_ms,us_per_edge,reused_pairs_tested,reused_fastest_ms,"
-      "reused_median_ms,reused_same_contacts,load_average\n";
+      "reused_median_ms,reused_same_contacts,load_average,list_reach_m,list_edges,build_fastest_ms\n";
   std::ofstream csv = nmm::bench::start_csv(csv_path, header);
   for (int n : sizes) {
-    const nmm::SceneDef s = nmm::reference::brick_wall(n, false);
+    const nmm::SceneDef s = peer ? nmm::reference::peer_wall(n, n, false, mesh_size) : nmm::reference::brick_wall(n, false);
     const nmm::Mesh m = nmm::pre::build_mesh(s, "wall");
     nmm::solve::TimeStepper st(m, s, "wall");
     st.set_threads(1);
-    st.run_until(3e-3, [](std::int64_t) {});
+    st.run_until(steps * s.solver.time_step, [](std::int64_t) {});
     const nmm::solve::ContactTopology topo = nmm::solve::build_contact_topology(m);
     // The closed contacts of the last step, as the solver passes them.
     const nmm::solve::ClosedContacts closed = st.view().contacts.closed_contacts();
@@ -87,12 +98,24 @@ int main(int argc, char** argv) {
       reused_stats = one;
     }
     std::sort(reused.begin(), reused.end());
-    char line[500];
-    std::snprintf(line, sizeof line, "%d,%zu,%zu,%zu,%zu,%.4f,%zu,%zu,%zu,%.3f,%.3f,%.3f,%zu,%.3f,%.3f,%d,%.2f\n", n,
+    // The list's build alone: a list whose reach is too short for the search is built anew by
+    // each call, whose other work is the reused call's.
+    std::vector<double> built;
+    for (int r = 0; r < reps; ++r) {
+      nmm::solve::CandidateList fresh_list = list;
+      fresh_list.reach = 0;
+      const double t0 = nmm::bench::thread_cpu_seconds();
+      nmm::solve::detect_contacts(topo, xy, d0, 1e-3 * s.mesh_size, closed, nullptr, nullptr, &fresh_list);
+      built.push_back(nmm::bench::thread_cpu_seconds() - t0);
+    }
+    std::sort(built.begin(), built.end());
+    char line[600];
+    std::snprintf(line, sizeof line, "%d,%zu,%zu,%zu,%zu,%.4f,%zu,%zu,%zu,%.3f,%.3f,%.3f,%zu,%.3f,%.3f,%d,%.2f,%.4f,%zu,%.3f\n", n,
                   m.block_count(), m.element_count(), topo.edges.size(), topo.vertices.size(), d0,
                   stats.pairs_tested, contacts, near, 1e3 * times.front(), 1e3 * times[times.size() / 2],
                   1e6 * times.front() / static_cast<double>(topo.edges.size()), reused_stats.pairs_tested,
-                  1e3 * reused.front(), 1e3 * reused[reused.size() / 2], same ? 1 : 0, nmm::bench::load_average());
+                  1e3 * reused.front(), 1e3 * reused[reused.size() / 2], same ? 1 : 0, nmm::bench::load_average(),
+                  list.reach, list.edges.size(), 1e3 * (built.front() - reused.front()));
     csv << line;
     std::fputs(line, stdout);
     std::fflush(stdout);

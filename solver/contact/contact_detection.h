@@ -62,6 +62,9 @@ struct DetectionStats {
   std::size_t contacts = 0;      ///< candidates kept
   std::size_t list_builds = 0;   ///< Verlet lists built (the others reused the last one)
   double seconds = 0;            ///< s, wall time in detection (ContactSet::begin_step)
+  /// s, the calling thread's CPU time in detection (on a loaded machine the wall time above
+  /// includes the time the thread waited for a core)
+  double cpu_seconds = 0;
 };
 
 /// The blocks each loop vertex was in closed contact with after the last step: sorted, unique

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <tuple>
 #include <utility>
 
@@ -158,12 +159,24 @@ ClosedContacts ContactSet::closed_contacts() const {
   return closed;
 }
 
+namespace {
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
+
 void ContactSet::begin_step(const std::vector<double>& xy, double d0, double shallow, double w0) {
   const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = thread_cpu_seconds();
   closed_ = closed_contacts();
   eps_ = kContactTolerances.open_gap * w0;
   const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_);
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stats_.cpu_seconds += thread_cpu_seconds() - c0;
 
   // Transfer: a vertex keeps its state while it stays against the same block (on the same edge,
   // or having slid onto another edge of that block, e.g. the next element's along a joint); a
