@@ -306,7 +306,7 @@ RockTestSpecimen slope_test(const RockTestCase& c) {
   const double sizes[3] = {0.5, 0.35, 0.3};
   const double h = sizes[c.size];
   s.mesh_size = h;
-  s.load_unit = "m";  // what is compared across kernels: the wedge's travel at the end
+  s.load_unit = "m";  // compared across kernels (static steps): the wedge's travel at the end
   s.closed_form = 0;
   s.closed_form_name = "none (gravity in full)";
   s.end_time = 1.0;
@@ -315,7 +315,8 @@ RockTestSpecimen slope_test(const RockTestCase& c) {
   d["gravity"] = {0, -9.81};
   d["plane"] = "strain";
   d["materials"]["rock"] = rock(5e9, 0.25, 2600, 1e5, 3e5, 35);
-  d["joint_sets"]["bedding"] = {{"friction_deg", 15},
+  const double bedding_friction_deg = 15;
+  d["joint_sets"]["bedding"] = {{"friction_deg", bedding_friction_deg},
                                 {"normal", {{"model", "constant"}, {"kn", 5e10}}},
                                 {"shear", {{"model", "constant"}, {"ks", 2e10}}}};
   d["joint_sets"]["crack"] = {{"friction_deg", 30},
@@ -337,6 +338,16 @@ RockTestSpecimen slope_test(const RockTestCase& c) {
   d["mesh"]["size"] = h;
   d["supports"] = {support({{0, 0}, {40, 0}}, "xy"), support({{40, 0}, {40, 14}}, "x"), support({{0, 0}, {0, 2}}, "x")};
   d["measure_points"] = {{17.5, 13.5}, {25, 13.5}};  // on the wedge, behind the crest
+  // The free slide: the step path dips at β along the first joint, the bedding's φ 15°; the toe is
+  // where that joint leaves the face (outer[4] → outer[3]) and falls to the platform (outer[5].y)
+  // after d = (y_toe − y_platform)/sinβ along the dip (1.414 m; a = 5.078 m/s², t = 0.746 s).
+  const Vec2 j0 = joints[0][0], j1 = joints[0][1], f0 = outer[4], f1 = outer[3];
+  const Vec2 dj = {j1.x - j0.x, j1.y - j0.y}, df = {f1.x - f0.x, f1.y - f0.y};
+  const double along = ((f0.x - j0.x) * df.y - (f0.y - j0.y) * df.x) / (dj.x * df.y - dj.y * df.x);
+  const double dip = std::atan2(dj.y, dj.x), toe_y = j0.y + along * dj.y;
+  s.slide_acceleration = 9.81 * (std::sin(dip) - std::cos(dip) * std::tan(rad(bedding_friction_deg)));
+  s.slide_distance = (toe_y - outer[5].y) / std::sin(dip);
+  if (c.dynamic) s.load_unit = "s";  // compared across kernels: the time the toe reaches the platform
   solver(s, c.rate ? 0.02 : 0.01, c.dynamic);
   return s;
 }

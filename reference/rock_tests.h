@@ -103,6 +103,11 @@ struct RockTestSpecimen {
   double net_section_load = 0;  ///< N/m, P_net of a notch a − 2h: the peak cannot pass it
   Vec2 notch_tip;             ///< m, the notch's tip: its first crack starts there (beam, slope: joint tips)
   std::vector<Vec2> tips;     ///< m, the joints' tips inside the rock (where cracks start)
+  // The slope in dynamic steps: once its bridges break, the wedge slides as a rigid block on the
+  // step path, a = g(sinβ − cosβ·tanφ), until its toe reaches the platform below the face, at
+  // t = √(2d/a) (the release takes a few steps: it arrives a little later).
+  double slide_acceleration = 0;  ///< m/s², a (0: not the slope)
+  double slide_distance = 0;      ///< m, d: the wedge's travel along the dip from its toe to the platform
 };
 
 /// The specimen of one cell (sizes, rates and duration in rock_tests.cpp's table).
