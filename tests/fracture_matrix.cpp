@@ -32,8 +32,9 @@
 // body: P = |Σ_e A_e σ_e,kk| / lever over its elements that are not debris (rock_tests.h).
 // NMM_CHECK_RECUT=1 in the environment is passed on to the stepper (the re-cut checked against
 // a full cut after every re-cut, where the solver has that mode).
-// NMM_TRACE_SEGMENTS=1: every accepted step's load and new crack segments (hex floats, bit for
-// bit) to stderr, to find the first step where the runs under two kernel families part ways.
+// NMM_TRACE_SEGMENTS=1: every accepted step's time, load (the slope: the wedge's travel too) and
+// new crack segments (hex floats, bit for bit) to stderr, to find the first step where the runs
+// under two kernel families part ways.
 // NMM_TRACE_COST=1: after every accepted step, the run's cost so far (steps solved again after a
 // re-cut, cut attempts, factorisations, solve pairs, Newton and CG iterations, this process's CPU
 // seconds, and the wall seconds of StepTimings' parts) with its contacts, unknowns, segments and
