@@ -360,9 +360,10 @@ TEST(CohesiveBar, FacesStandForNoMoreCrackThanWasCut) {
 // at 1 mm is held to the converged value, not to 12.4. The steps solve K d = F (static_mode
 // "equilibrium"), as the converged answer does: DDA's static steps (the default) keep the inertia
 // term 2M/Δt², a drag of about 0.7 kN/m on a beam whose load point moves 1 µm a step, which the
-// load work pays and `damped` books (1.41 J/m at 1 mm at h 0.025 m). Measured 2026-12-01
-// (docs/fracture.md): peaks 17.22, 17.52 and 17.14 kN/m (+0.8, +2.5, +0.3 %), work at 1 mm 10.39,
-// 10.31 and 10.07 J/m (+3.7, +2.9, +0.5 %); in DDA's static steps 17.96, 18.28, 17.91 kN/m and
+// load work pays and `damped` books (1.41 J/m at 1 mm at h 0.025 m). Measured 2026-12-02
+// (docs/fracture.md): peaks 17.22, 17.52 and 17.14 kN/m (+0.8, +2.5, +0.3 %), work at 1 mm 10.35,
+// 10.31 and 10.07 J/m (+3.3, +2.9, +0.5 %; h 0.025 m cuts its top element at 0.80 mm, rule 8e of
+// cohesive_starts.h: 10.39 before); on 2026-12-01 in DDA's static steps 17.96, 18.28, 17.91 kN/m and
 // 11.15, 11.04, 10.85 J/m (+11.3, +10.2, +8.2 %).
 // One test per mesh (each writes its peak and work for CohesiveBeam.PeterssonMeshIndependent).
 struct BeamResult {
