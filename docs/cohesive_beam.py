@@ -4,6 +4,7 @@
 
     python3 docs/cohesive_beam.py BIN_DIR OUT_DIR [--figure docs/figures/cohesive_beam.svg]
     python3 docs/cohesive_beam.py BIN_DIR OUT_DIR --stiffness   # the beam before it cracks
+    python3 docs/cohesive_beam.py BIN_DIR OUT_DIR --to-zero     # h 0.025 m on to 6 mm, the load about zero
     ... --split-gap-ends   # either, with the slot's end carried on for the covers (docs/preprocess.md)
 
 The beam of Petersson (1981, Lund TVBM-1006; docs/physics.md §6): span 2.0 m between roller
@@ -177,10 +178,49 @@ def stiffness(a, out):
                       f"({100 * (k / (exact / 1e6) - 1):+.0f} % of the closed form {exact / 1e6:.1f})")
 
 
+def to_zero(a, out):
+    """The beam at h 0.025 m on to 6 mm (2 um a step), where its load has fallen to about 1 % of its
+    peak: per mm the load, energy.csv's load work, fracture, strain, springs and residual, against
+    the converged beam run on to full separation (its dissipation, load work and load)."""
+    rows = list(csv.DictReader(open(REFERENCE)))
+    rx = [0.0] + [float(r["deflection_mm"]) for r in rows]
+    rp = [0.0] + [float(r["load_kn_per_m"]) for r in rows]
+    rd = [0.0] + [float(r["dissipated_j_per_m"]) for r in rows]
+    s = scene(0.025, a.split_gap_ends)
+    s["solver"].update({"time_step": 2e-3, "steps": 3000, "output_every": 5})
+    (out / "beam_to_zero.json").write_text(json.dumps(s))
+    subprocess.run([f"{a.bin_dir}/nmm-preprocess", out / "beam_to_zero.json", "-o", out / "beam_to_zero.nmm"],
+                   check=True, capture_output=True)
+    run = out / "run_to_zero"
+    subprocess.run([f"{a.bin_dir}/nmm-solve", out / "beam_to_zero.nmm", "-o", run, "-q"], capture_output=True)
+    energy = list(csv.DictReader(open(run / "energy.csv")))
+    c, _ = curve(run)
+    peak = max(p[1] for p in c)
+    print("mm | load kN/m (converged) | load work J/m (converged) | fracture J/m (converged) | strain | springs | residual")
+    for mm in (1, 2, 3, 4, 5, 6):
+        e = min(energy, key=lambda r: abs(float(r["time"]) - mm))
+        load = min(c, key=lambda p: abs(p[0] - mm))[1]
+        n = 4000  # the converged curve's work to mm, straight between its points
+        ref_work = sum(0.5 * (at(list(zip(rx, rp)), mm * i / n) + at(list(zip(rx, rp)), mm * (i + 1) / n)) * mm / n
+                       for i in range(n))
+        print(f"{mm} | {load:.3f} ({at(list(zip(rx, rp)), mm):.3f}) | {float(e['load_work']):.3f} ({ref_work:.3f}) | "
+              f"{float(e['fracture']):.3f} ({at(list(zip(rx, rd)), mm):.3f}) | {float(e['strain']):.3f} | "
+              f"{float(e['springs']):.3f} | {float(e['residual']):.4f}")
+    low = next(p for p in c if p[0] > 1 and p[1] < 0.01 * peak)
+    s = json.load(open(run / "summary.json"))
+    print(f"{s['status']}; peak {peak:.4g} kN/m; under 1 % of it at {low[0]:.2f} mm; at the end {c[-1][1]:.3g} kN/m "
+          f"({100 * c[-1][1] / peak:.2f} %), load work {float(energy[-1]['load_work']):.4g} J/m "
+          f"({100 * (float(energy[-1]['load_work']) / GF_LIGAMENT - 1):+.1f} % of G_f x ligament {GF_LIGAMENT} J/m)")
+
+
 def main():
-    a, out = arguments([("--stiffness", {"action": "store_true"}), ("--split-gap-ends", {"action": "store_true"})])
+    a, out = arguments([("--stiffness", {"action": "store_true"}), ("--split-gap-ends", {"action": "store_true"}),
+                        ("--to-zero", {"action": "store_true"})])
     if a.stiffness:
         stiffness(a, out)
+        return
+    if a.to_zero:
+        to_zero(a, out)
         return
     curves = {}
     ref, ref_work, ref_diss = reference()

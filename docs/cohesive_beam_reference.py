@@ -16,12 +16,17 @@ Instead of stepping delta, the tip is moved up one node at a time and delta foll
 condition (Petersson 1981, Hillerborg et al. 1976): the tip node's reaction across the line equals
 sigma_t times its length. Everything is linear at a given tip and set of faces past w_c:
 u = u_sigma + delta * u_delta. The ligament's unknowns are condensed once (Schur complement of the
-rest, one sparse factorisation), so each tip is a small dense solve.
+rest, one sparse factorisation), so each tip is a small dense solve. The top node is the load
+point, pressed shut: once the tip is one node below it, the last face opens too and the top node
+is the hinge the halves turn about; the opening at the slot's end then drives the steps until
+every face is past w_c and the load is zero (full separation: G_f x the ligament less the hinge
+node's h/2).
 
 Writes OUT.csv: tip_y_m, deflection_mm, load_kn_per_m, dissipated_j_per_m (sum of L_i D(w_i), D(w) =
 sigma_t w - sigma_t w^2/(2 w_c), G_f at w >= w_c), opening_at_slot_um; and prints the peak, the load
 work at 1 mm (the curve integrated, straight from the origin to the first point) and the
-dissipation there.
+dissipation there, and RILEM's work of fracture: the load work, the dissipation and the strain
+energy left (their difference) until the load has fallen to 1 % of its peak and to zero.
 """
 import argparse
 
@@ -73,7 +78,7 @@ def solve(h):
     m = len(lig)
     rows = []
     opened = np.zeros(m, bool)
-    for tip in range(1, m):
+    for tip in range(1, m - 1):  # the top node is the load point: pressed shut, it is no tip
         for _ in range(m):
             # Unknowns: u_x of the faces below the tip (cohesive or open); known: u_x = 0 at and
             # above it, u_y = -delta at the load. Faces: f_i = L_i sigma_t (1 + 2 u_i / w_c).
@@ -97,6 +102,35 @@ def solve(h):
         wk = np.clip(w, 0, WC)
         dissipated = float(np.sum(length[:tip] * (FT * wk - FT * wk * wk / (2 * WC))))
         rows.append((lig[tip] // (nx + 1) * h, 1e3 * delta, -2 * r_load / 1e3, dissipated, 1e6 * w[0]))
+    # To full separation: the last node below the top opens too, and the top node (the load
+    # point, pressed shut) is the hinge the halves turn about (u_x = 0 there, its reaction across
+    # the line compressive). The opening at the slot's end w_0 drives the steps (the load falls,
+    # and the deflection need not rise: w_0 does), up to w_c, where every face has let go and
+    # the halves carry no moment.
+    faces = np.arange(m - 1)
+    for w0 in np.geomspace(rows[-1][4] * 1e-6, WC * 0.2 / length[m - 2], 400)[1:]:
+        for _ in range(m):
+            a = s[np.ix_(faces, faces)].copy()
+            coh = ~opened[:m - 1]
+            a[faces[coh], faces[coh]] -= 2 * length[:m - 1][coh] * FT / WC
+            f_const = np.where(coh, length[:m - 1] * FT, 0.0)
+            u_sig = np.linalg.solve(a, f_const)
+            u_del = np.linalg.solve(a, s[faces, m])
+            delta = (-w0 / 2 - u_sig[0]) / u_del[0]
+            u = u_sig + delta * u_del
+            w = -2 * u
+            past = (w > WC) & ~opened[:m - 1]
+            if not past.any():
+                break
+            opened[:m - 1] |= past
+        r_load = s[m, faces] @ u - s[m, m] * delta
+        r_top = s[m - 1, faces] @ u - s[m - 1, m] * delta  # across the line at the hinge: < 0 pressed
+        wk = np.clip(w, 0, WC)
+        dissipated = float(np.sum(length[:m - 1] * (FT * wk - FT * wk * wk / (2 * WC))))
+        assert r_top <= 0, "the hinge at the load point pulled open"
+        rows.append((0.2, 1e3 * delta, -2 * r_load / 1e3, dissipated, 1e6 * w0))
+        if opened[:m - 1].all():
+            break
     return rows
 
 
@@ -119,6 +153,12 @@ def main():
     print(f"h {a.h} m: peak {p[peak]:.4g} kN/m at {x[peak]:.3f} mm (tip at y {rows[peak - 1][0]:.4f} m); "
           f"load work at 1 mm {work:.4g} J/m, dissipated there {diss:.4g} J/m; "
           f"last row: {rows[-1][1]:.3f} mm, {rows[-1][2]:.3g} kN/m, dissipated {rows[-1][3]:.4g} J/m")
+    # RILEM's work of fracture: the load work until the load has fallen to ~zero (1 % of the peak)
+    low = next(i for i in range(peak, len(p)) if p[i] < 0.01 * p[peak])
+    for name, end in (("1 % of the peak", low), ("separation", len(p) - 1)):
+        wk = float(np.trapz(p[:end + 1], x[:end + 1]))
+        print(f"to {name} ({x[end]:.3f} mm, {p[end]:.3g} kN/m): load work {wk:.4g} J/m ({100 * (wk / (GF * 0.1) - 1):+.1f} % "
+              f"of G_f x ligament {GF * 0.1:.4g}), dissipated {rows[end - 1][3]:.4g}, strain left {wk - rows[end - 1][3]:.3g} J/m")
 
 
 if __name__ == "__main__":

@@ -116,6 +116,19 @@
 //      order 1, h 0.0125 m: the element ahead of the tip at y 0.162 m reached σt along the crack
 //      (σyy 3.33 MPa, σxx across it 1.43, σxy 0) and the crack turned horizontal (step 575); at
 //      order 0 the same at y 0.173 m (step 832).
+//      (e) a tensile tip crosses the last holding element on its line, straight on to the body's
+//      boundary, where that element is shut across the line (σ_nn ≤ 0) and its shear on the line
+//      is under σt (β·σt, the least a closed face carries): faces cut through it close and carry
+//      its compression by contact, so the cut changes nothing while that rock holds, and it takes
+//      away a hinge an element wide. A bending member's compression zone shrinks towards a point
+//      as its crack lets go (the converged beam's hinge is its top node,
+//      docs/cohesive_beam_reference.py); an uncut element spans the crack's line and both halves'
+//      covers, and turning them about it strains it. Petersson's beam at order 1, h 0.025 m: the
+//      tip stopped at y 0.1949 m under the load strip (the element ahead at σ_nn −12 MPa, −8 MPa
+//      at the tip), the load rose again from 1.47 kN/m at 2 mm to 2.93 at 4 mm while `fracture`
+//      stayed 10.86 J/m and `strain` rose to 5.88 J/m, and at 4.2 mm the tip ran through in one
+//      step (`fracture` 17.35 J/m, above G_f × ligament); with (e) it cuts to the top at step 801
+//      (0.80 mm) and the load falls to 0.6 % of its peak at 6 mm, 12.46 J/m of load work.
 // Runs without a fracture energy are not touched (bit for bit).
 #pragma once
 

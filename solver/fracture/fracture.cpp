@@ -384,6 +384,28 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
                    static_cast<long long>(s.step), tip.at.x, tip.at.y, e1, s1, at_tip, sigma_t);
     return sigma_t > 0 && at_tip >= sigma_t;
   };
+  // Rule 8e of cohesive_starts.h: the holding element ahead of a cohesive tip is the last rock on
+  // its line (straight on, the line leaves it through a body boundary edge) and faces cut through
+  // it is shut across the line (σ_nn ≤ 0: faces cut through it close and carry its compression by
+  // contact) with a shear traction on the line the closed faces carry (|σ_tn| below their least
+  // shear strength β·σt, β = 1, friction left out): the cut changes nothing while the rock there
+  // holds, and it takes away a hinge one element wide that a bending member's compression zone
+  // (the reference's one node, docs/cohesive_beam_reference.py) is not.
+  auto last_ligament = [&](std::size_t e1, const Tip& tip) {
+    RayExit exit;
+    if (!ray_exit(mesh, e1, tip.at, tip.dir, tol, exit)) return false;
+    const CrackEnd c = crack_end(mesh, e1, tip.at, exit);
+    if (!c.stops || (mesh.loop_edge_origin[static_cast<std::size_t>(c.stop_edge)] & kEdgeBoundary) == 0) return false;
+    const double tx = tip.dir.x, ty = tip.dir.y, nx = -ty, ny = tx;
+    const double sxx = stress[3 * e1], syy = stress[3 * e1 + 1], sxy = stress[3 * e1 + 2];
+    const double s_nn = sxx * nx * nx + syy * ny * ny + 2 * sxy * nx * ny;
+    const double s_tn = sxx * tx * nx + syy * ty * ny + sxy * (tx * ny + ty * nx);
+    const double sigma_t = scene.materials[scene.bodies[mesh.element_body[e1]].material].strength.tensile;
+    if (trace_rules())
+      std::fprintf(stderr, "TRACE last ligament step %lld tip (%.4f,%.4f) element %zu to (%.4f,%.4f) s_nn %.4g s_tn %.4g\n",
+                   static_cast<long long>(s.step), tip.at.x, tip.at.y, e1, c.cut_to.x, c.cut_to.y, s_nn, s_tn);
+    return s_nn <= 0 && std::abs(s_tn) < sigma_t;
+  };
   auto grow = [&](Tip& tip, int forced, CrackMode drive, bool band = false) {
     bool bridged = band;  // the holding elements ahead were weighed (bridge) once this growth
     bool recovered = false;  // rule 8 let it cross one holding element
@@ -402,7 +424,7 @@ std::vector<CrackSegment> Fracture::find(const Mesh& mesh, const SceneDef& scene
                          2 * stress[3 * e + 2] * tip.dir.x * tip.dir.y,
                      element_area(mesh, static_cast<std::size_t>(e)) / (h * h));
       if (holds && forced <= 0 && !band && !recovered && cohesive_rock(static_cast<std::size_t>(e)) &&
-          tip_stress_breaks(static_cast<std::size_t>(e), tip)) {
+          (tip_stress_breaks(static_cast<std::size_t>(e), tip) || last_ligament(static_cast<std::size_t>(e), tip))) {
         // Rule 8 of cohesive_starts.h: straight on through it, as rule 4's band crosses, one
         // element a solution (the next is weighed on the solution with this one cut).
         forced = 1;
