@@ -119,7 +119,7 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
               cut.now_mb, cut.peak_mb, meshed.now_mb, set_up.now_mb);
   std::printf("step,newton,friction_updates,cg,factorisations,cg_over_budget,unsettled,cuts,ms,"
               "factorisation_ms,cg_ms,detection_ms,cpu_ms,analyses,rss_mb,peak_rss_mb,orderings,kept_analyses,placed_analyses,"
-              "factor_mnz,factor_gflop,detection_cpu_ms,list_builds,pairs_tested\n");
+              "factor_mnz,factor_gflop,detection_cpu_ms,list_builds,pairs_tested,reach_redos,contacts\n");
   nmm::solve::ContactSolveStats a = st.view().contact_solve;
   nmm::solve::DetectionStats da = st.view().contacts.detection_stats();
   nmm::solve::StepTimings ta = st.view().timings;
@@ -138,7 +138,7 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
     if (memory) trace.mark("end of step");
     nmm::bench::Resident mem = nmm::bench::resident();
     if (memory) mem.peak_mb = std::max(mem.peak_mb, trace.run_peak_mb);
-    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f,%zu,%zu,%zu,%.3f,%.3f,%.2f,%zu,%zu\n", k, b.newton - a.newton,
+    std::printf("%d,%ld,%ld,%ld,%ld,%ld,%ld,%zu,%.2f,%.2f,%.2f,%.2f,%.2f,%zu,%.0f,%.0f,%zu,%zu,%zu,%.3f,%.3f,%.2f,%zu,%zu,%ld,%zu\n", k, b.newton - a.newton,
                 b.strength_updates - a.strength_updates, b.cg_iterations - a.cg_iterations,
                 b.factorisations - a.factorisations, b.cg_aborted - a.cg_aborted, b.unsettled - a.unsettled,
                 st.view().state.cuts - cuts, ms, 1e3 * (b.factorisation_seconds - a.factorisation_seconds),
@@ -147,7 +147,8 @@ int trace_run(int n, bool dynamic, bool peer, int steps, double mesh_size, int t
                 st.view().system.orderings() - orderings, st.view().system.kept_analyses() - kept,
                 st.view().system.placed_analyses() - placed, 1e-6 * st.view().system.factor_nonzeros(),
                 1e-9 * st.view().system.factor_flops(), 1e3 * (db.cpu_seconds - da.cpu_seconds),
-                db.list_builds - da.list_builds, db.pairs_tested - da.pairs_tested);
+                db.list_builds - da.list_builds, db.pairs_tested - da.pairs_tested,
+                tb.reach_redos - ta.reach_redos, st.view().contacts.contacts().size());
     std::fflush(stdout);
     if (!ran.ok()) {
       std::printf("# stopped: %s\n", ran.reason.c_str());

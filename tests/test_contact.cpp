@@ -116,6 +116,38 @@ TEST(Contact, DroppedBlockComesToRestOnTheBase) {
   EXPECT_LT(vmax, 1e-2) << "m/s";
 }
 
+// The reach (step_control.h): on a model wide against its mesh (w0 = 4 m, g2 = 0.01: d0 = 0.1 m)
+// open contacts are looked for only 0.05·h = 12.5 mm far. A block dropped 1 m with Δt = 4 ms
+// moves up to √(2gH)·Δt = 17.7 mm in a step before it lands: more than the reach, so a step
+// looking only that far would carry its corners into the base unseen, and the block would fall
+// through. Those attempts are taken again looking farther (Δt unchanged; 113 of them): the
+// block falls as ½·g·t² (0.7848 m at 0.4 s), bounces (0.91 → 0.72 m down) and rests 1 m down
+// from 1.4 s.
+TEST(Contact, ADropFasterThanTheReachIsRedoneAndLandsOnTheBase) {
+  SceneDef s = contact_scene(0.25, 30);
+  s.solver.max_displacement_ratio = 0.01;
+  s.solver.time_step = 4e-3;
+  s.bodies = {box(0, 0, 8, 1), box(3.5, 2, 4.5, 3)};
+  s.fixed_points = {{0.2, 0.2}, {7.8, 0.2}, {4, 0.2}};
+  s.measure_points = {{4, 2.5}};
+  const Mesh m = pre::build_mesh(s, "reach");
+  TimeStepper st(m, s, "reach");
+  ASSERT_PRED1(test::ended_ok, run_to(st, 0.4));
+  const double fell = -st.view().state.measure[0].displacement()[1];
+  ASSERT_PRED1(test::ended_ok, run_to(st, 2.0));
+  const double y1 = st.view().state.measure[0].displacement()[1];
+  ASSERT_PRED1(test::ended_ok, run_to(st, 2.2));
+  const double y2 = st.view().state.measure[0].displacement()[1];
+  std::printf("dropped 1 m past the reach: %.6f m at 0.4 s (free fall 0.7848), %.6f m at 2.2 s, then moved %.2e m "
+              "in 0.2 s; max penetration %.2e m, %ld attempts redone, %zu cuts\n",
+              fell, -y2, y2 - y1, st.view().state.max_penetration, st.view().timings.reach_redos, st.view().state.cuts);
+  EXPECT_GT(st.view().timings.reach_redos, 0) << "the falling steps outran the reach";
+  EXPECT_NEAR(fell, 0.5 * 9.81 * 0.4 * 0.4, 1e-3) << "it falls freely";
+  EXPECT_NEAR(y2, -1.0, 1e-3) << "it lands on the base";
+  EXPECT_LT(std::abs(y2 - y1), 1e-4) << "and stays there";
+  EXPECT_LT(st.view().state.max_penetration, 1e-3) << "less than 1/1000 of its size";
+}
+
 // Shi's penetration limit g2·w0 against a landing that must go deeper (step_control.h, the
 // penetration rule). A 1 m block set on a base on a joint of kn = 1e9 Pa/m rests at a closure
 // δ = ρ·g·H/kn = 2.6e-5 m; dropped from touching, the undamped landing reaches 2·δ. With g2·w0 =

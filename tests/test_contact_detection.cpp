@@ -96,6 +96,49 @@ TEST(ContactDetection, AReusedVerletListFindsWhatAFreshSearchFinds) {
   }
 }
 
+// Looking for open contacts only `open_gap` far (the stepper's reach, step_control.h) finds
+// exactly those of Shi's d0 open at most that wide — the same vertex, edge and gap — and every
+// closed one as deep as d0 follows it, from fresh lists and reused ones, as the 6 × 6 wall's
+// faces slide, open and sink into each other (the drift above).
+TEST(ContactDetection, ANarrowerOpenGapFindsTheContactsWithinItAndEveryDeeperOne) {
+  const SceneDef s = reference::peer_wall(6, 6, false, 0.5);
+  const Mesh m = pre::build_mesh(s, "wall");
+  TimeStepper st(m, s, "wall");
+  ASSERT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
+  const ContactTopology topo = build_contact_topology(m);
+  const ClosedContacts closed = st.view().contacts.closed_contacts();
+  const double d0 = 2.5 * s.solver.max_displacement_ratio * st.view().model.w0();
+  const double shallow = 1e-3 * s.mesh_size, open = 0.6 * d0;
+  std::vector<double> xy = st.view().state.loop_xy;
+  std::mt19937 rng(20261202);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  CandidateList list;
+  DetectionStats stats;
+  std::size_t wider = 0, kept = 0, closed_found = 0;
+  for (int k = 0; k < 60; ++k) {
+    const std::vector<ContactCandidate> all = detect_contacts(topo, xy, d0, shallow, closed);
+    const std::vector<ContactCandidate> near = detect_contacts(topo, xy, d0, shallow, closed, &stats, nullptr, &list, open);
+    std::vector<ContactCandidate> within;
+    for (const ContactCandidate& c : all)
+      if (c.gap <= open) within.push_back(c);
+    wider += all.size() - within.size();
+    ASSERT_EQ(near.size(), within.size()) << "configuration " << k;
+    for (std::size_t c = 0; c < near.size(); ++c) {
+      EXPECT_EQ(near[c].vertex, within[c].vertex) << "configuration " << k << ", contact " << c;
+      EXPECT_EQ(near[c].edge, within[c].edge) << "configuration " << k << ", contact " << c;
+      EXPECT_EQ(near[c].gap, within[c].gap) << "configuration " << k << ", contact " << c;
+      closed_found += near[c].gap < 0;
+    }
+    kept += near.size();
+    for (std::size_t i = 0; i < xy.size(); ++i) xy[i] += 0.05 * d0 * u(rng);
+  }
+  std::printf("d0 %.4f m, open gap 0.6·d0: %zu contacts as d0 finds them, %zu open wider left out, %zu below touching; "
+              "list built %zu times\n", d0, kept, wider, closed_found, stats.list_builds);
+  EXPECT_GT(wider, 100u) << "the drift opened faces wider than the narrower gap";
+  EXPECT_GT(closed_found, 100u) << "and sank vertices below touching";
+  EXPECT_GT(stats.list_builds, 1u) << "the narrower list was outgrown and built again";
+}
+
 // The closed pairs' per-vertex index answers as the binary search over the sorted pairs does.
 TEST(ContactDetection, ClosedPairsIndexedByVertexAnswerAsTheirSearch) {
   const SceneDef s = reference::peer_wall(6, 6, false, 0.5);

@@ -1,18 +1,20 @@
 // Contact detection (classic NMM / DDA, docs/physics.md §3).
 //
 // Broad phase: a Verlet list. Each candidate vertex keeps the candidate edges of other elements
-// within reach R = 2·(d0 + β·h) of it (β = beside_edge: the narrow phase looks that far past an
-// edge's ends), found by a uniform grid of cell size max(mean candidate edge length, 2·R): every
-// edge entered in the cells its box grown by R overlaps, every vertex meeting the edges of its
-// own cell. Element edges are at most one mesh size long however large the blocks are, so each
-// cell holds a bounded number of edges and the build grows about linearly with their number.
-// The list is reused while no loop vertex has moved more than (R − d0 − β·h)/2 since the build:
+// within reach R = 2·(d + β·h) of it (β = beside_edge: the narrow phase looks that far past an
+// edge's ends; d = max(g_max, p_deep): the widest gap a contact is found at — d0, or the
+// stepper's smaller reach — and the deepest a contact is followed to, below), found by a uniform
+// grid of cell size max(mean candidate edge length, 2·R): every edge entered in the cells its box
+// grown by R overlaps, every vertex meeting the edges of its own cell. Element edges are at most
+// one mesh size long however large the blocks are, so each cell holds a bounded number of edges
+// and the build grows about linearly with their number.
+// The list is reused while no loop vertex has moved more than (R − d − β·h)/2 since the build:
 // a vertex and a segment whose ends each moved at most m/2 have come at most m nearer, so every
-// edge the narrow phase can accept (|g| ≤ d0, ω in [−β, 1 + β]: within d0 + β·h of the segment)
-// is still in the list. Each vertex's edges ascend, as the grid gives them, so the narrow phase
-// meets its candidates in the same order from a new list or an old one, and finds the same
-// contacts: the list is a cache (no state of the run). A settling wall moves far less than
-// R/4 = 1.25·g2·w0 per step, so most steps reuse the list.
+// edge the narrow phase can accept (−p_deep ≤ g ≤ g_max, ω in [−β, 1 + β]: within d + β·h of
+// the segment) is still in the list. Each vertex's edges ascend, as the grid gives them, so the
+// narrow phase meets its candidates in the same order from a new list or an old one, and finds
+// the same contacts: the list is a cache (no state of the run). A settling wall moves far less
+// than R/4 per step, so most steps reuse the list.
 //
 // Narrow phase, for vertex P of element A and edge Q2 → Q3 of element B (loops are CCW, so the
 // edge's outward normal is n = (t_y, −t_x) with t = (Q3 − Q2)/l):
@@ -20,7 +22,7 @@
 //     with the same weights: the two can never separate, e.g. along a free surface inside one
 //     block, or next to a crack tip whose covers are not split);
 //   - ω = (P − Q2)·t / l in [0, 1] (within 1e-3): P lies beside the edge;
-//   - gap g = (P − Q2)·n ≤ d0, and g ≥ −shallow (1e-3·h: a vertex missed for a step) unless
+//   - gap g = (P − Q2)·n ≤ g_max (d0, or the stepper's smaller reach: time_stepper.cpp), and g ≥ −shallow (1e-3·h: a vertex missed for a step) unless
 //     P was in closed contact with B's block after the last step, then g ≥ −min(p_max, d_last
 //     + shallow), d_last how deep P was against that block at the end of the last step (a
 //     contact sinks step by step; it does not jump onto another face of the block deeper down),
@@ -458,11 +460,28 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               double shallow,
                                               const ClosedContacts& closed,
                                               DetectionStats* stats, ElementPairs* near_pairs,
-                                              CandidateList* list) {
+                                              CandidateList* list, double open_gap) {
   std::vector<ContactCandidate> out;
   if (topo.edges.empty()) return out;
   const ContactTolerances& tl = kContactTolerances;
   const double p_max = std::min(tl.closed_depth * topo.mesh_size, d0);
+  // The deepest a vertex may be against an edge and be found: a new contact's depth, or a
+  // closed one's depth after the last step plus that, at most p_max (the narrow phase below).
+  const double new_depth_max = std::max(shallow, tl.gap_round_off * topo.mesh_size);
+  double deep_max = new_depth_max;
+  if (!closed.pairs.empty()) {
+    double was = closed.depth.empty() ? p_max : 0.0;
+    for (double d : closed.depth) was = std::max(was, d);
+    deep_max = std::max(deep_max, std::min(p_max, was + new_depth_max));
+  }
+  // The widest gap a contact is found at: d0, or less where the stepper checks that no vertex
+  // moves more than half of it in the step (time_stepper.cpp, the reach check) — unless a vertex
+  // may be found deeper than that: each vertex keeps the edge of smallest |g| per block, and
+  // only while every accepted depth is below the gap looked to is that edge the one d0 would
+  // give (an open edge left out, g > gap_max, is farther than any kept one), so that the
+  // contacts found are exactly d0's open at most gap_max wide. With gap_max = d0 the list's
+  // need is d0's as before (p_max ≤ d0): the same lists, bit for bit.
+  const double gap_max = open_gap >= 0 && deep_max <= open_gap ? std::min(open_gap, d0) : d0;
 
   // The candidates: the Verlet list, built anew when a vertex has moved too far for it; it also
   // keeps the call's working arrays from one call to the next.
@@ -474,8 +493,9 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   edge_geometry(topo, xy, geometry);
   out.reserve(cand.last_found + cand.last_found / 8 + 16);
   const double beside = tl.beside_edge * topo.mesh_size;  // how far past its ends an edge reaches
-  if (!list_holds(cand, xy, d0 + beside)) {
-    build_candidate_list(topo, xy, geometry, d0 + beside, cand);
+  const double need = std::max(gap_max, deep_max) + beside;
+  if (!list_holds(cand, xy, need)) {
+    build_candidate_list(topo, xy, geometry, need, cand);
     if (stats) ++stats->list_builds;
   }
 
@@ -545,8 +565,8 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
       if (omega < -tl.beside_edge || omega > 1 + tl.beside_edge) continue;
       const double g = rx * ex + ry * ey;
       // Cheap geometric rejections first (continuity was left out when the list was built).
-      if (g > d0 || (g < -d0 && g < -p_max)) continue;
-      if (near_pairs && std::abs(g) <= d0) near_pairs->emplace_back(ea, eb);
+      if (g > gap_max || (g < -d0 && g < -p_max)) continue;
+      if (near_pairs && std::abs(g) <= gap_max) near_pairs->emplace_back(ea, eb);
       const std::int32_t block_b = topo.block_of[eb];
       // How deep P may be against B's block: a new contact's depth, or — closed against that
       // block after the last step — as deep as it was then plus a new contact's depth, at most
@@ -572,7 +592,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                               ? topo.face_master[p] != 0
                               : master_side;
       if (master && g >= -topo.master_depth && !closed.holds_with(p, block_b)) continue;
-      if (g > d0 || g < -(was_closed ? std::min(p_max, was_depth + new_depth) : new_depth)) continue;
+      if (g > gap_max || g < -(was_closed ? std::min(p_max, was_depth + new_depth) : new_depth)) continue;
       // The edge must face P (checked before the tests inside B below, which cost loops over
       // elements: every test here only drops a candidate, so their order does not change what
       // is kept).

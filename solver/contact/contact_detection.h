@@ -130,13 +130,18 @@ using ElementPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
 /// the last step: against such a block a vertex may be inside its elements by up to
 /// min(0.3·h, d0); against any other by up to `shallow` (m) at most, a depth only a contact can
 /// explain (a vertex deeper inside without having come in through a contact is near that edge
-/// from the wrong side).
+/// from the wrong side). `open_gap` (m, at most d0; < 0: d0): contacts open wider than this are
+/// not found — the stepper's reach check (time_stepper.cpp) redoes a step in which a vertex
+/// moves more than half of it; a closed contact is still followed as deep as d0 allows, and
+/// where one may be deeper than open_gap, d0 is looked to (the contacts found are d0's whose
+/// gap is at most open_gap).
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& loop_xy, double d0,
                                               double shallow,
                                               const ClosedContacts& closed,
                                               DetectionStats* stats = nullptr,
                                               ElementPairs* near = nullptr,
-                                              CandidateList* list = nullptr);
+                                              CandidateList* list = nullptr,
+                                              double open_gap = -1);
 
 }  // namespace nmm::solve

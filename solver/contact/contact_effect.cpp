@@ -123,9 +123,17 @@ void ContactEffect::add_groups(const RunState& s, std::vector<int>& offsets, std
 Outcome ContactEffect::begin_step(EffectStep& step) {
   RunState& s = step.s;
   memory_mark("step begun");
-  contacts_.begin_step(s.loop_xy, step.search_distance + contacts_.max_dilation() +
-                           contacts_.cohesive_reach(),
-                       kContactTolerances.new_depth * model_.mesh().mesh_size, model_.w0());
+  // Shi's search distance (plus a joint's dilation, a softening crack's reach) bounds how deep a
+  // closed contact is followed; open ones are looked for only the stepper's reach far, where it
+  // checks the step's motion against it (time_stepper.cpp). Not where an open contact carries
+  // history (contact_set.h open_history: a joint's memory, a crack's damage, a broken bond)
+  // while detection keeps it: leaving the set sooner would lose it sooner.
+  const double extra = contacts_.max_dilation() + contacts_.cohesive_reach();
+  const bool narrow = step.reach > 0 && step.reach < step.search_distance && !contacts_.open_history();
+  contacts_.begin_step(s.loop_xy, step.search_distance + extra,
+                       kContactTolerances.new_depth * model_.mesh().mesh_size, model_.w0(),
+                       narrow ? step.reach + extra : -1.0);
+  if (narrow) step.checked_reach = step.reach;
   memory_mark("contacts detected");
   problem_.build(s.loop_xy, step.context.config, model_.w0());
   memory_mark("contact rows");

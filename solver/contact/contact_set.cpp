@@ -52,6 +52,7 @@ ContactSet::ContactSet(const Model& model)
   for (int l : used) {
     nonlinear_ |= laws_[l].normal == NormalModel::bandis_barton || !linear_shear(laws_[l]);
     memory_laws_ |= laws_[l].shear == ShearModel::barton_bandis || laws_[l].hysteresis;
+    bonds_ |= laws_[l].cohesion > 0 || laws_[l].tensile > 0;
     if (laws_[l].normal == NormalModel::bandis_barton)
       topo_.master_depth = std::max(topo_.master_depth, 2.0 * laws_[l].vm);
   }
@@ -169,12 +170,12 @@ double thread_cpu_seconds() {
 
 }  // namespace
 
-void ContactSet::begin_step(const std::vector<double>& xy, double d0, double shallow, double w0) {
+void ContactSet::begin_step(const std::vector<double>& xy, double d0, double shallow, double w0, double open_gap) {
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = thread_cpu_seconds();
   closed_ = closed_contacts();
   eps_ = kContactTolerances.open_gap * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_, open_gap);
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.cpu_seconds += thread_cpu_seconds() - c0;
 

@@ -40,6 +40,11 @@ class ContactSet {
   /// contact's displacement error, and the contact solve checks it (contact_solve.h
   /// displacement_tolerance). A constant spring's error is at most F_tol/k (max_gap_error).
   bool softening() const { return nonlinear_ || memory_laws_ || cohesive_; }
+  /// True if an open contact can carry history that a contact new to the set would not have: a
+  /// softening or memory law's (above), or a bond's (a law with cohesion or tensile strength:
+  /// a broken bond found again as new would hold again). Detection then keeps Shi's search
+  /// distance for open contacts (contact_effect.cpp begin_step).
+  bool open_history() const { return softening() || bonds_; }
   /// True if a material that can break has a fracture energy: new cracks' faces soften
   /// (cohesive_law.h), and the checkpoint's CONTACT section carries their damage.
   bool cohesive() const { return cohesive_; }
@@ -57,7 +62,8 @@ class ContactSet {
   /// Detects contacts in the current configuration (loop vertices xy; search distance d0, new
   /// contacts at most `shallow` deep, m; model half-size w0), carries over the states of the last
   /// accepted step and gives each its tributary length. The step's ContactProblem linearises them.
-  void begin_step(const std::vector<double>& xy, double d0, double shallow, double w0);
+  /// `open_gap` (m, ≤ d0; < 0: d0): contacts open wider are not found (detect_contacts).
+  void begin_step(const std::vector<double>& xy, double d0, double shallow, double w0, double open_gap = -1);
   /// The contacts of the step being solved, or of the last step taken.
   const std::vector<Contact>& contacts() const { return contacts_; }
   /// The same, for the step's ContactProblem to write its solution into.
@@ -150,6 +156,7 @@ class ContactSet {
   bool interface_used_ = false;  // separate blocks can meet along their boundaries
   bool nonlinear_ = false;       // a law in use is not a constant spring
   bool memory_laws_ = false;     // a law carries a joint memory (Barton–Bandis shear, hysteresis)
+  bool bonds_ = false;           // a law in use has cohesion or tensile strength (a bond that breaks)
   bool cohesive_ = false;        // new cracks soften (a breakable material with a fracture energy)
   std::vector<CohesiveLaw> cohesive_laws_;  // [material] the cohesive law of its new cracks
   // (cell x, cell y, history index) of the closed history entries, sorted: nearby_joint_memory()'s

@@ -91,6 +91,12 @@ struct EffectStep {
   StepTimings& timings;        ///< s, what the step's parts cost
   StepHost& host;
   bool pattern_changed = false;  ///< set by begin_step: the coupling groups changed, the stepper builds the pattern again
+  /// m, how far apart two faces are looked for in this attempt (the stepper's reach, at most
+  /// search_distance: time_stepper.cpp); 0: search_distance
+  double reach = 0;
+  /// m, set by begin_step of an effect that looked only `reach` far (0: none did): the stepper
+  /// redoes the attempt looking farther if a loop vertex moves more than half of it
+  double checked_reach = 0;
 };
 
 /// Where the pieces of a mesh that cracks re-cut came from (preprocess/recut.h RecutMap: the

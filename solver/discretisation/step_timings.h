@@ -18,6 +18,7 @@ struct StepTimings {
   double output = 0;
   long factorisations = 0;     ///< numeric factorisations of the system matrix
   long solves_count = 0;       ///< triangular solve pairs (direct solves and preconditioner applications)
+  long reach_redos = 0;        ///< attempts taken again looking farther for contacts (step_control.h, the reach)
   /// s, what each effect that books its own part spent, by the name it books it under (its
   /// summary.json timings key: EffectOutput::timing_names), in the order first booked.
   std::vector<std::pair<std::string, double>> effects;

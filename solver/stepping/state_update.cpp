@@ -105,4 +105,38 @@ void update_state(const Model& model, const StepContext& step, const Eigen::Vect
   s.accel_known = dynamic;
 }
 
+double largest_loop_move(const Model& model, const StepContext& step, const Eigen::VectorXd& d,
+                         const RunState& s) {
+  const Mesh& mesh = model.mesh();
+  const Configuration& config = step.config;
+  const CoverSpace& space = config.space();
+  const int nd = space.element_dofs();
+  std::vector<double> de(static_cast<std::size_t>(nd)), phi(static_cast<std::size_t>(nd / 2));
+  double largest2 = 0;  // m², the largest |u|² so far
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const int* g = space.element_unknowns(e);
+    for (int i = 0; i < nd; ++i) de[i] = d[g[i]];
+    for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
+      double ux = 0, uy = 0;
+      if (space.order() == 0) {
+        const ElementFrame& f = config.frame(e);
+        const double x = s.loop_xy[2 * v] - f.ox, y = s.loop_xy[2 * v + 1] - f.oy;
+        for (int k = 0; k < 3; ++k) {
+          const double w = f.w.at(k, x, y);
+          ux += w * de[2 * k];
+          uy += w * de[2 * k + 1];
+        }
+      } else {
+        config.basis(e).values(s.loop_xy[2 * v], s.loop_xy[2 * v + 1], phi.data());
+        for (int a = 0; a < nd / 2; ++a) {
+          ux += phi[a] * de[2 * a];
+          uy += phi[a] * de[2 * a + 1];
+        }
+      }
+      largest2 = std::max(largest2, ux * ux + uy * uy);
+    }
+  }
+  return std::sqrt(largest2);
+}
+
 }  // namespace nmm::solve

@@ -25,4 +25,9 @@ namespace nmm::solve {
 /// Moves s (the state `step` started from) on by the increment d solved in the step's frames.
 void update_state(const Model& model, const StepContext& step, const Eigen::VectorXd& d, RunState& s);
 
+/// m, the farthest any loop vertex of s would move by the increment d (what update_state moves it
+/// by, |u(x)| at the vertex), without moving anything: the stepper's reach check.
+double largest_loop_move(const Model& model, const StepContext& step, const Eigen::VectorXd& d,
+                         const RunState& s);
+
 }  // namespace nmm::solve

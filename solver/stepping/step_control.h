@@ -4,6 +4,10 @@
 //
 // With g2 = solver.max_displacement_ratio and w0 half the model size (model.h):
 //   search distance   d0 = 2.5·g2·w0 (+ the largest joint dilation, contact.h)
+//   reach             r = min(d0, 0.05·h): how far apart open faces are looked for, where no
+//                     open contact carries history (contact_set.h open_history); an attempt in
+//                     which a loop vertex moves m > r/2 is redone with r = min(d0, 4·m), the
+//                     same Δt (time_stepper.cpp)
 //   accept a step     max_i |d_i| ≤ 2·g2·w0   (runs with the inertia term: dynamic, DDA static)
 //                     max_c (p_c − max(p0_c, 0)) ≤ g2·w0        what the step adds to a depth
 //                     p_c ≤ max(2·g2·w0, p0_c + 0.01·g2·w0)      the cap on a contact it deepens
@@ -31,6 +35,15 @@
 // round-off could be cured by no cut. One that sinks in earnest has its steps cut to that much
 // sinking each, and at the reach d0 the run stops at the floor: detection would lose it.
 //
+// The reach: d0 follows w0, the model's half width, so on a wide model detection looked far past
+// what a step moves (the 316 × 316 brick wall at h = 2 m: d0 = 0.40 m, steps moving µm to mm)
+// and its candidates grew with the width, not the blocks (docs/performance.md (h)). Two faces
+// come at most 2·m nearer in an attempt whose loop vertices each move at most m (a vertex and
+// the segment's ends), so a contact open wider than r at the start cannot close in an attempt
+// with 2·m ≤ r: leaving it out changes no contact that closes. An attempt that moves more is
+// solved again from its start with every contact it could have closed, Δt unchanged (a
+// redo, not a cut: no physics asked for a shorter step); with r = d0, Shi's rule alone.
+//
 // A folding element is judged on the solved step, before it is accepted: the step is rejected and
 // cut like one that moved too far (a shorter step moves the covers less), and the run stops only
 // at the floor. Found at the next attempt's start instead, the fold was already in the accepted
@@ -40,6 +53,7 @@
 
 #include "common/outcome.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -80,8 +94,16 @@ class StepControl {
   /// `dt`: the step length to start with (the checkpoint's, else time_step), s.
   StepControl(const SolverDef& solver, double w0, double dt);
 
+  /// ×h, contact detection looks at most this far for open contacts where the stepper checks
+  /// each attempt's motion against it (the reach, above): on the peer brick walls at h = 2 m,
+  /// 0.1 m, the d0 of a 78 × 78 wall (about 6,000 blocks); below d0 only on wider ones.
+  static constexpr double kReach = 0.05;
+
   /// m, how far contact detection looks for contacts a step can make (before dilation).
   double search_distance() const { return kSearch * g2w0_; }
+  /// m, how far an attempt looks for open contacts (the reach r, at most search_distance) on a
+  /// mesh of size h (m).
+  double contact_reach(double h) const { return std::min(search_distance(), kReach * h); }
   /// m, the depth a step may add to a contact (g2·w0): rejection() cuts a step that adds more.
   double penetration_limit() const { return g2w0_; }
   /// m, the deepest a step may make a contact it deepens (2·g2·w0), unless it started near it.

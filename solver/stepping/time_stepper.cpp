@@ -140,6 +140,21 @@ StepContext TimeStepper::step_context(double dt) const {
 }
 
 Outcome TimeStepper::attempt_once(double dt) {
+  // The reach (step_control.h): open contacts looked for r = min(d0, 0.05·h) far; an attempt that
+  // moves a loop vertex more than r/2 is taken again looking farther, with the same Δt.
+  double reach = control_.contact_reach(mesh().mesh_size);
+  for (;;) {
+    double redo = 0;
+    Outcome o = attempt_reaching(dt, reach, redo);
+    if (!(redo > 0)) return o;
+    static const bool trace = std::getenv("NMM_TRACE_CUTS") != nullptr;
+    if (trace) std::fprintf(stderr, "reach %.6g m redone at %.6g m at t = %.9g\n", reach, redo, s_.time);
+    ++timings_.reach_redos;
+    reach = redo;
+  }
+}
+
+Outcome TimeStepper::attempt_reaching(double dt, double reach, double& redo) {
   // The start guess is this attempt's alone: a shorter attempt after it starts from 0.
   std::vector<double> carried;
   carried.swap(carried_);
@@ -160,6 +175,7 @@ Outcome TimeStepper::attempt_once(double dt) {
   timings_.assembly += watch.seconds();
   const StepContext context = step_context(dt);  // the attempt's one context (step_context.h)
   EffectStep step = effect_step(context);
+  step.reach = reach;
   for (Effect* e : active) {
     if (Outcome o = e->begin_step(step); !o.ok()) return o;
     if (step.pattern_changed) build_pattern();
@@ -226,6 +242,17 @@ Outcome TimeStepper::attempt_once(double dt) {
                       " is not a finite number at t = " + std::to_string(s_.time) + " s");
   // The covers' motion: an effect's own unknowns (a cable's slip) are no block moving.
   const Eigen::VectorXd covers_d = d.head(b_->space.unknowns());
+  // The reach check (step_control.h): with its loop vertices moved at most m, no two faces came
+  // more than 2·m nearer; past the reach, a contact left out could have closed: the attempt is
+  // taken again from its start (the same guess, the same Δt) with every contact within 4·m.
+  if (step.checked_reach > 0) {
+    const double moved = largest_loop_move(b_->model, context, covers_d, s_);
+    if (2 * moved > step.checked_reach) {
+      carried_.swap(carried);
+      redo = std::min(control_.search_distance(), 4 * moved);
+      return {};
+    }
+  }
   if (recut_in_step) recut_start_work_ = start_force_.dot(covers_d);
   // Shi's step control judges a step whose effects judge its penetration (the contacts').
   StepPenetration penetration;

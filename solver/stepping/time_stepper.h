@@ -119,6 +119,10 @@ class TimeStepper : private StepHost {
   void apply_removed();
   /// One attempt of a step of dt (attempt() repeats it while an effect changes the mesh).
   Outcome attempt_once(double dt);
+  /// One attempt looking `reach` (m) far for open contacts; `redo` > 0 (m): the attempt moved a
+  /// loop vertex more than half that, and is to be taken again from its start looking `redo` far
+  /// (step_control.h, the reach).
+  Outcome attempt_reaching(double dt, double reach, double& redo);
   /// The run goes on on the new mesh `m` an effect made at a step's solution (mesh_change.h), s_
   /// already carried onto it (the step's start): what is derived from the mesh is built again and
   /// the observers' map of the step's re-cuts composed.
