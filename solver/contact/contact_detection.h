@@ -131,12 +131,21 @@ using ElementPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
 /// min(0.3·h, d0); against any other by up to `shallow` (m) at most, a depth only a contact can
 /// explain (a vertex deeper inside without having come in through a contact is near that edge
 /// from the wrong side).
+/// `removed` ([element], optional): elements out of the model (excavated, debris), whose contacts
+/// the caller drops. The list leaves out the vertices and edges of blocks all of whose elements
+/// are out (debris blocks, held where they broke off, crowded a shattered rock's grid cells): the
+/// contacts the caller keeps are the same, since such a vertex's or edge's contacts are all
+/// dropped, and so is every contact the one-per-point rule weighs against one of them (its
+/// vertex is on that edge, or its edge ends at that vertex). Not a block with only some elements
+/// out: a removed vertex there may outweigh, at one point, a contact the caller keeps. A list
+/// built for one `removed` is not reused for another (the caller resets it).
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& loop_xy, double d0,
                                               double shallow,
                                               const ClosedContacts& closed,
                                               DetectionStats* stats = nullptr,
                                               ElementPairs* near = nullptr,
-                                              CandidateList* list = nullptr);
+                                              CandidateList* list = nullptr,
+                                              const std::vector<std::uint8_t>* removed = nullptr);
 
 }  // namespace nmm::solve
