@@ -139,6 +139,67 @@ TEST(ContactDetection, ANarrowerOpenGapFindsTheContactsWithinItAndEveryDeeperOne
   EXPECT_GT(stats.list_builds, 1u) << "the narrower list was outgrown and built again";
 }
 
+// Detection told which elements are out of the model (debris, excavated: the contact set drops
+// their contacts) leaves the vertices and edges of blocks wholly out out of its list: the
+// contacts of elements in the model are the same as a search over all of them gives, filtered.
+// On a 6 × 6 wall drifting as above, with every third brick removed whole and one element of
+// every fifth (a block partly out, searched in full: one of its removed vertices outweighs, at
+// one point of configuration 1, a contact of a brick in the model).
+TEST(ContactDetection, ElementsOutOfTheModelLeaveTheOthersContactsAsTheyWere) {
+  const double mesh_size = 0.5;
+  const SceneDef s = reference::peer_wall(6, 6, false, mesh_size);
+  const Mesh m = pre::build_mesh(s, "wall");
+  TimeStepper st(m, s, "wall");
+  EXPECT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
+  const ContactTopology topo = build_contact_topology(m);
+  const ClosedContacts closed = st.view().contacts.closed_contacts();
+  const double d0 = 2.5 * s.solver.max_displacement_ratio * st.view().model.w0();
+  const double shallow = 1e-3 * s.mesh_size;
+  std::vector<std::uint8_t> removed(m.element_count(), 0);
+  std::vector<std::uint8_t> seen(m.block_count(), 0);
+  std::size_t whole = 0, part = 0;
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    const std::size_t b = static_cast<std::size_t>(m.element_block[e]);
+    if (b % 3 == 0) removed[e] = 1, whole += !seen[b];
+    else if (b % 5 == 1 && !seen[b]) removed[e] = 1, ++part;
+    seen[b] = 1;
+  }
+  ASSERT_GT(whole, 3u);
+  ASSERT_GT(part, 2u);
+  auto kept = [&](const std::vector<ContactCandidate>& found) {
+    std::vector<ContactCandidate> out;
+    for (const ContactCandidate& c : found)
+      if (!removed[static_cast<std::size_t>(c.elem_a)] && !removed[static_cast<std::size_t>(c.elem_b)]) out.push_back(c);
+    return out;
+  };
+  std::vector<double> xy = st.view().state.loop_xy;
+  std::mt19937 rng(20261202);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  CandidateList list;
+  std::size_t compared = 0, left_out = 0;
+  for (int k = 0; k < 40; ++k) {
+    const std::vector<ContactCandidate> all = detect_contacts(topo, xy, d0, shallow, closed);
+    const std::vector<ContactCandidate> fresh = kept(all);
+    const std::vector<ContactCandidate> without = detect_contacts(topo, xy, d0, shallow, closed, nullptr, nullptr, &list, -1, &removed);
+    left_out += all.size() - without.size();
+    const std::vector<ContactCandidate> reused = kept(without);
+    ASSERT_EQ(reused.size(), fresh.size()) << "configuration " << k;
+    for (std::size_t c = 0; c < fresh.size(); ++c) {
+      EXPECT_EQ(reused[c].vertex, fresh[c].vertex) << "configuration " << k << ", contact " << c;
+      EXPECT_EQ(reused[c].edge, fresh[c].edge) << "configuration " << k << ", contact " << c;
+      EXPECT_EQ(reused[c].gap, fresh[c].gap) << "configuration " << k << ", contact " << c;
+      ++compared;
+    }
+    for (std::size_t v = 0; v < xy.size() / 2; ++v) {
+      xy[2 * v] += 0.02 * d0 * u(rng);
+      xy[2 * v + 1] += 0.02 * d0 * u(rng);
+    }
+  }
+  EXPECT_GT(compared, 1000u);
+  EXPECT_GT(left_out, 100u) << "the removed elements' contacts were left out of the search";
+  std::printf("%zu contacts compared over 40 configurations, %zu of removed elements not searched\n", compared, left_out);
+}
+
 // The closed pairs' per-vertex index answers as the binary search over the sorted pairs does.
 TEST(ContactDetection, ClosedPairsIndexedByVertexAnswerAsTheirSearch) {
   const SceneDef s = reference::peer_wall(6, 6, false, 0.5);

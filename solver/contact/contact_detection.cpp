@@ -396,8 +396,11 @@ bool list_holds(const CandidateList& list, const std::vector<double>& xy, double
 // edge entered in the cells its box grown by reach overlaps, a vertex meeting the edges of its
 // own cell. Each vertex's edges ascend, as the grid's cells held them, so the narrow phase meets
 // candidates in the same order whichever list it reads.
+// The vertices and edges of blocks all of whose elements are removed (detect_contacts'
+// `removed`) get no candidates and go into no cell.
 void build_candidate_list(const ContactTopology& topo, const std::vector<double>& xy,
-                          const std::vector<CandidateEdgeFrame>& geometry, double need, CandidateList& list) {
+                          const std::vector<CandidateEdgeFrame>& geometry, double need, CandidateList& list,
+                          const std::vector<std::uint8_t>* removed) {
   const double reach = kContactTolerances.list_reach * need;
   list.reach = reach;
   list.xy = xy;
@@ -422,8 +425,20 @@ void build_candidate_list(const ContactTopology& topo, const std::vector<double>
   // (cell key, index into topo.edges), sorted
   std::vector<std::pair<std::int64_t, std::int32_t>> entries;
   entries.reserve(topo.edges.size() * 4);
+  // [block] every element of it removed (a block with one removed element in it keeps its edges:
+  // a vertex's one edge per block is chosen among all of them, as without the list).
+  std::vector<std::uint8_t> block_out;
+  if (removed && removed->size() == topo.block_of.size()) {
+    std::int32_t blocks = 0;
+    for (const std::int32_t b : topo.block_of) blocks = std::max(blocks, b + 1);
+    block_out.assign(static_cast<std::size_t>(blocks), 1);
+    for (std::size_t e = 0; e < removed->size(); ++e)
+      if (!(*removed)[e]) block_out[static_cast<std::size_t>(topo.block_of[e])] = 0;
+  }
   for (std::size_t k = 0; k < topo.edges.size(); ++k) {
     const std::int32_t e = topo.edges[k], f = topo.next[e];
+    if (!block_out.empty() && block_out[static_cast<std::size_t>(topo.block_of[static_cast<std::size_t>(geometry[k].element)])])
+      continue;
     const auto [i0, j0] = cell_of(std::min(xy[2 * e], xy[2 * f]) - reach, std::min(xy[2 * e + 1], xy[2 * f + 1]) - reach);
     const auto [i1, j1] = cell_of(std::max(xy[2 * e], xy[2 * f]) + reach, std::max(xy[2 * e + 1], xy[2 * f + 1]) + reach);
     for (std::int64_t i = i0; i <= i1; ++i)
@@ -435,6 +450,10 @@ void build_candidate_list(const ContactTopology& topo, const std::vector<double>
   for (std::int32_t p : topo.vertices) {
     const double px = xy[2 * p], py = xy[2 * p + 1];
     const std::int32_t ea = topo.element_of[p];
+    if (!block_out.empty() && block_out[static_cast<std::size_t>(topo.block_of[static_cast<std::size_t>(ea)])]) {
+      list.offset.push_back(static_cast<std::int32_t>(list.edges.size()));
+      continue;
+    }
     const auto [ci, cj] = cell_of(px, py);
     const std::int64_t k = key(ci, cj);
     for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, std::int32_t{-1}));
@@ -460,7 +479,8 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               double shallow,
                                               const ClosedContacts& closed,
                                               DetectionStats* stats, ElementPairs* near_pairs,
-                                              CandidateList* list, double open_gap) {
+                                              CandidateList* list, double open_gap,
+                                              const std::vector<std::uint8_t>* removed) {
   std::vector<ContactCandidate> out;
   if (topo.edges.empty()) return out;
   const ContactTolerances& tl = kContactTolerances;
@@ -495,7 +515,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
   const double beside = tl.beside_edge * topo.mesh_size;  // how far past its ends an edge reaches
   const double need = std::max(gap_max, deep_max) + beside;
   if (!list_holds(cand, xy, need)) {
-    build_candidate_list(topo, xy, geometry, need, cand);
+    build_candidate_list(topo, xy, geometry, need, cand, removed);
     if (stats) ++stats->list_builds;
   }
 

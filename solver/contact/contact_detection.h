@@ -135,6 +135,14 @@ using ElementPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
 /// moves more than half of it; a closed contact is still followed as deep as d0 allows, and
 /// where one may be deeper than open_gap, d0 is looked to (the contacts found are d0's whose
 /// gap is at most open_gap).
+/// `removed` ([element], optional): elements out of the model (excavated, debris), whose contacts
+/// the caller drops. The list leaves out the vertices and edges of blocks all of whose elements
+/// are out (debris blocks, held where they broke off, crowded a shattered rock's grid cells): the
+/// contacts the caller keeps are the same, since such a vertex's or edge's contacts are all
+/// dropped, and so is every contact the one-per-point rule weighs against one of them (its
+/// vertex is on that edge, or its edge ends at that vertex). Not a block with only some elements
+/// out: a removed vertex there may outweigh, at one point, a contact the caller keeps. A list
+/// built for one `removed` is not reused for another (the caller resets it).
 std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               const std::vector<double>& loop_xy, double d0,
                                               double shallow,
@@ -142,6 +150,7 @@ std::vector<ContactCandidate> detect_contacts(const ContactTopology& topo,
                                               DetectionStats* stats = nullptr,
                                               ElementPairs* near = nullptr,
                                               CandidateList* list = nullptr,
-                                              double open_gap = -1);
+                                              double open_gap = -1,
+                                              const std::vector<std::uint8_t>* removed = nullptr);
 
 }  // namespace nmm::solve

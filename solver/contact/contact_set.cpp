@@ -175,7 +175,8 @@ void ContactSet::begin_step(const std::vector<double>& xy, double d0, double sha
   const double c0 = thread_cpu_seconds();
   closed_ = closed_contacts();
   eps_ = kContactTolerances.open_gap * w0;
-  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_, open_gap);
+  const std::vector<ContactCandidate> found = detect_contacts(topo_, xy, d0, shallow, closed_, &stats_, nullptr, &candidates_,
+                                                              open_gap, removed_.empty() ? nullptr : &removed_);
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.cpu_seconds += thread_cpu_seconds() - c0;
 

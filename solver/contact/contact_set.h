@@ -96,7 +96,12 @@ class ContactSet {
   /// its depth as the gap) against the first element of its block.
   void restore(std::vector<ContactHistory> history, std::vector<Contact> rows);
   /// [me] 1 for elements of excavated bodies: no contact is detected on them.
-  void set_removed_elements(std::vector<std::uint8_t> removed) { removed_ = std::move(removed); }
+  /// Detection leaves the vertices and edges of blocks wholly removed out of its list
+  /// (contact_detection.h), so a list built for the elements removed before is built anew.
+  void set_removed_elements(std::vector<std::uint8_t> removed) {
+    if (removed != removed_) candidates_.xy.clear();
+    removed_ = std::move(removed);
+  }
   /// Largest dilation a contact carries (Barton–Bandis), m: its faces stand apart by it, so
   /// contact detection must look that much farther.
   double max_dilation() const;
