@@ -38,7 +38,8 @@ ContactSet::ContactSet(const Model& model)
     joint_law_ = std::move(c.joint_law);
     interface_law_ = c.interface_law;
   }
-  if (model.scene().fracture.present)
+  fracturing_ = model.scene().fracture.present;
+  if (fracturing_)
     for (const MaterialDef& m : model.scene().materials) {
       cohesive_laws_.push_back(solve::cohesive_law(m.strength));
       cohesive_ = cohesive_ || cohesive_laws_.back().on();

@@ -43,8 +43,11 @@ class ContactSet {
   /// True if an open contact can carry history that a contact new to the set would not have: a
   /// softening or memory law's (above), or a bond's (a law with cohesion or tensile strength:
   /// a broken bond found again as new would hold again). Detection then keeps Shi's search
-  /// distance for open contacts (contact_effect.cpp begin_step).
-  bool open_history() const { return softening() || bonds_; }
+  /// distance for open contacts (contact_effect.cpp begin_step). So does a run whose rock can
+  /// crack: there the narrower search changed the fracturing matrix's slope (2026-12-02: a static
+  /// cell's wedge 16 % apart across kernel families, a dynamic cell's re-cut one element short of
+  /// its full cut), not yet traced (docs/contact.md).
+  bool open_history() const { return softening() || bonds_ || fracturing_; }
   /// True if a material that can break has a fracture energy: new cracks' faces soften
   /// (cohesive_law.h), and the checkpoint's CONTACT section carries their damage.
   bool cohesive() const { return cohesive_; }
@@ -162,6 +165,7 @@ class ContactSet {
   bool nonlinear_ = false;       // a law in use is not a constant spring
   bool memory_laws_ = false;     // a law carries a joint memory (Barton–Bandis shear, hysteresis)
   bool bonds_ = false;           // a law in use has cohesion or tensile strength (a bond that breaks)
+  bool fracturing_ = false;      // the scene's rock can crack (fracture block present)
   bool cohesive_ = false;        // new cracks soften (a breakable material with a fracture energy)
   std::vector<CohesiveLaw> cohesive_laws_;  // [material] the cohesive law of its new cracks
   // (cell x, cell y, history index) of the closed history entries, sorted: nearby_joint_memory()'s
