@@ -33,6 +33,27 @@
 namespace nmm::solve {
 namespace {
 
+// A 6 × 6 peer wall at mesh size h settled for 5 ms, as the detection tests start from: its contact
+// topology, closed contacts and, as time_stepper.cpp, the search distance d0 = 2.5·g2·w0 and the
+// depth new contacts may have, 1e-3·h. `settled` holds whether the 5 ms ran to their end.
+struct SettledWall {
+  explicit SettledWall(double h)
+      : scene(reference::peer_wall(6, 6, false, h)), mesh(pre::build_mesh(scene, "wall")), stepper(mesh, scene, "wall") {
+    settled = test::ended_ok(stepper.run_until(5e-3, [](std::int64_t) {}));
+    topo = build_contact_topology(mesh);
+    closed = stepper.view().contacts.closed_contacts();
+    d0 = 2.5 * scene.solver.max_displacement_ratio * stepper.view().model.w0();
+    shallow = 1e-3 * scene.mesh_size;
+  }
+  const SceneDef scene;
+  const Mesh mesh;
+  TimeStepper stepper;
+  bool settled = false;
+  ContactTopology topo;
+  ClosedContacts closed;
+  double d0 = 0, shallow = 0;  // m
+};
+
 // Each call's contacts from a fresh search and from the reused list, over `drifts`
 // configurations of a 6 × 6 wall: between two, the bricks above the middle bed joint slide
 // along it by `slip`·d0 (so their vertices pass the ends of the edges below and come to face
@@ -40,17 +61,14 @@ namespace {
 // up to 0.02·d0 per coordinate (edges stretch and turn; faces open and sink into each other).
 // Returns the list's builds.
 std::size_t compare_along_a_drift(double mesh_size, double slip, int drifts) {
-  const SceneDef s = reference::peer_wall(6, 6, false, mesh_size);
-  const Mesh m = pre::build_mesh(s, "wall");
-  TimeStepper st(m, s, "wall");
-  EXPECT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
-  const ContactTopology topo = build_contact_topology(m);
-  const ClosedContacts closed = st.view().contacts.closed_contacts();
+  const SettledWall w(mesh_size);
+  EXPECT_TRUE(w.settled);
+  const Mesh& m = w.mesh;
+  const ContactTopology& topo = w.topo;
+  const ClosedContacts& closed = w.closed;
   EXPECT_FALSE(closed.pairs.empty()) << "the wall rests on closed contacts";
-  // As time_stepper.cpp: search distance 2.5·g2·w0, new contacts at most 1e-3·h deep.
-  const double d0 = 2.5 * s.solver.max_displacement_ratio * st.view().model.w0();
-  const double shallow = 1e-3 * s.mesh_size;
-  std::vector<double> xy = st.view().state.loop_xy;
+  const double d0 = w.d0, shallow = w.shallow;
+  std::vector<double> xy = w.stepper.view().state.loop_xy;
   // Above the middle bed joint (y = 1.5 m): by the centre of the vertex's element.
   std::vector<double> cy(m.element_count(), 0.0), count(m.element_count(), 0.0);
   for (std::size_t v = 0; v < topo.element_of.size(); ++v) {
@@ -101,15 +119,12 @@ TEST(ContactDetection, AReusedVerletListFindsWhatAFreshSearchFinds) {
 // closed one as deep as d0 follows it, from fresh lists and reused ones, as the 6 × 6 wall's
 // faces slide, open and sink into each other (the drift above).
 TEST(ContactDetection, ANarrowerOpenGapFindsTheContactsWithinItAndEveryDeeperOne) {
-  const SceneDef s = reference::peer_wall(6, 6, false, 0.5);
-  const Mesh m = pre::build_mesh(s, "wall");
-  TimeStepper st(m, s, "wall");
-  ASSERT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
-  const ContactTopology topo = build_contact_topology(m);
-  const ClosedContacts closed = st.view().contacts.closed_contacts();
-  const double d0 = 2.5 * s.solver.max_displacement_ratio * st.view().model.w0();
-  const double shallow = 1e-3 * s.mesh_size, open = 0.6 * d0;
-  std::vector<double> xy = st.view().state.loop_xy;
+  const SettledWall w(0.5);
+  ASSERT_TRUE(w.settled);
+  const ContactTopology& topo = w.topo;
+  const ClosedContacts& closed = w.closed;
+  const double d0 = w.d0, shallow = w.shallow, open = 0.6 * d0;
+  std::vector<double> xy = w.stepper.view().state.loop_xy;
   std::mt19937 rng(20261202);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   CandidateList list;
@@ -146,15 +161,12 @@ TEST(ContactDetection, ANarrowerOpenGapFindsTheContactsWithinItAndEveryDeeperOne
 // every fifth (a block partly out, searched in full: one of its removed vertices outweighs, at
 // one point of configuration 1, a contact of a brick in the model).
 TEST(ContactDetection, ElementsOutOfTheModelLeaveTheOthersContactsAsTheyWere) {
-  const double mesh_size = 0.5;
-  const SceneDef s = reference::peer_wall(6, 6, false, mesh_size);
-  const Mesh m = pre::build_mesh(s, "wall");
-  TimeStepper st(m, s, "wall");
-  EXPECT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
-  const ContactTopology topo = build_contact_topology(m);
-  const ClosedContacts closed = st.view().contacts.closed_contacts();
-  const double d0 = 2.5 * s.solver.max_displacement_ratio * st.view().model.w0();
-  const double shallow = 1e-3 * s.mesh_size;
+  const SettledWall w(0.5);
+  EXPECT_TRUE(w.settled);
+  const Mesh& m = w.mesh;
+  const ContactTopology& topo = w.topo;
+  const ClosedContacts& closed = w.closed;
+  const double d0 = w.d0, shallow = w.shallow;
   std::vector<std::uint8_t> removed(m.element_count(), 0);
   std::vector<std::uint8_t> seen(m.block_count(), 0);
   std::size_t whole = 0, part = 0;
@@ -172,7 +184,7 @@ TEST(ContactDetection, ElementsOutOfTheModelLeaveTheOthersContactsAsTheyWere) {
       if (!removed[static_cast<std::size_t>(c.elem_a)] && !removed[static_cast<std::size_t>(c.elem_b)]) out.push_back(c);
     return out;
   };
-  std::vector<double> xy = st.view().state.loop_xy;
+  std::vector<double> xy = w.stepper.view().state.loop_xy;
   std::mt19937 rng(20261202);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   CandidateList list;
@@ -202,11 +214,10 @@ TEST(ContactDetection, ElementsOutOfTheModelLeaveTheOthersContactsAsTheyWere) {
 
 // The closed pairs' per-vertex index answers as the binary search over the sorted pairs does.
 TEST(ContactDetection, ClosedPairsIndexedByVertexAnswerAsTheirSearch) {
-  const SceneDef s = reference::peer_wall(6, 6, false, 0.5);
-  const Mesh m = pre::build_mesh(s, "wall");
-  TimeStepper st(m, s, "wall");
-  ASSERT_PRED1(test::ended_ok, st.run_until(5e-3, [](std::int64_t) {}));
-  const ClosedContacts indexed = st.view().contacts.closed_contacts();
+  const SettledWall w(0.5);
+  ASSERT_TRUE(w.settled);
+  const Mesh& m = w.mesh;
+  const ClosedContacts& indexed = w.closed;
   ASSERT_FALSE(indexed.first.empty());
   ClosedContacts searched = indexed;
   searched.first.clear();

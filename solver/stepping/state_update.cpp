@@ -10,6 +10,46 @@ namespace nmm::solve {
 
 namespace {
 
+/// m, the displacement of point (x, y) of element e under its unknowns' increment de: at order 0
+/// by the element's linear weights in its frame (the first-order code's path and round-off), at
+/// n ≥ 1 by its shape functions (phi: scratch of element_dofs()/2 values). The state update and
+/// the contact reach's check (largest_loop_move) move loop vertices by this one rule.
+struct PointMove {
+  double ux = 0, uy = 0;
+};
+PointMove point_move(const Configuration& config, std::size_t e, double x, double y, const double* de,
+                     double* phi) {
+  PointMove m;
+  if (config.space().order() == 0) {
+    const ElementFrame& f = config.frame(e);
+    for (int k = 0; k < 3; ++k) {
+      const double w = f.w.at(k, x - f.ox, y - f.oy);
+      m.ux += w * de[2 * k];
+      m.uy += w * de[2 * k + 1];
+    }
+  } else {
+    config.basis(e).values(x, y, phi);
+    const int nf = config.space().element_dofs() / 2;
+    for (int a = 0; a < nf; ++a) {
+      m.ux += phi[a] * de[2 * a];
+      m.uy += phi[a] * de[2 * a + 1];
+    }
+  }
+  return m;
+}
+
+/// Element e's loop vertices moved by point_move.
+void move_loop_vertices(const Mesh& mesh, const Configuration& config, std::size_t e, const double* de,
+                        double* phi, RunState& s) {
+  for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
+    const PointMove m = point_move(config, e, s.loop_xy[2 * v], s.loop_xy[2 * v + 1], de, phi);
+    s.loop_xy[2 * v] += m.ux;
+    s.loop_xy[2 * v + 1] += m.uy;
+    s.loop_u[2 * v] += m.ux;
+    s.loop_u[2 * v + 1] += m.uy;
+  }
+}
+
 /// n = 0 (constant strain; the first-order code's path and round-off): σ_e += D·B·d_e, and the
 /// element's loop vertices move by the linear weights.
 void update_constant_element(const Model& model, const Configuration& config, std::size_t e,
@@ -19,19 +59,7 @@ void update_constant_element(const Model& model, const Configuration& config, st
   const Vec6 de6 = Eigen::Map<const Vec6>(de);
   const Vec3 ds = model.elasticity(e) * (strain_matrix(f.w) * de6);
   for (int i = 0; i < 3; ++i) s.stress[3 * e + i] += ds[i];
-  for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
-    const double x = s.loop_xy[2 * v] - f.ox, y = s.loop_xy[2 * v + 1] - f.oy;
-    double ux = 0, uy = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double w = f.w.at(k, x, y);
-      ux += w * de6[2 * k];
-      uy += w * de6[2 * k + 1];
-    }
-    s.loop_xy[2 * v] += ux;
-    s.loop_xy[2 * v + 1] += uy;
-    s.loop_u[2 * v] += ux;
-    s.loop_u[2 * v + 1] += uy;
-  }
+  move_loop_vertices(mesh, config, e, de, nullptr, s);
 }
 
 /// n ≥ 1: Δσ = D·B·d as strain polynomials of degree n, D per coefficient; the loop vertices
@@ -56,18 +84,7 @@ void update_polynomial_element(const Model& model, const Configuration& config, 
     const Vec3 ds = D * Vec3(eps[0].c[t], eps[1].c[t], eps[2].c[t]);
     for (int r = 0; r < 3; ++r) s.stress[3 * (T * e + t) + r] += ds[r];
   }
-  for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
-    eb.values(s.loop_xy[2 * v], s.loop_xy[2 * v + 1], phi);
-    double ux = 0, uy = 0;
-    for (int a = 0; a < nf; ++a) {
-      ux += phi[a] * de[2 * a];
-      uy += phi[a] * de[2 * a + 1];
-    }
-    s.loop_xy[2 * v] += ux;
-    s.loop_xy[2 * v + 1] += uy;
-    s.loop_u[2 * v] += ux;
-    s.loop_u[2 * v + 1] += uy;
-  }
+  move_loop_vertices(mesh, config, e, de, phi, s);
 }
 
 }  // namespace
@@ -117,23 +134,8 @@ double largest_loop_move(const Model& model, const StepContext& step, const Eige
     const int* g = space.element_unknowns(e);
     for (int i = 0; i < nd; ++i) de[i] = d[g[i]];
     for (std::int32_t v = mesh.element_loop_offset[e]; v < mesh.element_loop_offset[e + 1]; ++v) {
-      double ux = 0, uy = 0;
-      if (space.order() == 0) {
-        const ElementFrame& f = config.frame(e);
-        const double x = s.loop_xy[2 * v] - f.ox, y = s.loop_xy[2 * v + 1] - f.oy;
-        for (int k = 0; k < 3; ++k) {
-          const double w = f.w.at(k, x, y);
-          ux += w * de[2 * k];
-          uy += w * de[2 * k + 1];
-        }
-      } else {
-        config.basis(e).values(s.loop_xy[2 * v], s.loop_xy[2 * v + 1], phi.data());
-        for (int a = 0; a < nd / 2; ++a) {
-          ux += phi[a] * de[2 * a];
-          uy += phi[a] * de[2 * a + 1];
-        }
-      }
-      largest2 = std::max(largest2, ux * ux + uy * uy);
+      const PointMove m = point_move(config, e, s.loop_xy[2 * v], s.loop_xy[2 * v + 1], de.data(), phi.data());
+      largest2 = std::max(largest2, m.ux * m.ux + m.uy * m.uy);
     }
   }
   return std::sqrt(largest2);
