@@ -286,6 +286,32 @@ TEST(GrowingCut, EachCutIsTheWholeCutOfTheScene) {
   grow_and_compare(g, moved_body, {}, "a body changed", false);
 }
 
+// A growth takes the joints' points as the sweep does: snapped onto a lattice row or node within
+// round-off (Lattice::snap). The step-path slope at h 0.5 m (dynamic, fast, Prescott, the narrow
+// contact reach; issue 48) grew a crack along the mesh row y = 13·dy from a point on it to one
+// 5e-9 m past the node (14.25, 13·dy) and 1 ulp below the row. Snapped, the crack runs along the
+// mesh edge and splits nothing there: the whole cut and the re-cut. Taken as typed (the growth,
+// before), it dips below the row a round-off short of the node and cuts a three-sided sliver of
+// 2.6e-18 m² off the triangle above, with a cover of its own: the re-cut check's full cut had one
+// element more than the re-cut (4,091 against 4,090 at t 0.848 s) and stopped the run, although
+// the re-cut was the cut of the scene.
+TEST(GrowingCut, AGrowthSnapsACracksPointsOntoTheLatticeAsTheSweepDoes) {
+  SceneDef s = reference::interface_scene(0.5, 30);
+  s.bodies = {reference::box(11.0, 3.5, 17.5, 7.5)};
+  const Lattice lat = make_lattice(s.bodies, s.mesh_size);
+  const Vec2 node = lat.node(28, 13);  // (14.25, 13·dy): row 13 is shifted by h/2
+  ASSERT_EQ(node.x, 14.25);
+  const Vec2 a{14.244241029768277, node.y}, b{14.250000005, std::nextafter(node.y, 0.0)};
+  ASSERT_NE(lat.snap(b).y, b.y) << "the end lies within round-off of the row";
+  pre::GrowingCut g;
+  const Mesh before = g.cut(s, "before");
+  const std::size_t elements = before.element_count();
+  grow_and_compare(g, s, {{a, b}}, "a crack along a mesh row, its end an ulp below it");
+  EXPECT_EQ(pre::build_mesh(s, "whole").element_count(), elements) << "along a mesh edge, the crack splits no element";
+  // The re-cut gives the same (it cuts its region with the sweep).
+  check_recut([&] { SceneDef o = s; o.joints.pop_back(); return o; }(), {a, b}, "the same crack re-cut");
+}
+
 // A slot's gap end carried on (split_gap_ends): its extension depends on the bodies and the mesh
 // only, so the kept arrangement keeps it; cracks up the extension and beside it grow the cut.
 TEST(GrowingCut, ASlotsGapEndGrowsAsTheWholeCut) {

@@ -44,9 +44,13 @@ class ContactSet {
   /// softening or memory law's (above), or a bond's (a law with cohesion or tensile strength:
   /// a broken bond found again as new would hold again). Detection then keeps Shi's search
   /// distance for open contacts (contact_effect.cpp begin_step). So does a run whose rock can
-  /// crack: there the narrower search changed the fracturing matrix's slope (2026-12-02: a static
-  /// cell's wedge 16 % apart across kernel families, a dynamic cell's re-cut one element short of
-  /// its full cut), not yet traced (docs/contact.md).
+  /// crack: with the narrower search the fracturing matrix's slope h 0.3 m static slow cell's
+  /// wedge is 18.9 / 22.6 mm across Haswell / Prescott (2026-12-02). Not the reach's own fault:
+  /// step 4's first solve parts by 1e-5 of the displacement across kernels (1.5e-6 with d0)
+  /// from states 1e-13 apart, every count alike (a contact solve stopped at its tolerance, as
+  /// far as traced); its crack exits lie up to 2e-6 m apart, beyond the exit grid (journal
+  /// docs/notes/2026-12-fracture-robustness.md). The dynamic cell whose re-cut check failed
+  /// passes since the check's full cut snaps its growths (cover_cutter.cpp joint_curves).
   bool open_history() const { return softening() || bonds_ || fracturing_; }
   /// True if a material that can break has a fracture energy: new cracks' faces soften
   /// (cohesive_law.h), and the checkpoint's CONTACT section carries their damage.
