@@ -5,6 +5,7 @@
     python3 docs/cohesive_beam.py BIN_DIR OUT_DIR [--figure docs/figures/cohesive_beam.svg]
     python3 docs/cohesive_beam.py BIN_DIR OUT_DIR --stiffness   # the beam before it cracks
     python3 docs/cohesive_beam.py BIN_DIR OUT_DIR --to-zero     # h 0.025 m on to 6 mm, the load about zero
+    ... --to-zero --sizes 0.025,0.0167,0.0125   # the three meshes so, and their curves in one figure
     ... --split-gap-ends   # either, with the slot's end carried on for the covers (docs/preprocess.md)
 
 The beam of Petersson (1981, Lund TVBM-1006; docs/physics.md §6): span 2.0 m between roller
@@ -47,6 +48,7 @@ to full separation.
 import csv
 import json
 import pathlib
+import resource
 import subprocess
 
 from figure_page import arguments, figure_path, page, write
@@ -179,43 +181,80 @@ def stiffness(a, out):
 
 
 def to_zero(a, out):
-    """The beam at h 0.025 m on to 6 mm (2 um a step), where its load has fallen to about 1 % of its
-    peak: per mm the load, energy.csv's load work, fracture, strain, springs and residual, against
-    the converged beam run on to full separation (its dissipation, load work and load)."""
+    """The beam at each of --sizes (h 0.025 m unless told) on to 6 mm (--dt, one for all or one per
+    size, 2 ms unless told: 2 um a step), where its load has fallen to about 1 % of its peak: per
+    mm the load, energy.csv's load work, fracture, strain, springs and residual, against the
+    converged beam run on to full separation (its load, load work and dissipation); the deflection
+    where the load falls under 1 % of the peak, the load work there and the run's CPU time. Writes OUT_DIR/cohesive_beam_to_zero.csv and, with --figure or more than one size,
+    the curves to 6 mm (cohesive_beam_to_zero.svg). --reuse reads OUT_DIR's runs of an earlier
+    --to-zero instead of running them again."""
+    if len(a.dt) not in (1, len(a.sizes)):
+        raise SystemExit("--dt: one step for all sizes or one per size")
     rows = list(csv.DictReader(open(REFERENCE)))
-    rx = [0.0] + [float(r["deflection_mm"]) for r in rows]
-    rp = [0.0] + [float(r["load_kn_per_m"]) for r in rows]
-    rd = [0.0] + [float(r["dissipated_j_per_m"]) for r in rows]
-    s = scene(0.025, a.split_gap_ends)
-    s["solver"].update({"time_step": 2e-3, "steps": 3000, "output_every": 5})
-    (out / "beam_to_zero.json").write_text(json.dumps(s))
-    subprocess.run([f"{a.bin_dir}/nmm-preprocess", out / "beam_to_zero.json", "-o", out / "beam_to_zero.nmm"],
-                   check=True, capture_output=True)
-    run = out / "run_to_zero"
-    subprocess.run([f"{a.bin_dir}/nmm-solve", out / "beam_to_zero.nmm", "-o", run, "-q"], capture_output=True)
+    ref = list(zip([0.0] + [float(r["deflection_mm"]) for r in rows], [0.0] + [float(r["load_kn_per_m"]) for r in rows]))
+    ref_diss = list(zip([0.0] + [float(r["deflection_mm"]) for r in rows], [0.0] + [float(r["dissipated_j_per_m"]) for r in rows]))
+    curves = {}
+    with open(out / "cohesive_beam_to_zero.csv", "w") as f:
+        f.write("mesh_m,deflection_mm,load_kn_per_m\n")
+        for h, dt in zip(a.sizes, a.dt * len(a.sizes) if len(a.dt) == 1 else a.dt):
+            run, cpu = out / f"run_to_zero_{h}", None
+            if not a.reuse:
+                s = scene(h, a.split_gap_ends)
+                s["solver"].update({"time_step": dt, "steps": round(6 / dt), "output_every": round(1e-2 / dt)})
+                (out / f"beam_to_zero_{h}.json").write_text(json.dumps(s))
+                subprocess.run([f"{a.bin_dir}/nmm-preprocess", out / f"beam_to_zero_{h}.json", "-o",
+                                out / f"beam_to_zero_{h}.nmm"], check=True, capture_output=True)
+                before = resource.getrusage(resource.RUSAGE_CHILDREN)
+                with open(out / f"solve_to_zero_{h}.log", "w") as log:  # its messages (traces too)
+                    subprocess.run([f"{a.bin_dir}/nmm-solve", out / f"beam_to_zero_{h}.nmm", "-o", run, "-q"],
+                                   stdout=log, stderr=subprocess.STDOUT)
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+            c = curve(run)[0]
+            curves[h] = c
+            for x, y in c:
+                f.write(f"{h},{x:.6g},{y:.6g}\n")
+            to_zero_table(h, run, c, ref, ref_diss, cpu)
+    if a.figure or len(a.sizes) > 1:
+        svg(curves, figure_path(a, out, "cohesive_beam_to_zero.svg"), ref)
+
+
+def work_at(energy, mm):
+    """energy.csv's load work (J/m) at deflection mm, straight between its rows."""
+    return at([(float(r["time"]), float(r["load_work"])) for r in energy], mm)
+
+
+def to_zero_table(h, run, c, ref, ref_diss, cpu):
+    """Prints one run of to_zero against the converged beam (ref: its load, ref_diss: its dissipation)."""
     energy = list(csv.DictReader(open(run / "energy.csv")))
-    c, _ = curve(run)
     peak = max(p[1] for p in c)
-    print("mm | load kN/m (converged) | load work J/m (converged) | fracture J/m (converged) | strain | springs | residual")
-    for mm in (1, 2, 3, 4, 5, 6):
+    print(f"h {h} m\nmm | load kN/m (converged) | load work J/m (converged) | fracture J/m (converged) | strain | "
+          f"springs | residual")
+    for mm in (m for m in (1, 2, 3, 4, 5, 6) if m <= float(energy[-1]["time"]) + 1e-9):  # those the run reached
         e = min(energy, key=lambda r: abs(float(r["time"]) - mm))
         load = min(c, key=lambda p: abs(p[0] - mm))[1]
         n = 4000  # the converged curve's work to mm, straight between its points
-        ref_work = sum(0.5 * (at(list(zip(rx, rp)), mm * i / n) + at(list(zip(rx, rp)), mm * (i + 1) / n)) * mm / n
-                       for i in range(n))
-        print(f"{mm} | {load:.3f} ({at(list(zip(rx, rp)), mm):.3f}) | {float(e['load_work']):.3f} ({ref_work:.3f}) | "
-              f"{float(e['fracture']):.3f} ({at(list(zip(rx, rd)), mm):.3f}) | {float(e['strain']):.3f} | "
+        ref_work = sum(0.5 * (at(ref, mm * i / n) + at(ref, mm * (i + 1) / n)) * mm / n for i in range(n))
+        print(f"{mm} | {load:.3f} ({at(ref, mm):.3f}) | {float(e['load_work']):.3f} ({ref_work:.3f}) | "
+              f"{float(e['fracture']):.3f} ({at(ref_diss, mm):.3f}) | {float(e['strain']):.3f} | "
               f"{float(e['springs']):.3f} | {float(e['residual']):.4f}")
-    low = next(p for p in c if p[0] > 1 and p[1] < 0.01 * peak)
+    low = next((p for p in c if p[0] > 1 and p[1] < 0.01 * peak), None)
     s = json.load(open(run / "summary.json"))
-    print(f"{s['status']}; peak {peak:.4g} kN/m; under 1 % of it at {low[0]:.2f} mm; at the end {c[-1][1]:.3g} kN/m "
-          f"({100 * c[-1][1] / peak:.2f} %), load work {float(energy[-1]['load_work']):.4g} J/m "
-          f"({100 * (float(energy[-1]['load_work']) / GF_LIGAMENT - 1):+.1f} % of G_f x ligament {GF_LIGAMENT} J/m)")
+    work = float(energy[-1]["load_work"])
+    print(f"{s['status']} after {s['steps_completed']} steps; peak {peak:.4g} kN/m; "
+          + (f"under 1 % of it from {low[0]:.2f} mm (load work {work_at(energy, low[0]):.4g} J/m)" if low
+             else "never under 1 % of it")
+          + f"; at the end {c[-1][1]:.3g} kN/m ({100 * c[-1][1] / peak:.2f} %), load work {work:.4g} J/m "
+          f"({100 * (work / GF_LIGAMENT - 1):+.1f} % of G_f x ligament {GF_LIGAMENT} J/m), fracture "
+          f"{float(energy[-1]['fracture']):.4g} J/m, residual {float(energy[-1]['residual']):.4f} J/m; "
+          f"{s['fracture']['cracks']} cracks" + (f"; {cpu:.1f} s CPU" if cpu is not None else ""))
 
 
 def main():
     a, out = arguments([("--stiffness", {"action": "store_true"}), ("--split-gap-ends", {"action": "store_true"}),
-                        ("--to-zero", {"action": "store_true"})])
+                        ("--to-zero", {"action": "store_true"}), ("--reuse", {"action": "store_true"}),
+                        ("--sizes", {"type": lambda t: [float(x) for x in t.split(",")], "default": [0.025]}),
+                        ("--dt", {"type": lambda t: [float(x) for x in t.split(",")], "default": [2e-3]})])
     if a.stiffness:
         stiffness(a, out)
         return
