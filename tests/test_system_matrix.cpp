@@ -16,9 +16,12 @@
 #include <xmmintrin.h>
 #endif
 
+#include "preprocess/cover_cutter.h"
+#include "reference/brick_wall.h"
 #include "solver/discretisation/fill_ordering.h"
 #include "solver/discretisation/parked_array.h"
 #include "solver/discretisation/system_matrix.h"
+#include "solver/stepping/time_stepper.h"
 
 namespace {
 
@@ -863,8 +866,13 @@ namespace {
 // k's factorisation (its matrix gathered into the factor's order, permuted_lower.h) against
 // CHOLMOD's own of the same matrix (cholmod_factorize_p, which permutes it itself), analysed
 // with the same settings: the same solve, bit for bit.
+// CHOLMOD's own factorisation of the matrix, its factor readable (solved by our passes below).
+struct CholmodsOwn : Eigen::CholmodSupernodalLLT<SystemMatrix::Sparse, Eigen::Upper> {
+  const cholmod_factor* factor() const { return this->m_cholmodFactor; }
+};
+
 void expect_cholmods_own(SystemMatrix& k, bool amd_only, int n) {
-  Eigen::CholmodSupernodalLLT<SystemMatrix::Sparse, Eigen::Upper> own;
+  CholmodsOwn own;
   own.cholmod().print = 0;
   if (amd_only) {
     own.cholmod().nmethods = 1;
@@ -875,8 +883,16 @@ void expect_cholmods_own(SystemMatrix& k, bool amd_only, int n) {
   ASSERT_TRUE(k.factorize());
   Eigen::VectorXd b(n);
   for (int i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.5;
-  const Eigen::VectorXd x = k.solve(b), y = own.solve(b);
+  // The same factor bits give the same bits through the same passes (k's solve is ours below
+  // kOwnSolveUnknowns: DoubleFactor over its factor).
+  ASSERT_TRUE(k.own_solve());
+  nmm::solve::DoubleFactor passes;
+  ASSERT_TRUE(passes.view(own.factor()));
+  Eigen::VectorXd y;
+  passes.solve(b, y);
+  const Eigen::VectorXd x = k.solve(b);
   for (int i = 0; i < n; ++i) ASSERT_EQ(x[i], y[i]) << "unknown " << i;
+  EXPECT_LT((x - own.solve(b)).norm(), 1e-13 * x.norm());  // and CHOLMOD's own solve to round-off
   EXPECT_LT((b - k.matrix().selfadjointView<Eigen::Upper>() * x).norm(), 1e-10 * b.norm());
 }
 }  // namespace
@@ -911,5 +927,101 @@ TEST(SystemMatrixPermuted, TheMatrixGatheredInItsFactorsOrderFactorisesAsCholmod
     k.add_diagonal(n / 3, -1e6);
     EXPECT_FALSE(k.factorize());
     EXPECT_EQ(k.failed_unknown(), n / 3);
+  }
+}
+
+namespace {
+// Eigen's wrapper of CHOLMOD's supernodal LLᵀ with its factor exposed (for DoubleFactor).
+struct ExposedLlt : Eigen::CholmodSupernodalLLT<SystemMatrix::Sparse, Eigen::Upper> {
+  explicit ExposedLlt(const SystemMatrix::Sparse& a) { this->compute(a); }
+  const cholmod_factor* factor() const { return this->m_cholmodFactor; }
+};
+
+double relative_residual(const SystemMatrix::Sparse& upper, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  return (b - upper.selfadjointView<Eigen::Upper>() * x).norm() / b.norm();
+}
+
+// Our passes over CHOLMOD's double factor against cholmod_solve on the same factor: the same
+// solution to round-off (the sums run in another order), both kernel sets the same bits, and a
+// residual no larger than CHOLMOD's own but for a few units of round-off. Prints what it measured.
+void expect_own_solve_as_cholmods(const SystemMatrix::Sparse& upper, const Eigen::VectorXd& b, double tol,
+                                  const char* what) {
+  const ExposedLlt llt(upper);
+  ASSERT_EQ(llt.info(), Eigen::Success) << what;
+  const cholmod_factor* l = llt.factor();
+  ASSERT_TRUE(l->is_super) << what;
+  nmm::solve::DoubleFactor own;
+  ASSERT_TRUE(own.view(l)) << what;
+  const Eigen::VectorXd ref = llt.solve(b);
+  Eigen::VectorXd x;
+  own.solve(b, x);
+  const double off = (x - ref).norm() / ref.norm();
+  const double r_own = relative_residual(upper, x, b), r_ref = relative_residual(upper, ref, b);
+  int widest = 0;
+  for (std::size_t s = 0; s < l->nsuper; ++s)
+    widest = std::max(widest, static_cast<const int*>(l->super)[s + 1] - static_cast<const int*>(l->super)[s]);
+  std::printf("%s: n %d, %d supernodes (widest %d columns): |x - x_cholmod| / |x| %.2e, residual %.2e (CHOLMOD's %.2e)\n",
+              what, static_cast<int>(l->n), static_cast<int>(l->nsuper), widest, off, r_own, r_ref);
+  EXPECT_GT(l->nsuper, 10u) << what;
+  EXPECT_GE(widest, 8) << what << ": the four-column kernels and the columns left over both run";
+  EXPECT_LT(off, tol) << what;
+  EXPECT_LT(r_own, 4 * r_ref + 1e-15) << what;
+  // AVX and SSE2 give the same bits over double values too.
+  const bool avx = SingleFactor::use_avx(true);
+  SingleFactor::use_avx(false);
+  Eigen::VectorXd x_sse2;
+  own.solve(b, x_sse2);
+  SingleFactor::use_avx(avx);
+  for (Eigen::Index i = 0; i < x.size(); ++i) ASSERT_EQ(x_sse2[i], x[i]) << what << ", unknown " << i;
+}
+}  // namespace
+
+TEST(SystemMatrixOwnSolve, PassesOverCholmodsDoubleFactorSolveAsCholmodOnGridsOfManySupernodes) {
+  // A plane grid under AMD (many small supernodes) and a cube grid under METIS (wide ones).
+  for (const bool cube : {false, true}) {
+    const int side = cube ? 14 : 60;
+    const Groups g = cube ? cube_grid(side) : plane_grid(side, 2);
+    const int n = cube ? side * side * side : 2 * side * side;
+    SystemMatrix k;
+    k.set_amd_only(!cube);
+    k.build_pattern(n, g.offsets, g.dofs);
+    assembled(k, g, n);
+    ASSERT_TRUE(k.factorize());
+    ASSERT_TRUE(k.own_solve()) << "below kOwnSolveUnknowns a double factor is solved by our passes";
+    Eigen::VectorXd b(n);
+    for (int i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
+    expect_own_solve_as_cholmods(k.matrix(), b, 1e-13, cube ? "cube grid" : "plane grid");
+    // SystemMatrix's solve is ours: against an independent CHOLMOD factorisation of its matrix.
+    const Eigen::VectorXd x = k.solve(b);
+    const ExposedLlt ref(k.matrix());
+    EXPECT_LT((x - ref.solve(b)).norm(), 1e-13 * x.norm());
+    // A new factorisation of other values is read anew (not the last factor's inverse diagonal).
+    for (int i = 0; i < n; ++i) k.add_diagonal(i, 50.0);
+    ASSERT_TRUE(k.factorize());
+    ASSERT_TRUE(k.own_solve());
+    const Eigen::VectorXd y = k.solve(b);
+    const ExposedLlt ref2(k.matrix());
+    EXPECT_LT((y - ref2.solve(b)).norm(), 1e-13 * y.norm());
+    EXPECT_GT((y - x).norm(), 1e-3 * x.norm());
+  }
+}
+
+TEST(SystemMatrixOwnSolve, PassesOverAWallsFactorSolveAsCholmod) {
+  // The DDA code's 10 × 10 brick wall at h = 2 m, its static step matrix after 20 steps (the
+  // elements, the contact springs, the static support): the matrix of its last factorisation.
+  for (const bool dynamic : {false, true}) {
+    const nmm::SceneDef scene = nmm::reference::peer_wall(10, 10, dynamic, 2.0);
+    const nmm::Mesh mesh = nmm::pre::build_mesh(scene, "wall");
+    nmm::solve::TimeStepper st(mesh, scene, "wall");
+    st.set_threads(1);
+    for (int s = 0; s < 20; ++s) st.step(1e-3);
+    const SystemMatrix& sys = st.view().system;
+    ASSERT_TRUE(sys.has_factor());
+    ASSERT_TRUE(sys.own_solve());
+    const SystemMatrix::Sparse& a = sys.factored_matrix();
+    const int n = static_cast<int>(a.rows());
+    Eigen::VectorXd b(n);
+    for (int i = 0; i < n; ++i) b[i] = 1e3 * std::cos(0.11 * i);
+    expect_own_solve_as_cholmods(a, b, 1e-13, dynamic ? "dynamic 10 x 10 wall" : "static 10 x 10 wall");
   }
 }

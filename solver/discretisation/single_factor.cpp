@@ -52,11 +52,13 @@ namespace {
 inline __m128d two(const float* a) {
   return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(a))));
 }
+inline __m128d two(const double* a) { return _mm_loadu_pd(a); }
 #endif
 
 struct Sse2 {
   // w_i −= (a0[i]·c0 + a1[i]·c1) + (a2[i]·c2 + a3[i]·c3) over rows i in [from, to).
-  static void update4(const float* a0, const float* a1, const float* a2, const float* a3, const double* c,
+  template <class T>
+  static void update4(const T* a0, const T* a1, const T* a2, const T* a3, const double* c,
                       double* w, int from, int to) {
     int i = from;
 #if defined(__SSE2__)
@@ -74,7 +76,8 @@ struct Sse2 {
   // d_k = Σ a_k[i]·w_i over rows i in [from, to), k = 0..3: partial sums p_k,m over the rows
   // i − from ≡ m (mod 4) of the full quadruples, d_k = ((p_k,0 + p_k,2) + (p_k,1 + p_k,3)) + the
   // rest in row order.
-  static void dot4(const float* a0, const float* a1, const float* a2, const float* a3, const double* w, int from,
+  template <class T>
+  static void dot4(const T* a0, const T* a1, const T* a2, const T* a3, const double* w, int from,
                    int to, double* d) {
     int i = from;
     double s[4][4] = {};
@@ -101,16 +104,17 @@ struct Sse2 {
     _mm_storeu_pd(s[3], l3);
     _mm_storeu_pd(s[3] + 2, h3);
 #else
-    const float* a[4] = {a0, a1, a2, a3};
+    const T* a[4] = {a0, a1, a2, a3};
     for (; i + 4 <= to; i += 4)
       for (int k = 0; k < 4; ++k)
         for (int m = 0; m < 4; ++m) s[k][m] += static_cast<double>(a[k][i + m]) * w[i + m];
 #endif
     finish(a0, a1, a2, a3, w, i, to, s, d);
   }
-  static void finish(const float* a0, const float* a1, const float* a2, const float* a3, const double* w, int i,
+  template <class T>
+  static void finish(const T* a0, const T* a1, const T* a2, const T* a3, const double* w, int i,
                      int to, const double (*s)[4], double* d) {
-    const float* a[4] = {a0, a1, a2, a3};
+    const T* a[4] = {a0, a1, a2, a3};
     for (int k = 0; k < 4; ++k) {
       double v = (s[k][0] + s[k][2]) + (s[k][1] + s[k][3]);
       for (int r = i; r < to; ++r) v += static_cast<double>(a[k][r]) * w[r];
@@ -124,7 +128,9 @@ struct Sse2 {
 #define NMM_AVX __attribute__((target("avx")))
 struct Avx {
   NMM_AVX static __m256d four(const float* a) { return _mm256_cvtps_pd(_mm_loadu_ps(a)); }
-  NMM_AVX static void update4(const float* a0, const float* a1, const float* a2, const float* a3, const double* c,
+  NMM_AVX static __m256d four(const double* a) { return _mm256_loadu_pd(a); }
+  template <class T>
+  NMM_AVX static void update4(const T* a0, const T* a1, const T* a2, const T* a3, const double* c,
                               double* w, int from, int to) {
     int i = from;
     const __m256d c0 = _mm256_set1_pd(c[0]), c1 = _mm256_set1_pd(c[1]), c2 = _mm256_set1_pd(c[2]),
@@ -139,7 +145,8 @@ struct Avx {
       w[i] -= (static_cast<double>(a0[i]) * c[0] + static_cast<double>(a1[i]) * c[1]) +
               (static_cast<double>(a2[i]) * c[2] + static_cast<double>(a3[i]) * c[3]);
   }
-  NMM_AVX static void dot4(const float* a0, const float* a1, const float* a2, const float* a3, const double* w,
+  template <class T>
+  NMM_AVX static void dot4(const T* a0, const T* a1, const T* a2, const T* a3, const double* w,
                            int from, int to, double* d) {
     int i = from;
     __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0, s3 = s0;
@@ -163,8 +170,8 @@ struct Avx {
 // The forward and backward passes (the file's top), with kernel set K; x = (L̃ L̃ᵀ)⁻¹ b.
 // inv[k]: 1 / L_kk of column k, in double (a product instead of a division on the passes'
 // dependency chains).
-template <class K>
-inline void passes(const cholmod_factor* l, const float* x_, const double* inv, const double* b, double* yy,
+template <class K, class T>
+inline void passes(const cholmod_factor* l, const T* x_, const double* inv, const double* b, double* yy,
                    double* ww, double* out) {
   const int n = static_cast<int>(l->n);
   const int* super = static_cast<const int*>(l->super);
@@ -177,22 +184,22 @@ inline void passes(const cholmod_factor* l, const float* x_, const double* inv, 
   for (int s = 0; s < nsuper; ++s) {
     const int k1 = super[s], cols = super[s + 1] - k1, rows = pi[s + 1] - pi[s];
     const int* r = ls + pi[s];
-    const float* a = x_ + px[s];
+    const T* a = x_ + px[s];
     const double* iv = inv + k1;
     for (int i = 0; i < cols; ++i) ww[i] = yy[k1 + i];
     for (int i = cols; i < rows; ++i) ww[i] = 0.0;
     int j = 0;
     for (; j + 4 <= cols; j += 4) {  // four columns: their triangle, then the rows below it
-      const float* c = a + static_cast<std::ptrdiff_t>(j) * rows;
+      const T* c = a + static_cast<std::ptrdiff_t>(j) * rows;
       for (int q = 0; q < 4; ++q) {
-        const float* cq = c + static_cast<std::ptrdiff_t>(q) * rows;
+        const T* cq = c + static_cast<std::ptrdiff_t>(q) * rows;
         ww[j + q] *= iv[j + q];
         for (int i = j + q + 1; i < j + 4; ++i) ww[i] -= static_cast<double>(cq[i]) * ww[j + q];
       }
       K::update4(c, c + rows, c + 2 * rows, c + 3 * rows, ww + j, ww, j + 4, rows);
     }
     for (; j < cols; ++j) {
-      const float* c = a + static_cast<std::ptrdiff_t>(j) * rows;
+      const T* c = a + static_cast<std::ptrdiff_t>(j) * rows;
       const double wj = ww[j] * iv[j];
       ww[j] = wj;
       for (int i = j + 1; i < rows; ++i) ww[i] -= static_cast<double>(c[i]) * wj;
@@ -206,22 +213,22 @@ inline void passes(const cholmod_factor* l, const float* x_, const double* inv, 
     const double* iv = inv + k1;
     for (int i = 0; i < cols; ++i) ww[i] = yy[k1 + i];
     for (int i = cols; i < rows; ++i) ww[i] = yy[r[i]];
-    const float* a = x_ + px[s];
+    const T* a = x_ + px[s];
     int j = cols;
     for (; j >= 4; j -= 4) {  // columns j − 4 .. j − 1: the rows below them, then their triangle
       const int j0 = j - 4;
-      const float* c = a + static_cast<std::ptrdiff_t>(j0) * rows;
+      const T* c = a + static_cast<std::ptrdiff_t>(j0) * rows;
       double d[4];
       K::dot4(c, c + rows, c + 2 * rows, c + 3 * rows, ww, j, rows, d);
       for (int q = 3; q >= 0; --q) {
-        const float* cq = c + static_cast<std::ptrdiff_t>(q) * rows;
+        const T* cq = c + static_cast<std::ptrdiff_t>(q) * rows;
         double v = ww[j0 + q] - d[q];
         for (int i = j0 + q + 1; i < j; ++i) v -= static_cast<double>(cq[i]) * ww[i];
         ww[j0 + q] = v * iv[j0 + q];
       }
     }
     for (--j; j >= 0; --j) {
-      const float* c = a + static_cast<std::ptrdiff_t>(j) * rows;
+      const T* c = a + static_cast<std::ptrdiff_t>(j) * rows;
       double v = ww[j];
       for (int i = j + 1; i < rows; ++i) v -= static_cast<double>(c[i]) * ww[i];
       ww[j] = v * iv[j];
@@ -231,15 +238,17 @@ inline void passes(const cholmod_factor* l, const float* x_, const double* inv, 
   for (int k = 0; k < n; ++k) out[perm ? perm[k] : k] = yy[k];
 }
 
-void passes_sse2(const cholmod_factor* l, const float* x, const double* inv, const double* b, double* y, double* w,
+template <class T>
+void passes_sse2(const cholmod_factor* l, const T* x, const double* inv, const double* b, double* y, double* w,
                  double* out) {
-  passes<Sse2>(l, x, inv, b, y, w, out);
+  passes<Sse2, T>(l, x, inv, b, y, w, out);
 }
 #if defined(NMM_SINGLE_FACTOR_AVX)
 // flatten: passes<Avx> and its kernels compiled into this one AVX function.
-__attribute__((target("avx"), flatten)) void passes_avx(const cholmod_factor* l, const float* x, const double* inv,
+template <class T>
+__attribute__((target("avx"), flatten)) void passes_avx(const cholmod_factor* l, const T* x, const double* inv,
                                                         const double* b, double* y, double* w, double* out) {
-  passes<Avx>(l, x, inv, b, y, w, out);
+  passes<Avx, T>(l, x, inv, b, y, w, out);
 }
 bool cpu_has_avx() {
   __builtin_cpu_init();
@@ -249,6 +258,43 @@ std::atomic<bool> g_avx{cpu_has_avx()};
 #else
 std::atomic<bool> g_avx{false};
 #endif
+
+// inv[k] = 1 / L_kk for every column of the supernodal factor l with values x; returns the
+// tallest supernode's rows (the passes' work vector).
+template <class T>
+int inverse_diagonal(const cholmod_factor* l, const T* x, std::vector<double>& inv) {
+  const int* pi = static_cast<const int*>(l->pi);
+  const int* super = static_cast<const int*>(l->super);
+  const int* px = static_cast<const int*>(l->px);
+  int max_rows = 0;
+  inv.resize(l->n);
+  for (std::size_t s = 0; s < l->nsuper; ++s) {
+    const int rows = pi[s + 1] - pi[s];
+    max_rows = std::max(max_rows, rows);
+    for (int j = 0; j < super[s + 1] - super[s]; ++j)
+      inv[static_cast<std::size_t>(super[s] + j)] =
+          1.0 / static_cast<double>(x[px[s] + static_cast<std::ptrdiff_t>(j) * (rows + 1)]);
+  }
+  return max_rows;
+}
+
+// x = (L Lᵀ)⁻¹ b by the passes with l's values `values`, AVX where chosen.
+template <class T>
+void solve_with(const cholmod_factor* l, const T* values, const std::vector<double>& inv, int max_rows,
+                const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const auto n = static_cast<Eigen::Index>(l->n);
+  thread_local std::vector<double> y, w;
+  y.resize(static_cast<std::size_t>(n));
+  w.resize(static_cast<std::size_t>(max_rows));
+  x.resize(n);
+#if defined(NMM_SINGLE_FACTOR_AVX)
+  if (g_avx.load(std::memory_order_relaxed)) {
+    passes_avx(l, values, inv.data(), b.data(), y.data(), w.data(), x.data());
+    return;
+  }
+#endif
+  passes_sse2(l, values, inv.data(), b.data(), y.data(), w.data(), x.data());
+}
 }  // namespace
 
 bool SingleFactor::use_avx(bool on) {
@@ -312,18 +358,7 @@ bool SingleFactor::take(cholmod_factor* l, bool keep_spare, bool flush_subnormal
     if (huge_last > huge_first) madvise(reinterpret_cast<void*>(huge_first), huge_last - huge_first, MADV_HUGEPAGE);
   }
 #endif
-  const int* pi = static_cast<const int*>(l->pi);
-  max_rows_ = 0;
-  const int* super = static_cast<const int*>(l->super);
-  const int* px = static_cast<const int*>(l->px);
-  inv_.resize(l->n);
-  for (std::size_t s = 0; s < l->nsuper; ++s) {
-    const int rows = pi[s + 1] - pi[s];
-    max_rows_ = std::max(max_rows_, rows);
-    for (int j = 0; j < super[s + 1] - super[s]; ++j)
-      inv_[static_cast<std::size_t>(super[s] + j)] =
-          1.0 / static_cast<double>(to[px[s] + static_cast<std::ptrdiff_t>(j) * (rows + 1)]);
-  }
+  max_rows_ = inverse_diagonal(l, to, inv_);
   x_ = to;
   l_ = l;
   return true;
@@ -338,24 +373,27 @@ void SingleFactor::release_spare() {
 }
 
 void SingleFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  const auto n = static_cast<Eigen::Index>(l_->n);
-  thread_local std::vector<double> y, w;
-  y.resize(static_cast<std::size_t>(n));
-  w.resize(static_cast<std::size_t>(max_rows_));
-  x.resize(n);
-#if defined(NMM_SINGLE_FACTOR_AVX)
-  if (g_avx.load(std::memory_order_relaxed)) {
-    passes_avx(l_, x_, inv_.data(), b.data(), y.data(), w.data(), x.data());
-    return;
-  }
-#endif
-  passes_sse2(l_, x_, inv_.data(), b.data(), y.data(), w.data(), x.data());
+  solve_with(l_, x_, inv_, max_rows_, b, x);
 }
 
 std::size_t SingleFactor::bytes() const {
   if (!l_) return 0;
   return l_->xsize * sizeof(float) + l_->ssize * sizeof(int) + (4 * l_->n + 4 * l_->nsuper) * sizeof(int) +
          inv_.size() * sizeof(double);
+}
+
+bool DoubleFactor::view(const cholmod_factor* l) {
+  clear();
+  if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || l->itype != CHOLMOD_INT || !l->x ||
+      l->minor != l->n)
+    return false;
+  max_rows_ = inverse_diagonal(l, static_cast<const double*>(l->x), inv_);
+  l_ = l;
+  return true;
+}
+
+void DoubleFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  solve_with(l_, static_cast<const double*>(l_->x), inv_, max_rows_, b, x);
 }
 
 }  // namespace nmm::solve

@@ -27,6 +27,14 @@
 // each product with one costs the CPU a microcode assist in the solves' passes. A lean run's
 // factor (system_matrix.h) takes such a value as 0 (flush_subnormal): |ΔL| < 1.2e-38 against
 // values of order 1, far inside the rounding's own 2⁻²⁴.
+//
+// DoubleFactor: the same passes over CHOLMOD's own double factor, read where CHOLMOD keeps it
+// (system_matrix.cpp: below kOwnSolveUnknowns, instead of cholmod_solve). CHOLMOD's solve calls
+// dtrsv and dgemv per supernode and pass, on narrow blocks here (87 supernodes of 11 columns on
+// average, 10 × 10 wall at h = 2 m), and makes and frees dense vectors per solve; these passes
+// loop over the supernodes with a work vector kept per thread: a solve pair there 503k → 303k
+// instructions (callgrind, 2026-12-02, docs/performance.md (e)). The sums run in another order
+// than CHOLMOD's (and multiply by 1/L_kk): the same solution to round-off, not the same bits.
 #pragma once
 
 #include <cstddef>
@@ -72,6 +80,24 @@ class SingleFactor {
   std::vector<double> inv_;   // [n] 1 / L_kk in the factor's column order
   int max_rows_ = 0;          // the tallest supernode's rows (work vector size)
   std::uintptr_t spare_begin_ = 0, spare_end_ = 0;  // the kept pages of the second half (take)
+};
+
+/// A view of CHOLMOD's supernodal double LLᵀ factor, solved by SingleFactor's passes. Valid
+/// until CHOLMOD refactorises or frees it: view() again after each factorisation.
+class DoubleFactor {
+ public:
+  /// Reads the numeric supernodal LLᵀ factor `l` (int indices, real, complete); false (and not
+  /// ready) for a factor of another kind.
+  bool view(const cholmod_factor* l);
+  void clear() { l_ = nullptr; }
+  bool ready() const { return l_ != nullptr; }
+  /// x = (L Lᵀ)⁻¹ b in the unknowns' order (the permutation undone).
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+
+ private:
+  const cholmod_factor* l_ = nullptr;
+  std::vector<double> inv_;  // [n] 1 / L_kk in the factor's column order
+  int max_rows_ = 0;
 };
 
 }  // namespace nmm::solve

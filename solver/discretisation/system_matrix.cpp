@@ -550,6 +550,7 @@ bool SystemMatrix::keeps_symbolic(const Sparse& a, std::vector<int>* placed) con
 void SystemMatrix::analyse(const Sparse& a) {
   ++analyses_;
   single_.clear();     // the analysis frees the factor
+  own_.clear();
   permuted_.clear();   // and its permutation
   const cholmod_common& c = llt_.cholmod();
   if (block_ > 0 && a.rows() >= block_from_) {
@@ -633,6 +634,7 @@ bool SystemMatrix::factorize() {
     }
   }
   single_.clear();  // CHOLMOD writes the factor's values anew
+  own_.clear();
   if (lean)
     factorize_lean();  // rounds the factor to single precision itself
   else if (!single)
@@ -826,8 +828,11 @@ void SystemMatrix::keep_single() {
   // Below the lean factorisation's size the double values' spare half stays resident until the
   // pattern changes (build_pattern): the next factorisation of this pattern writes it without
   // the kernel's zeroing of fresh pages; the lean runs need that memory at once.
+  own_.clear();
   if (!single_.ready() && single_from_ > 0 && size() >= single_from_)
     single_.take(llt_.factor(), /*keep_spare=*/size() < lean_from_, /*flush_subnormal=*/size() >= lean_from_);
+  else if (!single_.ready() && size() < kOwnSolveUnknowns)
+    own_.view(llt_.factor());
 }
 
 // cholmod_factorize_p's supernodal LLᵀ of an upper triangle, A1 = tril(P A Pᵀ) by
@@ -1008,6 +1013,10 @@ Eigen::VectorXd SystemMatrix::solve_unrefined(const Eigen::VectorXd& b) const {
 }
 
 void SystemMatrix::solve_unrefined(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  if (own_.ready()) {
+    own_.solve(b, x);
+    return;
+  }
   if (!single_.ready()) {
     x = llt_.solve(b);
     return;
@@ -1016,6 +1025,11 @@ void SystemMatrix::solve_unrefined(const Eigen::VectorXd& b, Eigen::VectorXd& x)
 }
 
 Eigen::VectorXd SystemMatrix::solve_factored(const Eigen::VectorXd& b) const {
+  if (own_.ready()) {
+    Eigen::VectorXd x;
+    own_.solve(b, x);
+    return x;
+  }
   if (!single_.ready()) return llt_.solve(b);
   // Iterative refinement of the single-precision factor's solve against the factorised matrix,
   // in double, until the residual is at round-off (1e-13 of b) or stops halving. Each pass

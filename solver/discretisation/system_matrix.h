@@ -41,6 +41,9 @@ inline constexpr double kOrderingRefill = 1.10;
 inline constexpr int kOutsideShare = 16;
 /// Unknowns from which set_single_precision() keeps the factor in single precision (system_matrix.cpp).
 inline constexpr int kSingleFactorUnknowns = 150000;
+/// Below this many unknowns a double factor is solved by our own passes over CHOLMOD's supernodes
+/// (single_factor.h DoubleFactor) instead of cholmod_solve (system_matrix.cpp: where it pays).
+inline constexpr int kOwnSolveUnknowns = 150000;
 /// Unknowns from which a single-precision run factorises lean (set_lean_factorisation(),
 /// system_matrix.cpp factorize_lean: where it pays).
 inline constexpr int kLeanFactorUnknowns = 500000;
@@ -90,6 +93,10 @@ class SystemMatrix {
   void set_lean_factorisation(int from = kLeanFactorUnknowns) { lean_from_ = from; }
   /// The factor is held in single precision.
   bool single_precision() const { return single_.ready(); }
+  /// The double factor is solved by our own passes (DoubleFactor: below kOwnSolveUnknowns).
+  bool own_solve() const { return own_.ready(); }
+  /// The matrix the current factorisation was made from (its perturbation included).
+  const Sparse& factored_matrix() const { return factored_; }
   /// Refinement passes of solves with a single-precision factor so far.
   std::size_t single_refinements() const { return single_refinements_; }
   /// Iterative-refinement passes of the last solve (0 without regularisation).
@@ -221,7 +228,7 @@ class SystemMatrix {
   /// (P + E)⁻¹ b with the factorisation, in double: CHOLMOD's solve, or the single-precision
   /// factor's refined against factored_.
   Eigen::VectorXd solve_factored(const Eigen::VectorXd& b) const;
-  void keep_single();  // the factor just made goes to single precision, if set so
+  void keep_single();  // the factor just made goes to single precision, if set so, else to own_ (kOwnSolveUnknowns)
   void analyse(const Sparse& a);  // CHOLMOD's symbolic analysis of a's pattern, under the ordering set
   Sparse k_;
   // Where each group's block lands: for the entries (i, j) of its m × m block, column-major,
@@ -278,6 +285,7 @@ class SystemMatrix {
   Eigen::VectorXd perturbation_;  // [n] E: the factor's diagonal perturbation (0 off regularised_)
   int refinements_ = 0;
   SingleFactor single_;  // the factor in single precision (set_single_precision), else not ready
+  DoubleFactor own_;     // CHOLMOD's double factor read by our passes (below kOwnSolveUnknowns), else not ready
   int single_from_ = 0;
   int lean_from_ = kLeanFactorUnknowns;  // set_lean_factorisation()
   mutable std::size_t single_refinements_ = 0;
