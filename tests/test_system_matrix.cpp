@@ -871,6 +871,17 @@ struct CholmodsOwn : Eigen::CholmodSupernodalLLT<SystemMatrix::Sparse, Eigen::Up
   const cholmod_factor* factor() const { return this->m_cholmodFactor; }
 };
 
+// A plane grid of side × side covers of 2 unknowns under AMD, or a cube grid under CHOLMOD's
+// default (METIS kept), its pattern built in k and its values assembled; returns the groups.
+Groups grid_in(SystemMatrix& k, bool cube, int side, int& n) {
+  Groups g = cube ? cube_grid(side) : plane_grid(side, 2);
+  n = cube ? side * side * side : 2 * side * side;
+  k.set_amd_only(!cube);
+  k.build_pattern(n, g.offsets, g.dofs);
+  assembled(k, g, n);
+  return g;
+}
+
 void expect_cholmods_own(SystemMatrix& k, bool amd_only, int n) {
   CholmodsOwn own;
   own.cholmod().print = 0;
@@ -902,13 +913,9 @@ TEST(SystemMatrixPermuted, TheMatrixGatheredInItsFactorsOrderFactorisesAsCholmod
   // each factorised as cholmod_factorize_p would (the same bits), with the layout made at the
   // analysis, kept for new values, and laid out again for a grown pattern's new analysis.
   for (const bool cube : {false, true}) {
-    const int side = cube ? 20 : 40;
-    const Groups g = cube ? cube_grid(side) : plane_grid(side, 2);
-    const int n = cube ? side * side * side : 2 * side * side;
     SystemMatrix k;
-    k.set_amd_only(!cube);
-    k.build_pattern(n, g.offsets, g.dofs);
-    assembled(k, g, n);
+    int n = 0;
+    const Groups g = grid_in(k, cube, cube ? 20 : 40, n);
     expect_cholmods_own(k, !cube, n);
     EXPECT_EQ(k.ordering(), cube ? "metis" : "amd");
     // New values, the same analysis: the layout is reused.
@@ -931,10 +938,9 @@ TEST(SystemMatrixPermuted, TheMatrixGatheredInItsFactorsOrderFactorisesAsCholmod
 }
 
 namespace {
-// Eigen's wrapper of CHOLMOD's supernodal LLᵀ with its factor exposed (for DoubleFactor).
-struct ExposedLlt : Eigen::CholmodSupernodalLLT<SystemMatrix::Sparse, Eigen::Upper> {
+// CHOLMOD's own factorisation of `a` (CHOLMOD's default ordering), its factor readable.
+struct ExposedLlt : CholmodsOwn {
   explicit ExposedLlt(const SystemMatrix::Sparse& a) { this->compute(a); }
-  const cholmod_factor* factor() const { return this->m_cholmodFactor; }
 };
 
 double relative_residual(const SystemMatrix::Sparse& upper, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
@@ -979,13 +985,9 @@ void expect_own_solve_as_cholmods(const SystemMatrix::Sparse& upper, const Eigen
 TEST(SystemMatrixOwnSolve, PassesOverCholmodsDoubleFactorSolveAsCholmodOnGridsOfManySupernodes) {
   // A plane grid under AMD (many small supernodes) and a cube grid under METIS (wide ones).
   for (const bool cube : {false, true}) {
-    const int side = cube ? 14 : 60;
-    const Groups g = cube ? cube_grid(side) : plane_grid(side, 2);
-    const int n = cube ? side * side * side : 2 * side * side;
     SystemMatrix k;
-    k.set_amd_only(!cube);
-    k.build_pattern(n, g.offsets, g.dofs);
-    assembled(k, g, n);
+    int n = 0;
+    grid_in(k, cube, cube ? 14 : 60, n);
     ASSERT_TRUE(k.factorize());
     ASSERT_TRUE(k.own_solve()) << "below kOwnSolveUnknowns a double factor is solved by our passes";
     Eigen::VectorXd b(n);
