@@ -894,8 +894,8 @@ void expect_cholmods_own(SystemMatrix& k, bool amd_only, int n) {
   ASSERT_TRUE(k.factorize());
   Eigen::VectorXd b(n);
   for (int i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.5;
-  // The same factor bits give the same bits through the same passes (k's solve is ours below
-  // kOwnSolveUnknowns: DoubleFactor over its factor).
+  // The same factor bits give the same bits through the same passes (k's solve is ours, set
+  // on: DoubleFactor over its factor).
   ASSERT_TRUE(k.own_solve());
   nmm::solve::DoubleFactor passes;
   ASSERT_TRUE(passes.view(own.factor()));
@@ -914,6 +914,7 @@ TEST(SystemMatrixPermuted, TheMatrixGatheredInItsFactorsOrderFactorisesAsCholmod
   // analysis, kept for new values, and laid out again for a grown pattern's new analysis.
   for (const bool cube : {false, true}) {
     SystemMatrix k;
+    k.set_own_solve();  // the factor's bits read through DoubleFactor's passes (expect_cholmods_own)
     int n = 0;
     const Groups g = grid_in(k, cube, cube ? 20 : 40, n);
     expect_cholmods_own(k, !cube, n);
@@ -986,10 +987,12 @@ TEST(SystemMatrixOwnSolve, PassesOverCholmodsDoubleFactorSolveAsCholmodOnGridsOf
   // A plane grid under AMD (many small supernodes) and a cube grid under METIS (wide ones).
   for (const bool cube : {false, true}) {
     SystemMatrix k;
+    EXPECT_FALSE(k.own_solve());
+    k.set_own_solve();
     int n = 0;
     grid_in(k, cube, cube ? 14 : 60, n);
     ASSERT_TRUE(k.factorize());
-    ASSERT_TRUE(k.own_solve()) << "below kOwnSolveUnknowns a double factor is solved by our passes";
+    ASSERT_TRUE(k.own_solve()) << "set on, below kOwnSolveUnknowns a double factor is solved by our passes";
     Eigen::VectorXd b(n);
     for (int i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
     expect_own_solve_as_cholmods(k.matrix(), b, 1e-13, cube ? "cube grid" : "plane grid");
@@ -1014,7 +1017,9 @@ TEST(SystemMatrixOwnSolve, PassesOverAWallsFactorSolveAsCholmod) {
   for (const bool dynamic : {false, true}) {
     const nmm::SceneDef scene = nmm::reference::peer_wall(10, 10, dynamic, 2.0);
     const nmm::Mesh mesh = nmm::pre::build_mesh(scene, "wall");
+    ::setenv("NMM_OWN_SOLVE", "1", 1);  // the stepper's SystemMatrix reads it when made
     nmm::solve::TimeStepper st(mesh, scene, "wall");
+    ::unsetenv("NMM_OWN_SOLVE");
     st.set_threads(1);
     for (int s = 0; s < 20; ++s) st.step(1e-3);
     const SystemMatrix& sys = st.view().system;

@@ -29,7 +29,7 @@
 // values of order 1, far inside the rounding's own 2⁻²⁴.
 //
 // DoubleFactor: the same passes over CHOLMOD's own double factor, read where CHOLMOD keeps it
-// (system_matrix.cpp: below kOwnSolveUnknowns, instead of cholmod_solve). CHOLMOD's solve calls
+// (system_matrix.cpp: below kOwnSolveUnknowns where NMM_OWN_SOLVE=1 sets it on, instead of cholmod_solve). CHOLMOD's solve calls
 // dtrsv and dgemv per supernode and pass, on narrow blocks here (87 supernodes of 11 columns on
 // average, 10 × 10 wall at h = 2 m), and makes and frees dense vectors per solve; these passes
 // loop over the supernodes with a work vector kept per thread: a solve pair there 503k → 303k

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <new>
+#include <string>
 
 #if defined(__x86_64__) || defined(__SSE2__)
 #include <xmmintrin.h>
@@ -824,6 +826,11 @@ void SystemMatrix::saved_times(const Eigen::VectorXd& v, Eigen::VectorXd& y) con
     add_upper_times(static_cast<int>(k_.rows()), k_.outerIndexPtr(), k_.innerIndexPtr(), saved_.data(), v, 1.0, y);
 }
 
+int own_solve_from_environment() {
+  const char* v = std::getenv("NMM_OWN_SOLVE");
+  return v != nullptr && std::string(v) == "1" ? kOwnSolveUnknowns : 0;
+}
+
 void SystemMatrix::keep_single() {
   // Below the lean factorisation's size the double values' spare half stays resident until the
   // pattern changes (build_pattern): the next factorisation of this pattern writes it without
@@ -831,7 +838,7 @@ void SystemMatrix::keep_single() {
   own_.clear();
   if (!single_.ready() && single_from_ > 0 && size() >= single_from_)
     single_.take(llt_.factor(), /*keep_spare=*/size() < lean_from_, /*flush_subnormal=*/size() >= lean_from_);
-  else if (!single_.ready() && size() < kOwnSolveUnknowns)
+  else if (!single_.ready() && size() < own_from_)
     own_.view(llt_.factor());
 }
 

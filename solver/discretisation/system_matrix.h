@@ -41,9 +41,14 @@ inline constexpr double kOrderingRefill = 1.10;
 inline constexpr int kOutsideShare = 16;
 /// Unknowns from which set_single_precision() keeps the factor in single precision (system_matrix.cpp).
 inline constexpr int kSingleFactorUnknowns = 150000;
-/// Below this many unknowns a double factor is solved by our own passes over CHOLMOD's supernodes
-/// (single_factor.h DoubleFactor) instead of cholmod_solve (system_matrix.cpp: where it pays).
+/// Below this many unknowns a double factor can be solved by our own passes over CHOLMOD's
+/// supernodes (single_factor.h DoubleFactor) instead of cholmod_solve (system_matrix.cpp: where it
+/// pays). Off unless the environment sets NMM_OWN_SOLVE=1 (own_solve_from_environment()): the new
+/// order of the sums moves every state hash, and data/dfn_slope.json's figures on Prescott's
+/// kernels by 7.7e-7 m (0.1–0.4 %, a contact path that parts), not yet traced (docs/performance.md (e)).
 inline constexpr int kOwnSolveUnknowns = 150000;
+/// kOwnSolveUnknowns where the environment sets NMM_OWN_SOLVE=1, else 0 (off).
+int own_solve_from_environment();
 /// Unknowns from which a single-precision run factorises lean (set_lean_factorisation(),
 /// system_matrix.cpp factorize_lean: where it pays).
 inline constexpr int kLeanFactorUnknowns = 500000;
@@ -93,7 +98,10 @@ class SystemMatrix {
   void set_lean_factorisation(int from = kLeanFactorUnknowns) { lean_from_ = from; }
   /// The factor is held in single precision.
   bool single_precision() const { return single_.ready(); }
-  /// The double factor is solved by our own passes (DoubleFactor: below kOwnSolveUnknowns).
+  /// Below `below` unknowns a double factor is solved by our own passes (0: by cholmod_solve;
+  /// the default is own_solve_from_environment()).
+  void set_own_solve(int below = kOwnSolveUnknowns) { own_from_ = below; }
+  /// The double factor is solved by our own passes (DoubleFactor).
   bool own_solve() const { return own_.ready(); }
   /// The matrix the current factorisation was made from (its perturbation included).
   const Sparse& factored_matrix() const { return factored_; }
@@ -228,7 +236,7 @@ class SystemMatrix {
   /// (P + E)⁻¹ b with the factorisation, in double: CHOLMOD's solve, or the single-precision
   /// factor's refined against factored_.
   Eigen::VectorXd solve_factored(const Eigen::VectorXd& b) const;
-  void keep_single();  // the factor just made goes to single precision, if set so, else to own_ (kOwnSolveUnknowns)
+  void keep_single();  // the factor just made goes to single precision, if set so, else to own_ (below own_from_)
   void analyse(const Sparse& a);  // CHOLMOD's symbolic analysis of a's pattern, under the ordering set
   Sparse k_;
   // Where each group's block lands: for the entries (i, j) of its m × m block, column-major,
@@ -285,8 +293,9 @@ class SystemMatrix {
   Eigen::VectorXd perturbation_;  // [n] E: the factor's diagonal perturbation (0 off regularised_)
   int refinements_ = 0;
   SingleFactor single_;  // the factor in single precision (set_single_precision), else not ready
-  DoubleFactor own_;     // CHOLMOD's double factor read by our passes (below kOwnSolveUnknowns), else not ready
+  DoubleFactor own_;     // CHOLMOD's double factor read by our passes (below own_from_), else not ready
   int single_from_ = 0;
+  int own_from_ = own_solve_from_environment();  // unknowns below which own_ solves (0: never)
   int lean_from_ = kLeanFactorUnknowns;  // set_lean_factorisation()
   mutable std::size_t single_refinements_ = 0;
 };
